@@ -1,0 +1,58 @@
+"""fretwear: fretting-wear analysis of impact-sliding contacts.
+
+From the contact time histories of a transient dynamic computation (normal force, sliding
+velocities, contact position), fretwear computes the wear power, applies a wear law (Archard,
+KWU-EPRI, EDF-MZ), turns worn volumes into worn depths for eight contact geometries, splits it by
+angular sectors, extrapolates over years of service, continues from an earlier state, and updates
+the obstacle's clearance profile.
+
+Everything is SI inside: m, m³, N, m/s, s, W, Pa⁻¹. User angles are in degrees.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+from fretwear.errors import (  # noqa: F401
+    FretwearError,
+    FretwearWarning,
+    HistoryError,
+    InputError,
+)
+from fretwear.history import ContactHistory  # noqa: F401
+
+__version__ = "0.1.0"
+
+# Public names resolved lazily from their modules (keeps `import fretwear` fast).
+_LAZY: dict[str, str] = {
+    "read_history": "fretwear.io",
+    "write_history": "fretwear.io",
+    "read_aster_table": "fretwear.io.aster",
+    "write_aster_table": "fretwear.io.aster",
+    "wear_power": "fretwear.power",
+    "PowerResult": "fretwear.power",
+    "contact_statistics": "fretwear.statistics",
+    "laws": "fretwear.laws",
+    "database": "fretwear.database",
+    "geometry": "fretwear.geometry",
+    "contact_geometry": "fretwear.geometry",
+    "CONTACT_TYPES": "fretwear.geometry",
+    "wear_table": "fretwear.operator",
+    "run_case": "fretwear.case",
+    "aster": "fretwear.aster",
+    "obstacle": "fretwear.obstacle",
+    "dynamics": "fretwear.dynamics",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'fretwear' has no attribute {name!r}")
+    mod = importlib.import_module(module)
+    return mod if module.endswith("." + name) else getattr(mod, name)
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))

@@ -1,0 +1,71 @@
+"""The ``fretwear`` command line: thin subcommands that parse, call one library function, write.
+
+Each subcommand lives in its own module ``fretwear.cli.<name>`` exposing a click command called
+``command``; they are imported only when used.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+import click
+
+from fretwear import __version__
+
+SUBCOMMANDS: dict[str, str] = {
+    "power": "Wear power, block and sector powers and contact statistics of a history.",
+    "materials": "The wear-coefficient database as a table.",
+    "run": "Run a case file: the service-life wear table.",
+    "obstacle": "Update the obstacle's clearance profile from a wear table.",
+    "iterate": "Coupled loop dynamics -> wear -> obstacle update -> dynamics.",
+}
+
+
+class LazyGroup(click.Group):
+    """A click group importing each subcommand module on demand."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return list(SUBCOMMANDS)
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name not in SUBCOMMANDS:
+            return None
+        module = importlib.import_module(f"fretwear.cli.{name}")
+        return module.command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        with formatter.section("Commands"):
+            formatter.write_dl(list(SUBCOMMANDS.items()))
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="fretwear")
+def cli() -> None:
+    """fretwear: fretting-wear analysis of impact-sliding contacts (SI units inside)."""
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Console-script entry point; returns the exit code."""
+    try:
+        cli.main(args=argv, prog_name="fretwear", standalone_mode=False)
+    except click.exceptions.Exit as exc:
+        return int(exc.exit_code)
+    except click.ClickException as exc:
+        exc.show()
+        return exc.exit_code
+    except click.exceptions.Abort:
+        click.echo("Aborted.", err=True)
+        return 1
+    except Exception as exc:  # noqa: BLE001 - turn library errors into a clean message
+        from fretwear.errors import FretwearError
+
+        if isinstance(exc, FretwearError | FileNotFoundError | ValueError):
+            click.echo(f"fretwear: error: {exc}", err=True)
+            return 2
+        raise
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,59 @@
+"""Exceptions and warnings of fretwear.
+
+Every error names the culprit (a column, a keyword, a row, a file) and says how to fix it.
+Every warning is a subclass of :class:`FretwearWarning` so users can filter them as a family.
+"""
+
+from __future__ import annotations
+
+
+class FretwearError(Exception):
+    """Base class of all fretwear errors."""
+
+
+class InputError(FretwearError, ValueError):
+    """Bad user input: a missing or malformed column, keyword, value or file."""
+
+
+class HistoryError(InputError):
+    """A contact history is invalid (length, NaN, non-increasing time, negative force ...)."""
+
+
+class FormatError(InputError):
+    """A file cannot be read in the format asked for or guessed."""
+
+
+class KeywordError(InputError):
+    """A keyword is missing, unknown, or excluded by another one (Code_Aster catalogue rules)."""
+
+
+class DatabaseError(InputError):
+    """A coefficient is not in the database (unknown pair, empty box)."""
+
+
+class StabilityError(FretwearError, ValueError):
+    """A time step is too large for the explicit scheme to be stable."""
+
+
+class FretwearWarning(UserWarning):
+    """Base class of all fretwear warnings."""
+
+
+class StationarityWarning(FretwearWarning):
+    """The block powers spread more than the user's threshold: the power is not stationary."""
+
+
+class RangeWarning(FretwearWarning):
+    """A value lies beyond a relation's range of validity; the result there is NaN."""
+
+
+class UnusedKeywordWarning(FretwearWarning):
+    """A keyword was given that the chosen model or contact type does not use."""
+
+
+class LawWarning(FretwearWarning):
+    """A wear law is used outside its usual regime (e.g. EDF_MZ with S > A·P^b)."""
+
+
+class PerforationWarning(FretwearWarning):
+    """The mobile's worn depth passed the perforation criterion (PERCEMENT × wall thickness)."""
