@@ -1,0 +1,434 @@
+"""Shared plane-geometry helpers of the volume/depth relations (SPEC §6).
+
+All functions are vectorised with numpy (any broadcastable shapes) and work in SI units:
+lengths [m], areas [m²], angles [rad]. They never modify their arguments.
+
+- :func:`segment_area`, :func:`sagitta`: circular segment of radius ρ cut by a chord.
+- :func:`lens_half_chord`, :func:`lens_area`, :func:`lens_depth_limit`: the lens (lunule) of a
+  mobile disk of radius R_m that protrudes by D beyond a bore of radius R_o > R_m.
+- :func:`frustum_volume`: the frustum (prismatoid) rule of a tilted contact.
+- :func:`solve_monotone`: vectorised bracketed solver for increasing functions.
+
+The closed forms are written so that they keep full relative precision at small depth: the
+segment uses a series of u − sin u for small angles, the sagitta is ``x²/(ρ + √(ρ² − x²))``
+and the lens half-chord uses the factorised (Heron-like) form derived in ``docs/geometry.md``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+__all__ = [
+    "frustum_volume",
+    "lens_area",
+    "lens_depth_limit",
+    "lens_half_chord",
+    "sagitta",
+    "segment_area",
+    "solve_monotone",
+]
+
+# Taylor coefficients of u - sin(u) = u³/3! - u⁵/5! + u⁷/7! - ...  (used for |u| < 0.5, where the
+# truncation after u¹⁵ leaves a relative error below 1e-17).
+_SERIES_LIMIT = 0.5
+_SERIES = [(-1.0) ** k / float(np.prod(np.arange(1, 2 * k + 4))) for k in range(7)]
+
+
+def _u_minus_sin(u: np.ndarray) -> np.ndarray:
+    """u − sin(u) with full relative precision for small u (u ≥ 0)."""
+    u = np.asarray(u, dtype=float)
+    small = np.abs(u) < _SERIES_LIMIT
+    u2 = u * u
+    series = np.zeros_like(u)
+    power = u * u2
+    for coefficient in _SERIES:
+        series = series + coefficient * power
+        power = power * u2
+    with np.errstate(invalid="ignore"):
+        direct = u - np.sin(u)
+    return np.where(small, series, direct)
+
+
+def segment_area(radius, half_chord):
+    """Area of the circular segment of radius ρ cut off by a chord of half-length x [m²].
+
+    Parameters
+    ----------
+    radius : float or array_like
+        Circle radius ρ [m], > 0.
+    half_chord : float or array_like
+        Half-length x of the chord [m], 0 ≤ x ≤ ρ (NaN outside).
+
+    Returns
+    -------
+    numpy.ndarray or float
+        Area of the minor segment [m²] (NaN where x > ρ or x < 0).
+
+    Notes
+    -----
+    .. math:: \\mathrm{seg}(\\rho, x) = \\rho^2 \\arcsin(x/\\rho) - x\\sqrt{\\rho^2 - x^2}
+              = \\tfrac{\\rho^2}{2}\\,(2\\varphi - \\sin 2\\varphi),\\quad \\sin\\varphi = x/\\rho
+
+    The second form, with a series of u − sin u for small u = 2φ, keeps full relative precision
+    for chords much shorter than the radius (seg ≈ 2x³/(3ρ)). SPEC §6 (the seed writes
+    ρ²(φ − sin 2φ), a typo).
+
+    References
+    ----------
+    SPEC §6; seed §4.1 (corrected).
+
+    Examples
+    --------
+    >>> round(float(segment_area(1.0, 1.0)), 12)  # half disk: π/2
+    1.570796326795
+    >>> round(float(segment_area(2.0, 1e-4)) / (2 * 1e-12 / 6), 9)  # small chord: 2x³/(3ρ)
+    1.0
+    """
+    rho = np.asarray(radius, dtype=float)
+    x = np.asarray(half_chord, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ratio = x / rho
+        valid = (ratio >= 0.0) & (ratio <= 1.0)
+        phi = np.arcsin(np.where(valid, ratio, np.nan))
+        area = 0.5 * rho * rho * _u_minus_sin(2.0 * phi)
+    return area[()] if area.ndim == 0 else area
+
+
+def sagitta(radius, half_chord):
+    """Height of the circular segment of radius ρ cut by a chord of half-length x [m].
+
+    Parameters
+    ----------
+    radius : float or array_like
+        Circle radius ρ [m], > 0.
+    half_chord : float or array_like
+        Half-length x of the chord [m], 0 ≤ x ≤ ρ (NaN outside).
+
+    Returns
+    -------
+    numpy.ndarray or float
+        Sagitta s [m].
+
+    Notes
+    -----
+    .. math:: s(\\rho, x) = \\rho - \\sqrt{\\rho^2 - x^2} = \\frac{x^2}{\\rho + \\sqrt{\\rho^2 - x^2}}
+
+    The second form is used (no cancellation for x ≪ ρ).
+
+    References
+    ----------
+    SPEC §6.
+
+    Examples
+    --------
+    >>> float(sagitta(5.0, 3.0))
+    1.0
+    >>> float(sagitta(1.0, 1e-6))  # x²/(2ρ)
+    5e-13
+    """
+    rho = np.asarray(radius, dtype=float)
+    x = np.asarray(half_chord, dtype=float)
+    with np.errstate(invalid="ignore"):
+        valid = (x >= 0.0) & (x <= rho)
+        root = np.sqrt(np.where(valid, rho * rho - x * x, np.nan))
+        s = x * x / (rho + root)
+    return s[()] if s.ndim == 0 else s
+
+
+def lens_half_chord(mobile_radius, obstacle_radius, depth):
+    """Half-chord x of the lens of a mobile disk protruding by D beyond a bore [m].
+
+    The mobile disk (radius R_m) has its centre offset by c = R_o − R_m + D from the centre of
+    the bore (radius R_o > R_m), so that it reaches a depth D beyond the bore's surface.
+    The two circles cross at the ends of a chord of half-length x.
+
+    Parameters
+    ----------
+    mobile_radius : float or array_like
+        Mobile outer radius R_m [m].
+    obstacle_radius : float or array_like
+        Bore radius R_o [m], > R_m.
+    depth : float or array_like
+        Depth D of the mobile beyond the bore [m], D ≥ 0.
+
+    Returns
+    -------
+    numpy.ndarray or float
+        Half-chord x [m] (NaN where D < 0 or D > 2 R_m).
+
+    Notes
+    -----
+    SPEC §6 writes x² = R_m² − (R_o² − R_m² − c²)²/(4c²). Factorising the difference of squares
+    gives the form used here, exact and free of cancellation at small D:
+
+    .. math:: x^2 = \\frac{D\\,(2R_o + D)\\,(2R_m - D)\\,(2(R_o - R_m) + D)}{4c^2},
+              \\qquad c = R_o - R_m + D
+
+    References
+    ----------
+    SPEC §6; seed §4.6 (same x).
+
+    Examples
+    --------
+    >>> float(lens_half_chord(3.0, 5.0, 0.0))
+    0.0
+    >>> round(float(lens_half_chord(3.0, 5.0, 2.0)), 12)  # c = 4: circles cross at x = 3
+    3.0
+    """
+    rm = np.asarray(mobile_radius, dtype=float)
+    ro = np.asarray(obstacle_radius, dtype=float)
+    d = np.asarray(depth, dtype=float)
+    c = ro - rm + d
+    with np.errstate(invalid="ignore", divide="ignore"):
+        product = d * (2.0 * ro + d) * (2.0 * rm - d) * (2.0 * (ro - rm) + d)
+        x = np.sqrt(np.where((d >= 0.0) & (product >= 0.0), product, np.nan)) / (2.0 * c)
+        x = np.where(d == 0.0, 0.0, x)
+    return x[()] if x.ndim == 0 else x
+
+
+def lens_depth_limit(mobile_radius, obstacle_radius):
+    """Largest depth D of the lens relation: the chord reaches the mobile's centre [m].
+
+    Parameters
+    ----------
+    mobile_radius : float or array_like
+        Mobile outer radius R_m [m].
+    obstacle_radius : float or array_like
+        Bore radius R_o [m], > R_m.
+
+    Returns
+    -------
+    numpy.ndarray or float
+        D_max [m]; there x = R_m (the lens holds half the mobile's disk minus a bore segment).
+
+    Notes
+    -----
+    The chord passes through the mobile's centre when c² = R_o² − R_m², so
+
+    .. math:: D_{max} = \\sqrt{R_o^2 - R_m^2} - (R_o - R_m)
+
+    References
+    ----------
+    SPEC §6 ("valid while the chord stays beyond the mobile's centre").
+
+    Examples
+    --------
+    >>> float(lens_depth_limit(3.0, 5.0))
+    2.0
+    """
+    rm = np.asarray(mobile_radius, dtype=float)
+    ro = np.asarray(obstacle_radius, dtype=float)
+    with np.errstate(invalid="ignore"):
+        # sqrt(ro² - rm²) written as sqrt((ro - rm)·(ro + rm)): no cancellation when ro ≈ rm.
+        g = ro - rm
+        limit = np.sqrt(g * (ro + rm)) - g
+    return limit[()] if limit.ndim == 0 else limit
+
+
+def lens_area(mobile_radius, obstacle_radius, depth):
+    """Area S(D) of the mobile's disk outside the bore (the lens, or lunule) [m²].
+
+    Parameters
+    ----------
+    mobile_radius : float or array_like
+        Mobile outer radius R_m [m].
+    obstacle_radius : float or array_like
+        Bore radius R_o [m], > R_m.
+    depth : float or array_like
+        Depth D of the mobile beyond the bore [m], 0 ≤ D ≤ :func:`lens_depth_limit`.
+
+    Returns
+    -------
+    numpy.ndarray or float
+        S [m²] (NaN beyond the limit or for D < 0).
+
+    Notes
+    -----
+    .. math:: S(D) = R_m^2\\arcsin\\frac{x}{R_m} - R_o^2\\arcsin\\frac{x}{R_o} + x\\,c
+              = \\mathrm{seg}(R_m, x) - \\mathrm{seg}(R_o, x)
+
+    with x from :func:`lens_half_chord` and c = R_o − R_m + D (the two forms are equal because
+    √(R_m² − x²) + c = √(R_o² − x²)); the segment difference is used.
+
+    References
+    ----------
+    SPEC §6; seed §4.6.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> s = float(lens_area(3.0, 5.0, 2.0))  # half disk of radius 3 minus a segment of radius 5
+    >>> bool(np.isclose(s, np.pi * 9 / 2 - (25 * np.arcsin(0.6) - 3 * 4), rtol=1e-14))
+    True
+    """
+    rm = np.asarray(mobile_radius, dtype=float)
+    ro = np.asarray(obstacle_radius, dtype=float)
+    d = np.asarray(depth, dtype=float)
+    x = lens_half_chord(rm, ro, d)
+    limit = lens_depth_limit(rm, ro)
+    tolerance = 1e-12 * np.maximum(limit, 0.0)
+    with np.errstate(invalid="ignore"):
+        x = np.where(d <= limit + tolerance, np.minimum(x, rm), np.nan)
+        area = segment_area(rm, x) - segment_area(ro, x)
+    area = np.asarray(area, dtype=float)
+    return area[()] if area.ndim == 0 else area
+
+
+def frustum_volume(area: Callable, depth, width, tilt):
+    """Volume of a tilted trace by the frustum (prismatoid) rule [m³].
+
+    Parameters
+    ----------
+    area : callable
+        A(d): cross-section area [m²] of the trace at depth d [m] (vectorised, A(0) = 0).
+    depth : float or array_like
+        Depth d at the deepest end of the trace [m], ≥ 0.
+    width : float or array_like
+        Obstacle width l [m] (length of the trace along the mobile's axis when d ≥ l·θ).
+    tilt : float or array_like
+        Tilt angle θ [rad], ≥ 0 (θ = 0 gives l·A(d)).
+
+    Returns
+    -------
+    numpy.ndarray or float
+        Volume [m³].
+
+    Notes
+    -----
+    The trace is a wedge whose depth falls linearly from d by θ per unit length along the axis:
+
+    .. math:: V = \\frac{d}{\\theta}\\,\\frac{A(d)}{3} \\quad (d < l\\theta), \\qquad
+              V = \\frac{l}{3}\\left(A_1 + \\sqrt{A_1 A_2} + A_2\\right) \\quad (d \\ge l\\theta)
+
+    with A1 = A(d), A2 = A(d − lθ). Both branches agree at d = lθ. The rule is exact when A
+    grows as d² (pyramid); for A ∝ d^{3/2} it gives 5/6 of the exact wedge integral
+    (1/θ)∫A(u)du (see docs/geometry.md). SPEC §6 prescribes it.
+
+    References
+    ----------
+    SPEC §6; seed §4.6 case 2.
+
+    Examples
+    --------
+    >>> float(frustum_volume(lambda d: d**2, 1.0, 10.0, 0.5))  # pyramid: (d/θ)·d²/3
+    0.6666666666666666
+    >>> float(frustum_volume(lambda d: d**2, 1.0, 2.0, 0.0))  # no tilt: l·A(d)
+    2.0
+    """
+    d = np.asarray(depth, dtype=float)
+    l = np.asarray(width, dtype=float)
+    theta = np.asarray(tilt, dtype=float)
+    reach = l * theta
+    short = d < reach
+    a1 = np.asarray(area(d), dtype=float)
+    a2 = np.asarray(area(np.where(short, 0.0, np.maximum(d - reach, 0.0))), dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        wedge = np.where(short, d / np.where(short, theta, 1.0) * a1 / 3.0, 0.0)
+        frustum = l / 3.0 * (a1 + np.sqrt(a1 * a2) + a2)
+    volume = np.where(short, wedge, frustum)
+    return volume[()] if volume.ndim == 0 else volume
+
+
+def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
+                   atol: float = 0.0, max_iter: int = 400):
+    """Solve func(x) = target for x in [lower, upper], func increasing; vectorised.
+
+    Chandrupatla's method (inverse quadratic interpolation safeguarded by bisection), run on
+    every element at once: ``func`` is called with an array of the broadcast shape of
+    ``target``, ``lower`` and ``upper`` (converged elements keep their value), so it may use
+    element-wise parameters of that same shape.
+
+    Parameters
+    ----------
+    func : callable
+        Vectorised, non-decreasing function of x.
+    target : float or array_like
+        Values to reach.
+    lower, upper : float or array_like
+        Bracket ends (broadcastable to ``target``), lower ≤ upper.
+    rtol : float
+        Relative tolerance on x (default 1e-12).
+    atol : float
+        Absolute tolerance on x (default 0).
+    max_iter : int
+        Iteration cap (the bracket then still holds the root; its best end is returned).
+
+    Returns
+    -------
+    numpy.ndarray or float
+        The root x; NaN where ``target`` is NaN or lies outside [func(lower), func(upper)].
+
+    Notes
+    -----
+    Each step keeps a bracket [x1, x2] with a sign change of f = func − target; the trial point
+    is x1 + t·(x2 − x1), t from inverse quadratic interpolation when the three last points allow
+    it, else t = 1/2; t is clipped so that each step shrinks the bracket by at least the
+    tolerance. Stops when the bracket is shorter than 2·(rtol·|x| + atol) or f = 0.
+
+    References
+    ----------
+    T. R. Chandrupatla, "A new hybrid quadratic/bisection algorithm for finding the zero of a
+    nonlinear function without using derivatives", Adv. Eng. Software 28 (1997) 145-149.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = solve_monotone(lambda x: x**3, np.array([8.0, 27.0, 100.0]), 0.0, 4.0)
+    >>> np.round(x, 12).tolist()
+    [2.0, 3.0, nan]
+    """
+    target = np.asarray(target, dtype=float)
+    lo = np.asarray(lower, dtype=float)
+    hi = np.asarray(upper, dtype=float)
+    shape = np.broadcast_shapes(target.shape, lo.shape, hi.shape)
+    target = np.broadcast_to(target, shape).astype(float)
+    lo = np.broadcast_to(lo, shape).astype(float)
+    hi = np.broadcast_to(hi, shape).astype(float)
+    with np.errstate(all="ignore"):
+        f_lo = np.asarray(func(lo), dtype=float) - target
+        f_hi = np.asarray(func(hi), dtype=float) - target
+        f_lo = np.broadcast_to(f_lo, shape).astype(float)
+        f_hi = np.broadcast_to(f_hi, shape).astype(float)
+        root = np.full(shape, np.nan)
+        root = np.where(f_lo == 0.0, lo, root)
+        root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)
+        active = (f_lo < 0.0) & (f_hi > 0.0)
+        # Chandrupatla's state: x1 (newest), x2 (other end of the bracket), x3 (dropped point).
+        x1, f1 = hi.copy(), f_hi.copy()
+        x2, f2 = lo.copy(), f_lo.copy()
+        x3, f3 = lo.copy(), f_lo.copy()
+        t = np.full(shape, 0.5)
+        for _ in range(max_iter):
+            if not active.any():
+                break
+            xt = np.where(active, x1 + t * (x2 - x1), x1)
+            ft = np.broadcast_to(np.asarray(func(xt), dtype=float), shape) - target
+            same = np.sign(ft) == np.sign(f1)
+            x3 = np.where(active, np.where(same, x1, x2), x3)
+            f3 = np.where(active, np.where(same, f1, f2), f3)
+            x2 = np.where(active & ~same, x1, x2)
+            f2 = np.where(active & ~same, f1, f2)
+            x1 = np.where(active, xt, x1)
+            f1 = np.where(active, ft, f1)
+            best_is_1 = np.abs(f1) < np.abs(f2)
+            xm = np.where(best_is_1, x1, x2)
+            fm = np.where(best_is_1, f1, f2)
+            tol = 2.0 * (rtol * np.abs(xm) + atol) + 4.0 * np.finfo(float).tiny
+            span = np.abs(x2 - x1)
+            tl = tol / np.where(span > 0.0, span, 1.0)
+            done = active & ((tl > 0.5) | (fm == 0.0) | (span == 0.0) | ~np.isfinite(ft))
+            root = np.where(done, xm, root)
+            active = active & ~done
+            xi = (x1 - x2) / (x3 - x2)
+            phi = (f1 - f2) / (f3 - f2)
+            iqi = (phi * phi < xi) & ((1.0 - phi) ** 2 < 1.0 - xi)
+            t_iqi = (f1 / (f2 - f1) * f3 / (f2 - f3)
+                     + (x3 - x1) / (x2 - x1) * f1 / (f3 - f1) * f2 / (f3 - f2))
+            t = np.where(iqi & np.isfinite(t_iqi), t_iqi, 0.5)
+            t = np.clip(t, np.minimum(tl, 0.5), np.maximum(1.0 - tl, 0.5))
+        if active.any():
+            best_is_1 = np.abs(f1) < np.abs(f2)
+            root = np.where(active, np.where(best_is_1, x1, x2), root)
+    return root[()] if root.ndim == 0 else root
