@@ -1,0 +1,147 @@
+"""Worn volume ↔ worn depth for the eight contact geometries of POST_USURE (SPEC §3, §6).
+
+``CONTACT_TYPES`` maps each Code_Aster contact name to its frozen dataclass;
+:func:`contact_geometry` builds one from keyword dimensions (native names or Code_Aster
+keywords). Every geometry has ``depth_from_volume(volume_mobile, volume_obstacle=0.0)`` and
+``volume_from_depth(depth_mobile, depth_obstacle=0.0)``, vectorised over instants. Sector depths
+are in :mod:`fretwear.geometry.sectors`. The derivations are in ``docs/geometry.md``.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.geometry.base import (
+    ASTER_KEYWORDS,
+    DIMENSION_DESCRIPTIONS,
+    DIMENSION_UNITS,
+    ContactGeometry,
+)
+
+# TEMPORARY guards while the modules are being written (issue 4); removed when they land.
+try:
+    from fretwear.geometry.sectors import (
+        sector_depth_mobile,
+        sector_depth_obstacle,
+        sector_volume_mobile,
+        sector_volume_obstacle,
+    )
+except ImportError:  # pragma: no cover
+    pass
+
+__all__ = [
+    "ASTER_KEYWORDS",
+    "CONTACT_TYPES",
+    "ContactGeometry",
+    "contact_geometry",
+    "sector_depth_mobile",
+    "sector_depth_obstacle",
+    "sector_volume_mobile",
+    "sector_volume_obstacle",
+]
+
+#: Code_Aster contact name -> geometry class (SPEC §6).
+CONTACT_TYPES: dict[str, type[ContactGeometry]] = {}
+
+for _module, _names in (("tube_bav", ("TUBE_BAV", "TubeBav")),
+                        ("tube_alesage", ("TUBE_ALESAGE", "TubeAlesage")),
+                        ("tube_tube", ("TUBE_TUBE", "TubeTube")),
+                        ("grappe_alesage", ("GRAPPE_ALESAGE", "GrappeAlesage"))):
+    try:
+        _mod = __import__(f"fretwear.geometry.{_module}", fromlist=[_names[1]])
+    except ImportError:  # pragma: no cover
+        continue
+    CONTACT_TYPES[_names[0]] = getattr(_mod, _names[1])
+
+# The broached-hole and notch types are written in parallel (issue 4, second half).
+try:
+    from fretwear.geometry.enco import Tube3Enco, Tube4Enco
+except ImportError:  # pragma: no cover - until geometry/enco.py lands
+    pass
+else:
+    CONTACT_TYPES["TUBE_3_ENCO"] = Tube3Enco
+    CONTACT_TYPES["TUBE_4_ENCO"] = Tube4Enco
+try:
+    from fretwear.geometry.grappe_notch import Grappe1Enco, Grappe2Enco
+except ImportError:  # pragma: no cover - until geometry/grappe_notch.py lands
+    pass
+else:
+    CONTACT_TYPES["GRAPPE_1_ENCO"] = Grappe1Enco
+    CONTACT_TYPES["GRAPPE_2_ENCO"] = Grappe2Enco
+
+_FROM_ASTER = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
+
+
+def contact_geometry(contact_type: str, **dimensions) -> ContactGeometry:
+    """Build the geometry of a contact type from its dimensions.
+
+    Parameters
+    ----------
+    contact_type : str
+        Code_Aster contact name (case-insensitive): one of ``CONTACT_TYPES``.
+    **dimensions : float
+        ``mobile_radius`` [m], ``obstacle_radius`` [m], ``obstacle_width`` [m],
+        ``tilt_angle`` [deg], ``isthmus_angle`` [deg], ``impact_angle`` [deg], or their
+        Code_Aster keywords (RAYON_MOBILE, RAYON_OBST, LARGEUR_OBST, ANGL_INCLI, ANGL_ISTHME,
+        ANGL_IMPACT). A value of None counts as not given.
+
+    Returns
+    -------
+    ContactGeometry
+        The frozen geometry object.
+
+    Raises
+    ------
+    KeywordError
+        Unknown contact type, unknown dimension name, a dimension given twice, or a dimension
+        the type needs and did not get (named with its Code_Aster keyword).
+    InputError
+        A negative, zero or non-finite length, or an angle outside [0, 90) deg.
+
+    Warns
+    -----
+    UnusedKeywordWarning
+        For a dimension the contact type does not use (it is ignored).
+
+    Examples
+    --------
+    >>> g = contact_geometry("TUBE_BAV", RAYON_MOBILE=0.0111, LARGEUR_OBST=0.0127)
+    >>> type(g).__name__, g.mobile_radius
+    ('TubeBav', 0.0111)
+    """
+    key = str(contact_type).strip().upper()
+    cls = CONTACT_TYPES.get(key)
+    if cls is None:
+        raise KeywordError(
+            f"unknown contact type {contact_type!r} (CONTACT): choose one of "
+            f"{', '.join(CONTACT_TYPES)}")
+    given: dict[str, float] = {}
+    for name, value in dimensions.items():
+        native = _FROM_ASTER.get(name.upper(), name) if name.isupper() else name
+        if native not in ASTER_KEYWORDS:
+            raise KeywordError(
+                f"{name!r} is not a contact dimension; the dimensions are "
+                + ", ".join(f"{n} ({k})" for n, k in ASTER_KEYWORDS.items())
+                + " (a wall thickness belongs to the perforation check, not the geometry)")
+        if native in given:
+            raise KeywordError(
+                f"{native} ({ASTER_KEYWORDS[native]}) given twice; give it once")
+        if value is None:
+            continue
+        given[native] = value
+    used = set(cls.required) | set(cls.optional)
+    for name in list(given):
+        if name not in used:
+            warnings.warn(
+                f"{key} does not use {name} ({ASTER_KEYWORDS[name]}): ignored "
+                f"(it uses {', '.join(f'{n} ({ASTER_KEYWORDS[n]})' for n in cls.required + cls.optional)})",
+                UnusedKeywordWarning, stacklevel=2)
+            del given[name]
+    missing = [name for name in cls.required if name not in given]
+    if missing:
+        raise KeywordError(
+            f"{key} needs "
+            + ", ".join(f"{n} ({ASTER_KEYWORDS[n]}, {DIMENSION_DESCRIPTIONS[n]}) "
+                        f"[{DIMENSION_UNITS[n]}]" for n in missing))
+    return cls(**given)

@@ -1,0 +1,264 @@
+"""Base contract of the contact geometries (SPEC §6, docs/DESIGN.md "Geometry").
+
+A contact geometry is a frozen dataclass whose fields are the dimensions the contact type
+uses (SI lengths [m], user angles [deg]). Subclasses declare
+
+- ``contact_type``: the Code_Aster name (``"TUBE_BAV"`` ...),
+- ``required`` / ``optional``: the dimension names the type needs / may use,
+- ``example``: typical dimensions (docs, tests, figures),
+
+and implement the two element-wise relations on validated float arrays of one shape,
+
+- ``_depth_from_volume(volume_mobile, volume_obstacle) -> (depth_mobile, depth_obstacle)``,
+- ``_volume_from_depth(depth_mobile, depth_obstacle) -> (volume_mobile, volume_obstacle)``,
+
+returning NaN where the input lies beyond the relation's range, plus the ``max_depth`` property
+(the largest mobile depth of the range when the obstacle does not wear, [m]) and, optionally,
+``range_limit`` (a sentence naming the limit). The public methods :meth:`depth_from_volume` and
+:meth:`volume_from_depth` validate and broadcast the inputs (never modifying them), call the
+relation, and warn with :class:`~fretwear.errors.RangeWarning` (naming the contact type and the
+limit) where the result is NaN.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from typing import Any, ClassVar
+
+import numpy as np
+
+from fretwear.errors import InputError, KeywordError, RangeWarning
+
+__all__ = [
+    "ANGLE_DIMENSIONS",
+    "ASTER_KEYWORDS",
+    "DIMENSION_DESCRIPTIONS",
+    "DIMENSION_UNITS",
+    "LENGTH_DIMENSIONS",
+    "ContactGeometry",
+]
+
+#: Native dimension name -> Code_Aster keyword of POST_USURE.
+ASTER_KEYWORDS: dict[str, str] = {
+    "mobile_radius": "RAYON_MOBILE",
+    "obstacle_radius": "RAYON_OBST",
+    "obstacle_width": "LARGEUR_OBST",
+    "tilt_angle": "ANGL_INCLI",
+    "isthmus_angle": "ANGL_ISTHME",
+    "impact_angle": "ANGL_IMPACT",
+}
+
+#: Unit of each dimension (SI lengths, user angles in degrees).
+DIMENSION_UNITS: dict[str, str] = {
+    "mobile_radius": "m",
+    "obstacle_radius": "m",
+    "obstacle_width": "m",
+    "tilt_angle": "deg",
+    "isthmus_angle": "deg",
+    "impact_angle": "deg",
+}
+
+DIMENSION_DESCRIPTIONS: dict[str, str] = {
+    "mobile_radius": "outer radius of the mobile (tube or rod)",
+    "obstacle_radius": "radius of the obstacle (bore radius, or the other tube's radius)",
+    "obstacle_width": "width of the obstacle (worn height along the mobile's axis)",
+    "tilt_angle": "tilt of the mobile relative to the obstacle (crossing angle for TUBE_TUBE)",
+    "isthmus_angle": "angle of the isthmus edge of a broached (trefoil/quatrefoil) hole",
+    "impact_angle": "angle between the impact direction and the bar's normal",
+}
+
+LENGTH_DIMENSIONS = ("mobile_radius", "obstacle_radius", "obstacle_width")
+ANGLE_DIMENSIONS = ("tilt_angle", "isthmus_angle", "impact_angle")
+
+
+def _label(name: str) -> str:
+    return f"{name} ({ASTER_KEYWORDS.get(name, name)})"
+
+
+def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndarray]:
+    """Validated float copies of a (mobile, obstacle) pair, broadcast to one shape."""
+    unit = "m³" if kind == "volume" else "m"
+    arrays = []
+    for body, value in (("mobile", mobile), ("obstacle", obstacle)):
+        name = f"{kind}_{body}"
+        try:
+            array = np.array(value, dtype=float)  # a copy: inputs are never modified
+        except (TypeError, ValueError):
+            raise InputError(f"{name} must be numbers [{unit}], got {value!r}") from None
+        bad = np.isinf(array) | (array < 0.0)  # NaN (the out-of-range marker) passes through
+        if bad.any():
+            index = np.argwhere(bad)[0]
+            where = f" at index {tuple(int(i) for i in index)}" if array.ndim else ""
+            raise InputError(
+                f"{name} must be finite and >= 0 [{unit}]: got {float(array[tuple(index)]):g}"
+                f"{where}; pass a non-negative {kind}")
+        arrays.append(array)
+    try:
+        mobile_array, obstacle_array = np.broadcast_arrays(*arrays)
+    except ValueError:
+        raise InputError(
+            f"{kind}_mobile (shape {arrays[0].shape}) and {kind}_obstacle (shape "
+            f"{arrays[1].shape}) do not broadcast together; give arrays of the same length"
+        ) from None
+    return mobile_array.astype(float, copy=True), obstacle_array.astype(float, copy=True)
+
+
+def _out(array: np.ndarray):
+    array = np.asarray(array, dtype=float)
+    return array[()] if array.ndim == 0 else array
+
+
+@dataclasses.dataclass(frozen=True)
+class ContactGeometry:
+    """Base of the eight contact geometries: volume ↔ depth relations of SPEC §6.
+
+    Subclasses are frozen dataclasses with the dimensions as fields (see module docstring).
+    Build them by name with :func:`fretwear.geometry.contact_geometry`.
+    """
+
+    contact_type: ClassVar[str] = ""
+    required: ClassVar[tuple[str, ...]] = ()
+    optional: ClassVar[tuple[str, ...]] = ()
+    example: ClassVar[dict[str, float]] = {}
+
+    # ------------------------------------------------------------------ validation
+    def __post_init__(self) -> None:
+        self._validate_dimensions()
+
+    def _validate_dimensions(self) -> None:
+        """Check the dimensions: lengths finite and > 0, angles finite in [0, 90) [deg]."""
+        for name in self.required:
+            if getattr(self, name, None) is None:
+                raise KeywordError(
+                    f"{self.contact_type} needs {_label(name)}: "
+                    f"{DIMENSION_DESCRIPTIONS.get(name, name)} [{DIMENSION_UNITS.get(name, '')}]")
+        for name in self.required + self.optional:
+            value = getattr(self, name, None)
+            if value is None:
+                continue
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                raise InputError(
+                    f"{self.contact_type}: {_label(name)} must be a number "
+                    f"[{DIMENSION_UNITS.get(name, '')}], got {value!r}") from None
+            if not math.isfinite(number):
+                raise InputError(
+                    f"{self.contact_type}: {_label(name)} must be finite, got {value!r}")
+            if name in ANGLE_DIMENSIONS:
+                if not 0.0 <= number < 90.0:
+                    raise InputError(
+                        f"{self.contact_type}: {_label(name)} must lie in [0, 90) deg, got "
+                        f"{number:g}; give the angle in degrees")
+            elif number <= 0.0:
+                raise InputError(
+                    f"{self.contact_type}: {_label(name)} must be > 0 [m], got {number:g}")
+            if number != value:
+                object.__setattr__(self, name, number)
+
+    # ------------------------------------------------------------------ helpers
+    def angle(self, name: str) -> float:
+        """Dimension ``name`` [deg] converted to radians [rad] (0 when not given)."""
+        value = getattr(self, name, None)
+        return 0.0 if value is None else math.radians(value)
+
+    def dimensions(self) -> dict[str, float]:
+        """The dimensions given (native names, SI lengths [m], angles [deg])."""
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
+                if getattr(self, f.name) is not None}
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: contact type and dimensions.
+
+        Examples
+        --------
+        >>> from fretwear.geometry import contact_geometry
+        >>> contact_geometry("TUBE_BAV", mobile_radius=0.01, obstacle_width=0.02).to_dict()
+        {'contact_type': 'TUBE_BAV', 'mobile_radius': 0.01, 'obstacle_width': 0.02, \
+'tilt_angle': 0.0, 'impact_angle': 0.0}
+        """
+        return {"contact_type": self.contact_type, **self.dimensions()}
+
+    @property
+    def max_depth(self) -> float:
+        """Largest mobile depth of the relation's range, obstacle not worn [m]."""
+        raise NotImplementedError
+
+    @property
+    def max_volume(self) -> float:
+        """Mobile volume at :attr:`max_depth`, obstacle not worn [m³]."""
+        volume, _ = self._volume_from_depth(np.array([self.max_depth]), np.zeros(1))
+        return float(volume[0])
+
+    @property
+    def range_limit(self) -> str:
+        """Sentence naming the limit of the relation's range."""
+        return f"largest valid depth {self.max_depth:.6g} m"
+
+    # ------------------------------------------------------------------ relations
+    def _depth_from_volume(self, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
+        raise NotImplementedError
+
+    def _volume_from_depth(self, depth_mobile: np.ndarray, depth_obstacle: np.ndarray):
+        raise NotImplementedError
+
+    def _warn_range(self, invalid: np.ndarray, what: str) -> None:
+        count = int(np.count_nonzero(invalid))
+        if count:
+            warnings.warn(
+                f"{self.contact_type}: {count} {what} beyond the range of the relation "
+                f"({self.range_limit}); the result there is NaN",
+                RangeWarning, stacklevel=3)
+
+    def depth_from_volume(self, volume_mobile, volume_obstacle=0.0):
+        """Worn depths of mobile and obstacle from their worn volumes.
+
+        Parameters
+        ----------
+        volume_mobile : float or array_like
+            Worn volume of the mobile V_m [m³], ≥ 0 (one per instant, any shape). NaN passes
+            through as NaN (it is the out-of-range marker), without a warning.
+        volume_obstacle : float or array_like
+            Worn volume of the obstacle V_o [m³], ≥ 0 (0 when the obstacle does not wear).
+
+        Returns
+        -------
+        depth_mobile, depth_obstacle : numpy.ndarray or float
+            d_m, d_o [m], of the broadcast shape; NaN (with a RangeWarning) beyond the range.
+        """
+        vm, vo = _volumes_or_depths("volume", volume_mobile, volume_obstacle)
+        dm, do = self._depth_from_volume(vm, vo)
+        dm = np.asarray(dm, dtype=float)
+        do = np.asarray(do, dtype=float)
+        given = ~(np.isnan(vm) | np.isnan(vo))
+        dm = np.where(given, dm, np.nan)
+        do = np.where(given, do, np.nan)
+        self._warn_range(given & (np.isnan(dm) | np.isnan(do)), "volume(s)")
+        return _out(dm), _out(do)
+
+    def volume_from_depth(self, depth_mobile, depth_obstacle=0.0):
+        """Worn volumes of mobile and obstacle from their worn depths.
+
+        Parameters
+        ----------
+        depth_mobile : float or array_like
+            Worn depth of the mobile d_m [m], ≥ 0 (NaN passes through as NaN).
+        depth_obstacle : float or array_like
+            Worn depth of the obstacle d_o [m], ≥ 0.
+
+        Returns
+        -------
+        volume_mobile, volume_obstacle : numpy.ndarray or float
+            V_m, V_o [m³]; NaN (with a RangeWarning) beyond the range.
+        """
+        dm, do = _volumes_or_depths("depth", depth_mobile, depth_obstacle)
+        vm, vo = self._volume_from_depth(dm, do)
+        vm = np.asarray(vm, dtype=float)
+        vo = np.asarray(vo, dtype=float)
+        given = ~(np.isnan(dm) | np.isnan(do))
+        vm = np.where(given, vm, np.nan)
+        vo = np.where(given, vo, np.nan)
+        self._warn_range(given & (np.isnan(vm) | np.isnan(vo)), "depth(s)")
+        return _out(vm), _out(vo)
