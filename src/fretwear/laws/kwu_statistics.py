@@ -336,8 +336,8 @@ class KwuEpriStatistics:
         return "\n".join(lines)
 
 
-def _statistics(acc: KwuEpriAccumulator, k1: float, k2: float, k: float, c: float
-                ) -> KwuEpriStatistics:
+def _statistics(acc: KwuEpriAccumulator, k1: float, k2: float, k: float, c: float,
+                stacklevel: int = 3) -> KwuEpriStatistics:
     k1 = _positive("impact_factor", k1, strict=False)
     k2 = _positive("sliding_factor", k2, strict=False)
     k = _positive("k", k, strict=False)
@@ -348,13 +348,13 @@ def _statistics(acc: KwuEpriAccumulator, k1: float, k2: float, k: float, c: floa
     else:
         shares = np.zeros_like(acc.class_time)
         warnings.warn("KWU-EPRI: no contact (Fn > 0) in the window: shares are 0 and w = 0",
-                      LawWarning, stacklevel=3)
+                      LawWarning, stacklevel=stacklevel)
     if acc.time_above_max > 0:
         warnings.warn(
             f"KWU-EPRI: {100 * acc.time_above_max / contact:.3g}% of the contact time is above "
             f"force_max = {acc.force_max:g} N or speed_max = {acc.speed_max:g} m/s and was counted "
             "in the last class; raise FNOR_MAXI/VTAN_MAXI or leave them to the window maxima",
-            LawWarning, stacklevel=3)
+            LawWarning, stacklevel=stacklevel)
     fb = acc.force_max * np.arange(N_CLASSES + 1) / N_CLASSES
     vb = acc.speed_max * np.arange(N_CLASSES + 1) / N_CLASSES
     fm = 0.5 * (fb[:-1] + fb[1:])
@@ -453,12 +453,12 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
             acc = KwuEpriAccumulator(1.0, 0.0, t_start=t_start, t_end=t_end)
             acc.update(history=history)
             acc.force_max = 0.0
-            return acc.result(impact_factor=impact_factor, sliding_factor=sliding_factor, k=k, c=c)
+            return _statistics(acc, impact_factor, sliding_factor, k, c)
         force_max = fmax if force_max is None else force_max
         speed_max = vmax if speed_max is None else speed_max
     acc = KwuEpriAccumulator(force_max, speed_max, t_start=t_start, t_end=t_end)
     acc.update(history=history)
-    return acc.result(impact_factor=impact_factor, sliding_factor=sliding_factor, k=k, c=c)
+    return _statistics(acc, impact_factor, sliding_factor, k, c)
 
 
 def kwu_epri_statistics_from_chunks(chunks: Callable[[], Iterable[Any]], **options: Any
@@ -505,4 +505,5 @@ def kwu_epri_statistics_from_chunks(chunks: Callable[[], Iterable[Any]], **optio
         acc.update(history=chunk)
     if fmax == 0:
         acc.force_max = 0.0
-    return acc.result(**factors)
+    return _statistics(acc, factors.get("impact_factor", 1.0), factors.get("sliding_factor", 1.0),
+                       factors.get("k", 5.0), factors.get("c", 10.0))
