@@ -1,0 +1,485 @@
+"""Reading and writing contact histories (SPEC §1): CSV, Parquet, HDF5, NetCDF, NPZ, Code_Aster.
+
+``read_history`` opens a file in any supported format, maps its columns to the channels of a
+:class:`~fretwear.history.ContactHistory` through case-insensitive aliases (Code_Aster's INST,
+FN, VINT1 ...), converts units to SI and validates. ``iter_history_chunks`` does the same chunk by
+chunk with bounded memory. ``write_history`` writes the native formats. The families of formats
+are the explicit registry :data:`FORMATS`; see ``docs/formats.md`` for the layouts.
+"""
+
+from __future__ import annotations
+
+import os
+import zipfile
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+
+from fretwear.errors import FormatError, InputError, KeywordError
+from fretwear.history import CHANNELS, ContactHistory
+from fretwear.io import aster as _aster
+from fretwear.io import binary as _binary
+from fretwear.io import delimited as _delimited
+from fretwear.io.channels import (
+    ALIASES,
+    Source,
+    build_history,
+    channel_of,
+    resolve_columns,
+    resolve_units,
+)
+
+__all__ = ["FORMATS", "ALIASES", "FileFormat", "read_history", "write_history",
+           "iter_history_chunks", "guess_format", "open_source"]
+
+#: Code_Aster parameter names used when a history is written as a Code_Aster table.
+ASTER_NAMES: Mapping[str, str] = MappingProxyType({
+    "time": "INST", "normal_force": "FN", "ft1": "FT1", "ft2": "FT2", "vn": "VN", "vt1": "VT1",
+    "vt2": "VT2", "dy": "DYLOC", "dz": "DZLOC", "stick": "VINT13"})
+
+
+def _open_aster(path: str | os.PathLike, *, index: int | None = None,
+                title: str | None = None) -> Source:
+    frame = _aster.read_aster_table(path, index=index, title=title)
+    names = [str(c) for c in frame.columns]
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        out = []
+        for p in positions:
+            try:
+                out.append(frame.iloc[:, p].to_numpy(dtype=float, na_value=np.nan))
+            except (TypeError, ValueError):
+                raise FormatError(f"{path}: column {names[p]!r} is not numeric (type "
+                                  f"{frame.attrs['types'][p]})") from None
+        return out
+
+    return Source(label=str(path), format="aster", columns=names, read=read,
+                  metadata={"aster_title": frame.attrs.get("title", "")})
+
+
+def _open_functions(files: Any) -> Source:
+    if isinstance(files, Mapping):
+        pairs = [(str(k), v) for k, v in files.items()]
+    elif isinstance(files, (str, os.PathLike)):
+        pairs = [(None, files)]
+    else:
+        pairs = [(None, v) for v in files]
+    names, arrays, info = _aster.read_function_files(pairs)  # type: ignore[arg-type]
+    label = ", ".join(info["files"])
+    return Source(label=label, format="aster-function", columns=names,
+                  read=lambda positions: [arrays[p] for p in positions],
+                  metadata={"files": info["files"]})
+
+
+def _write_aster(history: ContactHistory, path: str | os.PathLike, *,
+                 table_format: str = "TABLEAU", float_format: str = "%.16E") -> Path:
+    frame = history.to_frame().rename(columns=dict(ASTER_NAMES))
+    return _aster.write_aster_table(frame, path, format=table_format, title=history.name or None,
+                                    float_format=float_format)
+
+
+@dataclass(frozen=True)
+class FileFormat:
+    """One family of files: suffixes, reader (``path, **options -> Source``), writer, options."""
+
+    name: str
+    suffixes: tuple[str, ...]
+    open: Callable[..., Source]
+    write: Callable[..., Path] | None
+    read_options: tuple[str, ...]
+    write_options: tuple[str, ...]
+    description: str
+
+
+#: The registry of formats, keyed by the names accepted by ``format=``.
+FORMATS: Mapping[str, FileFormat] = MappingProxyType({
+    "csv": FileFormat("csv", (".csv", ".txt", ".dat", ".tsv"), _delimited.open_csv,
+                      _delimited.write_csv, ("delimiter", "decimal", "comment", "header",
+                                             "encoding"), ("float_format", "delimiter"),
+                      "delimited text (any delimiter, '#' comments, header guessed)"),
+    "parquet": FileFormat("parquet", (".parquet", ".pq"), _binary.open_parquet,
+                          _binary.write_parquet, (), ("row_group_size",),
+                          "Apache Parquet (pyarrow), units in field metadata"),
+    "hdf5": FileFormat("hdf5", (".h5", ".hdf5", ".hdf"), _binary.open_hdf5, _binary.write_hdf5,
+                       ("group",), ("group",),
+                       "HDF5 (h5py), one dataset per channel in a group, 'units' attributes"),
+    "netcdf": FileFormat("netcdf", (".nc", ".nc4", ".cdf"), _binary.open_netcdf,
+                         _binary.write_netcdf, (), (),
+                         "NetCDF (netCDF4), dimension 'time', 'units' attributes"),
+    "npz": FileFormat("npz", (".npz",), _binary.open_npz, _binary.write_npz, (), (),
+                      "NumPy .npz archive, one array per channel"),
+    "aster": FileFormat("aster", (".resu", ".tab", ".table"), _open_aster, _write_aster,
+                        ("index", "title"), ("table_format", "float_format"),
+                        "Code_Aster IMPR_TABLE text table (FORMAT='TABLEAU' or 'ASTER')"),
+    "aster-function": FileFormat("aster-function", (), _open_functions, None, (), (),
+                                 "Code_Aster IMPR_FONCTION TABLEAU files, one per channel"),
+})
+
+_FORMAT_ALIASES = {"h5": "hdf5", "hdf": "hdf5", "nc": "netcdf", "pq": "parquet", "txt": "csv",
+                   "dat": "csv", "tsv": "csv", "tableau": "aster", "aster-table": "aster",
+                   "impr_table": "aster", "impr_fonction": "aster-function",
+                   "function": "aster-function", "aster_function": "aster-function"}
+
+
+def _format_name(format: str) -> str:
+    key = str(format).strip().lower().lstrip(".")
+    key = _FORMAT_ALIASES.get(key, key)
+    if key not in FORMATS:
+        raise FormatError(f"unknown format {format!r}; known formats: {list(FORMATS)} "
+                          f"(also {sorted(_FORMAT_ALIASES)})")
+    return key
+
+
+def guess_format(path: str | os.PathLike) -> str:
+    """Name of the format of a file, from its content (magic bytes, Code_Aster markers), else suffix.
+
+    Binary formats are recognised by their signature whatever the suffix; a text file is a
+    Code_Aster table when its content says so (whatever the suffix), else delimited text.
+
+    Raises
+    ------
+    FormatError
+        The content matches no known format (the message lists them).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> _ = (d / "a.txt").write_text("#DEBUT_TABLE\\n#TITRE x\\nINST\\nR\\n0.0\\n#FIN_TABLE\\n")
+    >>> _ = (d / "b.out").write_text("t,fn,vt1,vt2\\n0,1,0,0\\n")
+    >>> guess_format(d / "a.txt"), guess_format(d / "b.out")
+    ('aster', 'csv')
+    """
+    path = Path(path)
+    with open(path, "rb") as handle:
+        head = handle.read(65536)
+    suffix = path.suffix.lower()
+    if not head:
+        raise FormatError(f"{path}: the file is empty")
+    if head.startswith(b"PAR1"):
+        return "parquet"
+    if head.startswith(b"\x89HDF\r\n\x1a\n"):
+        if suffix in FORMATS["netcdf"].suffixes:
+            return "netcdf"
+        try:
+            import h5py
+
+            with h5py.File(path, "r") as f:
+                return "netcdf" if "_NCProperties" in f.attrs else "hdf5"
+        except (ImportError, OSError):
+            return "hdf5"
+    if head[:4] in (b"CDF\x01", b"CDF\x02", b"CDF\x05"):
+        return "netcdf"
+    if head.startswith(b"PK\x03\x04"):
+        with zipfile.ZipFile(path) as zf:
+            if any(n.endswith(".npy") for n in zf.namelist()):
+                return "npz"
+        raise FormatError(f"{path}: a zip archive without .npy arrays; known formats: "
+                          f"{list(FORMATS)}")
+    if head.startswith(b"\x93NUMPY"):
+        raise FormatError(f"{path}: a single .npy array has no column names; save the channels "
+                          "with numpy.savez(path, time=..., normal_force=..., ...) instead")
+    if b"\x00" in head:
+        raise FormatError(f"{path}: binary content of no known format; known formats: "
+                          f"{list(FORMATS)}; give format= if it is one of them")
+    text = head.decode("utf-8", errors="replace")
+    if _aster.looks_like_aster(text):
+        return "aster"
+    return "csv"
+
+
+def _is_path(value: Any) -> bool:
+    return isinstance(value, (str, os.PathLike))
+
+
+def _frame_source(table: Any) -> Source:
+    names = [str(c) for c in table.keys()]
+    values = list(table.values()) if isinstance(table, Mapping) else [table[c] for c in table.columns]
+    return Source(label="<in-memory table>", format="frame", columns=names,
+                  read=lambda positions: [np.asarray(values[p], dtype=float) for p in positions])
+
+
+def open_source(path: Any, format: str | None = None, **options: Any) -> Source:
+    """Open ``path`` with the reader of its format (given or guessed) as a :class:`Source`.
+
+    ``path`` may also be a mapping ``{channel: file}`` or a list of IMPR_FONCTION files
+    (format ``aster-function``), or an in-memory table (a DataFrame or a mapping of arrays).
+    """
+    if not _is_path(path):
+        is_table = hasattr(path, "columns") or (
+            isinstance(path, Mapping) and not all(_is_path(v) for v in path.values()))
+        if is_table and format is None:
+            if options:
+                raise KeywordError(f"option(s) {sorted(options)} do not apply to an in-memory "
+                                   "table")
+            return _frame_source(path)
+        if format is None:
+            format = "aster-function"
+        files = list(path.values()) if isinstance(path, Mapping) else list(path)
+        for f in files:
+            if not Path(f).is_file():
+                raise InputError(f"file {str(f)!r} does not exist")
+    else:
+        if not Path(path).is_file():
+            raise InputError(f"file {str(path)!r} does not exist"
+                             + (" (it is a directory)" if Path(path).is_dir() else ""))
+    name = _format_name(format) if format is not None else guess_format(path)
+    fmt = FORMATS[name]
+    unknown = sorted(set(options) - set(fmt.read_options))
+    if unknown:
+        raise KeywordError(f"option(s) {unknown} unknown for the {name!r} reader; its options "
+                           f"are {list(fmt.read_options)} (common: units=, columns=, name=)")
+    return fmt.open(path, **options)
+
+
+def _stem(path: Any) -> str:
+    if _is_path(path):
+        return Path(path).stem
+    return ""
+
+
+def _prepare(path: Any, format: str | None, units: Mapping[str, str] | None,
+             columns: Mapping[Any, str | None] | None, name: str | None,
+             options: Mapping[str, Any]) -> tuple[Source, dict[str, int], dict[str, float], str,
+                                                  dict[str, Any]]:
+    source = open_source(path, format, **options)
+    mapping = resolve_columns(source.columns, columns, label=source.label, hint=source.hint)
+    unit_of, factors = resolve_units(mapping, source.units, units, label=source.label)
+    used = {ch: source.columns[p] for ch, p in mapping.items()}
+    ignored = [c for i, c in enumerate(source.columns) if i not in mapping.values()]
+    metadata = dict(source.metadata)
+    metadata.update(source=source.label, format=source.format, columns=used, units=unit_of,
+                    unit_factors=factors, ignored_columns=ignored)
+    label = name if name is not None else (source.name if source.name else _stem(path))
+    return source, mapping, factors, label, metadata
+
+
+def read_history(path: Any, format: str | None = None, *, units: Mapping[str, str] | None = None,
+                 columns: Mapping[Any, str | None] | None = None, name: str | None = None,
+                 **options: Any) -> ContactHistory:
+    """Read a contact history from a file, mapping its columns to channels and converting to SI.
+
+    Parameters
+    ----------
+    path : path-like, mapping, list or table
+        The file. For Code_Aster IMPR_FONCTION files, a mapping ``{channel: file}`` (one function
+        per file) or a list of files (channels from the value-column names). A DataFrame or a
+        mapping of arrays is read as an in-memory table (aliases and units apply).
+    format : str, optional
+        A key of :data:`FORMATS` (``csv``, ``parquet``, ``hdf5``, ``netcdf``, ``npz``, ``aster``,
+        ``aster-function``); default guessed from the content, then the suffix.
+    units : mapping, optional
+        Units of the file's values, converted to SI: per quantity (``{"length": "mm",
+        "force": "kN", "time": "ms", "velocity": "mm/s"}``) or per channel (``{"dy": "mm"}``).
+        Without a velocity unit, velocities are in ``<length>/<time>`` of the units given.
+        Default: the units the file declares (header ``"Fn [kN]"``, attributes), else SI.
+    columns : mapping, optional
+        ``{column: channel}`` overrides (channel name or alias, or None to ignore the column);
+        they win over the aliases. Columns of a file without header are named ``0``, ``1`` ...
+    name : str, optional
+        Name of the history; default the name stored in the file, else the file's stem.
+    **options
+        Options of the format's reader: csv ``delimiter``, ``decimal``, ``comment``,
+        ``header``, ``encoding``; hdf5 ``group``; aster ``index``, ``title``.
+
+    Returns
+    -------
+    ContactHistory
+        In SI units. ``metadata`` records ``source``, ``format``, ``columns`` (channel -> column),
+        ``units`` (channel -> unit read), ``unit_factors`` and ``ignored_columns``.
+
+    Raises
+    ------
+    FormatError
+        Unknown or unreadable format, a required channel missing (columns found and aliases
+        accepted are listed), two columns for one channel (both named), a non-numeric cell.
+    KeywordError
+        Unknown option, unknown unit (known ones listed), bad ``columns=`` entry.
+    HistoryError
+        Invalid values (NaN, non-increasing time, negative normal force ...), naming the column
+        and the row.
+
+    Notes
+    -----
+    Conversion: ``x_SI = x_file · f_unit`` (e.g. ``f = 1e-3`` for mm, ``1e3`` for kN).
+    Column aliases follow SPEC §1 (see :data:`fretwear.io.channels.ALIASES`).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "shock.txt"
+    >>> _ = p.write_text("# N1\\nINST  VINT1  VINT11  VINT12\\n0.0 0.0 0.0 0.0\\n"
+    ...                  "1.0 2.5 10.0 0.0\\n")
+    >>> h = read_history(p, units={"time": "ms", "force": "kN", "length": "mm"})
+    >>> h.time.tolist(), h.normal_force.tolist(), h.vt1.tolist()
+    ([0.0, 0.001], [0.0, 2500.0], [0.0, 10.0])
+    >>> h.metadata["columns"]["normal_force"], h.metadata["units"]["vt1"]
+    ('VINT1', 'mm/ms')
+    """
+    source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
+                                                         options)
+    arrays = source.read(list(mapping.values()))
+    return build_history(dict(zip(mapping, arrays, strict=True)), columns=source.columns,
+                         mapping=mapping, factors=factors, label=source.label, name=label,
+                         metadata=metadata)
+
+
+def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
+    n = min((a.size for a in arrays), default=0)
+    for start in range(0, n, size):
+        yield [a[start:start + size] for a in arrays]
+
+
+def iter_history_chunks(path: Any, chunk_size: int = 1_000_000, format: str | None = None, *,
+                        units: Mapping[str, str] | None = None,
+                        columns: Mapping[Any, str | None] | None = None, name: str | None = None,
+                        **options: Any) -> Iterator[ContactHistory]:
+    """Read a history chunk by chunk, with bounded memory; consecutive chunks share one sample.
+
+    Parameters
+    ----------
+    path, format, units, columns, name, **options
+        As :func:`read_history`.
+    chunk_size : int
+        Samples per chunk, at least 2 (default 10⁶, about 80 MB for ten channels).
+
+    Yields
+    ------
+    ContactHistory
+        Chunk ``k`` holds the rows ``[k·(m−1), k·(m−1) + m)`` of the file, ``m = chunk_size``
+        (the last chunk may be shorter, never a single sample): **the last sample of chunk k is
+        the first sample of chunk k+1**. Every interval between consecutive samples therefore
+        lies in exactly one chunk, so a reduction over intervals (the trapezoid rule of the
+        wear power) summed over the chunks equals the one-shot reduction, and the time
+        validation sees every pair of neighbours. ``metadata`` adds ``chunk`` (k) and
+        ``first_row`` (file row of the chunk's first sample).
+
+    Notes
+    -----
+    Bounded memory: Parquet is read by record batches, HDF5 and NetCDF by slices, CSV by pandas
+    chunks. NPZ and Code_Aster text files are read whole and then sliced.
+    With ``m`` samples per chunk, ``n`` samples give ``ceil((n − 1)/(m − 1))`` chunks.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "h.csv"
+    >>> _ = p.write_text("t,fn,vt1,vt2\\n" + "".join(f"{i},1,1,0\\n" for i in range(7)))
+    >>> [c.time.tolist() for c in iter_history_chunks(p, chunk_size=3)]
+    [[0.0, 1.0, 2.0], [2.0, 3.0, 4.0], [4.0, 5.0, 6.0]]
+    """
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) \
+            or chunk_size < 2:
+        raise KeywordError(f"chunk_size={chunk_size!r}: give an integer >= 2 (samples per chunk)")
+    size = int(chunk_size)
+    source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
+                                                         options)
+    positions = list(mapping.values())
+    blocks = (source.iter_blocks(positions, size) if source.iter_blocks is not None
+              else _slices(source.read(positions), size))
+    channels = list(mapping)
+    pending: list[list[np.ndarray]] = []
+    pending_rows = 0
+    carry: list[np.ndarray] | None = None
+    row = 0  # file row of the next sample not yet in a chunk
+
+    def emit(parts: list[list[np.ndarray]], k: int, first_row: int) -> ContactHistory:
+        arrays = {ch: np.concatenate([p[j] for p in parts]) for j, ch in enumerate(channels)}
+        meta = dict(metadata, chunk=k, first_row=first_row)
+        return build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
+                             label=source.label, name=label, metadata=meta, first_row=first_row)
+
+    k = 0
+    for block in blocks:
+        if not block or block[0].size == 0:
+            continue
+        pending.append(block)
+        pending_rows += block[0].size
+        need = size - (0 if carry is None else 1)
+        while pending_rows >= need:
+            merged = [np.concatenate([p[j] for p in pending]) for j in range(len(channels))]
+            take = [a[:need] for a in merged]
+            rest = [a[need:] for a in merged]
+            parts = [take] if carry is None else [carry, take]
+            first = row - (0 if carry is None else 1)
+            yield emit(parts, k, first)
+            k += 1
+            row += need
+            carry = [a[-1:] for a in take]
+            pending = [rest] if rest[0].size else []
+            pending_rows = rest[0].size
+            need = size - 1
+    if pending_rows or k == 0:
+        parts = ([] if carry is None else [carry]) + pending
+        if not parts:
+            raise FormatError(f"{source.label}: no samples")
+        yield emit(parts, k, row - (0 if carry is None else 1))
+
+
+def write_history(history: ContactHistory, path: str | os.PathLike, format: str | None = None,
+                  **options: Any) -> Path:
+    """Write a history in a native format, atomically, with the units documented in the file.
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history (SI units).
+    path : path-like
+        Output file.
+    format : str, optional
+        A key of :data:`FORMATS` with a writer (``csv``, ``parquet``, ``hdf5``, ``netcdf``,
+        ``npz``, ``aster``); default from the suffix.
+    **options
+        csv ``float_format`` (default ``%.17g``, exact), ``delimiter``; parquet
+        ``row_group_size``; hdf5 ``group`` (default ``history``); aster ``table_format``
+        (``TABLEAU``/``ASTER``) and ``float_format`` (default ``%.16E``, exact) with Code_Aster
+        names (INST, FN, FT1, FT2, VN, VT1, VT2, DYLOC, DZLOC, VINT13).
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="n1")
+    >>> out = write_history(h, pathlib.Path(tempfile.mkdtemp()) / "n1.h5")
+    >>> read_history(out).normal_force.tolist()
+    [2.0, 3.0]
+    """
+    if not isinstance(history, ContactHistory):
+        raise InputError(f"write_history needs a ContactHistory, got {type(history).__name__}; "
+                         "build one with fretwear.ContactHistory(...) or read_history(...)")
+    if format is None:
+        suffix = Path(path).suffix.lower()
+        hits = [f.name for f in FORMATS.values() if suffix in f.suffixes and f.write]
+        if not hits:
+            known = sorted(s for f in FORMATS.values() if f.write for s in f.suffixes)
+            raise FormatError(f"{path}: cannot tell the format from the suffix {suffix!r}; use "
+                              f"one of {known} or give format= among "
+                              f"{[f.name for f in FORMATS.values() if f.write]}")
+        name = hits[0]
+    else:
+        name = _format_name(format)
+    fmt = FORMATS[name]
+    if fmt.write is None:
+        raise FormatError(f"format {name!r} is read-only; writable formats: "
+                          f"{[f.name for f in FORMATS.values() if f.write]}")
+    unknown = sorted(set(options) - set(fmt.write_options))
+    if unknown:
+        raise KeywordError(f"option(s) {unknown} unknown for the {name!r} writer; its options "
+                           f"are {list(fmt.write_options)}")
+    return fmt.write(history, path, **options)
+
+
+def _check_channel_names() -> None:  # keeps the alias table and the history in step
+    assert set(ALIASES) == set(CHANNELS)
+    assert all(channel_of(ch) == ch for ch in CHANNELS)
+
+
+_check_channel_names()

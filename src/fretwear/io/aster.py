@@ -1,0 +1,496 @@
+"""Code_Aster text tables: IMPR_TABLE (FORMAT='TABLEAU' and 'ASTER') and IMPR_FONCTION TABLEAU.
+
+Generic: also used for wear tables (ETAT_INIT restarts) and for contact histories.
+
+Formats (Code_Aster user documentation U4.91.03 IMPR_TABLE, U4.33.01 IMPR_FONCTION, U7.02.03
+LIRE_TABLE; SPEC §1):
+
+* ``TABLEAU``: a block of lines starting with ``#`` (title), a line of column names, then one
+  line per row, cells separated by blanks, reals printed ``%12.5E``, ``-`` for an empty cell.
+  Several tables may follow each other in one file, each with its own ``#`` block.
+* ``ASTER``: each table between ``#DEBUT_TABLE`` and ``#FIN_TABLE``; ``#TITRE`` line(s), the
+  column-name line, a line of types (``R`` real, ``I`` integer, ``K8``/``K16``/``K24``/``K32``/
+  ``K80`` strings), then the rows. Strings may be quoted (``'a b'``).
+* IMPR_FONCTION ``TABLEAU``: a TABLEAU table with two columns per function (abscissa, value).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import FormatError, InputError
+from fretwear.io.atomic import atomic_write
+
+_TOKEN = re.compile(r"'[^']*'|\"[^\"]*\"|\S+")
+_INT = re.compile(r"^[+-]?\d+$")
+_TYPES = ("R", "I", "K8", "K16", "K24", "K32", "K80")
+_STRING_WIDTHS = (8, 16, 24, 32, 80)
+
+
+def _text_of(path_or_text: str | os.PathLike) -> tuple[str, str]:
+    """(text, label): a path is read; a string holding a newline is the table itself."""
+    if isinstance(path_or_text, str) and "\n" in path_or_text:
+        return path_or_text, "<text>"
+    path = Path(path_or_text)
+    if not path.is_file():
+        raise InputError(f"Code_Aster table file {str(path)!r} does not exist")
+    try:
+        return path.read_text(encoding="utf-8"), str(path)
+    except UnicodeDecodeError:
+        return path.read_text(encoding="latin-1"), str(path)
+
+
+def _tokens(line: str) -> list[str]:
+    return _TOKEN.findall(line)
+
+
+def _unquote(token: str) -> str:
+    if len(token) >= 2 and token[0] == token[-1] and token[0] in "'\"":
+        return token[1:-1]
+    return token
+
+
+def _split_tables(text: str, label: str) -> list[dict]:
+    """Cut a file into raw tables: dicts of format, title lines, names, types, rows (lineno, tokens)."""
+    tables: list[dict] = []
+    current: dict | None = None
+    in_aster = False
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        upper = line.upper()
+        if not line:
+            continue
+        if upper.startswith("#DEBUT_TABLE"):
+            current = {"format": "ASTER", "title": [], "names": None, "types": None, "rows": [],
+                       "line": lineno}
+            tables.append(current)
+            in_aster = True
+            continue
+        if upper.startswith("#FIN_TABLE"):
+            if not in_aster:
+                raise FormatError(f"{label}, line {lineno}: #FIN_TABLE without #DEBUT_TABLE")
+            in_aster = False
+            current = None
+            continue
+        if in_aster:
+            assert current is not None
+            if upper.startswith("#TITRE"):
+                current["title"].append(line[len("#TITRE"):].strip())
+            elif line.startswith("#"):
+                continue
+            elif current["names"] is None:
+                current["names"] = [_unquote(t) for t in _tokens(line)]
+            elif current["types"] is None:
+                current["types"] = [t.upper() for t in _tokens(line)]
+            else:
+                current["rows"].append((lineno, _tokens(line)))
+            continue
+        if line.startswith("#"):
+            if current is None or current["names"] is not None:
+                current = {"format": "TABLEAU", "title": [], "names": None, "types": None,
+                           "rows": [], "line": lineno}
+                tables.append(current)
+            body = line.lstrip("#").strip()
+            if body:
+                current["title"].append(body)
+            continue
+        if current is None:  # a TABLEAU without '#' block
+            current = {"format": "TABLEAU", "title": [], "names": None, "types": None,
+                       "rows": [], "line": lineno}
+            tables.append(current)
+        if current["names"] is None:
+            current["names"] = [_unquote(t) for t in _tokens(line)]
+        else:
+            current["rows"].append((lineno, _tokens(line)))
+    if in_aster:
+        raise FormatError(f"{label}: #DEBUT_TABLE at line {tables[-1]['line']} is never closed "
+                          "by #FIN_TABLE; the file is truncated")
+    return [t for t in tables if t["names"]]
+
+
+def _infer_type(cells: list[str]) -> str:
+    present = [c for c in cells if c != "-"]
+    if present and all(_INT.match(c) for c in present):
+        return "I"
+    try:
+        for c in present:
+            float(c.replace("D", "E").replace("d", "e"))
+        return "R"
+    except ValueError:
+        width = max(len(_unquote(c)) for c in present)
+        return f"K{next((w for w in _STRING_WIDTHS if width <= w), 80)}"
+
+
+def _convert(raw: dict, label: str) -> pd.DataFrame:
+    names: list[str] = raw["names"]
+    ncol = len(names)
+    for lineno, cells in raw["rows"]:
+        if len(cells) != ncol:
+            raise FormatError(
+                f"{label}, line {lineno}: {len(cells)} cells for {ncol} columns {names}; an empty "
+                "cell must be written '-' and a string holding blanks must be quoted")
+    columns = [[cells[j] for _, cells in raw["rows"]] for j in range(ncol)]
+    types = raw["types"]
+    if types is None:
+        types = [_infer_type(col) for col in columns]
+    elif len(types) != ncol:
+        raise FormatError(f"{label}, table at line {raw['line']}: {len(types)} types for "
+                          f"{ncol} columns {names}")
+    series = {}
+    for j, (col, kind) in enumerate(zip(columns, types, strict=True)):
+        if kind.startswith("K"):
+            series[j] = pd.Series([None if c == "-" else _unquote(c) for c in col], dtype=object)
+            continue
+        if kind not in ("R", "I"):
+            raise FormatError(f"{label}: column {names[j]!r} has unknown type {kind!r}; known "
+                              f"types: {', '.join(_TYPES)}")
+        values = np.empty(len(col))
+        for i, c in enumerate(col):
+            try:
+                values[i] = np.nan if c == "-" else float(c.replace("D", "E").replace("d", "e"))
+            except ValueError:
+                lineno = raw["rows"][i][0]
+                raise FormatError(f"{label}, line {lineno}: column {names[j]!r} of type {kind} "
+                                  f"holds {c!r}, not a number") from None
+        if kind == "I":
+            series[j] = (pd.Series(values).astype("Int64") if np.isnan(values).any()
+                         else pd.Series(values.astype(np.int64)))
+        else:
+            series[j] = pd.Series(values)
+    frame = pd.DataFrame(series) if series else pd.DataFrame(index=range(0))
+    frame.columns = list(names)
+    frame.attrs.update(title="\n".join(raw["title"]), types=list(types), format=raw["format"])
+    return frame
+
+
+def list_aster_tables(path_or_text: str | os.PathLike) -> list[str]:
+    """Titles of the tables of a Code_Aster text file, in order (index = position).
+
+    Examples
+    --------
+    >>> text = "#\\n#first\\nA\\n1\\n#\\n#second\\nB\\n2\\n"
+    >>> list_aster_tables(text)
+    ['first', 'second']
+    """
+    text, label = _text_of(path_or_text)
+    return ["\n".join(t["title"]) for t in _split_tables(text, label)]
+
+
+def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = None,
+                     title: str | None = None) -> pd.DataFrame:
+    """Read a table printed by Code_Aster's IMPR_TABLE (FORMAT 'TABLEAU' or 'ASTER').
+
+    Parameters
+    ----------
+    path_or_text : str or path-like
+        The file, or the text of the table itself (a string holding a newline).
+    index : int, optional
+        Which table (0-based) when the file holds several.
+    title : str, optional
+        Choose the table whose title contains this text (case-insensitive).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One column per parameter (duplicated names are kept, e.g. IMPR_FONCTION pairs). Reals
+        and integers are numbers (``-`` is NaN, or a missing value of an ``Int64`` column);
+        strings are str (``-`` is None). ``attrs``: ``title`` (str), ``types`` (list of
+        ``R``/``I``/``K8``... per column, inferred for TABLEAU), ``format``.
+
+    Raises
+    ------
+    FormatError
+        No table, a row with a wrong number of cells (line number given), an unknown type, a
+        non-number in a numeric column, an unclosed ``#DEBUT_TABLE``, or several tables and no
+        choice (the message lists them).
+
+    Notes
+    -----
+    Fortran ``D`` exponents (``1.0D+00``) are accepted. Values are not rescaled: Code_Aster
+    tables carry no units.
+
+    Examples
+    --------
+    >>> text = '''#DEBUT_TABLE
+    ... #TITRE wear table
+    ... INST         V_USUR_TUBE  NOEUD
+    ... R            R            K8
+    ... 0.00000E+00  -            N1
+    ... 1.00000E+00  2.50000E-09  N1
+    ... #FIN_TABLE
+    ... '''
+    >>> frame = read_aster_table(text)
+    >>> frame.attrs["title"], frame.attrs["types"], frame["V_USUR_TUBE"].tolist()
+    ('wear table', ['R', 'R', 'K8'], [nan, 2.5e-09])
+    """
+    text, label = _text_of(path_or_text)
+    raw = _split_tables(text, label)
+    if not raw:
+        raise FormatError(f"{label}: no Code_Aster table found (expected a '#' header block and "
+                          "a line of column names, or #DEBUT_TABLE ... #FIN_TABLE)")
+    listing = "; ".join(f"{i}: {' / '.join(t['title']) or '(no title)'}"
+                        for i, t in enumerate(raw))
+    if title is not None:
+        hits = [i for i, t in enumerate(raw) if title.lower() in "\n".join(t["title"]).lower()]
+        if len(hits) != 1:
+            what = "no table" if not hits else f"{len(hits)} tables"
+            raise FormatError(f"{label}: {what} with a title containing {title!r}; tables: "
+                              f"{listing}; choose with index=")
+        chosen = hits[0]
+    elif index is not None:
+        if not -len(raw) <= index < len(raw):
+            raise FormatError(f"{label}: index={index} but the file holds {len(raw)} table(s): "
+                              f"{listing}")
+        chosen = index
+    elif len(raw) > 1:
+        raise FormatError(f"{label} holds {len(raw)} tables ({listing}); choose one with "
+                          "index=<n> or title='<text>'")
+    else:
+        chosen = 0
+    return _convert(raw[chosen], label)
+
+
+def _format_cell(value, kind: str, float_format: str) -> str:
+    if value is None or (not isinstance(value, str) and pd.isna(value)):
+        return "-"
+    if kind == "R":
+        return float_format % float(value)
+    if kind == "I":
+        return str(int(value))
+    text = str(value)
+    if text == "" or re.search(r"\s", text) or text == "-":
+        if "'" in text:
+            raise InputError(f"string {text!r} holds both a blank and a quote: it cannot be "
+                             "written in a Code_Aster table")
+        return f"'{text}'"
+    return text
+
+
+def _kind(series: pd.Series) -> str:
+    if pd.api.types.is_bool_dtype(series) or pd.api.types.is_integer_dtype(series):
+        return "I"
+    if pd.api.types.is_float_dtype(series):
+        return "R"
+    width = max([len(str(v)) for v in series if v is not None] + [1])
+    return f"K{next((w for w in _STRING_WIDTHS if width <= w), 80)}"
+
+
+def format_aster_table(frame: pd.DataFrame, *, format: str = "TABLEAU", title: str | None = None,
+                       float_format: str = "%12.5E") -> str:
+    """The text of a Code_Aster table (see :func:`write_aster_table`).
+
+    Examples
+    --------
+    >>> print(format_aster_table(pd.DataFrame({"INST": [0.0, 1.5]}), title="demo"), end="")
+    #
+    #demo
+    INST
+     0.00000E+00
+     1.50000E+00
+    """
+    fmt = str(format).upper()
+    if fmt not in ("TABLEAU", "ASTER"):
+        raise InputError(f"format={format!r}: a Code_Aster table is written 'TABLEAU' or 'ASTER'")
+    try:
+        float_format % 1.0
+    except (TypeError, ValueError):
+        raise InputError(f"float_format={float_format!r} is not a printf format such as "
+                         "'%12.5E'") from None
+    names = [str(c) for c in frame.columns]
+    for name in names:
+        if not name or re.search(r"\s", name):
+            raise InputError(f"column name {name!r}: Code_Aster parameter names cannot be empty "
+                             "or hold blanks; rename the column")
+    kinds = [_kind(frame.iloc[:, j]) for j in range(frame.shape[1])]
+    cells = [[_format_cell(v, kinds[j], float_format) for v in frame.iloc[:, j]]
+             for j in range(frame.shape[1])]
+    widths = [max([len(names[j])] + [len(c) for c in cells[j]]) for j in range(len(names))]
+    lines: list[str] = []
+    title_lines = (title if title is not None else "TABLE_SDASTER").splitlines() or [""]
+    if fmt == "ASTER":
+        lines.append("#DEBUT_TABLE")
+        lines.extend(f"#TITRE {t}".rstrip() for t in title_lines)
+    else:
+        lines.append("#")
+        lines.extend(f"#{t}" for t in title_lines)
+    lines.append(" ".join(n.ljust(w) for n, w in zip(names, widths, strict=True)).rstrip())
+    if fmt == "ASTER":
+        lines.append(" ".join(k.ljust(w) for k, w in zip(kinds, widths, strict=True)).rstrip())
+    for i in range(frame.shape[0]):
+        lines.append(" ".join(cells[j][i].rjust(widths[j]) for j in range(len(names))).rstrip())
+    if fmt == "ASTER":
+        lines.append("#FIN_TABLE")
+    return "\n".join(lines) + "\n"
+
+
+def write_aster_table(frame: pd.DataFrame, path: str | os.PathLike, *, format: str = "TABLEAU",
+                      title: str | None = None, float_format: str = "%12.5E",
+                      append: bool = False) -> Path:
+    """Write a DataFrame as a Code_Aster table that LIRE_TABLE and :func:`read_aster_table` read.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Columns are the parameters (names without blanks). Float columns are written as reals
+        (``R``), integer and boolean columns as integers (``I``), others as strings (``K8`` ...
+        by width); NaN and None are written ``-``.
+    path : path-like
+        Output file, written atomically.
+    format : {"TABLEAU", "ASTER"}
+        IMPR_TABLE format.
+    title : str, optional
+        Title line(s); default ``TABLE_SDASTER``.
+    float_format : str
+        printf format of reals, default Code_Aster's ``%12.5E``; ``"%.16E"`` keeps every digit.
+    append : bool
+        Keep the tables already in the file and add this one after them.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Notes
+    -----
+    A read-back value equals ``float(float_format % x)``: exact to the printed precision.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> out = pathlib.Path(tempfile.mkdtemp()) / "t.resu"
+    >>> _ = write_aster_table(pd.DataFrame({"INST": [1.0], "FN": [1 / 3]}), out, format="ASTER")
+    >>> read_aster_table(out)["FN"].tolist()
+    [0.33333]
+    """
+    text = format_aster_table(frame, format=format, title=title, float_format=float_format)
+    target = Path(path)
+    previous = ""
+    if append and target.is_file():
+        previous = target.read_text(encoding="utf-8")
+        if previous and not previous.endswith("\n"):
+            previous += "\n"
+    with atomic_write(target, "w", encoding="utf-8") as handle:
+        handle.write(previous + text)
+    return target
+
+
+def function_pairs(frame: pd.DataFrame, label: str) -> list[tuple[str, np.ndarray, np.ndarray]]:
+    """Split an IMPR_FONCTION TABLEAU table into functions: ``(name, abscissa, values)``.
+
+    The columns come in pairs (abscissa, ordinate); the name is the ordinate's column name.
+
+    Examples
+    --------
+    >>> f = read_aster_table("#\\n#FONCTION\\nINST FN INST VT1\\n0 1 0 2\\n1 3 1 4\\n")
+    >>> [(n, x.tolist(), y.tolist()) for n, x, y in function_pairs(f, "x")]
+    [('FN', [0.0, 1.0], [1.0, 3.0]), ('VT1', [0.0, 1.0], [2.0, 4.0])]
+    """
+    ncol = frame.shape[1]
+    if ncol < 2 or ncol % 2:
+        raise FormatError(f"{label}: an IMPR_FONCTION TABLEAU file has two columns per function "
+                          f"(abscissa, value); found {ncol} columns {list(frame.columns)}")
+    out = []
+    for j in range(0, ncol, 2):
+        try:
+            x = frame.iloc[:, j].to_numpy(dtype=float)
+            y = frame.iloc[:, j + 1].to_numpy(dtype=float)
+        except (TypeError, ValueError):
+            raise FormatError(f"{label}: function columns {list(frame.columns[j:j + 2])} are "
+                              "not numeric") from None
+        out.append((str(frame.columns[j + 1]), x, y))
+    return out
+
+
+def check_same_abscissa(reference: tuple[str, np.ndarray], other: tuple[str, np.ndarray]) -> None:
+    """Raise :class:`FormatError` unless two functions share their time column.
+
+    The tolerance is 1e-9 of the largest |time|: files printed by the same run with the same
+    format agree exactly; a different sampling does not.
+    """
+    (label_a, ta), (label_b, tb) = reference, other
+    if ta.size != tb.size:
+        raise FormatError(f"{label_b}: {tb.size} instants but {label_a} has {ta.size}; the "
+                          "functions of one history must share their instants (same "
+                          "LIST_INST / archiving)")
+    scale = max(float(np.max(np.abs(ta), initial=0.0)), np.finfo(float).tiny)
+    diff = np.abs(ta - tb) > 1e-9 * scale
+    if diff.any():
+        i = int(np.flatnonzero(diff)[0])
+        raise FormatError(f"{label_b}: instant at row {i} is {tb[i]!r} but {label_a} has "
+                          f"{ta[i]!r}; the functions of one history must share their instants")
+
+
+def looks_like_aster(head: str) -> bool:
+    """Whether the beginning of a text file is a Code_Aster table (content, not suffix).
+
+    Recognised: ``#DEBUT_TABLE``; a ``#`` block naming Code_Aster (``#ASTER ... CONCEPT``,
+    ``TABLE_SDASTER``, ``FONCTION``); or a ``#`` block, a name line and rows of blank-separated
+    ``%12.5E`` reals or ``-``.
+
+    Examples
+    --------
+    >>> looks_like_aster("#DEBUT_TABLE\\n"), looks_like_aster("t,fn\\n0,1\\n")
+    (True, False)
+    >>> looks_like_aster("#\\n#\\n INST  FN\\n 0.00000E+00 -\\n 1.00000E-04  1.20000E+01\\n")
+    True
+    """
+    lines = [ln.strip() for ln in head.splitlines() if ln.strip()]
+    if any(ln.upper().startswith("#DEBUT_TABLE") for ln in lines[:50]):
+        return True
+    comments = []
+    for ln in lines:
+        if not ln.startswith("#"):
+            break
+        comments.append(ln.upper())
+    if not comments:
+        return False
+    if any(("ASTER" in c and "CONCEPT" in c) or "TABLE_SDASTER" in c or "FONCTION_SDASTER" in c
+           or re.match(r"^#\s*FONCTION\b", c) for c in comments):
+        return True
+    rest = lines[len(comments) + 1: len(comments) + 6]
+    real = re.compile(r"^[+-]?\d\.\d+E[+-]\d{2,3}$|^-$")
+    return bool(rest) and all(
+        not ln.startswith("#") and all(real.match(tok) for tok in ln.split()) for ln in rest)
+
+
+def read_function_files(files: Sequence[tuple[str, str | os.PathLike]]
+                        ) -> tuple[list[str], list[np.ndarray], dict]:
+    """Read a set of IMPR_FONCTION TABLEAU files into one table of columns.
+
+    Parameters
+    ----------
+    files : sequence of (key, path)
+        ``key`` names the function held in the file (a channel or alias) or is None to use the
+        value column's own name; a file may hold several functions when ``key`` is None.
+
+    Returns
+    -------
+    (names, arrays, info)
+        Column names (``time`` first, then one per function), their arrays, and ``{"files": ...}``.
+    """
+    names: list[str] = []
+    arrays: list[np.ndarray] = []
+    reference: tuple[str, np.ndarray] | None = None
+    for key, path in files:
+        frame = read_aster_table(path)
+        label = str(path)
+        pairs = function_pairs(frame, label)
+        if key is not None and len(pairs) != 1:
+            raise FormatError(f"{label} holds {len(pairs)} functions {[p[0] for p in pairs]} "
+                              f"but is given for the single channel {key!r}; give one file per "
+                              "channel, or pass the file in a list to use its column names")
+        for name, x, y in pairs:
+            if reference is None:
+                reference = (label, x)
+            else:
+                check_same_abscissa(reference, (label, x))
+            names.append(str(key) if key is not None else name)
+            arrays.append(y)
+    assert reference is not None
+    return ["time", *names], [reference[1], *arrays], {"files": [str(p) for _, p in files]}

@@ -1,0 +1,341 @@
+"""Binary formats: Parquet (pyarrow), HDF5 (h5py), NetCDF (netCDF4) and NumPy ``.npz``.
+
+Layouts written (and read back):
+
+* Parquet: one column per channel; field metadata ``units`` and ``description``; schema
+  metadata ``fretwear`` = JSON ``{"name": ..., "metadata": ...}``. Read by row groups/batches.
+* HDF5: a group (default ``/history``) holding one 1-D dataset per channel with attributes
+  ``units`` and ``description``; group attributes ``name`` and ``metadata`` (JSON). Read by slices.
+* NetCDF: dimension ``time``, a variable per channel with ``units`` and ``long_name``; global
+  attributes ``title`` (the name) and ``fretwear_metadata`` (JSON).
+* NPZ: one array per channel plus ``__fretwear__``, a JSON string with name, metadata, units.
+
+pyarrow, h5py and netCDF4 are optional (``pip install fretwear[formats]``); they are imported
+only when a file of theirs is read or written.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import os
+from collections.abc import Iterator
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from fretwear.errors import FormatError
+from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
+from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.io.channels import Source
+
+_NPZ_META = "__fretwear__"
+
+
+def require(module: str, what: str) -> ModuleType:
+    """Import an optional dependency or raise a :class:`FormatError` naming the extra to install.
+
+    Examples
+    --------
+    >>> require("json", "JSON").__name__
+    'json'
+    """
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        raise FormatError(f"{what} needs the optional package {module!r}: "
+                          "pip install 'fretwear[formats]'") from None
+
+
+def _decode(value: Any) -> str:
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, np.ndarray):
+        return str(value.item() if value.size == 1 else value.tolist())
+    return str(value)
+
+
+def _json_meta(history: ContactHistory) -> str:
+    return json.dumps(dict(history.metadata), default=str)
+
+
+def _loads(text: str | None) -> dict:
+    if not text:
+        return {}
+    try:
+        value = json.loads(text)
+    except json.JSONDecodeError:
+        return {}
+    return value if isinstance(value, dict) else {}
+
+
+# --------------------------------------------------------------------------- Parquet
+def open_parquet(path: str | os.PathLike) -> Source:
+    """Open a Parquet file; columns are read whole or by record batches (bounded memory).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0])
+    >>> p = write_parquet(h, pathlib.Path(tempfile.mkdtemp()) / "h.parquet")
+    >>> src = open_parquet(p)
+    >>> src.columns, src.units[1], src.read([1])[0].tolist()
+    (['time', 'normal_force', 'vt1', 'vt2'], 'N', [2.0, 3.0])
+    """
+    pq = require("pyarrow.parquet", "reading Parquet")
+    path = Path(path)
+    try:
+        schema = pq.read_schema(path)
+    except Exception as exc:  # pyarrow raises ArrowInvalid / OSError
+        raise FormatError(f"{path}: not a readable Parquet file ({exc})") from None
+    names = list(schema.names)
+    units = {}
+    for i, fld in enumerate(schema):
+        meta = fld.metadata or {}
+        if b"units" in meta:
+            units[i] = meta[b"units"].decode("utf-8")
+    stored = _loads((schema.metadata or {}).get(b"fretwear", b"").decode("utf-8"))
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        table = pq.read_table(path, columns=[names[p] for p in positions])
+        return [table.column(i).to_numpy().astype(float, copy=False) for i in range(len(positions))]
+
+    def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
+        handle = pq.ParquetFile(path)
+        try:
+            for batch in handle.iter_batches(batch_size=size, columns=[names[p] for p in positions]):
+                yield [batch.column(i).to_numpy(zero_copy_only=False).astype(float, copy=False)
+                       for i in range(len(positions))]
+        finally:
+            handle.close()
+
+    return Source(label=str(path), format="parquet", columns=names, read=read, units=units,
+                  name=stored.get("name"), metadata=stored.get("metadata", {}),
+                  iter_blocks=iter_blocks)
+
+
+def write_parquet(history: ContactHistory, path: str | os.PathLike, *,
+                  row_group_size: int | None = None) -> Path:
+    """Write a history as Parquet, units in each field's metadata (atomic).
+
+    Parameters
+    ----------
+    history : ContactHistory
+    path : path-like
+    row_group_size : int, optional
+        Rows per row group (pyarrow's default when None).
+    """
+    pa = require("pyarrow", "writing Parquet")
+    pq = require("pyarrow.parquet", "writing Parquet")
+    fields = [pa.field(ch, pa.float64(), metadata={"units": UNITS[ch],
+                                                   "description": DESCRIPTIONS[ch]})
+              for ch in history.channels]
+    schema = pa.schema(fields, metadata={"fretwear": json.dumps(
+        {"name": history.name, "metadata": dict(history.metadata)}, default=str)})
+    table = pa.Table.from_arrays([pa.array(np.asarray(getattr(history, ch)))
+                                  for ch in history.channels], schema=schema)
+    with atomic_path(path) as tmp:
+        pq.write_table(table, tmp, row_group_size=row_group_size)
+    return Path(path)
+
+
+# --------------------------------------------------------------------------- HDF5
+def _find_group(h5: Any, handle: Any, group: str | None, path: Path) -> Any:
+    if group is not None:
+        if group not in handle or not isinstance(handle[group], h5.Group):
+            raise FormatError(f"{path}: no group {group!r}; groups: {_groups(h5, handle)}")
+        return handle[group]
+    candidates = [g for g in [handle, *_all_groups(h5, handle)]
+                  if any(isinstance(v, h5.Dataset) and v.ndim == 1 for v in g.values())]
+    if len(candidates) == 1:
+        return candidates[0]
+    if not candidates:
+        raise FormatError(f"{path}: no group holds 1-D datasets (one per channel)")
+    raise FormatError(f"{path}: several groups hold 1-D datasets "
+                      f"{[g.name for g in candidates]}; choose one with group='<name>'")
+
+
+def _all_groups(h5: Any, handle: Any) -> list:
+    found: list = []
+    handle.visititems(lambda _, obj: found.append(obj) if isinstance(obj, h5.Group) else None)
+    return found
+
+
+def _groups(h5: Any, handle: Any) -> list[str]:
+    return ["/"] + [g.name for g in _all_groups(h5, handle)]
+
+
+def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
+    """Open an HDF5 file: one 1-D dataset per column in a group (found when unique).
+
+    Parameters
+    ----------
+    path : path-like
+    group : str, optional
+        The group holding the datasets; default the only group that holds 1-D datasets.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="N1")
+    >>> p = write_hdf5(h, pathlib.Path(tempfile.mkdtemp()) / "h.h5")
+    >>> src = open_hdf5(p)
+    >>> src.name, src.columns, src.units[0]
+    ('N1', ['time', 'normal_force', 'vt1', 'vt2'], 's')
+    """
+    h5 = require("h5py", "reading HDF5")
+    path = Path(path)
+    try:
+        handle = h5.File(path, "r")
+    except OSError as exc:
+        raise FormatError(f"{path}: not a readable HDF5 file ({exc})") from None
+    with handle:
+        grp = _find_group(h5, handle, group, path)
+        gname = grp.name
+        names = [k for k, v in grp.items() if isinstance(v, h5.Dataset) and v.ndim == 1]
+        units = {i: _decode(grp[k].attrs["units"]) for i, k in enumerate(names)
+                 if "units" in grp[k].attrs}
+        name = _decode(grp.attrs["name"]) if "name" in grp.attrs else None
+        meta = _loads(_decode(grp.attrs["metadata"])) if "metadata" in grp.attrs else {}
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        with h5.File(path, "r") as f:
+            return [np.asarray(f[gname][names[p]][()], dtype=float) for p in positions]
+
+    def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
+        with h5.File(path, "r") as f:
+            datasets = [f[gname][names[p]] for p in positions]
+            n = min(d.shape[0] for d in datasets)
+            for start in range(0, n, size):
+                yield [np.asarray(d[start:start + size], dtype=float) for d in datasets]
+
+    return Source(label=str(path), format="hdf5", columns=names, read=read, units=units,
+                  name=name, metadata=meta, iter_blocks=iter_blocks)
+
+
+def write_hdf5(history: ContactHistory, path: str | os.PathLike, *,
+               group: str = "history") -> Path:
+    """Write a history as HDF5: a dataset per channel in ``group``, units as attributes (atomic)."""
+    h5 = require("h5py", "writing HDF5")
+    with atomic_path(path) as tmp, h5.File(tmp, "w", track_order=True) as f:
+        grp = f.create_group(group, track_order=True) if group not in ("", "/") else f
+        grp.attrs["name"] = history.name
+        grp.attrs["metadata"] = _json_meta(history)
+        for ch in history.channels:
+            ds = grp.create_dataset(ch, data=np.asarray(getattr(history, ch)))
+            ds.attrs["units"] = UNITS[ch]
+            ds.attrs["description"] = DESCRIPTIONS[ch]
+    return Path(path)
+
+
+# --------------------------------------------------------------------------- NetCDF
+def open_netcdf(path: str | os.PathLike) -> Source:
+    """Open a NetCDF file: the 1-D variables along the time dimension, ``units`` attributes.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="N1")
+    >>> p = write_netcdf(h, pathlib.Path(tempfile.mkdtemp()) / "h.nc")
+    >>> src = open_netcdf(p)
+    >>> src.name, src.columns, src.units[3]
+    ('N1', ['time', 'normal_force', 'vt1', 'vt2'], 'm/s')
+    """
+    nc = require("netCDF4", "reading NetCDF")
+    path = Path(path)
+    try:
+        ds = nc.Dataset(path, "r")
+    except OSError as exc:
+        raise FormatError(f"{path}: not a readable NetCDF file ({exc})") from None
+    with ds:
+        one_d = {k: v for k, v in ds.variables.items() if v.ndim == 1}
+        dims = {v.dimensions[0] for v in one_d.values()}
+        if "time" in dims:
+            dim = "time"
+        elif len(dims) == 1:
+            dim = dims.pop()
+        else:
+            raise FormatError(f"{path}: 1-D variables along several dimensions {sorted(dims)} "
+                              "and none is 'time'")
+        names = [k for k, v in one_d.items() if v.dimensions[0] == dim]
+        units = {i: str(one_d[k].getncattr("units")) for i, k in enumerate(names)
+                 if "units" in one_d[k].ncattrs()}
+        attrs = ds.ncattrs()
+        name = str(ds.getncattr("title")) if "title" in attrs else None
+        meta = _loads(str(ds.getncattr("fretwear_metadata"))) if "fretwear_metadata" in attrs else {}
+
+    def _values(var: Any, sl: slice) -> np.ndarray:
+        return np.ma.filled(np.ma.asarray(var[sl], dtype=float), np.nan)
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        with nc.Dataset(path, "r") as f:
+            return [_values(f.variables[names[p]], slice(None)) for p in positions]
+
+    def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
+        with nc.Dataset(path, "r") as f:
+            n = len(f.dimensions[dim])
+            for start in range(0, n, size):
+                yield [_values(f.variables[names[p]], slice(start, start + size))
+                       for p in positions]
+
+    return Source(label=str(path), format="netcdf", columns=names, read=read, units=units,
+                  name=name, metadata=meta, iter_blocks=iter_blocks)
+
+
+def write_netcdf(history: ContactHistory, path: str | os.PathLike) -> Path:
+    """Write a history as NetCDF-4: dimension ``time``, one variable per channel with ``units``."""
+    nc = require("netCDF4", "writing NetCDF")
+    with atomic_path(path) as tmp:
+        with nc.Dataset(tmp, "w", format="NETCDF4") as ds:
+            ds.createDimension("time", len(history))
+            ds.setncattr("title", history.name)
+            ds.setncattr("fretwear_metadata", _json_meta(history))
+            ds.setncattr("Conventions", "CF-1.8")
+            for ch in history.channels:
+                var = ds.createVariable(ch, "f8", ("time",))
+                var.setncattr("units", UNITS[ch])
+                var.setncattr("long_name", DESCRIPTIONS[ch])
+                var[:] = np.asarray(getattr(history, ch))
+    return Path(path)
+
+
+# --------------------------------------------------------------------------- NPZ
+def open_npz(path: str | os.PathLike) -> Source:
+    """Open a NumPy ``.npz`` archive: every 1-D array is a column (whole reads only).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "h.npz"
+    >>> np.savez(p, INST=[0.0, 1.0], FN=[1.0, 2.0])
+    >>> open_npz(p).columns
+    ['INST', 'FN']
+    """
+    path = Path(path)
+    try:
+        archive = np.load(path, allow_pickle=False)
+    except (OSError, ValueError) as exc:
+        raise FormatError(f"{path}: not a readable .npz archive ({exc})") from None
+    with archive:
+        names = [k for k in archive.files if k != _NPZ_META and archive[k].ndim == 1]
+        stored = _loads(str(archive[_NPZ_META])) if _NPZ_META in archive.files else {}
+    units = {i: stored["units"][k] for i, k in enumerate(names) if k in stored.get("units", {})}
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        with np.load(path, allow_pickle=False) as f:
+            return [np.asarray(f[names[p]], dtype=float) for p in positions]
+
+    return Source(label=str(path), format="npz", columns=names, read=read, units=units,
+                  name=stored.get("name"), metadata=stored.get("metadata", {}))
+
+
+def write_npz(history: ContactHistory, path: str | os.PathLike) -> Path:
+    """Write a history as ``.npz`` (one array per channel, plus a JSON ``__fretwear__`` entry)."""
+    meta = json.dumps({"name": history.name, "metadata": dict(history.metadata),
+                       "units": {ch: UNITS[ch] for ch in history.channels}}, default=str)
+    arrays = {ch: np.asarray(getattr(history, ch)) for ch in history.channels}
+    with atomic_write(path, "wb") as handle:
+        np.savez(handle, **arrays, **{_NPZ_META: np.array(meta)})
+    return Path(path)

@@ -1,0 +1,251 @@
+"""Delimited text files (CSV, TSV, blank-separated ``.txt``/``.dat``): reader, chunked reader, writer.
+
+The reader finds by itself the leading comment lines (``#``), the delimiter (tab, ``;``, ``,``,
+``|`` or blanks), whether the first line is a header (else columns are named ``0``, ``1`` ...),
+a decimal comma (``1,5;2,5``), and units written in the header (``"Fn [kN]"``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import FormatError, InputError
+from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
+from fretwear.io.atomic import atomic_write
+from fretwear.io.channels import Source, split_unit
+
+#: First line of the files written by :func:`write_csv` (their metadata lines are read back).
+MAGIC = "# fretwear contact history"
+_CANDIDATES = ("\t", ";", ",", "|")
+_DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
+
+
+def _is_number(token: str, decimal: str) -> bool:
+    try:
+        float(token.replace(decimal, ".") if decimal != "." else token)
+        return True
+    except ValueError:
+        return False
+
+
+def _split(line: str, sep: str | None) -> list[str]:
+    parts = line.split() if sep is None else line.split(sep)
+    return [p.strip().strip("'\"") for p in parts]
+
+
+def scan(path: Path, *, delimiter: str | None = None, decimal: str | None = None,
+         comment: str = "#", header: bool | None = None, encoding: str = "utf-8-sig") -> dict:
+    """Inspect the head of a delimited file: comment lines, delimiter, decimal, header, names.
+
+    Returns a dict with ``skip`` (lines before the header or first data line), ``sep`` (None
+    for blanks), ``decimal``, ``header`` (bool), ``names``, ``units`` (position -> unit),
+    ``comments`` (the leading comment lines).
+    """
+    try:
+        with open(path, encoding=encoding) as handle:
+            head = [line.rstrip("\r\n") for _, line in zip(range(400), handle, strict=False)]
+    except UnicodeDecodeError:
+        raise FormatError(f"{path}: not a text file in {encoding!r}; give encoding='latin-1' "
+                          "or format= for a binary file") from None
+    skip = 0
+    comments: list[str] = []
+    while skip < len(head) and (not head[skip].strip()
+                                or (comment and head[skip].lstrip().startswith(comment))):
+        comments.append(head[skip])
+        skip += 1
+    sample = [ln for ln in head[skip:skip + 30] if ln.strip()
+              and not (comment and ln.lstrip().startswith(comment))]
+    if not sample:
+        raise FormatError(f"{path}: no data lines (only comments or blank lines); is it the "
+                          "right file?")
+    sep = delimiter
+    if sep is None:
+        for cand in _CANDIDATES:
+            counts = {ln.count(cand) for ln in sample}
+            if len(counts) == 1 and counts.pop() > 0:
+                sep = cand
+                break
+    if sep is not None and sep.isspace() and sep != "\t":
+        sep = None
+    data_tokens = [t for ln in sample[1:] for t in _split(ln, sep)]
+    if decimal is None:
+        decimal = "," if sep != "," and any(_DECIMAL_COMMA.match(t) for t in data_tokens) else "."
+    first = _split(sample[0], sep)
+    if header is None:
+        header = not all(_is_number(t, decimal) for t in first if t)
+    if header:
+        names = first
+        units: dict[int, str] = {}
+        for i, name in enumerate(names):
+            _, unit = split_unit(name)
+            if unit is not None:
+                units[i] = unit
+    else:
+        names = [str(i) for i in range(len(first))]
+        units = {}
+    return {"skip": skip, "sep": sep, "decimal": decimal, "header": bool(header), "names": names,
+            "units": units, "comments": comments, "comment": comment, "encoding": encoding}
+
+
+def _stored_metadata(comments: list[str]) -> tuple[str | None, dict]:
+    if not comments or comments[0].strip() != MAGIC:
+        return None, {}
+    name, meta = None, {}
+    for line in comments[1:]:
+        body = line.lstrip("#").strip()
+        if body.startswith("name:"):
+            name = body[len("name:"):].strip()
+        elif body.startswith("metadata:"):
+            try:
+                meta = json.loads(body[len("metadata:"):].strip())
+            except json.JSONDecodeError:
+                meta = {}
+    return name, meta
+
+
+def _read_kwargs(info: dict, positions: list[int]) -> dict:
+    return dict(sep=r"\s+" if info["sep"] is None else info["sep"], header=None,
+                names=list(range(len(info["names"]))), usecols=positions,
+                skiprows=info["skip"] + (1 if info["header"] else 0),
+                comment=info["comment"] or None, decimal=info["decimal"], dtype=float,
+                encoding=info["encoding"], skip_blank_lines=True, engine="c")
+
+
+def _diagnose(path: Path, info: dict, positions: list[int], first_row: int = 0) -> FormatError:
+    """Find the first non-numeric cell among ``positions`` (for the error message)."""
+    kwargs = _read_kwargs(info, positions)
+    kwargs["dtype"] = str
+    kwargs["keep_default_na"] = False
+    frame = pd.read_csv(path, **kwargs)
+    for pos in positions:
+        col = frame[pos]
+        text = col.str.strip()
+        if info["decimal"] != ".":
+            text = text.str.replace(info["decimal"], ".", regex=False)
+        values = pd.to_numeric(text, errors="coerce")
+        bad = values.isna() & (text != "") & ~text.str.lower().isin(["nan", "na", "n/a", "null"])
+        if bad.any():
+            i = int(np.flatnonzero(bad.to_numpy())[0])
+            return FormatError(
+                f"{path}: column {info['names'][pos]!r} holds {col.iloc[i]!r} at data row "
+                f"{i} (0-based, header excluded), not a number; fix the cell (empty cells are "
+                "read as missing)")
+    return FormatError(f"{path}: could not read the columns as numbers")
+
+
+def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
+             decimal: str | None = None, comment: str = "#", header: bool | None = None,
+             encoding: str = "utf-8-sig") -> Source:
+    """Open a delimited text file as a :class:`~fretwear.io.channels.Source`.
+
+    Parameters
+    ----------
+    path : path-like
+        The file.
+    delimiter : str, optional
+        Column separator; default guessed among tab, ``;``, ``,``, ``|`` and blanks.
+    decimal : str, optional
+        Decimal mark; default ``.``, or ``,`` when the cells use a decimal comma.
+    comment : str
+        Lines starting with it are ignored (default ``#``).
+    header : bool, optional
+        Whether the first non-comment line names the columns; default guessed (it does unless
+        every cell is a number). Without a header the columns are named ``0``, ``1`` ...
+    encoding : str
+        Text encoding (default UTF-8, with or without BOM).
+
+    Returns
+    -------
+    Source
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "h.csv"
+    >>> _ = p.write_text("# test\\nt;Fn [kN]\\n0,0;1,5\\n1,0;2,5\\n")
+    >>> src = open_csv(p)
+    >>> src.columns, src.units, [a.tolist() for a in src.read([0, 1])]
+    (['t', 'Fn [kN]'], {1: 'kN'}, [[0.0, 1.0], [1.5, 2.5]])
+    """
+    path = Path(path)
+    info = scan(path, delimiter=delimiter, decimal=decimal, comment=comment, header=header,
+                encoding=encoding)
+    name, meta = _stored_metadata(info["comments"])
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        try:
+            frame = pd.read_csv(path, **_read_kwargs(info, positions))
+        except ValueError as exc:
+            if isinstance(exc, pd.errors.ParserError):
+                raise FormatError(f"{path}: {exc}; every row must have the same number of "
+                                  "cells as the header") from None
+            raise _diagnose(path, info, positions) from None
+        return [frame[pos].to_numpy(dtype=float) for pos in positions]
+
+    def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
+        try:
+            with pd.read_csv(path, chunksize=size, **_read_kwargs(info, positions)) as reader:
+                for frame in reader:
+                    yield [frame[pos].to_numpy(dtype=float) for pos in positions]
+        except ValueError as exc:
+            if isinstance(exc, pd.errors.ParserError):
+                raise FormatError(f"{path}: {exc}") from None
+            raise _diagnose(path, info, positions) from None
+
+    hint = ("" if info["header"] else "; the file has no header line: name the columns by "
+            "position, e.g. columns={0: 'time', 1: 'normal_force', 2: 'vt1', 3: 'vt2'}")
+    return Source(label=str(path), format="csv", columns=list(info["names"]), read=read,
+                  units=dict(info["units"]), name=name, metadata=meta, iter_blocks=iter_blocks,
+                  hint=hint)
+
+
+def write_csv(history: ContactHistory, path: str | os.PathLike, *,
+              float_format: str = "%.17g", delimiter: str = ",") -> Path:
+    """Write a history as CSV: a commented header documenting every column, then the samples.
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history (SI units).
+    path : path-like
+        Output file, written atomically.
+    float_format : str
+        printf format of the values; the default ``%.17g`` round-trips every double exactly.
+    delimiter : str
+        Column separator (default ``,``).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="n1")
+    >>> out = write_csv(h, pathlib.Path(tempfile.mkdtemp()) / "n1.csv")
+    >>> out.read_text().splitlines()[-3:]
+    ['time,normal_force,vt1,vt2', '0,2,0,0', '1,3,1,0']
+    """
+    try:
+        float_format % 1.0
+    except (TypeError, ValueError):
+        raise InputError(f"float_format={float_format!r} is not a printf format such as "
+                         "'%.17g'") from None
+    frame = history.to_frame()
+    lines = [MAGIC, f"# name: {history.name}",
+             f"# metadata: {json.dumps(dict(history.metadata), default=str)}",
+             "# columns (SI units):"]
+    lines += [f"#   {ch} [{UNITS[ch]}]: {DESCRIPTIONS[ch]}" for ch in history.channels]
+    target = Path(path)
+    with atomic_write(target, "w", encoding="utf-8", newline="") as handle:
+        handle.write("\n".join(lines) + "\n")
+        frame.to_csv(handle, index=False, float_format=float_format, sep=delimiter,
+                     lineterminator="\n")
+    return target
