@@ -9,6 +9,7 @@ are in :mod:`fretwear.geometry.sectors`. The derivations are in ``docs/geometry.
 
 from __future__ import annotations
 
+import importlib
 import warnings
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
@@ -18,17 +19,16 @@ from fretwear.geometry.base import (
     DIMENSION_UNITS,
     ContactGeometry,
 )
-
-# TEMPORARY guards while the modules are being written (issue 4); removed when they land.
-try:
-    from fretwear.geometry.sectors import (
-        sector_depth_mobile,
-        sector_depth_obstacle,
-        sector_volume_mobile,
-        sector_volume_obstacle,
-    )
-except ImportError:  # pragma: no cover
-    pass
+from fretwear.geometry.grappe_alesage import GrappeAlesage
+from fretwear.geometry.sectors import (
+    sector_depth_mobile,
+    sector_depth_obstacle,
+    sector_volume_mobile,
+    sector_volume_obstacle,
+)
+from fretwear.geometry.tube_alesage import TubeAlesage
+from fretwear.geometry.tube_bav import TubeBav
+from fretwear.geometry.tube_tube import TubeTube
 
 __all__ = [
     "ASTER_KEYWORDS",
@@ -42,33 +42,24 @@ __all__ = [
 ]
 
 #: Code_Aster contact name -> geometry class (SPEC §6).
-CONTACT_TYPES: dict[str, type[ContactGeometry]] = {}
+CONTACT_TYPES: dict[str, type[ContactGeometry]] = {
+    "TUBE_BAV": TubeBav,
+    "TUBE_ALESAGE": TubeAlesage,
+    "TUBE_TUBE": TubeTube,
+    "GRAPPE_ALESAGE": GrappeAlesage,
+}
 
-for _module, _names in (("tube_bav", ("TUBE_BAV", "TubeBav")),
-                        ("tube_alesage", ("TUBE_ALESAGE", "TubeAlesage")),
-                        ("tube_tube", ("TUBE_TUBE", "TubeTube")),
-                        ("grappe_alesage", ("GRAPPE_ALESAGE", "GrappeAlesage"))):
+# The broached-hole and notch types (issue 4, second half) are written in parallel: their
+# classes are registered by their ``contact_type`` once the modules exist.
+for _module_name in ("fretwear.geometry.enco", "fretwear.geometry.grappe_notch"):
     try:
-        _mod = __import__(f"fretwear.geometry.{_module}", fromlist=[_names[1]])
-    except ImportError:  # pragma: no cover
+        _module = importlib.import_module(_module_name)
+    except ImportError:  # pragma: no cover - until the module lands
         continue
-    CONTACT_TYPES[_names[0]] = getattr(_mod, _names[1])
-
-# The broached-hole and notch types are written in parallel (issue 4, second half).
-try:
-    from fretwear.geometry.enco import Tube3Enco, Tube4Enco
-except ImportError:  # pragma: no cover - until geometry/enco.py lands
-    pass
-else:
-    CONTACT_TYPES["TUBE_3_ENCO"] = Tube3Enco
-    CONTACT_TYPES["TUBE_4_ENCO"] = Tube4Enco
-try:
-    from fretwear.geometry.grappe_notch import Grappe1Enco, Grappe2Enco
-except ImportError:  # pragma: no cover - until geometry/grappe_notch.py lands
-    pass
-else:
-    CONTACT_TYPES["GRAPPE_1_ENCO"] = Grappe1Enco
-    CONTACT_TYPES["GRAPPE_2_ENCO"] = Grappe2Enco
+    for _item in vars(_module).values():
+        if (isinstance(_item, type) and issubclass(_item, ContactGeometry)
+                and _item.__module__ == _module_name and _item.contact_type):
+            CONTACT_TYPES[_item.contact_type] = _item
 
 _FROM_ASTER = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
 

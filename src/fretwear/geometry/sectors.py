@@ -1,0 +1,231 @@
+"""Worn depth of an angular sector (SPEC §3, seed §5).
+
+The wear of a sector j (volume V_j) is assumed to fill the sector's arc Δθ uniformly over the
+obstacle width l: on the mobile (convex) it removes an annular slice of the outer surface, in the
+bore (concave) it adds an annular slice beyond the bore's surface. Δθ is in radians here
+(Code_Aster uses degrees, a factor 180/π ≈ 57 too small a depth, which we do not copy).
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+from fretwear.errors import InputError, RangeWarning
+
+__all__ = [
+    "sector_depth_mobile",
+    "sector_depth_obstacle",
+    "sector_volume_mobile",
+    "sector_volume_obstacle",
+]
+
+
+def _inputs(value, value_name, unit, radius, radius_name, width, arc_deg):
+    array = np.array(value, dtype=float)
+    bad = np.isinf(array) | (array < 0.0)
+    if bad.any():
+        raise InputError(
+            f"{value_name} must be finite and >= 0 [{unit}]: got "
+            f"{float(array[tuple(np.argwhere(bad)[0])]):g}")
+    r = np.array(radius, dtype=float)
+    l = np.array(width, dtype=float)
+    arc = np.array(arc_deg, dtype=float)
+    for name, item, what in ((radius_name, r, "m"), ("width", l, "m")):
+        if not (np.isfinite(item) & (item > 0.0)).all():
+            raise InputError(f"{name} must be finite and > 0 [{what}], got {item.tolist()}")
+    if not (np.isfinite(arc) & (arc > 0.0) & (arc <= 360.0)).all():
+        raise InputError(
+            f"arc_deg (the sector's angular extent) must lie in (0, 360] deg, got {arc.tolist()}")
+    try:
+        np.broadcast_shapes(array.shape, r.shape, l.shape, arc.shape)
+    except ValueError:
+        raise InputError(
+            f"{value_name} {array.shape}, {radius_name} {r.shape}, width {l.shape} and arc_deg "
+            f"{arc.shape} do not broadcast together") from None
+    return array, r, l, np.radians(arc)
+
+
+def _out(array):
+    array = np.asarray(array, dtype=float)
+    return array[()] if array.ndim == 0 else array
+
+
+def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
+    """Depth of a sector's wear on the mobile (convex surface) [m].
+
+    Parameters
+    ----------
+    volume : float or array_like
+        Worn volume of the sector V_j [m³], ≥ 0 (NaN passes through).
+    mobile_radius : float or array_like
+        Mobile outer radius R_m [m].
+    width : float or array_like
+        Worn width l [m] (obstacle width).
+    arc_deg : float or array_like
+        Angular extent Δθ of the sector [deg], in (0, 360].
+
+    Returns
+    -------
+    numpy.ndarray or float
+        d [m]; NaN (with a RangeWarning) where V_j exceeds the whole sector of the disk,
+        l·Δθ·R_m²/2.
+
+    Notes
+    -----
+    The slice between radii R_m − d and R_m over the arc Δθ [rad] and width l has the volume
+    V = l·Δθ·(R_m² − (R_m − d)²)/2, so
+
+    .. math:: d = R_m - \\sqrt{R_m^2 - \\frac{2V}{l\\,\\Delta\\theta}}
+              = \\frac{a}{R_m + \\sqrt{R_m^2 - a}},\\quad a = \\frac{2V}{l\\,\\Delta\\theta}
+
+    (second form used: no cancellation for thin wear).
+
+    References
+    ----------
+    SPEC §3; seed §5.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = 0.01 * (np.pi / 2) * (0.01**2 - 0.009**2) / 2  # 1 mm deep over 90°, 10 mm wide
+    >>> round(float(sector_depth_mobile(v, 0.01, 0.01, 90.0)), 12)
+    0.001
+    """
+    v, r, l, arc = _inputs(volume, "volume", "m³", mobile_radius, "mobile_radius", width,
+                           arc_deg)
+    a = 2.0 * v / (l * arc)
+    with np.errstate(invalid="ignore"):
+        beyond = a > r * r
+        depth = a / (r + np.sqrt(np.where(beyond, np.nan, r * r - a)))
+    if np.any(beyond):
+        warnings.warn(
+            f"sector depth of the mobile: {int(np.count_nonzero(beyond))} volume(s) exceed the "
+            "whole sector of the mobile's section (l·Δθ·R_m²/2): depth NaN", RangeWarning,
+            stacklevel=2)
+    return _out(depth)
+
+
+def sector_depth_obstacle(volume, obstacle_radius, width, arc_deg):
+    """Depth of a sector's wear in the obstacle's bore (concave surface) [m].
+
+    Parameters
+    ----------
+    volume : float or array_like
+        Worn volume of the sector V_j [m³], ≥ 0 (NaN passes through).
+    obstacle_radius : float or array_like
+        Bore radius R_o [m].
+    width : float or array_like
+        Worn width l [m].
+    arc_deg : float or array_like
+        Angular extent Δθ of the sector [deg], in (0, 360].
+
+    Returns
+    -------
+    numpy.ndarray or float
+        d [m].
+
+    Notes
+    -----
+    The slice between radii R_o and R_o + d has the volume V = l·Δθ·((R_o + d)² − R_o²)/2, so
+
+    .. math:: d = \\sqrt{R_o^2 + \\frac{2V}{l\\,\\Delta\\theta}} - R_o
+              = \\frac{a}{\\sqrt{R_o^2 + a} + R_o}
+
+    References
+    ----------
+    SPEC §3; seed §5.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> v = 0.01 * (np.pi / 2) * (0.011**2 - 0.01**2) / 2  # 1 mm deep over 90°, 10 mm wide
+    >>> round(float(sector_depth_obstacle(v, 0.01, 0.01, 90.0)), 12)
+    0.001
+    """
+    v, r, l, arc = _inputs(volume, "volume", "m³", obstacle_radius, "obstacle_radius", width,
+                           arc_deg)
+    a = 2.0 * v / (l * arc)
+    return _out(a / (np.sqrt(r * r + a) + r))
+
+
+def sector_volume_mobile(depth, mobile_radius, width, arc_deg):
+    """Volume of a sector's wear on the mobile from its depth [m³] (inverse of the depth).
+
+    Parameters
+    ----------
+    depth : float or array_like
+        Depth d [m], 0 ≤ d ≤ R_m (NaN beyond, with a RangeWarning).
+    mobile_radius : float or array_like
+        Mobile outer radius R_m [m].
+    width : float or array_like
+        Worn width l [m].
+    arc_deg : float or array_like
+        Angular extent Δθ [deg].
+
+    Returns
+    -------
+    numpy.ndarray or float
+        V = l·Δθ·d·(2R_m − d)/2 [m³].
+
+    Notes
+    -----
+    .. math:: V = \\frac{l\\,\\Delta\\theta}{2}\\left(R_m^2 - (R_m - d)^2\\right)
+              = \\frac{l\\,\\Delta\\theta}{2}\\,d\\,(2R_m - d)
+
+    References
+    ----------
+    SPEC §3.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> bool(np.isclose(sector_volume_mobile(0.01, 0.01, 0.02, 360.0), 0.02 * np.pi * 1e-4))
+    True
+    """
+    d, r, l, arc = _inputs(depth, "depth", "m", mobile_radius, "mobile_radius", width, arc_deg)
+    beyond = d > r
+    if np.any(beyond):
+        warnings.warn(
+            f"sector volume of the mobile: {int(np.count_nonzero(beyond))} depth(s) exceed the "
+            "mobile radius R_m: volume NaN", RangeWarning, stacklevel=2)
+    return _out(np.where(beyond, np.nan, 0.5 * l * arc * d * (2.0 * r - d)))
+
+
+def sector_volume_obstacle(depth, obstacle_radius, width, arc_deg):
+    """Volume of a sector's wear in the bore from its depth [m³] (inverse of the depth).
+
+    Parameters
+    ----------
+    depth : float or array_like
+        Depth d [m], ≥ 0.
+    obstacle_radius : float or array_like
+        Bore radius R_o [m].
+    width : float or array_like
+        Worn width l [m].
+    arc_deg : float or array_like
+        Angular extent Δθ [deg].
+
+    Returns
+    -------
+    numpy.ndarray or float
+        V = l·Δθ·d·(2R_o + d)/2 [m³].
+
+    Notes
+    -----
+    .. math:: V = \\frac{l\\,\\Delta\\theta}{2}\\left((R_o + d)^2 - R_o^2\\right)
+
+    References
+    ----------
+    SPEC §3.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> bool(np.isclose(sector_volume_obstacle(0.01, 0.01, 0.02, 360.0), 0.02 * np.pi * 3e-4))
+    True
+    """
+    d, r, l, arc = _inputs(depth, "depth", "m", obstacle_radius, "obstacle_radius", width,
+                           arc_deg)
+    return _out(0.5 * l * arc * d * (2.0 * r + d))
