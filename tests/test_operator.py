@@ -1,0 +1,250 @@
+"""The wear operator: service-life table, restart, tube replacement (SPEC §3, §6, §7).
+
+Expected values are computed independently in each test from the closed forms of SPEC:
+Archard V = K·P·t (§4), EDF_MZ V = ((A·P^b − S)/n)(1 − e^(−n·t)) + S·t (§4), the TUBE_BAV depth
+without tilt D = (1/(2R_m))^(1/3)·(3V/(4l))^(2/3) (§6) and the sector depth of a convex mobile
+d = R_m − √(R_m² − 2V/(l·Δθ)) (§3).
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fretwear import ContactHistory
+from fretwear.errors import InputError, KeywordError
+from fretwear.operator import (
+    COLUMNS,
+    from_aster_names,
+    initial_state,
+    replace_tube,
+    to_aster_names,
+    wear_table,
+)
+
+YEAR = 31_536_000.0
+BAV = {"mobile_radius": 0.0111, "obstacle_width": 0.0127}
+P = 0.012  # [W]
+K_M, K_O = 1.2e-13, 3.0e-14  # [1/Pa]
+
+
+def bav_depth(volume, radius=BAV["mobile_radius"], width=BAV["obstacle_width"]):
+    """SPEC §6 TUBE_BAV, no tilt: D = (1/(2R))^(1/3)·(3V/(4l))^(2/3)."""
+    return (1 / (2 * radius)) ** (1 / 3) * (3 * np.asarray(volume) / (4 * width)) ** (2 / 3)
+
+
+def edf(power, t, a=1e-13, b=1.2, n=2.44e-8, s=1.14e-16):
+    """SPEC §4 EDF_MZ volume [m³]."""
+    return (a * power**b - s) / n * (1 - np.exp(-n * t)) + s * t
+
+
+def archard_table(instants, **kw):
+    args = dict(contact_type="TUBE_BAV", dimensions=BAV, instants=instants,
+                coefficients={"COEF_USURE": K_M}, time_scale=YEAR)
+    args.update(kw)
+    return wear_table(P, **args)
+
+
+def test_archard_volumes_and_depths_analytic():
+    t = archard_table([1.0, 2.0, 10.0], obstacle_coefficients={"coefficient": K_O})
+    inst = np.array([1.0, 2.0, 10.0])
+    np.testing.assert_allclose(t["volume_mobile"], K_M * P * inst * YEAR, rtol=1e-15)
+    np.testing.assert_allclose(t["volume_obstacle"], K_O * P * inst * YEAR, rtol=1e-15)
+    total = (K_M + K_O) * P * inst * YEAR
+    depth = bav_depth(total)
+    np.testing.assert_allclose(t["depth_mobile"], depth * K_M / (K_M + K_O), rtol=1e-9)
+    np.testing.assert_allclose(t["depth_obstacle"], depth * K_O / (K_M + K_O), rtol=1e-9)
+    assert t["origin"].eq(0.0).all() and t["duration"].tolist() == [1.0, 2.0, 10.0]
+    assert t["power"].eq(P).all()
+    assert list(t.columns) == ["instant", "duration", "origin", "power", "volume_mobile",
+                               "volume_obstacle", "depth_mobile", "depth_obstacle"]
+    assert t.attrs["law"] == "ARCHARD" and t.attrs["time_scale"] == YEAR
+
+
+def test_obstacle_does_not_wear_without_coefficient():
+    t = archard_table([1.0, 3.0])
+    assert t["volume_obstacle"].eq(0.0).all() and t["depth_obstacle"].eq(0.0).all()
+    np.testing.assert_allclose(t["depth_mobile"], bav_depth(K_M * P * np.array([1, 3]) * YEAR),
+                               rtol=1e-9)
+
+
+def test_restart_chain_equals_one_long_run_archard():
+    long = archard_table([1.0, 2.0, 3.0, 5.0], obstacle_coefficients={"COEF_USURE": K_O})
+    first = archard_table([1.0, 2.0], obstacle_coefficients={"COEF_USURE": K_O})
+    second = archard_table([1.0, 3.0], obstacle_coefficients={"COEF_USURE": K_O},
+                           initial_state=first)
+    assert second["instant"].tolist() == [1.0, 2.0, 3.0, 5.0]
+    assert second["origin"].tolist() == [0.0, 0.0, 2.0, 2.0]
+    assert second["duration"].tolist() == [1.0, 2.0, 1.0, 3.0]
+    for col in ("volume_mobile", "volume_obstacle", "depth_mobile", "depth_obstacle"):
+        np.testing.assert_allclose(second[col], long[col], rtol=1e-14, atol=0)
+
+
+def test_restart_from_initial_instant_drops_later_rows():
+    first = archard_table([1.0, 2.0, 4.0])
+    second = archard_table([2.0], initial_state=first, initial_instant=2.0)
+    assert second["instant"].tolist() == [1.0, 2.0, 4.0]  # the old 4.0 row is dropped
+    np.testing.assert_allclose(second["volume_mobile"].iloc[-1], K_M * P * 4 * YEAR, rtol=1e-14)
+    with pytest.raises(InputError, match="INST_INIT.*3"):
+        archard_table([1.0], initial_state=first, initial_instant=3.0)
+
+
+def test_restart_from_code_aster_names():
+    first = to_aster_names(archard_table([1.0, 2.0]))
+    second = archard_table([1.0], initial_state=first)
+    np.testing.assert_allclose(second["volume_mobile"].iloc[-1], K_M * P * 3 * YEAR, rtol=1e-14)
+
+
+def test_edf_mz_continuity_across_restart():
+    """A restart continues from the equivalent time: V(t1) then V(t1 + Δt) (SPEC §7)."""
+    args = dict(contact_type="TUBE_BAV", dimensions=BAV, law="EDF_MZ", time_scale=YEAR)
+    first = wear_table(P, instants=[0.5, 1.0], **args)
+    second = wear_table(P, instants=[0.5, 2.0], initial_state=first, **args)
+    expected = edf(P, np.array([0.5, 1.0, 1.5, 3.0]) * YEAR)
+    np.testing.assert_allclose(second["volume_mobile"], expected, rtol=1e-10)
+    # a naive restart (V1 + V(Δt)) would overestimate: the run-in rate is not applied twice
+    naive = edf(P, 1.0 * YEAR) + edf(P, 2.0 * YEAR)
+    assert second["volume_mobile"].iloc[-1] < naive * (1 - 1e-3)
+
+
+def test_tube_replacement_restarts_tube_keeps_obstacle():
+    t = archard_table([1.0, 2.0, 3.0, 5.0], obstacle_coefficients={"COEF_USURE": K_O},
+                      tube_replacement=2.0)
+    inst = np.array([1.0, 2.0, 3.0, 5.0])
+    vm = K_M * P * np.where(inst >= 2.0, inst - 2.0, inst) * YEAR
+    vo = K_O * P * inst * YEAR
+    np.testing.assert_allclose(t["volume_mobile"], vm, rtol=1e-14)
+    np.testing.assert_allclose(t["volume_obstacle"], vo, rtol=1e-14)
+    depth = bav_depth(vm + vo)
+    np.testing.assert_allclose(t["depth_mobile"], depth * vm / (vm + vo), rtol=1e-9, atol=1e-15)
+    assert t["depth_mobile"].iloc[1] == 0.0
+
+
+def test_tube_replacement_edf_mz_new_tube_runs_in_again():
+    args = dict(contact_type="TUBE_BAV", dimensions=BAV, law="EDF_MZ", time_scale=YEAR)
+    t = wear_table(P, instants=[1.0, 4.0], tube_replacement=1.5, **args)
+    np.testing.assert_allclose(t["volume_mobile"], [edf(P, YEAR), edf(P, 2.5 * YEAR)],
+                               rtol=1e-12)
+
+
+def test_replace_tube_table_seeds_a_new_tube():
+    old = archard_table([1.0, 2.0, 3.0], obstacle_coefficients={"COEF_USURE": K_O})
+    seeded = replace_tube(old, 2.0)
+    assert seeded["instant"].tolist() == [1.0, 2.0]
+    assert seeded["volume_mobile"].iloc[-1] == 0.0 and seeded["depth_mobile"].iloc[-1] == 0.0
+    assert seeded["volume_obstacle"].iloc[-1] == old["volume_obstacle"].iloc[1]
+    assert old["volume_mobile"].iloc[1] > 0  # the user's table is unchanged
+    new = archard_table([1.0], obstacle_coefficients={"COEF_USURE": K_O}, initial_state=seeded)
+    np.testing.assert_allclose(new["volume_mobile"].iloc[-1], K_M * P * YEAR, rtol=1e-14)
+    np.testing.assert_allclose(new["volume_obstacle"].iloc[-1], K_O * P * 3 * YEAR, rtol=1e-14)
+    aster = replace_tube(to_aster_names(old))  # Code_Aster names in, Code_Aster names out
+    assert "V_USUR_TUBE" in aster.columns and aster["V_USUR_TUBE"].iloc[-1] == 0.0
+
+
+def test_tube_replacement_before_origin_is_an_error():
+    first = archard_table([2.0])
+    with pytest.raises(InputError, match="tube_replacement.*before the origin"):
+        archard_table([1.0], initial_state=first, tube_replacement=1.0)
+
+
+def test_instant_errors():
+    with pytest.raises(InputError, match="strictly increasing"):
+        archard_table([2.0, 1.0])
+    with pytest.raises(InputError, match=">= 0"):
+        archard_table([-1.0])
+    with pytest.raises(InputError, match="> 0"):
+        archard_table([0.0, 1.0], initial_state=archard_table([1.0]))
+    with pytest.raises(InputError, match="COEF_INST"):
+        archard_table([1.0], time_scale=0.0)
+    with pytest.raises(KeywordError, match="initial_state"):
+        archard_table([1.0], initial_instant=1.0)
+
+
+def test_missing_and_unknown_coefficients_are_named():
+    with pytest.raises(KeywordError, match="coefficient"):
+        wear_table(P, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0])
+    with pytest.raises(KeywordError, match="COEF_USRE"):
+        wear_table(P, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0],
+                   coefficients={"COEF_USRE": 1e-13})
+    with pytest.raises(KeywordError, match="KWU_EPRI"):
+        wear_table(P, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0], law="KWU_EPRI",
+                   coefficients={"COEF_USURE": 1e-13})
+    with pytest.raises(KeywordError, match="materials"):
+        wear_table(P, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0],
+                   coefficients={"COEF_USURE": 1e-13}, obstacle_wear=True)
+
+
+def test_power_alone_cannot_have_sectors():
+    with pytest.raises(InputError, match="sectors need a contact history"):
+        archard_table([1.0], sectors=4)
+
+
+def test_sector_count_must_match_global_table():
+    prev = archard_table([1.0])
+    state = initial_state(prev)
+    assert state.sector_count == 0 and state.origin == 1.0
+
+
+def test_column_names_round_trip():
+    t = archard_table([1.0])
+    aster = to_aster_names(t)
+    assert aster.columns.tolist()[:5] == ["INST", "DUREE", "ORIG_INST", "PUIS_USUR_GLOBAL",
+                                          "V_USUR_TUBE"]
+    pd.testing.assert_frame_equal(from_aster_names(aster), t)
+    assert all(len(v) == 3 for v in COLUMNS.values())
+
+
+# --------------------------------------------------------------------------- sector mode
+def sector_history():
+    """Constant Fn = 20 N and sliding speed 0.05 m/s; the left samples of the first 4 intervals
+    lie at 45° (sector 3 of 4), the next 4 at −135° (sector 1): P_1 = P_3 = 0.5 W, P = 1 W
+    (SPEC §2-§3: trapezoid, interval owned by its left sample)."""
+    n = 9
+    t = np.linspace(0.0, 8.0, n)
+    angle = np.where(np.arange(n) < 4, 45.0, -135.0)
+    dy, dz = 1e-4 * np.cos(np.radians(angle)), 1e-4 * np.sin(np.radians(angle))
+    return ContactHistory(time=t, normal_force=np.full(n, 20.0), vt1=np.full(n, 0.03),
+                          vt2=np.full(n, 0.04), dy=dy, dz=dz, name="N1")
+
+
+def sector_table(instants, **kw):
+    pytest.importorskip("fretwear.power")
+    pytest.importorskip("fretwear.geometry.sectors")
+    args = dict(contact_type="TUBE_BAV", dimensions=BAV, instants=instants, sectors=4,
+                sector_coefficients=[(1e-13, None), (2e-13, None), (3e-13, 1e-14),
+                                     (4e-13, None)], time_scale=3600.0)
+    args.update(kw)
+    return wear_table(sector_history(), **args)
+
+
+def test_sector_volumes_and_depths_analytic():
+    t = sector_table([1.0, 2.0])
+    assert len(t) == 8 and t["sector"].tolist() == [1, 2, 3, 4] * 2
+    powers = t["sector_power"].to_numpy()[:4]
+    np.testing.assert_allclose(powers, [0.5, 0.0, 0.5, 0.0], rtol=1e-12)
+    last = t.iloc[4:]
+    k = np.array([1e-13, 2e-13, 3e-13, 4e-13])
+    vm = k * powers * 2 * 3600.0
+    np.testing.assert_allclose(last["volume_mobile_cumulated"], vm, rtol=1e-12)
+    np.testing.assert_allclose(last["volume_obstacle_cumulated"], [0, 0, 1e-14 * 0.5 * 2 * 3600.0,
+                                                                   0], rtol=1e-12)
+    r, width, arc = BAV["mobile_radius"], BAV["obstacle_width"], math.radians(90.0)
+    np.testing.assert_allclose(last["depth_mobile_sector"],
+                               r - np.sqrt(r**2 - 2 * vm / (width * arc)), rtol=1e-9)
+    np.testing.assert_allclose(last["volume_mobile"], vm.sum(), rtol=1e-12)
+    np.testing.assert_allclose(t["power"], 1.0, rtol=1e-12)
+
+
+def test_sector_restart_chain_equals_long_run_and_count_must_match():
+    long = sector_table([1.0, 3.0])
+    first = sector_table([1.0])
+    second = sector_table([2.0], initial_state=first)
+    cols = ["volume_mobile_cumulated", "volume_obstacle_cumulated", "depth_mobile_sector"]
+    np.testing.assert_allclose(second[cols].to_numpy(), long[cols].to_numpy(), rtol=1e-14)
+    np.testing.assert_allclose(second["volume_mobile_sector"].iloc[4:],
+                               long["volume_mobile_sector"].iloc[4:] / 3 * 2, rtol=1e-14)
+    with pytest.raises(InputError, match="4 sectors and this run has 2"):
+        sector_table([1.0], initial_state=first, sectors=2, sector_coefficients=[(1e-13, None)])
+    with pytest.raises(InputError, match="4 sectors and this run has none"):
+        archard_table([1.0], initial_state=first)
