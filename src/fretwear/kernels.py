@@ -1,0 +1,669 @@
+"""Fused one-pass kernels of the wear power and the contact statistics (SPEC §2-§3).
+
+One call reduces one chunk of a contact history (consecutive samples) to its *partial sums*:
+
+* ``power[b, j]``: ∫ Fn·‖Vt‖ dt over the part of the chunk inside block ``b`` whose interval
+  belongs to sector ``j`` (stick rule applied) [J];
+* ``block_stats[b, :]``: per-block integrals of the contact statistics (see :data:`BLOCK_STATS`);
+* ``force_max``: the largest normal force in the window [N];
+* ``groups``: the impacts of the chunk in a mergeable form (see :data:`GROUP_FIELDS`).
+
+Two implementations compute the same sums: a compiled numba kernel (``cache=True``, ``nogil``)
+that reads every sample once and classifies contact angles into sectors *without an arctangent*,
+and a plain numpy version (the reference, and the fallback when numba is missing).
+
+Conventions (shared with :mod:`fretwear.history` and :mod:`fretwear.sectors`)
+---------------------------------------------------------------------------------
+* The integrand g = Fn·‖Vt‖ is linear between samples (trapezoid rule). A window bound or a block
+  edge inside an interval splits it; each part gets the exact integral of the linear interpolant.
+* An interval belongs to the sector of its left sample and produces no wear when its left sample
+  sticks.
+* Contact angle θ = atan2(dz, dy) in (-180°, 180°]; θ = 0 when dy = dz = 0. Sample in sector j
+  when ``edges[j] < θ <= edges[j+1]`` (the first sector also takes θ = -180, which cannot occur).
+
+Sector classification without arctangent
+----------------------------------------
+The kernel maps (dy, dz) to the *diamond pseudo-angle* q ∈ (-2, 2], a strictly increasing
+function of θ computed with one division (:func:`pseudo_angle`), and compares it with the
+pseudo-angles of the edges through a 1024-bin lookup table. Points on an axis (dy = 0 or dz = 0)
+have an exact q and are compared exactly. Any other point closer than ``1e-11`` in q to an edge
+(about 1e-11 rad) — where float rounding could make ``arctan2`` land on the other side — is
+*ambiguous*: the kernel then stops and the chunk is recomputed with the numpy reference
+classification, so that both paths always agree with
+``sector_index(contact_angle(dy, dz), edges)``.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from fretwear.sectors import sector_index
+
+try:  # pragma: no cover - depends on the environment
+    import numba
+
+    HAVE_NUMBA = True
+except ImportError:  # pragma: no cover
+    numba = None
+    HAVE_NUMBA = False
+
+#: Columns of ``block_stats``: per-block integrals, window-clipped.
+BLOCK_STATS: tuple[str, ...] = (
+    "contact_time",            # [s]      measure of {Fn > threshold}
+    "force_integral_contact",  # [N·s]    ∫ Fn dt over contact time
+    "force2_integral_contact", # [N²·s]   ∫ Fn² dt over contact time
+    "force_integral",          # [N·s]    ∫ Fn dt over the whole block
+    "force2_integral",         # [N²·s]   ∫ Fn² dt over the whole block
+    "sliding_distance",        # [m]      ∫ ‖Vt‖ dt over contact time, sticking intervals excluded
+)
+#: Layout of the impact-group vector (``groups``) of a chunk.
+GROUP_FIELDS: tuple[str, ...] = (
+    "count",                                                   # number of groups (impacts)
+    "first_start", "first_end", "first_peak", "first_open",    # first group, open on the left
+    "last_start", "last_end", "last_peak", "last_open",        # last group, open on the right
+    "mid_count", "mid_duration_sum", "mid_duration_max", "mid_peak_sum",  # groups in between
+)
+_NSTAT = len(BLOCK_STATS)
+_NGROUP = len(GROUP_FIELDS)
+#: Half-width of the ambiguity band around an edge, in pseudo-angle units (≈ rad).
+AMBIGUITY = 1e-11
+_NBINS = 1024
+
+
+class ChunkSums(NamedTuple):
+    """Partial sums of one chunk (see the module docstring); all arrays freshly allocated."""
+
+    power: np.ndarray        # [B, N] [J]
+    block_stats: np.ndarray  # [B, len(BLOCK_STATS)]
+    force_max: float         # [N], -inf when the chunk has no sample in the window
+    groups: np.ndarray       # [len(GROUP_FIELDS)]
+
+
+# ---------------------------------------------------------------------------- sector geometry
+def pseudo_angle(dy, dz) -> np.ndarray:
+    """Diamond pseudo-angle q ∈ (-2, 2] of the direction (dy, dz), increasing with θ.
+
+    Parameters
+    ----------
+    dy, dz : array_like
+        Local displacements [m] (any common unit).
+
+    Returns
+    -------
+    numpy.ndarray
+        q [-]: θ = -180°, -90°, 0°, 90°, 180° map to -2 (excluded), -1, 0, 1, 2; q = 0 when
+        dy = dz = 0 (θ = 0 by convention).
+
+    Notes
+    -----
+    With s = |dy| + |dz|: q = dz/s when dy ≥ 0, q = 2 - dz/s when dy < 0 and dz ≥ 0, and
+    q = -2 - dz/s when dy < 0 and dz < 0. dq/dθ lies in [1/2, 1] per radian, so a distance in q
+    bounds a distance in angle. A negative zero dz counts as +0 (θ = 180° for dy < 0, as
+    ``contact_angle`` folds -180° to 180°).
+
+    Examples
+    --------
+    >>> pseudo_angle([1.0, 0.0, -1.0, 0.0, 1.0], [0.0, 1.0, 0.0, -1.0, 1.0]).tolist()
+    [0.0, 1.0, 2.0, -1.0, 0.5]
+    """
+    y = np.asarray(dy, dtype=float)
+    z = np.asarray(dz, dtype=float)
+    s = np.abs(y) + np.abs(z)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = z / s
+    q = np.where(y >= 0, r, np.where(z >= 0, 2.0 - r, -2.0 - r))
+    return np.where(s == 0, 0.0, q) + 0.0
+
+
+def _edge_pseudo_angles(edges: np.ndarray) -> np.ndarray:
+    """Pseudo-angles of the sector edges [deg]; exact on the axes."""
+    exact = {-180.0: -2.0, -90.0: -1.0, 0.0: 0.0, 90.0: 1.0, 180.0: 2.0}
+    rad = np.radians(edges)
+    q = pseudo_angle(np.cos(rad), np.sin(rad))
+    for k, e in enumerate(edges):
+        if float(e) in exact:
+            q[k] = exact[float(e)]
+    q[0], q[-1] = -2.0, 2.0
+    return q
+
+
+class SectorTable(NamedTuple):
+    """Lookup structures of the arctangent-free classification."""
+
+    q_edges: np.ndarray  # [N+1] pseudo-angles of the edges
+    table: np.ndarray    # [1024] number of interior edges below each bin's lower bound
+    safe: bool           # False when edges are too close for the fast path (use the reference)
+
+
+def sector_table(edges: np.ndarray) -> SectorTable:
+    """Build the lookup table of :func:`pseudo_angle` values for sector ``edges`` [deg].
+
+    Examples
+    --------
+    >>> st = sector_table(np.array([-180.0, 0.0, 180.0]))
+    >>> st.q_edges.tolist(), bool(st.safe)
+    ([-2.0, 0.0, 2.0], True)
+    """
+    q = _edge_pseudo_angles(np.asarray(edges, dtype=float))
+    interior = q[1:-1]
+    lower = -2.0 + np.arange(_NBINS) * (4.0 / _NBINS)
+    table = np.searchsorted(interior, lower, side="left").astype(np.int64)
+    gaps = np.diff(q)
+    axes = np.array([-1.0, 0.0, 1.0])
+    near_axis = [np.min(np.abs(axes - x)) for x in interior if x not in axes]
+    safe = bool(np.all(gaps > 10 * AMBIGUITY)
+                and all(d > 10 * AMBIGUITY for d in near_axis))
+    return SectorTable(q, table, safe)
+
+
+def reference_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
+    """Sector of each sample by the reference rule ``sector_index(θ, edges)``, θ via arctan2.
+
+    θ = atan2(dz, dy) in degrees folded into (-180, 180], and θ = 0 whenever dy = dz = 0
+    (including negative zeros).
+
+    Examples
+    --------
+    >>> reference_sector_index([1.0, -1.0, -0.0], [0.0, -1e-300, 0.0],
+    ...                        np.array([-180.0, 0.0, 180.0])).tolist()
+    [0, 1, 0]
+    """
+    y = np.asarray(dy, dtype=float)
+    z = np.asarray(dz, dtype=float)
+    theta = np.degrees(np.arctan2(z, y))
+    theta = np.where(theta <= -180.0, 180.0, theta)
+    theta = np.where((y == 0) & (z == 0), 0.0, theta)
+    return sector_index(theta, edges)
+
+
+# ---------------------------------------------------------------------------- numpy version
+def _lin(g0, g1, t0, t1, x):
+    """Linear interpolant between (t0, g0) and (t1, g1) at x, exact at the ends."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        val = g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
+    return np.where(x == t1, g1, np.where(x == t0, g0, val))
+
+
+def _groups_from_episodes(start, end, peak, open_left, open_right, min_rest) -> np.ndarray:
+    """Mergeable impact-group vector from the ordered episodes of one chunk."""
+    out = np.zeros(_NGROUP)
+    if start.size == 0:
+        return out
+    new = np.ones(start.size, dtype=bool)
+    new[1:] = (start[1:] - end[:-1]) >= min_rest
+    gid = np.cumsum(new) - 1
+    first_idx = np.flatnonzero(new)
+    g_start = start[first_idx]
+    last_idx = np.append(first_idx[1:] - 1, start.size - 1)
+    g_end = end[last_idx]
+    g_peak = np.maximum.reduceat(peak, first_idx)
+    ng = g_start.size
+    del gid
+    out[0] = ng
+    out[1:5] = g_start[0], g_end[0], g_peak[0], float(open_left)
+    out[5:9] = g_start[-1], g_end[-1], g_peak[-1], float(open_right)
+    if ng > 2:
+        dur = g_end[1:-1] - g_start[1:-1]
+        out[9:13] = ng - 2, dur.sum(), dur.max(), g_peak[1:-1].sum()
+    return out
+
+
+def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
+                threshold, min_rest) -> ChunkSums:
+    """Partial sums of one chunk, plain vectorised numpy (reference implementation).
+
+    Parameters
+    ----------
+    t, fn, vt1, vt2 : numpy.ndarray
+        Time [s], normal force [N], sliding velocities [m/s] of the chunk.
+    dy, dz : numpy.ndarray or None
+        Local displacements [m] (needed when ``edges`` has more than one sector).
+    stick : numpy.ndarray or None
+        Stick flags (1 = sticking).
+    lo, hi : float
+        Window [s] (may be ±inf).
+    block_edges : numpy.ndarray
+        B + 1 block edges [s], first ``lo`` and last ``hi``.
+    edges : numpy.ndarray
+        N + 1 sector edges [deg].
+    threshold : float
+        Contact force threshold [N]: contact means Fn > threshold.
+    min_rest : float
+        Minimum rest time [s] below the threshold that separates two impacts.
+
+    Returns
+    -------
+    ChunkSums
+
+    Examples
+    --------
+    >>> s = fused_numpy(np.array([0.0, 1.0, 2.0]), np.array([2.0, 2.0, 2.0]),
+    ...                 np.array([1.0, 1.0, 1.0]), np.zeros(3), None, None, None,
+    ...                 -np.inf, np.inf, np.array([-np.inf, np.inf]),
+    ...                 np.array([-180.0, 180.0]), 0.0, 0.0)
+    >>> float(s.power.sum()), float(s.block_stats[0, 0])
+    (4.0, 2.0)
+    """
+    nb = block_edges.size - 1
+    ns = edges.size - 1
+    power = np.zeros((nb, ns))
+    bstats = np.zeros((nb, _NSTAT))
+    i0 = max(int(np.searchsorted(t, lo, side="right")) - 1, 0)
+    i1 = min(int(np.searchsorted(t, hi, side="left")), t.size - 1)
+    if i1 <= i0:
+        return ChunkSums(power, bstats, -np.inf, np.zeros(_NGROUP))
+    sl = slice(i0, i1 + 1)
+    tt = t[sl]
+    fnn = fn[sl]
+    sp = np.sqrt(vt1[sl] * vt1[sl] + vt2[sl] * vt2[sl])
+    g = fnn * sp
+    m = tt.size
+    if ns > 1:
+        sec = reference_sector_index(dy[sl], dz[sl], edges)
+    else:
+        sec = np.zeros(m, dtype=np.int64)
+    slides = np.ones(m, dtype=bool) if stick is None else (stick[sl] == 0)
+    # refined grid: samples + window bounds + block edges strictly inside the chunk
+    lo_c = max(tt[0], lo)
+    hi_c = min(tt[-1], hi)
+    cuts = np.concatenate(([lo_c, hi_c], block_edges))
+    cuts = cuts[(cuts > tt[0]) & (cuts < tt[-1])]
+    cuts = np.setdiff1d(cuts, tt)
+    owner = np.searchsorted(tt, cuts, side="right") - 1
+    tg = np.concatenate((tt, cuts))
+    og = np.concatenate((np.arange(m), owner))
+    order = np.argsort(tg, kind="stable")
+    tg, og = tg[order], og[order]
+    keep = (tg >= lo_c) & (tg <= hi_c)
+    tg, og = tg[keep], og[keep]
+    nxt = np.minimum(og + 1, m - 1)
+
+    def at(arr):
+        return _lin(arr[og], arr[nxt], tt[og], tt[nxt], tg)
+
+    fg, gg, sg = at(fnn), at(g), at(sp)
+    pa, pb = tg[:-1], tg[1:]
+    own = og[:-1]
+    width = pb - pa
+    blk = np.clip(np.searchsorted(block_edges, pa, side="right") - 1, 0, nb - 1)
+    fa, fb = fg[:-1], fg[1:]
+    w_g = 0.5 * width * (gg[:-1] + gg[1:]) * slides[own]
+    np.add.at(power, (blk, sec[own]), w_g)
+    np.add.at(bstats[:, 3], blk, 0.5 * width * (fa + fb))
+    np.add.at(bstats[:, 4], blk, width * (fa * fa + fa * fb + fb * fb) / 3.0)
+    # contact (above-threshold) part of each piece, linear force
+    above_a, above_b = fa > threshold, fb > threshold
+    with np.errstate(invalid="ignore", divide="ignore"):
+        cross = pa + (fa - threshold) / (fa - fb) * width
+    ca = np.where(above_a, pa, np.where(above_b, cross, pa))
+    cb = np.where(above_b, pb, np.where(above_a, cross, pa))
+    ca = np.clip(ca, pa, pb)
+    cb = np.clip(cb, ca, pb)
+    nonempty = (above_a | above_b) & (cb > ca)
+    cw = np.where(nonempty, cb - ca, 0.0)
+    fca, fcb = _lin(fa, fb, pa, pb, ca), _lin(fa, fb, pa, pb, cb)
+    sca, scb = _lin(sg[:-1], sg[1:], pa, pb, ca), _lin(sg[:-1], sg[1:], pa, pb, cb)
+    np.add.at(bstats[:, 0], blk, cw)
+    np.add.at(bstats[:, 1], blk, np.where(nonempty, 0.5 * cw * (fca + fcb), 0.0))
+    np.add.at(bstats[:, 2], blk,
+              np.where(nonempty, cw * (fca * fca + fca * fcb + fcb * fcb) / 3.0, 0.0))
+    np.add.at(bstats[:, 5], blk, np.where(nonempty & slides[own], 0.5 * cw * (sca + scb), 0.0))
+    force_max = float(fg.max())
+    # episodes: maximal runs of pieces whose above-threshold parts touch
+    npieces = pa.size
+    prev_above = np.concatenate(([False], fg[1:-1] > threshold))
+    next_above = np.concatenate((fg[1:-1] > threshold, [False]))
+    starts = np.flatnonzero(nonempty & ~prev_above)
+    ends = np.flatnonzero(nonempty & ~next_above)
+    if starts.size:
+        peak_piece = np.where(nonempty, np.maximum(fca, fcb), -np.inf)
+        peaks = np.maximum.reduceat(peak_piece, starts)
+        open_left = bool(starts[0] == 0 and fg[0] > threshold)
+        open_right = bool(ends[-1] == npieces - 1 and fg[-1] > threshold)
+        groups = _groups_from_episodes(ca[starts], cb[ends], peaks, open_left, open_right,
+                                       min_rest)
+    else:
+        groups = np.zeros(_NGROUP)
+    return ChunkSums(power, bstats, force_max, groups)
+
+
+# ---------------------------------------------------------------------------- numba version
+if HAVE_NUMBA:
+    import math
+
+    @numba.njit(cache=True, nogil=True, inline="always")
+    def _at(g0, g1, t0, t1, x):
+        if x == t0:
+            return g0
+        if x == t1:
+            return g1
+        return g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
+
+    @numba.njit(cache=True, nogil=True, inline="always")
+    def _sector_of(y, z, qe, table, ns):  # pragma: no cover - compiled
+        """Sector of (y, z) by pseudo-angle lookup, and whether it is ambiguous."""
+        s = abs(y) + abs(z)
+        exact = y == 0.0 or z == 0.0
+        if s == 0.0:
+            q = 0.0
+        elif y >= 0.0:
+            q = z / s
+        elif z >= 0.0:
+            q = 2.0 - z / s
+        else:
+            q = -2.0 - z / s
+        bi = int((q + 2.0) * (_NBINS / 4.0))
+        if bi > _NBINS - 1:
+            bi = _NBINS - 1
+        j = table[bi]
+        while j < ns - 1 and q > qe[j + 1]:
+            j += 1
+        amb = False
+        if not exact:
+            if j >= 1 and q - qe[j] <= AMBIGUITY:
+                amb = True
+            elif j <= ns - 2 and qe[j + 1] - q <= AMBIGUITY:
+                amb = True
+            elif q + 2.0 <= AMBIGUITY:
+                amb = True
+        return j, amb
+
+    @numba.njit(cache=True, nogil=True)
+    def _classify_numba(dy, dz, qe, table, out):  # pragma: no cover - compiled
+        ns = qe.shape[0] - 1
+        n_amb = 0
+        for i in range(dy.shape[0]):
+            j, amb = _sector_of(dy[i], dz[i], qe, table, ns)
+            out[i] = -1 if amb else j
+            n_amb += amb
+        return n_amb
+
+    @numba.njit(cache=True, nogil=True)
+    def _fused_numba(t, fn, v1, v2, dy, dz, stick, has_stick, mode, sec_given,
+                     lo, hi, be, qe, table, threshold, min_rest,
+                     power, bstats, groups):  # pragma: no cover - compiled
+        """mode 0: one sector; 1: classify by pseudo-angle; 2: use sec_given."""
+        n = t.shape[0]
+        nb = be.shape[0] - 1
+        ns = qe.shape[0] - 1
+        i0 = np.searchsorted(t, lo, side="right") - 1
+        if i0 < 0:
+            i0 = 0
+        i1 = np.searchsorted(t, hi, side="left")
+        if i1 > n - 1:
+            i1 = n - 1
+        fmax = -np.inf
+        if i1 <= i0:
+            return 0, fmax
+        L = max(t[i0], lo)
+        k = 0
+        while k < nb - 1 and L >= be[k + 1]:
+            k += 1
+        # impact state
+        in_ep = False
+        ep_start = 0.0
+        ep_peak = 0.0
+        ep_open = False
+        ng = 0
+        c_start = 0.0
+        c_end = 0.0
+        c_peak = 0.0
+        c_open = False
+        f_start = 0.0
+        f_end = 0.0
+        f_peak = 0.0
+        f_open = False
+        m_count = 0.0
+        m_dsum = 0.0
+        m_dmax = 0.0
+        m_psum = 0.0
+        t1 = t[i0]
+        fn1 = fn[i0]
+        s1 = math.sqrt(v1[i0] * v1[i0] + v2[i0] * v2[i0])
+        for i in range(i0, i1):
+            t0 = t1
+            fn0 = fn1
+            s0 = s1
+            t1 = t[i + 1]
+            fn1 = fn[i + 1]
+            s1 = math.sqrt(v1[i + 1] * v1[i + 1] + v2[i + 1] * v2[i + 1])
+            g0 = fn0 * s0
+            g1 = fn1 * s1
+            a = t0 if t0 >= lo else lo
+            b = t1 if t1 <= hi else hi
+            if b <= a:
+                continue
+            while k < nb - 1 and a >= be[k + 1]:
+                k += 1
+            slide = (not has_stick) or stick[i] == 0.0
+            # sector of the left sample, only when the interval can produce wear
+            j = 0
+            if slide and (g0 != 0.0 or g1 != 0.0):
+                if mode == 2:
+                    j = sec_given[i]
+                elif mode == 1:
+                    j, amb = _sector_of(dy[i], dz[i], qe, table, ns)
+                    if amb:
+                        return 1, fmax
+            # contact (above-threshold) part [ua, ub] of the whole interval
+            above0 = fn0 > threshold
+            above1 = fn1 > threshold
+            ua = t0
+            ub = t0
+            if above0 and above1:
+                ub = t1
+            elif above0:
+                ub = t0 + (fn0 - threshold) / (fn0 - fn1) * (t1 - t0)
+            elif above1:
+                ua = t0 + (threshold - fn0) / (fn1 - fn0) * (t1 - t0)
+                ub = t1
+            fa_w = _at(fn0, fn1, t0, t1, a)
+            fb_w = _at(fn0, fn1, t0, t1, b)
+            if fa_w > fmax:
+                fmax = fa_w
+            if fb_w > fmax:
+                fmax = fb_w
+            # pieces cut by block edges
+            pa = a
+            while True:
+                pb = b
+                if k < nb - 1 and be[k + 1] < b:
+                    pb = be[k + 1]
+                if pb > pa:
+                    w = pb - pa
+                    fa = _at(fn0, fn1, t0, t1, pa)
+                    fb = _at(fn0, fn1, t0, t1, pb)
+                    if slide:
+                        power[k, j] += 0.5 * w * (_at(g0, g1, t0, t1, pa)
+                                                  + _at(g0, g1, t0, t1, pb))
+                    bstats[k, 3] += 0.5 * w * (fa + fb)
+                    bstats[k, 4] += w * (fa * fa + fa * fb + fb * fb) / 3.0
+                    ca = pa if pa > ua else ua
+                    cb = pb if pb < ub else ub
+                    if cb > ca:
+                        cw = cb - ca
+                        fca = _at(fn0, fn1, t0, t1, ca)
+                        fcb = _at(fn0, fn1, t0, t1, cb)
+                        bstats[k, 0] += cw
+                        bstats[k, 1] += 0.5 * cw * (fca + fcb)
+                        bstats[k, 2] += cw * (fca * fca + fca * fcb + fcb * fcb) / 3.0
+                        if slide:
+                            bstats[k, 5] += 0.5 * cw * (_at(s0, s1, t0, t1, ca)
+                                                        + _at(s0, s1, t0, t1, cb))
+                if pb >= b:
+                    break
+                pa = pb
+                k += 1
+            # episodes of the whole (window-clipped) interval
+            ca = a if a > ua else ua
+            cb = b if b < ub else ub
+            if cb > ca:
+                fca = _at(fn0, fn1, t0, t1, ca)
+                fcb = _at(fn0, fn1, t0, t1, cb)
+                if not in_ep:
+                    in_ep = True
+                    ep_start = ca
+                    ep_peak = fca
+                    ep_open = ca == L and fca > threshold
+                if fca > ep_peak:
+                    ep_peak = fca
+                if fcb > ep_peak:
+                    ep_peak = fcb
+                if not fb_w > threshold:
+                    # episode closed at cb: append to groups
+                    in_ep = False
+                    if ng > 0 and ep_start - c_end < min_rest:
+                        c_end = cb
+                        if ep_peak > c_peak:
+                            c_peak = ep_peak
+                    else:
+                        if ng == 1:
+                            f_start, f_end, f_peak, f_open = c_start, c_end, c_peak, c_open
+                        elif ng >= 2:
+                            m_count += 1.0
+                            m_dsum += c_end - c_start
+                            if c_end - c_start > m_dmax:
+                                m_dmax = c_end - c_start
+                            m_psum += c_peak
+                        ng += 1
+                        c_start, c_end, c_peak, c_open = ep_start, cb, ep_peak, ep_open
+        last_open = False
+        if in_ep:  # open on the right: still above the threshold at the chunk's end
+            last_open = True
+            R = t[i1] if t[i1] <= hi else hi
+            if ng > 0 and ep_start - c_end < min_rest:
+                c_end = R
+                if ep_peak > c_peak:
+                    c_peak = ep_peak
+            else:
+                if ng == 1:
+                    f_start, f_end, f_peak, f_open = c_start, c_end, c_peak, c_open
+                elif ng >= 2:
+                    m_count += 1.0
+                    m_dsum += c_end - c_start
+                    if c_end - c_start > m_dmax:
+                        m_dmax = c_end - c_start
+                    m_psum += c_peak
+                ng += 1
+                c_start, c_end, c_peak, c_open = ep_start, R, ep_peak, ep_open
+        if ng == 1:
+            f_start, f_end, f_peak, f_open = c_start, c_end, c_peak, c_open
+        groups[0] = ng
+        if ng > 0:
+            groups[1] = f_start
+            groups[2] = f_end
+            groups[3] = f_peak
+            groups[4] = 1.0 if f_open else 0.0
+            groups[5] = c_start
+            groups[6] = c_end
+            groups[7] = c_peak
+            groups[8] = 1.0 if last_open else 0.0
+            groups[9] = m_count
+            groups[10] = m_dsum
+            groups[11] = m_dmax
+            groups[12] = m_psum
+        return 0, fmax
+
+
+_EMPTY_F = np.zeros(1)
+_EMPTY_I = np.zeros(1, dtype=np.int64)
+
+
+def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
+                threshold, min_rest) -> ChunkSums:
+    """Partial sums of one chunk with the compiled kernel (same contract as :func:`fused_numpy`).
+
+    Falls back to the reference sector classification for the chunk when a contact point lies
+    within the ambiguity band of an edge (see the module docstring).
+
+    Examples
+    --------
+    >>> s = fused_numba(np.array([0.0, 1.0, 2.0]), np.array([2.0, 2.0, 2.0]),
+    ...                 np.array([1.0, 1.0, 1.0]), np.zeros(3), None, None, None,
+    ...                 -np.inf, np.inf, np.array([-np.inf, np.inf]),
+    ...                 np.array([-180.0, 180.0]), 0.0, 0.0)
+    >>> float(s.power.sum()), float(s.block_stats[0, 0])
+    (4.0, 2.0)
+    """
+    if not HAVE_NUMBA:  # pragma: no cover
+        return fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
+                           threshold, min_rest)
+    nb = block_edges.size - 1
+    ns = edges.size - 1
+    st = sector_table(edges)
+    mode = 0 if ns == 1 else (1 if st.safe else 2)
+    has_stick = stick is not None
+    dyv = _EMPTY_F if dy is None else dy
+    dzv = _EMPTY_F if dz is None else dz
+    stv = _EMPTY_F if stick is None else stick
+    sec = _EMPTY_I
+    for _attempt in range(2):
+        if mode == 2:
+            sec = reference_sector_index(dyv, dzv, edges).astype(np.int64)
+        power = np.zeros((nb, ns))
+        bstats = np.zeros((nb, _NSTAT))
+        groups = np.zeros(_NGROUP)
+        status, fmax = _fused_numba(t, fn, vt1, vt2, dyv, dzv, stv, has_stick, mode, sec,
+                                    float(lo), float(hi), block_edges, st.q_edges, st.table,
+                                    float(threshold), float(min_rest), power, bstats, groups)
+        if status == 0:
+            return ChunkSums(power, bstats, float(fmax), groups)
+        mode = 2
+    raise AssertionError("unreachable: the reference classification cannot be ambiguous")
+
+
+def fast_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
+    """Sector of each sample like :func:`reference_sector_index`, without arctangent.
+
+    Uses the compiled pseudo-angle classifier of the fused kernel; ambiguous samples (within the
+    band of an edge, see the module docstring) are classified by the reference. Without numba,
+    the reference itself.
+
+    Parameters
+    ----------
+    dy, dz : array_like
+        Local displacements [m].
+    edges : numpy.ndarray
+        Sector edges [deg].
+
+    Examples
+    --------
+    >>> fast_sector_index([1.0, 0.0, -1.0, 0.0], [0.0, 1.0, 0.0, -1.0],
+    ...                   np.array([-180.0, -90.0, 0.0, 90.0, 180.0])).tolist()
+    [1, 2, 3, 0]
+    """
+    y = np.ascontiguousarray(dy, dtype=float)
+    z = np.ascontiguousarray(dz, dtype=float)
+    st = sector_table(edges)
+    if not HAVE_NUMBA or not st.safe or edges.size == 2:
+        return reference_sector_index(y, z, edges)
+    out = np.empty(y.size, dtype=np.int64)
+    if _classify_numba(y, z, st.q_edges, st.table, out):
+        amb = out < 0
+        out[amb] = reference_sector_index(y[amb], z[amb], edges)
+    return out
+
+
+#: Kernel implementations by name; ``"auto"`` picks numba when it is installed.
+BACKENDS = {"numba": fused_numba, "numpy": fused_numpy}
+
+
+def fused(backend: str = "auto"):
+    """The chunk-reduction function of a backend (``"auto"``, ``"numba"`` or ``"numpy"``).
+
+    Examples
+    --------
+    >>> fused("numpy") is fused_numpy
+    True
+    """
+    if backend == "auto":
+        return fused_numba if HAVE_NUMBA else fused_numpy
+    try:
+        return BACKENDS[backend]
+    except KeyError:
+        from fretwear.errors import KeywordError
+
+        raise KeywordError(
+            f"unknown backend {backend!r}; choose one of {['auto', *BACKENDS]}") from None
