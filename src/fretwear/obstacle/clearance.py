@@ -1,0 +1,257 @@
+"""Exact clearance of a worn mobile inside a worn obstacle, direction by direction (SPEC §8).
+
+Both bodies are star-shaped around the mobile's rest centre (the origin): the mobile is
+{ρ ≤ r_m(φ)}, the obstacle's free space is {ρ ≤ r_O(φ)}. Each boundary is discretised as a
+closed polygon with vertices on a fine angular grid (default 0.05°) plus the profile's
+discontinuities (sector edges of a uniform depth, inserted twice: left and right limits, so a
+step is a radial segment). The clearance in direction u is the largest translation s ≥ 0 before
+the translated mobile touches the obstacle:
+
+    s*(u) = min( min over mobile vertices p of the first boundary crossing of p + s·u in O,
+                 min over obstacle vertices q of the first boundary crossing of q − s·u in M ),
+
+which is exact for two polygons (first contact is vertex-on-edge). Each ray is intersected only
+with the edges in the angular window it sweeps between a lower bound (it cannot meet the
+obstacle inside the disk of radius min r_O; it cannot meet the mobile outside max r_m) and the
+best contact found so far, candidates being visited by increasing lower bound: the search is
+exact, not a small-wear sum, and costs a few edge tests per candidate vertex.
+
+The only approximation is the polygon: its chords lie within R(1 − cos(h/2)) ≈ R·h²/8 of a
+curved profile (1.0e-9 m for R = 10 mm and h = 0.05°).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+try:  # numba is optional (extra "fast"); the pure-Python fallback is slow but identical
+    from numba import njit
+except ImportError:  # pragma: no cover
+    def njit(*args, **kwargs):
+        if args and callable(args[0]):
+            return args[0]
+        return lambda f: f
+
+from fretwear.errors import InputError
+
+#: Default angular resolution [deg] of the polygons used by the clearance search.
+RESOLUTION = 0.05
+
+
+def polar_polygon(radius, breaks=(), resolution: float = RESOLUTION):
+    """Closed polygon of a star-shaped polar profile.
+
+    Parameters
+    ----------
+    radius : callable
+        ``radius(angle_deg, side)`` -> radii [m]; ``side`` is ``"left"`` or ``"right"`` (the
+        limit taken at a discontinuity).
+    breaks : array_like
+        Angles [deg] where the profile may jump; each becomes two vertices (left, right limits).
+    resolution : float
+        Grid step [deg].
+
+    Returns
+    -------
+    (angle [rad], x [m], y [m]) : tuple of numpy.ndarray
+        Vertices sorted by angle in [−π, π) (duplicated angles at breaks).
+
+    Examples
+    --------
+    >>> a, x, y = polar_polygon(lambda ang, side: np.full(np.shape(ang), 2.0), resolution=90)
+    >>> np.round(x, 12).tolist(), np.round(y, 12).tolist()
+    ([-2.0, -0.0, 2.0, 0.0], [-0.0, -2.0, 0.0, 2.0])
+    """
+    n = int(round(360.0 / resolution))
+    if n < 4 or abs(n * resolution - 360.0) > 1e-9:
+        raise InputError(f"resolution must divide 360 deg into >= 4 steps, got {resolution} deg")
+    grid = -180.0 + np.arange(n) * (360.0 / n)
+    br = np.unique(np.mod(np.asarray(breaks, dtype=float) + 180.0, 360.0) - 180.0)
+    if br.size:
+        near = np.min(np.abs(grid[:, None] - br[None, :]), axis=1) < 1e-9
+        near |= np.abs(grid[:, None] - br[None, :] - 360.0).min(axis=1) < 1e-9
+        grid = grid[~near]
+    ang = np.concatenate([grid, br, br])
+    side = np.concatenate([np.zeros(grid.size), np.zeros(br.size), np.ones(br.size)])
+    order = np.lexsort((side, ang))
+    ang, side = ang[order], side[order]
+    r = np.empty(ang.size)
+    left = side == 0
+    r[left] = radius(ang[left], "left")
+    r[~left] = radius(ang[~left], "right")
+    # grid points (not breaks) are continuous: left == right there
+    t = np.radians(ang)
+    return t, r * np.cos(t), r * np.sin(t)
+
+
+@njit(cache=True)
+def _first_hit(ang, xs, ys, ax, ay, ux, uy, s_lo, s_hi):
+    """Smallest s in [0, s_hi) where a + s·u meets the polygon, searching the swept window."""
+    n = ang.size
+    x0 = ax + s_lo * ux
+    y0 = ay + s_lo * uy
+    x1 = ax + s_hi * ux
+    y1 = ay + s_hi * uy
+    a0 = math.atan2(y0, x0)
+    a1 = math.atan2(y1, x1)
+    k0 = np.searchsorted(ang, a0, side="right") - 1
+    k1 = np.searchsorted(ang, a1, side="right") - 1
+    if k0 < 0:
+        k0 = n - 1
+    if k1 < 0:
+        k1 = n - 1
+    cr = ax * uy - ay * ux
+    da = a1 - a0
+    if da > math.pi:
+        da -= 2 * math.pi
+    elif da < -math.pi:
+        da += 2 * math.pi
+    if cr >= 0:
+        step = 1
+        count = (k1 - k0) % n if da >= 0 else 0
+    else:
+        step = -1
+        count = (k0 - k1) % n if da <= 0 else 0
+    best = s_hi
+    found = False
+    for j in range(-2, count + 3):
+        k = (k0 + step * j) % n
+        kn = (k + 1) % n
+        ex = xs[kn] - xs[k]
+        ey = ys[kn] - ys[k]
+        den = ux * ey - uy * ex
+        if den == 0.0:
+            continue
+        wx = xs[k] - ax
+        wy = ys[k] - ay
+        t = (wx * uy - wy * ux) / den
+        if t < -1e-12 or t > 1.0 + 1e-12:
+            continue
+        s = (wx * ey - wy * ex) / den
+        if s < -1e-15:
+            continue
+        if s < 0.0:
+            s = 0.0
+        if s < best:
+            best = s
+            found = True
+    if found:
+        return best
+    return np.inf
+
+
+@njit(cache=True)
+def _forward(mx, my, oang, ox, oy, r_in, r_out, ux, uy):
+    """Min over mobile vertices of the exit distance of p + s·u from the obstacle polygon."""
+    n = mx.size
+    lb = np.empty(n)
+    hi = np.empty(n)
+    for i in range(n):
+        b = mx[i] * ux + my[i] * uy
+        p2 = mx[i] * mx[i] + my[i] * my[i]
+        d_in = b * b - (p2 - r_in * r_in)
+        lb[i] = max(-b + math.sqrt(max(d_in, 0.0)), 0.0)
+        d_out = b * b - (p2 - r_out * r_out)
+        hi[i] = -b + math.sqrt(max(d_out, 0.0))
+    order = np.argsort(lb)
+    best = np.inf
+    for i in order:
+        if lb[i] >= best:
+            break
+        s_hi = min(best, hi[i] * (1.0 + 1e-9) + 1e-15)
+        s = _first_hit(oang, ox, oy, mx[i], my[i], ux, uy, lb[i], s_hi)
+        if s < best:
+            best = s
+    return best
+
+
+@njit(cache=True)
+def _backward(qx, qy, mang, mx, my, r_in, r_out, ux, uy, best):
+    """Min over obstacle vertices of the entry distance of q − s·u into the mobile polygon."""
+    n = qx.size
+    lb = np.empty(n)
+    hi = np.empty(n)
+    wx = -ux
+    wy = -uy
+    for i in range(n):
+        b = qx[i] * wx + qy[i] * wy
+        q2 = qx[i] * qx[i] + qy[i] * qy[i]
+        d_out = b * b - (q2 - r_out * r_out)
+        if d_out < 0.0 or -b + math.sqrt(d_out) < 0.0:
+            lb[i] = np.inf
+            hi[i] = np.inf
+            continue
+        lb[i] = max(-b - math.sqrt(d_out), 0.0)
+        d_in = b * b - (q2 - r_in * r_in)
+        if d_in >= 0.0 and -b - math.sqrt(d_in) >= lb[i]:
+            hi[i] = -b - math.sqrt(d_in)
+        else:
+            hi[i] = -b + math.sqrt(d_out)
+    order = np.argsort(lb)
+    for i in order:
+        if lb[i] >= best:
+            break
+        s_hi = min(best, hi[i] * (1.0 + 1e-9) + 1e-15)
+        s = _first_hit(mang, mx, my, qx[i], qy[i], wx, wy, lb[i], s_hi)
+        if s < best:
+            best = s
+    return best
+
+
+@njit(cache=True)
+def _clearance_kernel(psi, mang, mx, my, oang, ox, oy):
+    rm2 = mx * mx + my * my
+    ro2 = ox * ox + oy * oy
+    rm_in = math.sqrt(rm2.min())
+    rm_out = math.sqrt(rm2.max())
+    ro_in = math.sqrt(ro2.min())
+    ro_out = math.sqrt(ro2.max())
+    out = np.empty(psi.size)
+    for k in range(psi.size):
+        ux = math.cos(psi[k])
+        uy = math.sin(psi[k])
+        best = _forward(mx, my, oang, ox, oy, ro_in, ro_out, ux, uy)
+        out[k] = _backward(ox, oy, mang, mx, my, rm_in, rm_out, ux, uy, best)
+    return out
+
+
+def clearance_figure(directions, mobile_polygon, obstacle_polygon) -> np.ndarray:
+    """Clearance [m] of the mobile polygon inside the obstacle polygon along each direction.
+
+    Parameters
+    ----------
+    directions : array_like
+        Directions of translation [deg].
+    mobile_polygon, obstacle_polygon : tuple
+        ``(angle [rad], x [m], y [m])`` from :func:`polar_polygon`.
+
+    Returns
+    -------
+    numpy.ndarray
+        s*(φ) [m]: the largest translation along φ before contact (0 when already touching; NaN
+        when a polygon is not finite).
+
+    Notes
+    -----
+    s*(u) = sup{s ≥ 0 : M + s'u ⊂ O for all 0 ≤ s' ≤ s}, computed vertex-on-edge (module
+    docstring).
+
+    Examples
+    --------
+    A disk of radius 1 in a disk of radius 1.5: the clearance is 0.5 in every direction.
+
+    >>> m = polar_polygon(lambda a, s: np.full(np.shape(a), 1.0))
+    >>> o = polar_polygon(lambda a, s: np.full(np.shape(a), 1.5))
+    >>> np.round(clearance_figure([0.0, 33.3, 270.0], m, o), 8).tolist()
+    [0.5, 0.5, 0.5]
+    """
+    psi = np.radians(np.asarray(directions, dtype=float))
+    shape = psi.shape
+    mang, mx, my = (np.ascontiguousarray(v, dtype=float) for v in mobile_polygon)
+    oang, ox, oy = (np.ascontiguousarray(v, dtype=float) for v in obstacle_polygon)
+    if not (np.isfinite(mx).all() and np.isfinite(my).all()
+            and np.isfinite(ox).all() and np.isfinite(oy).all()):
+        return np.full(shape, np.nan)
+    return _clearance_kernel(psi.ravel(), mang, mx, my, oang, ox, oy).reshape(shape)

@@ -1,0 +1,486 @@
+"""The mobile and the obstacle's inner boundary as polar functions of the angle (SPEC §8).
+
+The clearance figure is described in the shock frame of the mobile at rest: the origin is the
+mobile's centre, the angle φ [deg] is measured like the contact angle θ = atan2(Dz, Dy) of SPEC §3
+(from the local y axis towards z). The obstacle's inner boundary is the polar curve
+``radius(φ)`` [m] (the bore, the planes, or a table of points); the radial gap is
+``gap(φ) = radius(φ) − R_m`` [m]. The mobile is a tube of outer radius ``R_m`` and wall thickness
+``e``.
+
+Three obstacle models share one interface (``radius``, ``gap``, ``mobile_radius``,
+``to_discrete``) and are listed in :data:`OBSTACLE_MODELS`:
+
+* :class:`CircleObstacle` — a bore of radius ``R_o`` (or the radial gap ``R_o − R_m``);
+* :class:`PlanesObstacle` — two parallel planes at gaps ``g₊`` (towards the orientation angle) and
+  ``g₋`` (opposite), closed far away by a circle of radius ``closing_radius`` so the figure stays
+  bounded (the open directions then show a large but finite clearance);
+* :class:`DiscreteObstacle` — a periodic table of (angle, gap) points, linearly interpolated in
+  angle; Code_Aster's DEFI_OBSTACLE 'DISCRET' layout (721 points, 0…360° by 0.5°) is read and
+  written by :func:`read_discret` / :func:`write_discret`.
+
+DISCRET file layout adopted (a Code_Aster IMPR_TABLE 'TABLEAU'-style text table)::
+
+    #
+    # fretwear DISCRET obstacle: clearance figure, angle THETA [deg], gap JEU [m], radius R [m]
+    # mobile_radius = 9.50000000000E-03
+    #
+    THETA JEU R
+     0.0000000000E+00  5.0000000000E-04  1.0000000000E-02
+     ...                (721 rows, THETA = 0, 0.5, ..., 360; the last row repeats the first)
+
+``JEU`` is the radial clearance seen from the mobile (0.5 mm for a new Code_Aster DISCRET
+obstacle) and ``R = mobile_radius + JEU``. The reader accepts THETA with JEU, or THETA with R and a
+mobile radius (header line or argument), native names ``angle``/``gap``/``radius`` too, any
+increasing angle grid covering one turn, and '-' or NaN cells nowhere.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from fretwear.errors import FormatError, InputError
+from fretwear.io.atomic import atomic_write
+
+#: Angular step [deg] and number of points of Code_Aster's DEFI_OBSTACLE 'DISCRET' table.
+DISCRET_STEP = 0.5
+DISCRET_POINTS = 721
+#: Radial gap [m] of a new Code_Aster DISCRET obstacle.
+DISCRET_NEW_GAP = 0.5e-3
+
+
+def discret_angles(step: float = DISCRET_STEP) -> np.ndarray:
+    """Angles [deg] of the DISCRET grid: 0 to 360 inclusive by ``step`` (721 points by default).
+
+    Examples
+    --------
+    >>> a = discret_angles()
+    >>> a.size, float(a[0]), float(a[1]), float(a[-1])
+    (721, 0.0, 0.5, 360.0)
+    """
+    n = int(round(360.0 / step))
+    if n < 3 or not math.isclose(n * step, 360.0, rel_tol=0, abs_tol=1e-9):
+        raise InputError(f"the angular step must divide 360 deg into >= 3 parts, got {step} deg")
+    return np.arange(n + 1) * (360.0 / n)
+
+
+def _positive(name: str, value, unit: str = "m", allow_zero: bool = False) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number [{unit}], got {value!r}") from None
+    if math.isfinite(v) and v < 0:
+        raise InputError(f"negative {name}: {v:g} {unit}; it must be >= 0 [{unit}]")
+    if not math.isfinite(v) or (v == 0 and not allow_zero):
+        sign = ">= 0" if allow_zero else "> 0"
+        raise InputError(f"{name} must be finite and {sign} [{unit}], got {value!r}")
+    return v
+
+
+@dataclass(frozen=True)
+class Mobile:
+    """The mobile tube: outer radius and wall thickness.
+
+    Parameters
+    ----------
+    outer_radius : float
+        Outer radius R_m [m].
+    wall_thickness : float
+        Wall thickness e [m], 0 < e <= R_m (e = R_m for a solid rod).
+
+    Examples
+    --------
+    >>> Mobile(9.5e-3, 1.09e-3).wall_thickness
+    0.00109
+    """
+
+    outer_radius: float
+    wall_thickness: float
+
+    def __post_init__(self):
+        r = _positive("mobile outer_radius", self.outer_radius)
+        e = _positive("mobile wall_thickness", self.wall_thickness)
+        if e > r:
+            raise InputError(
+                f"mobile wall_thickness ({e:g} m) exceeds its outer_radius ({r:g} m); "
+                "give the wall thickness, not the diameter")
+        object.__setattr__(self, "outer_radius", r)
+        object.__setattr__(self, "wall_thickness", e)
+
+
+class _Obstacle:
+    """Shared methods of the obstacle models (``radius`` is defined by each model)."""
+
+    mobile_radius: float
+
+    def gap(self, angle) -> np.ndarray:
+        """Radial gap [m] between the obstacle and the new mobile at ``angle`` [deg]."""
+        return self.radius(angle) - self.mobile_radius
+
+    def to_discrete(self, step: float = DISCRET_STEP) -> DiscreteObstacle:
+        """Sample the profile on the DISCRET grid (0…360° by ``step`` [deg])."""
+        a = discret_angles(step)
+        return DiscreteObstacle(a, self.gap(a), self.mobile_radius)
+
+
+@dataclass(frozen=True)
+class CircleObstacle(_Obstacle):
+    """A circular bore of radius R_o around the mobile (radius R_m) at rest.
+
+    Parameters
+    ----------
+    mobile_radius : float
+        Outer radius of the mobile R_m [m].
+    bore_radius : float
+        Radius of the bore R_o [m], >= R_m.
+
+    Notes
+    -----
+    radius(φ) = R_o, gap(φ) = R_o − R_m for every φ.
+
+    Examples
+    --------
+    >>> c = CircleObstacle.from_gap(9.5e-3, 0.5e-3)
+    >>> float(c.radius(30.0)), round(float(c.gap(30.0)), 12)
+    (0.01, 0.0005)
+    """
+
+    mobile_radius: float
+    bore_radius: float
+
+    def __post_init__(self):
+        rm = _positive("mobile_radius", self.mobile_radius)
+        ro = _positive("bore_radius", self.bore_radius)
+        if ro < rm:
+            raise InputError(
+                f"negative gap: bore_radius {ro:g} m is smaller than mobile_radius {rm:g} m; "
+                "the mobile must fit in the bore (bore_radius >= mobile_radius)")
+        object.__setattr__(self, "mobile_radius", rm)
+        object.__setattr__(self, "bore_radius", ro)
+
+    @classmethod
+    def from_gap(cls, mobile_radius: float, gap: float) -> CircleObstacle:
+        """A bore given by its radial gap [m] around the mobile of radius ``mobile_radius`` [m]."""
+        g = _positive("gap", gap, allow_zero=True)
+        return cls(mobile_radius, _positive("mobile_radius", mobile_radius) + g)
+
+    def radius(self, angle) -> np.ndarray:
+        """Bore radius [m] at ``angle`` [deg] (constant)."""
+        return np.full(np.shape(angle), self.bore_radius, dtype=float)
+
+
+@dataclass(frozen=True)
+class PlanesObstacle(_Obstacle):
+    """Two parallel planes (a flat bar on each side) around the mobile.
+
+    Parameters
+    ----------
+    mobile_radius : float
+        Outer radius of the mobile R_m [m].
+    plane_gap : float
+        Gap g₊ [m] to the plane whose outward normal points at ``orientation``.
+    plane_gap_opposite : float, optional
+        Gap g₋ [m] to the plane on the opposite side (default: ``plane_gap``).
+    orientation : float
+        Angle [deg] of the outward normal of the first plane (default 0: planes normal to y).
+    closing_radius : float, optional
+        Radius [m] of the circle that closes the figure far away along the planes (default
+        100 × (R_m + max(g₊, g₋))); the figure is the strip between the planes cut by that circle.
+
+    Notes
+    -----
+    With ψ = φ − orientation, radius(φ) = min((R_m + g₊)/cos ψ if cos ψ > 0,
+    (R_m + g₋)/(−cos ψ) if cos ψ < 0, closing_radius). The clearance of the new disk in
+    direction φ is g₊/cos ψ (resp. g₋/(−cos ψ)) while that stays below the closing circle.
+
+    Examples
+    --------
+    >>> p = PlanesObstacle(9.5e-3, 0.5e-3, 0.3e-3, orientation=90.0)
+    >>> [round(float(g), 9) for g in p.gap([90.0, 270.0])]
+    [0.0005, 0.0003]
+    """
+
+    mobile_radius: float
+    plane_gap: float
+    plane_gap_opposite: float | None = None
+    orientation: float = 0.0
+    closing_radius: float | None = None
+
+    def __post_init__(self):
+        rm = _positive("mobile_radius", self.mobile_radius)
+        for name, v in (("plane_gap", self.plane_gap),
+                        ("plane_gap_opposite", self.plane_gap_opposite)):
+            if v is not None and isinstance(v, (int, float)) and float(v) < 0:
+                raise InputError(f"negative gap: {name} = {float(v):g} m; plane gaps must be >= 0")
+        gp = _positive("plane_gap", self.plane_gap, allow_zero=True)
+        gm = gp if self.plane_gap_opposite is None else _positive(
+            "plane_gap_opposite", self.plane_gap_opposite, allow_zero=True)
+        try:
+            orient = float(self.orientation)
+        except (TypeError, ValueError):
+            orient = math.nan
+        if not math.isfinite(orient):
+            raise InputError(f"orientation must be a finite angle [deg], got {self.orientation!r}")
+        far = 100.0 * (rm + max(gp, gm)) if self.closing_radius is None else _positive(
+            "closing_radius", self.closing_radius)
+        if far <= rm + max(gp, gm):
+            raise InputError(
+                f"closing_radius {far:g} m must exceed R_m + gap = {rm + max(gp, gm):g} m")
+        object.__setattr__(self, "mobile_radius", rm)
+        object.__setattr__(self, "plane_gap", gp)
+        object.__setattr__(self, "plane_gap_opposite", gm)
+        object.__setattr__(self, "orientation", orient)
+        object.__setattr__(self, "closing_radius", far)
+
+    def radius(self, angle) -> np.ndarray:
+        """Polar radius [m] of the figure (planes closed by the far circle) at ``angle`` [deg]."""
+        gp, gm = self.plane_gap, self.plane_gap_opposite
+        c = np.cos(np.radians(np.asarray(angle, dtype=float) - float(self.orientation)))
+        rm = self.mobile_radius
+        with np.errstate(divide="ignore"):
+            r = np.where(c > 0, (rm + gp) / np.abs(c), (rm + gm) / np.abs(c))
+        return np.minimum(r, self.closing_radius)
+
+
+@dataclass(frozen=True)
+class DiscreteObstacle(_Obstacle):
+    """A table of points of the clearance figure, periodic, linear in angle between points.
+
+    Parameters
+    ----------
+    angles : array_like
+        Angles [deg], strictly increasing, spanning one turn at most (e.g. 0…360 or −180…180; a
+        last point at first + 360 must repeat the first gap).
+    gaps : array_like
+        Radial gap [m] at each angle, >= 0.
+    mobile_radius : float or None
+        Outer radius of the mobile R_m [m]; needed for ``radius`` (radius = R_m + gap) and for
+        the obstacle update; may be None for a bare clearance figure.
+
+    Notes
+    -----
+    gap(φ) is the periodic piecewise-linear interpolant of the table in φ; radius(φ) = R_m + gap(φ).
+
+    Examples
+    --------
+    >>> d = DiscreteObstacle([0.0, 90.0, 180.0, 270.0], [1e-3, 2e-3, 1e-3, 2e-3], 0.01)
+    >>> [round(float(g), 9) for g in d.gap([45.0, 315.0, -45.0])]
+    [0.0015, 0.0015, 0.0015]
+    """
+
+    angles: np.ndarray
+    gaps: np.ndarray
+    mobile_radius: float | None = None
+
+    def __post_init__(self):
+        a = np.array(self.angles, dtype=float).ravel()
+        g = np.array(self.gaps, dtype=float).ravel()
+        if a.size != g.size:
+            raise InputError(f"discrete obstacle: {a.size} angles but {g.size} gaps")
+        if a.size < 3:
+            raise InputError(f"discrete obstacle needs >= 3 points, got {a.size}")
+        if not (np.isfinite(a).all() and np.isfinite(g).all()):
+            row = int(np.flatnonzero(~(np.isfinite(a) & np.isfinite(g)))[0])
+            raise InputError(f"discrete obstacle: row {row} has a non-finite angle or gap")
+        steps = np.diff(a)
+        if (steps <= 0).any():
+            row = int(np.flatnonzero(steps <= 0)[0]) + 1
+            raise InputError(
+                f"discrete obstacle: angles must be strictly increasing; row {row} "
+                f"({a[row]:g} deg) does not exceed row {row - 1} ({a[row - 1]:g} deg)")
+        span = a[-1] - a[0]
+        if span > 360.0 + 1e-9:
+            raise InputError(f"discrete obstacle: angles span {span:g} deg, more than one turn")
+        if abs(span - 360.0) <= 1e-9:
+            if abs(g[-1] - g[0]) > 1e-12 * max(1.0, abs(g[0])) + 1e-15:
+                raise InputError(
+                    f"discrete obstacle: the last point ({a[-1]:g} deg) closes the turn but its "
+                    f"gap {g[-1]:g} m differs from the first ({g[0]:g} m)")
+            a, g = a[:-1], g[:-1]
+        if (g < 0).any():
+            row = int(np.flatnonzero(g < 0)[0])
+            raise InputError(
+                f"negative gap in the discrete obstacle at row {row} (angle {a[row]:g} deg): "
+                f"{g[row]:g} m; gaps must be >= 0 [m]")
+        rm = None if self.mobile_radius is None else _positive("mobile_radius", self.mobile_radius)
+        object.__setattr__(self, "angles", a)
+        object.__setattr__(self, "gaps", g)
+        object.__setattr__(self, "mobile_radius", rm)
+        a.flags.writeable = False
+        g.flags.writeable = False
+
+    def gap(self, angle) -> np.ndarray:
+        """Radial gap [m] at ``angle`` [deg], periodic linear interpolation of the table."""
+        x = np.asarray(angle, dtype=float)
+        a0 = self.angles[0]
+        xp = np.append(self.angles, a0 + 360.0)
+        fp = np.append(self.gaps, self.gaps[0])
+        return np.interp(np.mod(x - a0, 360.0) + a0, xp, fp)
+
+    def radius(self, angle) -> np.ndarray:
+        """Polar radius [m] = mobile_radius + gap(angle)."""
+        if self.mobile_radius is None:
+            raise InputError(
+                "this discrete obstacle has no mobile_radius: give it (mobile_radius=...) to "
+                "turn gaps into radii")
+        return self.mobile_radius + self.gap(angle)
+
+
+#: The obstacle models, keyed by the name used in case files (``[obstacle] type = ...``).
+OBSTACLE_MODELS: dict[str, type] = {
+    "circle": CircleObstacle,
+    "planes": PlanesObstacle,
+    "discrete": DiscreteObstacle,
+}
+
+
+_NUM = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eEdD][-+]?\d+)?"
+
+
+def write_discret(path, obstacle, *, step: float = DISCRET_STEP, gaps=None,
+                  title: str = "fretwear DISCRET obstacle") -> Path:
+    """Write an obstacle (or explicit gaps) as a DISCRET table (layout in the module docstring).
+
+    Parameters
+    ----------
+    path : str or path-like
+        Output file (written atomically).
+    obstacle : obstacle model or None
+        Profile sampled on the grid; its ``mobile_radius`` is written in the header.
+    step : float
+        Angular step [deg] (0.5 for Code_Aster's 721 points).
+    gaps : array_like, optional
+        Gaps [m] on ``discret_angles(step)`` to write instead of sampling ``obstacle``.
+    title : str
+        First comment line.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "o.txt"
+    >>> _ = write_discret(p, CircleObstacle.from_gap(9.5e-3, 5e-4))
+    >>> d = read_discret(p)
+    >>> d.angles.size, round(float(d.gap(12.25)), 12), d.mobile_radius
+    (720, 0.0005, 0.0095)
+    """
+    a = discret_angles(step)
+    rm = getattr(obstacle, "mobile_radius", None)
+    g = obstacle.gap(a) if gaps is None else np.asarray(gaps, dtype=float)
+    if g.shape != a.shape:
+        raise InputError(f"write_discret: {g.size} gaps for {a.size} angles (step {step} deg)")
+    lines = ["#", f"# {title}: clearance figure, angle THETA [deg], gap JEU [m], radius R [m]"]
+    if rm is not None:
+        lines.append(f"# mobile_radius = {rm:.11E}")
+    lines += ["#", "THETA JEU R" if rm is not None else "THETA JEU"]
+    for ai, gi in zip(a, g, strict=True):
+        row = f"{ai: .10E} {gi: .10E}"
+        if rm is not None:
+            row += f" {rm + gi: .10E}"
+        lines.append(row)
+    target = Path(path)
+    with atomic_write(target, "w", encoding="utf-8") as fh:
+        fh.write("\n".join(lines) + "\n")
+    return target
+
+
+_ALIASES = {"THETA": "THETA", "ANGLE": "THETA", "ANGLE_DEG": "THETA",
+            "JEU": "JEU", "GAP": "JEU", "R": "R", "RAYON": "R", "RADIUS": "R"}
+
+
+def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacle:
+    """Read a DISCRET obstacle table (layout in the module docstring).
+
+    Parameters
+    ----------
+    path : str or path-like
+        Text file: '#' comment lines (``# mobile_radius = ...`` is read), a line of column names
+        (THETA and JEU, or THETA and R; native names angle/gap/radius accepted; other columns
+        ignored), then numeric rows. Code_Aster's ``#DEBUT_TABLE``/``#FIN_TABLE`` and type lines
+        (``R``, ``K8``...) are skipped.
+    mobile_radius : float, optional
+        Mobile outer radius [m]; overrides the header; needed when only R is given.
+
+    Returns
+    -------
+    DiscreteObstacle
+
+    Raises
+    ------
+    FormatError
+        Naming the file and the line when a column is missing or a cell is not a number.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise FormatError(f"obstacle file {str(p)!r} not found")
+    header_rm = None
+    names = None
+    rows: list[list[float]] = []
+    for lineno, raw in enumerate(p.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+        line = raw.strip()
+        if not line:
+            continue
+        if line.startswith("#"):
+            m = re.match(r"#\s*mobile_radius\s*=\s*(" + _NUM + ")", line)
+            if m:
+                header_rm = float(m.group(1).replace("D", "E").replace("d", "e"))
+            continue
+        cells = line.replace(",", " ").replace(";", " ").split()
+        if names is None:
+            names = [_ALIASES.get(c.strip('"').upper(), c.upper()) for c in cells]
+            if "THETA" not in names or not ({"JEU", "R"} & set(names)):
+                raise FormatError(
+                    f"{p}: line {lineno}: the column names {cells} need THETA (angle [deg]) and "
+                    "JEU (gap [m]) or R (radius [m])")
+            continue
+        if all(re.fullmatch(r"[A-Z]\d*", c.upper()) for c in cells):  # ASTER type line: R K8
+            continue
+        if len(cells) != len(names):
+            raise FormatError(
+                f"{p}: line {lineno} has {len(cells)} cells, expected {len(names)} ({names})")
+        try:
+            rows.append([float(c.replace("D", "E").replace("d", "e")) for c in cells])
+        except ValueError:
+            raise FormatError(f"{p}: line {lineno}: a cell is not a number: {line!r}") from None
+    if names is None or not rows:
+        raise FormatError(f"{p}: no DISCRET table found (need a THETA JEU header and rows)")
+    data = np.array(rows)
+    rm = mobile_radius if mobile_radius is not None else header_rm
+    theta = data[:, names.index("THETA")]
+    if "JEU" in names:
+        gaps = data[:, names.index("JEU")]
+    else:
+        if rm is None:
+            raise FormatError(
+                f"{p}: the table gives radii R but no mobile radius: add a '# mobile_radius = ...'"
+                " header line or pass mobile_radius=")
+        gaps = data[:, names.index("R")] - float(rm)
+    try:
+        return DiscreteObstacle(theta, gaps, rm)
+    except InputError as exc:
+        raise InputError(f"{p}: {exc}") from None
+
+
+def load_obstacle_profile(path, *, mobile_radius: float | None = None) -> DiscreteObstacle:
+    """Load an obstacle file written by the obstacle update (the worn clearance figure).
+
+    The returned profile has vectorised ``gap(angle)`` and ``radius(angle)`` [m] (angle [deg]),
+    for the next dynamic computation.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "o.txt"
+    >>> _ = write_discret(p, CircleObstacle(0.01, 0.0105))
+    >>> prof = load_obstacle_profile(p)
+    >>> [round(float(r), 12) for r in prof.radius([0.0, 123.4])]
+    [0.0105, 0.0105]
+    """
+    return read_discret(path, mobile_radius=mobile_radius)
