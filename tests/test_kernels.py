@@ -1,0 +1,143 @@
+"""Fused kernels: the compiled one-pass kernel against the plain numpy reference.
+
+Source of truth for sectors: ``sector_index(contact_angle(dy, dz), edges)`` (SPEC §3, with
+θ = 0 when dy = dz = 0); for the sums: the vectorised numpy implementation, which refines the time
+grid at window bounds and block edges and integrates each piece independently.
+"""
+
+import numpy as np
+import pytest
+
+from fretwear.history import contact_angle
+from fretwear.kernels import (
+    HAVE_NUMBA,
+    fast_sector_index,
+    fused,
+    fused_numba,
+    fused_numpy,
+    pseudo_angle,
+    reference_sector_index,
+    sector_table,
+)
+from fretwear.sectors import sector_edges, sector_index
+
+EDGE_SETS = [
+    sector_edges(1),
+    sector_edges(2),
+    sector_edges(4),
+    sector_edges(10),
+    sector_edges(7),
+    np.array([-180.0, -100.0, -0.5, 20.0, 45.0, 90.0, 179.0, 180.0]),
+]
+
+
+def _awkward_points(edges, rng):
+    """Random directions plus points exactly on every edge, on the axes, at ±180° and at 0."""
+    rad = np.radians(edges)
+    r = rng.uniform(0.1, 10.0, edges.size)
+    on_edges_y, on_edges_z = r * np.cos(rad), r * np.sin(rad)
+    special_y = np.array([0.0, -0.0, 1.0, -1.0, 0.0, 0.0, -1.0, -1.0, -1.0, -1.0, 2.0, 2.0,
+                          -3.0, 1e-300, -1e-300, 5.0, 1.0, -1.0])
+    special_z = np.array([0.0, 0.0, 0.0, 0.0, 1.0, -1.0, -0.0, 1e-300, -1e-300, -1e-17,
+                          1e-300, -1e-300, 0.0, 1.0, 1.0, 5.0, 1.0, 1.0])
+    y = np.concatenate([rng.normal(size=3000), on_edges_y, special_y, np.cos(rad + 1e-13)])
+    z = np.concatenate([rng.normal(size=3000), on_edges_z, special_z, np.sin(rad + 1e-13)])
+    return y, z
+
+
+@pytest.mark.parametrize("edges", EDGE_SETS, ids=lambda e: f"{e.size - 1}sectors")
+def test_fast_sector_index_equals_reference(edges):
+    rng = np.random.default_rng(7)
+    y, z = _awkward_points(edges, rng)
+    ref = sector_index(contact_angle(y, z), edges)
+    # the lead's contact_angle gives 180° for (dy, dz) = (-0.0, ±0.0); SPEC §3 says θ = 0 there
+    origin = (y == 0) & (z == 0)
+    ref[origin] = sector_index(np.zeros(origin.sum()), edges)
+    np.testing.assert_array_equal(reference_sector_index(y, z, edges), ref)
+    np.testing.assert_array_equal(fast_sector_index(y, z, edges), ref)
+
+
+def test_pseudo_angle_is_increasing_in_theta():
+    # analytic: q is a strictly increasing function of θ on (-180, 180]
+    theta = np.linspace(-179.999, 180.0, 20001)
+    q = pseudo_angle(np.cos(np.radians(theta)), np.sin(np.radians(theta)))
+    assert np.all(np.diff(q) > 0)
+    np.testing.assert_allclose(pseudo_angle([1.0, 0.0, -1.0, 0.0, 1.0, -1.0],
+                                            [0.0, 1.0, 0.0, -1.0, -1.0, -1.0]),
+                               [0.0, 1.0, 2.0, -1.0, -0.5, -1.5])
+
+
+def test_close_edges_are_not_safe_but_still_exact():
+    edges = np.array([-180.0, 10.0, 10.0 + 1e-12, 180.0])
+    assert not sector_table(edges).safe
+    y, z = _awkward_points(edges, np.random.default_rng(3))
+    np.testing.assert_array_equal(fast_sector_index(y, z, edges),
+                                  reference_sector_index(y, z, edges))
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+def test_generic_directions_take_the_fast_path():
+    from fretwear.kernels import _classify_numba
+
+    rng = np.random.default_rng(11)
+    y, z = rng.normal(size=100_000), rng.normal(size=100_000)
+    st = sector_table(sector_edges(10))
+    out = np.empty(y.size, dtype=np.int64)
+    assert _classify_numba(y, z, st.q_edges, st.table, out) == 0
+    np.testing.assert_array_equal(out, reference_sector_index(y, z, sector_edges(10)))
+
+
+def _random_chunk(rng, n, on_edges=True, edges=None):
+    t = np.cumsum(rng.uniform(0.05, 1.0, n))
+    fn = np.maximum(rng.normal(0.3, 1.0, n), 0.0)
+    v1, v2 = rng.normal(size=n), rng.normal(size=n)
+    dy, dz = rng.normal(size=n), rng.normal(size=n)
+    if on_edges:
+        ang = np.radians(rng.choice(edges, n))
+        pick = rng.uniform(size=n) < 0.3
+        dy[pick], dz[pick] = np.cos(ang[pick]), np.sin(ang[pick])
+        dy[::17], dz[::19] = 0.0, 0.0
+    stick = (rng.uniform(size=n) < 0.2).astype(float)
+    return t, fn, v1, v2, dy, dz, stick
+
+
+CASES = [
+    # (sectors, blocks, window fraction, threshold [N], rest [s], with stick, on edges)
+    (10, 4, (0.1, 0.9), 0.0, 0.0, True, True),
+    (1, 1, None, 0.0, 0.0, False, False),
+    (7, 3, (0.0, 1.0), 0.4, 2.0, True, True),
+    (4, 5, (0.33, 0.34), 0.2, 0.0, False, True),
+    (2, 2, (0.5, 0.75), 1.0, 10.0, True, False),
+]
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
+@pytest.mark.parametrize("case", CASES)
+def test_numba_kernel_equals_numpy_reference(case):
+    ns, nb, frac, thr, rest, with_stick, on_edges = case
+    edges = sector_edges(ns)
+    rng = np.random.default_rng(ns * 100 + nb)
+    t, fn, v1, v2, dy, dz, stick = _random_chunk(rng, 3000, on_edges, edges)
+    if frac is None:
+        lo, hi = -np.inf, np.inf
+        be = np.array([lo, hi])
+    else:
+        # bounds between samples on purpose
+        lo = t[0] + frac[0] * (t[-1] - t[0]) + 1e-3
+        hi = t[0] + frac[1] * (t[-1] - t[0]) - 1e-3
+        be = np.linspace(lo, hi, nb + 1)
+    st = stick if with_stick else None
+    a = fused_numpy(t, fn, v1, v2, dy, dz, st, lo, hi, be, edges, thr, rest)
+    b = fused_numba(t, fn, v1, v2, dy, dz, st, lo, hi, be, edges, thr, rest)
+    np.testing.assert_allclose(b.power, a.power, rtol=1e-12, atol=1e-12 * a.power.sum())
+    np.testing.assert_allclose(b.block_stats, a.block_stats, rtol=1e-12,
+                               atol=1e-12 * np.abs(a.block_stats).max())
+    assert b.force_max == a.force_max
+    np.testing.assert_allclose(b.groups, a.groups, rtol=1e-12, atol=1e-9)
+    assert a.power.sum() > 0
+
+
+def test_backend_registry():
+    assert fused("numpy") is fused_numpy
+    with pytest.raises(ValueError, match="unknown backend 'fortran'"):
+        fused("fortran")
