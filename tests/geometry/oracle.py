@@ -16,13 +16,22 @@ with these primitives).
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable
 
 import numpy as np
-from scipy.integrate import quad
+from scipy.integrate import IntegrationWarning
+from scipy.integrate import quad as _scipy_quad
 from scipy.optimize import brentq
 
 QUAD = {"epsabs": 0.0, "epsrel": 1e-13, "limit": 400}
+
+
+def quad(func, a, b, **options):
+    """scipy's adaptive quadrature, silent about round-off (the tests compare the results)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", IntegrationWarning)
+        return _scipy_quad(func, a, b, **options)
 
 
 # --------------------------------------------------------------------------- polygons
@@ -113,11 +122,20 @@ def arc(centre_y: float, radius: float, sign: float = 1.0) -> Callable[[float], 
 
 # --------------------------------------------------------------------------- worn sections
 def flat_cut_area(radius: float, depth: float) -> float:
-    """Exact area of a disk beyond a straight line at ``depth`` below its top (flat bar) [m²]."""
+    """Exact area of a disk beyond a straight line at ``depth`` below its top (flat bar) [m²].
+
+    The gap √(R² − t²) − (R − D) decreases on [0, R]: one crossing, found by brentq; the area is
+    twice the quadrature of the gap up to it.
+    """
     if depth <= 0.0:
         return 0.0
     top = arc(0.0, radius)
-    return overlap_area(top, lambda t: radius - depth, -radius, radius)
+    gap = lambda t: top(t) - (radius - depth)  # noqa: E731
+    if gap(radius) >= 0.0:
+        half = radius
+    else:
+        half = brentq(gap, 0.0, radius, xtol=1e-300, rtol=1e-15, maxiter=400)
+    return 2.0 * quad(gap, 0.0, half, **QUAD)[0]
 
 
 def lens_oracle(mobile_radius: float, obstacle_radius: float, depth: float):
@@ -132,8 +150,10 @@ def lens_oracle(mobile_radius: float, obstacle_radius: float, depth: float):
         return 0.0, 0.0
     c = ro - rm + depth
     mobile, bore = arc(c, rm), arc(0.0, ro)
-    roots = [r for r in crossings(lambda t: mobile(t) - bore(t), 0.0, rm) if r > 0.0]
-    half_chord = roots[0]
+    gap = lambda t: mobile(t) - bore(t)  # noqa: E731  (decreasing on [0, R_m] as R_m < R_o)
+    if gap(rm) >= 0.0:
+        raise ValueError("depth beyond the lens range: the chord passes the mobile's centre")
+    half_chord = brentq(gap, 0.0, rm, xtol=1e-300, rtol=1e-15, maxiter=400)
     area = 2.0 * quad(lambda t: mobile(t) - bore(t), 0.0, half_chord, **QUAD)[0]
     return area, half_chord
 
