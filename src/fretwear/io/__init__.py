@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import os
 import zipfile
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
@@ -135,7 +135,7 @@ def _format_name(format: str) -> str:
 
 
 def guess_format(path: str | os.PathLike) -> str:
-    """Name of the format of a file, from its content (magic bytes, Code_Aster markers), else suffix.
+    """Name of a file's format, from its content (magic bytes, Code_Aster markers), else suffix.
 
     Binary formats are recognised by their signature whatever the suffix; a text file is a
     Code_Aster table when its content says so (whatever the suffix), else delimited text.
@@ -198,7 +198,8 @@ def _is_path(value: Any) -> bool:
 
 def _frame_source(table: Any) -> Source:
     names = [str(c) for c in table.keys()]
-    values = list(table.values()) if isinstance(table, Mapping) else [table[c] for c in table.columns]
+    values = (list(table.values()) if isinstance(table, Mapping)
+              else [table[c] for c in table.columns])
     return Source(label="<in-memory table>", format="frame", columns=names,
                   read=lambda positions: [np.asarray(values[p], dtype=float) for p in positions])
 

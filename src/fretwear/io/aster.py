@@ -57,7 +57,7 @@ def _unquote(token: str) -> str:
 
 
 def _split_tables(text: str, label: str) -> list[dict]:
-    """Cut a file into raw tables: dicts of format, title lines, names, types, rows (lineno, tokens)."""
+    """Cut a file into raw tables: dicts of format, title, names, types, rows (lineno, tokens)."""
     tables: list[dict] = []
     current: dict | None = None
     in_aster = False
@@ -422,8 +422,9 @@ def check_same_abscissa(reference: tuple[str, np.ndarray], other: tuple[str, np.
     diff = np.abs(ta - tb) > 1e-9 * scale
     if diff.any():
         i = int(np.flatnonzero(diff)[0])
-        raise FormatError(f"{label_b}: instant at row {i} is {tb[i]!r} but {label_a} has "
-                          f"{ta[i]!r}; the functions of one history must share their instants")
+        raise FormatError(f"{label_b}: instant at row {i} is {float(tb[i])!r} but {label_a} "
+                          f"has {float(ta[i])!r}; the functions of one history must share "
+                          "their instants")
 
 
 def looks_like_aster(head: str) -> bool:

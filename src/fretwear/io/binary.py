@@ -105,7 +105,8 @@ def open_parquet(path: str | os.PathLike) -> Source:
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         handle = pq.ParquetFile(path)
         try:
-            for batch in handle.iter_batches(batch_size=size, columns=[names[p] for p in positions]):
+            wanted = [names[p] for p in positions]
+            for batch in handle.iter_batches(batch_size=size, columns=wanted):
                 yield [batch.column(i).to_numpy(zero_copy_only=False).astype(float, copy=False)
                        for i in range(len(positions))]
         finally:
@@ -264,7 +265,8 @@ def open_netcdf(path: str | os.PathLike) -> Source:
                  if "units" in one_d[k].ncattrs()}
         attrs = ds.ncattrs()
         name = str(ds.getncattr("title")) if "title" in attrs else None
-        meta = _loads(str(ds.getncattr("fretwear_metadata"))) if "fretwear_metadata" in attrs else {}
+        meta = (_loads(str(ds.getncattr("fretwear_metadata")))
+                if "fretwear_metadata" in attrs else {})
 
     def _values(var: Any, sl: slice) -> np.ndarray:
         return np.ma.filled(np.ma.asarray(var[sl], dtype=float), np.nan)

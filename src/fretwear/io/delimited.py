@@ -1,4 +1,4 @@
-"""Delimited text files (CSV, TSV, blank-separated ``.txt``/``.dat``): reader, chunked reader, writer.
+"""Delimited text (CSV, TSV, blank-separated ``.txt``/``.dat``): reader, chunked reader, writer.
 
 The reader finds by itself the leading comment lines (``#``), the delimiter (tab, ``;``, ``,``,
 ``|`` or blanks), whether the first line is a header (else columns are named ``0``, ``1`` ...),

@@ -1,0 +1,175 @@
+"""Round trips through every reader and writer, units documented in the files, format sniffing.
+
+Reference values: the analytic history of ``iohelpers.analytic_history`` (closed-form signals);
+every native writer stores doubles exactly, so a read-back must be bit-identical.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+from iohelpers import FIXTURES, analytic_history, assert_same_history
+
+from fretwear.errors import FormatError, KeywordError
+from fretwear.history import UNITS, ContactHistory
+from fretwear.io import FORMATS, guess_format, read_history, write_history
+from fretwear.io.aster import read_aster_table
+
+NATIVE = {"csv": "h.csv", "parquet": "h.parquet", "hdf5": "h.h5", "netcdf": "h.nc",
+          "npz": "h.npz", "aster": "h.resu"}
+
+
+@pytest.mark.parametrize("fmt", sorted(NATIVE))
+def test_round_trip_every_writer_and_reader(tmp_path, history, fmt):
+    path = write_history(history, tmp_path / NATIVE[fmt])
+    assert guess_format(path) == fmt
+    back = read_history(path)
+    assert_same_history(history, back)  # exact: %.17g / %.16E / binary doubles
+    assert back.metadata["format"] == fmt
+    # Code_Aster tables keep their name in the title only (the stem names the history)
+    assert back.name == ("h" if fmt == "aster" else "N12")
+    assert back.metadata["unit_factors"] == {ch: 1.0 for ch in history.channels}
+    if fmt != "aster":  # Code_Aster tables carry the name in the title only
+        assert back.metadata["case"] == "analytic" and back.metadata["node"] == "N12"
+
+
+def test_round_trip_required_channels_only(tmp_path):
+    h = ContactHistory(time=[0.0, 0.5, 1.0], normal_force=[0.0, 1.0, 0.0], vt1=[1.0, 2.0, 3.0],
+                       vt2=[0.0, 0.0, 0.0])
+    for fmt, fname in NATIVE.items():
+        back = read_history(write_history(h, tmp_path / fname))
+        assert back.channels == ("time", "normal_force", "vt1", "vt2"), fmt
+        assert_same_history(h, back)
+
+
+def test_units_are_documented_in_every_native_file(tmp_path, history):
+    import h5py
+    import netCDF4
+    import pyarrow.parquet as pq
+
+    csv_text = write_history(history, tmp_path / "h.csv").read_text()
+    assert "#   normal_force [N]:" in csv_text and "#   vt1 [m/s]:" in csv_text
+    schema = pq.read_schema(write_history(history, tmp_path / "h.parquet"))
+    assert schema.field("dy").metadata[b"units"] == b"m"
+    with h5py.File(write_history(history, tmp_path / "h.h5"), "r") as f:
+        assert f["history/time"].attrs["units"] == "s"
+        assert f["history"].attrs["name"] == "N12"
+    with netCDF4.Dataset(write_history(history, tmp_path / "h.nc")) as ds:
+        assert ds.variables["ft1"].units == "N"
+        assert ds.dimensions["time"].size == len(history)
+    with np.load(write_history(history, tmp_path / "h.npz")) as f:
+        assert json.loads(str(f["__fretwear__"]))["units"] == {
+            ch: UNITS[ch] for ch in history.channels}
+
+
+def test_hdf5_group_option_and_aster_table_format(tmp_path, history):
+    path = write_history(history, tmp_path / "h.hdf5", group="shocks/N12")
+    assert_same_history(history, read_history(path, group="shocks/N12"))
+    assert_same_history(history, read_history(path))  # the only group with datasets
+    path = write_history(history, tmp_path / "h.tab", table_format="ASTER")
+    frame = read_aster_table(path)
+    assert frame.attrs["format"] == "ASTER" and frame.attrs["title"] == "N12"
+    assert list(frame.columns) == ["INST", "FN", "FT1", "FT2", "VN", "VT1", "VT2", "DYLOC",
+                                   "DZLOC", "VINT13"]
+    assert_same_history(history, read_history(path))
+
+
+def test_csv_float_format_rounds_to_the_printed_precision(tmp_path, history):
+    back = read_history(write_history(history, tmp_path / "h.csv", float_format="%.6e"))
+    expected = np.array([float("%.6e" % v) for v in history.normal_force])  # noqa: UP031
+    np.testing.assert_array_equal(back.normal_force, expected)
+
+
+def test_units_declared_by_binary_files_are_converted(tmp_path):
+    """A file written in mm and kN (units attributes) is read back in SI."""
+    import h5py
+    import netCDF4
+
+    t = np.array([0.0, 1.0, 2.0])
+    with h5py.File(tmp_path / "mm.h5", "w") as f:
+        for name, values, unit in [("INST", t, "ms"), ("FN", [0.0, 2.0, 4.0], "kN"),
+                                   ("VT1", [1.0, 2.0, 3.0], "mm/s"),
+                                   ("VT2", [0.0, 0.0, 0.0], "mm/s")]:
+            f.create_dataset(name, data=values).attrs["units"] = unit
+    h = read_history(tmp_path / "mm.h5")
+    np.testing.assert_allclose(h.time, t * 1e-3, rtol=1e-15)
+    np.testing.assert_allclose(h.normal_force, [0.0, 2000.0, 4000.0], rtol=1e-15)
+    np.testing.assert_allclose(h.vt1, [1e-3, 2e-3, 3e-3], rtol=1e-15)
+    assert h.metadata["units"] == {"time": "ms", "normal_force": "kN", "vt1": "mm/s",
+                                   "vt2": "mm/s"}
+    with netCDF4.Dataset(tmp_path / "cf.nc", "w") as ds:
+        ds.createDimension("time", 3)
+        for name, values, unit in [("time", t, "seconds since 2026-01-01"),
+                                   ("fn", [0.0, 2.0, 4.0], "daN"), ("vt1", [1.0, 2.0, 3.0], "m/s"),
+                                   ("vt2", [0.0, 0.0, 0.0], "m/s")]:
+            var = ds.createVariable(name, "f8", ("time",))
+            var.units = unit
+            var[:] = values
+    h = read_history(tmp_path / "cf.nc")
+    np.testing.assert_array_equal(h.time, t)
+    np.testing.assert_allclose(h.normal_force, [0.0, 20.0, 40.0], rtol=1e-15)
+
+
+def test_sniffing_binary_formats_whatever_the_suffix(tmp_path, history):
+    for fmt, fname in NATIVE.items():
+        if fmt in ("csv", "aster"):
+            continue
+        path = write_history(history, tmp_path / fname)
+        odd = tmp_path / f"{fmt}.bin"
+        shutil.copy(path, odd)
+        assert guess_format(odd) == fmt
+        assert_same_history(history, read_history(odd))
+
+
+@pytest.mark.parametrize("suffix", [".resu", ".txt", ".tab", ".csv", ".dat", ""])
+def test_code_aster_tables_recognised_by_content(tmp_path, suffix):
+    for fixture in ("impr_table_tableau.txt", "impr_table_aster.resu"):
+        path = tmp_path / f"table{suffix}"
+        shutil.copy(FIXTURES / fixture, path)
+        assert guess_format(path) == "aster", fixture
+
+
+def test_in_memory_tables_use_aliases_and_units_without_modifying_them():
+    frame = pd.DataFrame({"INST": [0.0, 1.0], "FN": [1.0, 2.0], "VT1": [3.0, 4.0],
+                          "VT2": [0.0, 0.0]})
+    before = frame.copy()
+    h = read_history(frame, units={"force": "kN", "velocity": "mm/s"})
+    pd.testing.assert_frame_equal(frame, before)
+    np.testing.assert_array_equal(h.normal_force, [1000.0, 2000.0])
+    np.testing.assert_allclose(h.vt1, [3e-3, 4e-3], rtol=1e-15)
+    arrays = {"t": np.array([0.0, 1.0]), "fn": np.array([1.0, 2.0]), "vt1": np.zeros(2),
+              "vt2": np.zeros(2)}
+    h = read_history(arrays, units={"time": "ms"})
+    np.testing.assert_array_equal(arrays["t"], [0.0, 1.0])
+    np.testing.assert_array_equal(h.time, [0.0, 1e-3])
+
+
+def test_write_errors_name_the_culprit(tmp_path, history):
+    with pytest.raises(FormatError, match=r"suffix '\.xyz'.*'\.csv'"):
+        write_history(history, tmp_path / "h.xyz")
+    with pytest.raises(FormatError, match="'aster-function' is read-only"):
+        write_history(history, tmp_path / "h.txt", format="aster-function")
+    with pytest.raises(KeywordError, match=r"\['compression'\] unknown for the 'csv' writer"):
+        write_history(history, tmp_path / "h.csv", compression="gzip")
+    with pytest.raises(FormatError, match="unknown format 'xlsx'"):
+        write_history(history, tmp_path / "h.csv", format="xlsx")
+
+
+def test_failed_write_leaves_the_previous_file(tmp_path, history):
+    """Atomic output: a writer failing midway does not truncate the existing file."""
+    path = write_history(history, tmp_path / "h.csv")
+    before = path.read_bytes()
+    with pytest.raises(Exception, match="float_format"):
+        write_history(analytic_history(n=5), path, float_format="%q")
+    assert path.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["h.csv"]
+
+
+def test_registry_lists_every_family():
+    assert set(FORMATS) == {"csv", "parquet", "hdf5", "netcdf", "npz", "aster", "aster-function"}
+    assert {s for f in FORMATS.values() for s in f.suffixes} >= {
+        ".csv", ".txt", ".dat", ".parquet", ".pq", ".h5", ".hdf5", ".nc", ".npz"}
