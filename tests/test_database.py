@@ -61,7 +61,8 @@ def parse_seed_tables() -> tuple[dict, dict]:
                         key = (contact, mat1, mat2, law, body, parameter)
                         assert key not in coefficients
                         coefficients[key] = (value, refs.split())
-    for line in FIXTURE.read_text(encoding="utf-8").split("# ---- material codes")[1].splitlines()[1:]:
+    block = FIXTURE.read_text(encoding="utf-8").split("# ---- material codes")[1]
+    for line in block.splitlines()[1:]:
         code, _, text = line.partition(":")
         codes[code.strip()] = text.strip().rstrip(",")
     return coefficients, codes
@@ -101,7 +102,7 @@ def test_builtin_values_are_the_seeds_text_verbatim():
 
 def test_units():
     db = load_database()
-    units = dict(zip(zip(db.law, db.parameter), db.unit))
+    units = dict(zip(zip(db.law, db.parameter, strict=True), db.unit, strict=True))
     assert units == {("ARCHARD", "coefficient"): "Pa⁻¹",
                      ("EDF_MZ", "rate_coefficient"): "m³/(s·W^b)",
                      ("EDF_MZ", "power_exponent"): "1", ("EDF_MZ", "decay_constant"): "s⁻¹",
@@ -146,11 +147,13 @@ def test_lookup_values():
 
 
 def test_lookup_errors_list_what_exists():
-    with pytest.raises(DatabaseError, match=r"mobile I690 on obstacle I600.*I600/I600 \(mobile only\)"):
+    with pytest.raises(DatabaseError,
+                       match=r"mobile I690 on obstacle I600.*I600/I600 \(mobile only\)"):
         lookup("TUBE_BAV", "I690", "I600", "ARCHARD")
     with pytest.raises(DatabaseError, match=r"no obstacle coefficient.*empty box.*none"):
         lookup("TUBE_BAV", "I600", "I600", "ARCHARD", obstacle=True)
-    with pytest.raises(DatabaseError, match=r"no EDF_MZ coefficients for TUBE_BAV.*ARCHARD: I600/I600"):
+    with pytest.raises(DatabaseError,
+                       match=r"no EDF_MZ coefficients for TUBE_BAV.*ARCHARD: I600/I600"):
         lookup("TUBE_BAV", "I600", "I600", "EDF_MZ")
     with pytest.raises(DatabaseError, match=r"unknown contact type 'TUBE'.*TUBE_BAV"):
         lookup("TUBE", "I600", "I600", "ARCHARD")
@@ -185,8 +188,8 @@ def test_user_file_extends_and_overrides_with_provenance(tmp_path):
     assert len(db) == 111 + 2       # one override, two new rows
     assert extra.read_text(encoding="utf-8") == text   # the user's file is untouched
     # later files win
-    second = write(tmp_path / "second.csv", HEADER + "TUBE_BAV,I600,I600,ARCHARD,mobile,coefficient,"
-                   "5e-14,Pa⁻¹,lab C\n")
+    second = write(tmp_path / "second.csv",
+                   HEADER + "TUBE_BAV,I600,I600,ARCHARD,mobile,coefficient,5e-14,Pa⁻¹,lab C\n")
     assert lookup("TUBE_BAV", "I600", "I600", "ARCHARD", extra=[extra, second]).mobile == \
         {"coefficient": 5e-14}
 
@@ -202,7 +205,8 @@ def test_user_file_optional_columns(tmp_path):
 
 @pytest.mark.parametrize("line, message", [
     ("TUBE_BAV,I600,I600,ARCHARD,mobile,coefficient,1e-13,mm3/J,x", r"line 2: unit 'mm3/J'.*Pa⁻¹"),
-    ("TUBE_BAV,I600,I600,ARCHARD,mobile,COEF_B,1,1,x", r"line 2: ARCHARD has no coefficient 'COEF_B'"),
+    ("TUBE_BAV,I600,I600,ARCHARD,mobile,COEF_B,1,1,x",
+     r"line 2: ARCHARD has no coefficient 'COEF_B'"),
     ("TUBE_BAV,I600,I600,ARCHARD,mobile,coefficient,-1e-13,Pa⁻¹,x", r"line 2: column 'value'"),
     ("TUBE_BAV,I600,I600,ARCHARD,wall,coefficient,1e-13,Pa⁻¹,x", r"line 2: body must be"),
     ("TUBE_XX,I600,I600,ARCHARD,mobile,coefficient,1e-13,Pa⁻¹,x", r"line 2: unknown contact_type"),
@@ -228,7 +232,8 @@ def test_user_file_structural_errors(tmp_path):
 
 def test_summary_and_filters():
     s = summary(contact_type="GRAPPE_ALESAGE", law="EDF_MZ")
-    assert s.mobile.tolist()[1] == "A = 1.1e-14 m³/(s·W^b)  b = 1.61  n = 2.44e-08 s⁻¹  S = 1.14e-16 m³/s"
+    assert s.mobile.tolist()[1] == ("A = 1.1e-14 m³/(s·W^b)  b = 1.61  n = 2.44e-08 s⁻¹  "
+                                    "S = 1.14e-16 m³/s")
     assert len(summary()) == 5 + 10 + 2 + 4 + 13 + 6 + 2 + 10 + 2
     with pytest.raises(DatabaseError, match="no coefficients for contact type"):
         summary(contact_type="NOPE")

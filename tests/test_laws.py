@@ -126,7 +126,8 @@ def test_edf_mz_asymptotic_slope_is_s():
 
 def test_edf_mz_zero_decay_is_linear():
     # n = 0: V = A·P^b·t (limit of (1 − e^{−nt})/n -> t)
-    assert float(edf_mz(0.1, 1e7, decay_constant=0.0)) == pytest.approx(A * 0.1 ** B * 1e7, rel=1e-14)
+    v = float(edf_mz(0.1, 1e7, decay_constant=0.0))
+    assert v == pytest.approx(A * 0.1 ** B * 1e7, rel=1e-14)
 
 
 def test_edf_mz_warns_when_s_exceeds_initial_rate():
@@ -196,7 +197,8 @@ def test_restart_continuity_edf_mz():
 def test_linear_equivalent_time_and_restart():
     law = WEAR_LAWS["ARCHARD"]
     # t = V/(K·P): 6e-9 m³ / (1e-13 Pa⁻¹ × 0.02 W) = 3e6 s, by hand
-    assert float(law.equivalent_time(6e-9, 0.02, coefficient=1e-13)) == pytest.approx(3e6, rel=1e-15)
+    t_eq = float(law.equivalent_time(6e-9, 0.02, coefficient=1e-13))
+    assert t_eq == pytest.approx(3e6, rel=1e-15)
     assert float(law.cumulated_volume(1e-9, 0.02, 1e6, coefficient=1e-13)) == pytest.approx(
         1e-9 + 2e-9, rel=1e-15)
     with pytest.warns(LawWarning):
@@ -212,8 +214,9 @@ def test_registry_contents_follow_spec():
     edf = WEAR_LAWS["EDF_MZ"]
     assert dict(edf.defaults) == {"rate_coefficient": 1e-13, "power_exponent": 1.2,
                                   "decay_constant": 2.44e-8, "asymptotic_rate": 1.14e-16}
-    assert dict(edf.aster_keywords) == {"rate_coefficient": "COEF_USURE", "power_exponent": "COEF_B",
-                                        "decay_constant": "COEF_N", "asymptotic_rate": "COEF_S"}
+    assert dict(edf.aster_keywords) == {"rate_coefficient": "COEF_USURE",
+                                        "power_exponent": "COEF_B", "decay_constant": "COEF_N",
+                                        "asymptotic_rate": "COEF_S"}
     assert not edf.linear_in_time and not edf.needs_history
     kwu = WEAR_LAWS["KWU_EPRI"]
     assert kwu.defaults["k"] == 5.0 and kwu.defaults["c"] == 10.0
@@ -225,7 +228,8 @@ def test_registry_contents_follow_spec():
     assert kwu.aster_keywords["k"] == "COEF_K" and kwu.aster_keywords["c"] == "COEF_C"
     assert kwu.linear_in_time and kwu.needs_history
     arch = WEAR_LAWS["ARCHARD"]
-    assert arch.parameters == ("coefficient",) and arch.aster_keywords["coefficient"] == "COEF_USURE"
+    assert arch.parameters == ("coefficient",)
+    assert arch.aster_keywords["coefficient"] == "COEF_USURE"
     with pytest.raises(TypeError):
         arch.defaults["coefficient"] = 1.0   # read-only
 

@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import DatabaseError, FormatError, InputError
+from fretwear.errors import DatabaseError, FormatError
 from fretwear.laws.registry import WEAR_LAWS
 
 #: The eight contact types of SPEC §6 (Code_Aster names), in the seed's order.
@@ -176,8 +176,8 @@ def read_coefficients(path: str | os.PathLike) -> pd.DataFrame:
     --------
     >>> import tempfile, pathlib
     >>> p = pathlib.Path(tempfile.mkdtemp()) / "mine.csv"
-    >>> _ = p.write_text("contact_type,mobile_material,obstacle_material,law,parameter,value,unit\\n"
-    ...                  "TUBE_BAV,I690TT,A405,ARCHARD,COEF_USURE,3e-15,1/Pa\\n")
+    >>> _ = p.write_text("contact_type,mobile_material,obstacle_material,law,parameter,value,"
+    ...                  "unit\\nTUBE_BAV,I690TT,A405,ARCHARD,COEF_USURE,3e-15,1/Pa\\n")
     >>> read_coefficients(p)[["parameter", "value", "unit", "body"]].values.tolist()
     [['coefficient', 3e-15, 'Pa⁻¹', 'mobile']]
     """
@@ -371,8 +371,8 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
     if mob.empty:
         what = "no coefficients" if box.empty else "no mobile coefficient (empty box)"
         known_codes = set(materials().code)
-        unknown = [x for x in (m1, m2) if x not in known_codes and x not in set(table.mobile_material)
-                   | set(table.obstacle_material)]
+        in_table = set(table.mobile_material) | set(table.obstacle_material)
+        unknown = [x for x in (m1, m2) if x not in known_codes and x not in in_table]
         hint = f" (unknown material code(s) {unknown}; see `fretwear materials`)" if unknown else ""
         raise DatabaseError(
             f"{what} for {ct} / {lw}, mobile {m1} on obstacle {m2}{hint}; {ct}/{lw} has "
@@ -434,7 +434,7 @@ def summary(database: pd.DataFrame | None = None, *, contact_type: str | None = 
             text[body] = "  ".join(
                 f"{symbols.get(r.parameter, r.parameter)} = {r.value:.4g}"
                 + ("" if r.unit == "1" else f" {r.unit}") for r in part.itertuples())
-        rows.append({**dict(zip(group_cols, key)), **text,
+        rows.append({**dict(zip(group_cols, key, strict=True)), **text,
                      "source": "; ".join(dict.fromkeys(grp.source)),
                      "origin": "; ".join(dict.fromkeys(grp.origin))})
     return pd.DataFrame(rows, columns=[*group_cols, "mobile", "obstacle", "source", "origin"])

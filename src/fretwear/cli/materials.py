@@ -33,9 +33,9 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
     codes = codes[codes.code.isin(used)]
     if as_json:
         keys = set(zip(boxes.contact_type, boxes.mobile_material, boxes.obstacle_material,
-                       boxes.law))
+                       boxes.law, strict=True))
         rows = table[[k in keys for k in zip(table.contact_type, table.mobile_material,
-                                             table.obstacle_material, table.law)]]
+                                             table.obstacle_material, table.law, strict=True)]]
         click.echo(json.dumps({"coefficients": rows.to_dict(orient="records"),
                                "materials": codes.to_dict(orient="records")},
                               ensure_ascii=False, indent=1))

@@ -69,7 +69,8 @@ def force_classes(normal_force, force_max: float) -> np.ndarray:
 def speed_classes(sliding_speed, speed_max: float) -> np.ndarray:
     """Speed class v in 1..5 of each sliding speed [m/s] (left-closed classes on [0, V_max]).
 
-    V_max itself and speeds above it go to class 5; with V_max = 0 every speed is in class 1.
+    V_max itself and speeds above it go to class 5; with V_max = 0 a zero speed is in class 1
+    (and a positive one, above the maximum, in class 5).
 
     Examples
     --------
@@ -78,7 +79,7 @@ def speed_classes(sliding_speed, speed_max: float) -> np.ndarray:
     """
     s = np.asarray(sliding_speed, dtype=float)
     if speed_max == 0:
-        return np.ones(s.shape, dtype=np.int64)
+        return np.where(s > 0, N_CLASSES, 1).astype(np.int64)
     v = np.floor(s * N_CLASSES / speed_max) + 1
     return np.clip(v, 1, N_CLASSES).astype(np.int64)
 
@@ -120,7 +121,8 @@ class KwuEpriAccumulator:
     Examples
     --------
     >>> acc = KwuEpriAccumulator(force_max=10.0, speed_max=1.0)
-    >>> acc.update(time=[0.0, 1.0, 2.0], normal_force=[10.0, 0.0, 5.0], sliding_speed=[0.0, 0.0, 1.0])
+    >>> acc.update(time=[0.0, 1.0, 2.0], normal_force=[10.0, 0.0, 5.0],
+    ...            sliding_speed=[0.0, 0.0, 1.0])
     >>> acc.contact_time
     1.0
     """
@@ -145,7 +147,8 @@ class KwuEpriAccumulator:
         """Contact time counted so far [s]."""
         return float(self.class_time.sum())
 
-    def update(self, time=None, normal_force=None, sliding_speed=None, *, history: Any = None) -> None:
+    def update(self, time=None, normal_force=None, sliding_speed=None, *,
+               history: Any = None) -> None:
         """Add a chunk: arrays (time [s], normal_force [N], sliding_speed [m/s]) or ``history=``
         (a ContactHistory or a mapping with time, normal_force, vt1, vt2)."""
         if history is not None:
@@ -155,6 +158,11 @@ class KwuEpriAccumulator:
         if not (t.shape == fn.shape == vs.shape) or t.ndim != 1:
             raise HistoryError("KWU-EPRI statistics: time, normal_force and sliding_speed must be "
                                f"1-D of equal length, got {t.shape}, {fn.shape}, {vs.shape}")
+        for name, arr in (("time", t), ("normal_force", fn), ("sliding_speed", vs)):
+            if not np.isfinite(arr).all():
+                i = int(np.flatnonzero(~np.isfinite(arr))[0])
+                raise HistoryError(f"KWU-EPRI statistics: {name!r} is not finite at row {i} of "
+                                   "the chunk; remove or fill it")
         keep = (t >= self.t_start) & (t <= self.t_end)
         t, fn, vs = t[keep], fn[keep], vs[keep]
         if t.size == 0:
@@ -190,8 +198,9 @@ class KwuEpriAccumulator:
         fc = force_classes(f_left[contact], self.force_max)
         vc = speed_classes(v_left[contact], self.speed_max)
         w = dt[contact]
-        self.class_time += np.bincount((vc - 1) * N_CLASSES + (fc - 1), weights=w,
-                                       minlength=N_CLASSES * N_CLASSES).reshape(N_CLASSES, N_CLASSES)
+        counts = np.bincount((vc - 1) * N_CLASSES + (fc - 1), weights=w,
+                             minlength=N_CLASSES * N_CLASSES)
+        self.class_time += counts.reshape(N_CLASSES, N_CLASSES)
         above = (f_left[contact] > self.force_max) | (v_left[contact] > self.speed_max)
         self.time_above_max += float(w[above].sum())
 

@@ -13,7 +13,7 @@ import numpy as np
 
 from fretwear.errors import InputError, LawWarning
 
-#: Default EDF_MZ coefficients (SPEC §4; Code_Aster's defaults of COEF_USURE, COEF_B, COEF_N, COEF_S).
+#: Default EDF_MZ coefficients (SPEC §4; Code_Aster's COEF_USURE, COEF_B, COEF_N, COEF_S).
 EDF_MZ_DEFAULTS = {
     "rate_coefficient": 1e-13,     # A [m³/(s·W^b)]
     "power_exponent": 1.2,         # b [1]
@@ -31,7 +31,8 @@ def _checked(name: str, value, *, positive: bool = False) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
-        raise InputError(f"{name!r} must be a number or an array of numbers, got {value!r}") from None
+        raise InputError(
+            f"{name!r} must be a number or an array of numbers, got {value!r}") from None
     bad = ~np.isfinite(arr) | ((arr <= 0) if positive else (arr < 0))
     if bad.any():
         where = "" if arr.ndim == 0 else f" at index {tuple(int(i) for i in np.argwhere(bad)[0])}"
@@ -116,7 +117,8 @@ def archard(power, duration, coefficient) -> np.ndarray:
     return k * p * t
 
 
-def kwu_epri(power, duration, reference_coefficient, intensity, reference_intensity=1.0) -> np.ndarray:
+def kwu_epri(power, duration, reference_coefficient, intensity,
+             reference_intensity=1.0) -> np.ndarray:
     """Worn volume of the KWU-EPRI law, ``V = (k_r·w/w_r)·P·t``.
 
     Parameters

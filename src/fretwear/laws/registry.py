@@ -113,8 +113,8 @@ class WearLaw:
                     f"{self.name}: unknown coefficient {key!r}; accepted: {listing}")
             if name in out:
                 raise KeywordError(
-                    f"{self.name}: coefficient {name!r} given twice ({origin[name]!r} and {key!r}); "
-                    "give it once")
+                    f"{self.name}: coefficient {name!r} given twice ({origin[name]!r} and "
+                    f"{key!r}); give it once")
             out[name] = value
             origin[name] = key
         return {**self.defaults, **out}
@@ -140,11 +140,11 @@ class WearLaw:
         return self._volume(power, duration, **self._for_volume(coefficients))
 
     def equivalent_time(self, volume, power, **coefficients: Any) -> np.ndarray:
-        """Duration [s] at which the law reaches ``volume`` [m³] at power ``power`` [W] (SPEC §7)."""
+        """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (SPEC §7)."""
         return self._equivalent_time(volume, power, **self._for_volume(coefficients))
 
     def cumulated_volume(self, previous_volume, power, duration, **coefficients: Any) -> np.ndarray:
-        """Volume [m³] after continuing for ``duration`` [s] from ``previous_volume`` [m³] (restart).
+        """Volume [m³] after continuing ``duration`` [s] from ``previous_volume`` [m³] (restart).
 
         ``V_prev + V(t_eq + Δt) − V(t_eq)`` with t_eq the equivalent time of ``previous_volume``
         (for a law linear in time, simply ``V_prev + V(Δt)``); where t_eq is infinite the volume
