@@ -408,9 +408,16 @@ def uniform_beam_modes(*, young_modulus: float, second_moment: float, mass_per_l
     else:
         nodes, k, m, free = _beam_fe(length, ei, ra, ends, supports, n_elements)
         kf, mf = k[np.ix_(free, free)], m[np.ix_(free, free)]
-        w2, vec = linalg.eigh(kf, mf, subset_by_index=[0, n_modes - 1])
+        # Inverse form M φ = μ (K + σM) φ, μ = 1/(ω² + σ): the lowest modes are the largest μ,
+        # computed to full relative precision (the direct form loses ~(ω_max/ω_1)²·eps), and
+        # rigid-body modes (free ends) are handled by the shift σ = EI/(ρA L⁴).
+        sigma = ei / (ra * length**4)
+        nf = free.size
+        mu, vec = linalg.eigh(mf, kf + sigma * mf, subset_by_index=[nf - n_modes, nf - 1])
+        mu, vec = mu[::-1], vec[:, ::-1]
+        w2 = 1.0 / mu - sigma
         omega = np.sqrt(np.clip(w2, 0.0, None))
-        omega[w2 < 1e-9 * max(float(np.max(w2)), 1.0)] = 0.0
+        omega[w2 < 1e-4 * sigma] = 0.0  # rigid-body modes (elastic ones are >= 12 σ, clamped-free)
         dofs = np.zeros((2 * nodes.size, n_modes))
         dofs[free] = vec
         grid = _hermite(nodes, dofs, xq)
