@@ -1,0 +1,116 @@
+"""Figures of a service-life wear table (:func:`fretwear.operator.wear_table`).
+
+matplotlib is imported here only, with the Agg backend (no display needed).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def _save(fig, directory: Path, stem: str) -> list[Path]:
+    from fretwear.io.atomic import atomic_path
+
+    out = []
+    for fmt in ("png", "svg"):
+        target = directory / f"{stem}.{fmt}"
+        with atomic_path(target) as tmp:
+            fig.savefig(tmp, format=fmt, dpi=120, bbox_inches="tight")
+        out.append(target)
+    return out
+
+
+def _unit(table: pd.DataFrame) -> str:
+    scale = table.attrs.get("time_scale", 1.0)
+    names = {1.0: "s", 60.0: "min", 3600.0: "h", 86400.0: "day", 604800.0: "week",
+             31536000.0: "year"}
+    return names.get(float(scale), f"× {float(scale):g} s")
+
+
+def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: str = "wear"
+                    ) -> list[Path]:
+    """Write the figures of a wear table as PNG and SVG files.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A wear table with native column names (Code_Aster names are converted).
+    directory : path-like
+        Output directory (created), files written atomically.
+    stem : str
+        File-name prefix.
+
+    Returns
+    -------
+    list of pathlib.Path
+        ``<stem>_history.png/.svg`` (volumes [mm³] and depths [mm] of tube and obstacle against
+        time) and, in sector mode, ``<stem>_sectors.png/.svg`` (sector power [W] and sector
+        depths [mm] at the last instant on polar axes).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> t = pd.DataFrame({"instant": [1.0, 2.0], "volume_mobile": [1e-9, 2e-9],
+    ...                   "volume_obstacle": [0.0, 0.0], "depth_mobile": [1e-4, 1.6e-4],
+    ...                   "depth_obstacle": [0.0, 0.0]})
+    >>> [p.name for p in plot_wear_table(t, tempfile.mkdtemp())]
+    ['wear_history.png', 'wear_history.svg']
+    """
+    from fretwear.operator import from_aster_names
+
+    table = from_aster_names(table)
+    directory = Path(directory)
+    plt = _pyplot()
+    unit = _unit(table)
+    glob = table.drop_duplicates("instant", keep="last").sort_values("instant")
+    fig, (ax_v, ax_d) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
+    t = glob["instant"].to_numpy(dtype=float)
+    ax_v.plot(t, glob["volume_mobile"] * 1e9, "o-", label="tube (mobile)")
+    ax_v.plot(t, glob["volume_obstacle"] * 1e9, "s--", label="obstacle")
+    ax_v.set_ylabel("cumulated worn volume [mm³]")
+    ax_v.legend()
+    ax_v.grid(alpha=0.3)
+    ax_d.plot(t, glob["depth_mobile"] * 1e3, "o-", label="tube (mobile)")
+    ax_d.plot(t, glob["depth_obstacle"] * 1e3, "s--", label="obstacle")
+    ax_d.set_ylabel("worn depth [mm]")
+    ax_d.set_xlabel(f"instant [{unit}]")
+    ax_d.legend()
+    ax_d.grid(alpha=0.3)
+    title = table.attrs.get("title") or "wear table"
+    fig.suptitle(f"{title}: {table.attrs.get('contact_type', '')} "
+                 f"{table.attrs.get('law', '')}".strip())
+    files = _save(fig, directory, f"{stem}_history")
+    plt.close(fig)
+    if "sector" in table.columns and table["sector"].notna().any():
+        last = table[table["instant"] == table["instant"].max()].sort_values("sector")
+        start = np.radians(last["angle_start"].to_numpy(dtype=float))
+        width = np.radians(last["angle_end"].to_numpy(dtype=float)) - start
+        fig, axes = plt.subplots(1, 2, figsize=(11, 5), subplot_kw={"projection": "polar"})
+        axes[0].bar(start, last["sector_power"], width=width, align="edge", alpha=0.7,
+                    edgecolor="k")
+        axes[0].set_title("sector wear power [W]")
+        axes[1].bar(start, last["depth_mobile_sector"] * 1e3, width=width, align="edge",
+                    alpha=0.7, edgecolor="k", label="tube")
+        axes[1].bar(start, last["depth_obstacle_sector"].fillna(0.0) * 1e3, width=width,
+                    align="edge", alpha=0.4, edgecolor="k", label="obstacle")
+        axes[1].set_title(f"sector depth [mm] at instant {last['instant'].iloc[0]:g} {unit}")
+        axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
+        for ax in axes:  # contact angle atan2(dz, dy) in (-180, 180] deg, as the table
+            ax.set_thetagrids(range(0, 360, 45),
+                              [f"{a if a <= 180 else a - 360}°" for a in range(0, 360, 45)])
+        files += _save(fig, directory, f"{stem}_sectors")
+        plt.close(fig)
+    return files

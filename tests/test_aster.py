@@ -1,0 +1,227 @@
+"""Code_Aster compatibility: POST_USURE keywords, catalogue rules, table files (SPEC §1, §7).
+
+The catalogue rules are those of Code_Aster's POST_USURE command (U4.84.05): exactly one of
+PUIS_USURE / RESU_GENE / TUBE_NEUF, exactly one of MOBILE / MATER_USURE / SECTEUR, MATER_USURE
+excludes OBSTACLE, exactly one of INST / LIST_INST, NOEUD excludes GROUP_NO. The fixtures in
+tests/fixtures/aster_tables are written by hand (their README gives every value's computation).
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fretwear import ContactHistory
+from fretwear.aster import POST_USURE, _F
+from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.io.aster import read_aster_table, write_aster_table
+from fretwear.operator import from_aster_names, read_wear_table, wear_table
+
+FIXTURES = Path(__file__).parent / "fixtures" / "aster_tables"
+YEAR = 31_536_000.0
+BASE = dict(LOI_USURE="ARCHARD", CONTACT="TUBE_BAV", RAYON_MOBILE=0.0111, LARGEUR_OBST=0.0127,
+            COEF_INST=YEAR)
+
+
+def call(**changes):
+    kw = dict(BASE, PUIS_USURE=0.012, MOBILE=_F(COEF_USURE=1.2e-13), INST=(1.0, 2.0))
+    kw.update(changes)
+    return POST_USURE(**{k: v for k, v in kw.items() if v is not None})
+
+
+def history():
+    """Constant Fn = 20 N, ‖Vt‖ = 0.05 m/s: P = 1 W (SPEC §2); first 4 intervals at 45°
+    (sector 2 of 2), the last 4 at −135° (sector 1): P_1 = P_2 = 0.5 W (SPEC §3)."""
+    n = 9
+    angle = np.where(np.arange(n) < 4, 45.0, -135.0)
+    return ContactHistory(time=np.linspace(0, 8, n), normal_force=np.full(n, 20.0),
+                          vt1=np.full(n, 0.03), vt2=np.full(n, 0.04),
+                          dy=np.cos(np.radians(angle)) * 1e-4, dz=np.sin(np.radians(angle)) * 1e-4)
+
+
+# --------------------------------------------------------------------------- values
+def test_archard_power_values_and_column_names():
+    t = call()
+    v = 1.2e-13 * 0.012 * YEAR * np.array([1.0, 2.0])  # V = K·P·t, SPEC §4
+    np.testing.assert_allclose(t["V_USUR_TUBE"], v, rtol=1e-15)
+    assert t.columns.tolist() == ["INST", "DUREE", "ORIG_INST", "PUIS_USUR_GLOBAL", "V_USUR_TUBE",
+                                 "V_USUR_OBST", "P_USUR_TUBE"]  # no obstacle depth: no column
+    d = (1 / (2 * 0.0111)) ** (1 / 3) * (3 * v / (4 * 0.0127)) ** (2 / 3)  # SPEC §6 TUBE_BAV
+    np.testing.assert_allclose(t["P_USUR_TUBE"], d, rtol=1e-9)
+    with_obst = call(OBSTACLE=_F(COEF_USURE=1e-14))
+    assert "P_USUR_OBST" in with_obst.columns and (with_obst["P_USUR_OBST"] > 0).all()
+
+
+def test_list_inst_equals_inst_and_scalar_inst():
+    a = call(INST=None, LIST_INST=[1.0, 2.0])
+    pd.testing.assert_frame_equal(a, call())
+    assert call(INST=2.0)["INST"].tolist() == [2.0]
+
+
+def test_resu_gene_sectors_one_row_per_instant_and_sector():
+    t = call(PUIS_USURE=None, RESU_GENE={"N12": history(), "N13": history()}, NOEUD="N12",
+             MOBILE=None, COEF_INST=3600.0, INST=(1.0, 2.0),
+             SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13,
+                         COEF_USUR_OBST=1e-14, CONTACT="TUBE_BAV"),
+                      _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=2e-13)))
+    assert t["SECTEUR"].tolist() == [1, 2, 1, 2]
+    expected = np.array([1e-13, 2e-13]) * 0.5 * 3600.0 * 2.0  # V_j = k_j·P_j·t, SPEC §3
+    np.testing.assert_allclose(t["V_USUR_TUBE_CUMU"].iloc[2:], expected, rtol=1e-12)
+    np.testing.assert_allclose(t["V_USUR_OBST_CUMU"].iloc[2:], [1e-14 * 3600.0, 0.0], rtol=1e-12)
+    assert {"P_USUR_TUBE_SECT", "P_USUR_OBST_SECT", "ANGLE_DEBUT", "ANGLE_FIN"} <= set(t.columns)
+
+
+# --------------------------------------------------------------------------- catalogue rules
+@pytest.mark.parametrize("changes, match", [
+    (dict(PUIS_USURE=None), "exactly one of PUIS_USURE, RESU_GENE, TUBE_NEUF.*got none"),
+    (dict(RESU_GENE="x.csv"), "PUIS_USURE and RESU_GENE"),
+    (dict(TUBE_NEUF="OUI"), "PUIS_USURE and TUBE_NEUF"),
+    (dict(MOBILE=None), "exactly one of MOBILE, MATER_USURE, SECTEUR.*got none"),
+    (dict(MATER_USURE="I600/I600"), "MOBILE and MATER_USURE"),
+    (dict(SECTEUR=_F(ANGL_INIT=-180, ANGL_FIN=180, COEF_USUR_MOBILE=1e-13)),
+     "MOBILE and SECTEUR"),
+    (dict(MOBILE=None, MATER_USURE="I600/I600", OBSTACLE=_F(COEF_USURE=1e-14)),
+     "MATER_USURE excludes OBSTACLE"),
+    (dict(INST=None), "exactly one of INST, LIST_INST.*got none"),
+    (dict(LIST_INST=[3.0]), "INST and LIST_INST"),
+    (dict(USURE_OBST="OUI"), "USURE_OBST goes with MATER_USURE"),
+    (dict(FNOR_MAXI=100.0), "FNOR_MAXI belongs to LOI_USURE='KWU_EPRI'"),
+    (dict(NOEUD="N1"), "NOEUD applies to RESU_GENE"),
+    (dict(NB_BLOC=4), "NB_BLOC applies to RESU_GENE"),
+    (dict(LOI_USURE=None), "LOI_USURE is required"),
+    (dict(CONTACT=None), "CONTACT is required"),
+    (dict(COEF_USRE=1e-13), r"unknown keyword\(s\) \['COEF_USRE'\]"),
+    (dict(MOBILE=_F(COEF_USURE=1e-13, COEF_X=1)), r"unknown keyword\(s\) \['COEF_X'\] in MOBILE"),
+    (dict(MOBILE=_F(COEF_USURE=1e-13, COEF_B=1.0)), "COEF_B.*do not belong to LOI_USURE"),
+    (dict(ETAT_INIT=_F(INST_INIT=1.0)), "ETAT_INIT needs TABL_USURE"),
+    (dict(TABL_USURE="t.tab"), "TABL_USURE goes under TUBE_NEUF"),
+])
+def test_catalogue_rules(changes, match):
+    with pytest.raises(KeywordError, match=match):
+        call(**changes)
+
+
+def test_catalogue_rules_of_resu_gene_and_sectors():
+    with pytest.raises(KeywordError, match="NOEUD excludes GROUP_NO"):
+        call(PUIS_USURE=None, RESU_GENE=history(), NOEUD="N1", GROUP_NO="G1")
+    with pytest.raises(KeywordError, match="'N9' is not in RESU_GENE"):
+        call(PUIS_USURE=None, RESU_GENE={"N1": history()}, NOEUD="N9")
+    with pytest.raises(KeywordError, match="pick one with NOEUD"):
+        call(PUIS_USURE=None, RESU_GENE={"N1": history(), "N2": history()})
+    with pytest.raises(KeywordError, match="SECTEUR belongs to LOI_USURE='ARCHARD'"):
+        call(LOI_USURE="EDF_MZ", MOBILE=None,
+             SECTEUR=_F(ANGL_INIT=-180, ANGL_FIN=180, COEF_USUR_MOBILE=1e-13))
+    with pytest.raises(KeywordError, match=r"SECTEUR\[1\] ANGL_INIT = 10.0 must equal"):
+        call(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None,
+             SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13),
+                      _F(ANGL_INIT=10.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=1e-13)))
+    with pytest.raises(KeywordError, match=r"SECTEUR\[0\] needs COEF_USUR_MOBILE"):
+        call(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None,
+             SECTEUR=_F(ANGL_INIT=-180.0, ANGL_FIN=180.0))
+    with pytest.raises(KeywordError, match="give one CONTACT"):
+        call(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None, CONTACT=None,
+             SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13,
+                         CONTACT="TUBE_BAV"),
+                      _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=1e-13,
+                         CONTACT="TUBE_ALESAGE")))
+
+
+def test_tube_neuf_rules_and_result(tmp_path):
+    with pytest.raises(KeywordError, match="TUBE_NEUF='OUI' needs TABL_USURE"):
+        POST_USURE(TUBE_NEUF="OUI")
+    with pytest.raises(KeywordError, match="TUBE_NEUF accepts only 'OUI'"):
+        POST_USURE(TUBE_NEUF="NON", TABL_USURE=call())
+    old = call(OBSTACLE=_F(COEF_USURE=1e-14))
+    new = POST_USURE(TUBE_NEUF="OUI", TABL_USURE=old, INST=1.0)
+    assert new["INST"].tolist() == [1.0]
+    assert new["V_USUR_TUBE"].iloc[0] == 0.0 and new["P_USUR_TUBE"].iloc[0] == 0.0
+    assert new["V_USUR_OBST"].iloc[0] == old["V_USUR_OBST"].iloc[0]
+    with pytest.warns(UnusedKeywordWarning, match="LOI_USURE"):
+        POST_USURE(TUBE_NEUF="OUI", TABL_USURE=old, LOI_USURE="ARCHARD")
+    # continue with a new tube against the worn obstacle
+    cont = call(ETAT_INIT=_F(TABL_USURE=new), OBSTACLE=_F(COEF_USURE=1e-14), INST=(1.0,))
+    np.testing.assert_allclose(cont["V_USUR_TUBE"].iloc[-1], 1.2e-13 * 0.012 * YEAR, rtol=1e-14)
+    np.testing.assert_allclose(cont["V_USUR_OBST"].iloc[-1], 1e-14 * 0.012 * 2 * YEAR,
+                               rtol=1e-14)
+
+
+# --------------------------------------------------------------------------- table files
+def test_read_hand_written_tableau_fixture():
+    frame = read_aster_table(FIXTURES / "post_usure_tableau.txt")
+    assert frame["V_USUR_TUBE"].tolist() == [4.54118e-08, 9.08237e-08]
+    assert frame["P_USUR_OBST"].isna().all()
+    native = read_wear_table(FIXTURES / "post_usure_tableau.txt")
+    assert {"instant", "volume_mobile", "depth_obstacle"} <= set(native.columns)
+
+
+def test_etat_init_from_code_aster_tableau_file():
+    """New rows: V = V_file(INST=2) + K·P·Δt (SPEC §7), from the file's printed value."""
+    t = call(ETAT_INIT=_F(TABL_USURE=str(FIXTURES / "post_usure_tableau.txt")),
+             INST=(1.0, 3.0))
+    assert t["INST"].tolist() == [1.0, 2.0, 3.0, 5.0]
+    assert t["ORIG_INST"].tolist() == [0.0, 0.0, 2.0, 2.0]
+    np.testing.assert_allclose(t["V_USUR_TUBE"].iloc[2:],
+                               9.08237e-08 + 1.2e-13 * 0.012 * YEAR * np.array([1.0, 3.0]),
+                               rtol=1e-14)
+    t1 = call(ETAT_INIT=_F(TABL_USURE=str(FIXTURES / "post_usure_tableau.txt"), INST_INIT=1.0),
+              INST=(1.0,))
+    assert t1["INST"].tolist() == [1.0, 2.0]
+    np.testing.assert_allclose(t1["V_USUR_TUBE"].iloc[-1],
+                               4.54118e-08 + 1.2e-13 * 0.012 * YEAR, rtol=1e-14)
+
+
+def test_etat_init_from_code_aster_sector_file():
+    """Cumulated sector volumes continue from the ASTER-format file's V_USUR_*_CUMU (SPEC §7)."""
+    path = FIXTURES / "post_usure_secteurs.resu"
+    sect = dict(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None, COEF_INST=3600.0,
+                SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13,
+                            COEF_USUR_OBST=1e-14),
+                         _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=1e-13,
+                            COEF_USUR_OBST=1e-14)))
+    t = call(ETAT_INIT=_F(TABL_USURE=str(path)), INST=(2.0,), **sect)
+    assert t["INST"].tolist() == [1.0, 1.0, 2.0, 2.0, 4.0, 4.0]
+    np.testing.assert_allclose(t["V_USUR_TUBE_CUMU"].iloc[-2:],
+                               np.array([2.88e-12, 5.76e-12]) + 1e-13 * 0.5 * 3600.0 * 2,
+                               rtol=1e-14)
+    np.testing.assert_allclose(t["V_USUR_OBST_CUMU"].iloc[-2:],
+                               np.array([2.88e-13, 5.76e-13]) + 1e-14 * 0.5 * 3600.0 * 2,
+                               rtol=1e-14)
+    from fretwear.errors import InputError
+
+    with pytest.raises(InputError, match="2 sectors and this run has none"):
+        call(ETAT_INIT=_F(TABL_USURE=str(path)))
+    with pytest.raises(InputError, match="2 sectors and this run has 1"):
+        call(ETAT_INIT=_F(TABL_USURE=str(path)), **dict(
+            sect, SECTEUR=_F(ANGL_INIT=-180.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=1e-13)))
+
+
+@pytest.mark.parametrize("fmt", ["TABLEAU", "ASTER"])
+def test_our_tables_round_trip_through_code_aster_files(tmp_path, fmt):
+    ours = call(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None, COEF_INST=3600.0,
+                SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13),
+                         _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=3e-13,
+                            COEF_USUR_OBST=1e-14)))
+    path = write_aster_table(ours, tmp_path / "wear.tab", format=fmt, float_format="%.17E")
+    back = read_aster_table(path)
+    pd.testing.assert_frame_equal(back, ours, check_dtype=False, check_exact=True)
+    # a continuation from the file equals a continuation from the frame
+    a = call(ETAT_INIT=_F(TABL_USURE=str(path)), **dict(
+        PUIS_USURE=None, RESU_GENE=history(), MOBILE=None, COEF_INST=3600.0,
+        SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13),
+                 _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=3e-13,
+                    COEF_USUR_OBST=1e-14))))
+    b = from_aster_names(a)
+    assert b["instant"].tolist() == [1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0]
+    # default Code_Aster precision (%12.5E): values to 5 significant digits
+    short = read_aster_table(write_aster_table(ours, tmp_path / "short.tab", format=fmt))
+    np.testing.assert_allclose(short["V_USUR_TUBE_CUMU"], ours["V_USUR_TUBE_CUMU"], rtol=1e-5)
+
+
+def test_wear_table_accepts_code_aster_file_path(tmp_path):
+    t = wear_table(0.012, contact_type="TUBE_BAV", dimensions={"mobile_radius": 0.0111,
+                                                               "obstacle_width": 0.0127},
+                   coefficients={"COEF_USURE": 1.2e-13}, instants=[1.0], time_scale=YEAR,
+                   initial_state=FIXTURES / "post_usure_tableau.txt")
+    np.testing.assert_allclose(t["volume_mobile"].iloc[-1], 9.08237e-08 + 1.2e-13 * 0.012 * YEAR,
+                               rtol=1e-14)

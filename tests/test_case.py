@@ -1,0 +1,130 @@
+"""TOML case files: keys, validation, typo errors, run_case (docs/case_files.md).
+
+Expected values: Archard V = K·P·t (SPEC §4) with the time units of fretwear.case.TIME_UNITS
+(a year is 365 days = 31 536 000 s, Code_Aster users' COEF_INST); chunked power equals the
+one-shot wear_power (the trapezoid reduction is exact over chunks sharing a sample, SPEC §2).
+"""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fretwear import ContactHistory
+from fretwear.case import KEYS, chunked_power, keys_help, load_case, run_case, validate_case
+from fretwear.errors import InputError, KeywordError
+
+POWER_CASE = {
+    "power": {"value_W": 0.01},
+    "law": {"name": "ARCHARD", "mobile": {"COEF_USURE": 1e-14}},
+    "geometry": {"contact_type": "TUBE_BAV", "mobile_radius_m": 0.0111,
+                 "obstacle_width_m": 0.0127},
+    "time": {"instants": [1, 2], "unit": "year"},
+}
+
+
+def write(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "case.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_power_case_archard_values():
+    r = run_case(POWER_CASE)
+    np.testing.assert_allclose(r.table["volume_mobile"], 1e-14 * 0.01 * 31536000 * np.array([1, 2]),
+                               rtol=1e-15)
+    assert r.total_power == 0.01 and r.warnings == []
+
+
+def test_typo_in_key_is_named_with_suggestion(tmp_path):
+    path = write(tmp_path, '[geometry]\ncontact_type = "TUBE_BAV"\nmobile_radus_m = 0.01\n')
+    with pytest.raises(KeywordError, match=r"unknown key \[geometry\] mobile_radus_m "
+                                           r"\(did you mean 'mobile_radius_m'\?\)"):
+        load_case(path)
+    with pytest.raises(KeywordError, match=r"unknown section \[geometri\].*'geometry'"):
+        validate_case({"geometri": {}})
+    with pytest.raises(KeywordError, match="unknown key titel"):
+        validate_case({"titel": "x"})
+
+
+def test_wrong_types_and_foreign_sections():
+    with pytest.raises(KeywordError, match=r"\[time\] instants = 3 has the wrong type"):
+        validate_case({"time": {"instants": 3}})
+    with pytest.raises(KeywordError, match=r"\[law\] obstacle_wear = 'yes' has the wrong type"):
+        validate_case({"law": {"obstacle_wear": "yes"}})
+    with pytest.raises(KeywordError, match=r"\[sectors\] count = True"):
+        validate_case({"sectors": {"count": True}})
+    case = validate_case({"obstacle": {"anything": 1}, "dynamics": {"x": [1]}})
+    assert case["obstacle"] == {"anything": 1}  # left to other commands
+
+
+def test_case_consistency_errors():
+    with pytest.raises(KeywordError, match="exactly one of \\[history\\] file"):
+        run_case({**POWER_CASE, "history": {"file": "h.csv"}})
+    with pytest.raises(KeywordError, match="unit or seconds_per_unit, not both"):
+        run_case({**POWER_CASE, "time": {"instants": [1], "unit": "h", "seconds_per_unit": 3}})
+    with pytest.raises(KeywordError, match="'fortnight' is not one of"):
+        run_case({**POWER_CASE, "time": {"instants": [1], "unit": "fortnight"}})
+    with pytest.raises(KeywordError, match="contact_type is required"):
+        run_case({**POWER_CASE, "geometry": {"mobile_radius_m": 0.01}})
+    with pytest.raises(InputError, match="does not exist"):
+        load_case("/nonexistent/case.toml")
+
+
+def test_invalid_toml_is_an_input_error(tmp_path):
+    with pytest.raises(InputError, match="not valid TOML"):
+        load_case(write(tmp_path, "[time\ninstants = [1]\n"))
+
+
+def test_seconds_per_unit_and_restart_file(tmp_path):
+    first = run_case({**POWER_CASE, "time": {"instants": [1.0], "seconds_per_unit": 3600.0}})
+    first.table.to_csv(tmp_path / "first.csv", index=False)
+    path = write(tmp_path, """
+[power]
+value_W = 0.01
+[law]
+mobile = { coefficient = 1e-14 }
+[geometry]
+contact_type = "TUBE_BAV"
+mobile_radius_m = 0.0111
+obstacle_width_m = 0.0127
+[time]
+instants = [2.0]
+seconds_per_unit = 3600.0
+[restart]
+table = "first.csv"
+""")
+    r = run_case(path)
+    assert r.table["instant"].tolist() == [1.0, 3.0]
+    np.testing.assert_allclose(r.table["volume_mobile"].iloc[-1], 1e-14 * 0.01 * 3 * 3600.0,
+                               rtol=1e-14)
+
+
+def test_every_key_is_documented():
+    text = keys_help()
+    doc = (Path(__file__).parents[1] / "docs" / "case_files.md").read_text(encoding="utf-8")
+    for section, keys in KEYS.items():
+        for key in keys:
+            assert key in text
+            assert f"`{key}`" in doc, f"docs/case_files.md does not document [{section}] {key}"
+
+
+def test_chunked_power_equals_one_shot():
+    """Chunks sharing a sample give the same trapezoid sums as one pass (SPEC §2)."""
+    from fretwear.power import wear_power
+
+    rng = np.random.default_rng(3)
+    n = 1001
+    t = np.linspace(0.0, 1.0, n)
+    fn = np.maximum(rng.normal(size=n), 0.0)
+    angle = rng.uniform(-np.pi, np.pi, n)
+    h = ContactHistory(time=t, normal_force=fn, vt1=rng.normal(size=n), vt2=rng.normal(size=n),
+                       dy=np.cos(angle), dz=np.sin(angle))
+    args = {"t_start": 0.1234, "t_end": 0.9, "blocks": 3, "sectors": 4,
+            "stationarity_threshold": 1.0}
+    calls = []
+    chunked = chunked_power(h, args, lambda *a: calls.append(a), chunk_samples=97)
+    whole = wear_power(h, **args)
+    assert len(calls) > 5 and calls[-1][1] == calls[-1][2]
+    np.testing.assert_allclose(chunked.blocks, whole.blocks, rtol=1e-12)
+    np.testing.assert_allclose(chunked.sectors, whole.sectors, rtol=1e-12, atol=1e-15)
