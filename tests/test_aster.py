@@ -225,3 +225,21 @@ def test_wear_table_accepts_code_aster_file_path(tmp_path):
                    initial_state=FIXTURES / "post_usure_tableau.txt")
     np.testing.assert_allclose(t["volume_mobile"].iloc[-1], 9.08237e-08 + 1.2e-13 * 0.012 * YEAR,
                                rtol=1e-14)
+
+
+def test_mater_usure_and_usure_obst_from_the_database():
+    """Seed §3: GRAPPE_ALESAGE A304L/A304L Archard 2.6e-15 (rod) and 3.7e-15 (guide)."""
+    kw = dict(CONTACT="GRAPPE_ALESAGE", RAYON_MOBILE=4.84e-3, RAYON_OBST=5.25e-3,
+              LARGEUR_OBST=0.02, COEF_INST=3600.0, MOBILE=None)
+    t = call(MATER_USURE="A304L/A304L", USURE_OBST="OUI", **kw)
+    np.testing.assert_allclose(t["V_USUR_TUBE"], 2.6e-15 * 0.012 * 3600.0 * np.array([1, 2]),
+                               rtol=1e-15)
+    np.testing.assert_allclose(t["V_USUR_OBST"], 3.7e-15 * 0.012 * 3600.0 * np.array([1, 2]),
+                               rtol=1e-15)
+    assert "P_USUR_OBST" in t.columns
+    t2 = call(MATER_USURE=("A304L", "A304L"), **kw)
+    assert "P_USUR_OBST" not in t2.columns and t2["V_USUR_OBST"].eq(0.0).all()
+    with pytest.raises(KeywordError, match="USURE_OBST accepts only 'OUI'"):
+        call(MATER_USURE="A304L/A304L", USURE_OBST="NON", **kw)
+    with pytest.raises(KeywordError, match="MATER_USURE must name the mobile and obstacle"):
+        call(MATER_USURE="A304L", **kw)

@@ -248,3 +248,44 @@ def test_sector_restart_chain_equals_long_run_and_count_must_match():
         sector_table([1.0], initial_state=first, sectors=2, sector_coefficients=[(1e-13, None)])
     with pytest.raises(InputError, match="4 sectors and this run has none"):
         archard_table([1.0], initial_state=first)
+
+
+# --------------------------------------------------------------------------- database
+def test_database_pair_coefficients():
+    """Seed §3 tables: TUBE_BAV I600TT/Z6C13 Archard 9.2e-15 (no obstacle value);
+    GRAPPE_ALESAGE A304L/A304L Archard 2.6e-15 / 3.7e-15."""
+    pytest.importorskip("fretwear.database")
+    from fretwear.errors import DatabaseError
+
+    t = wear_table(P, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0], time_scale=YEAR,
+                   materials=("I600TT", "Z6C13"))
+    np.testing.assert_allclose(t["volume_mobile"], 9.2e-15 * P * YEAR, rtol=1e-15)
+    assert t["volume_obstacle"].eq(0.0).all()
+    with pytest.raises(DatabaseError):
+        wear_table(P, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0],
+                   materials=("I600TT", "Z6C13"), obstacle_wear=True)
+    g = {"mobile_radius": 4.84e-3, "obstacle_radius": 5.25e-3, "obstacle_width": 0.02}
+    t = wear_table(P, contact_type="GRAPPE_ALESAGE", dimensions=g, instants=[1.0, 2.0],
+                   time_scale=3600.0, materials=("A304L", "A304L"), obstacle_wear=True)
+    np.testing.assert_allclose(t["volume_mobile"], 2.6e-15 * P * 3600.0 * np.array([1, 2]),
+                               rtol=1e-15)
+    np.testing.assert_allclose(t["volume_obstacle"], 3.7e-15 * P * 3600.0 * np.array([1, 2]),
+                               rtol=1e-15)
+    with pytest.raises(KeywordError, match="excludes obstacle_coefficients"):
+        wear_table(P, contact_type="GRAPPE_ALESAGE", dimensions=g, instants=[1.0],
+                   materials=("A304L", "A304L"), obstacle_coefficients={"coefficient": 1e-15})
+
+
+def test_kwu_epri_uses_history_intensity():
+    """K = k_r·w/w_r (SPEC §4) with w from kwu_epri_statistics of the same history."""
+    pytest.importorskip("fretwear.power")
+    from fretwear.laws import kwu_epri_statistics
+
+    h = sector_history()
+    t = wear_table(h, contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0], law="KWU_EPRI",
+                   coefficients={"COEF_USURE": 1e-13, "reference_intensity": 2.0},
+                   time_scale=3600.0)
+    w = kwu_epri_statistics(h).intensity
+    assert w > 0
+    np.testing.assert_allclose(t["volume_mobile"], 1e-13 * w / 2.0 * 1.0 * 3600.0, rtol=1e-12)
+    assert t.attrs["coefficients_mobile"]["intensity"] == pytest.approx(w)

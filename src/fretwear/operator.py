@@ -642,7 +642,7 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
                                "(OBSTACLE): ask for obstacle_wear (USURE_OBST) instead")
         if len(materials) != 2:
             raise InputError(f"materials must be a (mobile, obstacle) pair, got {materials!r}")
-        given_m, found_o = _database(contact_type, materials, law.name)
+        given_m, found_o = _database(contact_type, materials, law.name, obstacle_wear)
         if obstacle_wear:
             if not found_o:
                 raise KeywordError(
@@ -673,11 +673,12 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
     return mobile, obstacle
 
 
-def _database(contact_type, materials, law_name) -> tuple[dict, dict | None]:
+def _database(contact_type, materials, law_name, obstacle_wear) -> tuple[dict, dict | None]:
     """(mobile, obstacle) coefficient dicts of a database pair (SPEC §5)."""
     from fretwear.database import lookup
 
-    found = lookup(contact_type, materials[0], materials[1], law_name)
+    found = lookup(contact_type, materials[0], materials[1], law_name,
+                   obstacle=bool(obstacle_wear))
     mobile = getattr(found, "mobile", None)
     obstacle = getattr(found, "obstacle", None)
     if mobile is None and isinstance(found, Mapping):
