@@ -67,9 +67,8 @@ def scan(path: Path, *, delimiter: str | None = None, decimal: str | None = None
                           "right file?")
     sep = delimiter
     if sep is None:
-        for cand in _CANDIDATES:
-            counts = {ln.count(cand) for ln in sample}
-            if len(counts) == 1 and counts.pop() > 0:
+        for cand in _CANDIDATES:  # the first separator found on every line (ragged rows are
+            if all(ln.count(cand) > 0 for ln in sample):  # then reported by the parser)
                 sep = cand
                 break
     if sep is not None and sep.isspace() and sep != "\t":
@@ -111,8 +110,9 @@ def _stored_metadata(comments: list[str]) -> tuple[str | None, dict]:
 
 
 def _read_kwargs(info: dict, positions: list[int]) -> dict:
+    # every column is parsed (no usecols): pandas would silently drop the extra cells of a
+    # ragged row otherwise
     return dict(sep=r"\s+" if info["sep"] is None else info["sep"], header=None,
-                names=list(range(len(info["names"]))), usecols=positions,
                 skiprows=info["skip"] + (1 if info["header"] else 0),
                 comment=info["comment"] or None, decimal=info["decimal"], dtype=float,
                 encoding=info["encoding"], skip_blank_lines=True, engine="c")
@@ -184,8 +184,8 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
             frame = pd.read_csv(path, **_read_kwargs(info, positions))
         except ValueError as exc:
             if isinstance(exc, pd.errors.ParserError):
-                raise FormatError(f"{path}: {exc}; every row must have the same number of "
-                                  "cells as the header") from None
+                raise FormatError(f"{path}: {str(exc).strip()}; every row must have the same "
+                                  "number of cells as the header") from None
             raise _diagnose(path, info, positions) from None
         return [frame[pos].to_numpy(dtype=float) for pos in positions]
 
@@ -196,7 +196,7 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
                     yield [frame[pos].to_numpy(dtype=float) for pos in positions]
         except ValueError as exc:
             if isinstance(exc, pd.errors.ParserError):
-                raise FormatError(f"{path}: {exc}") from None
+                raise FormatError(f"{path}: {str(exc).strip()}") from None
             raise _diagnose(path, info, positions) from None
 
     hint = ("" if info["header"] else "; the file has no header line: name the columns by "

@@ -1,0 +1,96 @@
+"""``iter_history_chunks``: chunks equal the one-shot read, overlap by one sample, and a trapezoid
+reduction over the chunks equals the one-shot reduction (the contract the streaming power uses).
+
+Reference: the one-shot ``read_history`` of the same file, and an independent trapezoid sum
+``Σ ½(Fn_i‖Vt_i‖ + Fn_{i+1}‖Vt_{i+1}‖)(t_{i+1} − t_i)`` written here.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from iohelpers import FIXTURES, analytic_history, assert_same_history
+
+from fretwear.errors import HistoryError, KeywordError
+from fretwear.history import CHANNELS
+from fretwear.io import iter_history_chunks, read_history, write_history
+
+SUFFIX = {"csv": ".csv", "parquet": ".parquet", "hdf5": ".h5", "netcdf": ".nc", "npz": ".npz",
+          "aster": ".resu"}
+
+
+def work(time, fn, vt1, vt2) -> float:
+    """Trapezoid integral of Fn·‖Vt‖ [J], written independently of fretwear.power."""
+    p = fn * np.hypot(vt1, vt2)
+    return float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(time)))
+
+
+def stitched(chunks, channel):
+    parts = [getattr(c, channel) for c in chunks]
+    return np.concatenate([parts[0]] + [p[1:] for p in parts[1:]])
+
+
+@pytest.mark.parametrize("fmt", sorted(SUFFIX))
+@pytest.mark.parametrize("size", [2, 7, 64, 201, 500])
+def test_chunks_equal_the_full_read(tmp_path, fmt, size):
+    h = analytic_history(n=201)
+    options = {"row_group_size": 16} if fmt == "parquet" else {}  # batches cross row groups
+    path = write_history(h, tmp_path / f"h{SUFFIX[fmt]}", **options)
+    full = read_history(path)
+    chunks = list(iter_history_chunks(path, chunk_size=size))
+    n = len(full)
+    assert len(chunks) == max(1, math.ceil((n - 1) / (size - 1)))
+    assert all(2 <= len(c) <= size for c in chunks)
+    for a, b in zip(chunks[:-1], chunks[1:], strict=True):  # one shared sample
+        for ch in full.channels:
+            assert getattr(a, ch)[-1] == getattr(b, ch)[0]
+    for k, c in enumerate(chunks):
+        assert c.metadata["chunk"] == k and c.metadata["first_row"] == k * (size - 1)
+        assert c.name == full.name
+    for ch in CHANNELS:
+        if getattr(full, ch) is not None:
+            np.testing.assert_array_equal(stitched(chunks, ch), getattr(full, ch), err_msg=ch)
+    one_shot = work(full.time, full.normal_force, full.vt1, full.vt2)
+    summed = math.fsum(work(c.time, c.normal_force, c.vt1, c.vt2) for c in chunks)
+    assert summed == pytest.approx(one_shot, rel=1e-13)
+
+
+def test_chunks_apply_aliases_and_units(tmp_path):
+    path = tmp_path / "mm.txt"
+    rows = "".join(f"{i} {i % 3} {2 * i} 0\n" for i in range(10))
+    path.write_text("INST FN VT1 VT2\n" + rows)
+    chunks = list(iter_history_chunks(path, chunk_size=4, units={"time": "ms", "force": "kN",
+                                                                 "velocity": "mm/s"}))
+    assert [len(c) for c in chunks] == [4, 4, 4]
+    full = read_history(path, units={"time": "ms", "force": "kN", "velocity": "mm/s"})
+    np.testing.assert_array_equal(stitched(chunks, "time"), full.time)
+    np.testing.assert_array_equal(stitched(chunks, "normal_force"), np.arange(10) % 3 * 1e3)
+    assert chunks[1].metadata["units"]["vt1"] == "mm/s"
+
+
+def test_chunks_of_a_code_aster_table():
+    full = read_history(FIXTURES / "impr_table_tableau.txt")
+    chunks = list(iter_history_chunks(FIXTURES / "impr_table_tableau.txt", chunk_size=3))
+    assert [c.time.tolist() for c in chunks] == [[0.0, 1e-3, 2e-3], [2e-3, 3e-3, 4e-3]]
+    assert_same_history(full.window(2e-3, 4e-3), chunks[1])
+
+
+def test_error_in_a_later_chunk_names_the_file_row(tmp_path):
+    path = tmp_path / "bad.csv"
+    times = [0, 1, 2, 3, 4, 5, 5, 7]  # repeated instant at data row 6
+    path.write_text("t,fn,vt1,vt2\n" + "".join(f"{t},1,1,0\n" for t in times))
+    chunks = iter_history_chunks(path, chunk_size=4)
+    first = next(chunks)
+    assert first.time.tolist() == [0.0, 1.0, 2.0, 3.0]
+    with pytest.raises(HistoryError, match=r"not strictly increasing at row 3 .*chunk starting "
+                                           r"at data row 3"):
+        next(chunks)
+
+
+@pytest.mark.parametrize("bad", [1, 0, -5, 2.5, "10", True])
+def test_chunk_size_must_be_an_integer_of_at_least_two(tmp_path, bad):
+    path = write_history(analytic_history(n=5), tmp_path / "h.csv")
+    with pytest.raises(KeywordError, match="chunk_size=.*integer >= 2"):
+        next(iter_history_chunks(path, chunk_size=bad))
