@@ -9,7 +9,6 @@ are in :mod:`fretwear.geometry.sectors`. The derivations are in ``docs/geometry.
 
 from __future__ import annotations
 
-import importlib
 import warnings
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
@@ -19,7 +18,9 @@ from fretwear.geometry.base import (
     DIMENSION_UNITS,
     ContactGeometry,
 )
+from fretwear.geometry.enco import Tube3Enco, Tube4Enco
 from fretwear.geometry.grappe_alesage import GrappeAlesage
+from fretwear.geometry.grappe_notch import Grappe1Enco, Grappe2Enco
 from fretwear.geometry.sectors import (
     sector_depth_mobile,
     sector_depth_obstacle,
@@ -47,19 +48,11 @@ CONTACT_TYPES: dict[str, type[ContactGeometry]] = {
     "TUBE_ALESAGE": TubeAlesage,
     "TUBE_TUBE": TubeTube,
     "GRAPPE_ALESAGE": GrappeAlesage,
+    "TUBE_3_ENCO": Tube3Enco,
+    "TUBE_4_ENCO": Tube4Enco,
+    "GRAPPE_1_ENCO": Grappe1Enco,
+    "GRAPPE_2_ENCO": Grappe2Enco,
 }
-
-# The broached-hole and notch types (issue 4, second half) are written in parallel: their
-# classes are registered by their ``contact_type`` once the modules exist.
-for _module_name in ("fretwear.geometry.enco", "fretwear.geometry.grappe_notch"):
-    try:
-        _module = importlib.import_module(_module_name)
-    except ImportError:  # pragma: no cover - until the module lands
-        continue
-    for _item in vars(_module).values():
-        if (isinstance(_item, type) and issubclass(_item, ContactGeometry)
-                and _item.__module__ == _module_name and _item.contact_type):
-            CONTACT_TYPES[_item.contact_type] = _item
 
 _FROM_ASTER = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
 
@@ -122,11 +115,11 @@ def contact_geometry(contact_type: str, **dimensions) -> ContactGeometry:
             continue
         given[native] = value
     used = set(cls.required) | set(cls.optional)
+    uses = ", ".join(f"{n} ({ASTER_KEYWORDS[n]})" for n in cls.required + cls.optional)
     for name in list(given):
         if name not in used:
             warnings.warn(
-                f"{key} does not use {name} ({ASTER_KEYWORDS[name]}): ignored "
-                f"(it uses {', '.join(f'{n} ({ASTER_KEYWORDS[n]})' for n in cls.required + cls.optional)})",
+                f"{key} does not use {name} ({ASTER_KEYWORDS[name]}): ignored (it uses {uses})",
                 UnusedKeywordWarning, stacklevel=2)
             del given[name]
     missing = [name for name in cls.required if name not in given]

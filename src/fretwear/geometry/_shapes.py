@@ -118,7 +118,8 @@ def sagitta(radius, half_chord):
 
     Notes
     -----
-    .. math:: s(\\rho, x) = \\rho - \\sqrt{\\rho^2 - x^2} = \\frac{x^2}{\\rho + \\sqrt{\\rho^2 - x^2}}
+    .. math:: s(\\rho, x) = \\rho - \\sqrt{\\rho^2 - x^2}
+              = \\frac{x^2}{\\rho + \\sqrt{\\rho^2 - x^2}}
 
     The second form is used (no cancellation for x ≪ ρ).
 

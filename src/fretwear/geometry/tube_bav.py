@@ -214,5 +214,5 @@ class TubeBav(ContactGeometry):
                                   self.obstacle_width, self.angle("tilt_angle")) / cos_impact
         with np.errstate(invalid="ignore", divide="ignore"):
             volume_mobile = np.where(depth > 0.0, total * depth_mobile / depth, 0.0)
-        volume_obstacle = np.maximum(total - volume_mobile, 0.0)
+            volume_obstacle = np.where(depth > 0.0, total * depth_obstacle / depth, 0.0)
         return (np.where(valid, volume_mobile, np.nan), np.where(valid, volume_obstacle, np.nan))

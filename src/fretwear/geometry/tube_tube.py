@@ -36,9 +36,10 @@ class TubeTube(ContactGeometry):
 
     Notes
     -----
-    .. math:: d_m = \\left(\\frac{1}{2R_m}\\right)^{1/5}\\left(\\frac{15\\,\\theta V_m}{8}\\right)^{2/5},
-              \\qquad
-              d_o = \\left(\\frac{1}{2R_o}\\right)^{1/5}\\left(\\frac{15\\,\\theta V_o}{8}\\right)^{2/5}
+    .. math:: d_m = \\left(\\frac{1}{2R_m}\\right)^{1/5}
+              \\left(\\frac{15\\,\\theta V_m}{8}\\right)^{2/5},\\qquad
+              d_o = \\left(\\frac{1}{2R_o}\\right)^{1/5}
+              \\left(\\frac{15\\,\\theta V_o}{8}\\right)^{2/5}
 
     (the seed writes d_t for d_m). Range: d_m ≤ R_m and d_o ≤ R_o (the flat reaches the axis).
 

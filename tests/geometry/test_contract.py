@@ -1,0 +1,138 @@
+"""The geometry contract (docs/DESIGN.md "Geometry"), checked on every entry of CONTACT_TYPES.
+
+Sources: the contract itself (SPEC §6 last paragraph: monotone relations inverted by a
+bracketed solver, NaN and a warning naming the type beyond the range, an error naming a missing
+keyword, a warning for an unused one) and the identity depth -> volume -> depth.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import warnings
+
+import numpy as np
+import pytest
+
+from fretwear.errors import InputError, KeywordError, RangeWarning, UnusedKeywordWarning
+from fretwear.geometry import ASTER_KEYWORDS, CONTACT_TYPES, contact_geometry
+
+NAMES = sorted(CONTACT_TYPES)
+
+
+def build(name, **changes):
+    dims = {**CONTACT_TYPES[name].example, **changes}
+    return contact_geometry(name, **{k: v for k, v in dims.items() if v is not None})
+
+
+def test_all_eight_types_are_registered():
+    assert set(CONTACT_TYPES) == {
+        "TUBE_BAV", "TUBE_ALESAGE", "TUBE_3_ENCO", "TUBE_4_ENCO", "TUBE_TUBE",
+        "GRAPPE_ALESAGE", "GRAPPE_1_ENCO", "GRAPPE_2_ENCO"}
+    for name, cls in CONTACT_TYPES.items():
+        assert cls.contact_type == name
+        assert set(cls.example) <= set(cls.required) | set(cls.optional)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_monotone_and_zero(name):
+    geometry = build(name)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        volume = geometry.max_volume * np.linspace(0.0, 0.999, 300)
+        depth = geometry.depth_from_volume(volume)[0]
+        assert depth[0] == 0.0 and np.all(np.diff(depth) > 0.0)
+        assert geometry.depth_from_volume(0.0, 0.0) == (0.0, 0.0)
+        assert geometry.volume_from_depth(0.0, 0.0) == (0.0, 0.0)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_round_trip_mobile_only_and_with_obstacle(name):
+    geometry = build(name)
+    depth = np.geomspace(1e-9 * geometry.max_depth, 0.95 * geometry.max_depth, 40)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        vm, vo = geometry.volume_from_depth(depth)
+        assert not np.any(vo)
+        back = geometry.depth_from_volume(vm, vo)[0]
+        assert np.all(np.abs(back - depth) <= 1e-10 * depth)
+        # obstacle wear: a volume split (a depth split may be infeasible, e.g. for the
+        # broached holes, where V_o = κπ·l·R_o·d_o grows faster than the lens at small depth)
+        vm = geometry.max_volume * np.geomspace(1e-9, 0.5, 30)
+        vo = 0.2 * vm
+        dm, do = geometry.depth_from_volume(vm, vo)
+        assert np.all(do > 0.0) and np.all(dm > 0.0)
+        vm2, vo2 = geometry.volume_from_depth(dm, do)
+        assert np.allclose(vm2, vm, rtol=1e-10, atol=0) and np.allclose(vo2, vo, rtol=1e-10, atol=0)
+        dm2, do2 = geometry.depth_from_volume(vm2, vo2)
+        assert np.all(np.abs(dm2 - dm) <= 1e-10 * (dm + do))
+        assert np.all(np.abs(do2 - do) <= 1e-10 * (dm + do))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_beyond_range_is_nan_with_warning(name):
+    geometry = build(name)
+    with pytest.warns(RangeWarning, match=name):
+        dm, do = geometry.depth_from_volume([0.5 * geometry.max_volume, 1.5 * geometry.max_volume])
+    assert np.isfinite(dm[0]) and np.isnan(dm[1])  # (d_o may stay valid when independent)
+    with pytest.warns(RangeWarning, match=name):
+        vm, _ = geometry.volume_from_depth([0.5 * geometry.max_depth, 1.5 * geometry.max_depth])
+    assert np.isfinite(vm[0]) and np.isnan(vm[1])
+    assert name in geometry.range_limit or geometry.range_limit  # a sentence naming the limit
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_missing_and_unused_dimensions(name):
+    cls = CONTACT_TYPES[name]
+    for missing in cls.required:
+        dims = {k: v for k, v in cls.example.items() if k != missing}
+        with pytest.raises(KeywordError, match=rf"{missing} \({ASTER_KEYWORDS[missing]}"):
+            contact_geometry(name, **dims)
+    unused = [k for k in ASTER_KEYWORDS if k not in cls.required + cls.optional]
+    for extra in unused:
+        value = 10.0 if extra.endswith("angle") else 0.01
+        with pytest.warns(UnusedKeywordWarning, match=ASTER_KEYWORDS[extra]):
+            geometry = contact_geometry(name, **cls.example, **{extra: value})
+        assert geometry == contact_geometry(name, **cls.example)
+    with pytest.raises(KeywordError, match="not a contact dimension"):
+        contact_geometry(name, **cls.example, wall_thickness=1e-3)
+    with pytest.raises(KeywordError, match="unknown contact type"):
+        contact_geometry(name + "_X", **cls.example)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_bad_inputs_and_keywords(name):
+    cls = CONTACT_TYPES[name]
+    length = next(k for k in cls.required if not k.endswith("angle"))
+    for bad in (-1e-3, 0.0, float("nan")):
+        with pytest.raises(InputError, match=ASTER_KEYWORDS[length]):
+            contact_geometry(name, **{**cls.example, length: bad})
+    geometry = build(name)
+    with pytest.raises(InputError, match="volume_mobile"):
+        geometry.depth_from_volume([1e-12, -1e-12])
+    with pytest.raises(InputError, match="depth_obstacle"):
+        geometry.volume_from_depth(1e-6, float("inf"))
+    aster = {ASTER_KEYWORDS[k]: v for k, v in cls.example.items()}
+    assert contact_geometry(name.lower(), **aster) == geometry
+    json.dumps(geometry.to_dict())
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        geometry.mobile_radius = 1.0  # type: ignore[misc]
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_vectorised_and_inputs_untouched(name):
+    geometry = build(name)
+    vm = geometry.max_volume * np.array([[0.1, 0.2, 0.3], [0.0, 0.05, 0.4]])
+    vo = 0.1 * vm
+    vm_copy, vo_copy = vm.copy(), vo.copy()
+    dm, do = geometry.depth_from_volume(vm, vo)
+    assert dm.shape == vm.shape and do.shape == vm.shape
+    assert np.array_equal(vm, vm_copy) and np.array_equal(vo, vo_copy)
+    for i in range(vm.shape[0]):
+        for j in range(vm.shape[1]):
+            single = geometry.depth_from_volume(float(vm[i, j]), float(vo[i, j]))
+            assert single[0] == pytest.approx(dm[i, j], rel=1e-12, abs=0)
+    dm_copy = dm.copy()
+    volumes = geometry.volume_from_depth(dm, do)
+    assert np.array_equal(dm, dm_copy) and volumes[0].shape == vm.shape
+    assert isinstance(geometry.depth_from_volume(1e-12)[0], float)
