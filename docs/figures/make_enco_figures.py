@@ -47,7 +47,6 @@ def _lobed_hole(ax, lobes: int, r_land: float, half_opening_deg: float, alpha_de
         # next lobe: leading flank, outer arc, trailing flank
         e1, e2 = nxt - beta, nxt + beta
         a = math.radians(alpha_deg)
-        out = r_land + depth_lobe
         # flank from edge e1 leaning towards the lobe centre (angle increases towards nxt)
         f1 = (r_land * math.cos(e1) + depth_lobe * math.cos(e1 + a),
               r_land * math.sin(e1) + depth_lobe * math.sin(e1 + a))
@@ -61,7 +60,6 @@ def _lobed_hole(ax, lobes: int, r_land: float, half_opening_deg: float, alpha_de
         phi = np.linspace(t1, t2, 40)
         points += list(zip(rad * np.cos(phi), rad * np.sin(phi), strict=True))
         points.append(f2)
-        del out
     xs, ys = zip(*points, strict=True)
     ax.fill(xs + (xs[0],), ys + (ys[0],), color="white", zorder=0)
     ax.plot(xs + (xs[0],), ys + (ys[0],), color="0.3", lw=1.0)
