@@ -13,7 +13,7 @@ the translated mobile touches the obstacle:
 which is exact for two polygons (first contact is vertex-on-edge). Each ray is intersected only
 with the edges in the angular window it sweeps between a lower bound (it cannot meet the
 obstacle inside the disk of radius min r_O; it cannot meet the mobile outside max r_m) and the
-best contact found so far, candidates being visited by increasing lower bound: the search is
+best contact found so far, the likeliest candidate first: the search is
 exact, not a small-wear sum, and costs a few edge tests per candidate vertex.
 
 The only approximation is the polygon: its chords lie within R(1 − cos(h/2)) ≈ R·h²/8 of a
@@ -155,11 +155,14 @@ def _forward(mx, my, oang, ox, oy, r_in, r_out, ux, uy):
         lb[i] = max(-b + math.sqrt(max(d_in, 0.0)), 0.0)
         d_out = b * b - (p2 - r_out * r_out)
         hi[i] = -b + math.sqrt(max(d_out, 0.0))
-    order = np.argsort(lb)
     best = np.inf
-    for i in order:
-        if lb[i] >= best:
-            break
+    i0 = np.argmin(lb)  # the likeliest contact first: its hit bounds every later window
+    s = _first_hit(oang, ox, oy, mx[i0], my[i0], ux, uy, lb[i0], hi[i0] * (1.0 + 1e-9) + 1e-15)
+    if s < best:
+        best = s
+    for i in range(n):
+        if lb[i] >= best or i == i0:
+            continue
         s_hi = min(best, hi[i] * (1.0 + 1e-9) + 1e-15)
         s = _first_hit(oang, ox, oy, mx[i], my[i], ux, uy, lb[i], s_hi)
         if s < best:
@@ -189,10 +192,9 @@ def _backward(qx, qy, mang, mx, my, r_in, r_out, ux, uy, best):
             hi[i] = -b - math.sqrt(d_in)
         else:
             hi[i] = -b + math.sqrt(d_out)
-    order = np.argsort(lb)
-    for i in order:
+    for i in range(n):
         if lb[i] >= best:
-            break
+            continue
         s_hi = min(best, hi[i] * (1.0 + 1e-9) + 1e-15)
         s = _first_hit(mang, mx, my, qx[i], qy[i], wx, wy, lb[i], s_hi)
         if s < best:

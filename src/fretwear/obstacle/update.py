@@ -394,14 +394,12 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
     def worn_obstacle(a, side):
         return obstacle.radius(a) + depth.obstacle(a, side)
 
-    ob_breaks = np.concatenate([np.asarray(breaks, float), np.asarray(nodes, float)])
-    initial = clearance_figure(angle, polar_polygon(new_mobile, nodes, resolution),
-                               polar_polygon(new_obstacle, nodes, resolution))
-    if not (depth.volume_mobile.any() or depth.volume_obstacle.any()):
-        worn = initial.copy()
-    else:
-        worn = clearance_figure(angle, polar_polygon(worn_mobile, ob_breaks, resolution),
-                                polar_polygon(worn_obstacle, ob_breaks, resolution))
+    # the same vertex angles for the new and the worn polygons: zero wear gives the same figure
+    cuts = np.concatenate([np.asarray(breaks, float), np.asarray(nodes, float)])
+    initial = clearance_figure(angle, polar_polygon(new_mobile, cuts, resolution),
+                               polar_polygon(new_obstacle, cuts, resolution))
+    worn = clearance_figure(angle, polar_polygon(worn_mobile, cuts, resolution),
+                            polar_polygon(worn_obstacle, cuts, resolution))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         dm, do = depth.mobile(angle), depth.obstacle(angle)
