@@ -164,3 +164,12 @@ def test_bad_overrides_and_units_are_keyword_errors():
         resolve_columns(["t", "u"], {"t": "time", "u": "time"})
     with pytest.raises(KeywordError, match=r"ambiguous between \['mN', 'MN'\]"):
         unit_factor("mn", "force")
+
+
+def test_docs_list_every_alias():
+    """docs/formats.md documents exactly the alias table of the code."""
+    from pathlib import Path
+
+    text = (Path(__file__).resolve().parents[2] / "docs" / "formats.md").read_text()
+    for channel, names in ALIASES.items():
+        assert f"| {channel} | {', '.join(names)} |" in text, channel
