@@ -436,6 +436,7 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     if width is None:
         width = _attr_dimension(frame, "obstacle_width")
         if width is None:
-            raise InputError("the obstacle width is needed (width= [m], or [obstacle] width_m, "
-                             "or [geometry] obstacle_width_m): the wear table does not carry it")
+            raise InputError("the obstacle width is needed: width= [m] (CLI --width, case "
+                             "[obstacle] width_m or [geometry] obstacle_width_m); the wear "
+                             "table does not carry it")
     return update_obstacle(obstacle, mobile, edges, vm, vo, width=width, instant=inst, **options)

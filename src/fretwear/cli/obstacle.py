@@ -1,0 +1,170 @@
+"""``fretwear obstacle``: update the obstacle's clearance profile from a wear table."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import click
+import numpy as np
+
+_HELP = """Update the obstacle's clearance figure from a wear table (MODI_OBSTACLE).
+
+Either a case file CASE (its [obstacle] section; the wear table is its `table` key, --table,
+or the case is run), or --table WEAR_TABLE with the geometry given as options. The cumulated
+sector volumes at --instant (default the last) give the worn depth profiles of the mobile and
+the obstacle; the worn clearance in each direction is the exact translation of the worn mobile
+inside the worn obstacle. Writes the profile table (-o: .csv, or a Code_Aster TABLEAU), the
+worn clearance figure as a DISCRET obstacle file (--discret) for the next dynamic computation,
+and a polar plot (--plot DIR). SI units (m, m³); angles in degrees.
+
+\b
+Examples:
+  fretwear obstacle case.toml -o build/profile.csv --plot build
+  fretwear obstacle --table wear.tab --mobile-radius 9.5e-3 --wall-thickness 1.09e-3 \\
+      --gap 0.5e-3 --width 20e-3 --instant 10 -o profile.tab --discret worn_discret.txt
+"""
+
+
+def _summary(result, echo) -> None:
+    d = result.depth
+    when = "" if result.instant is None else f" at instant {result.instant:g}"
+    echo(f"obstacle update{when}: {d.edges.size - 1} sectors, {d.shape} depth, "
+         f"obstacle {type(result.obstacle).__name__}, R_m = {result.mobile.outer_radius:g} m")
+    echo(f"{'sector':>6} {'angles [deg]':>15} {'V tube [mm3]':>13} {'V obst [mm3]':>13} "
+         f"{'d tube [mm]':>12} {'d obst [mm]':>12}")
+    for j in range(d.edges.size - 1):
+        flag = "  PERFORATED" if j + 1 in result.perforated_sectors else ""
+        echo(f"{j + 1:>6} {f'{d.edges[j]:g}..{d.edges[j + 1]:g}':>15} "
+             f"{d.volume_mobile[j] * 1e9:>13.4g} {d.volume_obstacle[j] * 1e9:>13.4g} "
+             f"{d.sector_depth_mobile[j] * 1e3:>12.4g} {d.sector_depth_obstacle[j] * 1e3:>12.4g}"
+             f"{flag}")
+    opening = result.clearance_worn - result.clearance_initial
+    if np.isfinite(opening).any():
+        k = int(np.nanargmax(opening))
+        echo(f"clearance: new {np.nanmin(result.clearance_initial) * 1e3:.4g}.."
+             f"{np.nanmax(result.clearance_initial) * 1e3:.4g} mm, worn "
+             f"{np.nanmin(result.clearance_worn) * 1e3:.4g}.."
+             f"{np.nanmax(result.clearance_worn) * 1e3:.4g} mm; largest opening "
+             f"{opening[k] * 1e3:.4g} mm at {result.angle[k]:g} deg")
+    else:
+        echo("clearance: undefined (a worn depth is NaN: the mobile is worn through)")
+
+
+@click.command(help=_HELP, context_settings={"max_content_width": 100})
+@click.argument("case_file", required=False,
+                type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--table", "table_path", type=click.Path(exists=True, dir_okay=False,
+                                                        path_type=Path),
+              help="Wear table (CSV or Code_Aster text), sector mode.")
+@click.option("--instant", type=float, help="Instant of the wear table [user unit]; default last.")
+@click.option("--mobile-radius", type=float, help="Mobile outer radius R_m [m].")
+@click.option("--wall-thickness", type=float, help="Mobile wall thickness [m].")
+@click.option("--width", type=float, help="Obstacle width l [m] (LARGEUR_OBST).")
+@click.option("--gap", type=float, help="Circular bore: radial gap [m].")
+@click.option("--bore-radius", type=float, help="Circular bore: radius [m].")
+@click.option("--plane-gap", type=float, help="Two planes: gap to the plane facing "
+                                             "--orientation [m].")
+@click.option("--plane-gap-opposite", type=float, help="Two planes: gap to the opposite plane "
+                                                      "[m].")
+@click.option("--orientation", type=float, default=0.0, show_default=True,
+              help="Two planes: angle of the first plane's normal [deg].")
+@click.option("--discrete", "discrete_file", type=click.Path(exists=True, dir_okay=False,
+                                                              path_type=Path),
+              help="NEW obstacle as a DISCRET table (THETA [deg], JEU [m]).")
+@click.option("--shape", type=click.Choice(["uniform", "smooth"]),
+              help="Depth shape within a sector (default uniform).")
+@click.option("--perforation", type=float,
+              help="PERCEMENT: perforation at depth > this × wall thickness (default 1.0).")
+@click.option("--resolution", type=float, help="Angular step of the exact search [deg] "
+                                              "(default 0.05).")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
+              help="Profile table: .csv, or a Code_Aster TABLEAU for any other suffix.")
+@click.option("--format", "fmt", type=click.Choice(["csv", "TABLEAU", "ASTER"],
+                                                   case_sensitive=False),
+              help="Force the profile table format.")
+@click.option("--discret", "discret_path", type=click.Path(dir_okay=False, path_type=Path),
+              help="Write the worn clearance figure as a DISCRET obstacle file.")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              help="Write obstacle_polar.png and .svg into this directory.")
+@click.option("-q", "--quiet", is_flag=True, help="No summary.")
+def command(case_file, table_path, instant, mobile_radius, wall_thickness, width, gap,
+            bore_radius, plane_gap, plane_gap_opposite, orientation, discrete_file, shape,
+            perforation, resolution, output, fmt, discret_path, plot_dir, quiet) -> None:
+    from fretwear.errors import FretwearWarning, KeywordError
+    from fretwear.obstacle import obstacle_from_config
+
+    echo = (lambda *a, **k: None) if quiet else click.echo
+    section: dict = {}
+    geometry: dict = {}
+    directory = None
+    case = None
+    if case_file is not None:
+        from fretwear.case import load_case
+
+        case = load_case(case_file)
+        section = dict(case.get("obstacle", {}))
+        geometry = dict(case.get("geometry", {}))
+        directory = case.get("_directory")
+        if not section:
+            raise KeywordError(f"{case_file}: no [obstacle] section; add one (see "
+                               "docs/obstacle.md) or use --table with options")
+    elif table_path is None:
+        raise click.UsageError("give a case file CASE.toml or --table WEAR_TABLE")
+    overrides = {"mobile_radius_m": mobile_radius, "wall_thickness_m": wall_thickness,
+                 "width_m": width, "shape": shape, "perforation": perforation,
+                 "instant": instant, "resolution_deg": resolution}
+    section.update({k: v for k, v in overrides.items() if v is not None})
+    models = {"gap_m": gap, "bore_radius_m": bore_radius, "plane_gap_m": plane_gap,
+              "file": None if discrete_file is None else str(discrete_file.resolve())}
+    given = {k: v for k, v in models.items() if v is not None}
+    if len(given) > 1:
+        raise click.UsageError("give one obstacle: --gap, --bore-radius, --plane-gap or "
+                               "--discrete")
+    if given:
+        for key in ("type", "gap_m", "bore_radius_m", "plane_gap_m", "plane_gap_opposite_m",
+                    "orientation_deg", "file", "closing_radius_m"):
+            section.pop(key, None)
+        section.update(given)
+        if plane_gap is not None:
+            section.update(type="planes", orientation_deg=orientation)
+            if plane_gap_opposite is not None:
+                section["plane_gap_opposite_m"] = plane_gap_opposite
+        elif discrete_file is not None:
+            section["type"] = "discrete"
+    if table_path is not None:
+        section["table"] = str(table_path.resolve())
+    if case_file is None:
+        missing = [opt for opt, key in (("--mobile-radius", "mobile_radius_m"),
+                                        ("--wall-thickness", "wall_thickness_m"))
+                   if key not in section]
+        if not given:
+            missing.append("an obstacle (--gap, --bore-radius, --plane-gap or --discrete)")
+        if missing:
+            raise click.UsageError(f"with --table, give {', '.join(missing)}")
+    setup = obstacle_from_config(section, geometry=geometry, directory=directory)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if setup.table is not None:
+            result = setup.update()
+        else:
+            from fretwear.case import run_case
+
+            echo("running the case for its wear table ...", err=True)
+            result = setup.update(run_case(case_file).table)
+    _summary(result, echo)
+    for w in caught:
+        if issubclass(w.category, FretwearWarning):
+            click.echo(f"warning: {w.category.__name__}: {w.message}", err=True)
+    output = output if output is not None else setup.output
+    discret_path = discret_path if discret_path is not None else setup.discret
+    plot_dir = plot_dir if plot_dir is not None else setup.plot
+    if output is not None:
+        echo(f"profile table written to {result.write(output, format=fmt)}")
+    if discret_path is not None:
+        echo(f"DISCRET obstacle written to {result.write_discret(discret_path)}")
+    if plot_dir is not None:
+        from fretwear.plotting.obstacle import plot_obstacle
+
+        files = plot_obstacle(result, plot_dir)
+        echo(f"figures written to {plot_dir}: " + ", ".join(f.name for f in files))
