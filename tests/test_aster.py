@@ -13,7 +13,7 @@ import pandas as pd
 import pytest
 
 from fretwear import ContactHistory
-from fretwear.aster import POST_USURE, _F
+from fretwear.aster import _F, POST_USURE
 from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.io.aster import read_aster_table, write_aster_table
 from fretwear.operator import from_aster_names, read_wear_table, wear_table

@@ -128,3 +128,28 @@ def test_chunked_power_equals_one_shot():
     assert len(calls) > 5 and calls[-1][1] == calls[-1][2]
     np.testing.assert_allclose(chunked.blocks, whole.blocks, rtol=1e-12)
     np.testing.assert_allclose(chunked.sectors, whole.sectors, rtol=1e-12, atol=1e-15)
+
+
+def test_history_file_with_units(tmp_path):
+    """Fn = 10 N, sliding 30 and 40 mm/s (‖Vt‖ = 0.05 m/s) all the time: P = 0.5 W (SPEC §2);
+    Archard V = K·P·t (SPEC §4)."""
+    rows = "\n".join(f"{t:.1f},10.0,30.0,40.0" for t in np.arange(0.0, 2.01, 0.1))
+    (tmp_path / "h.csv").write_text("time,normal_force,vt1,vt2\n" + rows + "\n",
+                                    encoding="utf-8")
+    path = write(tmp_path, """
+[history]
+file = "h.csv"
+units = { velocity = "mm/s" }
+[law]
+mobile = { COEF_USURE = 1e-14 }
+[geometry]
+contact_type = "TUBE_BAV"
+mobile_radius_m = 0.0111
+obstacle_width_m = 0.0127
+[time]
+instants = [1.0]
+unit = "h"
+""")
+    r = run_case(path)
+    assert r.total_power == pytest.approx(0.5, rel=1e-12)
+    np.testing.assert_allclose(r.table["volume_mobile"], 1e-14 * 0.5 * 3600.0, rtol=1e-12)

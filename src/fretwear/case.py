@@ -54,6 +54,9 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
                       "table), relative to the case file (RESU_GENE)"),
         "format": (str, "file format when the suffix does not tell it"),
         "name": (str, "label of the shock point (NOEUD) for the summary"),
+        "units": (dict, "units of the file's values, converted to SI, e.g. { length = \"mm\", "
+                        "force = \"kN\" } or per channel { dy = \"mm\" }"),
+        "columns": (dict, "column -> channel overrides, e.g. { VINT1 = \"normal_force\" }"),
     },
     "power": {
         "value_W": ((int, float), "a given wear power [W] instead of a history (PUIS_USURE)"),
@@ -108,8 +111,9 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
                                   "default its last"),
     },
 }
-#: Sections owned by other commands, accepted and ignored by ``fretwear run``.
-FOREIGN_SECTIONS: tuple[str, ...] = ("obstacle", "dynamics")
+#: Sections owned by other commands (``fretwear obstacle``, ``fretwear iterate``), accepted and
+#: ignored by ``fretwear run``.
+FOREIGN_SECTIONS: tuple[str, ...] = ("obstacle", "dynamics", "iterate")
 _DIMENSIONS = {"mobile_radius_m": "mobile_radius", "obstacle_radius_m": "obstacle_radius",
                "obstacle_width_m": "obstacle_width", "tilt_angle_deg": "tilt_angle",
                "isthmus_angle_deg": "isthmus_angle", "impact_angle_deg": "impact_angle"}
@@ -142,10 +146,11 @@ def validate_case(case: Mapping[str, Any], source: str = "case") -> dict[str, An
     --------
     >>> validate_case({"geometry": {"contact_type": "TUBE_BAV"}})["geometry"]
     {'contact_type': 'TUBE_BAV'}
-    >>> validate_case({"geometry": {"mobile_radus_m": 0.01}})
-    Traceback (most recent call last):
-    ...
-    fretwear.errors.KeywordError: case: unknown key [geometry] mobile_radus_m (did you mean 'mobile_radius_m'?); valid keys: contact_type, mobile_radius_m, obstacle_radius_m, obstacle_width_m, tilt_angle_deg, isthmus_angle_deg, impact_angle_deg
+    >>> try:
+    ...     validate_case({"geometry": {"mobile_radus_m": 0.01}})
+    ... except KeywordError as exc:
+    ...     print(str(exc).split(";")[0])
+    case: unknown key [geometry] mobile_radus_m (did you mean 'mobile_radius_m'?)
     """
     out: dict[str, Any] = {}
     sections = [s for s in KEYS if s] + list(FOREIGN_SECTIONS)
@@ -336,7 +341,8 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
             step("reading the history")
             from fretwear.io import read_history
 
-            options = {"format": history_spec["format"]} if "format" in history_spec else {}
+            options = {k: history_spec[k] for k in ("format", "units", "columns")
+                       if k in history_spec}
             history = read_history(_path(case, history_spec["file"]), **options)
             if "name" in history_spec:
                 history = history.replace(name=history_spec["name"])

@@ -87,7 +87,8 @@ def _summary(result, console) -> None:
     console.print(
         f"at instant {row['instant']:g}: V tube = {row['volume_mobile'] * 1e9:.4g} mm³, "
         f"V obstacle = {row['volume_obstacle'] * 1e9:.4g} mm³, depth tube = "
-        f"{row['depth_mobile'] * 1e3:.4g} mm, depth obstacle = {row['depth_obstacle'] * 1e3:.4g} mm")
+        f"{row['depth_mobile'] * 1e3:.4g} mm, depth obstacle = "
+        f"{row['depth_obstacle'] * 1e3:.4g} mm")
     glob = table.drop_duplicates("instant")[["instant", "volume_mobile", "depth_mobile"]]
     gt = Table(title="service life (tube)")
     for col in ("instant", "V tube [mm³]", "depth tube [mm]"):
@@ -115,8 +116,14 @@ def _summary(result, console) -> None:
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
             quiet: bool) -> None:
     from rich.console import Console
-    from rich.progress import (BarColumn, Progress, SpinnerColumn, TaskProgressColumn,
-                               TextColumn, TimeElapsedColumn)
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        SpinnerColumn,
+        TaskProgressColumn,
+        TextColumn,
+        TimeElapsedColumn,
+    )
 
     from fretwear.case import run_case
 
