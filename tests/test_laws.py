@@ -252,3 +252,26 @@ def test_registry_errors_name_the_culprit():
         WEAR_LAWS["ARCHARD"].volume(0.1, 1.0, coefficient=1e-13, COEF_USURE=1e-13)
     with pytest.raises(KeywordError, match="unknown wear law 'archard'.*ARCHARD"):
         get_law("archard")
+
+
+# ----------------------------------------------------------------------------- properties
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=150, deadline=None)
+@given(p=st.floats(0.0, 100.0), t1=st.floats(1e-3, 1e10), t2=st.floats(0.0, 1e10),
+       a=st.floats(1e-17, 1e-12), b=st.floats(0.5, 2.0),
+       n=st.one_of(st.just(0.0), st.floats(1e-12, 1e-6)),
+       s=st.one_of(st.just(0.0), st.floats(1e-20, 1e-15)))
+def test_restart_continuity_property(p, t1, t2, a, b, n, s):
+    # SPEC §7: continuing from the equivalent time reproduces the uninterrupted law (reference:
+    # the law evaluated directly at t1 + t2), over wide ranges including n = 0 and S = 0
+    law = WEAR_LAWS["EDF_MZ"]
+    c = {"rate_coefficient": a, "power_exponent": b, "decay_constant": n, "asymptotic_rate": s}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", LawWarning)
+        v1 = law.volume(p, t1, **c)
+        direct = float(law.volume(p, t1 + t2, **c))
+        restarted = float(law.cumulated_volume(v1, p, t2, **c))
+    assert restarted == pytest.approx(direct, rel=1e-11, abs=1e-300)

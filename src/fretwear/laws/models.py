@@ -296,8 +296,9 @@ def edf_mz_equivalent_time(volume, power, rate_coefficient=1e-13, power_exponent
     -----
     V(t) is strictly increasing when A·P^b + S > 0 (its rate is a weighted mean of A·P^b and S), so
     the root is unique. It is bracketed by ``V/max(A·P^b, S) <= t_eq`` and
-    ``t_eq <= V/min(A·P^b, S)`` (or ``V/S + 1/n`` when A·P^b = 0), then found by bisection
-    safeguarded Newton steps on all elements at once until the bracket is below ``rtol``. A restart
+    ``t_eq <= V/min(A·P^b, S)`` (or ``V/S + 1/n`` when A·P^b = 0; closed forms when S = 0 or
+    n = 0), then found by Newton steps safeguarded by bisection (geometric while the bracket spans
+    decades) on all elements at once, until the step or the bracket is below ``rtol``. A restart
     continues with ``V(t_eq + Δt)``.
 
     Examples
@@ -317,7 +318,7 @@ def edf_mz_equivalent_time(volume, power, rate_coefficient=1e-13, power_exponent
     ceiling = np.full(v.shape, np.inf)
     saturating = (s == 0) & (n > 0)
     ceiling[saturating] = r0[saturating] / n[saturating]
-    ceiling[(s == 0) & (n == 0) & (r0 == 0)] = 0.0
+    ceiling[(n == 0) & (r0 == 0)] = 0.0      # n = 0: V = A·P^b·t, whatever S
     unreachable = (v > 0) & (v >= ceiling)
     if unreachable.any():
         out[unreachable] = np.inf
@@ -328,37 +329,51 @@ def edf_mz_equivalent_time(volume, power, rate_coefficient=1e-13, power_exponent
     todo = (v > 0) & ~unreachable
     if not todo.any():
         return out
-    vv, r, nn, ss = v[todo], r0[todo], n[todo], s[todo]
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        out[todo] = _solve_edf_mz(v[todo], r0[todo], n[todo], s[todo], rtol)
+    return out
+
+
+def _solve_edf_mz(vv, r, nn, ss, rtol) -> np.ndarray:
+    """Times t with V(t) = vv (all reachable, vv > 0): bracket, then safeguarded Newton."""
     hi_rate = np.maximum(r, ss)
     lo_rate = np.minimum(r, ss)
     lo = vv / hi_rate
-    with np.errstate(divide="ignore"):
-        hi = np.where(lo_rate > 0, vv / np.where(lo_rate > 0, lo_rate, 1.0), np.inf)
+    hi = np.where(lo_rate > 0, vv / np.where(lo_rate > 0, lo_rate, 1.0), np.inf)
     # A·P^b = 0 < S: V >= S(t − 1/n)  ->  t <= V/S + 1/n
-    zero_r = (r == 0) & (ss > 0)
-    hi = np.where(zero_r, vv / np.where(ss > 0, ss, 1.0) + 1.0 / np.where(nn > 0, nn, np.inf), hi)
+    zero_r = (r == 0) & (ss > 0) & (nn > 0)
+    hi = np.where(zero_r, vv / np.where(ss > 0, ss, 1.0) + 1.0 / np.where(nn > 0, nn, 1.0), hi)
+    # V >= (r/n)(1 − e^{−nt}) (the S = 0 law): t <= −ln(1 − V·n/r)/n where V·n/r < 1
+    q = np.where(r > 0, vv * nn / np.where(r > 0, r, 1.0), np.inf)
+    t_sat = np.where(nn > 0, -np.log1p(-np.minimum(q, 0.5)) / np.where(nn > 0, nn, 1.0),
+                     vv / np.where(r > 0, r, 1.0))
+    hi = np.where((q < 0.5) & (r > 0), np.minimum(hi, t_sat), hi)
+    hi = np.minimum(hi, np.finfo(float).max)
     # S = 0 < A·P^b (reachable): V = (r/n)(1 − e^{−nt})  ->  closed form
     zero_s = (ss == 0) & (r > 0) & (nn > 0)
     if zero_s.any():
         closed = -np.log1p(-vv[zero_s] * nn[zero_s] / r[zero_s]) / nn[zero_s]
         lo[zero_s] = hi[zero_s] = closed
-    t = 0.5 * (lo + hi)
+    # n = 0: V = A·P^b·t  ->  closed form
+    linear = nn == 0
+    lo[linear] = hi[linear] = vv[linear] / r[linear]
+    t = np.where(hi > 4.0 * lo, np.sqrt(lo) * np.sqrt(hi), 0.5 * (lo + hi))
     for _ in range(200):
         x = nn * t
         f = t * (r * _psi1(x) + ss * _psi2(x)) - vv
         hi = np.where(f >= 0, t, hi)
         lo = np.where(f <= 0, t, lo)
         rate = r * np.exp(-x) - ss * np.expm1(-x)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            newton = t - f / rate
+        newton = t - f / rate
         inside = np.isfinite(newton) & (newton >= lo) & (newton <= hi)
-        t_new = np.where(inside, newton, 0.5 * (lo + hi))
+        # bisect geometrically while the bracket spans decades, arithmetically after
+        middle = np.where(hi > 4.0 * lo, np.sqrt(lo) * np.sqrt(hi), 0.5 * (lo + hi))
+        t_new = np.where(inside, newton, middle)
         step = np.abs(t_new - t)
         t = t_new
         if np.all((step <= rtol * t) | (hi - lo <= rtol * hi)):
             break
-    out[todo] = t
-    return out
+    return t
 
 
 def linear_equivalent_time(volume, volume_rate) -> np.ndarray:
