@@ -389,44 +389,56 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
     lo = np.asarray(lower, dtype=float)
     hi = np.asarray(upper, dtype=float)
     shape = np.broadcast_shapes(target.shape, lo.shape, hi.shape)
-    target = np.broadcast_to(target, shape).astype(float)
-    lo = np.broadcast_to(lo, shape).astype(float)
-    hi = np.broadcast_to(hi, shape).astype(float)
+    target = np.broadcast_to(target, shape).astype(float).ravel()
+    lo = np.broadcast_to(lo, shape).astype(float).ravel()
+    hi = np.broadcast_to(hi, shape).astype(float).ravel()
+
+    def evaluate(x_full: np.ndarray) -> np.ndarray:
+        values = np.asarray(func(x_full.reshape(shape)), dtype=float)
+        return np.broadcast_to(values, shape).ravel()
+
     with np.errstate(all="ignore"):
-        f_lo = np.asarray(func(lo), dtype=float) - target
-        f_hi = np.asarray(func(hi), dtype=float) - target
-        f_lo = np.broadcast_to(f_lo, shape).astype(float)
-        f_hi = np.broadcast_to(f_hi, shape).astype(float)
-        root = np.full(shape, np.nan)
+        f_lo = evaluate(lo) - target
+        f_hi = evaluate(hi) - target
+        root = np.full(target.size, np.nan)
         root = np.where(f_lo == 0.0, lo, root)
         root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)
-        active = (f_lo < 0.0) & (f_hi > 0.0)
+        index = np.flatnonzero((f_lo < 0.0) & (f_hi > 0.0))
+        # The state is kept for the unconverged elements only; ``func`` is always called on a
+        # full-shape array (converged elements hold their root, or the lower bound).
+        x_eval = np.where(np.isnan(root), lo, root)
         # Chandrupatla's state: x1 (newest), x2 (other end of the bracket), x3 (dropped point).
-        x1, f1 = hi.copy(), f_hi.copy()
-        x2, f2 = lo.copy(), f_lo.copy()
-        x3, f3 = lo.copy(), f_lo.copy()
-        t = np.full(shape, 0.5)
+        x1, f1 = hi[index], f_hi[index]
+        x2, f2 = lo[index], f_lo[index]
+        x3, f3 = x2.copy(), f2.copy()
+        goal = target[index]
+        t = np.full(index.size, 0.5)
         for _ in range(max_iter):
-            if not active.any():
+            if index.size == 0:
                 break
-            xt = np.where(active, x1 + t * (x2 - x1), x1)
-            ft = np.broadcast_to(np.asarray(func(xt), dtype=float), shape) - target
+            xt = x1 + t * (x2 - x1)
+            x_eval[index] = xt
+            ft = evaluate(x_eval)[index] - goal
             same = np.sign(ft) == np.sign(f1)
-            x3 = np.where(active, np.where(same, x1, x2), x3)
-            f3 = np.where(active, np.where(same, f1, f2), f3)
-            x2 = np.where(active & ~same, x1, x2)
-            f2 = np.where(active & ~same, f1, f2)
-            x1 = np.where(active, xt, x1)
-            f1 = np.where(active, ft, f1)
+            x3 = np.where(same, x1, x2)
+            f3 = np.where(same, f1, f2)
+            x2 = np.where(same, x2, x1)
+            f2 = np.where(same, f2, f1)
+            x1, f1 = xt, ft
             best_is_1 = np.abs(f1) < np.abs(f2)
             xm = np.where(best_is_1, x1, x2)
             fm = np.where(best_is_1, f1, f2)
             tol = 2.0 * (rtol * np.abs(xm) + atol) + 4.0 * np.finfo(float).tiny
             span = np.abs(x2 - x1)
             tl = tol / np.where(span > 0.0, span, 1.0)
-            done = active & ((tl > 0.5) | (fm == 0.0) | (span == 0.0) | ~np.isfinite(ft))
-            root = np.where(done, xm, root)
-            active = active & ~done
+            done = (tl > 0.5) | (fm == 0.0) | (span == 0.0) | ~np.isfinite(ft)
+            if done.any():
+                root[index[done]] = xm[done]
+                x_eval[index[done]] = xm[done]
+                keep = ~done
+                index, goal = index[keep], goal[keep]
+                x1, f1, x2, f2, x3, f3 = (a[keep] for a in (x1, f1, x2, f2, x3, f3))
+                tl = tl[keep]
             xi = (x1 - x2) / (x3 - x2)
             phi = (f1 - f2) / (f3 - f2)
             iqi = (phi * phi < xi) & ((1.0 - phi) ** 2 < 1.0 - xi)
@@ -434,9 +446,9 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
                      + (x3 - x1) / (x2 - x1) * f1 / (f3 - f1) * f2 / (f3 - f2))
             t = np.where(iqi & np.isfinite(t_iqi), t_iqi, 0.5)
             t = np.clip(t, np.minimum(tl, 0.5), np.maximum(1.0 - tl, 0.5))
-        if active.any():
-            best_is_1 = np.abs(f1) < np.abs(f2)
-            root = np.where(active, np.where(best_is_1, x1, x2), root)
+        if index.size:
+            root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
+    root = root.reshape(shape)
     return root[()] if root.ndim == 0 else root
 
 
@@ -551,9 +563,15 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
     depth = np.asarray(depth, dtype=float)
     share = np.asarray(share, dtype=float)
     depth, share = np.broadcast_arrays(depth, share)
+    # The chord depends on D only: computed once, the solver varies the common arc.
+    x = lens_half_chord(mobile_radius, obstacle_radius, depth)
+    limit = lens_depth_limit(mobile_radius, obstacle_radius)
+    x = np.where(depth <= limit * (1.0 + 1e-12), np.minimum(x, mobile_radius), np.nan)
+    seg_m = segment_area(mobile_radius, x)
+    s_m = sagitta(mobile_radius, x)
 
     def mobile_area(dm):
-        return lunule_areas(mobile_radius, obstacle_radius, dm, np.maximum(depth - dm, 0.0))[0]
+        return np.maximum(seg_m - _interface_segment(x, s_m - dm), 0.0)
 
     with np.errstate(invalid="ignore"):
         whole = mobile_area(depth)
