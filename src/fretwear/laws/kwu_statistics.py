@@ -327,7 +327,8 @@ class KwuEpriStatistics:
 
     def __str__(self) -> str:
         head = "speed \\ force [N]"
-        cols = [f"{self.force_bounds[j]:.4g}-{self.force_bounds[j + 1]:.4g}" for j in range(5)]
+        cols = [f"f{j + 1} {self.force_bounds[j]:.4g}-{self.force_bounds[j + 1]:.4g}"
+                for j in range(5)]
         width = max(12, *(len(x) + 2 for x in cols))
         lines = [f"KWU-EPRI class statistics: share of contact time p_vf [%] "
                  f"(contact {self.contact_time:.6g} s of {self.window_time:.6g} s)",
