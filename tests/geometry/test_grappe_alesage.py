@@ -75,3 +75,13 @@ def test_bore_must_exceed_rod_and_range():
     with pytest.warns(RangeWarning, match=r"GRAPPE_ALESAGE.*0.00160998 m"):
         dm, _ = geometry.depth_from_volume(geometry.max_volume * 1.001)
     assert np.isnan(dm)
+
+
+def test_small_depth_asymptotics(geometry):
+    """Near first contact the gap between the surfaces is D − (t²/2)(1/R_m − 1/R_o): a parabolic
+    lens of half-chord x₀ = √(2D·R_mR_o/(R_o − R_m)) and area (4/3)·x₀·D, to O(D/(R_o − R_m))."""
+    gap = RO - RM
+    for depth in (1e-9, 1e-8, 1e-7):
+        x0 = math.sqrt(2 * depth * RM * RO / gap)
+        ratio = geometry.volume_from_depth(depth)[0] / (L * 4 / 3 * x0 * depth)
+        assert abs(ratio - 1) < 0.5 * depth / gap  # measured: −0.451·D/(R_o − R_m)
