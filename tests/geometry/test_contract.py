@@ -136,3 +136,13 @@ def test_vectorised_and_inputs_untouched(name):
     volumes = geometry.volume_from_depth(dm, do)
     assert np.array_equal(dm, dm_copy) and volumes[0].shape == vm.shape
     assert isinstance(geometry.depth_from_volume(1e-12)[0], float)
+
+
+def test_keywords_any_case_and_dimensions_as_plain_floats():
+    """Code_Aster keywords are accepted in any case; ints/numpy scalars become plain floats."""
+    geometry = contact_geometry("grappe_alesage", rayon_mobile=np.float64(4.85e-3),
+                                RAYON_OBST=5.25e-3, obstacle_width=1)
+    assert type(geometry.obstacle_width) is float and geometry.obstacle_width == 1.0
+    assert type(geometry.mobile_radius) is float
+    with pytest.raises(KeywordError, match="given twice"):
+        contact_geometry("TUBE_BAV", mobile_radius=0.01, RAYON_MOBILE=0.01, obstacle_width=0.01)

@@ -102,7 +102,7 @@ def contact_geometry(contact_type: str, **dimensions) -> ContactGeometry:
             f"{', '.join(CONTACT_TYPES)}")
     given: dict[str, float] = {}
     for name, value in dimensions.items():
-        native = _FROM_ASTER.get(name.upper(), name) if name.isupper() else name
+        native = _FROM_ASTER.get(name.upper(), name)  # Code_Aster keywords, any case
         if native not in ASTER_KEYWORDS:
             raise KeywordError(
                 f"{name!r} is not a contact dimension; the dimensions are "

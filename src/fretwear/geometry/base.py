@@ -155,7 +155,7 @@ class ContactGeometry:
             elif number <= 0.0:
                 raise InputError(
                     f"{self.contact_type}: {_label(name)} must be > 0 [m], got {number:g}")
-            if number != value:
+            if type(value) is not float:  # ints, numpy scalars -> plain float (JSON-ready)
                 object.__setattr__(self, name, number)
 
     # ------------------------------------------------------------------ helpers
