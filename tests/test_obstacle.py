@@ -439,3 +439,37 @@ def test_other_shapes_match_brute_force_search(kind, direction):
     got = r.clearance_worn[np.flatnonzero(r.angle == direction)[0]]
     assert got == pytest.approx(ref, abs=3e-9)
     assert got > r.clearance_initial[np.flatnonzero(r.angle == direction)[0]]
+
+
+def test_reads_the_wear_operator_table_and_agrees_with_its_sector_depths():
+    """End to end with fretwear.operator.wear_table (sector mode): the width comes from the
+    table's attrs, the volumes are the table's cumulated ones, and the uniform depths equal the
+    operator's SPEC §3 sector depths (an independent implementation, fretwear.geometry)."""
+    pytest.importorskip("fretwear.operator")
+    from fretwear.history import ContactHistory
+    from fretwear.operator import wear_table
+
+    t = np.linspace(0.0, 1.0, 2001)
+    angle = np.radians(np.where(t < 0.5, 20.0, -100.0))  # contact at 20° then at -100°
+    history = ContactHistory(time=t, normal_force=np.full(t.size, 10.0),
+                             vt1=np.full(t.size, 0.1), vt2=np.zeros(t.size),
+                             dy=1e-4 * np.cos(angle), dz=1e-4 * np.sin(angle))
+    table = wear_table(history, contact_type="GRAPPE_ALESAGE",
+                       dimensions={"mobile_radius": RM, "obstacle_radius": RO,
+                                   "obstacle_width": WIDTH},
+                       instants=[1.0, 10.0], time_scale=3.6e5, sectors=EDGES10,
+                       coefficients={"COEF_USURE": 1e-14},
+                       obstacle_coefficients={"COEF_USURE": 5e-15})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r = update_obstacle_from_table(table, CircleObstacle(RM, RO), Mobile(RM, WALL),
+                                       resolution=0.25)
+    last = table[table["instant"] == 10.0].sort_values("angle_start")
+    np.testing.assert_allclose(r.depth.volume_mobile, last["volume_mobile_cumulated"])
+    np.testing.assert_allclose(r.depth.sector_depth_mobile, last["depth_mobile_sector"],
+                               rtol=1e-9)
+    np.testing.assert_allclose(r.depth.sector_depth_obstacle, last["depth_obstacle_sector"],
+                               rtol=1e-9)
+    assert r.instant == 10.0 and r.depth.width == WIDTH
+    worn_dirs = (r.angle == 18.0) | (r.angle == 270.0)  # centres of the two worn sectors
+    assert (r.clearance_worn[worn_dirs] > GAP + 1e-9).all()

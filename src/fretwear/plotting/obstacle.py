@@ -48,7 +48,11 @@ def obstacle_figure(result):
     for j in result.perforated_sectors:
         span = np.radians(np.linspace(edges[j - 1], edges[j], 30))
         ax.fill_between(span, 0, top, color="C3", alpha=0.12, lw=0)
-    ax.set_title("clearance [mm]", pad=14)
+    low = np.nanmin(np.concatenate([result.clearance_initial, result.clearance_worn])) * 1e3
+    if np.isfinite(low) and np.isfinite(top) and top > low:
+        ax.set_ylim(max(0.0, low - 1.5 * (top - low)), top + 0.05 * (top - low))
+    ax.set_title("clearance [mm] (radial axis does not start at 0)"
+                 if ax.get_ylim()[0] > 0 else "clearance [mm]", pad=14, fontsize=10)
     ax.legend(loc="lower left", bbox_to_anchor=(-0.15, -0.12), fontsize=8)
     ax2 = fig.add_subplot(1, 2, 2)
     ang = np.mod(result.angle + 180.0, 360.0) - 180.0
@@ -56,8 +60,10 @@ def obstacle_figure(result):
     ax2.plot(ang[order], result.depth_mobile[order] * 1e3, color="C0", label="mobile")
     ax2.plot(ang[order], result.depth_obstacle[order] * 1e3, color="C1", label="obstacle")
     limit = result.perforation * result.mobile.wall_thickness * 1e3
-    ax2.axhline(limit, color="C3", ls=":", lw=1,
-                label=f"perforation ({result.perforation:g} × wall)")
+    deepest = np.nanmax(result.depth_mobile, initial=0.0) * 1e3
+    if result.perforated or deepest >= 0.3 * limit:
+        ax2.axhline(limit, color="C3", ls=":", lw=1,
+                    label=f"perforation ({result.perforation:g} × wall)")
     for e in edges:
         ax2.axvline(e, color="0.85", lw=0.6, zorder=0)
     ax2.set_xlim(-180, 180)
