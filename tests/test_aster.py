@@ -16,7 +16,8 @@ from fretwear import ContactHistory
 from fretwear.aster import _F, POST_USURE
 from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.io.aster import read_aster_table, write_aster_table
-from fretwear.operator import from_aster_names, read_wear_table, wear_table
+from fretwear.operator import from_aster_names, wear_table
+from fretwear.restart import read_wear_table
 
 FIXTURES = Path(__file__).parent / "fixtures" / "aster_tables"
 YEAR = 31_536_000.0

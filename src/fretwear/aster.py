@@ -300,7 +300,8 @@ def _secteurs(secteurs: list[dict], contact: Any):
 
 
 def _tube_neuf(kw: Mapping[str, Any]) -> pd.DataFrame:
-    from fretwear.operator import replace_tube, to_aster_names
+    from fretwear.operator import to_aster_names
+    from fretwear.restart import replace_tube
 
     _yes(kw["TUBE_NEUF"], "TUBE_NEUF")
     if kw.get("TABL_USURE") is None:

@@ -361,6 +361,8 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
             seen.append(t)
     if "title" in case:
         table.attrs["title"] = case["title"]
+    unit = case.get("time", {}).get("unit")
+    table.attrs["time_unit"] = unit if unit else f"{args['time_scale']:g} s"
     return CaseResult(table=table, power=power, warnings=seen, case=case, history=history)
 
 

@@ -38,7 +38,7 @@ def test_demo_outputs_plots_and_aster_table(tmp_path, capsys):
     tab = tmp_path / "wear.tab"
     assert main(["run", str(case), "-o", str(tab), "--plot", str(tmp_path / "fig")]) == 0
     printed = capsys.readouterr().out
-    assert "sectors at instant 20" in printed and "StationarityWarning" in printed
+    assert "sectors at instant 20 " in printed and "StationarityWarning" in printed
     names = sorted(p.name for p in (tmp_path / "fig").iterdir())
     assert names == ["wear_history.png", "wear_history.svg", "wear_sectors.png",
                      "wear_sectors.svg"]

@@ -59,8 +59,9 @@ def _summary(result, console) -> None:
     title = attrs.get("title") or "fretwear run"
     console.rule(f"[bold]{title}")
     power = result.power
+    unit = attrs.get("time_unit") or f"{attrs.get('time_scale')} s"
     console.print(f"contact [bold]{attrs.get('contact_type')}[/], law [bold]{attrs.get('law')}"
-                  f"[/], time unit = {attrs.get('time_scale'):g} s")
+                  f"[/], time unit = {unit}")
     console.print(f"wear power P = [bold]{result.total_power:.6g} W[/]")
     intensity = (attrs.get("coefficients_mobile") or {}).get("intensity")
     if intensity is not None:
@@ -71,9 +72,9 @@ def _summary(result, console) -> None:
                       f"(max-min)/mean = {float(power.spread):.3g}")
     last = table[table["instant"] == table["instant"].iloc[-1]]
     if "sector" in table.columns and table["sector"].notna().any():
-        st = Table(title=f"sectors at instant {last['instant'].iloc[0]:g}")
-        for col in ("sector", "angles [deg]", "P [W]", "V tube [mm³]", "V obst [mm³]",
-                    "d tube [mm]", "d obst [mm]"):
+        st = Table(title=f"sectors at instant {last['instant'].iloc[0]:g} "
+                         "(P in W, V in mm³, d in mm)")
+        for col in ("sector", "angles (deg)", "P", "V tube", "V obst", "d tube", "d obst"):
             st.add_column(col, justify="right")
         for _, row in last.iterrows():
             st.add_row(f"{int(row['sector'])}", f"{row['angle_start']:g}..{row['angle_end']:g}",
@@ -91,7 +92,7 @@ def _summary(result, console) -> None:
         f"{row['depth_obstacle'] * 1e3:.4g} mm")
     glob = table.drop_duplicates("instant")[["instant", "volume_mobile", "depth_mobile"]]
     gt = Table(title="service life (tube)")
-    for col in ("instant", "V tube [mm³]", "depth tube [mm]"):
+    for col in ("instant", "V tube (mm³)", "depth tube (mm)"):
         gt.add_column(col, justify="right")
     for _, r in glob.iterrows():
         depth = r["depth_mobile"]

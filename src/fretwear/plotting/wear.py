@@ -34,6 +34,8 @@ def _save(fig, directory: Path, stem: str) -> list[Path]:
 
 
 def _unit(table: pd.DataFrame) -> str:
+    if table.attrs.get("time_unit"):
+        return str(table.attrs["time_unit"])
     scale = table.attrs.get("time_scale", 1.0)
     names = {1.0: "s", 60.0: "min", 3600.0: "h", 86400.0: "day", 604800.0: "week",
              31536000.0: "year"}
