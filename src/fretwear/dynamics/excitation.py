@@ -27,7 +27,7 @@ SIGNALS: dict[str, int] = {"harmonic": 0, "table": 1, "random": 1}
 
 def random_signal_from_psd(frequencies, psd, *, duration: float, seed: int,
                            sample_rate: float | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """A reproducible stationary Gaussian signal with a given one-sided PSD (spectral representation).
+    """A reproducible stationary Gaussian signal with a one-sided PSD (spectral representation).
 
     Parameters
     ----------

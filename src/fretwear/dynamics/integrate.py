@@ -58,7 +58,8 @@ def stability_limit(model: ModalModel, shocks: Sequence[Shock] = ()) -> dict[str
     -----
     Central difference / velocity Verlet is stable for h ≤ (2/ω_max)(√(1+ξ²) − ξ) (Belytschko
     et al. 2000, eq. 6.3.33). In contact the stiffness matrix gains k·φφᵀ/m at each shock, so by
-    Weyl's inequality ω_max² ≤ max_r ω_r² + Σ_shocks (k_n + k_t)·g_i with g_i = λ_max(Σ_r φ_r φ_rᵀ/m_r)
+    Weyl's inequality ω_max² ≤ max_r ω_r² + Σ_shocks (k_n + k_t)·g_i with
+    g_i = λ_max(Σ_r φ_r φ_rᵀ/m_r)
     the point's modal compliance [1/kg] (exact for one mode, one shock, no friction). ξ is the
     largest of the modal damping ratios and the contact ratios c·g/(2√(k·g)).
 
@@ -170,7 +171,7 @@ class DynamicsResult:
                 "start_time": self.start_time, "end_time": self.end_time,
                 "n_steps": self.n_steps, "n_steps_taken": self.n_coarse_steps,
                 "elapsed": self.elapsed,
-                "wear_power": dict(zip(self.shock_names, self.wear_power.tolist())),
+                "wear_power": dict(zip(self.shock_names, self.wear_power.tolist(), strict=True)),
                 "energy": self.energy,
                 "files": {k: str(v) for k, v in (self.files or {}).items()}}
 
@@ -377,8 +378,8 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
     n_samples = n_archive + 1
     if output_dir is None and n_samples * ns > MAX_IN_MEMORY:
         raise InputError(f"simulate: {n_samples} samples × {ns} shocks exceed the in-memory limit "
-                         f"({MAX_IN_MEMORY}); give output_dir=... to stream to Parquet, or a larger "
-                         "archive_step")
+                         f"({MAX_IN_MEMORY}); give output_dir=... to stream to Parquet, or a "
+                         "larger archive_step")
     lshape, lkind, lhp, tab_t, tab_v, tab_off = _loads(model, excitations)
     (shapes, skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r,
      prof_off) = _shock_arrays(model, shocks)

@@ -33,7 +33,8 @@ def _as_1d(name: str, value, n: int | None = None, positive: bool = False,
     if n is not None and arr.size == 1 and n > 1:
         arr = np.full(n, float(arr[0]))
     if n is not None and arr.size != n:
-        raise InputError(f"modal model: {name!r} has {arr.size} values, expected {n} (one per mode)")
+        raise InputError(f"modal model: {name!r} has {arr.size} values, expected {n} (one per "
+                         "mode)")
     if not np.all(np.isfinite(arr)):
         raise InputError(f"modal model: {name!r} has a non-finite value; give finite numbers")
     if positive and np.any(arr <= 0):
@@ -121,7 +122,8 @@ class ModalModel:
         if len(names) != shapes.shape[0]:
             raise InputError(f"modal model: {len(names)} shock names for {shapes.shape[0]} shock "
                              "points")
-        fnames = tuple(self.forcing_names) or tuple(f"point{i + 1}" for i in range(forcing.shape[0]))
+        fnames = (tuple(self.forcing_names)
+                  or tuple(f"point{i + 1}" for i in range(forcing.shape[0])))
         if len(fnames) != forcing.shape[0]:
             raise InputError(f"modal model: {len(fnames)} forcing names for {forcing.shape[0]} "
                              "forcing points")
@@ -183,9 +185,9 @@ def _index(kind: str, key: int | str, names: tuple[str, ...]) -> int:
 
 # --------------------------------------------------------------------------- analytic beam modes
 def _char_eq(ends: tuple[str, str]):
-    """Characteristic equation g(λ) = 0 of λ = βL and the shape of a uniform beam, and root hints."""
+    """Characteristic equation g(λ) = 0 of a uniform beam (λ = βL) and root hints."""
     key = tuple(sorted(ends))
-    c, ch, s, sh = np.cos, np.cosh, np.sin, np.sinh
+    c, ch, s = np.cos, np.cosh, np.sin
     if key == ("pinned", "pinned"):
         return (lambda lam: s(lam)), (lambda n: n * np.pi)
     if key == ("clamped", "clamped") or key == ("free", "free"):
@@ -277,8 +279,10 @@ def _beam_fe(length: float, ei: float, rho_a: float, ends: tuple[str, str],
     m = np.zeros((ndof, ndof))
     for e in range(ne):
         h = nodes[e + 1] - nodes[e]
-        ke = ei / h**3 * np.array([[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h],
-                                   [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
+        ke = ei / h**3 * np.array([[12, 6 * h, -12, 6 * h],
+                                   [6 * h, 4 * h * h, -6 * h, 2 * h * h],
+                                   [-12, -6 * h, 12, -6 * h],
+                                   [6 * h, 2 * h * h, -6 * h, 4 * h * h]])
         me = rho_a * h / 420 * np.array([[156, 22 * h, 54, -13 * h],
                                          [22 * h, 4 * h * h, 13 * h, -3 * h * h],
                                          [54, 13 * h, 156, -22 * h],
@@ -287,7 +291,7 @@ def _beam_fe(length: float, ei: float, rho_a: float, ends: tuple[str, str],
         k[np.ix_(idx, idx)] += ke
         m[np.ix_(idx, idx)] += me
     fixed: set[int] = set()
-    for end, node in zip(ends, (0, nodes.size - 1)):
+    for end, node in zip(ends, (0, nodes.size - 1), strict=True):
         if end in ("pinned", "clamped"):
             fixed.add(2 * node)
         if end == "clamped":
@@ -388,9 +392,11 @@ def uniform_beam_modes(*, young_modulus: float, second_moment: float, mass_per_l
     xf = np.array(forcing_positions, dtype=float).reshape(-1)
     for key, arr in (("shock_positions", xs), ("forcing_positions", xf)):
         if np.any((arr < 0) | (arr > length)):
-            raise InputError(f"uniform beam: {key!r} must lie in [0, {length}] m, got {arr.tolist()}")
+            raise InputError(f"uniform beam: {key!r} must lie in [0, {length}] m, got "
+                             f"{arr.tolist()}")
     if method not in ("auto", "analytic", "fe"):
-        raise KeywordError(f"uniform beam: method must be 'auto', 'analytic' or 'fe', got {method!r}")
+        raise KeywordError(f"uniform beam: method must be 'auto', 'analytic' or 'fe', got "
+                           f"{method!r}")
     use_fe = method == "fe" or (method == "auto" and (supports.size > 0 or "free" in ends))
     if method == "analytic" and supports.size:
         raise KeywordError("uniform beam: method='analytic' has no closed form with intermediate "

@@ -1,0 +1,68 @@
+"""``fretwear iterate CASE.toml``: the coupled loop dynamics → wear → obstacle → dynamics."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from fretwear.dynamics.config import keys_help as dynamics_keys
+from fretwear.dynamics.loop import ITERATE_KEYS
+
+_ITERATE = "\n".join(f"  {k}: {d}" for k, (_, d) in ITERATE_KEYS.items())
+_HELP = f"""Run the coupled loop of a case file: built-in dynamics (modal model with shocks) ->
+wear table (POST_USURE) -> obstacle update (MODI_OBSTACLE) -> dynamics, N cycles or until a
+depth. Each cycle continues the previous wear table (ETAT_INIT) over the [time] instants.
+
+The case file holds the wear sections of `fretwear run` ([law], [geometry], [sectors] required,
+[time] = durations of one cycle, [power] window, no [history]), an [obstacle] section (the new
+obstacle, the wall thickness), a [dynamics] section and an [iterate] section. Writes, in the
+output folder, cycle_NN/ (histories/*.parquet, wear_table.csv, obstacle_profile.csv,
+obstacle_discret.txt, dynamics.json, figures) and summary.csv / summary.json.
+Units: SI (m, N, s, W; angles in degrees). Full reference: docs/dynamics.md.
+
+\b
+[iterate]
+{_ITERATE}
+\b
+{dynamics_keys()}
+"""
+
+
+@click.command(help=_HELP, context_settings={"max_content_width": 100})
+@click.argument("case_file", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
+              help="Output folder (default [iterate] output, else 'iterate' beside the case).")
+@click.option("-n", "--cycles", type=click.IntRange(min=1),
+              help="Number of cycles (overrides [iterate] cycles).")
+@click.option("--no-plot", is_flag=True, help="Do not write figures.")
+@click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
+def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: bool,
+            quiet: bool) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    from fretwear.dynamics.loop import iterate_case
+
+    console = Console(quiet=quiet)
+    err = Console(stderr=True, quiet=quiet)
+    with err.status("reading the case") as status:
+        result = iterate_case(case_file, output=output, cycles=cycles,
+                              plot=False if no_plot else None,
+                              progress=lambda message: status.update(message))
+    table = Table(title=f"fretwear iterate: {case_file.name} (stopped: {result.stopped})")
+    columns = (("cycle", "cycle", 1.0), ("instant", "instant", 1.0), ("power", "P [W]", 1.0),
+               ("depth_mobile_max", "depth tube [mm]", 1e3),
+               ("depth_obstacle_max", "depth obst. [mm]", 1e3),
+               ("clearance_min", "gap min [mm]", 1e3), ("clearance_max", "gap max [mm]", 1e3),
+               ("contact_fraction", "in contact [-]", 1.0))
+    for _, label, _ in columns:
+        table.add_column(label, justify="right")
+    for row in result.summary.to_dict(orient="records"):
+        table.add_row(*[f"{row[c] * scale:.4g}" for c, _, scale in columns])
+    console.print(table)
+    if result.warnings:
+        console.print("[yellow]warnings:[/]")
+        for w in result.warnings:
+            console.print(f"  - {w}", markup=False, highlight=False, style="yellow")
+    console.print(f"outputs written to [bold]{result.directory}[/]")

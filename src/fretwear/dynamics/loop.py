@@ -1,0 +1,326 @@
+"""The coupled loop dynamics → wear table → obstacle update → dynamics (``fretwear iterate``).
+
+The reference document's §6: from a clearance figure, compute the dynamics; from its contact
+history, the wear table (POST_USURE); from the table's cumulated sector volumes, the worn
+clearance figure (MODI_OBSTACLE); compute the dynamics again with it, and so on. Each cycle
+continues the previous cycle's wear table through the restart (ETAT_INIT, SPEC §7), so the
+volumes accumulate over the cycles and the obstacle update always starts from the new obstacle
+with the cumulated volumes (SPEC §8).
+
+The case file holds the usual wear sections (``[law]``, ``[geometry]``, ``[sectors]``,
+``[time]``: the durations of one cycle, ``[power]`` window), an ``[obstacle]`` section (the new
+obstacle and the mobile's wall), a ``[dynamics]`` section (:mod:`fretwear.dynamics.config`) and an
+``[iterate]`` section (:data:`ITERATE_KEYS`).
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import tomllib
+import warnings
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.dynamics.config import DynamicsSetup, dynamics_from_config
+from fretwear.dynamics.integrate import simulate
+from fretwear.errors import FretwearWarning, InputError, KeywordError
+
+#: key -> (type, description with unit) of the ``[iterate]`` section.
+ITERATE_KEYS: dict[str, tuple[Any, str]] = {
+    "cycles": (int, "number of cycles dynamics → wear → obstacle (default 1)"),
+    "max_depth_m": ((int, float), "stop after the cycle where the mobile's (or obstacle's) "
+                                  "worn depth reaches this [m]"),
+    "shock": (str, "name of the shock whose history feeds the wear table (default the first)"),
+    "output": (str, "output folder, relative to the case file (default 'iterate')"),
+    "plot": (bool, "write figures for every cycle (default true)"),
+    "stop_on_perforation": (bool, "stop when the mobile is perforated (default true)"),
+}
+
+
+def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
+    for key, value in section.items():
+        if key not in ITERATE_KEYS:
+            close = difflib.get_close_matches(key, ITERATE_KEYS, n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise KeywordError(f"[iterate]: unknown key {key}{hint}; valid keys: "
+                               f"{', '.join(ITERATE_KEYS)}")
+        kind = ITERATE_KEYS[key][0]
+        if (isinstance(value, bool) and kind is not bool) or not isinstance(value, kind):
+            raise KeywordError(f"[iterate] {key} = {value!r}: expected {ITERATE_KEYS[key][1]}")
+    out = dict(section)
+    if out.get("cycles", 1) < 1:
+        raise KeywordError(f"[iterate] cycles must be >= 1, got {out['cycles']}")
+    return out
+
+
+def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
+    """Read a case file (or dict) for the loop: validated wear sections plus the raw
+    ``[dynamics]`` and checked ``[iterate]`` sections; ``_directory`` is the file's folder.
+
+    Raises
+    ------
+    InputError
+        Missing file, invalid TOML.
+    KeywordError
+        Unknown sections or keys (with the closest valid name), missing sections.
+    """
+    from fretwear.case import validate_case
+
+    if isinstance(case, Mapping):
+        raw = dict(case)
+        source, directory = "case", raw.pop("_directory", None)
+    else:
+        p = Path(case)
+        if not p.is_file():
+            raise InputError(f"case file {str(p)!r} does not exist")
+        try:
+            raw = tomllib.loads(p.read_text(encoding="utf-8"))
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(f"case file {str(p)!r} is not valid TOML: {exc}") from None
+        source, directory = str(p), str(p.resolve().parent)
+    dynamics = raw.pop("dynamics", None)
+    iterate = _check_iterate(raw.pop("iterate", {}))
+    if dynamics is None:
+        raise KeywordError(f"{source}: the loop needs a [dynamics] section (modes, shocks, "
+                           "excitation); see docs/dynamics.md")
+    if "obstacle" not in raw:
+        raise KeywordError(f"{source}: the loop needs an [obstacle] section (the new obstacle "
+                           "and the mobile's wall thickness) for the obstacle update")
+    if "history" in raw or "value_W" in raw.get("power", {}):
+        raise KeywordError(f"{source}: [history] file / [power] value_W are not used by the loop "
+                           "(the history comes from [dynamics]); remove them")
+    out = validate_case(raw, source=source)
+    out["dynamics"], out["iterate"] = dict(dynamics), iterate
+    out["_directory"] = directory
+    return out
+
+
+@dataclass
+class IterationResult:
+    """What the loop produced.
+
+    Attributes
+    ----------
+    summary : DataFrame
+        One row per cycle: ``cycle``, ``instant`` (end of the cycle) [user unit], ``power`` [W],
+        ``wear_power_steps`` [W] (integrated at every time step), ``depth_mobile_max``,
+        ``depth_obstacle_max`` [m], ``clearance_min``, ``clearance_max`` [m] (after the update),
+        ``contact_fraction`` [-], ``perforated``.
+    tables : list of DataFrame
+        The wear table after each cycle (each continues the previous one).
+    profiles : list of ObstacleResult
+        The obstacle update after each cycle.
+    directory : Path or None
+        Output folder.
+    stopped : str
+        Why the loop stopped: ``"cycles"``, ``"max_depth"`` or ``"perforation"``.
+    warnings : list of str
+    """
+
+    summary: pd.DataFrame
+    tables: list[pd.DataFrame]
+    profiles: list[Any]
+    directory: Path | None
+    stopped: str
+    warnings: list[str] = field(default_factory=list)
+
+
+def _wear_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
+    from fretwear.case import case_arguments
+
+    c = {k: v for k, v in case.items() if k not in ("dynamics", "iterate", "history")}
+    c["power"] = {**case.get("power", {}), "value_W": 0.0}  # the history comes from dynamics
+    args = case_arguments(c)
+    if args["sectors"] is None:
+        raise KeywordError("case: the loop needs [sectors] (count or edges_deg): the obstacle "
+                           "update uses the cumulated sector volumes")
+    return args
+
+
+def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | None = None,
+                 cycles: int | None = None, plot: bool | None = None,
+                 progress: Callable[[str], None] | None = None) -> IterationResult:
+    """Run the coupled loop of a case: dynamics → wear table → obstacle update, repeated.
+
+    Parameters
+    ----------
+    case : path-like or mapping
+        The case file (or its content as a dict) with ``[dynamics]``, ``[obstacle]``,
+        ``[sectors]``, ``[law]``, ``[geometry]``, ``[time]`` and optionally ``[iterate]``.
+    output : path-like, optional
+        Output folder (default ``[iterate] output``, else ``iterate`` beside the case file);
+        ``cycle_NN/`` holds each cycle's history (Parquet), wear table (CSV), profile (CSV and
+        DISCRET) and figures; ``summary.csv`` and ``summary.json`` the per-cycle summary.
+    cycles : int, optional
+        Overrides ``[iterate] cycles``.
+    plot : bool, optional
+        Overrides ``[iterate] plot``.
+    progress : callable, optional
+        ``progress(message)`` before each stage.
+
+    Returns
+    -------
+    IterationResult
+
+    Notes
+    -----
+    Cycle k: the shocks with ``obstacle = "case"`` see the new obstacle (k = 1) or the worn
+    clearance figure of cycle k − 1 (a discrete polar profile, 0.5° steps); the wear shock's
+    history gives the power over the ``[power]`` window; the wear table of cycle k continues the
+    table of cycle k − 1 (ETAT_INIT) over the ``[time] instants`` (the durations of one cycle);
+    the obstacle update uses its cumulated sector volumes at the last instant.
+
+    References
+    ----------
+    Code_Aster R7.20.01 (POST_USURE) §6; EDF HT-22/98-009A (iterative wear computations).
+    """
+    from fretwear.case import chunked_power
+    from fretwear.obstacle.config import obstacle_from_config
+    from fretwear.operator import wear_table
+
+    say = progress or (lambda message: None)
+    case = load_iterate_case(case)
+    it = case["iterate"]
+    n_cycles = int(cycles if cycles is not None else it.get("cycles", 1))
+    do_plot = bool(plot if plot is not None else it.get("plot", True))
+    directory = case.get("_directory")
+    if output is None:
+        out = Path(it.get("output", "iterate"))
+        output = out if out.is_absolute() or directory is None else Path(directory) / out
+    out_dir = Path(output)
+    setup: DynamicsSetup = dynamics_from_config(case["dynamics"], directory=directory)
+    names = [s.label for s in setup.shocks]
+    wear_shock = it.get("shock", names[0])
+    if wear_shock not in names:
+        raise KeywordError(f"[iterate] shock = {wear_shock!r} is not a shock of [dynamics]; "
+                           f"choose one of {names}")
+    iw = names.index(wear_shock)
+    args = _wear_arguments(case)
+    obstacle = obstacle_from_config(case)
+    new = obstacle.obstacle
+    if not setup.case_obstacle[iw]:
+        warnings.warn(f"the wear shock {wear_shock!r} does not use obstacle = \"case\": its "
+                      "obstacle will be replaced by the worn profile from cycle 2 on, but cycle 1 "
+                      "uses its own obstacle, not the [obstacle] section's", FretwearWarning,
+                      stacklevel=2)
+    grid = np.arange(0.0, 360.0, 0.5)
+    new_profile = (grid, np.asarray(new.gap(grid), dtype=float))
+    profile = new_profile
+    max_depth = it.get("max_depth_m")
+    rows, tables, profiles = [], [], []
+    previous = args.pop("initial_state")
+    stopped = "cycles"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for k in range(1, n_cycles + 1):
+            cdir = out_dir / f"cycle_{k:02d}"
+            say(f"cycle {k}/{n_cycles}: dynamics")
+            profiles_k = {i: new_profile for i, c in enumerate(setup.case_obstacle) if c}
+            if k > 1:
+                profiles_k[iw] = profile
+            shocks = setup.shocks_with(profiles_k)
+            result = simulate(setup.model, shocks, setup.excitations,
+                              output_dir=cdir / "histories", **setup.options)
+            history = result.history(iw)
+            say(f"cycle {k}/{n_cycles}: wear table")
+            power = chunked_power(history, args)
+            kwargs = dict(args, initial_state=previous)
+            if args["law"].upper() == "KWU_EPRI":
+                table = wear_table(history, **kwargs)
+            else:
+                for key in ("t_start", "t_end", "blocks", "stationarity_threshold", "sectors"):
+                    kwargs.pop(key)
+                table = wear_table(power, **kwargs)
+            say(f"cycle {k}/{n_cycles}: obstacle update")
+            update = obstacle.update(table)
+            previous = table
+            profile = (np.asarray(update.angle, float), np.asarray(update.clearance_worn, float))
+            seen = shocks[iw]
+            figures = {"clearance (new)": (update.angle, update.clearance_initial),
+                       "clearance seen by the dynamics": (seen.profile_angles, seen.profile_gaps)
+                       if seen.obstacle == "profile" else None,
+                       "clearance after the update": (update.angle, update.clearance_worn)}
+            _write_cycle(cdir, table, update, result, history, do_plot,
+                         {k: v for k, v in figures.items() if v is not None})
+            tables.append(table)
+            profiles.append(update)
+            instant = float(np.max(table["instant"]))
+            row = {"cycle": k, "instant": instant, "power": float(power.total),
+                   "wear_power_steps": float(result.wear_power[iw]),
+                   "depth_mobile_max": float(np.nanmax(update.depth_mobile)),
+                   "depth_obstacle_max": float(np.nanmax(update.depth_obstacle)),
+                   "clearance_min": float(np.nanmin(update.clearance_worn)),
+                   "clearance_max": float(np.nanmax(update.clearance_worn)),
+                   "contact_fraction": float(np.mean(history.normal_force > 0)),
+                   "perforated": bool(update.perforated)}
+            rows.append(row)
+            if not np.all(np.isfinite(profile[1])):
+                warnings.warn(f"cycle {k}: the worn clearance has undefined values (depth beyond "
+                              "the geometry's range); the loop stops", FretwearWarning,
+                              stacklevel=2)
+                stopped = "invalid_profile"
+                break
+            if update.perforated and it.get("stop_on_perforation", True):
+                stopped = "perforation"
+                break
+            if max_depth is not None and max(row["depth_mobile_max"],
+                                             row["depth_obstacle_max"]) >= max_depth:
+                stopped = "max_depth"
+                break
+    summary = pd.DataFrame(rows)
+    _write_summary(out_dir, summary, stopped, do_plot, profiles)
+    texts = []
+    for w in caught:
+        t = f"{w.category.__name__}: {w.message}"
+        if t not in texts:
+            texts.append(t)
+    return IterationResult(summary=summary, tables=tables, profiles=profiles,
+                           directory=out_dir, stopped=stopped, warnings=texts)
+
+
+def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures) -> None:
+    from fretwear.cli.run import write_table
+    from fretwear.io.atomic import atomic_write
+
+    write_table(table, cdir / "wear_table.csv")
+    update.write(cdir / "obstacle_profile.csv")
+    if np.all(np.isfinite(update.clearance_worn)):
+        update.write_discret(cdir / "obstacle_discret.txt")
+    else:
+        warnings.warn(f"{cdir.name}: the worn clearance has NaN values (depth beyond the "
+                      "geometry's range): obstacle_discret.txt not written", FretwearWarning,
+                      stacklevel=2)
+    with atomic_write(cdir / "dynamics.json", "w", encoding="utf-8") as fh:
+        json.dump(result.summary(), fh, indent=2)
+    if do_plot:
+        from fretwear.plotting.dynamics import plot_contact_history
+
+        plot_contact_history(history, cdir, profiles=figures)
+        try:
+            from fretwear.plotting.wear import plot_wear_table
+
+            plot_wear_table(table, cdir)
+        except Exception as exc:  # noqa: BLE001 - a figure must not stop the loop
+            warnings.warn(f"wear-table figure of {cdir.name} not written: {exc}",
+                          FretwearWarning, stacklevel=2)
+
+
+def _write_summary(out_dir: Path, summary: pd.DataFrame, stopped: str, do_plot: bool,
+                   profiles) -> None:
+    from fretwear.io.atomic import atomic_path, atomic_write
+
+    with atomic_path(out_dir / "summary.csv") as tmp:
+        summary.to_csv(tmp, index=False, float_format="%.10g")
+    with atomic_write(out_dir / "summary.json", "w", encoding="utf-8") as fh:
+        json.dump({"stopped": stopped, "cycles": summary.to_dict(orient="records")}, fh,
+                  indent=2)
+    if do_plot and len(summary):
+        from fretwear.plotting.dynamics import plot_iteration
+
+        plot_iteration(summary, [(p.angle, p.clearance_worn) for p in profiles], out_dir)

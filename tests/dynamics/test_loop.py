@@ -1,0 +1,199 @@
+"""The coupled loop dynamics → wear table → obstacle update → dynamics (``fretwear iterate``).
+
+Checks against independent computations: the wear power of each cycle's history (SPEC §2,
+trapezoid with the stick rule, computed here), Archard's V = K·P·t chained through the restart
+(SPEC §7: V_cumulated = V_previous + K·P_k·Δt), and the worn clearance fed back to the dynamics.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+from fretwear.dynamics.config import dynamics_from_config
+from fretwear.dynamics.loop import iterate_case, load_iterate_case
+from fretwear.errors import KeywordError
+
+K_MOBILE, K_OBSTACLE = 2e-14, 1e-14  # [1/Pa], large so that one cycle opens the gap visibly
+YEAR = 31536000.0
+
+
+def case(tmp_path, cycles=2, **iterate):
+    return {
+        "law": {"name": "ARCHARD", "mobile": {"COEF_USURE": K_MOBILE},
+                "obstacle": {"COEF_USURE": K_OBSTACLE}},
+        "geometry": {"contact_type": "TUBE_ALESAGE", "mobile_radius_m": 9.5e-3,
+                     "obstacle_radius_m": 9.7e-3, "obstacle_width_m": 0.02},
+        "sectors": {"count": 8},
+        "time": {"instants": [0.5, 1.0], "unit": "year"},
+        "obstacle": {"type": "circle", "gap_m": 2e-4, "wall_thickness_m": 1.1e-3},
+        "dynamics": {
+            "duration_s": 0.4, "time_step_s": 2e-5, "archive_step_s": 1e-4,
+            "modes": {"frequencies_Hz": [30.0, 30.0], "damping_ratios": 0.02,
+                      "masses_kg": 0.5, "shock_shapes": [[[1.0, 0.0], [0.0, 1.0]]],
+                      "forcing_shapes": [[[1.0, 0.0], [0.0, 1.0]]]},
+            # a harmonic force along y: impacts at 0° and 180°, sliding from friction-free z
+            "shocks": [{"name": "bore", "obstacle": "case", "normal_stiffness_N_per_m": 1e6,
+                        "normal_damping_N_s_per_m": 20.0, "friction": 0.3,
+                        "tangential_stiffness_N_per_m": 1e6}],
+            "forces": [{"point": 0, "direction": "y", "kind": "harmonic", "amplitude": 12.0,
+                        "frequency_Hz": 25.0},
+                       {"point": 0, "direction": "z", "kind": "harmonic", "amplitude": 6.0,
+                        "frequency_Hz": 25.0, "phase_deg": 90.0}],
+        },
+        "iterate": {"cycles": cycles, "plot": False, **iterate},
+        "_directory": str(tmp_path),
+    }
+
+
+def _power(h):
+    p = h.normal_force * np.hypot(h.vt1, h.vt2)
+    keep = h.stick[:-1] == 0
+    return float(np.sum(0.5 * (p[1:] + p[:-1]) * np.diff(h.time) * keep) / h.duration)
+
+
+def test_loop_chains_tables_and_feeds_the_worn_profile(tmp_path):
+    res = iterate_case(case(tmp_path), output=tmp_path / "out")
+    assert res.stopped == "cycles" and len(res.tables) == 2
+    import pyarrow.parquet as pq
+
+    powers = []
+    for k in (1, 2):
+        frame = pq.read_table(tmp_path / "out" / f"cycle_{k:02d}" / "histories" /
+                              "bore.parquet").to_pandas()
+        from fretwear.history import ContactHistory
+
+        powers.append(_power(ContactHistory.from_frame(frame)))
+    assert res.summary["power"].tolist() == pytest.approx(powers, rel=1e-9)
+    # Archard, chained through the restart: global volumes at the end of each cycle
+    t1, t2 = res.tables
+    last1 = t1[t1["instant"] == t1["instant"].max()]
+    last2 = t2[t2["instant"] == t2["instant"].max()]
+    v1 = float(last1["volume_mobile_cumulated"].sum())
+    v2 = float(last2["volume_mobile_cumulated"].sum())
+    assert v1 == pytest.approx(K_MOBILE * powers[0] * YEAR, rel=1e-9)
+    assert v2 == pytest.approx(v1 + K_MOBILE * powers[1] * YEAR, rel=1e-9)
+    assert float(last2["instant"].iloc[0]) == pytest.approx(2.0)
+    # the worn clearance opened around the impact directions 0° and 180°
+    p1 = res.profiles[0]
+    i0, i90 = int(np.argmin(np.abs(p1.angle - 0.0))), int(np.argmin(np.abs(p1.angle - 90.0)))
+    assert p1.clearance_worn[i0] > p1.clearance_initial[i0] + 1e-6
+    assert np.all(p1.clearance_worn >= p1.clearance_initial - 1e-12)
+    # ...and the second dynamics saw it: every contact of cycle 2 lies on or beyond the worn
+    # clearance of cycle 1 (the new circle would give contacts from r = 0.2 mm on)
+    h2 = pd.read_parquet(tmp_path / "out" / "cycle_02" / "histories" / "bore.parquet")
+    hit = h2[h2["normal_force"] > 0]
+    r = np.hypot(hit["dy"], hit["dz"])
+    theta = np.mod(np.degrees(np.arctan2(hit["dz"], hit["dy"])), 360.0)
+    seen = np.interp(theta, p1.angle, p1.clearance_worn)
+    assert len(hit) > 0 and np.all(r >= seen - 1e-7)
+    assert r.max() > 2e-4 + 0.5 * (p1.clearance_worn[i0] - p1.clearance_initial[i0])
+    assert p1.clearance_worn[i0] - p1.clearance_initial[i0] > \
+        p1.clearance_worn[i90] - p1.clearance_initial[i90]
+    for name in ("wear_table.csv", "obstacle_profile.csv", "obstacle_discret.txt",
+                 "dynamics.json"):
+        assert (tmp_path / "out" / "cycle_02" / name).exists()
+    assert (tmp_path / "out" / "summary.csv").exists()
+
+
+def test_loop_stops_at_depth(tmp_path):
+    res = iterate_case(case(tmp_path, cycles=5, max_depth_m=1e-9), output=tmp_path / "o")
+    assert res.stopped == "max_depth" and len(res.summary) == 1
+
+
+def test_case_errors(tmp_path):
+    c = case(tmp_path)
+    c["iterate"]["cylces"] = 3
+    with pytest.raises(KeywordError, match="did you mean 'cycles'"):
+        load_iterate_case(c)
+    c = case(tmp_path)
+    del c["sectors"]
+    with pytest.raises(KeywordError, match="sectors"):
+        iterate_case(c, output=tmp_path / "x")
+    c = case(tmp_path)
+    c["dynamics"]["shocks"][0]["normal_stifness_N_per_m"] = 1.0
+    with pytest.raises(KeywordError, match="normal_stiffness_N_per_m"):
+        dynamics_from_config(c["dynamics"])
+    c = case(tmp_path)
+    c["history"] = {"file": "x.csv"}
+    with pytest.raises(KeywordError, match="history"):
+        load_iterate_case(c)
+
+
+def test_beam_config_matches_blevins():
+    # [dynamics.beam] → clamped-pinned modes, λ1 = 3.92660 (Blevins Table 8-1)
+    s = dynamics_from_config({
+        "duration_s": 0.1,
+        "beam": {"young_modulus_Pa": 2e11, "second_moment_m4": 2.5e-9,
+                 "mass_per_length_kg_per_m": 0.9, "length_m": 1.0, "modes": 2,
+                 "ends": ["clamped", "pinned"]},
+        "shocks": [{"position_m": 0.5, "obstacle": "circle", "gap_m": 1e-4,
+                    "normal_stiffness_N_per_m": 1e6}],
+        "base": [{"direction": "y", "kind": "random", "psd_frequencies_Hz": [5, 50],
+                  "psd": [1.0, 1.0], "seed": 2}]})
+    f1 = 3.92660231**2 / (2 * math.pi) * math.sqrt(2e11 * 2.5e-9 / 0.9)
+    assert s.model.frequencies[0] == pytest.approx(f1, rel=1e-7)
+    assert s.options["archive_step"] == 1e-4
+
+
+LOOP_TOML = """
+[law]
+name = "ARCHARD"
+mobile = { COEF_USURE = 2e-14 }
+[geometry]
+contact_type = "TUBE_ALESAGE"
+mobile_radius_m = 9.5e-3
+obstacle_radius_m = 9.7e-3
+obstacle_width_m = 0.02
+[sectors]
+count = 8
+[time]
+instants = [1.0]
+unit = "year"
+[obstacle]
+gap_m = 2e-4
+wall_thickness_m = 1.1e-3
+[dynamics]
+duration_s = 0.2
+time_step_s = 2e-5
+[dynamics.modes]
+frequencies_Hz = [30.0, 30.0]
+damping_ratios = 0.02
+masses_kg = 0.5
+shock_shapes = [[[1.0, 0.0], [0.0, 1.0]]]
+forcing_shapes = [[[1.0, 0.0], [0.0, 1.0]]]
+[[dynamics.shocks]]
+name = "bore"
+obstacle = "case"
+normal_stiffness_N_per_m = 1e6
+[[dynamics.forces]]
+point = 0
+direction = "y"
+amplitude = 12.0
+frequency_Hz = 25.0
+[iterate]
+cycles = 3
+output = "out"
+"""
+
+
+def test_cli_iterate(tmp_path):
+    from fretwear.cli import main
+
+    toml = tmp_path / "loop.toml"
+    toml.write_text(LOOP_TOML, encoding="utf-8")
+    assert main(["iterate", str(toml), "--cycles", "2", "-q"]) == 0
+    summary = pd.read_csv(tmp_path / "out" / "summary.csv")
+    assert summary["cycle"].tolist() == [1, 2]
+    assert (tmp_path / "out" / "cycle_02" / "contact_history.png").exists()
+    assert (tmp_path / "out" / "iteration.svg").exists()
+    runner = CliRunner()
+    from fretwear.cli import cli
+
+    help_text = runner.invoke(cli, ["iterate", "--help"]).output
+    for key in ("max_depth_m", "normal_stiffness_N_per_m", "psd_frequencies_Hz", "supports_m"):
+        assert key in help_text
