@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import shutil
+import sys
 
 import numpy as np
 import pandas as pd
@@ -28,7 +29,7 @@ def test_round_trip_every_writer_and_reader(tmp_path, history, fmt):
     path = write_history(history, tmp_path / NATIVE[fmt])
     assert guess_format(path) == fmt
     back = read_history(path)
-    assert_same_history(history, back)  # exact: %.17g / %.16E / binary doubles
+    assert_same_history(history, back)  # exact: shortest repr / %.16E / binary doubles
     assert back.metadata["format"] == fmt
     # Code_Aster tables keep their name in the title only (the stem names the history)
     assert back.name == ("h" if fmt == "aster" else "N12")
@@ -82,6 +83,16 @@ def test_csv_float_format_rounds_to_the_printed_precision(tmp_path, history):
     back = read_history(write_history(history, tmp_path / "h.csv", float_format="%.6e"))
     expected = np.array([float("%.6e" % v) for v in history.normal_force])  # noqa: UP031
     np.testing.assert_array_equal(back.normal_force, expected)
+
+
+def test_csv_default_is_exact_without_pyarrow(tmp_path, history, monkeypatch):
+    """The pandas fallback writes the same exact values as the pyarrow writer."""
+    fast = write_history(history, tmp_path / "fast.csv").read_text()
+    for module in ("pyarrow", "pyarrow.csv"):
+        monkeypatch.setitem(sys.modules, module, None)
+    slow = write_history(history, tmp_path / "slow.csv")
+    assert_same_history(history, read_history(slow))
+    assert fast.splitlines()[:15] == slow.read_text().splitlines()[:15]  # same header
 
 
 def test_units_declared_by_binary_files_are_converted(tmp_path):

@@ -402,7 +402,8 @@ def iter_history_chunks(path: Any, chunk_size: int = 1_000_000, format: str | No
         pending_rows += block[0].size
         need = size - (0 if carry is None else 1)
         while pending_rows >= need:
-            merged = [np.concatenate([p[j] for p in pending]) for j in range(len(channels))]
+            merged = (pending[0] if len(pending) == 1 else
+                      [np.concatenate([p[j] for p in pending]) for j in range(len(channels))])
             take = [a[:need] for a in merged]
             rest = [a[need:] for a in merged]
             parts = [take] if carry is None else [carry, take]
@@ -435,7 +436,7 @@ def write_history(history: ContactHistory, path: str | os.PathLike, format: str 
         A key of :data:`FORMATS` with a writer (``csv``, ``parquet``, ``hdf5``, ``netcdf``,
         ``npz``, ``aster``); default from the suffix.
     **options
-        csv ``float_format`` (default ``%.17g``, exact), ``delimiter``; parquet
+        csv ``float_format`` (default: shortest exact text), ``delimiter``; parquet
         ``row_group_size``; hdf5 ``group`` (default ``history``); aster ``table_format``
         (``TABLEAU``/``ASTER``) and ``float_format`` (default ``%.16E``, exact) with Code_Aster
         names (INST, FN, FT1, FT2, VN, VT1, VT2, DYLOC, DZLOC, VINT13).

@@ -16,6 +16,7 @@ LIRE_TABLE; SPEC §1):
 
 from __future__ import annotations
 
+import io
 import os
 import re
 from collections.abc import Sequence
@@ -28,7 +29,6 @@ from fretwear.errors import FormatError, InputError
 from fretwear.io.atomic import atomic_write
 
 _TOKEN = re.compile(r"'[^']*'|\"[^\"]*\"|\S+")
-_INT = re.compile(r"^[+-]?\d+$")
 _TYPES = ("R", "I", "K8", "K16", "K24", "K32", "K80")
 _STRING_WIDTHS = (8, 16, 24, 32, 80)
 
@@ -63,9 +63,13 @@ def _split_tables(text: str, label: str) -> list[dict]:
     in_aster = False
     for lineno, raw in enumerate(text.splitlines(), start=1):
         line = raw.strip()
-        upper = line.upper()
         if not line:
             continue
+        if line[0] != "#" and current is not None and current["names"] is not None \
+                and (current["types"] is not None or current["format"] == "TABLEAU"):
+            current["rows"].append((lineno, line))  # the common case: a data line
+            continue
+        upper = line.upper()
         if upper.startswith("#DEBUT_TABLE"):
             current = {"format": "ASTER", "title": [], "names": None, "types": None, "rows": [],
                        "line": lineno}
@@ -89,7 +93,7 @@ def _split_tables(text: str, label: str) -> list[dict]:
             elif current["types"] is None:
                 current["types"] = [t.upper() for t in _tokens(line)]
             else:
-                current["rows"].append((lineno, _tokens(line)))
+                current["rows"].append((lineno, line))
             continue
         if line.startswith("#"):
             if current is None or current["names"] is not None:
@@ -107,57 +111,107 @@ def _split_tables(text: str, label: str) -> list[dict]:
         if current["names"] is None:
             current["names"] = [_unquote(t) for t in _tokens(line)]
         else:
-            current["rows"].append((lineno, _tokens(line)))
+            current["rows"].append((lineno, line))
     if in_aster:
         raise FormatError(f"{label}: #DEBUT_TABLE at line {tables[-1]['line']} is never closed "
                           "by #FIN_TABLE; the file is truncated")
     return [t for t in tables if t["names"]]
 
 
-def _infer_type(cells: list[str]) -> str:
-    present = [c for c in cells if c != "-"]
-    if present and all(_INT.match(c) for c in present):
-        return "I"
+def _numbers(col: np.ndarray) -> np.ndarray | None:
+    """Float values of a column of tokens (``-`` -> NaN, Fortran ``D`` exponents); None if not."""
+    missing = col == "-"
+    filled = np.where(missing, "nan", col)
     try:
-        for c in present:
-            float(c.replace("D", "E").replace("d", "e"))
-        return "R"
+        return filled.astype(float)
     except ValueError:
-        width = max(len(_unquote(c)) for c in present)
-        return f"K{next((w for w in _STRING_WIDTHS if width <= w), 80)}"
+        try:
+            return np.array([c.replace("D", "E").replace("d", "e") for c in filled], dtype=float)
+        except ValueError:
+            return None
+
+
+def _infer_type(col: np.ndarray, values: np.ndarray | None) -> str:
+    present = col[col != "-"]
+    if values is not None:
+        if present.size and set("".join(present)) <= set("0123456789+-"):
+            return "I"
+        return "R"
+    width = max((len(_unquote(c)) for c in present), default=1)
+    return f"K{next((w for w in _STRING_WIDTHS if width <= w), 80)}"
+
+
+def _columns_fast(raw: dict) -> list[np.ndarray] | None:
+    """Columns parsed by pandas' C parser, or None when the slow path must decide (quoted
+    strings, ragged or short rows: the slow path names the line)."""
+    texts = [text for _, text in raw["rows"]]
+    if not texts or any("'" in t or '"' in t for t in texts):
+        return None
+    try:
+        frame = pd.read_csv(io.StringIO("\n".join(texts)), sep=r"\s+", header=None,
+                            keep_default_na=False, na_values=[], engine="c")
+    except (pd.errors.ParserError, ValueError):
+        return None
+    if frame.shape != (len(texts), len(raw["names"])) or frame.isna().to_numpy().any():
+        return None
+    return [frame[j].to_numpy() for j in range(frame.shape[1])]
+
+
+def _cells(raw: dict, label: str) -> np.ndarray:
+    """The rows of a raw table as a 2-D object array of tokens, checking the count per line."""
+    names: list[str] = raw["names"]
+    ncol = len(names)
+    texts = [text for _, text in raw["rows"]]
+    quoted = any("'" in t or '"' in t for t in texts)
+    split = [_tokens(t) if quoted else t.split() for t in texts]
+    for (lineno, _), cells in zip(raw["rows"], split, strict=True):
+        if len(cells) != ncol:
+            raise FormatError(
+                f"{label}, line {lineno}: {len(cells)} cells for {ncol} columns {names}; an empty "
+                "cell must be written '-' and a string holding blanks must be quoted")
+    table = np.empty((len(split), ncol), dtype=object)
+    if split:
+        table[:, :] = split
+    return table
 
 
 def _convert(raw: dict, label: str) -> pd.DataFrame:
     names: list[str] = raw["names"]
     ncol = len(names)
-    for lineno, cells in raw["rows"]:
-        if len(cells) != ncol:
-            raise FormatError(
-                f"{label}, line {lineno}: {len(cells)} cells for {ncol} columns {names}; an empty "
-                "cell must be written '-' and a string holding blanks must be quoted")
-    columns = [[cells[j] for _, cells in raw["rows"]] for j in range(ncol)]
+    fast = _columns_fast(raw)
+    table = _cells(raw, label) if fast is None else None
     types = raw["types"]
-    if types is None:
-        types = [_infer_type(col) for col in columns]
-    elif len(types) != ncol:
+    if types is not None and len(types) != ncol:
         raise FormatError(f"{label}, table at line {raw['line']}: {len(types)} types for "
                           f"{ncol} columns {names}")
     series = {}
-    for j, (col, kind) in enumerate(zip(columns, types, strict=True)):
+    kinds = []
+    for j in range(ncol):
+        col = fast[j] if fast is not None else table[:, j]  # type: ignore[index]
+        kind = types[j] if types is not None else None
+        if kind is not None and not kind.startswith("K") and kind not in ("R", "I"):
+            raise FormatError(f"{label}: column {names[j]!r} has unknown type {kind!r}; known "
+                              f"types: {', '.join(_TYPES)}")
+        if col.dtype.kind in "iuf" and (kind is None or not kind.startswith("K")):
+            values = col.astype(float)  # parsed by pandas: no '-' in this column
+            if kind is None:
+                kind = "I" if col.dtype.kind in "iu" else "R"
+        else:
+            if col.dtype.kind in "iuf":  # a string column (K) holding only numbers
+                col = np.array([str(c) for c in col], dtype=object)
+            values = None if kind is not None and kind.startswith("K") else _numbers(col)
+            if kind is None:
+                kind = _infer_type(col, values)
+        kinds.append(kind)
         if kind.startswith("K"):
             series[j] = pd.Series([None if c == "-" else _unquote(c) for c in col], dtype=object)
             continue
-        if kind not in ("R", "I"):
-            raise FormatError(f"{label}: column {names[j]!r} has unknown type {kind!r}; known "
-                              f"types: {', '.join(_TYPES)}")
-        values = np.empty(len(col))
-        for i, c in enumerate(col):
-            try:
-                values[i] = np.nan if c == "-" else float(c.replace("D", "E").replace("d", "e"))
-            except ValueError:
-                lineno = raw["rows"][i][0]
-                raise FormatError(f"{label}, line {lineno}: column {names[j]!r} of type {kind} "
-                                  f"holds {c!r}, not a number") from None
+        if values is None:  # a declared R/I column holding text: find the culprit
+            for i, c in enumerate(col):
+                if _numbers(np.array([c], dtype=object)) is None:
+                    raise FormatError(f"{label}, line {raw['rows'][i][0]}: column {names[j]!r} "
+                                      f"of type {kind} holds {c!r}, not a number")
+        assert values is not None
         if kind == "I":
             series[j] = (pd.Series(values).astype("Int64") if np.isnan(values).any()
                          else pd.Series(values.astype(np.int64)))
@@ -165,7 +219,7 @@ def _convert(raw: dict, label: str) -> pd.DataFrame:
             series[j] = pd.Series(values)
     frame = pd.DataFrame(series) if series else pd.DataFrame(index=range(0))
     frame.columns = list(names)
-    frame.attrs.update(title="\n".join(raw["title"]), types=list(types), format=raw["format"])
+    frame.attrs.update(title="\n".join(raw["title"]), types=list(kinds), format=raw["format"])
     return frame
 
 
@@ -272,6 +326,16 @@ def _format_cell(value, kind: str, float_format: str) -> str:
     return text
 
 
+def _format_column(series: pd.Series, kind: str, float_format: str) -> list[str]:
+    if kind == "R":
+        values = series.to_numpy(dtype=float, na_value=np.nan)
+        text = [float_format % v for v in values.tolist()]
+        for i in np.flatnonzero(np.isnan(values)).tolist():
+            text[i] = "-"
+        return text
+    return [_format_cell(v, kind, float_format) for v in series]
+
+
 def _kind(series: pd.Series) -> str:
     if pd.api.types.is_bool_dtype(series) or pd.api.types.is_integer_dtype(series):
         return "I"
@@ -308,7 +372,7 @@ def format_aster_table(frame: pd.DataFrame, *, format: str = "TABLEAU", title: s
             raise InputError(f"column name {name!r}: Code_Aster parameter names cannot be empty "
                              "or hold blanks; rename the column")
     kinds = [_kind(frame.iloc[:, j]) for j in range(frame.shape[1])]
-    cells = [[_format_cell(v, kinds[j], float_format) for v in frame.iloc[:, j]]
+    cells = [_format_column(frame.iloc[:, j], kinds[j], float_format)
              for j in range(frame.shape[1])]
     widths = [max([len(names[j])] + [len(c) for c in cells[j]]) for j in range(len(names))]
     lines: list[str] = []
@@ -322,8 +386,8 @@ def format_aster_table(frame: pd.DataFrame, *, format: str = "TABLEAU", title: s
     lines.append(" ".join(n.ljust(w) for n, w in zip(names, widths, strict=True)).rstrip())
     if fmt == "ASTER":
         lines.append(" ".join(k.ljust(w) for k, w in zip(kinds, widths, strict=True)).rstrip())
-    for i in range(frame.shape[0]):
-        lines.append(" ".join(cells[j][i].rjust(widths[j]) for j in range(len(names))).rstrip())
+    padded = [[c.rjust(w) for c in column] for column, w in zip(cells, widths, strict=True)]
+    lines.extend(map(" ".join, zip(*padded, strict=True)))
     if fmt == "ASTER":
         lines.append("#FIN_TABLE")
     return "\n".join(lines) + "\n"

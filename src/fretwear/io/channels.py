@@ -381,7 +381,8 @@ def build_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
                 f"({arr[i]}) at data row {first_row + i} (0-based, header excluded); remove or "
                 "fill it before reading")
         factor = factors.get(channel, 1.0)
-        data[channel] = arr * factor if factor != 1.0 else arr.copy()
+        # no copy when factor == 1: ContactHistory copies its inputs (the user's stay untouched)
+        data[channel] = arr * factor if factor != 1.0 else arr
     try:
         return ContactHistory(**data, name=name, metadata=dict(metadata))
     except HistoryError as exc:

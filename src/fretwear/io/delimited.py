@@ -207,7 +207,7 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
 
 
 def write_csv(history: ContactHistory, path: str | os.PathLike, *,
-              float_format: str = "%.17g", delimiter: str = ",") -> Path:
+              float_format: str | None = None, delimiter: str = ",") -> Path:
     """Write a history as CSV: a commented header documenting every column, then the samples.
 
     Parameters
@@ -216,8 +216,10 @@ def write_csv(history: ContactHistory, path: str | os.PathLike, *,
         The history (SI units).
     path : path-like
         Output file, written atomically.
-    float_format : str
-        printf format of the values; the default ``%.17g`` round-trips every double exactly.
+    float_format : str, optional
+        printf format of the values (e.g. ``"%.8g"``). Default: the shortest text that reads
+        back as the same double (exact round trip), written by pyarrow when it is installed
+        (about 10x faster), else by pandas.
     delimiter : str
         Column separator (default ``,``).
 
@@ -228,24 +230,42 @@ def write_csv(history: ContactHistory, path: str | os.PathLike, *,
     Examples
     --------
     >>> import tempfile, pathlib
-    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="n1")
+    >>> h = ContactHistory(time=[0, 0.1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="n1")
     >>> out = write_csv(h, pathlib.Path(tempfile.mkdtemp()) / "n1.csv")
     >>> out.read_text().splitlines()[-3:]
-    ['time,normal_force,vt1,vt2', '0,2,0,0', '1,3,1,0']
+    ['time,normal_force,vt1,vt2', '0,2,0,0', '0.1,3,1,0']
     """
-    try:
-        float_format % 1.0
-    except (TypeError, ValueError):
-        raise InputError(f"float_format={float_format!r} is not a printf format such as "
-                         "'%.17g'") from None
+    if float_format is not None:
+        try:
+            float_format % 1.0
+        except (TypeError, ValueError):
+            raise InputError(f"float_format={float_format!r} is not a printf format such as "
+                             "'%.8g'") from None
     frame = history.to_frame()
     lines = [MAGIC, f"# name: {history.name}",
              f"# metadata: {json.dumps(dict(history.metadata), default=str)}",
              "# columns (SI units):"]
     lines += [f"#   {ch} [{UNITS[ch]}]: {DESCRIPTIONS[ch]}" for ch in history.channels]
+    lines.append(delimiter.join(frame.columns))
     target = Path(path)
+    arrow = None
+    if float_format is None:
+        try:
+            import pyarrow
+            import pyarrow.csv
+
+            arrow = (pyarrow, pyarrow.csv)
+        except ImportError:
+            arrow = None
+    if arrow is not None:
+        pa, pacsv = arrow
+        with atomic_write(target, "wb") as handle:
+            handle.write(("\n".join(lines) + "\n").encode("utf-8"))
+            pacsv.write_csv(pa.Table.from_pandas(frame, preserve_index=False), handle,
+                            pacsv.WriteOptions(include_header=False, delimiter=delimiter))
+        return target
     with atomic_write(target, "w", encoding="utf-8", newline="") as handle:
         handle.write("\n".join(lines) + "\n")
-        frame.to_csv(handle, index=False, float_format=float_format, sep=delimiter,
-                     lineterminator="\n")
+        frame.to_csv(handle, index=False, header=False, float_format=float_format,
+                     sep=delimiter, lineterminator="\n")
     return target
