@@ -146,3 +146,28 @@ def test_keywords_any_case_and_dimensions_as_plain_floats():
     assert type(geometry.mobile_radius) is float
     with pytest.raises(KeywordError, match="given twice"):
         contact_geometry("TUBE_BAV", mobile_radius=0.01, RAYON_MOBILE=0.01, obstacle_width=0.01)
+
+
+# Random dimensions (hypothesis) for the four circle-based types: round trips stay at 1e-10.
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+
+@settings(max_examples=40, deadline=None)
+@given(rm=st.floats(1e-3, 2e-2), clearance=st.floats(1e-3, 0.5), width=st.floats(2e-3, 5e-2),
+       tilt=st.sampled_from([0.0, 0.1, 1.0, 5.0]), fraction=st.floats(1e-6, 0.95),
+       share=st.floats(0.0, 1.0),
+       name=st.sampled_from(["TUBE_BAV", "TUBE_ALESAGE", "TUBE_TUBE", "GRAPPE_ALESAGE"]))
+def test_round_trip_random_dimensions(rm, clearance, width, tilt, fraction, share, name):
+    dims = {"mobile_radius": rm, "obstacle_radius": rm * (1 + clearance),
+            "obstacle_width": width, "tilt_angle": tilt if name != "TUBE_TUBE" else tilt + 1.0}
+    cls = CONTACT_TYPES[name]
+    used = set(cls.required) | set(cls.optional)
+    geometry = contact_geometry(name, **{k: v for k, v in dims.items() if k in used})
+    depth = fraction * geometry.max_depth
+    dm, do = share * depth, (1 - share) * depth
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        vm, vo = geometry.volume_from_depth(dm, do)
+        dm2, do2 = geometry.depth_from_volume(vm, vo)
+    assert abs(dm2 - dm) <= 1e-10 * depth and abs(do2 - do) <= 1e-10 * depth

@@ -575,7 +575,10 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
 
     with np.errstate(invalid="ignore"):
         whole = mobile_area(depth)
-        target = np.clip(share, 0.0, 1.0) * whole
+        # f(0) is 0 up to rounding: the target is kept inside [f(0), f(D)] so that a tiny
+        # share returns d_m = 0 rather than NaN.
+        target = np.clip(np.clip(share, 0.0, 1.0) * whole, mobile_area(np.zeros_like(depth)),
+                         whole)
         dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
     dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
     dm = np.where(np.isnan(whole), np.nan, dm)
