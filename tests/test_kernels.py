@@ -77,13 +77,13 @@ def test_close_edges_are_not_safe_but_still_exact():
 
 @pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
 def test_generic_directions_take_the_fast_path():
-    from fretwear.kernels import _classify_numba
+    from fretwear.kernels import _classify_numba, _ro
 
     rng = np.random.default_rng(11)
     y, z = rng.normal(size=100_000), rng.normal(size=100_000)
     st = sector_table(sector_edges(10))
     out = np.empty(y.size, dtype=np.int64)
-    assert _classify_numba(y, z, st.q_edges, st.table, out) == 0
+    assert _classify_numba(_ro(y), _ro(z), _ro(st.q_edges), _ro(st.table, np.int64), out) == 0
     np.testing.assert_array_equal(out, reference_sector_index(y, z, sector_edges(10)))
 
 

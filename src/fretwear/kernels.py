@@ -270,18 +270,19 @@ def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     hi_c = min(tt[-1], hi)
     cuts = np.concatenate(([lo_c, hi_c], block_edges))
     cuts = cuts[(cuts > tt[0]) & (cuts < tt[-1])]
-    cuts = np.setdiff1d(cuts, tt)
+    cuts = np.unique(cuts)
+    cuts = cuts[tt[np.searchsorted(tt, cuts)] != cuts]  # drop cuts on a sample
     owner = np.searchsorted(tt, cuts, side="right") - 1
-    tg = np.concatenate((tt, cuts))
-    og = np.concatenate((np.arange(m), owner))
-    order = np.argsort(tg, kind="stable")
-    tg, og = tg[order], og[order]
+    pos = np.searchsorted(tt, cuts)
+    tg = np.insert(tt, pos, cuts)
+    og = np.insert(np.arange(m), pos, owner)
     keep = (tg >= lo_c) & (tg <= hi_c)
     tg, og = tg[keep], og[keep]
-    nxt = np.minimum(og + 1, m - 1)
+    o_c = np.minimum(owner, m - 2)
 
-    def at(arr):
-        return _lin(arr[og], arr[nxt], tt[og], tt[nxt], tg)
+    def at(arr):  # samples exact, cut points interpolated in their interval
+        vals = _lin(arr[o_c], arr[o_c + 1], tt[o_c], tt[o_c + 1], cuts)
+        return np.insert(arr, pos, vals)[keep]
 
     fg, gg, sg = at(fnn), at(g), at(sp)
     pa, pb = tg[:-1], tg[1:]
@@ -289,27 +290,39 @@ def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     width = pb - pa
     blk = np.clip(np.searchsorted(block_edges, pa, side="right") - 1, 0, nb - 1)
     fa, fb = fg[:-1], fg[1:]
+
+    def by_block(values):
+        return np.bincount(blk, weights=values, minlength=nb)
+
     w_g = 0.5 * width * (gg[:-1] + gg[1:]) * slides[own]
-    np.add.at(power, (blk, sec[own]), w_g)
-    np.add.at(bstats[:, 3], blk, 0.5 * width * (fa + fb))
-    np.add.at(bstats[:, 4], blk, width * (fa * fa + fa * fb + fb * fb) / 3.0)
-    # contact (above-threshold) part of each piece, linear force
+    power += np.bincount(blk * ns + sec[own], weights=w_g, minlength=nb * ns).reshape(nb, ns)
+    i1 = 0.5 * width * (fa + fb)
+    i2 = width * (fa * fa + fa * fb + fb * fb) / 3.0
+    bstats[:, 3] = by_block(i1)
+    bstats[:, 4] = by_block(i2)
+    # contact (above-threshold) part [ca, cb] of each piece, linear force
     above_a, above_b = fa > threshold, fb > threshold
-    with np.errstate(invalid="ignore", divide="ignore"):
-        cross = pa + (fa - threshold) / (fa - fb) * width
-    ca = np.where(above_a, pa, np.where(above_b, cross, pa))
-    cb = np.where(above_b, pb, np.where(above_a, cross, pa))
-    ca = np.clip(ca, pa, pb)
-    cb = np.clip(cb, ca, pb)
+    full = above_a & above_b
+    ca, cb = np.where(full, pa, pa), np.where(full, pb, pa)
+    fca, fcb = fa.copy(), fb.copy()
+    sa, sb = sg[:-1], sg[1:]
+    sca, scb = sa.copy(), sb.copy()
+    x = np.flatnonzero(above_a ^ above_b)  # pieces crossing the threshold
+    cross = pa[x] + (fa[x] - threshold) / (fa[x] - fb[x]) * width[x]
+    ca[x] = np.clip(np.where(above_a[x], pa[x], cross), pa[x], pb[x])
+    cb[x] = np.clip(np.where(above_b[x], pb[x], cross), ca[x], pb[x])
+    for v, w_, store in ((fa, fb, (fca, fcb)), (sa, sb, (sca, scb))):
+        store[0][x] = _lin(v[x], w_[x], pa[x], pb[x], ca[x])
+        store[1][x] = _lin(v[x], w_[x], pa[x], pb[x], cb[x])
     nonempty = (above_a | above_b) & (cb > ca)
     cw = np.where(nonempty, cb - ca, 0.0)
-    fca, fcb = _lin(fa, fb, pa, pb, ca), _lin(fa, fb, pa, pb, cb)
-    sca, scb = _lin(sg[:-1], sg[1:], pa, pb, ca), _lin(sg[:-1], sg[1:], pa, pb, cb)
-    np.add.at(bstats[:, 0], blk, cw)
-    np.add.at(bstats[:, 1], blk, np.where(nonempty, 0.5 * cw * (fca + fcb), 0.0))
-    np.add.at(bstats[:, 2], blk,
-              np.where(nonempty, cw * (fca * fca + fca * fcb + fcb * fcb) / 3.0, 0.0))
-    np.add.at(bstats[:, 5], blk, np.where(nonempty & slides[own], 0.5 * cw * (sca + scb), 0.0))
+    c1 = np.where(full, i1, np.where(nonempty, 0.5 * cw * (fca + fcb), 0.0))
+    c2 = np.where(full, i2, np.where(nonempty, cw * (fca * fca + fca * fcb + fcb * fcb) / 3.0,
+                                     0.0))
+    bstats[:, 0] = by_block(cw)
+    bstats[:, 1] = by_block(c1)
+    bstats[:, 2] = by_block(c2)
+    bstats[:, 5] = by_block(np.where(nonempty & slides[own], 0.5 * cw * (sca + scb), 0.0))
     force_max = float(fg.max())
     # episodes: maximal runs of pieces whose above-threshold parts touch
     npieces = pa.size
@@ -333,7 +346,7 @@ def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
 if HAVE_NUMBA:
     import math
 
-    @numba.njit(cache=True, nogil=True, inline="always")
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
     def _at(g0, g1, t0, t1, x):
         if x == t0:
             return g0
@@ -341,7 +354,7 @@ if HAVE_NUMBA:
             return g1
         return g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
 
-    @numba.njit(cache=True, nogil=True, inline="always")
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
     def _sector_of(y, z, qe, table, ns):  # pragma: no cover - compiled
         """Sector of (y, z) by pseudo-angle lookup, and whether it is ambiguous."""
         s = abs(y) + abs(z)
@@ -370,7 +383,7 @@ if HAVE_NUMBA:
                 amb = True
         return j, amb
 
-    @numba.njit(cache=True, nogil=True)
+    @numba.njit(cache=True, nogil=True, error_model="numpy")
     def _classify_numba(dy, dz, qe, table, out):  # pragma: no cover - compiled
         ns = qe.shape[0] - 1
         n_amb = 0
@@ -380,7 +393,7 @@ if HAVE_NUMBA:
             n_amb += amb
         return n_amb
 
-    @numba.njit(cache=True, nogil=True)
+    @numba.njit(cache=True, nogil=True, error_model="numpy")
     def _fused_numba(t, fn, v1, v2, dy, dz, stick, has_stick, mode, sec_given,
                      lo, hi, be, qe, table, threshold, min_rest,
                      power, bstats, groups):  # pragma: no cover - compiled
@@ -388,6 +401,7 @@ if HAVE_NUMBA:
         n = t.shape[0]
         nb = be.shape[0] - 1
         ns = qe.shape[0] - 1
+        third = 1.0 / 3.0
         i0 = np.searchsorted(t, lo, side="right") - 1
         if i0 < 0:
             i0 = 0
@@ -401,6 +415,13 @@ if HAVE_NUMBA:
         k = 0
         while k < nb - 1 and L >= be[k + 1]:
             k += 1
+        # per-block statistics of the current block k, flushed into bstats when k changes
+        CT = 0.0
+        FC = 0.0
+        F2C = 0.0
+        FT = 0.0
+        F2T = 0.0
+        SD = 0.0
         # impact state
         in_ep = False
         ep_start = 0.0
@@ -419,37 +440,120 @@ if HAVE_NUMBA:
         m_dsum = 0.0
         m_dmax = 0.0
         m_psum = 0.0
+        PW = 0.0  # power integral of the current (block, sector) cell (pk, pj)
+        pk = k
+        pj = 0
+        j_last = 0
+        q_lo = np.inf
+        q_hi = -np.inf
         t1 = t[i0]
         fn1 = fn[i0]
-        s1 = math.sqrt(v1[i0] * v1[i0] + v2[i0] * v2[i0])
+        s1 = 0.0  # sliding speed of the right sample, computed only when needed (ok1)
+        ok1 = False
         for i in range(i0, i1):
             t0 = t1
             fn0 = fn1
             s0 = s1
+            ok0 = ok1
             t1 = t[i + 1]
             fn1 = fn[i + 1]
+            if fn0 == 0.0 and fn1 == 0.0:
+                # free flight: Fn = 0 on the whole interval, nothing to integrate
+                if fmax < 0.0:
+                    fmax = 0.0
+                ok1 = False
+                continue
+            if not ok0:
+                s0 = math.sqrt(v1[i] * v1[i] + v2[i] * v2[i])
             s1 = math.sqrt(v1[i + 1] * v1[i + 1] + v2[i + 1] * v2[i + 1])
-            g0 = fn0 * s0
-            g1 = fn1 * s1
-            a = t0 if t0 >= lo else lo
-            b = t1 if t1 <= hi else hi
+            ok1 = True
+            a = t0
+            b = t1
+            full = True
+            if t0 < lo:
+                a = lo
+                full = False
+            if t1 > hi:
+                b = hi
+                full = False
             if b <= a:
                 continue
             while k < nb - 1 and a >= be[k + 1]:
+                bstats[k, 0] += CT
+                bstats[k, 1] += FC
+                bstats[k, 2] += F2C
+                bstats[k, 3] += FT
+                bstats[k, 4] += F2T
+                bstats[k, 5] += SD
+                CT = FC = F2C = FT = F2T = SD = 0.0
                 k += 1
             slide = (not has_stick) or stick[i] == 0.0
+            g0 = fn0 * s0
+            g1 = fn1 * s1
             # sector of the left sample, only when the interval can produce wear
             j = 0
-            if slide and (g0 != 0.0 or g1 != 0.0):
+            wear = slide and (g0 != 0.0 or g1 != 0.0)
+            if wear:
                 if mode == 2:
                     j = sec_given[i]
                 elif mode == 1:
-                    j, amb = _sector_of(dy[i], dz[i], qe, table, ns)
-                    if amb:
-                        return 1, fmax
-            # contact (above-threshold) part [ua, ub] of the whole interval
+                    y = dy[i]
+                    z = dz[i]
+                    sa = abs(y) + abs(z)
+                    if sa == 0.0:
+                        q = 0.0
+                    elif y >= 0.0:
+                        q = z / sa
+                    elif z >= 0.0:
+                        q = 2.0 - z / sa
+                    else:
+                        q = -2.0 - z / sa
+                    if q > q_lo and q < q_hi:  # same sector as the last one, clear of its edges
+                        j = j_last
+                    else:
+                        j, amb = _sector_of(y, z, qe, table, ns)
+                        if amb:
+                            return 1, fmax
+                        j_last = j
+                        q_lo = qe[j] + AMBIGUITY
+                        q_hi = qe[j + 1] - AMBIGUITY if j < ns - 1 else np.inf
             above0 = fn0 > threshold
             above1 = fn1 > threshold
+            if full and above0 == above1 and (k == nb - 1 or t1 <= be[k + 1]):
+                # fast path: a whole interval inside one block, no threshold crossing
+                dt = t1 - t0
+                if wear:
+                    if j != pj or k != pk:
+                        power[pk, pj] += PW
+                        PW = 0.0
+                        pk = k
+                        pj = j
+                    PW += 0.5 * dt * (g0 + g1)
+                i1f = 0.5 * dt * (fn0 + fn1)
+                i2f = dt * (fn0 * fn0 + fn0 * fn1 + fn1 * fn1) * third
+                FT += i1f
+                F2T += i2f
+                if fn0 > fmax:
+                    fmax = fn0
+                if fn1 > fmax:
+                    fmax = fn1
+                if above0:
+                    CT += dt
+                    FC += i1f
+                    F2C += i2f
+                    if slide:
+                        SD += 0.5 * dt * (s0 + s1)
+                    if not in_ep:
+                        in_ep = True
+                        ep_start = t0
+                        ep_peak = fn0
+                        ep_open = t0 == L
+                    if fn0 > ep_peak:
+                        ep_peak = fn0
+                    if fn1 > ep_peak:
+                        ep_peak = fn1
+                continue
+            # general path: window bound, block edge or threshold crossing inside the interval
             ua = t0
             ub = t0
             if above0 and above1:
@@ -465,7 +569,6 @@ if HAVE_NUMBA:
                 fmax = fa_w
             if fb_w > fmax:
                 fmax = fb_w
-            # pieces cut by block edges
             pa = a
             while True:
                 pb = b
@@ -478,22 +581,28 @@ if HAVE_NUMBA:
                     if slide:
                         power[k, j] += 0.5 * w * (_at(g0, g1, t0, t1, pa)
                                                   + _at(g0, g1, t0, t1, pb))
-                    bstats[k, 3] += 0.5 * w * (fa + fb)
-                    bstats[k, 4] += w * (fa * fa + fa * fb + fb * fb) / 3.0
+                    FT += 0.5 * w * (fa + fb)
+                    F2T += w * (fa * fa + fa * fb + fb * fb) * third
                     ca = pa if pa > ua else ua
                     cb = pb if pb < ub else ub
                     if cb > ca:
                         cw = cb - ca
                         fca = _at(fn0, fn1, t0, t1, ca)
                         fcb = _at(fn0, fn1, t0, t1, cb)
-                        bstats[k, 0] += cw
-                        bstats[k, 1] += 0.5 * cw * (fca + fcb)
-                        bstats[k, 2] += cw * (fca * fca + fca * fcb + fcb * fcb) / 3.0
+                        CT += cw
+                        FC += 0.5 * cw * (fca + fcb)
+                        F2C += cw * (fca * fca + fca * fcb + fcb * fcb) * third
                         if slide:
-                            bstats[k, 5] += 0.5 * cw * (_at(s0, s1, t0, t1, ca)
-                                                        + _at(s0, s1, t0, t1, cb))
+                            SD += 0.5 * cw * (_at(s0, s1, t0, t1, ca) + _at(s0, s1, t0, t1, cb))
                 if pb >= b:
                     break
+                bstats[k, 0] += CT
+                bstats[k, 1] += FC
+                bstats[k, 2] += F2C
+                bstats[k, 3] += FT
+                bstats[k, 4] += F2T
+                bstats[k, 5] += SD
+                CT = FC = F2C = FT = F2T = SD = 0.0
                 pa = pb
                 k += 1
             # episodes of the whole (window-clipped) interval
@@ -529,6 +638,13 @@ if HAVE_NUMBA:
                             m_psum += c_peak
                         ng += 1
                         c_start, c_end, c_peak, c_open = ep_start, cb, ep_peak, ep_open
+        bstats[k, 0] += CT
+        bstats[k, 1] += FC
+        bstats[k, 2] += F2C
+        bstats[k, 3] += FT
+        bstats[k, 4] += F2T
+        bstats[k, 5] += SD
+        power[pk, pj] += PW
         last_open = False
         if in_ep:  # open on the right: still above the threshold at the chunk's end
             last_open = True
@@ -567,8 +683,15 @@ if HAVE_NUMBA:
         return 0, fmax
 
 
-_EMPTY_F = np.zeros(1)
-_EMPTY_I = np.zeros(1, dtype=np.int64)
+def _ro(a, dtype=float) -> np.ndarray:
+    """A read-only C-contiguous view (one compiled signature for every caller's arrays)."""
+    v = np.ascontiguousarray(a, dtype=dtype).view()
+    v.flags.writeable = False
+    return v
+
+
+_EMPTY_F = _ro(np.zeros(1))
+_EMPTY_I = _ro(np.zeros(1, dtype=np.int64), np.int64)
 
 
 def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
@@ -595,18 +718,21 @@ def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     st = sector_table(edges)
     mode = 0 if ns == 1 else (1 if st.safe else 2)
     has_stick = stick is not None
-    dyv = _EMPTY_F if dy is None else dy
-    dzv = _EMPTY_F if dz is None else dz
-    stv = _EMPTY_F if stick is None else stick
+    t, fn, vt1, vt2 = _ro(t), _ro(fn), _ro(vt1), _ro(vt2)
+    dyv = _EMPTY_F if dy is None else _ro(dy)
+    dzv = _EMPTY_F if dz is None else _ro(dz)
+    stv = _EMPTY_F if stick is None else _ro(stick)
+    block_edges = _ro(block_edges)
     sec = _EMPTY_I
     for _attempt in range(2):
         if mode == 2:
-            sec = reference_sector_index(dyv, dzv, edges).astype(np.int64)
+            sec = _ro(reference_sector_index(dyv, dzv, edges), np.int64)
         power = np.zeros((nb, ns))
         bstats = np.zeros((nb, _NSTAT))
         groups = np.zeros(_NGROUP)
         status, fmax = _fused_numba(t, fn, vt1, vt2, dyv, dzv, stv, has_stick, mode, sec,
-                                    float(lo), float(hi), block_edges, st.q_edges, st.table,
+                                    float(lo), float(hi), block_edges, _ro(st.q_edges),
+                                    _ro(st.table, np.int64),
                                     float(threshold), float(min_rest), power, bstats, groups)
         if status == 0:
             return ChunkSums(power, bstats, float(fmax), groups)
@@ -640,7 +766,7 @@ def fast_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
     if not HAVE_NUMBA or not st.safe or edges.size == 2:
         return reference_sector_index(y, z, edges)
     out = np.empty(y.size, dtype=np.int64)
-    if _classify_numba(y, z, st.q_edges, st.table, out):
+    if _classify_numba(_ro(y), _ro(z), _ro(st.q_edges), _ro(st.table, np.int64), out):
         amb = out < 0
         out[amb] = reference_sector_index(y[amb], z[amb], edges)
     return out
