@@ -244,3 +244,32 @@ def test_mater_usure_and_usure_obst_from_the_database():
         call(MATER_USURE="A304L/A304L", USURE_OBST="NON", **kw)
     with pytest.raises(KeywordError, match="MATER_USURE must name the mobile and obstacle"):
         call(MATER_USURE="A304L", **kw)
+
+
+def test_kwu_epri_keywords_reach_the_class_statistics():
+    """K = COEF_USURE·w (w_r = 1, SPEC §4), w from kwu_epri_statistics with the same
+    FNOR_MAXI, VTAN_MAXI, COEF_K, COEF_C (an independent call of the laws module)."""
+    from fretwear.laws import kwu_epri_statistics
+
+    h = history()
+    t = call(PUIS_USURE=None, RESU_GENE=h, LOI_USURE="KWU_EPRI", COEF_INST=3600.0,
+             MOBILE=_F(COEF_USURE=1e-13, COEF_K=4.0, COEF_C=12.0), FNOR_MAXI=40.0,
+             VTAN_MAXI=0.1, INST=(1.0,))
+    w = kwu_epri_statistics(h, force_max=40.0, speed_max=0.1, k=4.0, c=12.0).intensity
+    w_default = kwu_epri_statistics(h).intensity
+    assert w != pytest.approx(w_default)  # the keywords matter
+    np.testing.assert_allclose(t["V_USUR_TUBE"], 1e-13 * w * 1.0 * 3600.0, rtol=1e-12)
+    with pytest.raises(KeywordError, match="needs the contact history"):
+        call(LOI_USURE="KWU_EPRI")
+
+
+def test_resu_gene_as_a_file(tmp_path):
+    """A history file gives the same table as the history itself (P = 1 W, SPEC §2)."""
+    from fretwear.io import write_history
+
+    path = tmp_path / "shock.csv"
+    write_history(history(), path)
+    a = call(PUIS_USURE=None, RESU_GENE=str(path), NOEUD="N12", COEF_INST=3600.0)
+    b = call(PUIS_USURE=None, RESU_GENE=history(), COEF_INST=3600.0)
+    pd.testing.assert_frame_equal(a, b)
+    np.testing.assert_allclose(a["PUIS_USUR_GLOBAL"], 1.0, rtol=1e-12)

@@ -283,3 +283,19 @@ def test_kwu_epri_uses_history_intensity():
     assert w > 0
     np.testing.assert_allclose(t["volume_mobile"], 1e-13 * w / 2.0 * 1.0 * 3600.0, rtol=1e-12)
     assert t.attrs["coefficients_mobile"]["intensity"] == pytest.approx(w)
+
+
+def test_sector_tube_replacement():
+    """Tube replaced at 1 h: its sector volumes restart from zero, the obstacle's continue
+    (SPEC §7 TUBE_NEUF); V_j = k_j·P_j·t (SPEC §3) with P_1 = P_3 = 0.5 W."""
+    t = sector_table([1.0, 3.0], tube_replacement=1.0)
+    k_m = np.array([1e-13, 2e-13, 3e-13, 4e-13])
+    powers = np.array([0.5, 0.0, 0.5, 0.0])
+    at1, at3 = t.iloc[:4], t.iloc[4:]
+    assert at1["volume_mobile_cumulated"].eq(0.0).all()
+    np.testing.assert_allclose(at3["volume_mobile_cumulated"], k_m * powers * 2 * 3600.0,
+                               rtol=1e-14)
+    np.testing.assert_allclose(at3["volume_mobile_sector"], k_m * powers * 2 * 3600.0,
+                               rtol=1e-14)
+    np.testing.assert_allclose(at3["volume_obstacle_cumulated"], [0, 0, 1e-14 * 0.5 * 3 * 3600.0,
+                                                                  0], rtol=1e-14)
