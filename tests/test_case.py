@@ -69,6 +69,10 @@ def test_case_consistency_errors():
         run_case({**POWER_CASE, "geometry": {"mobile_radius_m": 0.01}})
     with pytest.raises(InputError, match="does not exist"):
         load_case("/nonexistent/case.toml")
+    with pytest.raises(KeywordError, match=r"\[power\] blocks apply to a history"):
+        run_case({**POWER_CASE, "power": {"value_W": 0.01, "blocks": 2}})
+    with pytest.raises(InputError, match="sectors need a contact history"):
+        run_case({**POWER_CASE, "sectors": {"count": 4}})
 
 
 def test_invalid_toml_is_an_input_error(tmp_path):

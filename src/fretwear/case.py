@@ -250,6 +250,12 @@ def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
     if ("file" in history) == ("value_W" in power):
         raise KeywordError("case: give exactly one of [history] file (a contact history) and "
                            "[power] value_W (a given power)")
+    if "value_W" in power:
+        extra = [k for k in ("t_start_s", "t_end_s", "blocks", "stationarity_threshold")
+                 if k in power]
+        if extra:
+            raise KeywordError(f"case: [power] {', '.join(extra)} apply to a history, not to a "
+                               "given power value_W; remove them")
     if "contact_type" not in geometry:
         raise KeywordError("case: [geometry] contact_type is required")
     if "instants" not in time:
@@ -370,7 +376,7 @@ def _table(source, history, args):
     from fretwear.operator import wear_table
 
     kwargs = dict(args)
-    if source is not history:  # power already computed: do not window/block again
+    if hasattr(source, "total"):  # a PowerResult: do not window/block/split again
         for k in ("t_start", "t_end", "blocks", "stationarity_threshold", "sectors"):
             kwargs.pop(k)
     return wear_table(source, **kwargs)
