@@ -94,3 +94,30 @@ def test_chunk_size_must_be_an_integer_of_at_least_two(tmp_path, bad):
     path = write_history(analytic_history(n=5), tmp_path / "h.csv")
     with pytest.raises(KeywordError, match="chunk_size=.*integer >= 2"):
         next(iter_history_chunks(path, chunk_size=bad))
+
+
+@pytest.mark.parametrize("suffix", [".h5", ".csv", ".parquet", ".nc"])
+def test_memory_stays_bounded_by_the_chunk(tmp_path, suffix):
+    """Peak traced (numpy) memory while iterating is O(chunk), not O(file).
+
+    400 000 samples x 4 channels = 12.8 MB of data; chunks of 5 000 samples = 160 kB each.
+    """
+    import tracemalloc
+
+    from fretwear.history import ContactHistory
+
+    n = 400_000
+    t = np.arange(n) * 1e-5
+    h = ContactHistory(time=t, normal_force=np.abs(np.sin(t)), vt1=np.cos(t), vt2=np.sin(t))
+    path = write_history(h, tmp_path / f"big{suffix}")
+    del h, t
+    tracemalloc.start()
+    try:
+        total = 0
+        for chunk in iter_history_chunks(path, chunk_size=5_000):
+            total += len(chunk) - (1 if chunk.metadata["chunk"] else 0)
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert total == n
+    assert peak < 3e6, f"peak {peak / 1e6:.1f} MB for 12.8 MB of data"
