@@ -436,6 +436,14 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
         cols["volume_obstacle_sector"].append(vo - po)
         cols["depth_mobile_sector"].append(sector_depth_mobile(vm, r_m, width, arc))
         if r_o is None:
+            if (vo > 0).any():
+                import warnings
+
+                from fretwear.errors import RangeWarning
+
+                warnings.warn(f"sector {j + 1}: the obstacle wears but {geometry.contact_type} "
+                              "has no obstacle_radius (RAYON_OBST): its sector depth is NaN",
+                              RangeWarning, stacklevel=3)
             cols["depth_obstacle_sector"].append(np.where(vo == 0, 0.0, np.nan))
         else:
             cols["depth_obstacle_sector"].append(sector_depth_obstacle(vo, r_o, width, arc))
