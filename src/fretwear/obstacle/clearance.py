@@ -17,7 +17,11 @@ best contact found so far, the likeliest candidate first: the search is
 exact, not a small-wear sum, and costs a few edge tests per candidate vertex.
 
 The only approximation is the polygon: its chords lie within R(1 − cos(h/2)) ≈ R·h²/8 of a
-curved profile (1.0e-9 m for R = 10 mm and h = 0.05°).
+curved profile (1.0e-9 m for R = 10 mm and h = 0.05°); the clearance error is O(h²), a few
+1e-9 m at h = 0.05° when the contact is grazing (measured: 4e-9 m on a random worn discrete
+obstacle, 1e-18 m for a disk in a bore, whose inscribed polygons share their angles).
+Cost: ~0.05 s for 721 directions in a bore, ~4 s between two planes (the directions along the
+planes have clearances of centimetres, and every mobile vertex is then a candidate).
 """
 
 from __future__ import annotations
@@ -86,34 +90,36 @@ def polar_polygon(radius, breaks=(), resolution: float = RESOLUTION):
     return t, r * np.cos(t), r * np.sin(t)
 
 
+_BLOCK = 32  # edges per block of the local radius bounds
+
+
 @njit(cache=True)
-def _first_hit(ang, xs, ys, ax, ay, ux, uy, s_lo, s_hi):
-    """Smallest s in [0, s_hi) where a + s·u meets the polygon, searching the swept window."""
+def _window(ang, ax, ay, ux, uy, s_lo, s_hi):
+    """Edges swept by the ray segment a + s·u, s in [s_lo, s_hi]: (first edge, step, count)."""
     n = ang.size
-    x0 = ax + s_lo * ux
-    y0 = ay + s_lo * uy
-    x1 = ax + s_hi * ux
-    y1 = ay + s_hi * uy
-    a0 = math.atan2(y0, x0)
-    a1 = math.atan2(y1, x1)
+    a0 = math.atan2(ay + s_lo * uy, ax + s_lo * ux)
+    a1 = math.atan2(ay + s_hi * uy, ax + s_hi * ux)
     k0 = np.searchsorted(ang, a0, side="right") - 1
     k1 = np.searchsorted(ang, a1, side="right") - 1
     if k0 < 0:
         k0 = n - 1
     if k1 < 0:
         k1 = n - 1
-    cr = ax * uy - ay * ux
     da = a1 - a0
     if da > math.pi:
         da -= 2 * math.pi
     elif da < -math.pi:
         da += 2 * math.pi
-    if cr >= 0:
-        step = 1
-        count = (k1 - k0) % n if da >= 0 else 0
-    else:
-        step = -1
-        count = (k0 - k1) % n if da <= 0 else 0
+    if ax * uy - ay * ux >= 0:  # the polar angle of a line not through 0 is monotone
+        return k0, 1, ((k1 - k0) % n if da >= 0 else 0)
+    return k0, -1, ((k0 - k1) % n if da <= 0 else 0)
+
+
+@njit(cache=True)
+def _first_hit(ang, xs, ys, ax, ay, ux, uy, s_lo, s_hi):
+    """Smallest s in [0, s_hi) where a + s·u meets the polygon, searching the swept window."""
+    n = ang.size
+    k0, step, count = _window(ang, ax, ay, ux, uy, s_lo, s_hi)
     best = s_hi
     found = False
     for j in range(-2, count + 3):
@@ -143,9 +149,61 @@ def _first_hit(ang, xs, ys, ax, ay, ux, uy, s_lo, s_hi):
 
 
 @njit(cache=True)
-def _forward(mx, my, oang, ox, oy, r_in, r_out, ux, uy):
-    """Min over mobile vertices of the exit distance of p + s·u from the obstacle polygon."""
+def _block_bound(bounds, k0, step, count, n, lowest):
+    """Min (lowest) or max of the per-block bounds over the edges k0 + step·j, j in [-2, count+2]."""
+    first = k0 - 2 if step > 0 else k0 - count - 2
+    last = first + count + 4
+    nb = bounds.size
+    b_first = first // _BLOCK
+    b_last = last // _BLOCK
+    if b_last - b_first + 1 >= nb:
+        b_first = 0
+        b_last = nb - 1
+    out = bounds[b_first % nb]
+    for b in range(b_first, b_last + 1):
+        v = bounds[b % nb]
+        if (lowest and v < out) or (not lowest and v > out):
+            out = v
+    return out
+
+
+@njit(cache=True)
+def _edge_distances(xs, ys):
+    """Distance from the origin to each edge k -> k+1 (its nearest point) [m]."""
+    n = xs.size
+    d = np.empty(n)
+    for k in range(n):
+        kn = (k + 1) % n
+        ex = xs[kn] - xs[k]
+        ey = ys[kn] - ys[k]
+        e2 = ex * ex + ey * ey
+        t = 0.0 if e2 == 0.0 else -(xs[k] * ex + ys[k] * ey) / e2
+        t = min(max(t, 0.0), 1.0)
+        d[k] = math.hypot(xs[k] + t * ex, ys[k] + t * ey)
+    return d
+
+
+@njit(cache=True)
+def _blocks(values, lowest):
+    nb = (values.size + _BLOCK - 1) // _BLOCK
+    out = np.empty(nb)
+    for b in range(nb):
+        chunk = values[b * _BLOCK:min((b + 1) * _BLOCK, values.size)]
+        out[b] = chunk.min() if lowest else chunk.max()
+    return out
+
+
+@njit(cache=True)
+def _forward(mx, my, oang, ox, oy, o_in_blocks, r_in, r_out, ux, uy):
+    """Min over mobile vertices of the exit distance of p + s·u from the obstacle polygon.
+
+    The obstacle's boundary lies in the annulus r_in <= ρ <= r_out (r_in: nearest edge point),
+    so p + s·u cannot leave before the exit from the disk r_in (lower bound) and has left by
+    the exit from the disk r_out; the lower bound is then sharpened with the nearest edge point
+    of the angular window the ray sweeps (block minima).
+    """
     n = mx.size
+    no = oang.size
     lb = np.empty(n)
     hi = np.empty(n)
     for i in range(n):
@@ -154,16 +212,24 @@ def _forward(mx, my, oang, ox, oy, r_in, r_out, ux, uy):
         d_in = b * b - (p2 - r_in * r_in)
         lb[i] = max(-b + math.sqrt(max(d_in, 0.0)), 0.0)
         d_out = b * b - (p2 - r_out * r_out)
-        hi[i] = -b + math.sqrt(max(d_out, 0.0))
+        hi[i] = -b + math.sqrt(max(d_out, 0.0)) * (1.0 + 1e-9) + 1e-15
     best = np.inf
     i0 = np.argmin(lb)  # the likeliest contact first: its hit bounds every later window
-    s = _first_hit(oang, ox, oy, mx[i0], my[i0], ux, uy, lb[i0], hi[i0] * (1.0 + 1e-9) + 1e-15)
+    s = _first_hit(oang, ox, oy, mx[i0], my[i0], ux, uy, lb[i0], hi[i0])
     if s < best:
         best = s
     for i in range(n):
         if lb[i] >= best or i == i0:
             continue
-        s_hi = min(best, hi[i] * (1.0 + 1e-9) + 1e-15)
+        s_hi = min(best, hi[i])
+        k0, step, count = _window(oang, mx[i], my[i], ux, uy, lb[i], s_hi)
+        r_loc = _block_bound(o_in_blocks, k0, step, count, no, True)
+        if r_loc > r_in:
+            b = mx[i] * ux + my[i] * uy
+            p2 = mx[i] * mx[i] + my[i] * my[i]
+            lo = -b + math.sqrt(max(b * b - (p2 - r_loc * r_loc), 0.0))
+            if lo >= best:
+                continue
         s = _first_hit(oang, ox, oy, mx[i], my[i], ux, uy, lb[i], s_hi)
         if s < best:
             best = s
@@ -171,9 +237,15 @@ def _forward(mx, my, oang, ox, oy, r_in, r_out, ux, uy):
 
 
 @njit(cache=True)
-def _backward(qx, qy, mang, mx, my, r_in, r_out, ux, uy, best):
-    """Min over obstacle vertices of the entry distance of q − s·u into the mobile polygon."""
+def _backward(qx, qy, mang, mx, my, m_out_blocks, r_in, r_out, ux, uy, best):
+    """Min over obstacle vertices of the entry distance of q − s·u into the mobile polygon.
+
+    The mobile's boundary lies in r_in <= ρ <= r_out (r_in: nearest edge point, r_out: farthest
+    vertex): q − s·u cannot enter before the disk r_out and has entered by the disk r_in; the
+    lower bound is sharpened with the farthest vertex of the swept window (block maxima).
+    """
     n = qx.size
+    nm = mang.size
     lb = np.empty(n)
     hi = np.empty(n)
     wx = -ux
@@ -192,10 +264,21 @@ def _backward(qx, qy, mang, mx, my, r_in, r_out, ux, uy, best):
             hi[i] = -b - math.sqrt(d_in)
         else:
             hi[i] = -b + math.sqrt(d_out)
+        hi[i] = hi[i] * (1.0 + 1e-9) + 1e-15
     for i in range(n):
         if lb[i] >= best:
             continue
-        s_hi = min(best, hi[i] * (1.0 + 1e-9) + 1e-15)
+        s_hi = min(best, hi[i])
+        k0, step, count = _window(mang, qx[i], qy[i], wx, wy, lb[i], s_hi)
+        r_loc = _block_bound(m_out_blocks, k0, step, count, nm, False)
+        if r_loc < r_out:
+            b = qx[i] * wx + qy[i] * wy
+            q2 = qx[i] * qx[i] + qy[i] * qy[i]
+            d_loc = b * b - (q2 - r_loc * r_loc)
+            if d_loc < 0.0:
+                continue  # the ray misses every vertex and edge of the window
+            if -b - math.sqrt(d_loc) >= best:
+                continue
         s = _first_hit(mang, mx, my, qx[i], qy[i], wx, wy, lb[i], s_hi)
         if s < best:
             best = s
@@ -204,18 +287,22 @@ def _backward(qx, qy, mang, mx, my, r_in, r_out, ux, uy, best):
 
 @njit(cache=True)
 def _clearance_kernel(psi, mang, mx, my, oang, ox, oy):
-    rm2 = mx * mx + my * my
-    ro2 = ox * ox + oy * oy
-    rm_in = math.sqrt(rm2.min())
-    rm_out = math.sqrt(rm2.max())
-    ro_in = math.sqrt(ro2.min())
-    ro_out = math.sqrt(ro2.max())
+    m_edge = _edge_distances(mx, my)
+    o_edge = _edge_distances(ox, oy)
+    m_vertex = np.sqrt(mx * mx + my * my)
+    o_vertex = np.sqrt(ox * ox + oy * oy)
+    m_out_blocks = _blocks(np.maximum(m_vertex, np.roll(m_vertex, -1)), False)
+    o_in_blocks = _blocks(o_edge, True)
+    rm_in = m_edge.min()
+    rm_out = m_vertex.max()
+    ro_in = o_edge.min()
+    ro_out = o_vertex.max()
     out = np.empty(psi.size)
     for k in range(psi.size):
         ux = math.cos(psi[k])
         uy = math.sin(psi[k])
-        best = _forward(mx, my, oang, ox, oy, ro_in, ro_out, ux, uy)
-        out[k] = _backward(ox, oy, mang, mx, my, rm_in, rm_out, ux, uy, best)
+        best = _forward(mx, my, oang, ox, oy, o_in_blocks, ro_in, ro_out, ux, uy)
+        out[k] = _backward(ox, oy, mang, mx, my, m_out_blocks, rm_in, rm_out, ux, uy, best)
     return out
 
 
