@@ -397,14 +397,14 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
     energy = np.zeros(K.N_ENERGY)
     wear = np.zeros(ns)
     pprev = np.zeros(5)
-    counters = np.zeros(2, np.int64)
-    init = K.initialise if compiled else K.initialise.py_func
     adv = K.advance if compiled else K.advance.py_func
     common_loads = (lshape, lkind, lhp, tab_t, tab_v, tab_off, ptr)
     common_shocks = (skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r,
                      prof_off, fs, uprev, incontact, frame, chan)
-    init(float(start_time), q, v, a, omega, zeta, invmass, mass, shapes, *common_loads,
-         *common_shocks, pprev)
+    counters = np.zeros(2, np.int64)
+    adv(0, False, True, 0, float(start_time), h, m_coarse, every, adaptive, q, v, a, omega,
+        zeta, invmass, mass, shapes, *common_loads, *common_shocks, energy, wear, pprev,
+        np.empty((0, ns, 10)), counters)
     e0, vts0 = _stored(q, v, model, chan, fs, kn, kt)
 
     chunk = max(2, int(chunk_size))
@@ -429,7 +429,7 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
         while remaining > 0:
             n_out = min(chunk, remaining)
             out = np.empty((n_out, ns, 10))
-            k = adv(n_out, first, k, float(start_time), h, m_coarse, every, adaptive,
+            k = adv(n_out, first, False, k, float(start_time), h, m_coarse, every, adaptive,
                     q, v, a, omega, zeta, invmass, mass, shapes, *common_loads,
                     *common_shocks, energy, wear, pprev, out, counters)
             if k < 0:
