@@ -347,7 +347,13 @@ def _kind(series: pd.Series) -> str:
 
 def format_aster_table(frame: pd.DataFrame, *, format: str = "TABLEAU", title: str | None = None,
                        float_format: str = "%12.5E") -> str:
-    """The text of a Code_Aster table (see :func:`write_aster_table`).
+    """The text of a Code_Aster table (parameters as in :func:`write_aster_table`).
+
+    Raises
+    ------
+    InputError
+        Unknown format, a float_format that is not a printf format, a column name empty or
+        holding blanks, a string holding both a blank and a quote.
 
     Examples
     --------

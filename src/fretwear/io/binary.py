@@ -126,9 +126,24 @@ def write_parquet(history: ContactHistory, path: str | os.PathLike, *,
     Parameters
     ----------
     history : ContactHistory
+        The history (SI units: time [s], forces [N], velocities [m/s], displacements [m]).
     path : path-like
+        Output file.
     row_group_size : int, optional
-        Rows per row group (pyarrow's default when None).
+        Rows per row group (pyarrow's default, 1 Mi rows, when None); chunked reading decodes
+        one row group at a time.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, pyarrow.parquet as pq
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0])
+    >>> p = write_parquet(h, pathlib.Path(tempfile.mkdtemp()) / "h.parquet")
+    >>> pq.read_schema(p).field("vt1").metadata[b"units"]
+    b'm/s'
     """
     pa = require("pyarrow", "writing Parquet")
     pq = require("pyarrow.parquet", "writing Parquet")
@@ -220,7 +235,30 @@ def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
 
 def write_hdf5(history: ContactHistory, path: str | os.PathLike, *,
                group: str = "history") -> Path:
-    """Write a history as HDF5: a dataset per channel in ``group``, units as attributes (atomic)."""
+    """Write a history as HDF5: a dataset per channel in ``group``, units as attributes (atomic).
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history (SI units: time [s], forces [N], velocities [m/s], displacements [m]).
+    path : path-like
+        Output file.
+    group : str
+        Group holding the datasets (created; ``"/"`` for the root).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, h5py
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0])
+    >>> p = write_hdf5(h, pathlib.Path(tempfile.mkdtemp()) / "h.h5")
+    >>> with h5py.File(p) as f:
+    ...     print(list(f["history"]), f["history/normal_force"].attrs["units"])
+    ['time', 'normal_force', 'vt1', 'vt2'] N
+    """
     h5 = require("h5py", "writing HDF5")
     with atomic_path(path) as tmp, h5.File(tmp, "w", track_order=True) as f:
         grp = f.create_group(group, track_order=True) if group not in ("", "/") else f
@@ -289,7 +327,28 @@ def open_netcdf(path: str | os.PathLike) -> Source:
 
 
 def write_netcdf(history: ContactHistory, path: str | os.PathLike) -> Path:
-    """Write a history as NetCDF-4: dimension ``time``, one variable per channel with ``units``."""
+    """Write a history as NetCDF-4: dimension ``time``, one variable per channel with ``units``.
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history (SI units: time [s], forces [N], velocities [m/s], displacements [m]).
+    path : path-like
+        Output file (atomic).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib, netCDF4
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0])
+    >>> p = write_netcdf(h, pathlib.Path(tempfile.mkdtemp()) / "h.nc")
+    >>> with netCDF4.Dataset(p) as ds:
+    ...     print(ds.variables["time"].units, ds.dimensions["time"].size)
+    s 2
+    """
     nc = require("netCDF4", "writing NetCDF")
     with atomic_path(path) as tmp:
         with nc.Dataset(tmp, "w", format="NETCDF4") as ds:
@@ -336,7 +395,27 @@ def open_npz(path: str | os.PathLike) -> Source:
 
 
 def write_npz(history: ContactHistory, path: str | os.PathLike) -> Path:
-    """Write a history as ``.npz`` (one array per channel, plus a JSON ``__fretwear__`` entry)."""
+    """Write a history as ``.npz`` (one array per channel, plus a JSON ``__fretwear__`` entry).
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history (SI units: time [s], forces [N], velocities [m/s], displacements [m]).
+    path : path-like
+        Output file (atomic; no ``.npz`` is appended).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0])
+    >>> p = write_npz(h, pathlib.Path(tempfile.mkdtemp()) / "h.npz")
+    >>> sorted(np.load(p).files)
+    ['__fretwear__', 'normal_force', 'time', 'vt1', 'vt2']
+    """
     meta = json.dumps({"name": history.name, "metadata": dict(history.metadata),
                        "units": {ch: UNITS[ch] for ch in history.channels}}, default=str)
     arrays = {ch: np.asarray(getattr(history, ch)) for ch in history.channels}
