@@ -172,3 +172,16 @@ def test_user_inputs_are_not_modified(tmp_path):
         read_history(arrays, group="x")
     with pytest.raises(InputError, match="needs a ContactHistory, got dict"):
         write_history(arrays, tmp_path / "x.csv")
+
+
+def test_wrong_kinds_of_input(tmp_path):
+    h = analytic_history(n=5)
+    with pytest.raises(InputError, match="got a ContactHistory where a file is expected"):
+        read_history(h)
+    with pytest.raises(InputError, match="cannot read a history from a int"):
+        read_history(42)
+    with pytest.raises(FormatError, match="list or mapping of files is read with "
+                                          "format='aster-function', not 'csv'"):
+        read_history([tmp_path / "a.csv"], format="csv")
+    with pytest.raises(KeywordError, match=r"\['format'\] do not apply to an in-memory table"):
+        read_history({"t": [0.0, 1.0]}, format="csv")

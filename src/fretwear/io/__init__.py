@@ -211,15 +211,23 @@ def open_source(path: Any, format: str | None = None, **options: Any) -> Source:
     (format ``aster-function``), or an in-memory table (a DataFrame or a mapping of arrays).
     """
     if not _is_path(path):
+        if isinstance(path, ContactHistory):
+            raise InputError("got a ContactHistory where a file is expected: it is already read")
         is_table = hasattr(path, "columns") or (
             isinstance(path, Mapping) and not all(_is_path(v) for v in path.values()))
-        if is_table and format is None:
-            if options:
-                raise KeywordError(f"option(s) {sorted(options)} do not apply to an in-memory "
-                                   "table")
+        if is_table:
+            if options or format is not None:
+                given = sorted(options) + ([] if format is None else ["format"])
+                raise KeywordError(f"option(s) {given} do not apply to an in-memory table")
             return _frame_source(path)
+        if not isinstance(path, (Mapping, list, tuple)):
+            raise InputError(f"cannot read a history from a {type(path).__name__}; give a file "
+                             "path, a list or mapping of IMPR_FONCTION files, or a table")
         if format is None:
             format = "aster-function"
+        if _format_name(format) != "aster-function":
+            raise FormatError(f"a list or mapping of files is read with format='aster-function', "
+                              f"not {format!r}; read other formats one file at a time")
         files = list(path.values()) if isinstance(path, Mapping) else list(path)
         for f in files:
             if not Path(f).is_file():
