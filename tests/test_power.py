@@ -262,3 +262,17 @@ def test_user_arrays_not_modified():
     wear_power(h, blocks=2, sectors=3, stationarity_threshold=math.inf)
     for c, v in before.items():
         np.testing.assert_array_equal(getattr(h, c), v)
+
+
+@pytest.mark.parametrize("suffix", ["parquet", "csv"])
+def test_file_is_streamed_in_chunks(tmp_path, suffix):
+    # Independent computation: the in-memory one-shot result of the same history; the file is
+    # read in chunks of 37 samples (bounded memory) and the time range found by a first pass.
+    from fretwear.io import write_history
+
+    h = _random_history(12, 500)
+    path = tmp_path / f"h.{suffix}"
+    write_history(h, path)
+    kw = dict(blocks=3, sectors=10, force_threshold=0.1, minimum_rest_time=0.02,
+              stationarity_threshold=math.inf)
+    _same(wear_power(h, **kw), wear_power(path, chunk_size=37, **kw))
