@@ -184,3 +184,26 @@ def test_registry_lists_every_family():
     assert set(FORMATS) == {"csv", "parquet", "hdf5", "netcdf", "npz", "aster", "aster-function"}
     assert {s for f in FORMATS.values() for s in f.suffixes} >= {
         ".csv", ".txt", ".dat", ".parquet", ".pq", ".h5", ".hdf5", ".nc", ".npz"}
+
+
+def test_gzip_text_formats_round_trip_and_are_sniffed(tmp_path, history):
+    """Compressed CSV and Code_Aster tables are written by suffix and read by content."""
+    import gzip
+
+    for fname in ("h.csv.gz", "h.resu.gz"):
+        path = write_history(history, tmp_path / fname)
+        assert path.read_bytes()[:2] == b"\x1f\x8b"
+        assert_same_history(history, read_history(path))
+        odd = tmp_path / f"{fname}.bin"
+        shutil.copy(path, odd)
+        assert guess_format(odd) == ("csv" if "csv" in fname else "aster")
+    # a gzipped Code_Aster fixture, and chunked reading of a gzipped CSV
+    gz = tmp_path / "table.gz"
+    gz.write_bytes(gzip.compress((FIXTURES / "impr_table_tableau.txt").read_bytes()))
+    assert read_history(gz).normal_force.tolist() == [0.0, 12.5, 25.0, 12.5, 0.0]
+    from fretwear.io import iter_history_chunks
+
+    chunks = list(iter_history_chunks(tmp_path / "h.csv.gz", chunk_size=50))
+    assert [len(c) for c in chunks] == [50, 50, 50, 50, 5]
+    with pytest.raises(FormatError, match=r"gzip \(.gz\) is for the text formats"):
+        write_history(history, tmp_path / "h.parquet.gz")

@@ -9,6 +9,7 @@ are the explicit registry :data:`FORMATS`; see ``docs/formats.md`` for the layou
 
 from __future__ import annotations
 
+import gzip
 import os
 import zipfile
 from collections.abc import Callable, Iterator, Mapping
@@ -183,6 +184,11 @@ def guess_format(path: str | os.PathLike) -> str:
     if head.startswith(b"\x93NUMPY"):
         raise FormatError(f"{path}: a single .npy array has no column names; save the channels "
                           "with numpy.savez(path, time=..., normal_force=..., ...) instead")
+    if head.startswith(_aster.GZIP_MAGIC):  # compressed text: CSV or a Code_Aster table
+        with gzip.open(path, "rb") as handle:
+            head = handle.read(65536)
+        if not head:
+            raise FormatError(f"{path}: the file is empty (once decompressed)")
     if b"\x00" in head:
         raise FormatError(f"{path}: binary content of no known format; known formats: "
                           f"{list(FORMATS)}; give format= if it is one of them")
@@ -467,6 +473,8 @@ def write_history(history: ContactHistory, path: str | os.PathLike, format: str 
                          "build one with fretwear.ContactHistory(...) or read_history(...)")
     if format is None:
         suffix = Path(path).suffix.lower()
+        if suffix == ".gz":  # h.csv.gz, t.resu.gz: the format of the inner suffix, compressed
+            suffix = Path(Path(path).stem).suffix.lower()
         hits = [f.name for f in FORMATS.values() if suffix in f.suffixes and f.write]
         if not hits:
             known = sorted(s for f in FORMATS.values() if f.write for s in f.suffixes)
@@ -476,6 +484,9 @@ def write_history(history: ContactHistory, path: str | os.PathLike, format: str 
         name = hits[0]
     else:
         name = _format_name(format)
+    if Path(path).suffix.lower() == ".gz" and name not in ("csv", "aster"):
+        raise FormatError(f"{path}: gzip (.gz) is for the text formats csv and aster; the "
+                          f"{name!r} format compresses internally, drop the .gz")
     fmt = FORMATS[name]
     if fmt.write is None:
         raise FormatError(f"format {name!r} is read-only; writable formats: "

@@ -16,6 +16,7 @@ LIRE_TABLE; SPEC §1):
 
 from __future__ import annotations
 
+import gzip
 import io
 import os
 import re
@@ -28,6 +29,8 @@ import pandas as pd
 from fretwear.errors import FormatError, InputError
 from fretwear.io.atomic import atomic_write
 
+#: First bytes of a gzip stream: text tables may be compressed (read transparently).
+GZIP_MAGIC = b"\x1f\x8b"
 _TOKEN = re.compile(r"'[^']*'|\"[^\"]*\"|\S+")
 _TYPES = ("R", "I", "K8", "K16", "K24", "K32", "K80")
 _STRING_WIDTHS = (8, 16, 24, 32, 80)
@@ -40,10 +43,13 @@ def _text_of(path_or_text: str | os.PathLike) -> tuple[str, str]:
     path = Path(path_or_text)
     if not path.is_file():
         raise InputError(f"Code_Aster table file {str(path)!r} does not exist")
+    data = path.read_bytes()
+    if data[:2] == GZIP_MAGIC:
+        data = gzip.decompress(data)
     try:
-        return path.read_text(encoding="utf-8"), str(path)
+        return data.decode("utf-8"), str(path)
     except UnicodeDecodeError:
-        return path.read_text(encoding="latin-1"), str(path)
+        return data.decode("latin-1"), str(path)
 
 
 def _tokens(line: str) -> list[str]:
@@ -421,6 +427,8 @@ def write_aster_table(frame: pd.DataFrame, path: str | os.PathLike, *, format: s
     append : bool
         Keep the tables already in the file and add this one after them.
 
+    A path ending in ``.gz`` is gzip-compressed (and read back transparently).
+
     Returns
     -------
     pathlib.Path
@@ -442,9 +450,13 @@ def write_aster_table(frame: pd.DataFrame, path: str | os.PathLike, *, format: s
     target = Path(path)
     previous = ""
     if append and target.is_file():
-        previous = target.read_text(encoding="utf-8")
+        previous, _ = _text_of(target)
         if previous and not previous.endswith("\n"):
             previous += "\n"
+    if target.suffix.lower() == ".gz":
+        with atomic_write(target, "wb") as handle:
+            handle.write(gzip.compress((previous + text).encode("utf-8"), mtime=0))
+        return target
     with atomic_write(target, "w", encoding="utf-8") as handle:
         handle.write(previous + text)
     return target

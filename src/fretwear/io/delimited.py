@@ -7,6 +7,7 @@ a decimal comma (``1,5;2,5``), and units written in the header (``"Fn [kN]"``).
 
 from __future__ import annotations
 
+import gzip
 import json
 import os
 import re
@@ -18,6 +19,7 @@ import pandas as pd
 
 from fretwear.errors import FormatError, InputError
 from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
+from fretwear.io.aster import GZIP_MAGIC
 from fretwear.io.atomic import atomic_write
 from fretwear.io.channels import Source, split_unit
 
@@ -25,6 +27,12 @@ from fretwear.io.channels import Source, split_unit
 MAGIC = "# fretwear contact history"
 _CANDIDATES = ("\t", ";", ",", "|")
 _DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
+
+
+def is_gzip(path: Path) -> bool:
+    """Whether a file is gzip-compressed (by its first bytes, whatever its suffix)."""
+    with open(path, "rb") as handle:
+        return handle.read(2) == GZIP_MAGIC
 
 
 def _is_number(token: str, decimal: str) -> bool:
@@ -48,8 +56,10 @@ def scan(path: Path, *, delimiter: str | None = None, decimal: str | None = None
     for blanks), ``decimal``, ``header`` (bool), ``names``, ``units`` (position -> unit),
     ``comments`` (the leading comment lines).
     """
+    compressed = is_gzip(path)
     try:
-        with open(path, encoding=encoding) as handle:
+        opener = gzip.open if compressed else open
+        with opener(path, "rt", encoding=encoding) as handle:
             head = [line.rstrip("\r\n") for _, line in zip(range(400), handle, strict=False)]
     except UnicodeDecodeError:
         raise FormatError(f"{path}: not a text file in {encoding!r}; give encoding='latin-1' "
@@ -90,7 +100,8 @@ def scan(path: Path, *, delimiter: str | None = None, decimal: str | None = None
         names = [str(i) for i in range(len(first))]
         units = {}
     return {"skip": skip, "sep": sep, "decimal": decimal, "header": bool(header), "names": names,
-            "units": units, "comments": comments, "comment": comment, "encoding": encoding}
+            "units": units, "comments": comments, "comment": comment, "encoding": encoding,
+            "compression": "gzip" if compressed else None}
 
 
 def _stored_metadata(comments: list[str]) -> tuple[str | None, dict]:
@@ -115,7 +126,8 @@ def _read_kwargs(info: dict, positions: list[int]) -> dict:
     return dict(sep=r"\s+" if info["sep"] is None else info["sep"], header=None,
                 skiprows=info["skip"] + (1 if info["header"] else 0),
                 comment=info["comment"] or None, decimal=info["decimal"], dtype=float,
-                encoding=info["encoding"], skip_blank_lines=True, engine="c")
+                encoding=info["encoding"], skip_blank_lines=True, engine="c",
+                compression=info["compression"])
 
 
 def _diagnose(path: Path, info: dict, positions: list[int], first_row: int = 0) -> FormatError:
@@ -223,6 +235,9 @@ def write_csv(history: ContactHistory, path: str | os.PathLike, *,
     delimiter : str
         Column separator (default ``,``).
 
+    A path ending in ``.gz`` (``h.csv.gz``) is gzip-compressed; readers decompress
+    transparently.
+
     Returns
     -------
     pathlib.Path
@@ -248,6 +263,13 @@ def write_csv(history: ContactHistory, path: str | os.PathLike, *,
     lines += [f"#   {ch} [{UNITS[ch]}]: {DESCRIPTIONS[ch]}" for ch in history.channels]
     lines.append(delimiter.join(frame.columns))
     target = Path(path)
+    if target.suffix.lower() == ".gz":  # compressed: pandas through a gzip stream
+        with atomic_write(target, "wb") as raw, \
+                gzip.open(raw, "wt", encoding="utf-8", newline="") as handle:
+            handle.write("\n".join(lines) + "\n")
+            frame.to_csv(handle, index=False, header=False, float_format=float_format,
+                         sep=delimiter, lineterminator="\n")
+        return target
     arrow = None
     if float_format is None:
         try:
