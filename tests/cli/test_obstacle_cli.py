@@ -95,3 +95,18 @@ def test_perforation_and_errors_are_reported(tmp_path, capsys):
     assert "negative gap: -0.0001 m" in capsys.readouterr().err
     assert main(args + ["--bore-radius", "0.01"]) == 2
     assert "give one obstacle" in capsys.readouterr().err
+
+
+def test_example_case_runs_the_wear_case_then_the_update(tmp_path, capsys):
+    """examples/obstacle_grappe.toml: no table given, so the case is run (10 sectors). Wear
+    only removes material (worn mobile ⊂ new mobile, worn obstacle ⊃ new obstacle), so the
+    clearance can only open: worn >= initial in every direction."""
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "obstacle_grappe.toml"
+    out = tmp_path / "profile.csv"
+    assert main(["obstacle", str(example), "-o", str(out)]) == 0
+    assert "10 sectors, smooth depth" in capsys.readouterr().out
+    p = pd.read_csv(out)
+    assert (p["clearance_worn"] >= p["clearance_initial"] - 1e-15).all()
+    assert p["clearance_worn"].max() > p["clearance_initial"].max()

@@ -51,6 +51,11 @@ def obstacle_figure(result):
     low = np.nanmin(np.concatenate([result.clearance_initial, result.clearance_worn])) * 1e3
     if np.isfinite(low) and np.isfinite(top) and top > low:
         ax.set_ylim(max(0.0, low - 1.5 * (top - low)), top + 0.05 * (top - low))
+    from matplotlib.ticker import MaxNLocator
+
+    ax.yaxis.set_major_locator(MaxNLocator(4))
+    ax.set_rlabel_position(100)
+    ax.tick_params(axis="y", labelsize=7)
     ax.set_title("clearance [mm] (radial axis does not start at 0)"
                  if ax.get_ylim()[0] > 0 else "clearance [mm]", pad=14, fontsize=10)
     ax.legend(loc="lower left", bbox_to_anchor=(-0.15, -0.12), fontsize=8)
