@@ -85,8 +85,10 @@ def test_unknown_units_list_the_known_ones(tmp_path):
     with pytest.raises(KeywordError, match=r"unknown key 'mass'.*'length', 'force'"):
         read_history(path, units={"mass": "kg"})
     path = csv(tmp_path, "t [fortnight],fn,vt1,vt2\n0,1,0,0\n1,1,0,0\n", name="hdr.csv")
-    with pytest.raises(KeywordError, match=r"unknown time unit 'fortnight'.*known time units"):
+    with pytest.raises(KeywordError, match=r"unknown time unit 'fortnight'.*known time units.*"
+                                           r"declared by the file.*units=\{'time': 's'\}"):
         read_history(path)
+    assert read_history(path, units={"time": "s"}).time.tolist() == [0.0, 1.0]
 
 
 def test_unknown_format_and_unknown_options(tmp_path):

@@ -356,7 +356,17 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
         if channel == "time" and " since " in str(unit):
             unit = str(unit).split(" since ")[0].strip()  # CF "seconds since ..."
         chosen[channel] = str(unit)
-        factors[channel] = unit_factor(unit, quantity, culprit=f"channel {channel!r} ({label})")
+        from_file = channel not in per_channel and quantity not in per_quantity \
+            and declared.get(pos) is not None
+        try:
+            factors[channel] = unit_factor(unit, quantity,
+                                           culprit=f"channel {channel!r} ({label})")
+        except KeywordError as exc:
+            if not from_file:
+                raise
+            raise KeywordError(f"{exc}; this unit is declared by the file (header or "
+                               f"attribute): override it with units={{{channel!r}: "
+                               f"'{UNITS[channel]}'}}") from None
     return chosen, factors
 
 
