@@ -17,7 +17,7 @@ the tube's section at the support):
   three axes, from a seeded generator (reproducible).
 
 Time integration: semi-implicit (symplectic) Euler with a fixed step dt = 10 µs, far below the
-stability limits 2/ω_contact ≈ 1.4 ms (contact frequency √((k + k_c)/m)/2π ≈ 226 Hz) and
+stability limits 2/ω_contact ≈ 1.4 ms (contact frequency √((k + k_c)/m)/2π ≈ 227 Hz) and
 2m·v_reg/(μ·Fn_max) for the friction regularisation (checked at run time). One second of
 warm-up is discarded; 3 s are archived at 5 kHz.
 

@@ -63,7 +63,7 @@ def _unquote(token: str) -> str:
 
 
 def _split_tables(text: str, label: str) -> list[dict]:
-    """Cut a file into raw tables: dicts of format, title, names, types, rows (lineno, tokens)."""
+    """Cut a file into raw tables: dicts of format, title, names, types, rows (lineno, text)."""
     tables: list[dict] = []
     current: dict | None = None
     in_aster = False
