@@ -166,8 +166,10 @@ def test_chunked_equals_one_shot(backend):
     one = wear_power(h, t_start=t0, t_end=t1, stationarity_threshold=math.inf,
                      backend=backend, **KW)
     cuts = [0, 7, 9, 400, 1201, 1202, 2000, 2999]
-    overlapping = [_slice(h, i, min(j + 1, len(h))) for i, j in zip(cuts[:-1], cuts[1:])]
-    disjoint = [_slice(h, i, j) for i, j in zip([0, 500, 502, 1700], [500, 502, 1700, 3000])]
+    overlapping = [_slice(h, i, min(j + 1, len(h)))
+                   for i, j in zip(cuts[:-1], cuts[1:], strict=True)]
+    bounds = [0, 500, 502, 1700, 3000]
+    disjoint = [_slice(h, i, j) for i, j in zip(bounds[:-1], bounds[1:], strict=True)]
     for chunks in (overlapping, disjoint):
         acc = PowerAccumulator(t_start=t0, t_end=t1, backend=backend, **KW)
         for c in chunks:

@@ -43,8 +43,8 @@ def _train(stick_pulse=None):
 
 
 def _crossings(starts, thr):
-    up = np.array([s + W * thr / p for s, p in zip(starts, PEAKS)])
-    down = np.array([s + 2 * W - W * thr / p for s, p in zip(starts, PEAKS)])
+    up = np.array([s + W * thr / p for s, p in zip(starts, PEAKS, strict=True)])
+    down = np.array([s + 2 * W - W * thr / p for s, p in zip(starts, PEAKS, strict=True)])
     return up, down
 
 
@@ -67,8 +67,8 @@ def test_pulse_train_threshold_and_rest(backend):
     T = h.duration
     assert s.duration == T and s.contact_fraction == pytest.approx(ct / T, rel=1e-13)
     frac = [1 - thr / p for p in PEAKS]
-    i1 = sum(2 * W * q * (thr + p) / 2 for q, p in zip(frac, PEAKS))
-    i2 = sum(2 * W * q * (thr**2 + thr * p + p**2) / 3 for q, p in zip(frac, PEAKS))
+    i1 = sum(2 * W * q * (thr + p) / 2 for q, p in zip(frac, PEAKS, strict=True))
+    i2 = sum(2 * W * q * (thr**2 + thr * p + p**2) / 3 for q, p in zip(frac, PEAKS, strict=True))
     assert s.force_mean_contact == pytest.approx(i1 / ct, rel=1e-12)
     assert s.force_rms_contact == pytest.approx(math.sqrt(i2 / ct), rel=1e-12)
     assert s.force_mean == pytest.approx(sum(p * W for p in PEAKS) / T, rel=1e-13)

@@ -28,8 +28,8 @@ function of θ computed with one division (:func:`pseudo_angle`), and compares i
 pseudo-angles of the edges through a 1024-bin lookup table. Points on an axis (dy = 0 or dz = 0)
 have an exact q and are compared exactly. Any other point closer than ``1e-11`` in q to an edge
 (about 1e-11 rad) — where float rounding could make ``arctan2`` land on the other side — is
-*ambiguous*: the kernel then stops and the chunk is recomputed with the numpy reference
-classification, so that both paths always agree with
+*ambiguous*: the kernel then stops and the chunk is recomputed with the reference
+classification (:mod:`fretwear.kernel_reference`), so that both paths always agree with
 ``sector_index(contact_angle(dy, dz), edges)``.
 """
 
@@ -39,7 +39,15 @@ from typing import NamedTuple
 
 import numpy as np
 
-from fretwear.sectors import sector_index
+from fretwear.kernel_reference import (  # noqa: F401 - re-exported
+    _NGROUP,
+    _NSTAT,
+    BLOCK_STATS,
+    GROUP_FIELDS,
+    ChunkSums,
+    fused_numpy,
+    reference_sector_index,
+)
 
 try:  # pragma: no cover - depends on the environment
     import numba
@@ -49,39 +57,11 @@ except ImportError:  # pragma: no cover
     numba = None
     HAVE_NUMBA = False
 
-#: Columns of ``block_stats``: per-block integrals, window-clipped.
-BLOCK_STATS: tuple[str, ...] = (
-    "contact_time",            # [s]      measure of {Fn > threshold}
-    "force_integral_contact",  # [N·s]    ∫ Fn dt over contact time
-    "force2_integral_contact", # [N²·s]   ∫ Fn² dt over contact time
-    "force_integral",          # [N·s]    ∫ Fn dt over the whole block
-    "force2_integral",         # [N²·s]   ∫ Fn² dt over the whole block
-    "sliding_distance",        # [m]      ∫ ‖Vt‖ dt over contact time, sticking intervals excluded
-)
-#: Layout of the impact-group vector (``groups``) of a chunk.
-GROUP_FIELDS: tuple[str, ...] = (
-    "count",                                                   # number of groups (impacts)
-    "first_start", "first_end", "first_peak", "first_open",    # first group, open on the left
-    "last_start", "last_end", "last_peak", "last_open",        # last group, open on the right
-    "mid_count", "mid_duration_sum", "mid_duration_max", "mid_peak_sum",  # groups in between
-)
-_NSTAT = len(BLOCK_STATS)
-_NGROUP = len(GROUP_FIELDS)
 #: Half-width of the ambiguity band around an edge, in pseudo-angle units (≈ rad).
 AMBIGUITY = 1e-11
 _NBINS = 1024
 
 
-class ChunkSums(NamedTuple):
-    """Partial sums of one chunk (see the module docstring); all arrays freshly allocated."""
-
-    power: np.ndarray        # [B, N] [J]
-    block_stats: np.ndarray  # [B, len(BLOCK_STATS)]
-    force_max: float         # [N], -inf when the chunk has no sample in the window
-    groups: np.ndarray       # [len(GROUP_FIELDS)]
-
-
-# ---------------------------------------------------------------------------- sector geometry
 def pseudo_angle(dy, dz) -> np.ndarray:
     """Diamond pseudo-angle q ∈ (-2, 2] of the direction (dy, dz), increasing with θ.
 
@@ -158,191 +138,6 @@ def sector_table(edges: np.ndarray) -> SectorTable:
     return SectorTable(q, table, safe)
 
 
-def reference_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
-    """Sector of each sample by the reference rule ``sector_index(θ, edges)``, θ via arctan2.
-
-    θ = atan2(dz, dy) in degrees folded into (-180, 180], and θ = 0 whenever dy = dz = 0
-    (including negative zeros).
-
-    Examples
-    --------
-    >>> reference_sector_index([1.0, -1.0, -0.0], [0.0, -1e-300, 0.0],
-    ...                        np.array([-180.0, 0.0, 180.0])).tolist()
-    [0, 1, 0]
-    """
-    y = np.asarray(dy, dtype=float)
-    z = np.asarray(dz, dtype=float)
-    theta = np.degrees(np.arctan2(z, y))
-    theta = np.where(theta <= -180.0, 180.0, theta)
-    theta = np.where((y == 0) & (z == 0), 0.0, theta)
-    return sector_index(theta, edges)
-
-
-# ---------------------------------------------------------------------------- numpy version
-def _lin(g0, g1, t0, t1, x):
-    """Linear interpolant between (t0, g0) and (t1, g1) at x, exact at the ends."""
-    with np.errstate(invalid="ignore", divide="ignore"):
-        val = g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
-    return np.where(x == t1, g1, np.where(x == t0, g0, val))
-
-
-def _groups_from_episodes(start, end, peak, open_left, open_right, min_rest) -> np.ndarray:
-    """Mergeable impact-group vector from the ordered episodes of one chunk."""
-    out = np.zeros(_NGROUP)
-    if start.size == 0:
-        return out
-    new = np.ones(start.size, dtype=bool)
-    new[1:] = (start[1:] - end[:-1]) >= min_rest
-    gid = np.cumsum(new) - 1
-    first_idx = np.flatnonzero(new)
-    g_start = start[first_idx]
-    last_idx = np.append(first_idx[1:] - 1, start.size - 1)
-    g_end = end[last_idx]
-    g_peak = np.maximum.reduceat(peak, first_idx)
-    ng = g_start.size
-    del gid
-    out[0] = ng
-    out[1:5] = g_start[0], g_end[0], g_peak[0], float(open_left)
-    out[5:9] = g_start[-1], g_end[-1], g_peak[-1], float(open_right)
-    if ng > 2:
-        dur = g_end[1:-1] - g_start[1:-1]
-        out[9:13] = ng - 2, dur.sum(), dur.max(), g_peak[1:-1].sum()
-    return out
-
-
-def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
-                threshold, min_rest) -> ChunkSums:
-    """Partial sums of one chunk, plain vectorised numpy (reference implementation).
-
-    Parameters
-    ----------
-    t, fn, vt1, vt2 : numpy.ndarray
-        Time [s], normal force [N], sliding velocities [m/s] of the chunk.
-    dy, dz : numpy.ndarray or None
-        Local displacements [m] (needed when ``edges`` has more than one sector).
-    stick : numpy.ndarray or None
-        Stick flags (1 = sticking).
-    lo, hi : float
-        Window [s] (may be ±inf).
-    block_edges : numpy.ndarray
-        B + 1 block edges [s], first ``lo`` and last ``hi``.
-    edges : numpy.ndarray
-        N + 1 sector edges [deg].
-    threshold : float
-        Contact force threshold [N]: contact means Fn > threshold.
-    min_rest : float
-        Minimum rest time [s] below the threshold that separates two impacts.
-
-    Returns
-    -------
-    ChunkSums
-
-    Examples
-    --------
-    >>> s = fused_numpy(np.array([0.0, 1.0, 2.0]), np.array([2.0, 2.0, 2.0]),
-    ...                 np.array([1.0, 1.0, 1.0]), np.zeros(3), None, None, None,
-    ...                 -np.inf, np.inf, np.array([-np.inf, np.inf]),
-    ...                 np.array([-180.0, 180.0]), 0.0, 0.0)
-    >>> float(s.power.sum()), float(s.block_stats[0, 0])
-    (4.0, 2.0)
-    """
-    nb = block_edges.size - 1
-    ns = edges.size - 1
-    power = np.zeros((nb, ns))
-    bstats = np.zeros((nb, _NSTAT))
-    i0 = max(int(np.searchsorted(t, lo, side="right")) - 1, 0)
-    i1 = min(int(np.searchsorted(t, hi, side="left")), t.size - 1)
-    if i1 <= i0:
-        return ChunkSums(power, bstats, -np.inf, np.zeros(_NGROUP))
-    sl = slice(i0, i1 + 1)
-    tt = t[sl]
-    fnn = fn[sl]
-    sp = np.sqrt(vt1[sl] * vt1[sl] + vt2[sl] * vt2[sl])
-    g = fnn * sp
-    m = tt.size
-    if ns > 1:
-        sec = reference_sector_index(dy[sl], dz[sl], edges)
-    else:
-        sec = np.zeros(m, dtype=np.int64)
-    slides = np.ones(m, dtype=bool) if stick is None else (stick[sl] == 0)
-    # refined grid: samples + window bounds + block edges strictly inside the chunk
-    lo_c = max(tt[0], lo)
-    hi_c = min(tt[-1], hi)
-    cuts = np.concatenate(([lo_c, hi_c], block_edges))
-    cuts = cuts[(cuts > tt[0]) & (cuts < tt[-1])]
-    cuts = np.unique(cuts)
-    cuts = cuts[tt[np.searchsorted(tt, cuts)] != cuts]  # drop cuts on a sample
-    owner = np.searchsorted(tt, cuts, side="right") - 1
-    pos = np.searchsorted(tt, cuts)
-    tg = np.insert(tt, pos, cuts)
-    og = np.insert(np.arange(m), pos, owner)
-    keep = (tg >= lo_c) & (tg <= hi_c)
-    tg, og = tg[keep], og[keep]
-    o_c = np.minimum(owner, m - 2)
-
-    def at(arr):  # samples exact, cut points interpolated in their interval
-        vals = _lin(arr[o_c], arr[o_c + 1], tt[o_c], tt[o_c + 1], cuts)
-        return np.insert(arr, pos, vals)[keep]
-
-    fg, gg, sg = at(fnn), at(g), at(sp)
-    pa, pb = tg[:-1], tg[1:]
-    own = og[:-1]
-    width = pb - pa
-    blk = np.clip(np.searchsorted(block_edges, pa, side="right") - 1, 0, nb - 1)
-    fa, fb = fg[:-1], fg[1:]
-
-    def by_block(values):
-        return np.bincount(blk, weights=values, minlength=nb)
-
-    w_g = 0.5 * width * (gg[:-1] + gg[1:]) * slides[own]
-    power += np.bincount(blk * ns + sec[own], weights=w_g, minlength=nb * ns).reshape(nb, ns)
-    i1 = 0.5 * width * (fa + fb)
-    i2 = width * (fa * fa + fa * fb + fb * fb) / 3.0
-    bstats[:, 3] = by_block(i1)
-    bstats[:, 4] = by_block(i2)
-    # contact (above-threshold) part [ca, cb] of each piece, linear force
-    above_a, above_b = fa > threshold, fb > threshold
-    full = above_a & above_b
-    ca, cb = np.where(full, pa, pa), np.where(full, pb, pa)
-    fca, fcb = fa.copy(), fb.copy()
-    sa, sb = sg[:-1], sg[1:]
-    sca, scb = sa.copy(), sb.copy()
-    x = np.flatnonzero(above_a ^ above_b)  # pieces crossing the threshold
-    cross = pa[x] + (fa[x] - threshold) / (fa[x] - fb[x]) * width[x]
-    ca[x] = np.clip(np.where(above_a[x], pa[x], cross), pa[x], pb[x])
-    cb[x] = np.clip(np.where(above_b[x], pb[x], cross), ca[x], pb[x])
-    for v, w_, store in ((fa, fb, (fca, fcb)), (sa, sb, (sca, scb))):
-        store[0][x] = _lin(v[x], w_[x], pa[x], pb[x], ca[x])
-        store[1][x] = _lin(v[x], w_[x], pa[x], pb[x], cb[x])
-    nonempty = (above_a | above_b) & (cb > ca)
-    cw = np.where(nonempty, cb - ca, 0.0)
-    c1 = np.where(full, i1, np.where(nonempty, 0.5 * cw * (fca + fcb), 0.0))
-    c2 = np.where(full, i2, np.where(nonempty, cw * (fca * fca + fca * fcb + fcb * fcb) / 3.0,
-                                     0.0))
-    bstats[:, 0] = by_block(cw)
-    bstats[:, 1] = by_block(c1)
-    bstats[:, 2] = by_block(c2)
-    bstats[:, 5] = by_block(np.where(nonempty & slides[own], 0.5 * cw * (sca + scb), 0.0))
-    force_max = float(fg.max())
-    # episodes: maximal runs of pieces whose above-threshold parts touch
-    npieces = pa.size
-    prev_above = np.concatenate(([False], fg[1:-1] > threshold))
-    next_above = np.concatenate((fg[1:-1] > threshold, [False]))
-    starts = np.flatnonzero(nonempty & ~prev_above)
-    ends = np.flatnonzero(nonempty & ~next_above)
-    if starts.size:
-        peak_piece = np.where(nonempty, np.maximum(fca, fcb), -np.inf)
-        peaks = np.maximum.reduceat(peak_piece, starts)
-        open_left = bool(starts[0] == 0 and fg[0] > threshold)
-        open_right = bool(ends[-1] == npieces - 1 and fg[-1] > threshold)
-        groups = _groups_from_episodes(ca[starts], cb[ends], peaks, open_left, open_right,
-                                       min_rest)
-    else:
-        groups = np.zeros(_NGROUP)
-    return ChunkSums(power, bstats, force_max, groups)
-
-
-# ---------------------------------------------------------------------------- numba version
 if HAVE_NUMBA:
     import math
 
@@ -393,6 +188,45 @@ if HAVE_NUMBA:
             n_amb += amb
         return n_amb
 
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+    def _flush(bstats, k, ct, fc, f2c, ft, f2t, sd):  # pragma: no cover - compiled
+        bstats[k, 0] += ct
+        bstats[k, 1] += fc
+        bstats[k, 2] += f2c
+        bstats[k, 3] += ft
+        bstats[k, 4] += f2t
+        bstats[k, 5] += sd
+
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+    def _add_episode(g, start, end, peak, open_left, open_right,
+                     min_rest):  # pragma: no cover - compiled
+        """Append an episode to the group vector ``g`` (layout GROUP_FIELDS)."""
+        n = g[0]
+        if n > 0 and start - g[6] < min_rest:  # short rest: same impact as the last group
+            g[6] = end
+            g[7] = max(g[7], peak)
+            g[8] = 1.0 if open_right else 0.0
+            if n == 1:
+                g[2] = end
+                g[3] = g[7]
+            return
+        if n >= 2:  # the last group becomes a middle one
+            d = g[6] - g[5]
+            g[9] += 1.0
+            g[10] += d
+            g[11] = max(g[11], d)
+            g[12] += g[7]
+        g[5] = start
+        g[6] = end
+        g[7] = peak
+        g[8] = 1.0 if open_right else 0.0
+        if n == 0:
+            g[1] = start
+            g[2] = end
+            g[3] = peak
+            g[4] = 1.0 if open_left else 0.0
+        g[0] = n + 1
+
     @numba.njit(cache=True, nogil=True, error_model="numpy")
     def _fused_numba(t, fn, v1, v2, dy, dz, stick, has_stick, mode, sec_given,
                      lo, hi, be, qe, table, threshold, min_rest,
@@ -422,24 +256,11 @@ if HAVE_NUMBA:
         FT = 0.0
         F2T = 0.0
         SD = 0.0
-        # impact state
+        # episode in progress (impact groups are kept in ``groups``)
         in_ep = False
         ep_start = 0.0
         ep_peak = 0.0
         ep_open = False
-        ng = 0
-        c_start = 0.0
-        c_end = 0.0
-        c_peak = 0.0
-        c_open = False
-        f_start = 0.0
-        f_end = 0.0
-        f_peak = 0.0
-        f_open = False
-        m_count = 0.0
-        m_dsum = 0.0
-        m_dmax = 0.0
-        m_psum = 0.0
         PW = 0.0  # power integral of the current (block, sector) cell (pk, pj)
         pk = k
         pj = 0
@@ -479,12 +300,7 @@ if HAVE_NUMBA:
             if b <= a:
                 continue
             while k < nb - 1 and a >= be[k + 1]:
-                bstats[k, 0] += CT
-                bstats[k, 1] += FC
-                bstats[k, 2] += F2C
-                bstats[k, 3] += FT
-                bstats[k, 4] += F2T
-                bstats[k, 5] += SD
+                _flush(bstats, k, CT, FC, F2C, FT, F2T, SD)
                 CT = FC = F2C = FT = F2T = SD = 0.0
                 k += 1
             slide = (not has_stick) or stick[i] == 0.0
@@ -596,12 +412,7 @@ if HAVE_NUMBA:
                             SD += 0.5 * cw * (_at(s0, s1, t0, t1, ca) + _at(s0, s1, t0, t1, cb))
                 if pb >= b:
                     break
-                bstats[k, 0] += CT
-                bstats[k, 1] += FC
-                bstats[k, 2] += F2C
-                bstats[k, 3] += FT
-                bstats[k, 4] += F2T
-                bstats[k, 5] += SD
+                _flush(bstats, k, CT, FC, F2C, FT, F2T, SD)
                 CT = FC = F2C = FT = F2T = SD = 0.0
                 pa = pb
                 k += 1
@@ -620,66 +431,14 @@ if HAVE_NUMBA:
                     ep_peak = fca
                 if fcb > ep_peak:
                     ep_peak = fcb
-                if not fb_w > threshold:
-                    # episode closed at cb: append to groups
+                if not fb_w > threshold:  # episode closed at cb
                     in_ep = False
-                    if ng > 0 and ep_start - c_end < min_rest:
-                        c_end = cb
-                        if ep_peak > c_peak:
-                            c_peak = ep_peak
-                    else:
-                        if ng == 1:
-                            f_start, f_end, f_peak, f_open = c_start, c_end, c_peak, c_open
-                        elif ng >= 2:
-                            m_count += 1.0
-                            m_dsum += c_end - c_start
-                            if c_end - c_start > m_dmax:
-                                m_dmax = c_end - c_start
-                            m_psum += c_peak
-                        ng += 1
-                        c_start, c_end, c_peak, c_open = ep_start, cb, ep_peak, ep_open
-        bstats[k, 0] += CT
-        bstats[k, 1] += FC
-        bstats[k, 2] += F2C
-        bstats[k, 3] += FT
-        bstats[k, 4] += F2T
-        bstats[k, 5] += SD
+                    _add_episode(groups, ep_start, cb, ep_peak, ep_open, False, min_rest)
+        _flush(bstats, k, CT, FC, F2C, FT, F2T, SD)
         power[pk, pj] += PW
-        last_open = False
         if in_ep:  # open on the right: still above the threshold at the chunk's end
-            last_open = True
-            R = t[i1] if t[i1] <= hi else hi
-            if ng > 0 and ep_start - c_end < min_rest:
-                c_end = R
-                if ep_peak > c_peak:
-                    c_peak = ep_peak
-            else:
-                if ng == 1:
-                    f_start, f_end, f_peak, f_open = c_start, c_end, c_peak, c_open
-                elif ng >= 2:
-                    m_count += 1.0
-                    m_dsum += c_end - c_start
-                    if c_end - c_start > m_dmax:
-                        m_dmax = c_end - c_start
-                    m_psum += c_peak
-                ng += 1
-                c_start, c_end, c_peak, c_open = ep_start, R, ep_peak, ep_open
-        if ng == 1:
-            f_start, f_end, f_peak, f_open = c_start, c_end, c_peak, c_open
-        groups[0] = ng
-        if ng > 0:
-            groups[1] = f_start
-            groups[2] = f_end
-            groups[3] = f_peak
-            groups[4] = 1.0 if f_open else 0.0
-            groups[5] = c_start
-            groups[6] = c_end
-            groups[7] = c_peak
-            groups[8] = 1.0 if last_open else 0.0
-            groups[9] = m_count
-            groups[10] = m_dsum
-            groups[11] = m_dmax
-            groups[12] = m_psum
+            _add_episode(groups, ep_start, t[i1] if t[i1] <= hi else hi, ep_peak, ep_open,
+                         True, min_rest)
         return 0, fmax
 
 
