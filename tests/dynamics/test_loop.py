@@ -197,3 +197,17 @@ def test_cli_iterate(tmp_path):
     help_text = runner.invoke(cli, ["iterate", "--help"]).output
     for key in ("max_depth_m", "normal_stiffness_N_per_m", "psd_frequencies_Hz", "supports_m"):
         assert key in help_text
+
+
+def test_example_case_runs_one_cycle(tmp_path):
+    # examples/iterate_tube_support.toml stays valid (one cycle, no figures)
+    from pathlib import Path
+
+    from fretwear.cli import main
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "iterate_tube_support.toml"
+    assert main(["iterate", str(example), "-n", "1", "--no-plot", "-q", "-o",
+                 str(tmp_path)]) == 0
+    s = pd.read_csv(tmp_path / "summary.csv")
+    assert s["cycle"].tolist() == [1] and s["power"].iloc[0] > 0
+    assert s["depth_mobile_max"].iloc[0] > 0

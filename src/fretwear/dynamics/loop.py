@@ -134,8 +134,9 @@ class IterationResult:
 def _wear_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
     from fretwear.case import case_arguments
 
-    c = {k: v for k, v in case.items() if k not in ("dynamics", "iterate", "history")}
-    c["power"] = {**case.get("power", {}), "value_W": 0.0}  # the history comes from dynamics
+    c = {k: v for k, v in case.items() if k not in ("dynamics", "iterate")}
+    # the history comes from [dynamics]: a placeholder (case_arguments does not open it)
+    c["history"] = {"file": "<fretwear.dynamics>"}
     args = case_arguments(c)
     if args["sectors"] is None:
         raise KeywordError("case: the loop needs [sectors] (count or edges_deg): the obstacle "
