@@ -250,8 +250,8 @@ def test_obstacle_depth_keeps_volume_on_a_non_circular_profile():
         for j in range(4):
             pts = a[(a - 360 > edges[j]) & (a - 360 < edges[j + 1])] - 360
             pts = np.concatenate([pts, a[(a > edges[j]) & (a < edges[j + 1])]])
-            area = quad(lambda x: 0.5 * ((float(obst.radius(x)) + float(w.obstacle(x))) ** 2
-                                         - float(obst.radius(x)) ** 2),
+            area = quad(lambda x, w=w: 0.5 * ((float(obst.radius(x)) + float(w.obstacle(x)))
+                                              ** 2 - float(obst.radius(x)) ** 2),
                         edges[j], edges[j + 1], points=pts[:50] if pts.size else None,
                         epsabs=1e-22, epsrel=1e-11, limit=400)[0]
             assert math.radians(1) * area * WIDTH == pytest.approx(vo[j], rel=1e-7, abs=1e-22)
@@ -498,3 +498,18 @@ def test_random_non_circular_case_matches_brute_force_search():
                                     np.concatenate([edges[:-1], np.arange(-180, 180, 30.0)]))
         got = r.clearance_worn[np.flatnonzero(r.angle == direction)[0]]
         assert got == pytest.approx(ref, abs=1e-12), direction
+
+
+def test_volume_beyond_the_wedge_is_nan_with_a_range_warning():
+    """2V/(lΔθ) > R_m² (SPEC §6: beyond the range, NaN and a warning naming the limit): the
+    mobile depth is NaN, the perforation is reported, the clearance is undefined (NaN)."""
+    from fretwear.errors import RangeWarning
+
+    vm = np.zeros(10)
+    vm[4] = 1.01 * 0.5 * WIDTH * math.radians(36.0) * RM**2
+    with pytest.warns(RangeWarning, match="sector 5 .*exceeds the whole wedge"), \
+            pytest.warns(PerforationWarning, match="beyond the mobile's centre"):
+        r = update_obstacle(CircleObstacle(RM, RO), Mobile(RM, WALL), EDGES10, vm,
+                            width=WIDTH, resolution=1.0)
+    assert math.isnan(r.depth.sector_depth_mobile[4]) and r.perforated_sectors == (5,)
+    assert np.isnan(r.clearance_worn).all() and not np.isnan(r.clearance_initial).any()

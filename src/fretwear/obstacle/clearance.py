@@ -150,7 +150,7 @@ def _first_hit(ang, xs, ys, ax, ay, ux, uy, s_lo, s_hi):
 
 @njit(cache=True)
 def _block_bound(bounds, k0, step, count, n, lowest):
-    """Min (lowest) or max of the per-block bounds over the edges k0 + step·j, j in [-2, count+2]."""
+    """Min (lowest) or max of the block bounds over the edges k0 + step·j, j in [-2, count+2]."""
     first = k0 - 2 if step > 0 else k0 - count - 2
     last = first + count + 4
     nb = bounds.size

@@ -262,6 +262,13 @@ def worn_depth_profiles(edges, volume_mobile, volume_obstacle=None, *, width: fl
             o_ = w.obstacle(fine)
         dm = np.array([np.nanmax(m_[idx == j], initial=0.0) if not np.isnan(m_[idx == j]).any()
                        else np.nan for j in range(n)])
+        over = np.isnan(dm) & ~full
+        if over.any():
+            j = int(np.flatnonzero(over)[0])
+            warnings.warn(
+                f"sector {j + 1} ({e[j]:g}..{e[j + 1]:g} deg): the smooth profile's area density "
+                f"passes R_m²/2 (wear past the mobile's centre); its depth is NaN there: use "
+                "shape='uniform' or finer sectors", RangeWarning, stacklevel=2)
         do = np.array([np.max(o_[idx == j], initial=0.0) for j in range(n)])
         w = WornDepth(e, vm, vo, l_, rm, obstacle, shape, dm, do, density)
     return w

@@ -266,7 +266,7 @@ class ObstacleResult:
                                  float_format="%17.10E")
 
     def write_discret(self, path) -> Path:
-        """Write the worn clearance figure as a DISCRET obstacle file (``load_obstacle_profile``)."""
+        """Write the worn clearance figure as a DISCRET file (read by ``load_obstacle_profile``)."""
         step = float(self.angle[1] - self.angle[0])
         title = "fretwear worn obstacle (MODI_OBSTACLE)" + (
             f" at INST = {self.instant:g}" if self.instant is not None else "")
