@@ -396,10 +396,12 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
 
     # the same vertex angles for the new and the worn polygons: zero wear gives the same figure
     cuts = np.concatenate([np.asarray(breaks, float), np.asarray(nodes, float)])
-    initial = clearance_figure(angle, polar_polygon(new_mobile, cuts, resolution),
+    turn = angle[:-1]  # 360° is 0°: copy it, so the figure is exactly periodic
+    initial = clearance_figure(turn, polar_polygon(new_mobile, cuts, resolution),
                                polar_polygon(new_obstacle, cuts, resolution))
-    worn = clearance_figure(angle, polar_polygon(worn_mobile, cuts, resolution),
+    worn = clearance_figure(turn, polar_polygon(worn_mobile, cuts, resolution),
                             polar_polygon(worn_obstacle, cuts, resolution))
+    initial, worn = np.append(initial, initial[0]), np.append(worn, worn[0])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         dm, do = depth.mobile(angle), depth.obstacle(angle)
