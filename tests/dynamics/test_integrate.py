@@ -124,6 +124,9 @@ def test_coulomb_base_excitation_sliding_closed_form():
     # regularisation: the stick spring k_t shifts P by O(√(μN/(k_t m A))); 0.1 % at k_t = 1e9
     assert res.wear_power[0] == pytest.approx(p_exact, rel=3e-3)
     assert _power(res.history(0)) == pytest.approx(p_exact, rel=3e-3)
+    from fretwear.power import wear_power  # the library's SPEC §2 implementation agrees
+
+    assert wear_power(res.history(0)).total == pytest.approx(_power(res.history(0)), rel=1e-9)
     h = res.history(0)
     assert h.normal_force == pytest.approx(np.full(len(h), n_force), rel=1e-9)
     assert np.max(np.abs(h.ft1)) == pytest.approx(mu * n_force, rel=1e-12)  # on the cone
