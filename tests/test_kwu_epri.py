@@ -237,3 +237,24 @@ def test_registry_statistics_and_volume():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         law.statistics(designed_history())
+
+
+def test_default_maxima_are_the_window_maxima_free_flight_included():
+    """SPEC §4: F_max, V_max default to "the maxima in the window" (all samples of the window).
+
+    Hand computation: the free-flight sample (Fn = 0) slides at 2 m/s, every contact sample at
+    1 m/s, so V_max = 2 and the contact samples fall in speed class floor(5·1/2) + 1 = 3 (mid-value
+    V̄_3 = 2.5·2/5 = 1.0 m/s). Force: F_max = 10 N, class 5 (mid 9 N). Two contact intervals of 1 s
+    out of 2 s of contact time: p(3, 5) = 1. No impact class: ΣP_h = 0, ΣP_w = 9·1² = 9, w = 9.
+    """
+    from fretwear import ContactHistory
+    from fretwear.laws import kwu_epri_statistics
+
+    h = ContactHistory(time=[0.0, 1.0, 2.0, 3.0], normal_force=[10.0, 10.0, 0.0, 0.0],
+                       vt1=[1.0, 1.0, 2.0, 0.0], vt2=[0.0, 0.0, 0.0, 0.0])
+    s = kwu_epri_statistics(h)
+    assert s.speed_max == 2.0
+    assert s.force_max == 10.0
+    assert float(s.shares[2, 4]) == 1.0
+    assert s.impact_sum == 0.0
+    assert s.intensity == pytest.approx(9.0, rel=1e-14)

@@ -392,7 +392,7 @@ def _maxima(chunks: Iterable[Any], t_start, t_end) -> tuple[float, float]:
     fmax = vmax = 0.0
     for chunk in chunks:
         t, fn, vs = _chunk_arrays(chunk)
-        sel = (t >= lo) & (t <= hi) & (fn > 0)
+        sel = (t >= lo) & (t <= hi)   # SPEC §4: the maxima in the window (all its samples)
         if sel.any():
             fmax = max(fmax, float(fn[sel].max()))
             vmax = max(vmax, float(vs[sel].max()))
@@ -412,9 +412,10 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     t_start, t_end : float, optional
         Window [s] (samples with ``t_start <= t <= t_end``). Default: the whole record.
     force_max : float, optional
-        F_max [N] (``FNOR_MAXI``). Default: largest normal force of the contact samples.
+        F_max [N] (``FNOR_MAXI``). Default: largest normal force in the window (SPEC §4).
     speed_max : float, optional
-        V_max [m/s] (``VTAN_MAXI``). Default: largest sliding speed of the contact samples.
+        V_max [m/s] (``VTAN_MAXI``). Default: largest sliding speed in the window, free flight
+        included (SPEC §4: "the maxima in the window").
     impact_factor : float, optional
         k1 (``COEF_FNOR``), correction of the impact classes. Default 1 (no correction).
     sliding_factor : float, optional
@@ -422,7 +423,8 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     k : float, optional
         Experimental constant k (``COEF_K``) [1]. Default 5.
     c : float, optional
-        Experimental constant c (``COEF_C``) [N], > 0. Default 10.
+        Experimental constant c (``COEF_C``) [1] (it scales a force in N: SPEC calls it
+        dimensionless), > 0. Default 10.
 
     Returns
     -------
