@@ -71,7 +71,10 @@ PARAMETERS = {
 }
 
 
-@njit(cache=True)
+# No on-disk cache (cache=False, compile ~1 s): this script runs as __main__ and is also loaded
+# from its file by the tests; numba's cache records the defining module by name and cannot
+# reload an entry written under the other identity (ModuleNotFoundError '<dynamic>').
+@njit(cache=False)
 def integrate(force, dt, stride, skip, m, k_lat, c_lat, k_ax, c_ax, gap, k_c, mu, v_reg):
     """Semi-implicit Euler over the excitation ``force`` (steps × 3: y, z, x) [N].
 
