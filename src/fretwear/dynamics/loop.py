@@ -303,13 +303,25 @@ def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figu
         from fretwear.plotting.dynamics import plot_contact_history
 
         plot_contact_history(history, cdir, profiles=figures)
-        try:
-            from fretwear.plotting.wear import plot_wear_table
+        for what, draw in (("wear-table", lambda: _plot_wear(table, cdir)),
+                           ("obstacle", lambda: _plot_obstacle(update, cdir))):
+            try:
+                draw()
+            except Exception as exc:  # noqa: BLE001 - a figure must not stop the loop
+                warnings.warn(f"{what} figure of {cdir.name} not written: {exc}",
+                              FretwearWarning, stacklevel=2)
 
-            plot_wear_table(table, cdir)
-        except Exception as exc:  # noqa: BLE001 - a figure must not stop the loop
-            warnings.warn(f"wear-table figure of {cdir.name} not written: {exc}",
-                          FretwearWarning, stacklevel=2)
+
+def _plot_wear(table, cdir: Path) -> None:
+    from fretwear.plotting.wear import plot_wear_table
+
+    plot_wear_table(table, cdir)
+
+
+def _plot_obstacle(update, cdir: Path) -> None:
+    from fretwear.plotting.obstacle import plot_obstacle
+
+    plot_obstacle(update, cdir)
 
 
 def _write_summary(out_dir: Path, summary: pd.DataFrame, stopped: str, do_plot: bool,
