@@ -332,6 +332,8 @@ def test_table_native_and_aster_names_give_the_same_update(tmp_path):
     b = update_obstacle_from_table(path, obst, mob, width=WIDTH, resolution=0.5)
     assert a.instant == b.instant == 2.0
     np.testing.assert_allclose(a.clearance_worn, b.clearance_worn, rtol=1e-9)
+    empty = _table().assign(volume_obstacle_cumulated=np.nan)  # '-' cells: no obstacle wear
+    assert not sector_volumes(empty)[3].any()
     inst, edges, vm, vo = sector_volumes(_table(), instant=1.0)
     assert edges.tolist() == [-180.0, -90.0, 0.0, 90.0, 180.0]
     assert vm.tolist() == [0, 1e-9, 0, 0] and vo.tolist() == [0, 5e-10, 0, 0]

@@ -92,7 +92,7 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
         Sector-mode wear table, native (``instant``, ``sector``, ``angle_start``, ``angle_end``,
         ``volume_mobile_cumulated``, ``volume_obstacle_cumulated``) or Code_Aster names (INST,
         SECTEUR, ANGLE_DEBUT, ANGLE_FIN, V_USUR_TUBE_CUMU, V_USUR_OBST_CUMU). The obstacle
-        column may be absent (no obstacle wear).
+        column may be absent or empty at that instant (no obstacle wear: zero volumes).
     instant : float, optional
         Instant [user time unit] to read (default the last one).
 
@@ -156,6 +156,8 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
                 f"{s[k + 1]:g} deg (duplicated or missing sector rows?)")
     edges = sector_edges(np.append(s, e[-1]))
     vm, vo = vm_all[order], vo_all[order]
+    if np.isnan(vo).all():  # an empty obstacle column ('-' cells): the obstacle does not wear
+        vo = np.zeros_like(vo)
     for name, v in (("volume_mobile_cumulated (V_USUR_TUBE_CUMU)", vm),
                     ("volume_obstacle_cumulated (V_USUR_OBST_CUMU)", vo)):
         bad = ~np.isfinite(v) | (v < 0)
