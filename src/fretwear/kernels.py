@@ -10,7 +10,10 @@ One call reduces one chunk of a contact history (consecutive samples) to its *pa
 
 Two implementations compute the same sums: a compiled numba kernel (``cache=True``, ``nogil``)
 that reads every sample once and classifies contact angles into sectors *without an arctangent*,
-and a plain numpy version (the reference, and the fallback when numba is missing).
+and a plain numpy version (:func:`fretwear.kernel_reference.fused_numpy`: the reference, and the
+fallback when numba is missing). The compiled kernel skips free-flight intervals (Fn = 0 at both
+ends) without computing the sliding speed, keeps the per-block sums in registers and reuses the
+previous sample's sector while the contact point stays inside it.
 
 Conventions (shared with :mod:`fretwear.history` and :mod:`fretwear.sectors`)
 ---------------------------------------------------------------------------------
