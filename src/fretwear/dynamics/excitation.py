@@ -85,8 +85,7 @@ def random_signal_from_psd(frequencies, psd, *, duration: float, seed: int,
     fk = np.arange(n // 2 + 1) * df
     sk = np.interp(fk, f, s, left=0.0, right=0.0)
     sk[0] = 0.0  # no mean
-    if n // 2 < fk.size:
-        sk[-1] = 0.0  # Nyquist bin has no phase freedom
+    sk[-1] = 0.0  # the Nyquist bin (n even) has no phase freedom
     rng = np.random.default_rng(seed)
     phases = rng.uniform(0.0, 2.0 * np.pi, fk.size)
     amp = np.sqrt(2.0 * sk * df)
