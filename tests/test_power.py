@@ -7,6 +7,8 @@ from functools import reduce
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from fretwear.errors import HistoryError, InputError, StationarityWarning
 from fretwear.history import ContactHistory
@@ -278,3 +280,30 @@ def test_file_is_streamed_in_chunks(tmp_path, suffix):
     kw = dict(blocks=3, sectors=10, force_threshold=0.1, minimum_rest_time=0.02,
               stationarity_threshold=math.inf)
     _same(wear_power(h, **kw), wear_power(path, chunk_size=37, **kw))
+
+
+_H = _random_history(21, 400)
+
+
+@settings(max_examples=40, deadline=None)
+@given(cuts=st.lists(st.integers(1, 398), min_size=1, max_size=8, unique=True),
+       share=st.booleans(), order=st.randoms(use_true_random=False),
+       window=st.tuples(st.floats(0.0, 0.4), st.floats(0.6, 1.0)))
+def test_any_chunking_and_merge_order_equals_one_shot(cuts, share, order, window):
+    # Property: the reduction is associative - any cut points, shared boundary sample or not,
+    # merged in any order, give the one-shot result (independent computation).
+    t = _H.time
+    t0 = t[0] + window[0] * (t[-1] - t[0])
+    t1 = t[0] + window[1] * (t[-1] - t[0])
+    one = wear_power(_H, t_start=t0, t_end=t1, stationarity_threshold=math.inf, **KW)
+    bounds = [0, *sorted(cuts), len(_H)]
+    ranges = [(i, min(j + 1, len(_H)) if share else j)
+              for i, j in zip(bounds[:-1], bounds[1:], strict=True)]
+    assume(all(j - i >= 2 for i, j in ranges))  # a one-sample chunk is not a ContactHistory
+    chunks = [_slice(_H, i, j) for i, j in ranges]
+    parts = [PowerAccumulator(t_start=t0, t_end=t1, **KW).update(c) for c in chunks]
+    while len(parts) > 1:
+        k = order.randrange(len(parts) - 1)
+        parts[k:k + 2] = [parts[k].merge(parts[k + 1]) if order.random() < 0.5
+                          else parts[k + 1].merge(parts[k])]
+    _same(one, parts[0].result(stationarity_threshold=math.inf))
