@@ -28,6 +28,7 @@ __version__ = "0.1.0"
 _LAZY: dict[str, str] = {
     "read_history": "fretwear.io",
     "write_history": "fretwear.io",
+    "iter_history_chunks": "fretwear.io",
     "read_aster_table": "fretwear.io.aster",
     "write_aster_table": "fretwear.io.aster",
     "wear_power": "fretwear.power",
