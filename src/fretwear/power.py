@@ -454,7 +454,8 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
 
     References
     ----------
-    Code_Aster R7.01.10 (POST_USURE theory note), §2; SPEC §2-§3.
+    Code_Aster theory note of POST_USURE ("Operator of computation of wear", user manual
+    U4.67.03), §2 and §5; SPEC §2-§3.
 
     Examples
     --------

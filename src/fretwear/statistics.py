@@ -306,7 +306,7 @@ def contact_statistics(history, *, t_start: float | None = None, t_end: float | 
     Notes
     -----
     The same single pass as the wear power; see the module docstring for the definitions.
-    Reference: Code_Aster POST_DYNA_MODA_T, options USURE and IMPACT (document U4.84.02).
+    Reference: Code_Aster POST_DYNA_MODA_T user documentation, options USURE and IMPACT.
 
     Examples
     --------
