@@ -181,7 +181,6 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     ----------
     Code_Aster R7.20.01 (POST_USURE) §6; EDF HT-22/98-009A (iterative wear computations).
     """
-    from fretwear.case import chunked_power
     from fretwear.obstacle.config import obstacle_from_config
     from fretwear.operator import wear_table
 
@@ -228,9 +227,9 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             shocks = setup.shocks_with(profiles_k)
             result = simulate(setup.model, shocks, setup.excitations,
                               output_dir=cdir / "histories", **setup.options)
-            history = result.history(iw)
+            say(f"cycle {k}/{n_cycles}: wear power")
+            power, history, contact = _cycle_power(result, iw, args)
             say(f"cycle {k}/{n_cycles}: wear table")
-            power = chunked_power(history, args)
             kwargs = dict(args, initial_state=previous)
             if args["law"].upper() == "KWU_EPRI":
                 table = wear_table(history, **kwargs)
@@ -258,7 +257,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                    "depth_obstacle_max": float(np.nanmax(update.depth_obstacle)),
                    "clearance_min": float(np.nanmin(update.clearance_worn)),
                    "clearance_max": float(np.nanmax(update.clearance_worn)),
-                   "contact_fraction": float(np.mean(history.normal_force > 0)),
+                   "contact_fraction": contact,
                    "perforated": bool(update.perforated)}
             rows.append(row)
             if not np.all(np.isfinite(profile[1])):
@@ -283,6 +282,61 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             texts.append(t)
     return IterationResult(summary=summary, tables=tables, profiles=profiles,
                            directory=out_dir, stopped=stopped, warnings=texts)
+
+
+#: Wear-shock histories up to this many samples are read whole by the loop; longer ones are
+#: reduced chunk by chunk from their Parquet file (bounded memory; KWU_EPRI always reads whole).
+LOOP_IN_MEMORY = 2_000_000
+#: Samples kept (evenly spaced) for the figure of a history reduced chunk by chunk.
+PLOT_SAMPLES = 200_000
+#: Samples per chunk of that reduction.
+LOOP_CHUNK = 1_000_000
+
+
+def _cycle_power(result, iw: int, args: Mapping[str, Any]):
+    """(PowerResult, history for the wear table / figures, contact fraction) of the wear shock.
+
+    Short histories are read whole (:func:`fretwear.case.chunked_power`). Long ones are reduced
+    from the Parquet file by :class:`fretwear.power.PowerAccumulator` over
+    :func:`fretwear.io.iter_history_chunks` (one shared sample between chunks, so the result is
+    the one-shot reduction), keeping an evenly decimated copy for the figures.
+    """
+    import pyarrow.parquet as pq
+
+    from fretwear.case import chunked_power
+    from fretwear.history import CHANNELS, ContactHistory
+
+    path = result.files[result.shock_names[iw]]
+    n = pq.ParquetFile(path).metadata.num_rows
+    if n <= LOOP_IN_MEMORY or args["law"].upper() == "KWU_EPRI":
+        history = result.history(iw)
+        return chunked_power(history, args), history, float(np.mean(history.normal_force > 0))
+    from fretwear.io import iter_history_chunks
+    from fretwear.power import PowerAccumulator
+
+    acc = PowerAccumulator(
+        t_start=args.get("t_start") if args.get("t_start") is not None else result.start_time,
+        t_end=args.get("t_end") if args.get("t_end") is not None else result.end_time,
+        blocks=args.get("blocks", 1), sectors=args.get("sectors"))
+    stride = max(1, n // PLOT_SAMPLES)
+    kept: dict[str, list] = {c: [] for c in CHANNELS}
+    in_contact = 0
+    row = 0
+    for j, chunk in enumerate(iter_history_chunks(path, chunk_size=LOOP_CHUNK)):
+        acc.update(chunk)
+        skip = 0 if j == 0 else 1  # the sample shared with the previous chunk
+        fn = chunk.normal_force[skip:]
+        in_contact += int(np.count_nonzero(fn > 0))
+        first = row + skip
+        pick = np.arange((-first) % stride, fn.size, stride)
+        for c in CHANNELS:
+            kept[c].append(np.asarray(getattr(chunk, c))[skip:][pick])
+        row = first + fn.size - 1
+    power = acc.result(stationarity_threshold=args.get("stationarity_threshold", 0.1))
+    light = ContactHistory(**{c: np.concatenate(v) for c, v in kept.items()},
+                           name=result.shock_names[iw],
+                           metadata={"source": str(path), "decimated_by": stride})
+    return power, light, in_contact / n
 
 
 def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures) -> None:
