@@ -76,4 +76,6 @@ def test_angle_convention():
     # atan2 rounds to exactly -pi here: folded to +180 (the interval is open at -180).
     assert contact_angle([-1.0], [-1e-300]).tolist() == [180.0]
     assert make().angle.tolist() == [0.0] * 4
+    # Signed zeros, as Code_Aster prints -0.00000E+00: still the centre, theta = 0 (SPEC §3).
+    assert contact_angle([-0.0, -0.0, 0.0], [0.0, -0.0, -0.0]).tolist() == [0.0, 0.0, 0.0]
     np.testing.assert_allclose(h.sliding_speed, np.hypot(h.vt1, h.vt2))

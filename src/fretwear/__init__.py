@@ -33,6 +33,8 @@ _LAZY: dict[str, str] = {
     "write_aster_table": "fretwear.io.aster",
     "wear_power": "fretwear.power",
     "PowerResult": "fretwear.power",
+    "PowerAccumulator": "fretwear.power",
+    "ContactStatistics": "fretwear.statistics",
     "contact_statistics": "fretwear.statistics",
     "laws": "fretwear.laws",
     "WEAR_LAWS": "fretwear.laws",

@@ -276,9 +276,13 @@ def contact_angle(dy, dz) -> np.ndarray:
 
     Examples
     --------
-    >>> contact_angle([1.0, 0.0, -1.0, 0.0], [0.0, 1.0, -0.0, 0.0]).tolist()
-    [0.0, 90.0, 180.0, 0.0]
+    >>> contact_angle([1.0, 0.0, -1.0, 0.0, -0.0], [0.0, 1.0, -0.0, 0.0, -0.0]).tolist()
+    [0.0, 90.0, 180.0, 0.0, 0.0]
     """
-    theta = np.degrees(np.arctan2(np.asarray(dz, dtype=float), np.asarray(dy, dtype=float)))
+    y = np.asarray(dy, dtype=float)
+    z = np.asarray(dz, dtype=float)
+    theta = np.degrees(np.arctan2(z, y))
     theta = np.where(theta <= -180.0, 180.0, theta)
+    # SPEC §3: 0 where dy = dz = 0, signed zeros included (atan2(0, -0.0) would give 180).
+    theta = np.where((y == 0.0) & (z == 0.0), 0.0, theta)
     return theta + 0.0  # turn -0.0 into 0.0
