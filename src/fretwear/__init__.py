@@ -66,6 +66,14 @@ _LAZY: dict[str, str] = {
     "POST_USURE": "fretwear.aster",
     "obstacle": "fretwear.obstacle",
     "dynamics": "fretwear.dynamics",
+    "simulate": "fretwear.dynamics",
+    "ModalModel": "fretwear.dynamics",
+    "Shock": "fretwear.dynamics",
+    "uniform_beam_modes": "fretwear.dynamics",
+    "NodalForce": "fretwear.dynamics",
+    "BaseAcceleration": "fretwear.dynamics",
+    "Signal": "fretwear.dynamics",
+    "iterate_case": "fretwear.dynamics.loop",
 }
 
 
