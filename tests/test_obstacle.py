@@ -515,3 +515,19 @@ def test_volume_beyond_the_wedge_is_nan_with_a_range_warning():
                             width=WIDTH, resolution=1.0)
     assert math.isnan(r.depth.sector_depth_mobile[4]) and r.perforated_sectors == (5,)
     assert np.isnan(r.clearance_worn).all() and not np.isnan(r.clearance_initial).any()
+
+
+def test_touching_obstacle_zero_gap():
+    """A discrete obstacle touching the new mobile at 0° (gap 0 there, 0.5 mm elsewhere, linear
+    in angle between nodes every 30°): moving into the contact the clearance is 0; moving away
+    the bodies separate (touching is not overlapping) and the clearance matches the brute
+    force."""
+    angles = np.arange(0, 360, 30.0)
+    obst = DiscreteObstacle(angles, np.where(angles == 0, 0.0, 0.5e-3), RM)
+    r = update_obstacle(obst, Mobile(RM, WALL), 1, [0.0], width=WIDTH, step=1.0)
+    assert r.clearance_initial[0] == 0.0 and r.clearance_initial[1] == 0.0
+    for direction in (90.0, 180.0, 250.0):
+        ref = brute_force_clearance(direction, lambda a: np.full(np.shape(a), RM), obst.radius,
+                                    np.arange(-180, 180, 30.0))
+        got = r.clearance_initial[int(direction)]
+        assert got > 1e-4 and got == pytest.approx(ref, abs=1e-12)
