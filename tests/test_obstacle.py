@@ -142,6 +142,10 @@ def test_planes_clearance_is_gap_over_cosine():
     expected = np.where(c > 0, 0.5e-3 / np.abs(c), 0.3e-3 / np.abs(c))
     sel = np.abs(c) > 0.2
     np.testing.assert_allclose(r.clearance_initial[sel], expected[sel], rtol=1e-9)
+    # the new figure straight from the model; not the radial gap (R_m + g)/cos − R_m
+    np.testing.assert_allclose(obst.clearance([30.0, 90.0, 210.0], resolution=0.1),
+                               [0.5e-3, 1e-3, 0.3e-3], rtol=1e-9)
+    assert float(obst.gap(90.0)) > 0.5e-3 / math.cos(math.radians(60.0)) + 1e-3
 
 
 def test_uniform_wear_all_round_opens_by_both_depths_exactly():

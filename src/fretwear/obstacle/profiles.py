@@ -126,6 +126,31 @@ class _Obstacle:
         a = discret_angles(step)
         return DiscreteObstacle(a, self.gap(a), self.mobile_radius)
 
+    def clearance(self, angle, resolution: float = 0.05) -> np.ndarray:
+        """Clearance figure of the NEW mobile (a disk of radius R_m) in this obstacle [m].
+
+        How far the disk can translate along each direction ``angle`` [deg] before it touches
+        the obstacle: the figure the shock node of a dynamic computation sees. It equals
+        ``gap(angle)`` for a bore, not for planes (g/cos ψ, not (R_m + g)/cos ψ − R_m) nor for
+        a non-circular table. ``resolution`` [deg]: polygon step of the exact search
+        (:mod:`fretwear.obstacle.clearance`).
+
+        Examples
+        --------
+        >>> p = PlanesObstacle(9.5e-3, 0.5e-3)
+        >>> [round(float(c), 9) for c in p.clearance([0.0, 60.0])]
+        [0.0005, 0.001]
+        """
+        from fretwear.obstacle.clearance import clearance_figure, polar_polygon
+
+        rm = self.mobile_radius
+        if rm is None:
+            raise InputError("the clearance of the new mobile needs the obstacle's mobile_radius")
+        nodes = getattr(self, "angles", ())
+        disk = polar_polygon(lambda a, side: np.full(np.shape(a), rm), nodes, resolution)
+        bore = polar_polygon(lambda a, side: self.radius(a), nodes, resolution)
+        return clearance_figure(angle, disk, bore)
+
 
 @dataclass(frozen=True)
 class CircleObstacle(_Obstacle):
