@@ -535,3 +535,23 @@ def test_touching_obstacle_zero_gap():
                                     np.arange(-180, 180, 30.0))
         got = r.clearance_initial[int(direction)]
         assert got > 1e-4 and got == pytest.approx(ref, abs=1e-12)
+
+
+def test_discret_reader_errors_name_file_and_line(tmp_path):
+    from fretwear.errors import FormatError
+
+    bad = tmp_path / "bad.txt"
+    bad.write_text("# no columns we know\nANGLE_X FOO\n0 1\n")
+    with pytest.raises(FormatError, match=r"bad.txt: line 2: .*THETA"):
+        read_discret(bad)
+    bad.write_text("THETA JEU\n0 5e-4\n90 abc\n")
+    with pytest.raises(FormatError, match=r"bad.txt: line 3: a cell is not a number"):
+        read_discret(bad)
+    bad.write_text("THETA R\n0 0.01\n120 0.01\n240 0.01\n")
+    with pytest.raises(FormatError, match="mobile radius"):
+        read_discret(bad)
+    with pytest.raises(FormatError, match="not found"):
+        load_obstacle_profile(tmp_path / "missing.txt")
+    bad.write_text("THETA JEU\n0 5e-4\n90 5e-4\n90 5e-4\n")
+    with pytest.raises(InputError, match=r"bad.txt: .*row 2 \(90 deg\) does not exceed row 1"):
+        read_discret(bad)
