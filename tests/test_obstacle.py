@@ -13,6 +13,8 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.integrate import quad
 
 from fretwear.errors import InputError, KeywordError, PerforationWarning
@@ -555,3 +557,20 @@ def test_discret_reader_errors_name_file_and_line(tmp_path):
     bad.write_text("THETA JEU\n0 5e-4\n90 5e-4\n90 5e-4\n")
     with pytest.raises(InputError, match=r"bad.txt: .*row 2 \(90 deg\) does not exceed row 1"):
         read_discret(bad)
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.lists(st.floats(0.0, 5e-9), min_size=6, max_size=6),
+       st.lists(st.floats(0.0, 3e-9), min_size=6, max_size=6),
+       st.floats(1.0, 3.0), st.sampled_from(["uniform", "smooth"]))
+def test_more_wear_never_closes_the_clearance(vm, vo, factor, shape):
+    """Property: wear only removes material, so scaling every sector volume up by `factor`
+    nests the worn bodies (smaller mobile, larger obstacle free space: same polygon angles,
+    radii moved the same way) and the clearance cannot decrease in any direction."""
+    obst = CircleObstacle(RM, RO)
+    vm, vo = np.array(vm), np.array(vo)
+    kw = dict(width=WIDTH, shape=shape, resolution=1.0, step=2.0)
+    a = update_obstacle(obst, Mobile(RM, RM), 6, vm, vo, **kw)
+    b = update_obstacle(obst, Mobile(RM, RM), 6, factor * vm, factor * vo, **kw)
+    assert (a.clearance_worn >= a.clearance_initial - 1e-15).all()
+    assert (b.clearance_worn >= a.clearance_worn - 1e-15).all()

@@ -214,8 +214,8 @@ def _first_hit(ang, xs, ys, t_start, t_width, ax, ay, a_start, a_width, ux, uy, 
         ex = xs[kn] - xs[k]
         ey = ys[kn] - ys[k]
         den = ux * ey - uy * ex  # u · outward normal (ey, -ex) of the counter-clockwise edge
-        if den == 0.0:
-            continue
+        if abs(den) <= 1e-12 * math.hypot(ex, ey):
+            continue  # parallel: sliding along the edge; its ends are vertex contacts
         wx = xs[k] - ax
         wy = ys[k] - ay
         t = (wx * uy - wy * ux) / den

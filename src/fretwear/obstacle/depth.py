@@ -121,7 +121,7 @@ class WornDepth:
     shape: str
     sector_depth_mobile: np.ndarray
     sector_depth_obstacle: np.ndarray
-    _density: tuple  # (PchipInterpolator or None) for mobile, obstacle
+    _density: tuple  # per body: None or (PchipInterpolator of A/total, total [m²])
 
     def _area_density(self, which: int, angle, side: str) -> np.ndarray:
         a = np.asarray(angle, dtype=float)
@@ -133,7 +133,7 @@ class WornDepth:
         if interp is None:
             return np.zeros(a.shape)
         x = np.radians(np.mod(a + 180.0, 360.0) - 180.0)
-        return np.maximum(interp(x, 1), 0.0)
+        return np.maximum(interp[0](x, 1), 0.0) * interp[1]
 
     def mobile(self, angle, side: str = "right") -> np.ndarray:
         """Mobile's worn radial depth [m] at ``angle`` [deg]; NaN past the mobile's centre."""
@@ -156,11 +156,13 @@ def _pchip_cumulated(edges: np.ndarray, areas: np.ndarray):
     if not (areas > 0).any():
         return None
     x = np.radians(edges)
-    cum = np.concatenate([[0.0], np.cumsum(areas)])
+    scale = float(np.sum(areas))  # PCHIP is scale-free: work on A/total (no under/overflow)
+    cum = np.concatenate([[0.0], np.cumsum(areas / scale)])
     total = cum[-1]
     xs = np.concatenate([x[:-1] - 2 * np.pi, x, x[1:] + 2 * np.pi])
     ys = np.concatenate([cum[:-1] - total, cum, cum[1:] + total])
-    return PchipInterpolator(xs, ys, extrapolate=False)
+    with np.errstate(over="ignore", divide="ignore"):  # a slope ~1e-300: harmonic mean -> 0
+        return PchipInterpolator(xs, ys, extrapolate=False), scale
 
 
 def worn_depth_profiles(edges, volume_mobile, volume_obstacle=None, *, width: float,
