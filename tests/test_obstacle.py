@@ -562,12 +562,15 @@ def test_discret_reader_errors_name_file_and_line(tmp_path):
 @settings(max_examples=15, deadline=None)
 @given(st.lists(st.floats(0.0, 5e-9), min_size=6, max_size=6),
        st.lists(st.floats(0.0, 3e-9), min_size=6, max_size=6),
-       st.floats(1.0, 3.0), st.sampled_from(["uniform", "smooth"]))
-def test_more_wear_never_closes_the_clearance(vm, vo, factor, shape):
+       st.floats(1.0, 3.0), st.sampled_from(["uniform", "smooth"]), st.booleans())
+def test_more_wear_never_closes_the_clearance(vm, vo, factor, shape, circle):
     """Property: wear only removes material, so scaling every sector volume up by `factor`
     nests the worn bodies (smaller mobile, larger obstacle free space: same polygon angles,
-    radii moved the same way) and the clearance cannot decrease in any direction."""
-    obst = CircleObstacle(RM, RO)
+    radii moved the same way) and the clearance cannot decrease in any direction (in a bore,
+    or in a table touching the mobile at 40°)."""
+    table = np.arange(0, 360, 40.0)
+    obst = CircleObstacle(RM, RO) if circle else DiscreteObstacle(
+        table, np.where(table == 40.0, 0.0, 0.3e-3 + 1e-6 * table), RM)
     vm, vo = np.array(vm), np.array(vo)
     kw = dict(width=WIDTH, shape=shape, resolution=1.0, step=2.0)
     a = update_obstacle(obst, Mobile(RM, RM), 6, vm, vo, **kw)
