@@ -351,6 +351,11 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
     (:mod:`fretwear.obstacle.clearance`). To first order, a sector worn by d_m and d_o opens
     the clearance at its centre by d_m + d_o.
 
+    References
+    ----------
+    SPEC §3 (sector depths) and §8 (obstacle update); Code_Aster R7.20.01 (POST_USURE) §5-§6,
+    whose MODI_OBSTACLE this replaces.
+
     Examples
     --------
     Uniform wear all round: the clearance is (R_o + d_o) − (R_m − d_m) in every direction.
@@ -434,6 +439,18 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     Returns
     -------
     ObstacleResult
+
+    Examples
+    --------
+    Two sectors, the mobile worn on the +y side only (Code_Aster names):
+
+    >>> from fretwear.obstacle.profiles import CircleObstacle
+    >>> t = pd.DataFrame({"INST": [5.0, 5.0], "SECTEUR": [1, 2], "ANGLE_DEBUT": [-180.0, 0.0],
+    ...                   "ANGLE_FIN": [0.0, 180.0], "V_USUR_TUBE_CUMU": [0.0, 1e-9]})
+    >>> r = update_obstacle_from_table(t, CircleObstacle(0.0095, 0.01), Mobile(0.0095, 1e-3),
+    ...                                width=0.02, resolution=0.5)
+    >>> r.instant, round(float(r.clearance_worn[180]) * 1e3, 6)   # at 90 deg [mm]
+    (5.0, 0.501675)
     """
     frame = table if isinstance(table, pd.DataFrame) else read_wear_table(table)
     inst, edges, vm, vo = sector_volumes(frame, instant)
