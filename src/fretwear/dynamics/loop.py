@@ -210,7 +210,8 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                       "uses its own obstacle, not the [obstacle] section's", FretwearWarning,
                       stacklevel=2)
     grid = np.arange(0.0, 360.0, 0.5)
-    new_profile = (grid, np.asarray(new.gap(grid), dtype=float))
+    # The clearance figure of the new mobile (equal to the radial gap only for a bore).
+    new_profile = (grid, np.asarray(new.clearance(grid), dtype=float))
     profile = new_profile
     max_depth = it.get("max_depth_m")
     rows, tables, profiles = [], [], []
