@@ -195,6 +195,20 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
     dict
         The validated case, with ``"_directory"`` the file's folder.
     """
+    raw, directory = read_case_toml(path)
+    case = validate_case(raw, source=str(path))
+    case["_directory"] = directory
+    return case
+
+
+def read_case_toml(path: str | os.PathLike) -> tuple[dict[str, Any], str]:
+    """The raw (unvalidated) TOML content of a case file and the file's folder.
+
+    Raises
+    ------
+    InputError
+        The file does not exist or is not valid TOML (with the parser's line and column).
+    """
     p = Path(path)
     if not p.is_file():
         raise InputError(f"case file {str(p)!r} does not exist")
@@ -202,9 +216,7 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
         raw = tomllib.loads(p.read_text(encoding="utf-8"))
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"case file {str(p)!r} is not valid TOML: {exc}") from None
-    case = validate_case(raw, source=str(p))
-    case["_directory"] = str(p.resolve().parent)
-    return case
+    return raw, str(p.resolve().parent)
 
 
 @dataclass

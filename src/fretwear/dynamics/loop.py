@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import difflib
 import json
-import tomllib
 import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -29,7 +28,7 @@ import pandas as pd
 
 from fretwear.dynamics.config import DynamicsSetup, dynamics_from_config
 from fretwear.dynamics.integrate import simulate
-from fretwear.errors import FretwearWarning, InputError, KeywordError
+from fretwear.errors import FretwearWarning, KeywordError
 
 #: key -> (type, description with unit) of the ``[iterate]`` section.
 ITERATE_KEYS: dict[str, tuple[Any, str]] = {
@@ -70,20 +69,14 @@ def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
     KeywordError
         Unknown sections or keys (with the closest valid name), missing sections.
     """
-    from fretwear.case import validate_case
+    from fretwear.case import read_case_toml, validate_case
 
     if isinstance(case, Mapping):
         raw = dict(case)
         source, directory = "case", raw.pop("_directory", None)
     else:
-        p = Path(case)
-        if not p.is_file():
-            raise InputError(f"case file {str(p)!r} does not exist")
-        try:
-            raw = tomllib.loads(p.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(f"case file {str(p)!r} is not valid TOML: {exc}") from None
-        source, directory = str(p), str(p.resolve().parent)
+        raw, directory = read_case_toml(case)
+        source = str(case)
     dynamics = raw.pop("dynamics", None)
     iterate = _check_iterate(raw.pop("iterate", {}))
     if dynamics is None:

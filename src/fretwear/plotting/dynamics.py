@@ -10,26 +10,12 @@ from pathlib import Path
 
 import numpy as np
 
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+from fretwear.plotting._common import pyplot as _pyplot
+from fretwear.plotting._common import save_figure
 
 
 def _save(fig, directory: Path, stem: str) -> list[Path]:
-    from fretwear.io.atomic import atomic_path
-
-    out = []
-    for fmt in ("png", "svg"):
-        target = directory / f"{stem}.{fmt}"
-        with atomic_path(target) as tmp:
-            fig.savefig(tmp, format=fmt, dpi=110, bbox_inches="tight")
-        out.append(target)
-    return out
+    return save_figure(fig, directory, stem, dpi=110)
 
 
 def _decimate(n: int, limit: int = 20000) -> slice:

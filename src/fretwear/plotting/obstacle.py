@@ -10,14 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+from fretwear.plotting._common import pyplot as _pyplot
+from fretwear.plotting._common import save_figure
 
 
 def obstacle_figure(result):
@@ -98,18 +92,9 @@ def plot_obstacle(result, directory: str | os.PathLike, *, stem: str = "obstacle
     -------
     list of pathlib.Path
     """
-    from fretwear.io.atomic import atomic_path
-
     plt = _pyplot()
-    folder = Path(directory)
     fig = obstacle_figure(result)
-    out = []
     try:
-        for fmt in ("png", "svg"):
-            target = folder / f"{stem}.{fmt}"
-            with atomic_path(target) as tmp:
-                fig.savefig(tmp, format=fmt, dpi=120, bbox_inches="tight")
-            out.append(target)
+        return save_figure(fig, directory, stem, dpi=120)
     finally:
         plt.close(fig)
-    return out

@@ -11,26 +11,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-
-def _pyplot():
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
+from fretwear.plotting._common import pyplot as _pyplot
+from fretwear.plotting._common import save_figure
 
 
 def _save(fig, directory: Path, stem: str) -> list[Path]:
-    from fretwear.io.atomic import atomic_path
-
-    out = []
-    for fmt in ("png", "svg"):
-        target = directory / f"{stem}.{fmt}"
-        with atomic_path(target) as tmp:
-            fig.savefig(tmp, format=fmt, dpi=120, bbox_inches="tight")
-        out.append(target)
-    return out
+    return save_figure(fig, directory, stem, dpi=120)
 
 
 def _unit(table: pd.DataFrame) -> str:
