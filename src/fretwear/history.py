@@ -162,9 +162,10 @@ class ContactHistory:
         dt = np.diff(arrays["time"])
         if (dt <= 0).any():
             i = _first_bad(dt <= 0) + 1
+            t0, t1 = float(arrays["time"][i - 1]), float(arrays["time"][i])
             raise HistoryError(
                 f"contact history {self.name!r}: channel 'time' is not strictly increasing at row "
-                f"{i} (t[{i - 1}] = {float(arrays['time'][i - 1])!r}, t[{i}] = {float(arrays['time'][i])!r}); "
+                f"{i} (t[{i - 1}] = {t0!r}, t[{i}] = {t1!r}); "
                 "sort the samples and drop duplicated instants")
         fn = arrays["normal_force"]
         tol = self.force_tolerance
@@ -176,9 +177,10 @@ class ContactHistory:
         if neg.any():
             i = _first_bad(neg)
             raise HistoryError(
-                f"contact history {self.name!r}: channel 'normal_force' is negative ({float(fn[i])} N) at "
-                f"row {i} (t = {float(arrays['time'][i])!r} s); the normal force must be >= 0 - check the "
-                "sign convention of the exported FN column or negate it")
+                f"contact history {self.name!r}: channel 'normal_force' is negative "
+                f"({float(fn[i])} N) at row {i} (t = {float(arrays['time'][i])!r} s); the normal "
+                "force must be >= 0 - check the sign convention of the exported FN column or "
+                "negate it")
         np.maximum(fn, 0.0, out=fn)
         if ("dy" in arrays) != ("dz" in arrays):
             missing = "dz" if "dy" in arrays else "dy"
@@ -191,8 +193,8 @@ class ContactHistory:
             if bad.any():
                 i = _first_bad(bad)
                 raise HistoryError(
-                    f"contact history {self.name!r}: channel 'stick' must be 0 or 1, got {float(s[i])} "
-                    f"at row {i}; Code_Aster's VINT13 is 1 while sticking")
+                    f"contact history {self.name!r}: channel 'stick' must be 0 or 1, got "
+                    f"{float(s[i])} at row {i}; Code_Aster's VINT13 is 1 while sticking")
         for ch, arr in arrays.items():
             arr.flags.writeable = False
             object.__setattr__(self, ch, arr)
@@ -233,8 +235,9 @@ class ContactHistory:
         keep = (self.time >= lo) & (self.time <= hi)
         if keep.sum() < 2:
             raise HistoryError(
-                f"contact history {self.name!r}: the window [{t_start}, {t_end}] s holds fewer than "
-                f"two samples (record spans {self.time[0]} .. {self.time[-1]} s)")
+                f"contact history {self.name!r}: the window [{t_start}, {t_end}] s holds fewer "
+                f"than two samples (record spans {float(self.time[0])} .. {float(self.time[-1])} s)"
+            )
         return self.replace(**{ch: getattr(self, ch)[keep] for ch in self.channels})
 
     def replace(self, **changes: Any) -> ContactHistory:
