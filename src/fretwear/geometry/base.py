@@ -139,6 +139,8 @@ class ContactGeometry:
             if value is None:
                 continue
             try:
+                if isinstance(value, (bool, np.bool_)):  # True would silently become 1 m
+                    raise TypeError
                 number = float(value)
             except (TypeError, ValueError):
                 raise InputError(
