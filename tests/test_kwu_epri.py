@@ -258,3 +258,71 @@ def test_default_maxima_are_the_window_maxima_free_flight_included():
     assert float(s.shares[2, 4]) == 1.0
     assert s.impact_sum == 0.0
     assert s.intensity == pytest.approx(9.0, rel=1e-14)
+
+
+# ------------------------------------------------------------ streaming from a file or chunks
+def test_file_path_is_streamed_and_equals_the_designed_values(tmp_path):
+    """A history file read in chunks of 3 samples (consecutive chunks share one sample) gives the
+    hand-computed shares and w of the designed record (independent of the in-memory path)."""
+    from fretwear.io import write_history
+
+    path = write_history(designed_history(), tmp_path / "designed.csv")
+    s = kwu_epri_statistics(path, chunk_size=3)
+    expected = np.zeros((5, 5))
+    for (v, f), p in EXPECTED_SHARES.items():
+        expected[v - 1, f - 1] = p
+    np.testing.assert_allclose(s.shares, expected, rtol=1e-15, atol=0)
+    assert (s.force_max, s.speed_max, s.contact_time) == (50.0, 0.5, CONTACT_TIME)
+    assert s.intensity == pytest.approx(hand_sums()[2], rel=1e-14)
+    # through the registry, with a window: samples 0..6 -> contact intervals 0-5 (6 s):
+    # (1,3) 2 s, (1,1) 1 s, (5,5) 3 s; F_max, V_max still 50 N, 0.5 m/s
+    w = WEAR_LAWS["KWU_EPRI"].statistics(str(path), t_end=6.0, chunk_size=4,
+                                         read_options={"format": "csv"})
+    assert w.contact_time == 6.0
+    assert w.shares[0, 2] == pytest.approx(2 / 6) and w.shares[4, 4] == pytest.approx(3 / 6)
+    with pytest.raises(InputError, match="chunk_size"):
+        kwu_epri_statistics(path, chunk_size=1)
+
+
+def test_list_and_iterator_of_chunks():
+    h = designed_history()
+    pieces = [ContactHistory(time=h.time[i:i + 5], normal_force=h.normal_force[i:i + 5],
+                             vt1=h.vt1[i:i + 5], vt2=h.vt2[i:i + 5]) for i in (0, 4, 8)]
+    direct = kwu_epri_statistics(h)
+    listed = kwu_epri_statistics(pieces)         # re-iterable: two passes
+    np.testing.assert_allclose(listed.class_time, direct.class_time, rtol=1e-15)
+    once = kwu_epri_statistics(iter(pieces), force_max=50.0, speed_max=0.5)
+    assert once.intensity == pytest.approx(direct.intensity, rel=1e-15)
+    with pytest.raises(InputError, match="give force_max and speed_max"):
+        kwu_epri_statistics(iter(pieces))
+    with pytest.raises(InputError, match="reader options go with a history file"):
+        kwu_epri_statistics(h, format="csv")
+    with pytest.raises(InputError, match="must be a ContactHistory"):
+        kwu_epri_statistics(3.0)
+
+
+def test_given_maxima_are_checked_and_kept_without_contact():
+    h = ContactHistory(time=[0.0, 1.0, 2.0], normal_force=[0.0, 0.0, 0.0], vt1=[0.1, 0.2, 0.0],
+                       vt2=[0.0, 0.0, 0.0])
+    with pytest.warns(LawWarning, match="no contact"):
+        s = kwu_epri_statistics(h, force_max=100.0)
+    # the user's F_max is kept (bounds 0, 20, ..., 100 N); V_max from the window: 0.2 m/s
+    assert s.force_max == 100.0 and s.speed_max == 0.2 and s.intensity == 0.0
+    np.testing.assert_allclose(s.force_bounds, [0, 20, 40, 60, 80, 100])
+    for bad in ({"force_max": 0.0}, {"force_max": -1.0}, {"speed_max": float("nan")}):
+        with pytest.raises(InputError, match=next(iter(bad))):
+            kwu_epri_statistics(designed_history(), **bad)
+    with pytest.raises(InputError, match="t_end"):
+        kwu_epri_statistics(designed_history(), t_start=5.0, t_end=5.0)
+
+
+def test_printed_table_shows_bounds_mid_values_sums_and_w():
+    text = str(kwu_epri_statistics(designed_history()))
+    sum_h, sum_w, w = hand_sums()
+    assert "F_max = 50 N, V_max = 0.5 m/s" in text
+    assert "f3 20-30" in text and "v2 0.1-0.2" in text        # class bounds
+    mid_f = next(line for line in text.splitlines() if line.startswith("mid F̄_f"))
+    assert mid_f.split()[-5:] == ["5", "15", "25", "35", "45"]
+    assert text.splitlines()[5].rstrip().endswith("0.15")       # row v2 ends with V̄_2
+    assert f"sum P_h = {sum_h:.6g}" in text and f"sum P_w = {sum_w:.6g}" in text
+    assert f"w = {w:.6g}" in text

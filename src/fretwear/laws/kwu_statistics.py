@@ -20,8 +20,9 @@ Choices where the seed and SPEC are silent (also in docs/laws.md):
 
 from __future__ import annotations
 
+import os
 import warnings
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -29,6 +30,8 @@ import numpy as np
 
 from fretwear.errors import HistoryError, InputError, LawWarning
 
+#: Samples per chunk when a history file is streamed (as fretwear.power).
+DEFAULT_CHUNK_SIZE = 1_000_000
 #: Number of classes per axis.
 N_CLASSES = 5
 #: Impact cells: speed class v = 1 (row 0), every force class.
@@ -318,6 +321,8 @@ class KwuEpriStatistics:
             "contact_time": self.contact_time, "window_time": self.window_time,
             "force_bounds": self.force_bounds.tolist(), "speed_bounds": self.speed_bounds.tolist(),
             "force_mid": self.force_mid.tolist(), "speed_mid": self.speed_mid.tolist(),
+            "impact_intensity": self.impact_intensity.tolist(),
+            "sliding_intensity": self.sliding_intensity.tolist(),
             "impact_sum": self.impact_sum, "sliding_sum": self.sliding_sum,
             "intensity": self.intensity, "force_max": self.force_max, "speed_max": self.speed_max,
             "impact_factor": self.impact_factor, "sliding_factor": self.sliding_factor,
@@ -326,23 +331,38 @@ class KwuEpriStatistics:
         }
 
     def __str__(self) -> str:
-        head = "speed \\ force [N]"
+        """The 5×5 shares [%] with class bounds and mid-values, the sums and w, as text."""
         cols = [f"f{j + 1} {self.force_bounds[j]:.4g}-{self.force_bounds[j + 1]:.4g}"
-                for j in range(5)]
+                for j in range(N_CLASSES)]
         width = max(12, *(len(x) + 2 for x in cols))
-        lines = [f"KWU-EPRI class statistics: share of contact time p_vf [%] "
-                 f"(contact {self.contact_time:.6g} s of {self.window_time:.6g} s)",
-                 f"{head:<22}" + "".join(f"{x:>{width}}" for x in cols)]
-        for i in range(5):
-            label = f"v{i + 1} {self.speed_bounds[i]:.4g}-{self.speed_bounds[i + 1]:.4g} m/s"
-            lines.append(f"{label:<22}" + "".join(f"{100 * self.shares[i, j]:>{width}.3f}"
-                                                  for j in range(5)))
+        rows = [f"v{i + 1} {self.speed_bounds[i]:.4g}-{self.speed_bounds[i + 1]:.4g}"
+                for i in range(N_CLASSES)]
+        label = max(24, *(len(x) + 2 for x in rows))
+        window = ("no sample in the window" if self.t_start is None
+                  else f"window {self.t_start:.6g} to {self.t_end:.6g} s")
+        lines = [
+            f"KWU-EPRI class statistics ({window}; contact {self.contact_time:.6g} s of "
+            f"{self.window_time:.6g} s); F_max = {self.force_max:.6g} N, "
+            f"V_max = {self.speed_max:.6g} m/s",
+            "share of contact time p_vf [%]",
+            "speed [m/s] \\ force [N]".ljust(label) + "".join(f"{x:>{width}}" for x in cols)
+            + "   mid V̄_v [m/s]",
+            "mid F̄_f [N]".ljust(label) + "".join(f"{x:>{width}.4g}" for x in self.force_mid)]
+        for i in range(N_CLASSES):
+            lines.append(rows[i].ljust(label) + "".join(
+                f"{100 * self.shares[i, j]:>{width}.3f}" for j in range(N_CLASSES))
+                + f"   {self.speed_mid[i]:.4g}")
         lines += [
-            f"impact cells v=1; sliding cells v>=2 and (1,1); k1={self.impact_factor:g}, "
-            f"k2={self.sliding_factor:g}, k={self.k:g}, c={self.c:g}",
+            f"impact cells v=1: m_h = k1·k·(F̄/c)³; sliding cells v>=2 and (1,1): "
+            f"m_w = k2·F̄·V̄²; k1={self.impact_factor:g}, k2={self.sliding_factor:g}, "
+            f"k={self.k:g}, c={self.c:g}",
             f"sum P_h = {self.impact_sum:.6g}   sum P_w = {self.sliding_sum:.6g}   "
             f"w = {self.intensity:.6g}",
         ]
+        if self.time_above_max > 0:
+            share = 100 * self.time_above_max / self.contact_time
+            lines.append(f"{share:.3g}% of the contact time is above F_max or V_max (counted in "
+                         "the last class)")
         return "\n".join(lines)
 
 
@@ -402,20 +422,25 @@ def _maxima(chunks: Iterable[Any], t_start, t_end) -> tuple[float, float]:
 def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float | None = None,
                         force_max: float | None = None, speed_max: float | None = None,
                         impact_factor: float = 1.0, sliding_factor: float = 1.0, k: float = 5.0,
-                        c: float = 10.0) -> KwuEpriStatistics:
+                        c: float = 10.0, chunk_size: int = DEFAULT_CHUNK_SIZE,
+                        **read_options: Any) -> KwuEpriStatistics:
     """KWU-EPRI 5×5 class statistics and wear-intensity factor w of a contact history.
 
     Parameters
     ----------
-    history : ContactHistory
-        The shock point's history (or a mapping with ``time``, ``normal_force``, ``vt1``, ``vt2``).
+    history : ContactHistory, path, or sequence of chunks
+        The shock point's history (or a mapping with ``time``, ``normal_force``, ``vt1``, ``vt2``);
+        or a history file, streamed chunk by chunk with :func:`fretwear.io.iter_history_chunks`
+        (memory bounded by ``chunk_size``; two passes when a maximum is not given); or a list of
+        consecutive chunks (ContactHistory or mappings, in time order). A one-shot iterator of
+        chunks is accepted only with both ``force_max`` and ``speed_max`` given.
     t_start, t_end : float, optional
         Window [s] (samples with ``t_start <= t <= t_end``). Default: the whole record.
     force_max : float, optional
-        F_max [N] (``FNOR_MAXI``). Default: largest normal force in the window (SPEC §4).
+        F_max [N] (``FNOR_MAXI``), > 0. Default: largest normal force in the window (SPEC §4).
     speed_max : float, optional
-        V_max [m/s] (``VTAN_MAXI``). Default: largest sliding speed in the window, free flight
-        included (SPEC §4: "the maxima in the window").
+        V_max [m/s] (``VTAN_MAXI``), >= 0. Default: largest sliding speed in the window, free
+        flight included (SPEC §4: "the maxima in the window").
     impact_factor : float, optional
         k1 (``COEF_FNOR``), correction of the impact classes. Default 1 (no correction).
     sliding_factor : float, optional
@@ -425,10 +450,25 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     c : float, optional
         Experimental constant c (``COEF_C``) [1] (it scales a force in N: SPEC calls it
         dimensionless), > 0. Default 10.
+    chunk_size : int, optional
+        Samples per chunk when ``history`` is a file (>= 2). Default 10⁶.
+    **read_options
+        Reader options for a file (``format``, ``units``, ``columns``, ...; see
+        :func:`fretwear.io.read_history`).
 
     Returns
     -------
     KwuEpriStatistics
+        The same whether the history is given whole, as a file or as chunks.
+
+    Raises
+    ------
+    InputError
+        A negative or non-finite factor or maximum, ``force_max = 0``, ``c = 0``, an empty
+        window, a one-shot iterator without both maxima, or an object that is not a history.
+    HistoryError
+        A chunk without ``time``, ``normal_force`` or ``vt1``, non-finite values, time not
+        increasing.
 
     Notes
     -----
@@ -459,18 +499,32 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     >>> round(s.intensity, 6)   # ΣP_h = 0.5·5·(9/10)³, ΣP_w = 0.5·9·0.9², w = ΣP_w²/(ΣP_h + ΣP_w)
     2.43
     """
-    if force_max is None or speed_max is None:
-        fmax, vmax = _maxima([history], t_start, t_end)
-        if fmax == 0:
-            acc = KwuEpriAccumulator(1.0, 0.0, t_start=t_start, t_end=t_end)
-            acc.update(history=history)
-            acc.force_max = 0.0
-            return _statistics(acc, impact_factor, sliding_factor, k, c)
-        force_max = fmax if force_max is None else force_max
-        speed_max = vmax if speed_max is None else speed_max
-    acc = KwuEpriAccumulator(force_max, speed_max, t_start=t_start, t_end=t_end)
-    acc.update(history=history)
-    return _statistics(acc, impact_factor, sliding_factor, k, c)
+    options = dict(t_start=t_start, t_end=t_end, force_max=force_max, speed_max=speed_max,
+                   impact_factor=impact_factor, sliding_factor=sliding_factor, k=k, c=c)
+    if isinstance(history, str | os.PathLike):
+        from fretwear.io import iter_history_chunks
+
+        if isinstance(chunk_size, bool) or not isinstance(chunk_size, int | np.integer) \
+                or chunk_size < 2:
+            raise InputError(f"chunk_size must be an integer >= 2 samples, got {chunk_size!r}")
+        return _from_chunks(
+            lambda: iter_history_chunks(history, chunk_size, **read_options), options)
+    if read_options:
+        raise InputError(f"unknown keyword(s) {sorted(read_options)}: reader options go with a "
+                         "history file path only")
+    if isinstance(history, Mapping) or hasattr(history, "normal_force"):
+        return _from_chunks(lambda: (history,), options)
+    if isinstance(history, Iterator):
+        if force_max is None or speed_max is None:
+            raise InputError(
+                "KWU-EPRI statistics of a one-shot iterator of chunks: the default maxima need a "
+                "first pass over the record, and an iterator can be read once; give force_max and "
+                "speed_max (FNOR_MAXI, VTAN_MAXI), or pass a list of chunks or the file path")
+        return _from_chunks(lambda: history, options)
+    if isinstance(history, Iterable):
+        return _from_chunks(lambda: iter(history), options)
+    raise InputError(f"KWU-EPRI statistics: history must be a ContactHistory, a file path or a "
+                     f"list of chunks, got {type(history).__name__}")
 
 
 def kwu_epri_statistics_from_chunks(chunks: Callable[[], Iterable[Any]], **options: Any
@@ -504,18 +558,31 @@ def kwu_epri_statistics_from_chunks(chunks: Callable[[], Iterable[Any]], **optio
     unknown = sorted(set(options) - allowed)
     if unknown:
         raise InputError(f"unknown option(s) {unknown}; accepted: {sorted(allowed)}")
+    return _from_chunks(chunks, options)
+
+
+def _from_chunks(chunks: Callable[[], Iterable[Any]], options: Mapping[str, Any],
+                 stacklevel: int = 4) -> KwuEpriStatistics:
+    """Two-pass statistics of ``chunks()`` (warnings point ``stacklevel`` frames up)."""
     t_start, t_end = options.get("t_start"), options.get("t_end")
+    if t_start is not None and t_end is not None and not float(t_end) > float(t_start):
+        raise InputError(f"t_end ({t_end}) must be after t_start ({t_start}) [s]")
     fmax, vmax = options.get("force_max"), options.get("speed_max")
+    if fmax is not None:
+        fmax = _positive("force_max", fmax, strict=True)
+    if vmax is not None:
+        vmax = _positive("speed_max", vmax, strict=False)
     if fmax is None or vmax is None:
         f0, v0 = _maxima(chunks(), t_start, t_end)
         fmax = f0 if fmax is None else fmax
         vmax = v0 if vmax is None else vmax
     factors = {key: options[key] for key in ("impact_factor", "sliding_factor", "k", "c")
-               if key in options}
+               if key in options and options[key] is not None}
+    # fmax = 0 only when it was not given and no sample of the window has a force: no contact
     acc = KwuEpriAccumulator(fmax if fmax > 0 else 1.0, vmax, t_start=t_start, t_end=t_end)
     for chunk in chunks():
         acc.update(history=chunk)
     if fmax == 0:
         acc.force_max = 0.0
     return _statistics(acc, factors.get("impact_factor", 1.0), factors.get("sliding_factor", 1.0),
-                       factors.get("k", 5.0), factors.get("c", 10.0))
+                       factors.get("k", 5.0), factors.get("c", 10.0), stacklevel=stacklevel)

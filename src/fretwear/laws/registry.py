@@ -11,7 +11,11 @@ import numpy as np
 
 from fretwear.errors import KeywordError
 from fretwear.laws import models
-from fretwear.laws.kwu_statistics import KwuEpriStatistics, kwu_epri_statistics
+from fretwear.laws.kwu_statistics import (
+    DEFAULT_CHUNK_SIZE,
+    KwuEpriStatistics,
+    kwu_epri_statistics,
+)
 
 #: Marker of a parameter without default (the user must give it).
 REQUIRED = None
@@ -170,17 +174,23 @@ class WearLaw:
         delta = self._volume(power, t0f + t, **c) - self._volume(power, t0f, **c)
         return v0 + np.where(finite, delta, 0.0)
 
-    def statistics(self, history, *, t_start=None, t_end=None, **coefficients: Any
-                   ) -> KwuEpriStatistics:
+    def statistics(self, history, *, t_start=None, t_end=None,
+                   chunk_size: int = DEFAULT_CHUNK_SIZE,
+                   read_options: Mapping[str, Any] | None = None,
+                   **coefficients: Any) -> KwuEpriStatistics:
         """Class statistics of a contact history (laws with ``needs_history`` only).
 
-        Takes the law's coefficients (by name or keyword); uses the history parameters.
+        ``history`` is a ContactHistory, a history file (streamed in chunks of ``chunk_size``
+        samples, reader options in ``read_options``) or a list of chunks, as for
+        :func:`~fretwear.laws.kwu_epri_statistics`; window ``t_start``, ``t_end`` [s]. Takes the
+        law's coefficients (by name or keyword) and uses the history parameters.
         """
         if not self.needs_history:
             raise KeywordError(f"{self.name} does not use class statistics of a history")
         resolved = self.resolve(**coefficients)
-        return kwu_epri_statistics(history, t_start=t_start, t_end=t_end,
-                                   **{p: resolved[p] for p in self.history_parameters})
+        return kwu_epri_statistics(history, t_start=t_start, t_end=t_end, chunk_size=chunk_size,
+                                   **{p: resolved[p] for p in self.history_parameters},
+                                   **dict(read_options or {}))
 
 
 def _archard_time(volume, power, coefficient):
