@@ -235,7 +235,7 @@ def test_summary_and_filters():
     assert s.mobile.tolist()[1] == ("A = 1.1e-14 m³/(s·W^b)  b = 1.61  n = 2.44e-08 s⁻¹  "
                                     "S = 1.14e-16 m³/s")
     assert len(summary()) == 5 + 10 + 2 + 4 + 13 + 6 + 2 + 10 + 2
-    with pytest.raises(DatabaseError, match="no coefficients for contact type"):
+    with pytest.raises(DatabaseError, match="unknown contact type 'NOPE'.*TUBE_BAV"):
         summary(contact_type="NOPE")
 
 
@@ -260,3 +260,59 @@ def test_cli_table_and_json(tmp_path):
     assert {m["code"] for m in data["materials"]} == {"I600", "I690", "I800"}
     out = runner.invoke(command, ["--law", "COULOMB"])
     assert out.exit_code != 0 and "unknown law 'COULOMB'" in str(out.exception)
+
+
+# ----------------------------------------------------------------------------- review additions
+def test_lookup_errors_point_at_swapped_materials_and_other_laws():
+    """Seed §3: TUBE_BAV has I600/A405 (mobile I600), GRAPPE_ALESAGE has A304LNI/A304L for
+    ARCHARD only (its EDF_MZ table holds A304L/A304L and A316L/A304L)."""
+    with pytest.raises(DatabaseError, match=r"table has mobile I600 on obstacle A405.*order "
+                                            r"mobile, obstacle"):
+        lookup("TUBE_BAV", "A405", "I600", "ARCHARD")
+    with pytest.raises(DatabaseError, match=r"A304LNI/A304L has ARCHARD coefficients for "
+                                            r"GRAPPE_ALESAGE.*A304L/A304L \(mobile\+obstacle\), "
+                                            r"A316L/A304L"):
+        lookup("GRAPPE_ALESAGE", "A304LNI", "A304L", "EDF_MZ")
+
+
+def test_spreadsheet_csv_semicolon_decimal_comma_and_bom(tmp_path):
+    """A ';'-separated file with decimal commas (a spreadsheet with a comma decimal separator)
+    and a UTF-8 file with a byte-order mark read the same values as the plain CSV."""
+    semi = tmp_path / "semi.csv"
+    semi.write_text("contact_type;mobile_material;obstacle_material;law;body;parameter;value;unit\n"
+                    "TUBE_BAV;I690TT;A405;ARCHARD;mobile;COEF_USURE;3,5e-15;1/Pa\n"
+                    "TUBE_BAV;I690TT;A405;ARCHARD;obstacle;COEF_USURE;1.2e-15;1/Pa\n",
+                    encoding="utf-8")
+    c = lookup("TUBE_BAV", "I690TT", "A405", "ARCHARD", obstacle=True, extra=semi)
+    assert c.mobile == {"coefficient": 3.5e-15} and c.obstacle == {"coefficient": 1.2e-15}
+    bom = tmp_path / "bom.csv"
+    bom.write_bytes("contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
+                    "TUBE_TUBE,I800,I800,ARCHARD,coefficient,4e-14,Pa⁻¹\n".encode("utf-8-sig"))
+    assert lookup("TUBE_TUBE", "I800", "I800", "ARCHARD", extra=bom).mobile == \
+        {"coefficient": 4e-14}
+
+
+def test_cli_filters_drop_constant_columns_and_explain_empty_results(tmp_path):
+    from fretwear.cli.materials import command
+
+    runner = CliRunner(env={"COLUMNS": "200"})   # rich reads the width from COLUMNS
+    out = runner.invoke(command, ["--contact", "GRAPPE_ALESAGE", "--law", "edf_mz"])
+    assert out.exit_code == 0, out.output
+    header = next(line for line in out.output.splitlines() if "mobile" in line)
+    assert "contact" not in header and "law" not in header
+    # seed §3, GRAPPE_ALESAGE EDF_MZ A316L/A304L: A = 11.E-15, B = 1.61; one parameter per line
+    assert "A = 1.1e-14" in out.output and "b = 1.61" in out.output
+    assert "HT.22/97-21A" in out.output              # [bib5] spelled out under the table
+    out = runner.invoke(command, ["--law", "KWU_EPRI"])
+    text = " ".join(out.output.split())     # rich wraps at the console width
+    assert out.exit_code == 0
+    # seed §3: 48 ARCHARD boxes (5+5+5+13+6+2+10+2), 6 EDF_MZ (2 per GRAPPE type)
+    assert "No KWU_EPRI coefficients" in text and "ARCHARD (48 material pairs)" in text
+    assert "EDF_MZ (6 material pairs)" in text
+    out = runner.invoke(command, ["--contact", "TUBE_BAV", "--law", "EDF_MZ"])
+    assert "TUBE_BAV has: ARCHARD (13 material pairs)" in " ".join(out.output.split())
+    mine = write(tmp_path / "mine.csv", HEADER + "TUBE_TUBE,X12,I690,ARCHARD,mobile,coefficient,"
+                 "1e-14,Pa⁻¹,bench\n")
+    out = runner.invoke(command, ["--contact", "TUBE_TUBE", "--database", str(mine)])
+    assert "X12" in out.output and "not a built-in code" in out.output
+    assert f"bench [{mine}]" in out.output    # a user row shows its source and file

@@ -53,6 +53,14 @@ REQUIRED_COLUMNS: tuple[str, ...] = ("contact_type", "mobile_material", "obstacl
 KEY: tuple[str, ...] = ("contact_type", "mobile_material", "obstacle_material", "law", "body",
                         "parameter")
 BODIES: tuple[str, ...] = ("mobile", "obstacle")
+#: The seed's references quoted in the built-in ``source`` column (seed §7, names as given there).
+REFERENCES: dict[str, str] = {
+    "[bib5]": "M. Zbinden, A. Lina, D. Harrowing (as machine-translated): rod cluster control "
+              "guides, wear tests on the ERABLE1 and ERABLE2 simulators 1995-1997, EDF-DER "
+              "HT.22/97-21A, 1998",
+    "[bib6]": "F. Guerout, M. Zbinden: review of the wear models and coefficients for steam "
+              "generator tubes, EDF-DER HT.22/93-56A, 1993",
+}
 
 # Accepted spellings of each unit, compared after _canonical_unit().
 _UNIT_SPELLINGS: dict[str, tuple[str, ...]] = {
@@ -159,7 +167,9 @@ def read_coefficients(path: str | os.PathLike) -> pd.DataFrame:
     Parameters
     ----------
     path : path-like
-        The CSV file.
+        The CSV file: UTF-8 (a byte-order mark is accepted), comma-separated, or
+        semicolon-separated with a decimal comma or point in ``value`` (as spreadsheets save it
+        where the decimal separator is a comma).
 
     Returns
     -------
@@ -183,11 +193,19 @@ def read_coefficients(path: str | os.PathLike) -> pd.DataFrame:
     """
     path = Path(path)
     try:
-        frame = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8")
+        with open(path, encoding="utf-8-sig") as stream:   # a spreadsheet's BOM is dropped
+            header = stream.readline()
+        # a spreadsheet with a decimal comma saves ';'-separated files: read those too
+        semicolon = ";" in header and "," not in header
+        frame = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig",
+                            sep=";" if semicolon else ",")
     except FileNotFoundError:
         raise
     except (UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
         raise FormatError(f"{path}: not a readable UTF-8 CSV coefficient file ({exc})") from None
+    frame.columns = [str(c).strip() for c in frame.columns]
+    if semicolon and "value" in frame.columns:
+        frame["value"] = frame["value"].str.replace(",", ".", regex=False)
     return _validate(frame, str(path), builtin=False)
 
 
@@ -374,6 +392,14 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
         in_table = set(table.mobile_material) | set(table.obstacle_material)
         unknown = [x for x in (m1, m2) if x not in known_codes and x not in in_table]
         hint = f" (unknown material code(s) {unknown}; see `fretwear materials`)" if unknown else ""
+        swapped = of_law[(of_law.mobile_material == m2) & (of_law.obstacle_material == m1)]
+        if len(swapped):
+            hint += (f" (the table has mobile {m2} on obstacle {m1}: are the materials given in "
+                     "the order mobile, obstacle?)")
+        pair = of_type[(of_type.mobile_material == m1) & (of_type.obstacle_material == m2)]
+        other_laws = [x for x in dict.fromkeys(pair.law) if x != lw]
+        if other_laws:
+            hint += f" ({m1}/{m2} has {' and '.join(other_laws)} coefficients for {ct})"
         raise DatabaseError(
             f"{what} for {ct} / {lw}, mobile {m1} on obstacle {m2}{hint}; {ct}/{lw} has "
             f"(mobile/obstacle): {_pairs_text(of_law)}. Give the coefficients explicitly, or add "
@@ -412,9 +438,9 @@ def summary(database: pd.DataFrame | None = None, *, contact_type: str | None = 
     table = load_database() if database is None else database
     if contact_type is not None:
         ct = contact_type.strip().upper()
-        if ct not in set(table.contact_type):
-            raise DatabaseError(f"no coefficients for contact type {contact_type!r}; the database "
-                                f"has {sorted(set(table.contact_type))}")
+        if ct not in CONTACT_TYPE_NAMES:
+            raise DatabaseError(f"unknown contact type {contact_type!r}; one of "
+                                f"{list(CONTACT_TYPE_NAMES)}")
         table = table[table.contact_type == ct]
     if law is not None:
         lw = law.strip().upper()

@@ -3,28 +3,41 @@
 from __future__ import annotations
 
 import json
+import re
 
 import click
 
 
+def _short_source(source: str, origin: str) -> str:
+    """The references of a built-in row (``[bib5] [bib6]``), the full source of a user row."""
+    if origin != "built-in":
+        return f"{source} [{origin}]"
+    refs = re.findall(r"\[bib\d+\]", source)
+    return " ".join(dict.fromkeys(refs)) or source
+
+
 @click.command("materials")
 @click.option("--contact", "contact_type", metavar="TYPE",
-              help="Only this contact type (TUBE_BAV, GRAPPE_ALESAGE, ...).")
-@click.option("--law", metavar="LAW", help="Only this law (ARCHARD, KWU_EPRI, EDF_MZ).")
+              help="Only this contact type (TUBE_BAV, TUBE_ALESAGE, TUBE_3_ENCO, TUBE_4_ENCO, "
+                   "TUBE_TUBE, GRAPPE_ALESAGE, GRAPPE_1_ENCO, GRAPPE_2_ENCO); any case.")
+@click.option("--law", metavar="LAW", help="Only this law (ARCHARD, KWU_EPRI, EDF_MZ); any case.")
 @click.option("--database", "databases", multiple=True, metavar="CSV",
               type=click.Path(exists=True, dir_okay=False),
               help="A coefficient CSV of your own that extends/overrides the built-in table "
-                   "(repeatable; later files win).")
+                   "(repeatable; later files win; format in docs/laws.md).")
 @click.option("--json", "as_json", is_flag=True,
-              help="Print JSON (one record per coefficient, and the material codes) instead.")
+              help="Print JSON (one record per coefficient, SI values, with source and origin, "
+                   "and the material codes) instead.")
 def command(contact_type: str | None, law: str | None, databases: tuple[str, ...],
             as_json: bool) -> None:
     """The wear-coefficient database: coefficients per contact type, material pair and law.
 
-    Values are SI: Archard K [Pa⁻¹]; EDF_MZ A [m³/(s·W^b)], b [1], n [s⁻¹], S [m³/s]. An empty
-    obstacle cell means the seed gives no obstacle coefficient for that pair.
+    One row per (contact type, mobile material, obstacle material, law). Values are SI: Archard
+    K [Pa⁻¹]; EDF_MZ A [m³/(s·W^b)], b [1], n [s⁻¹], S [m³/s]. "-" in the obstacle column is an
+    empty box of the reference tables (no obstacle coefficient). The built-in values are the
+    reference document's §3 tables; the material codes used are listed after the table.
     """
-    from fretwear.database import load_database, materials, summary
+    from fretwear.database import REFERENCES, load_database, materials, summary
 
     table = load_database(list(databases) or None)
     boxes = summary(table, contact_type=contact_type, law=law)
@@ -46,23 +59,51 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
     from rich.table import Table
 
     console = Console()
-    title = "Wear coefficients" + "".join(
-        f" · {x}" for x in (contact_type and contact_type.upper(), law and law.upper()) if x)
-    grid = Table(title=title, show_lines=False)
-    for name, style in (("contact", "bold"), ("mobile", "cyan"), ("obstacle", "cyan"),
-                        ("law", ""), ("mobile coefficients", "green"),
-                        ("obstacle coefficients", "green"), ("source", "dim")):
-        grid.add_column(name, style=style or None, overflow="fold")
-    for r in boxes.itertuples():
-        source = r.source if r.origin == "built-in" else f"{r.source} [{r.origin}]"
-        cells = (r.contact_type, r.mobile_material, r.obstacle_material, r.law, r.mobile or "-",
-                 r.obstacle or "-", source)
-        grid.add_row(*(escape(str(c)) for c in cells))   # "[bib5]" is not rich markup
+    ct = contact_type.strip().upper() if contact_type else None
+    lw = law.strip().upper() if law else None
+    if boxes.empty:
+        scope = table if ct is None else table[table.contact_type == ct]
+        boxes_per_law = scope.drop_duplicates(
+            ["contact_type", "mobile_material", "obstacle_material", "law"]).law.value_counts()
+        have = ", ".join(f"{name} ({n} material pairs)" for name, n in boxes_per_law.items())
+        console.print(escape(
+            f"No {lw or ''} coefficients{f' for {ct}' if ct else ''} in the database"
+            + (f"; {ct or 'it'} has: {have}." if have else ".")
+            + (" The reference tables have no KWU_EPRI values: give k_r (COEF_USURE) "
+               "explicitly." if lw == "KWU_EPRI" else "")
+            + " Add your own with --database your.csv."), highlight=False)
+        return
+    title = "Wear coefficients" + "".join(f" · {x}" for x in (ct, lw) if x)
+    empty = (boxes.obstacle == "").any()
+    grid = Table(title=title,
+                 caption="- : no obstacle coefficient (an empty box)" if empty else None)
+    columns = [("contact", "bold", "contact_type")] if ct is None else []
+    columns += [("mobile", "cyan", "mobile_material"), ("obstacle", "cyan", "obstacle_material")]
+    columns += [("law", None, "law")] if lw is None else []
+    columns += [("mobile coefficients", "green", "mobile"),
+                ("obstacle coefficients", "green", "obstacle"), ("source", "dim", "source")]
+    for name, style, _ in columns:
+        grid.add_column(name, style=style, overflow="fold")
+    for r in boxes.to_dict(orient="records"):
+        r = {**r, "source": _short_source(r["source"], r["origin"]),
+             "mobile": r["mobile"].replace("  ", "\n") or "-",     # one parameter per line
+             "obstacle": r["obstacle"].replace("  ", "\n") or "-"}
+        grid.add_row(*(escape(str(r[key])) for _, _, key in columns))   # "[bib5]" is not markup
     console.print(grid)
-    legend = Table(title="Material codes", show_header=True)
+    notes = [f"{ref} {text}" for ref, text in REFERENCES.items()
+             if any(ref in s for s in boxes.source[boxes.origin == "built-in"])]
+    if (boxes.origin == "built-in").any():
+        notes.insert(0, "Built-in values: the reference document's §3 tables (POST_USURE theory "
+                        "note), verbatim.")
+    if {"GRAPPE_1_ENCO", "GRAPPE_2_ENCO"} & set(boxes.contact_type[boxes.origin == "built-in"]):
+        notes.append("GRAPPE_1_ENCO and GRAPPE_2_ENCO share one table in the reference.")
+    for note in notes:
+        console.print(escape(note), style="dim", highlight=False)
+    legend = Table(title="Material codes")
     for name in ("code", "name", "AFNOR"):
         legend.add_column(name)
     for r in codes.itertuples():
         legend.add_row(escape(r.code), escape(r.name), escape(r.afnor or "-"))
-    if len(codes):
-        console.print(legend)
+    for code in sorted(used - set(codes.code)):
+        legend.add_row(escape(code), "(not a built-in code: from your file)", "-")
+    console.print(legend)
