@@ -7,9 +7,10 @@ Sources of the expected values:
   quadrature with the crossing points found by brentq, using the primitives of
   ``tests/geometry/oracle.py`` and none of the closed forms of fretwear.geometry; tilted traces
   integrated numerically along the width (``oracle.wedge_volume``);
-- the derivation in docs/geometry_enco.md: the wedge term tan(α_i)·D² is the flat-front triangle,
-  larger than the exact wedge by (D·tan α_i)³/(6R_m) at leading order; the frustum rule is exact
-  for A ∝ d² and gives 5/6 of the wedge integral for A ∝ d^{3/2} (small-depth lens);
+- the derivation in docs/geometry.md (TUBE_3_ENCO and TUBE_4_ENCO): the wedge term tan(α_i)·D²
+  is the flat-front triangle, larger than the exact wedge by (D·tan α_i)³/(6R_m) at leading
+  order; the frustum rule is exact for A ∝ d² and gives 5/6 of the wedge integral for
+  A ∝ d^{3/2} (small-depth lens);
 - analytic small-depth lens: S(D) ≈ (4/3)·√(2R_e)·D^{3/2}, R_e = R_m·R_o/(R_o − R_m) (the gap
   between two circles of curvatures 1/R_m − 1/R_o is t²/(2R_e));
 - the seed (reference document §4.6-§4.7) for κ = 1.41 / 1.88 and the relations; SPEC §6 for the

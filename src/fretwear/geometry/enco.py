@@ -11,7 +11,7 @@ angle α_i (ANGL_ISTHME) with the radius through the edge:
 
 The wedge term is the flat-front approximation: it counts the right triangle of legs D and
 D·tan α_i, and overestimates the exact wedge by (D·tan α_i)³/(6 R_m) (the tube's curvature over
-the triangle), see ``docs/geometry_enco.md``.
+the triangle), see ``docs/geometry.md``.
 
 Volumes: no tilt V = n·(l/2)·S'(D); tilt θ: the frustum rule with A = S'/2,
 V = n·D·S'(D)/(6θ) while D < lθ, else n·(l/6)·(S'1 + √(S'1·S'2) + S'2). n = 1 edge for the
@@ -338,7 +338,7 @@ class Tube3Enco(_BroachedHole):
     -----
     One edge: V = (l/2)·S'(D) (no tilt) or the frustum rule with A = S'/2 (tilt), with
     S'(D) = S(D) + tan(α_i)·D², V = V_m + V_o, D = d_m + d_o, V_o = 1.41·π·l·R_o·d_o.
-    Range: D ≤ √(R_o² − R_m²) − (R_o − R_m) and d_m ≥ 0. See docs/geometry_enco.md.
+    Range: D ≤ √(R_o² − R_m²) − (R_o − R_m) and d_m ≥ 0. See docs/geometry.md.
 
     References
     ----------
@@ -380,7 +380,7 @@ class Tube4Enco(_BroachedHole):
     Two edges, each carrying half the volumes and worn as the trefoil edge:
     V/2 = (l/2)·S'(D), i.e. V = l·S'(D) (no tilt), or V/2 = frustum rule with A = S'/2 (tilt),
     with V = V_m + V_o, D = d_m + d_o (the depth at each edge) and V_o = 1.88·π·l·R_o·d_o.
-    See docs/geometry_enco.md.
+    See docs/geometry.md.
 
     References
     ----------

@@ -304,7 +304,7 @@ class Grappe1Enco(_GuideCardNotch):
     Notes
     -----
     V_m/l = −2.76·d_m³ + 10.30·d_m² + 0.83·d_m (d_m in mm, V_m/l in mm²), d_m on the rising
-    branch (d_m ≤ 2.5276 mm); V_o = 0.47·π·l·R_o·d_o. See docs/geometry_enco.md.
+    branch (d_m ≤ 2.5276 mm); V_o = 0.47·π·l·R_o·d_o. See docs/geometry.md.
 
     References
     ----------
