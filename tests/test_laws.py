@@ -139,6 +139,22 @@ def test_edf_mz_warns_when_s_exceeds_initial_rate():
         edf_mz(0.1, 1.0)   # 6.3e-15 > S: no warning
 
 
+def test_restart_warns_once_at_the_callers_line():
+    """A restart evaluates the law three times (t_eq, V(t_eq + Δt), V(t_eq)); S > A·P^b must give
+    one LawWarning, attributed to this file (A·P^b = 1e-13 × 1e-4^1.2 = 1.6e-18 < S)."""
+    law = WEAR_LAWS["EDF_MZ"]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        law.cumulated_volume(1e-9, 1e-4, YEAR)
+    rising = [w for w in caught if "exceeds the initial rate" in str(w.message)]
+    assert len(rising) == 1 and rising[0].category is LawWarning
+    assert rising[0].filename == __file__
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", LawWarning)     # a user's filter still applies
+        with pytest.raises(LawWarning):
+            law.volume(1e-4, YEAR)
+
+
 def test_edf_mz_monotone():
     t = np.geomspace(1e-3, 1e12, 400)
     for p in (0.0, 1e-3, 0.1, 10.0):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -141,11 +142,13 @@ class WearLaw:
         History parameters (KWU-EPRI's k1, k2, k, c, maxima) are accepted and ignored here: they
         enter through ``intensity`` (see :meth:`statistics`).
         """
-        return self._volume(power, duration, **self._for_volume(coefficients))
+        c = self._for_volume(coefficients)
+        return _warning_once(lambda: self._volume(power, duration, **c))
 
     def equivalent_time(self, volume, power, **coefficients: Any) -> np.ndarray:
         """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (SPEC §7)."""
-        return self._equivalent_time(volume, power, **self._for_volume(coefficients))
+        c = self._for_volume(coefficients)
+        return _warning_once(lambda: self._equivalent_time(volume, power, **c))
 
     def cumulated_volume(self, previous_volume, power, duration, **coefficients: Any) -> np.ndarray:
         """Volume [m³] after continuing ``duration`` [s] from ``previous_volume`` [m³] (restart).
@@ -165,14 +168,18 @@ class WearLaw:
         c = self._for_volume(coefficients)
         v0 = models._checked("previous_volume", previous_volume)
         if self.linear_in_time:
-            return v0 + self._volume(power, duration, **c)
-        t0 = self._equivalent_time(v0, power, **c)
-        t = models._checked("duration", duration)
-        t0, t = np.broadcast_arrays(t0, t)
-        finite = np.isfinite(t0)
-        t0f = np.where(finite, t0, 0.0)
-        delta = self._volume(power, t0f + t, **c) - self._volume(power, t0f, **c)
-        return v0 + np.where(finite, delta, 0.0)
+            return _warning_once(lambda: v0 + self._volume(power, duration, **c))
+
+        def continued() -> np.ndarray:
+            t0 = self._equivalent_time(v0, power, **c)
+            t = models._checked("duration", duration)
+            t0, t = np.broadcast_arrays(t0, t)
+            finite = np.isfinite(t0)
+            t0f = np.where(finite, t0, 0.0)
+            delta = self._volume(power, t0f + t, **c) - self._volume(power, t0f, **c)
+            return v0 + np.where(finite, delta, 0.0)
+
+        return _warning_once(continued)
 
     def statistics(self, history, *, t_start=None, t_end=None,
                    chunk_size: int = DEFAULT_CHUNK_SIZE,
@@ -191,6 +198,24 @@ class WearLaw:
         return kwu_epri_statistics(history, t_start=t_start, t_end=t_end, chunk_size=chunk_size,
                                    **{p: resolved[p] for p in self.history_parameters},
                                    **dict(read_options or {}))
+
+
+def _warning_once(compute: Callable[[], np.ndarray]) -> np.ndarray:
+    """``compute()``, its warnings issued once each and attributed to the caller's caller.
+
+    A method of :class:`WearLaw` calls the law's functions several times (a restart: equivalent
+    time, then two volumes); the user should see one LawWarning, pointing at their own line.
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        result = compute()
+    seen: set[tuple[type, str]] = set()
+    for w in caught:
+        key = (w.category, str(w.message))
+        if key not in seen:
+            seen.add(key)
+            warnings.warn(str(w.message), w.category, stacklevel=3)
+    return result
 
 
 def _archard_time(volume, power, coefficient):
