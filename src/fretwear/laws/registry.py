@@ -279,15 +279,17 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
 
 
 def get_law(name: str) -> WearLaw:
-    """The law called ``name`` (a Code_Aster name), or a KeywordError listing the laws.
+    """The law called ``name`` (a Code_Aster name, any case), or a KeywordError listing the laws.
 
     Examples
     --------
     >>> get_law("EDF_MZ").linear_in_time
     False
+    >>> get_law("kwu_epri").name
+    'KWU_EPRI'
     """
     try:
-        return WEAR_LAWS[name]
-    except (KeyError, TypeError):
+        return WEAR_LAWS[name.strip().upper()]
+    except (KeyError, TypeError, AttributeError):
         raise KeywordError(f"unknown wear law {name!r}; choose one of {list(WEAR_LAWS)} "
                            "(the names of Code_Aster's LOI_USURE)") from None
