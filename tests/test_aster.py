@@ -70,7 +70,78 @@ def test_resu_gene_sectors_one_row_per_instant_and_sector():
     expected = np.array([1e-13, 2e-13]) * 0.5 * 3600.0 * 2.0  # V_j = k_j·P_j·t, SPEC §3
     np.testing.assert_allclose(t["V_USUR_TUBE_CUMU"].iloc[2:], expected, rtol=1e-12)
     np.testing.assert_allclose(t["V_USUR_OBST_CUMU"].iloc[2:], [1e-14 * 3600.0, 0.0], rtol=1e-12)
-    assert {"P_USUR_TUBE_SECT", "P_USUR_OBST_SECT", "ANGLE_DEBUT", "ANGLE_FIN"} <= set(t.columns)
+    assert {"P_USUR_TUBE_SECT", "ANGLE_DEBUT", "ANGLE_FIN", "P_USUR_OBST"} <= set(t.columns)
+    # TUBE_BAV's bar is flat: no sector depth of the obstacle exists (SPEC §3 needs R_o)
+    assert "P_USUR_OBST_SECT" not in t.columns
+
+
+def test_sector_obstacle_depth_of_a_bore():
+    """GRAPPE_ALESAGE sectors: P_USUR_OBST_SECT = √(R_o² + 2V/(l·Δθ)) − R_o and
+    P_USUR_TUBE_SECT = R_m − √(R_m² − 2V/(l·Δθ)), Δθ = π rad (SPEC §3), V = k·P_j·t."""
+    r_m, r_o, width = 4.84e-3, 5.25e-3, 0.02
+    t = POST_USURE(RESU_GENE=history(), LOI_USURE="ARCHARD", CONTACT="GRAPPE_ALESAGE",
+                   RAYON_MOBILE=r_m, RAYON_OBST=r_o, LARGEUR_OBST=width, INST=5.0,
+                   COEF_INST=3600.0,
+                   SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=2.6e-15,
+                               COEF_USUR_OBST=3.7e-15),
+                            _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=2.6e-15)))
+    vm = 2.6e-15 * 0.5 * 5 * 3600.0
+    vo = np.array([3.7e-15 * 0.5 * 5 * 3600.0, 0.0])
+    np.testing.assert_allclose(t["P_USUR_TUBE_SECT"], r_m - np.sqrt(r_m**2 - 2 * vm
+                                                                   / (width * np.pi)), rtol=1e-9)
+    np.testing.assert_allclose(t["P_USUR_OBST_SECT"], np.sqrt(r_o**2 + 2 * vo / (width * np.pi))
+                               - r_o, rtol=1e-9, atol=1e-300)
+    assert "P_USUR_OBST" in t.columns and (t["P_USUR_OBST"] > 0).all()
+
+
+def edf(power, t, a=1e-13, b=1.2, n=2.44e-8, s=1.14e-16):
+    """SPEC §4 EDF_MZ volume [m³]."""
+    return (a * power**b - s) / n * (1 - np.exp(-n * t)) + s * t
+
+
+def test_every_keyword_of_the_catalogue_is_accepted():
+    """EDF_MZ with every coefficient keyword in MOBILE and OBSTACLE, a RESU_GENE window and
+    blocks, GROUP_NO, a tilted TUBE_BAV, TITRE, INFO: V from SPEC §4 with P = 1 W (the
+    history's constant power, SPEC §2), D = (1/(2R_m))^(1/5)·(15θV/8)^(2/5) (SPEC §6, tilt,
+    D < l·θ) split d_m = D·V_m/V."""
+    mob = dict(COEF_USURE=2e-16, COEF_B=1.1, COEF_N=3e-8, COEF_S=1e-17)
+    obs = dict(COEF_USURE=5e-17, COEF_B=1.0, COEF_N=2e-8, COEF_S=2e-18)
+    t = POST_USURE(RESU_GENE={"G1": history()}, GROUP_NO="G1", INST_INIT=1.0, INST_FIN=7.0,
+                   NB_BLOC=3, LOI_USURE="EDF_MZ", MOBILE=_F(**mob), OBSTACLE=_F(**obs),
+                   CONTACT="TUBE_BAV", RAYON_MOBILE=0.0111, LARGEUR_OBST=0.0127,
+                   ANGL_INCLI=2.0, LIST_INST=np.array([0.5, 1.0]), COEF_INST=YEAR,
+                   TITRE="wear", INFO=2)
+    secs = np.array([0.5, 1.0]) * YEAR
+    vm = edf(1.0, secs, mob["COEF_USURE"], mob["COEF_B"], mob["COEF_N"], mob["COEF_S"])
+    vo = edf(1.0, secs, obs["COEF_USURE"], obs["COEF_B"], obs["COEF_N"], obs["COEF_S"])
+    np.testing.assert_allclose(t["PUIS_USUR_GLOBAL"], 1.0, rtol=1e-12)
+    np.testing.assert_allclose(t["V_USUR_TUBE"], vm, rtol=1e-10)
+    np.testing.assert_allclose(t["V_USUR_OBST"], vo, rtol=1e-10)
+    theta = np.radians(2.0)
+    depth = (1 / (2 * 0.0111)) ** 0.2 * (15 * theta * (vm + vo) / 8) ** 0.4
+    assert (depth < 0.0127 * theta).all()  # the first branch of the frustum rule
+    np.testing.assert_allclose(t["P_USUR_TUBE"], depth * vm / (vm + vo), rtol=1e-8)
+    np.testing.assert_allclose(t["P_USUR_OBST"], depth * vo / (vm + vo), rtol=1e-8)
+
+
+@pytest.mark.parametrize("changes, match", [
+    (dict(LOI_USURE="ARCHARDS"), "LOI_USURE='ARCHARDS' is not a wear law"),
+    (dict(COEF_INST="year"), "COEF_INST must be a finite real number"),
+    (dict(RAYON_MOBILE="11 mm"), "RAYON_MOBILE must be a finite real number"),
+    (dict(PUIS_USURE="0.01"), "PUIS_USURE must be a finite real number"),
+    (dict(MOBILE=_F(COEF_USURE="1e-13")), "MOBILE COEF_USURE must be a finite real number"),
+    (dict(INST=(1.0, "2")), r"INST\[1\] must be a finite real number"),
+    (dict(PUIS_USURE=None, RESU_GENE=12.0), "RESU_GENE must be a ContactHistory"),
+    (dict(PUIS_USURE=None, RESU_GENE=history(), NB_BLOC=2.5), "NB_BLOC must be a whole number"),
+    (dict(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None,
+          SECTEUR=_F(ANGL_INIT=-180.0, ANGL_FIN="180", COEF_USUR_MOBILE=1e-13)),
+     r"SECTEUR\[0\] ANGL_FIN must be a finite real number"),
+    (dict(ETAT_INIT=_F(TABL_USURE=FIXTURES / "post_usure_tableau.txt", INST_INIT="2")),
+     "ETAT_INIT INST_INIT must be a finite real number"),
+])
+def test_bad_values_name_the_keyword(changes, match):
+    with pytest.raises(KeywordError, match=match):
+        call(**changes)
 
 
 # --------------------------------------------------------------------------- catalogue rules

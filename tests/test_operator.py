@@ -305,7 +305,7 @@ def test_sector_obstacle_depth_needs_obstacle_radius():
     """TUBE_BAV (flat bar) has no bore radius: the concave sector depth of SPEC §3 is undefined."""
     from fretwear.errors import RangeWarning
 
-    with pytest.warns(RangeWarning, match="sector 3: the obstacle wears but TUBE_BAV"):
+    with pytest.warns(RangeWarning, match=r"sectors \[3\]: the obstacle wears but TUBE_BAV"):
         t = sector_table([1.0])
     assert np.isnan(t["depth_obstacle_sector"].iloc[2])
     assert t["depth_obstacle_sector"].iloc[[0, 1, 3]].eq(0.0).all()

@@ -18,6 +18,7 @@ Deliberate differences from Code_Aster are listed in ``docs/code_aster.md``.
 
 from __future__ import annotations
 
+import os
 import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any
@@ -122,6 +123,53 @@ def _fact(value: Any, name: str, multiple: bool = False) -> list[dict]:
     return out
 
 
+def _real(value: Any, name: str) -> float:
+    """A keyword's real value (Code_Aster ``typ='R'``), or an error naming the keyword.
+
+    Examples
+    --------
+    >>> _real(3, "COEF_INST")
+    3.0
+    """
+    if isinstance(value, bool | str | bytes) or value is None:
+        ok = False
+    else:
+        try:
+            out = float(value)
+            ok = bool(np.isfinite(out))
+        except (TypeError, ValueError):
+            ok = False
+    if not ok:
+        raise KeywordError(f"POST_USURE: {name} must be a finite real number, got {value!r}")
+    return out
+
+
+def _integer(value: Any, name: str) -> int:
+    """A keyword's integer value (Code_Aster ``typ='I'``), or an error naming the keyword.
+
+    Examples
+    --------
+    >>> _integer(4.0, "NB_BLOC")
+    4
+    """
+    real = _real(value, name)
+    if real != int(real):
+        raise KeywordError(f"POST_USURE: {name} must be a whole number, got {value!r}")
+    return int(real)
+
+
+def _reals(value: Any, name: str) -> list[float]:
+    """A keyword's list of reals (``max='**'``): a number or a sequence of numbers."""
+    if np.isscalar(value) or isinstance(value, bool):
+        return [_real(value, name)]
+    try:
+        items = list(value)
+    except TypeError:
+        raise KeywordError(f"POST_USURE: {name} must be a real or a sequence of reals, "
+                           f"got {value!r}") from None
+    return [_real(v, f"{name}[{i}]") for i, v in enumerate(items)]
+
+
 def _yes(value: Any, name: str) -> bool:
     if value is None:
         return False
@@ -156,6 +204,12 @@ def _history(kw: Mapping[str, Any]):
             raise KeywordError(f"POST_USURE: NOEUD/GROUP_NO {label!r} is not in RESU_GENE; it "
                                f"holds {list(source)}")
         source = source[label]
+    from fretwear.history import ContactHistory
+
+    if not isinstance(source, ContactHistory | str | os.PathLike):
+        raise KeywordError(f"POST_USURE: RESU_GENE must be a ContactHistory, the path of a "
+                           f"history file, or a mapping node label -> either; got "
+                           f"{type(source).__name__}")
     return source
 
 
@@ -201,11 +255,15 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     kind = _one_of(kw, ("PUIS_USURE", "RESU_GENE", "TUBE_NEUF"))
     if kind == "TUBE_NEUF":
         return _tube_neuf(kw)
+    from fretwear.laws import WEAR_LAWS
     from fretwear.operator import to_aster_names, wear_table
 
     law = str(kw.get("LOI_USURE", "")).upper()
     if not law:
         raise KeywordError("POST_USURE: LOI_USURE is required (ARCHARD, KWU_EPRI or EDF_MZ)")
+    if law not in WEAR_LAWS:
+        raise KeywordError(f"POST_USURE: LOI_USURE={kw['LOI_USURE']!r} is not a wear law; "
+                           f"choose one of {sorted(WEAR_LAWS)}")
     if "TABL_USURE" in kw:
         raise KeywordError("POST_USURE: TABL_USURE goes under TUBE_NEUF='OUI', or inside "
                            "ETAT_INIT=_F(TABL_USURE=...) to continue a table")
@@ -238,30 +296,61 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         sectors, sector_coefficients, contact = _secteurs(secteurs, contact)
     if contact is None:
         raise KeywordError("POST_USURE: CONTACT is required (the contact type gives the depths)")
-    dimensions = {DIMENSIONS[k]: float(v) for k, v in kw.items() if k in DIMENSIONS}
-    instants = kw[times]
-    if np.isscalar(instants):
-        instants = [instants]
+    dimensions = {DIMENSIONS[k]: _real(v, k) for k, v in kw.items() if k in DIMENSIONS}
+    instants = _reals(kw[times], times)
     coefficients = None
     if mobile:
         coefficients = _law_keywords(mobile[0], law, "MOBILE")
-    source = kw["PUIS_USURE"] if kind == "PUIS_USURE" else _history(kw)
+
+    def optional(name: str) -> float | None:
+        return None if name not in kw else _real(kw[name], name)
+
+    if kind == "PUIS_USURE":
+        source = _real(kw["PUIS_USURE"], "PUIS_USURE")
+    else:
+        source = _history(kw)
+    etat_instant = None
+    if etat and etat[0].get("INST_INIT") is not None:
+        etat_instant = _real(etat[0]["INST_INIT"], "ETAT_INIT INST_INIT")
     table = wear_table(
         source, contact_type=str(contact), dimensions=dimensions, instants=instants, law=law,
         coefficients=coefficients,
         obstacle_coefficients=_law_keywords(obstacle[0], law, "OBSTACLE") if obstacle else None,
         materials=_materials(kw["MATER_USURE"]) if coef_kind == "MATER_USURE" else None,
         obstacle_wear=_yes(kw.get("USURE_OBST"), "USURE_OBST"), sectors=sectors,
-        sector_coefficients=sector_coefficients, time_scale=float(kw.get("COEF_INST", 1.0)),
+        sector_coefficients=sector_coefficients,
+        time_scale=_real(kw.get("COEF_INST", 1.0), "COEF_INST"),
         initial_state=etat[0].get("TABL_USURE") if etat else None,
-        initial_instant=etat[0].get("INST_INIT") if etat else None,
-        t_start=kw.get("INST_INIT"), t_end=kw.get("INST_FIN"), blocks=int(kw.get("NB_BLOC", 1)),
-        force_max=kw.get("FNOR_MAXI"), speed_max=kw.get("VTAN_MAXI"))
-    volumes = table["volume_obstacle"].to_numpy(dtype=float)
-    if not np.nan_to_num(volumes).any():  # no obstacle depth exists
-        table = table.drop(columns=[c for c in ("depth_obstacle", "depth_obstacle_sector")
-                                    if c in table.columns])
-    return to_aster_names(table)
+        initial_instant=etat_instant, t_start=optional("INST_INIT"), t_end=optional("INST_FIN"),
+        blocks=_integer(kw.get("NB_BLOC", 1), "NB_BLOC"),
+        force_max=optional("FNOR_MAXI"), speed_max=optional("VTAN_MAXI"))
+    return to_aster_names(_obstacle_depths_that_exist(table))
+
+
+def _obstacle_depths_that_exist(table: pd.DataFrame) -> pd.DataFrame:
+    """Drop the obstacle depth columns where no obstacle depth exists (P_USUR_OBST rule).
+
+    ``depth_obstacle`` (P_USUR_OBST) and ``depth_obstacle_sector`` (P_USUR_OBST_SECT) are
+    dropped when the obstacle has no volume (it does not wear); ``depth_obstacle_sector`` also
+    when no sector has a positive obstacle depth (a contact type without an obstacle radius,
+    e.g. TUBE_BAV's flat bar, has no sector depth of the obstacle, SPEC §3: NaN where it wears).
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"volume_obstacle": [1e-9, 1e-9], "depth_obstacle": [1e-5, 1e-5],
+    ...                   "depth_obstacle_sector": [np.nan, 0.0]})
+    >>> _obstacle_depths_that_exist(t).columns.tolist()
+    ['volume_obstacle', 'depth_obstacle']
+    """
+    volumes = np.nan_to_num(table["volume_obstacle"].to_numpy(dtype=float))
+    drop = []
+    if not volumes.any():
+        drop = ["depth_obstacle", "depth_obstacle_sector"]
+    elif "depth_obstacle_sector" in table.columns:
+        sector = np.nan_to_num(table["depth_obstacle_sector"].to_numpy(dtype=float))
+        if not (sector > 0).any():
+            drop = ["depth_obstacle_sector"]
+    return table.drop(columns=[c for c in drop if c in table.columns])
 
 
 def _law_keywords(fact: Mapping[str, Any], law: str, name: str) -> dict[str, float]:
@@ -273,23 +362,27 @@ def _law_keywords(fact: Mapping[str, Any], law: str, name: str) -> dict[str, flo
     if extra:
         raise KeywordError(f"POST_USURE: {name} keyword(s) {extra} do not belong to "
                            f"LOI_USURE='{law}', which takes {sorted(known)}")
-    return {k: float(v) for k, v in fact.items()}
+    return {k: _real(v, f"{name} {k}") for k, v in fact.items()}
 
 
 def _secteurs(secteurs: list[dict], contact: Any):
-    edges = [float(secteurs[0].get("ANGL_INIT", np.nan))]
+    edges: list[float] = []
     pairs = []
     for i, s in enumerate(secteurs):
         for k in ("ANGL_INIT", "ANGL_FIN", "COEF_USUR_MOBILE"):
             if s.get(k) is None:
                 raise KeywordError(f"POST_USURE: SECTEUR[{i}] needs {k}")
-        if i and abs(float(s["ANGL_INIT"]) - edges[-1]) > 1e-9:
+        start = _real(s["ANGL_INIT"], f"SECTEUR[{i}] ANGL_INIT")
+        if not edges:
+            edges.append(start)
+        elif abs(start - edges[-1]) > 1e-9:
             raise KeywordError(f"POST_USURE: SECTEUR[{i}] ANGL_INIT = {s['ANGL_INIT']} must equal "
                                f"the ANGL_FIN of SECTEUR[{i - 1}] ({edges[-1]}): sectors are "
                                "contiguous from -180 to 180 deg")
-        edges.append(float(s["ANGL_FIN"]))
+        edges.append(_real(s["ANGL_FIN"], f"SECTEUR[{i}] ANGL_FIN"))
         obst = s.get("COEF_USUR_OBST")
-        pairs.append((float(s["COEF_USUR_MOBILE"]), None if obst is None else float(obst)))
+        pairs.append((_real(s["COEF_USUR_MOBILE"], f"SECTEUR[{i}] COEF_USUR_MOBILE"),
+                      None if obst is None else _real(obst, f"SECTEUR[{i}] COEF_USUR_OBST")))
     kinds = {str(s["CONTACT"]).upper() for s in secteurs if s.get("CONTACT") is not None}
     if contact is None:
         if len(kinds) != 1:
@@ -318,4 +411,4 @@ def _tube_neuf(kw: Mapping[str, Any]) -> pd.DataFrame:
                                f"replacement), got {list(instant)}")
         instant = instant[0]
     return to_aster_names(replace_tube(kw["TABL_USURE"], None if instant is None
-                                       else float(instant)))
+                                       else _real(instant, "INST")))

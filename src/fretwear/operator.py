@@ -421,6 +421,7 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
     cols = {c: [] for c in SECTOR_COLUMNS if c not in GLOBAL_COLUMNS}
     cum_m = np.zeros((n, m))
     cum_o = np.zeros((n, m))
+    unradiused: list[int] = []
     for j in range(m):
         pm = 0.0 if state is None else float(state.sector_volume_mobile[j])
         po = 0.0 if state is None else float(state.sector_volume_obstacle[j])
@@ -437,18 +438,20 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
         cols["depth_mobile_sector"].append(sector_depth_mobile(vm, r_m, width, arc))
         if r_o is None:
             if (vo > 0).any():
-                import warnings
-
-                from fretwear.errors import RangeWarning
-
-                warnings.warn(f"sector {j + 1}: the obstacle wears but {geometry.contact_type} "
-                              "has no obstacle_radius (RAYON_OBST): its sector depth is NaN",
-                              RangeWarning, stacklevel=3)
+                unradiused.append(j + 1)
             cols["depth_obstacle_sector"].append(np.where(vo == 0, 0.0, np.nan))
         else:
             cols["depth_obstacle_sector"].append(sector_depth_obstacle(vo, r_o, width, arc))
         cols["volume_mobile_cumulated"].append(vm)
         cols["volume_obstacle_cumulated"].append(vo)
+    if unradiused:
+        import warnings
+
+        from fretwear.errors import RangeWarning
+
+        warnings.warn(f"sectors {unradiused}: the obstacle wears but {geometry.contact_type} has "
+                      "no obstacle_radius (RAYON_OBST): their obstacle sector depth is NaN",
+                      RangeWarning, stacklevel=3)
     total_m, total_o = cum_m.sum(axis=1), cum_o.sum(axis=1)
     dm, do = geometry.depth_from_volume(total_m, total_o)
     glob = {"volume_mobile": total_m, "volume_obstacle": total_o,

@@ -73,3 +73,53 @@ def test_unknown_output_suffix(tmp_path, capsys):
     assert main(["run", str(case), "-q", "-o", str(tmp_path / "t.xlsx")]) == 2
     assert "unknown suffix '.xlsx'" in capsys.readouterr().err
     assert not (tmp_path / "t.xlsx").exists()
+
+
+@pytest.mark.parametrize("suffix, options", [(".csv", []), (".parquet", []), (".tab", []),
+                                             (".resu", ["--aster-format", "ASTER"])])
+def test_sector_restart_through_each_output_format(tmp_path, capsys, suffix, options):
+    """Two CLI runs chained by [restart] equal one long run (Archard, 8 sectors, SPEC §7):
+    V_j(2 + 3 years) = V_j(2) + k·P_j·3 years; the table file of the first run, in each output
+    format, seeds the second (read back by fretwear.restart.read_wear_table)."""
+    examples = Path(__file__).parents[2] / "examples"
+    text = (examples / "tube_bav.toml").read_text(encoding="utf-8")
+    text = text.replace('file = "data/oscillator_gap.csv"',
+                        f'file = "{(examples / "data" / "oscillator_gap.csv").as_posix()}"')
+    first_case = tmp_path / "first.toml"
+    first_case.write_text(text.replace("instants = [0.5, 1, 2, 5, 10, 20]", "instants = [1, 2]"),
+                          encoding="utf-8")
+    long_case = tmp_path / "long.toml"
+    long_case.write_text(text.replace("instants = [0.5, 1, 2, 5, 10, 20]",
+                                      "instants = [1, 2, 5]"), encoding="utf-8")
+    first = tmp_path / f"first{suffix}"
+    assert main(["run", str(first_case), "-q", "-o", str(first), *options]) == 0
+    second_case = tmp_path / "second.toml"
+    second_case.write_text(text.replace("instants = [0.5, 1, 2, 5, 10, 20]", "instants = [3]")
+                           + f'\n[restart]\ntable = "{first.name}"\n', encoding="utf-8")
+    out = tmp_path / "second.csv"
+    assert main(["run", str(second_case), "-q", "-o", str(out)]) == 0
+    chained, long = pd.read_csv(out), run_case(long_case).table
+    assert chained["instant"].tolist() == long["instant"].tolist()
+    assert chained["origin"].tolist() == [0.0] * 16 + [2.0] * 8
+    rtol = 1e-9 if suffix in (".tab", ".resu") else 1e-11  # %.10E in Code_Aster files
+    for col in ("volume_mobile_cumulated", "volume_mobile", "depth_mobile_sector"):
+        np.testing.assert_allclose(chained[col], long[col], rtol=rtol)
+    if suffix == ".resu":
+        assert first.read_text(encoding="utf-8").startswith("#DEBUT_TABLE")
+
+
+def test_example_continuing_a_code_aster_table(capsys):
+    """examples/grappe_2_enco.toml restarts from a hand-written Code_Aster TABLEAU file at
+    10 000 h: V = V(10 000 h) + k·P·Δt with the seed §3 pair A316L/A304L (40e-15, 29e-15 Pa⁻¹),
+    P = 2 mW (SPEC §4, §7)."""
+    case = Path(__file__).parents[2] / "examples" / "grappe_2_enco.toml"
+    t = run_case(case).table
+    assert t["instant"].tolist() == [5000.0, 10000.0, 15000.0, 20000.0]
+    assert t["origin"].tolist() == [0.0, 0.0, 10000.0, 10000.0]
+    hours = np.array([5000.0, 10000.0]) * 3600.0
+    np.testing.assert_allclose(t["volume_mobile"].iloc[2:], 2.88e-9 + 40e-15 * 2e-3 * hours,
+                               rtol=1e-12)
+    np.testing.assert_allclose(t["volume_obstacle"].iloc[2:], 2.088e-9 + 29e-15 * 2e-3 * hours,
+                               rtol=1e-12)
+    assert main(["run", str(case)]) == 0
+    assert "continues data/grappe_2_enco_10000h.tab from instant 10000" in capsys.readouterr().out

@@ -8,24 +8,60 @@ import click
 import numpy as np
 
 from fretwear.case import keys_help
+from fretwear.operator import COLUMNS
+
+
+def columns_help() -> str:
+    """The output columns (native name, Code_Aster name, unit, meaning), as plain text."""
+    return "\n".join(f"  {native} ({aster}) [{unit}]: {meaning}"
+                     for native, (aster, unit, meaning) in COLUMNS.items())
+
 
 _HELP = f"""Run a TOML case file: wear power, wear law, depths, service-life table.
 
-Writes the table to OUTPUT (.csv, .parquet, or .tab/.resu for a Code_Aster IMPR_TABLE file
-that LIRE_TABLE reads) and prints a summary (power, block spread, sector powers, volumes and
-depths at the last instant, warnings). Units: SI (m, m³, W, s; angles in degrees).
+Writes the table to OUTPUT (.csv, .parquet, or .tab/.resu/.txt for a Code_Aster IMPR_TABLE
+file that LIRE_TABLE reads) and prints a summary (power, block spread, sector powers, volumes
+and depths at the last instant, warnings). Units: SI (m, m³, W, s; angles in degrees).
 
 \b
 Case-file keys (units in the names; docs/case_files.md):
 {keys_help()}
+
+\b
+Output columns, native (Code_Aster) [unit]; one row per instant, or per instant and sector:
+{columns_help()}
 """
 
 _ASTER_SUFFIXES = (".tab", ".resu", ".txt")
 
 
-def write_table(table, path: Path, *, aster_names: bool = False, title: str | None = None
-                ) -> Path:
-    """Write a wear table atomically; the suffix chooses CSV, Parquet or a Code_Aster table."""
+def write_table(table, path: Path, *, aster_names: bool = False, title: str | None = None,
+                aster_format: str = "TABLEAU") -> Path:
+    """Write a wear table atomically; the suffix chooses CSV, Parquet or a Code_Aster table.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A wear table, native column names (:data:`fretwear.operator.COLUMNS`).
+    path : pathlib.Path
+        ``.csv``, ``.parquet``/``.pq``, or ``.tab``/``.resu``/``.txt`` (Code_Aster IMPR_TABLE
+        text, Code_Aster column names, reals ``%.10E``).
+    aster_names : bool
+        Code_Aster column names in CSV/Parquet too.
+    title : str, optional
+        Title line of a Code_Aster table.
+    aster_format : str
+        ``"TABLEAU"`` or ``"ASTER"`` (``#DEBUT_TABLE`` ... with a line of types): the
+        ``FORMAT`` of Code_Aster's IMPR_TABLE / LIRE_TABLE.
+
+    Examples
+    --------
+    >>> import tempfile, pandas as pd
+    >>> p = Path(tempfile.mkdtemp()) / "t.tab"
+    >>> _ = write_table(pd.DataFrame({"instant": [1.0], "volume_mobile": [2e-9]}), p)
+    >>> p.read_text().splitlines()[2].split()
+    ['INST', 'V_USUR_TUBE']
+    """
     from fretwear.errors import InputError
     from fretwear.io.atomic import atomic_path
     from fretwear.operator import to_aster_names
@@ -34,7 +70,10 @@ def write_table(table, path: Path, *, aster_names: bool = False, title: str | No
     if suffix in _ASTER_SUFFIXES:
         from fretwear.io.aster import write_aster_table
 
-        return write_aster_table(to_aster_names(table), path, format="TABLEAU",
+        fmt = str(aster_format).upper()
+        if fmt not in ("TABLEAU", "ASTER"):
+            raise InputError(f"aster_format must be TABLEAU or ASTER, got {aster_format!r}")
+        return write_aster_table(to_aster_names(table), path, format=fmt,
                                  title=title or "POST_USURE fretwear", float_format="%.10E")
     frame = to_aster_names(table) if aster_names else table
     frame = frame.copy()
@@ -63,6 +102,14 @@ def _summary(result, console) -> None:
     console.print(f"contact [bold]{attrs.get('contact_type')}[/], law [bold]{attrs.get('law')}"
                   f"[/], time unit = {unit}")
     console.print(f"wear power P = [bold]{result.total_power:.6g} W[/]")
+    origin = attrs.get("origin") or 0.0
+    if origin:
+        previous = result.case.get("restart", {}).get("table", "the initial table")
+        console.print(f"continues {previous} from instant {origin:g} (ORIG_INST)", markup=False,
+                      highlight=False)
+    if attrs.get("tube_replacement") is not None:
+        console.print(f"tube replaced by a new one at instant {attrs['tube_replacement']:g} "
+                      "(TUBE_NEUF)")
     intensity = (attrs.get("coefficients_mobile") or {}).get("intensity")
     if intensity is not None:
         console.print(f"KWU-EPRI wear-intensity factor w = {float(intensity):.4g}")
@@ -90,14 +137,18 @@ def _summary(result, console) -> None:
         f"V obstacle = {row['volume_obstacle'] * 1e9:.4g} mm³, depth tube = "
         f"{row['depth_mobile'] * 1e3:.4g} mm, depth obstacle = "
         f"{row['depth_obstacle'] * 1e3:.4g} mm")
-    glob = table.drop_duplicates("instant")[["instant", "volume_mobile", "depth_mobile"]]
-    gt = Table(title="service life (tube)")
-    for col in ("instant", "V tube (mm³)", "depth tube (mm)"):
+    glob = table.drop_duplicates("instant")
+    gt = Table(title="service life")
+    for col in ("instant", "V tube (mm³)", "depth tube (mm)", "V obst (mm³)", "depth obst (mm)"):
         gt.add_column(col, justify="right")
+
+    def mm(depth: float) -> str:
+        return "NaN (out of range)" if np.isnan(depth) else f"{depth * 1e3:.4g}"
+
     for _, r in glob.iterrows():
-        depth = r["depth_mobile"]
         gt.add_row(f"{r['instant']:g}", f"{r['volume_mobile'] * 1e9:.4g}",
-                   "NaN (out of range)" if np.isnan(depth) else f"{depth * 1e3:.4g}")
+                   mm(r["depth_mobile"]), f"{r['volume_obstacle'] * 1e9:.4g}",
+                   mm(r["depth_obstacle"]))
     console.print(gt)
     if result.warnings:
         console.print("[yellow]warnings:[/]")
@@ -113,9 +164,12 @@ def _summary(result, console) -> None:
               help="Write PNG and SVG figures into this directory.")
 @click.option("--aster-names", is_flag=True,
               help="Code_Aster column names (INST, V_USUR_TUBE, ...) in CSV/Parquet output.")
+@click.option("--aster-format", type=click.Choice(["TABLEAU", "ASTER"], case_sensitive=False),
+              default="TABLEAU", show_default=True,
+              help="IMPR_TABLE format of a .tab/.resu/.txt output (LIRE_TABLE's FORMAT).")
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
-            quiet: bool) -> None:
+            aster_format: str, quiet: bool) -> None:
     from rich.console import Console
     from rich.progress import (
         BarColumn,
@@ -141,7 +195,7 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
     _summary(result, console)
     if output is not None:
         written = write_table(result.table, output, aster_names=aster_names,
-                              title=result.table.attrs.get("title"))
+                              title=result.table.attrs.get("title"), aster_format=aster_format)
         console.print(f"table written to [bold]{written}[/]")
     if plot_dir is not None:
         from fretwear.plotting.wear import plot_wear_table

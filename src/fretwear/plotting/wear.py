@@ -96,9 +96,14 @@ def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: 
                     align="edge", alpha=0.4, edgecolor="k", label="obstacle")
         axes[1].set_title(f"sector depth [mm] at instant {last['instant'].iloc[0]:g} {unit}")
         axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
+        # radial labels where the bars are lowest, so that they do not hide the bars
+        quiet = float(np.degrees(start[int(np.argmin(last["sector_power"].to_numpy()))]
+                                 + width[int(np.argmin(last["sector_power"].to_numpy()))] / 2))
         for ax in axes:  # contact angle atan2(dz, dy) in (-180, 180] deg, as the table
             ax.set_thetagrids(range(0, 360, 45),
                               [f"{a if a <= 180 else a - 360}°" for a in range(0, 360, 45)])
+            ax.set_rlabel_position(quiet)
+            ax.tick_params(axis="y", labelsize="small")
         files += _save(fig, directory, f"{stem}_sectors")
         plt.close(fig)
     return files
