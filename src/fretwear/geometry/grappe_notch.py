@@ -166,11 +166,13 @@ def notch_depth(area, contact_type: str, rtol: float = 1e-13) -> np.ndarray:
     p_max = ((a * d_max + b) * d_max + c) * d_max
     flat = np.atleast_1d(y).astype(float).ravel()
     out = np.full(flat.shape, np.nan)
-    ok = np.isfinite(flat) & (flat >= 0.0) & (flat <= p_max)
+    out[flat == 0.0] = 0.0  # the root at zero: no iteration (bisection would leave it)
+    ok = np.isfinite(flat) & (flat > 0.0) & (flat <= p_max)
     target = flat[ok]
     lo = np.zeros_like(target)
     hi = np.full_like(target, d_max)
     x = np.minimum(target / c, d_max)  # start from the linear (small-depth) guess
+    converged = np.zeros(target.shape, dtype=bool)
     for _ in range(200):
         f = ((a * x + b) * x + c) * x - target
         lo = np.where(f <= 0.0, x, lo)
@@ -178,13 +180,15 @@ def notch_depth(area, contact_type: str, rtol: float = 1e-13) -> np.ndarray:
         slope = (3.0 * a * x + 2.0 * b) * x + c
         with np.errstate(divide="ignore", invalid="ignore"):
             step = x - f / slope
-        bad = ~np.isfinite(step) | (step <= lo) | (step >= hi)
+        bad = ~np.isfinite(step) | (step < lo) | (step > hi)
         new = np.where(bad, 0.5 * (lo + hi), step)
-        done = np.abs(new - x) <= rtol * np.maximum(np.abs(new), 1e-300)
+        # converged elements (and exact roots, f = 0) keep their value
+        new = np.where(converged | (f == 0.0), x, new)
+        converged |= (np.abs(new - x) <= rtol * np.abs(new)) | (hi - lo <= rtol * hi)
         x = new
-        if done.all() or (hi - lo <= rtol * hi).all():
+        if converged.all():
             break
-    out[ok] = np.where(target == 0.0, 0.0, x)
+    out[ok] = x
     out = out.reshape(np.shape(y))
     return out * _MM
 
