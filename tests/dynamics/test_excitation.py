@@ -85,3 +85,28 @@ def test_signal_errors():
         Signal("table", times=[0, 1, 1], values=[0, 1, 2])
     with pytest.raises(KeywordError, match="direction"):
         NodalForce(0, "w", Signal("harmonic", amplitude=1.0, frequency=1.0))
+
+
+def test_random_signal_must_cover_the_run():
+    # Beyond its record a table signal stays constant: for a random excitation that would
+    # silently turn the end of the run into a static load, so simulate refuses it.
+    model = ModalModel(frequencies=[12.0], damping_ratios=0.02, masses=1.0,
+                       shock_shapes=[[[1.0], [0.0]]], forcing_shapes=[[[1.0], [0.0]]])
+    shock = Shock(point=0, obstacle="circle", gap=1e-3, normal_stiffness=1e5)
+    short = Signal("random", psd_frequencies=[5, 30], psd=[0.5, 0.5], duration=0.5, seed=1)
+    with pytest.raises(InputError, match=r"excitation 0: .* duration >= 1 s"):
+        simulate(model, [shock], [NodalForce(0, "y", short)], duration=1.0, time_step=1e-4)
+    # a case file whose duration is not a whole number of archive steps: the run ends at
+    # round(0.1006 / 1e-3) = 101 archive steps, 0.101 s, and the record covers it
+    from fretwear.dynamics.config import dynamics_from_config
+
+    setup = dynamics_from_config({
+        "duration_s": 0.1006, "archive_step_s": 1e-3, "time_step_s": 1e-4,
+        "modes": {"frequencies_Hz": [12.0], "damping_ratios": 0.02, "masses_kg": 1.0,
+                  "shock_shapes": [[[1.0], [0.0]]], "forcing_shapes": [[[1.0], [0.0]]]},
+        "shocks": [{"obstacle": "circle", "gap_m": 1e-3, "normal_stiffness_N_per_m": 1e5}],
+        "forces": [{"point": 0, "direction": "y", "kind": "random", "psd_frequencies_Hz": [5, 30],
+                    "psd": [0.5, 0.5], "seed": 1}]})
+    assert setup.excitations[0].signal.table[0][-1] == pytest.approx(0.101, rel=1e-12)
+    r = simulate(setup.model, setup.shocks, setup.excitations, **setup.options)
+    assert r.end_time == pytest.approx(0.101, rel=1e-12)

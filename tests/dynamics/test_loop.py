@@ -242,3 +242,48 @@ def test_long_histories_are_reduced_by_chunks(tmp_path, monkeypatch):
     assert b["contact_fraction"] == pytest.approx(a["contact_fraction"], rel=1e-12)
     np.testing.assert_allclose(chunked.tables[0]["volume_mobile_sector"],
                                whole.tables[0]["volume_mobile_sector"], rtol=1e-12)
+
+
+def test_cycle_one_sees_the_clearance_figure_of_planes(tmp_path, monkeypatch):
+    # A disk of radius R_m between two planes at gap g (normal along y) can translate
+    # g/|cos ψ| along a direction ψ before it touches (the clearance figure, SPEC §8; geometry in
+    # fretwear.obstacle.PlanesObstacle Notes), not by the radial gap (R_m + g)/|cos ψ| − R_m,
+    # which is R_m(1/|cos ψ| − 1) larger (1.47 mm more at 30° for R_m = 9.5 mm). Cycle 1 must
+    # feed the dynamics the clearance figure: its profile, and the contacts it produces, lie on
+    # the planes |dy| = g.
+    import fretwear.dynamics.loop as loop
+
+    g, rm = 2e-4, 9.5e-3
+    c = case(tmp_path, cycles=1)
+    c["dynamics"]["duration_s"] = 0.2
+    c["geometry"] = {"contact_type": "TUBE_BAV", "mobile_radius_m": rm,
+                     "obstacle_width_m": 0.02}
+    c["obstacle"] = {"type": "planes", "plane_gap_m": g, "wall_thickness_m": 1.1e-3}
+    seen = []
+    original = loop.simulate
+
+    def spy(model, shocks, *args, **kwargs):
+        seen.append(list(shocks))
+        return original(model, shocks, *args, **kwargs)
+
+    monkeypatch.setattr(loop, "simulate", spy)
+    res = iterate_case(c, output=tmp_path / "out")
+    shock = seen[0][0]
+    assert shock.obstacle == "profile"
+    psi = np.radians(shock.profile_angles)
+    near = np.abs(np.cos(psi)) >= math.cos(math.radians(80.0))  # inside the closing circle
+    np.testing.assert_allclose(shock.profile_gaps[near], g / np.abs(np.cos(psi[near])),
+                               rtol=1e-6)
+    i60 = int(np.flatnonzero(shock.profile_angles == 60.0)[0])
+    assert shock.profile_gaps[i60] == pytest.approx(2 * g, rel=1e-6)  # not 2g + R_m
+    # the motion: contacts only on the planes, some of them oblique (|ψ| > 30°), where the
+    # radial-gap figure would have kept the tube free
+    h = pd.read_parquet(tmp_path / "out" / "cycle_01" / "histories" / "bore.parquet")
+    hit = h[h["normal_force"] > 0]
+    assert len(hit) > 0 and res.summary["power"].iloc[0] > 0
+    assert np.all(np.abs(hit["dy"]) >= g - 1e-12)
+    theta = np.arctan2(hit["dz"], hit["dy"])
+    oblique = np.abs(np.cos(theta)) < math.cos(math.radians(30.0))
+    radial_gap = (rm + g) / np.abs(np.cos(theta)) - rm
+    assert np.count_nonzero(oblique) > 0
+    assert np.all(np.hypot(hit["dy"], hit["dz"])[oblique] < radial_gap[oblique] - 1e-3)

@@ -94,6 +94,12 @@ def test_modal_model_errors():
     with pytest.raises(InputError, match="supports"):
         uniform_beam_modes(young_modulus=E, second_moment=I, mass_per_length=RA, length=L,
                            n_modes=1, shock_positions=[0.1], supports=[2.0])
+    with pytest.raises(InputError, match="n_modes"):
+        uniform_beam_modes(young_modulus=E, second_moment=I, mass_per_length=RA, length=L,
+                           n_modes=0, shock_positions=[0.1])
+    with pytest.raises(InputError, match="n_elements"):
+        uniform_beam_modes(young_modulus=E, second_moment=I, mass_per_length=RA, length=L,
+                           n_modes=4, shock_positions=[0.1], method="fe", n_elements=3)
     with pytest.raises(KeywordError, match="unknown shock point"):
         ModalModel(frequencies=[1.0], damping_ratios=0.0, masses=1.0,
                    shock_shapes=np.zeros((1, 2, 1))).shock_index("AVB9")

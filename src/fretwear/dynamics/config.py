@@ -100,8 +100,9 @@ DYNAMICS_KEYS: dict[str, dict[str, tuple[Any, str]]] = {
         "name": (str, "name of the shock (its history)"),
         "position_m": (_NUM, "beam: abscissa of the shock point [m]"),
         "point": ((int, str), "modes: index or name of the shock point"),
-        "obstacle": (str, "plane, two_planes, circle, profile, or case (the [obstacle] "
-                          "section's new obstacle as a profile)"),
+        "obstacle": (str, "plane, two_planes, circle, profile, or case (the clearance "
+                          "figure of the [obstacle] section's new obstacle as a profile, then "
+                          "the worn one)"),
         "gap_m": (_NUM, "clearance [m] (plane, two_planes, circle)"),
         "angle_deg": (_NUM, "plane normal / preload direction in the y-z plane [deg]"),
         "profile_file": (str, "profile: DISCRET table of the clearance (THETA [deg], JEU [m])"),
@@ -243,6 +244,8 @@ def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> Dynam
     top = {k: v for k, v in section.items() if k not in sub}
     _check("dynamics", top, "[dynamics]")
     duration = float(_need(top, "duration_s", "[dynamics]", "dynamics"))
+    if not (np.isfinite(duration) and duration > 0):
+        raise InputError(f"[dynamics] duration_s must be > 0 [s], got {duration}")
     if ("beam" in sub) == ("modes" in sub):
         raise KeywordError("[dynamics] needs exactly one of [dynamics.beam] (a uniform beam) and "
                            "[dynamics.modes] (modes given by the user)")
@@ -317,22 +320,24 @@ def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> Dynam
             friction=float(item.get("friction", 0.0)), preload=float(item.get("preload_N", 0.0)),
             origin=tuple(item.get("origin_m", (0.0, 0.0))), **extra))
         case_obstacle.append(is_case)
+    archive = float(top.get("archive_step_s", max(1e-4, float(top.get("time_step_s", 0.0)))))
+    # random records cover the simulated span, a whole number of archive steps (simulate)
+    span = max(duration, round(duration / archive) * archive) if archive > 0 else duration
     excitations: list = []
     for i, item in enumerate(forces_cfg):
         where = f"[[dynamics.forces]] #{i + 1}"
         excitations.append(NodalForce(fpoints[i], _need(item, "direction", where,
                                                         "dynamics.forces"),
-                                      _signal(item, where, duration)))
+                                      _signal(item, where, span)))
     for i, item in enumerate(base_cfg):
         where = f"[[dynamics.base]] #{i + 1}"
         excitations.append(BaseAcceleration(_need(item, "direction", where, "dynamics.base"),
-                                            _signal(item, where, duration)))
+                                            _signal(item, where, span)))
     options: dict[str, Any] = {"duration": duration, "adaptive": bool(top.get("adaptive", False)),
                                "safety": float(top.get("safety", 0.5))}
     if "time_step_s" in top:
         options["time_step"] = float(top["time_step_s"])
-    options["archive_step"] = float(top.get("archive_step_s",
-                                            max(1e-4, options.get("time_step", 0.0))))
+    options["archive_step"] = archive
     for key in ("initial_displacement", "initial_velocity"):
         if key in top:
             options[key] = np.array(top[key], dtype=float)

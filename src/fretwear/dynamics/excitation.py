@@ -115,7 +115,9 @@ class Signal:
     seed : int
         Random: the seed (required, for reproducibility).
     sample_rate : float, optional
-        Random: samples per second [Hz].
+        Random: samples per second f_s [Hz] (default 8 × the highest PSD frequency). The
+        integrator interpolates the samples linearly, which scales the PSD by sinc⁴(f/f_s)
+        (−10 % at f_s/8): raise it for a flatter top of the band.
     scale : float
         Multiplies the values (e.g. unit conversion), default 1.
 

@@ -271,8 +271,8 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
         Simulated time [s] (rounded to a whole number of archive steps).
     time_step : float, optional
         Fine time step h [s]; default ``safety × time_step_limit``. Larger than the stability
-        limit: :class:`~fretwear.errors.StabilityError`. Reduced slightly so that the archive
-        step is a whole number of steps.
+        limit: :class:`~fretwear.errors.StabilityError`. Reduced so that the archive step is a
+        whole number of steps (to the archive step itself when that is smaller).
     archive_step : float, optional
         Sampling of the histories [s], default every step.
     adaptive : bool
@@ -380,6 +380,14 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
         raise InputError(f"simulate: {n_samples} samples × {ns} shocks exceed the in-memory limit "
                          f"({MAX_IN_MEMORY}); give output_dir=... to stream to Parquet, or a "
                          "larger archive_step")
+    t_final = float(start_time) + n_archive * archive_step
+    for i, ex in enumerate(excitations):
+        sig = getattr(ex, "signal", None)
+        if getattr(sig, "kind", None) == "random" and sig.table[0][-1] < t_final * (1 - 1e-12):
+            raise InputError(
+                f"excitation {i}: its random signal covers [0, {sig.table[0][-1]:g}] s but the "
+                f"simulation runs to {t_final:g} s (beyond its end the signal would stay "
+                f"constant); give the Signal a duration >= {t_final:g} s")
     lshape, lkind, lhp, tab_t, tab_v, tab_off = _loads(model, excitations)
     (shapes, skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r,
      prof_off) = _shock_arrays(model, shocks)

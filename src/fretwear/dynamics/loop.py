@@ -102,7 +102,8 @@ class IterationResult:
     ----------
     summary : DataFrame
         One row per cycle: ``cycle``, ``instant`` (end of the cycle) [user unit], ``power`` [W],
-        ``wear_power_steps`` [W] (integrated at every time step), ``depth_mobile_max``,
+        ``wear_power_steps`` [W] (integrated at every time step over the whole computation,
+        not only the ``[power]`` window), ``depth_mobile_max``,
         ``depth_obstacle_max`` [m], ``clearance_min``, ``clearance_max`` [m] (after the update),
         ``contact_fraction`` [-], ``perforated``.
     tables : list of DataFrame
@@ -164,8 +165,10 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
 
     Notes
     -----
-    Cycle k: the shocks with ``obstacle = "case"`` see the new obstacle (k = 1) or the worn
-    clearance figure of cycle k − 1 (a discrete polar profile, 0.5° steps); the wear shock's
+    Cycle k: the shocks with ``obstacle = "case"`` see the clearance figure of the new mobile
+    in the new obstacle (k = 1: how far it can translate in each direction, which differs from
+    the radial gap for planes and tables) or, for the wear shock, the worn clearance figure of
+    cycle k − 1 (a discrete polar profile, 0.5° steps); the wear shock's
     history gives the power over the ``[power]`` window; the wear table of cycle k continues the
     table of cycle k − 1 (ETAT_INIT) over the ``[time] instants`` (the durations of one cycle);
     the obstacle update uses its cumulated sector volumes at the last instant.

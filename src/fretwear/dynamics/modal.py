@@ -381,6 +381,15 @@ def uniform_beam_modes(*, young_modulus: float, second_moment: float, mass_per_l
                      ("mass_per_length", mass_per_length), ("length", length)):
         if not np.isfinite(val) or val <= 0:
             raise InputError(f"uniform beam: {key!r} must be a finite value > 0, got {val!r}")
+    if isinstance(n_modes, bool) or not isinstance(n_modes, (int, np.integer)) or n_modes < 1:
+        raise InputError(f"uniform beam: 'n_modes' ([dynamics.beam] modes: bending modes per "
+                         f"plane) must be an integer >= 1, "
+                         f"got {n_modes!r}")
+    if (isinstance(n_elements, bool) or not isinstance(n_elements, (int, np.integer))
+            or n_elements < 2 * n_modes):
+        raise InputError(f"uniform beam: 'n_elements' must be an integer >= 2 × n_modes = "
+                         f"{2 * n_modes} (at least two elements per half-wave), got "
+                         f"{n_elements!r}")
     ends = tuple(ends)
     if len(ends) != 2 or any(e not in END_CONDITIONS for e in ends):
         raise KeywordError(f"uniform beam: 'ends' must be two of {END_CONDITIONS}, got {ends!r}")

@@ -137,9 +137,11 @@ def plot_iteration(summary, profiles, directory: str | os.PathLike, *,
     for j, (ang, gap) in enumerate(profiles):
         ax3.plot(np.radians(np.asarray(ang, float)), np.asarray(gap, float) * 1e3, lw=0.8,
                  label=f"cycle {j + 1}")
+    ax3.set_rlabel_position(112.5)  # radius labels off the 0° axis, where wear often lies
+    ax3.tick_params(axis="y", labelsize=7)
     ax3.set_title("worn clearance [mm]", fontsize=9)
     if len(profiles) <= 8:
-        ax3.legend(fontsize=7, loc="lower left", bbox_to_anchor=(0.9, 0.0))
+        ax3.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.15, 0.5))
     fig.tight_layout()
     try:
         return _save(fig, directory, stem)
