@@ -116,6 +116,21 @@ class ContactGeometry:
 
     Subclasses are frozen dataclasses with the dimensions as fields (see module docstring).
     Build them by name with :func:`fretwear.geometry.contact_geometry`.
+
+    Examples
+    --------
+    Uniform wear of a tube in a hole, d_m = V_m/(2π·l·R_m) (SPEC §6): 2π·l·R_m·d with
+    l = 20 mm, R_m = 10 mm, d = 1 µm is 1.2566 mm³.
+
+    >>> import math
+    >>> from fretwear.geometry import contact_geometry
+    >>> g = contact_geometry("TUBE_ALESAGE", mobile_radius=0.01, obstacle_width=0.02)
+    >>> volume = 2 * math.pi * 0.02 * 0.01 * 1e-6
+    >>> depth_mobile, depth_obstacle = g.depth_from_volume([0.0, volume])
+    >>> depth_mobile.round(15).tolist(), depth_obstacle.tolist()
+    ([0.0, 1e-06], [0.0, 0.0])
+    >>> bool(np.isclose(g.volume_from_depth(1e-6)[0], volume, rtol=1e-15))
+    True
     """
 
     contact_type: ClassVar[str] = ""
