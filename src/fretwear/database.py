@@ -429,6 +429,25 @@ def summary(database: pd.DataFrame | None = None, *, contact_type: str | None = 
             law: str | None = None) -> pd.DataFrame:
     """One row per (contact type, material pair, law) box, mobile and obstacle values as text.
 
+    Parameters
+    ----------
+    database : pandas.DataFrame, optional
+        A table from :func:`load_database`; default the built-in one.
+    contact_type, law : str, optional
+        Keep only this contact type / law (any case).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns ``contact_type, mobile_material, obstacle_material, law``, ``mobile`` and
+        ``obstacle`` (e.g. ``"K = 2.6e-15 Pa⁻¹"``, SI units; ``""`` for an empty box), ``source``
+        and ``origin``. Empty when nothing matches.
+
+    Raises
+    ------
+    DatabaseError
+        An unknown contact type or law (listing the known ones).
+
     Examples
     --------
     >>> s = summary(contact_type="TUBE_TUBE")
