@@ -222,7 +222,8 @@ def test_user_file_errors_name_file_and_line(tmp_path, line, message):
 
 def test_user_file_structural_errors(tmp_path):
     p = write(tmp_path / "cols.csv", "contact_type,law,value\nTUBE_BAV,ARCHARD,1e-13\n")
-    with pytest.raises(FormatError, match=r"missing column\(s\) \['mobile_material'"):
+    with pytest.raises(FormatError, match=r"missing column\(s\) \['mobile_material'.*the file "
+                                          r"has \['contact_type', 'law', 'value'\]"):
         read_coefficients(p)
     row = "TUBE_BAV,I600,I600,ARCHARD,mobile,coefficient,1e-13,Pa⁻¹,x\n"
     p = write(tmp_path / "dup.csv", HEADER + row + row.replace("coefficient", "COEF_USURE"))

@@ -99,8 +99,9 @@ def _validate(frame: pd.DataFrame, where: str, *, builtin: bool) -> pd.DataFrame
     missing = [c for c in REQUIRED_COLUMNS if c not in frame.columns]
     if missing:
         raise FormatError(
-            f"{where}: missing column(s) {missing}; a coefficient file needs the columns "
-            f"{list(REQUIRED_COLUMNS)} (optional: body, source), one row per coefficient")
+            f"{where}: missing column(s) {missing} (the file has {list(frame.columns)}); a "
+            f"coefficient file needs the columns {list(REQUIRED_COLUMNS)} (optional: body, "
+            "source), one row per coefficient, separated by ',' (or ';')")
     out = pd.DataFrame({c: frame[c].astype(str).str.strip() for c in REQUIRED_COLUMNS
                         if c != "value"})
     out["body"] = (frame["body"].astype(str).str.strip().str.lower() if "body" in frame.columns
