@@ -309,3 +309,21 @@ def test_sector_obstacle_depth_needs_obstacle_radius():
         t = sector_table([1.0])
     assert np.isnan(t["depth_obstacle_sector"].iloc[2])
     assert t["depth_obstacle_sector"].iloc[[0, 1, 3]].eq(0.0).all()
+
+
+def test_restart_from_a_sector_table_with_global_rows():
+    """A Code_Aster-like sector table that also holds one global row per instant (SECTEUR
+    empty): the sector state comes from the sector rows only; the chain still equals one long
+    run (SPEC §7, V_j = k_j·P_j·t, SPEC §3)."""
+    first = to_aster_names(sector_table([1.0]))
+    glob = first.drop_duplicates("INST")[["INST", "DUREE", "ORIG_INST", "PUIS_USUR_GLOBAL",
+                                          "V_USUR_TUBE", "V_USUR_OBST", "P_USUR_TUBE"]]
+    mixed = pd.concat([glob, first], ignore_index=True)  # SECTEUR NaN on the global row
+    state = initial_state(mixed)
+    assert state.sector_count == 4
+    np.testing.assert_allclose(state.sector_volume_mobile,
+                               np.array([1e-13, 0.0, 3e-13, 0.0]) * 0.5 * 3600.0, rtol=1e-14)
+    second = sector_table([2.0], initial_state=mixed)
+    long = sector_table([1.0, 3.0])
+    np.testing.assert_allclose(second["volume_mobile_cumulated"].iloc[-4:],
+                               long["volume_mobile_cumulated"].iloc[-4:], rtol=1e-14)

@@ -120,7 +120,13 @@ _DIMENSIONS = {"mobile_radius_m": "mobile_radius", "obstacle_radius_m": "obstacl
 
 
 def keys_help() -> str:
-    """Every case-file key with its description, as plain text (``fretwear run --help``)."""
+    """Every case-file key with its description, as plain text (``fretwear run --help``).
+
+    Examples
+    --------
+    >>> keys_help().splitlines()[2]
+    '[history]'
+    """
     lines = []
     for section, keys in KEYS.items():
         lines.append(f"[{section}]" if section else "(top level)")
@@ -194,6 +200,14 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
     -------
     dict
         The validated case, with ``"_directory"`` the file's folder.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> p = Path(tempfile.mkdtemp()) / "case.toml"
+    >>> _ = p.write_text('[time]\\ninstants = [1, 2]\\nunit = "year"\\n')
+    >>> load_case(p)["time"]
+    {'instants': [1, 2], 'unit': 'year'}
     """
     raw, directory = read_case_toml(path)
     case = validate_case(raw, source=str(path))
@@ -255,7 +269,22 @@ def _path(case: Mapping[str, Any], value: str) -> Path:
 
 
 def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
-    """The keyword arguments of :func:`fretwear.operator.wear_table` for a validated case."""
+    """The keyword arguments of :func:`fretwear.operator.wear_table` for a validated case.
+
+    Raises
+    ------
+    KeywordError
+        Inconsistent keys (both or neither of ``[history] file`` and ``[power] value_W``, a
+        missing ``contact_type`` or ``instants``, ``unit`` with ``seconds_per_unit``, ...).
+
+    Examples
+    --------
+    >>> args = case_arguments({"power": {"value_W": 0.01},
+    ...                        "geometry": {"contact_type": "TUBE_BAV", "mobile_radius_m": 0.01},
+    ...                        "time": {"instants": [1], "unit": "h"}})
+    >>> args["time_scale"], args["dimensions"]
+    (3600.0, {'mobile_radius': 0.01})
+    """
     history, power = case.get("history", {}), case.get("power", {})
     law, geometry = case.get("law", {}), case.get("geometry", {})
     sectors, time, restart = case.get("sectors", {}), case.get("time", {}), case.get("restart", {})

@@ -111,6 +111,11 @@ def law_coefficients(law, given: Mapping[str, Any] | None, body: str) -> dict[st
     ------
     KeywordError
         For a keyword the law does not have (naming the body and listing the accepted ones).
+
+    Examples
+    --------
+    >>> law_coefficients(_law("ARCHARD"), {"COEF_USURE": 1e-13}, "mobile")
+    {'coefficient': 1e-13}
     """
     try:
         return law.resolve(**dict(given or {}))

@@ -31,6 +31,20 @@ def read_wear_table(path: str | os.PathLike) -> pd.DataFrame:
     path : path-like
         ``.csv`` and ``.parquet`` files written by fretwear, or an IMPR_TABLE file (TABLEAU or
         ASTER format; any other suffix) read by :func:`fretwear.io.aster.read_aster_table`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table with native column names (:data:`fretwear.operator.COLUMNS`; volumes [m³],
+        depths [m], instants in the user's time unit).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> p = Path(tempfile.mkdtemp()) / "t.tab"
+    >>> _ = p.write_text("#\\nINST V_USUR_TUBE\\n 1.00000E+00 2.50000E-09\\n")
+    >>> read_wear_table(p).columns.tolist()
+    ['instant', 'volume_mobile']
     """
     p = Path(path)
     if not p.is_file():
@@ -138,7 +152,8 @@ def initial_state(table: pd.DataFrame | str | os.PathLike,
     at = np.abs(inst[keep] - origin) <= _TIME_TOL * scale
     last = rows.loc[at]
     if "sector" in rows.columns and rows["sector"].notna().any():
-        last = last.sort_values("sector")
+        # rows without a sector number (a global row per instant) do not hold sector volumes
+        last = last[pd.to_numeric(last["sector"], errors="coerce").notna()].sort_values("sector")
         sectors = pd.to_numeric(last["sector"]).to_numpy()
         if len(np.unique(sectors)) != len(sectors):
             raise InputError(f"initial wear table {source}: sector numbers repeat at instant "
