@@ -68,6 +68,22 @@ def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
         Missing file, invalid TOML.
     KeywordError
         Unknown sections or keys (with the closest valid name), missing sections.
+
+    Examples
+    --------
+    >>> c = load_iterate_case({
+    ...     "law": {"name": "ARCHARD", "mobile": {"COEF_USURE": 1e-14}},
+    ...     "geometry": {"contact_type": "TUBE_ALESAGE", "mobile_radius_m": 9.5e-3,
+    ...                  "obstacle_width_m": 0.02},
+    ...     "sectors": {"count": 8}, "time": {"instants": [1.0], "unit": "year"},
+    ...     "obstacle": {"gap_m": 2e-4, "wall_thickness_m": 1.1e-3},
+    ...     "dynamics": {"duration_s": 1.0}, "iterate": {"cycles": 3}})
+    >>> c["iterate"], c["dynamics"]
+    ({'cycles': 3}, {'duration_s': 1.0})
+    >>> load_iterate_case({"iterate": {"cycle": 2}})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    fretwear.errors.KeywordError: [iterate]: unknown key cycle (did you mean 'cycles'?); ...
     """
     from fretwear.case import read_case_toml, validate_case
 
