@@ -45,7 +45,8 @@ def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: 
     -------
     list of pathlib.Path
         ``<stem>_history.png/.svg`` (volumes [mm³] and depths [mm] of tube and obstacle against
-        time) and, in sector mode, ``<stem>_sectors.png/.svg`` (sector power [W] and sector
+        time; a replaced tube's curve is broken at the replacement, a restart origin is marked)
+        and, in sector mode, ``<stem>_sectors.png/.svg`` (sector power [W] and sector
         depths [mm] at the last instant on polar axes).
 
     Examples
@@ -66,17 +67,32 @@ def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: 
     glob = table.drop_duplicates("instant", keep="last").sort_values("instant")
     fig, (ax_v, ax_d) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
     t = glob["instant"].to_numpy(dtype=float)
-    ax_v.plot(t, glob["volume_mobile"] * 1e9, "o-", label="tube (mobile)")
-    ax_v.plot(t, glob["volume_obstacle"] * 1e9, "s--", label="obstacle")
+    replaced = table.attrs.get("tube_replacement")
+    origin = table.attrs.get("origin") or 0.0
+    # the tube's curve is broken at a replacement (the old and the new tube are two bodies)
+    new_tube = np.zeros(t.shape, bool) if replaced is None else t >= float(replaced)
+    for ax, column, scale in ((ax_v, "volume", 1e9), (ax_d, "depth", 1e3)):
+        mobile = glob[f"{column}_mobile"].to_numpy(dtype=float) * scale
+        ax.plot(t, np.where(new_tube, np.nan, mobile), "o-", color="C0", label="tube (mobile)")
+        if new_tube.any():
+            ax.plot(t[new_tube], mobile[new_tube], "o-", color="C0", mfc="white",
+                    label="new tube")
+            ax.axvline(float(replaced), color="0.4", ls=":", lw=1)
+        ax.plot(t, glob[f"{column}_obstacle"] * scale, "s--", color="C1", label="obstacle")
+        if origin:
+            ax.axvline(float(origin), color="0.6", ls="-.", lw=1)
+        ax.grid(alpha=0.3)
+    if new_tube.any():
+        ax_v.annotate("tube replaced", (float(replaced), 1.0), xycoords=("data", "axes fraction"),
+                      xytext=(3, -12), textcoords="offset points", fontsize="small")
+    if origin:
+        ax_v.annotate("restart", (float(origin), 1.0), xycoords=("data", "axes fraction"),
+                      xytext=(3, -24), textcoords="offset points", fontsize="small")
     ax_v.set_ylabel("cumulated worn volume [mm³]")
     ax_v.legend()
-    ax_v.grid(alpha=0.3)
-    ax_d.plot(t, glob["depth_mobile"] * 1e3, "o-", label="tube (mobile)")
-    ax_d.plot(t, glob["depth_obstacle"] * 1e3, "s--", label="obstacle")
     ax_d.set_ylabel("worn depth [mm]")
     ax_d.set_xlabel(f"instant [{unit}]")
     ax_d.legend()
-    ax_d.grid(alpha=0.3)
     title = table.attrs.get("title") or "wear table"
     fig.suptitle(f"{title}: {table.attrs.get('contact_type', '')} "
                  f"{table.attrs.get('law', '')}".strip())
