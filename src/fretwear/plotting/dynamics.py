@@ -82,7 +82,8 @@ def plot_contact_history(history, directory: str | os.PathLike, *, profiles=None
     ax3.set_aspect("equal", adjustable="datalim")
     ax3.set_xlabel("dy [mm]")
     ax3.set_ylabel("dz [mm]")
-    ax3.legend(loc="upper right", fontsize=8)
+    ax3.legend(loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2, fontsize=8,
+               markerscale=4)
     fig.suptitle(f"shock {history.name}" if history.name else "contact history")
     try:
         return _save(fig, directory, stem)
