@@ -368,7 +368,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         prev_m = 0.0 if state is None else state.volume_mobile
         prev_o = 0.0 if state is None else state.volume_obstacle
         vm, vo = body_volumes(power, prev_m, prev_o)
-        dm, do = geometry.depth_from_volume(vm, vo)
+        dm, do = _depths(geometry, vm, vo)
         frame = pd.DataFrame({**head, "volume_mobile": vm, "volume_obstacle": vo,
                               "depth_mobile": np.broadcast_to(dm, vm.shape).astype(float),
                               "depth_obstacle": np.broadcast_to(do, vm.shape).astype(float)})
@@ -388,6 +388,18 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         "power": None if result is None else _power_dict(result),
     }
     return frame
+
+
+def _depths(geometry, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
+    """(mobile, obstacle) depths [m] from the cumulated volumes [m³] (SPEC §6).
+
+    An obstacle without volume has no depth: exactly 0 where the mobile's depth is defined
+    (the split d_o = D − D·V_m/V of a shared trace leaves a rounding residue otherwise).
+    """
+    dm, do = geometry.depth_from_volume(volume_mobile, volume_obstacle)
+    dm = np.broadcast_to(dm, volume_mobile.shape).astype(float)
+    do = np.broadcast_to(do, volume_mobile.shape).astype(float)
+    return dm, np.where((volume_obstacle == 0) & np.isfinite(dm), 0.0, do)
 
 
 def _power_dict(result) -> dict:
@@ -458,7 +470,7 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
                       "no obstacle_radius (RAYON_OBST): their obstacle sector depth is NaN",
                       RangeWarning, stacklevel=3)
     total_m, total_o = cum_m.sum(axis=1), cum_o.sum(axis=1)
-    dm, do = geometry.depth_from_volume(total_m, total_o)
+    dm, do = _depths(geometry, total_m, total_o)
     glob = {"volume_mobile": total_m, "volume_obstacle": total_o,
             "depth_mobile": np.broadcast_to(dm, total_m.shape).astype(float),
             "depth_obstacle": np.broadcast_to(do, total_m.shape).astype(float)}

@@ -80,7 +80,7 @@ def write_table(table, path: Path, *, aster_names: bool = False, title: str | No
     frame.attrs = {}
     if suffix == ".csv":
         with atomic_path(path) as tmp:
-            frame.to_csv(tmp, index=False, float_format="%.12g")
+            frame.to_csv(tmp, index=False)  # shortest repr: exact round trip
     elif suffix in (".parquet", ".pq"):
         with atomic_path(path) as tmp:
             frame.to_parquet(tmp, index=False)
