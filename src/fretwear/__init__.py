@@ -46,6 +46,8 @@ _LAZY: dict[str, str] = {
     "kwu_epri_statistics": "fretwear.laws",
     "KwuEpriStatistics": "fretwear.laws",
     "KwuEpriAccumulator": "fretwear.laws",
+    "kwu_epri_statistics_from_chunks": "fretwear.laws",
+    "get_law": "fretwear.laws",
     "database": "fretwear.database",
     "load_database": "fretwear.database",
     "geometry": "fretwear.geometry",
