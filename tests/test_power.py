@@ -307,3 +307,26 @@ def test_any_chunking_and_merge_order_equals_one_shot(cuts, share, order, window
         parts[k:k + 2] = [parts[k].merge(parts[k + 1]) if order.random() < 0.5
                           else parts[k + 1].merge(parts[k])]
     _same(one, parts[0].result(stationarity_threshold=math.inf))
+
+
+def test_file_sets_and_tables_are_read_whole(tmp_path):
+    # Independent computation: Fn = 4 N constant, ‖Vt‖ = 0.5 m/s constant (vt1 = 0.3,
+    # vt2 = 0.4): P = 2 W exactly. IMPR_FONCTION TABLEAU files (one per channel, SPEC §1) and an
+    # in-memory table with Code_Aster names and units (kN, mm/s) go through read_history.
+    import pandas as pd
+
+    t = [0.0, 1.0e-3, 2.0e-3]
+    values = {"FN": 4.0, "VT1": 0.3, "VT2": 0.4}
+    files = {}
+    for name, v in values.items():
+        rows = "".join(f" {x:12.5E}  {v:12.5E}\n" for x in t)
+        files[name] = tmp_path / f"{name}.txt"
+        files[name].write_text(f"#\n#FONCTION {name}\n INST         {name}\n{rows}")
+    assert wear_power(list(files.values())).total == pytest.approx(2.0, rel=1e-12)
+    keyed = {"fn": files["FN"], "vt1": files["VT1"], "vt2": files["VT2"]}
+    assert wear_power(keyed, units={"force": "kN"}).total == pytest.approx(2e3, rel=1e-12)
+    frame = pd.DataFrame({"INST": t, "FN": [4e-3] * 3, "VINT11": [300.0] * 3,
+                          "VINT12": [400.0] * 3})
+    r = wear_power(frame, units={"force": "kN", "velocity": "mm/s"}, blocks=2)
+    assert r.total == pytest.approx(2.0, rel=1e-12)
+    assert frame["FN"].tolist() == [4e-3] * 3  # the user's table is not modified

@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import os
 import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, fields
 from typing import Any
 
@@ -392,6 +392,16 @@ def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float
     return first, last
 
 
+def _is_read_whole(history: Any) -> bool:
+    """Whether ``history`` is a set of function files or a table that read_history reads."""
+    if hasattr(history, "columns") and not isinstance(history, ContactHistory):
+        return True  # a DataFrame
+    if isinstance(history, Mapping):
+        return True  # {channel: file} or {column: array}
+    return (isinstance(history, list | tuple) and len(history) > 0
+            and all(isinstance(x, str | os.PathLike) for x in history))
+
+
 def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | None = None,
                t_end: float | None = None, blocks: int = 1,
                sectors: int | Sequence[float] | None = None,
@@ -402,10 +412,12 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
 
     Parameters
     ----------
-    history : ContactHistory, path, or iterable of ContactHistory
+    history : ContactHistory, path, file set, table, or iterable of ContactHistory
         The history; a file path is streamed chunk by chunk with
-        :func:`fretwear.io.iter_history_chunks` (memory bounded by ``chunk_size``); an iterable
-        of consecutive chunks is folded in as it comes.
+        :func:`fretwear.io.iter_history_chunks` (memory bounded by ``chunk_size``); a set of
+        Code_Aster IMPR_FONCTION files (``{channel: file}`` or a list of files), a DataFrame or
+        a mapping of arrays is read whole with :func:`fretwear.io.read_history`; an iterable of
+        consecutive chunks is folded in as it comes.
     t_start, t_end : float, optional
         Window [s]; default the whole record. Must lie within the record.
     blocks : int
@@ -424,7 +436,9 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
     backend : str
         ``"auto"``, ``"numba"`` or ``"numpy"``.
     **read_options
-        Passed to the reader for a file (``format``, unit options ...).
+        Passed to the reader of a file or file set: ``format``, ``units`` (e.g.
+        ``{"length": "mm", "force": "kN"}``), ``columns``, ``name`` and the format's own options
+        (see :func:`fretwear.io.read_history`).
 
     Returns
     -------
@@ -478,6 +492,13 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
     opts = dict(t_start=t_start, t_end=t_end, blocks=blocks, sectors=sectors,
                 force_threshold=force_threshold, minimum_rest_time=minimum_rest_time,
                 backend=backend)
+    if _is_read_whole(history):
+        # a set of IMPR_FONCTION files ({channel: file} or [file, ...]) or an in-memory table:
+        # read whole (text functions cannot be streamed), aliases and units applied
+        from fretwear.io import read_history
+
+        history = read_history(history, **read_options)
+        read_options = {}
     if isinstance(history, ContactHistory):
         if read_options:
             raise KeywordError(

@@ -83,3 +83,72 @@ def test_errors_exit_2_and_name_the_culprit(capsys, ramp_file, args, words):
 def test_missing_file(capsys, tmp_path):
     assert main(["power", str(tmp_path / "none.csv")]) == 2
     assert "none.csv" in capsys.readouterr().err
+
+
+# --------------------------------------------------------------------------- reading options
+FIXTURES = __import__("pathlib").Path(__file__).parents[1] / "io" / "fixtures"
+
+
+def _trapezoid_power(t, fn, vt1, vt2):
+    """Independent computation: P = (1/T) ∫ Fn·‖Vt‖ dt by numpy's trapezoid rule (SPEC §2)."""
+    t = np.asarray(t, dtype=float)
+    g = np.asarray(fn) * np.hypot(vt1, vt2)
+    return float(np.trapezoid(g, t) / (t[-1] - t[0]))
+
+
+# The literals printed in fixtures/fonction_{fn,vt1,vt2}.txt (IMPR_FONCTION TABLEAU, one per file)
+FUNCTION_T = [0.0, 1e-3, 2e-3, 3e-3]
+FUNCTION_P = _trapezoid_power(FUNCTION_T, [0.0, 5.0, 10.0, 5.0], [0.01, 0.02, 0.03, 0.04],
+                              [-0.01, 0.0, 0.01, 0.0])
+
+
+def test_function_files_as_a_list_or_channel_equals_file(capsys):
+    files = [FIXTURES / f"fonction_{c}.txt" for c in ("fn", "vt1", "vt2")]
+    out = _json(capsys, *files)
+    assert out["total"] == pytest.approx(FUNCTION_P, rel=1e-12)
+    assert out["duration"] == pytest.approx(3e-3, rel=1e-12)
+    assert out["name"] == "fonction_fn"
+    keyed = _json(capsys, f"normal_force={files[0]}", f"VT1={files[1]}", f"vt2={files[2]}",
+                  "--units", "force=kN")
+    assert keyed["total"] == pytest.approx(1e3 * FUNCTION_P, rel=1e-12)
+
+
+def test_function_files_errors(capsys, tmp_path):
+    files = [FIXTURES / f"fonction_{c}.txt" for c in ("fn", "vt1", "vt2")]
+    assert main(["power", f"fn={files[0]}", str(files[1]), str(files[2])]) == 2
+    assert "mix of CHANNEL=FILE" in capsys.readouterr().err
+    assert main(["power", f"fn={tmp_path / 'none.txt'}", str(files[1])]) == 2
+    assert "none.txt" in capsys.readouterr().err
+    # value columns that are not channel names (RECU_FONCTION's default): the hint says how
+    for k in range(3):
+        (tmp_path / f"f{k}.txt").write_text(
+            "#\n#FONCTION\n INST         TOUTRESU\n 0.00000E+00  1.00000E+00\n"
+            " 1.00000E-03  2.00000E+00\n")
+    assert main(["power", *(str(tmp_path / f"f{k}.txt") for k in range(3))]) == 2
+    err = capsys.readouterr().err
+    assert "TOUTRESU" in err and "CHANNEL=FILE" in err
+
+
+def test_aster_table_choice_and_units(capsys):
+    """Second table of fixtures/impr_table_aster.resu: lengths in mm (FN in N, VT in mm/s)."""
+    path = FIXTURES / "impr_table_aster.resu"
+    expected = _trapezoid_power([0.0, 5e-4, 1e-3, 1.5e-3], [0.0, 4.0, 8.0, 0.0],
+                                [0.0, 12e-3, 11e-3, 0.0], [0.0, -5e-3, -4e-3, 0.0])
+    by_title = _json(capsys, path, "--read-option", "title=CHOC", "--units", "length=mm")
+    by_index = _json(capsys, path, "--read-option", "index=1", "--units", "length=mm")
+    assert by_title["total"] == pytest.approx(expected, rel=1e-12)
+    assert by_index["total"] == by_title["total"]
+    assert main(["power", str(path)]) == 2
+    assert "--read-option index=<n>" in capsys.readouterr().err
+    assert main(["power", str(path), "--units", "length"]) == 2
+    assert "--units" in capsys.readouterr().err
+
+
+def test_headerless_file_with_columns_and_units(capsys, tmp_path):
+    # time in ms, Fn in kN, velocities in mm/ms (= m/s): a constant Fn·V = 2 kN · 0.5 m/s
+    path = tmp_path / "raw.dat"
+    path.write_text("".join(f"{k};2,0;0,3;0,4;0\n" for k in range(5)))
+    out = _json(capsys, path, "--column", "0=time,1=fn", "--column", "2=vt1", "--column",
+                "3=vt2", "--column", "4=none", "--units", "time=ms,force=kN,length=mm")
+    assert out["total"] == pytest.approx(2e3 * 0.5, rel=1e-12)
+    assert out["duration"] == pytest.approx(4e-3, rel=1e-12)

@@ -207,3 +207,10 @@ def test_gzip_text_formats_round_trip_and_are_sniffed(tmp_path, history):
     assert [len(c) for c in chunks] == [50, 50, 50, 50, 5]
     with pytest.raises(FormatError, match=r"gzip \(.gz\) is for the text formats"):
         write_history(history, tmp_path / "h.parquet.gz")
+
+
+def test_default_name_is_the_stem_without_gz(tmp_path, history):
+    # A Code_Aster table keeps no history name: the file's stem is used, '.gz' dropped too.
+    for suffix in (".resu", ".resu.gz"):
+        out = write_history(history.replace(name=""), tmp_path / f"n12{suffix}")
+        assert read_history(out).name == "n12"

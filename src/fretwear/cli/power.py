@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 import warnings
+from pathlib import Path
 
 import click
 
@@ -28,6 +29,59 @@ def _parse_sectors(value: str | None):
         raise click.BadParameter(
             f"{value!r}: give a number of sectors (e.g. 10) or comma-separated edges in degrees "
             "from -180 to 180 (e.g. -180,-90,0,90,180)", param_hint="--sectors") from None
+
+
+def _pairs(values: tuple[str, ...], option: str, what: str, split: bool = True
+           ) -> dict[str, str]:
+    """``("length=mm,force=kN", "dy=mm")`` -> ``{"length": "mm", "force": "kN", "dy": "mm"}``.
+
+    Examples
+    --------
+    >>> _pairs(("length=mm,force=kN", "dy=mm"), "--units", "KEY=UNIT")
+    {'length': 'mm', 'force': 'kN', 'dy': 'mm'}
+    """
+    out: dict[str, str] = {}
+    for value in values:
+        for item in (value.split(",") if split else [value]):
+            if not item.strip():
+                continue
+            key, sep, val = item.partition("=")
+            if not sep or not key.strip() or (split and not val.strip()):
+                raise click.BadParameter(f"{item!r}: give {what}", param_hint=option)
+            out[key.strip()] = val.strip()
+    return out
+
+
+def _option_value(text: str):
+    """A reader option from the command line: integer, true/false, or text (``\\t`` is a tab)."""
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    try:
+        return int(text)
+    except ValueError:
+        return text.replace("\\t", "\t")
+
+
+def _history_argument(values: tuple[str, ...]):
+    """One file, or a set of IMPR_FONCTION files given as FILE... or CHANNEL=FILE..."""
+    keyed: dict[str, str] = {}
+    plain: list[str] = []
+    for value in values:
+        key, sep, path = value.partition("=")
+        if sep and key and not Path(value).exists():
+            keyed[key] = path
+        else:
+            plain.append(value)
+    for path in [*keyed.values(), *plain]:
+        if not Path(path).is_file():
+            raise click.BadParameter(f"file {path!r} does not exist", param_hint="HISTORY")
+    if keyed and plain:
+        raise click.BadParameter(
+            f"mix of CHANNEL=FILE {list(keyed)} and plain files {plain}: give every function "
+            "file as CHANNEL=FILE, or none", param_hint="HISTORY")
+    if keyed:
+        return keyed
+    return plain[0] if len(plain) == 1 else plain
 
 
 def _fmt(value, unit: str = "") -> str:
@@ -82,33 +136,65 @@ def _print_table(result, caught: list[str]) -> None:
 
 
 @click.command(name="power")
-@click.argument("history", type=click.Path(exists=True, dir_okay=True))
+@click.argument("history", nargs=-1, required=True, metavar="HISTORY...")
 @click.option("--sectors", "sectors", metavar="N|e1,e2,...",
               help="Number of equal angular sectors, or their edges in degrees (-180 ... 180).")
 @click.option("--blocks", type=click.IntRange(min=1), default=1, show_default=True,
               help="Number of equal blocks of the window (stationarity check).")
 @click.option("--t-start", type=float, default=None, help="Window start [s] (default: first).")
 @click.option("--t-end", type=float, default=None, help="Window end [s] (default: last).")
-@click.option("--threshold", type=float, default=0.1, show_default=True,
-              help="Stationarity threshold on the relative spread of the block powers.")
+@click.option("--threshold", "--stationarity-threshold", "threshold", type=float, default=0.1,
+              show_default=True,
+              help="Stationarity threshold on the relative spread (max-min)/mean of the block "
+                   "powers [-]; above it a warning is printed.")
 @click.option("--force-threshold", type=float, default=0.0, show_default=True,
               help="Contact / impact force threshold [N] of the statistics.")
 @click.option("--rest-time", type=float, default=0.0, show_default=True,
               help="Minimum rest [s] below the force threshold between two impacts.")
 @click.option("--format", "format_", default=None,
-              help="File format (csv, parquet, hdf5, netcdf, npz, aster ...); default: guessed.")
+              help="File format (csv, parquet, hdf5, netcdf, npz, aster, aster-function); "
+                   "default: guessed from the content.")
+@click.option("--units", "units", multiple=True, metavar="KEY=UNIT[,...]",
+              help="Units of the file's values, converted to SI: per quantity (length=mm, "
+                   "force=kN, time=ms, velocity=mm/s) or per channel (dy=mm). Repeatable. "
+                   "Default: the units the file declares, else SI.")
+@click.option("--column", "columns", multiple=True, metavar="COLUMN=CHANNEL",
+              help="Map a column to a channel (time, normal_force, vt1, vt2, ft1, ft2, vn, dy, "
+                   "dz, stick), or COLUMN=none to ignore it; columns of a file without header "
+                   "are named 0, 1, ... Repeatable.")
+@click.option("--read-option", "read_options", multiple=True, metavar="KEY=VALUE",
+              help="Option of the format's reader: csv delimiter/decimal/comment/header/"
+                   "encoding, hdf5 group, aster index/title (a file holding several tables). "
+                   "Repeatable.")
 @click.option("--chunk-size", type=click.IntRange(min=2), default=1_000_000, show_default=True,
               help="Samples read per chunk (memory bound).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (SI units) instead of tables.")
 def command(history, sectors, blocks, t_start, t_end, threshold, force_threshold, rest_time,
-            format_, chunk_size, as_json):
-    """Wear power P = (1/T)∫Fn·|Vt|dt of HISTORY, per block and per sector, with statistics."""
+            format_, units, columns, read_options, chunk_size, as_json):
+    """Wear power P = (1/T)∫Fn·|Vt|dt of HISTORY, per block and per sector, with statistics.
+
+    HISTORY is one file (CSV, Parquet, HDF5, NetCDF, NPZ, Code_Aster IMPR_TABLE; the format is
+    recognised from the content), streamed chunk by chunk, or a set of Code_Aster IMPR_FONCTION
+    TABLEAU files, one per channel: FILE... (channels from the value columns' names) or
+    CHANNEL=FILE... (e.g. fn=fn.txt vt1=vt1.txt vt2=vt2.txt). Output: the power [W], the block
+    and sector powers [W] and the contact statistics (SI units).
+    """
     from fretwear.power import wear_power
 
-    options = {} if format_ is None else {"format": format_}
+    source = _history_argument(history)
+    options = dict((k, _option_value(v)) for k, v in _pairs(
+        read_options, "--read-option", "KEY=VALUE (e.g. group=/shock/N12)", split=False).items())
+    if format_ is not None:
+        options["format"] = format_
+    if units:
+        options["units"] = _pairs(units, "--units", "KEY=UNIT (e.g. length=mm)")
+    if columns:
+        options["columns"] = {
+            k: (None if v.lower() in ("none", "") else v)
+            for k, v in _pairs(columns, "--column", "COLUMN=CHANNEL (e.g. FN_N12=fn)").items()}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        result = wear_power(history, t_start=t_start, t_end=t_end, blocks=blocks,
+        result = wear_power(source, t_start=t_start, t_end=t_end, blocks=blocks,
                             sectors=_parse_sectors(sectors), stationarity_threshold=threshold,
                             force_threshold=force_threshold, minimum_rest_time=rest_time,
                             chunk_size=chunk_size, **options)

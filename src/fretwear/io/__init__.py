@@ -71,9 +71,11 @@ def _open_functions(files: Any) -> Source:
         pairs = [(None, v) for v in files]
     names, arrays, info = _aster.read_function_files(pairs)  # type: ignore[arg-type]
     label = ", ".join(info["files"])
+    hint = ("; the value columns of IMPR_FONCTION files need not be channel names: give the "
+            "files as a mapping {channel: file} (command line: CHANNEL=FILE, e.g. fn=fn.txt)")
     return Source(label=label, format="aster-function", columns=names,
                   read=lambda positions: [arrays[p] for p in positions],
-                  metadata={"files": info["files"]})
+                  metadata={"files": info["files"]}, hint=hint)
 
 
 def _write_aster(history: ContactHistory, path: str | os.PathLike, *,
@@ -252,8 +254,15 @@ def open_source(path: Any, format: str | None = None, **options: Any) -> Source:
 
 
 def _stem(path: Any) -> str:
+    """Default history name: the file's stem (``n12.csv.gz`` -> ``n12``), else the first
+    function file's stem for a set of IMPR_FONCTION files."""
+    if isinstance(path, Mapping) and path and all(_is_path(v) for v in path.values()):
+        path = next(iter(path.values()))
+    elif isinstance(path, (list, tuple)) and path and all(_is_path(v) for v in path):
+        path = path[0]
     if _is_path(path):
-        return Path(path).stem
+        p = Path(path)
+        return Path(p.stem).stem if p.suffix.lower() == ".gz" else p.stem
     return ""
 
 

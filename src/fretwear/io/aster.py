@@ -310,7 +310,7 @@ def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = Non
         chosen = index
     elif len(raw) > 1:
         raise FormatError(f"{label} holds {len(raw)} tables ({listing}); choose one with "
-                          "index=<n> or title='<text>'")
+                          "index=<n> or title='<text>' (command line: --read-option index=<n>)")
     else:
         chosen = 0
     return _convert(raw[chosen], label)

@@ -172,7 +172,8 @@ def _find_group(h5: Any, handle: Any, group: str | None, path: Path) -> Any:
     if not candidates:
         raise FormatError(f"{path}: no group holds 1-D datasets (one per channel)")
     raise FormatError(f"{path}: several groups hold 1-D datasets "
-                      f"{[g.name for g in candidates]}; choose one with group='<name>'")
+                      f"{[g.name for g in candidates]}; choose one with group='<name>' "
+                      "(command line: --read-option group=<name>)")
 
 
 def _all_groups(h5: Any, handle: Any) -> list:

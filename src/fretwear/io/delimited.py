@@ -208,7 +208,8 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
                     yield [frame[pos].to_numpy(dtype=float) for pos in positions]
         except ValueError as exc:
             if isinstance(exc, pd.errors.ParserError):
-                raise FormatError(f"{path}: {str(exc).strip()}") from None
+                raise FormatError(f"{path}: {str(exc).strip()}; every row must have the same "
+                                  "number of cells as the header") from None
             raise _diagnose(path, info, positions) from None
 
     hint = ("" if info["header"] else "; the file has no header line: name the columns by "
