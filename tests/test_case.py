@@ -157,3 +157,24 @@ unit = "h"
     r = run_case(path)
     assert r.total_power == pytest.approx(0.5, rel=1e-12)
     np.testing.assert_allclose(r.table["volume_mobile"], 1e-14 * 0.5 * 3600.0, rtol=1e-12)
+
+
+def test_restart_from_a_multi_table_code_aster_file(tmp_path):
+    """Two tables in one IMPR_TABLE file (the hand-written fixture, then a copy with the volumes
+    doubled): [restart] table_index picks one; V = V_file(INST=2) + K·P·Δt (SPEC §7, §4)."""
+    fixture = Path(__file__).parent / "fixtures" / "aster_tables" / "post_usure_tableau.txt"
+    text = fixture.read_text(encoding="utf-8")
+    doubled = text.replace("4.54118E-08", "9.08236E-08").replace("9.08237E-08", "1.81647E-07")
+    (tmp_path / "two.tab").write_text(text + doubled, encoding="utf-8")
+    case = {**POWER_CASE, "_directory": str(tmp_path), "time": {"instants": [1], "unit": "year"},
+            "power": {"value_W": 0.012}, "law": {"mobile": {"COEF_USURE": 1.2e-13}},
+            "restart": {"table": "two.tab", "table_index": 1}}
+    r = run_case(case)
+    np.testing.assert_allclose(r.table["volume_mobile"].iloc[-1],
+                               1.81647e-07 + 1.2e-13 * 0.012 * 31536000, rtol=1e-14)
+    from fretwear.errors import FormatError
+
+    with pytest.raises(FormatError, match=r"holds 2 tables.*\[restart\] table_index"):
+        run_case({**case, "restart": {"table": "two.tab"}})
+    with pytest.raises(KeywordError, match=r"table_index and instant need \[restart\] table"):
+        run_case({**case, "restart": {"table_index": 0}})

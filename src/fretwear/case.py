@@ -109,6 +109,7 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
                        "or Code_Aster text table, relative to the case file"),
         "instant": ((int, float), "instant of that table to continue from (INST_INIT), "
                                   "default its last"),
+        "table_index": (int, "which table (0-based) of a Code_Aster file holding several"),
     },
 }
 #: Sections owned by other commands (``fretwear obstacle``, ``fretwear iterate``), accepted and
@@ -336,12 +337,27 @@ def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
         materials=None if materials is None else tuple(materials),
         obstacle_wear=law.get("obstacle_wear", False), sectors=sector_spec,
         sector_coefficients=pairs, time_scale=scale,
-        initial_state=_path(case, restart["table"]) if "table" in restart else None,
+        initial_state=_restart_table(case, restart),
         initial_instant=restart.get("instant"), tube_replacement=time.get("tube_replacement"),
         t_start=power.get("t_start_s"), t_end=power.get("t_end_s"),
         blocks=power.get("blocks", 1),
         stationarity_threshold=power.get("stationarity_threshold", 0.1),
         force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"))
+
+
+def _restart_table(case: Mapping[str, Any], restart: Mapping[str, Any]):
+    """The ``[restart]`` table: its path, or the chosen table of a multi-table file."""
+    if "table" not in restart:
+        if "table_index" in restart or "instant" in restart:
+            raise KeywordError("case: [restart] table_index and instant need [restart] table "
+                               "(the wear table to continue)")
+        return None
+    path = _path(case, restart["table"])
+    if "table_index" not in restart:
+        return path
+    from fretwear.restart import read_wear_table
+
+    return read_wear_table(path, index=restart["table_index"])
 
 
 def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> CaseResult:

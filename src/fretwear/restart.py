@@ -23,7 +23,7 @@ from fretwear.sectors import sector_edges as _validated_edges
 __all__ = ["InitialState", "initial_state", "read_wear_table", "replace_tube"]
 
 
-def read_wear_table(path: str | os.PathLike) -> pd.DataFrame:
+def read_wear_table(path: str | os.PathLike, *, index: int | None = None) -> pd.DataFrame:
     """Read a wear table file (CSV, Parquet or a Code_Aster text table) with native names.
 
     Parameters
@@ -31,6 +31,8 @@ def read_wear_table(path: str | os.PathLike) -> pd.DataFrame:
     path : path-like
         ``.csv`` and ``.parquet`` files written by fretwear, or an IMPR_TABLE file (TABLEAU or
         ASTER format; any other suffix) read by :func:`fretwear.io.aster.read_aster_table`.
+    index : int, optional
+        Which table (0-based) of a Code_Aster file holding several; needed then.
 
     Returns
     -------
@@ -56,9 +58,18 @@ def read_wear_table(path: str | os.PathLike) -> pd.DataFrame:
     elif suffix in (".parquet", ".pq"):
         frame = pd.read_parquet(p)
     else:
+        from fretwear.errors import FormatError
         from fretwear.io.aster import read_aster_table
 
-        frame = read_aster_table(p)
+        try:
+            frame = read_aster_table(p, index=index)
+        except FormatError as exc:
+            raise FormatError(f"{exc} [wear table: in a case file give [restart] table_index "
+                              "= <n>; in Python read_wear_table(path, index=<n>)]") from None
+        return from_aster_names(frame)
+    if index not in (None, 0):
+        raise InputError(f"wear table file {str(p)!r} holds one table; table_index / index = "
+                         f"{index} applies to Code_Aster text files only")
     return from_aster_names(frame)
 
 
