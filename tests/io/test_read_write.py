@@ -144,6 +144,32 @@ def test_code_aster_tables_recognised_by_content(tmp_path, suffix):
         assert guess_format(path) == "aster", fixture
 
 
+@pytest.mark.parametrize("suffix", [".txt", ".csv"])
+def test_tableau_with_a_user_title_and_a_node_column_is_recognised(tmp_path, suffix):
+    # IMPR_TABLE(FORMAT='TABLEAU', TITRE='...'): no Code_Aster words in the '#' block, a K8
+    # column of node names; the values are the literals of fixtures/impr_table_tableau.txt.
+    lines = (FIXTURES / "impr_table_tableau.txt").read_text().splitlines()
+    path = tmp_path / f"choc{suffix}"
+    path.write_text("\n".join(["#", "#Choc du noeud N12", "#", *lines[3:]]) + "\n")
+    assert guess_format(path) == "aster"
+    h = read_history(path)
+    assert h.normal_force.tolist() == [0.0, 12.5, 25.0, 12.5, 0.0]
+    assert h.metadata["ignored_columns"] == ["NOEUD"]
+    # read as blank-separated text, the unused node column is ignored too
+    assert read_history(path, format="csv").normal_force.tolist() == h.normal_force.tolist()
+
+
+def test_numeric_text_with_a_comment_block_stays_delimited_text(tmp_path):
+    # numpy.savetxt(..., fmt="%.5E", header="t fn vt1 vt2"): the names are in the comment, the
+    # line after it is data, so it is not a Code_Aster table.
+    path = tmp_path / "saved.txt"
+    np.savetxt(path, [[0.0, 1.0, 0.5, 0.0], [1.0, 1.0, 0.5, 0.0], [2.0, 1.0, 0.5, 0.0]],
+               fmt="%.5E", header="t fn vt1 vt2")
+    assert guess_format(path) == "csv"
+    h = read_history(path, columns={0: "time", 1: "fn", 2: "vt1", 3: "vt2"})
+    assert h.time.tolist() == [0.0, 1.0, 2.0]
+
+
 def test_in_memory_tables_use_aliases_and_units_without_modifying_them():
     frame = pd.DataFrame({"INST": [0.0, 1.0], "FN": [1.0, 2.0], "VT1": [3.0, 4.0],
                           "VT2": [0.0, 0.0]})

@@ -513,8 +513,9 @@ def looks_like_aster(head: str) -> bool:
     """Whether the beginning of a text file is a Code_Aster table (content, not suffix).
 
     Recognised: ``#DEBUT_TABLE``; a ``#`` block naming Code_Aster (``#ASTER ... CONCEPT``,
-    ``TABLE_SDASTER``, ``FONCTION``); or a ``#`` block, a name line and rows of blank-separated
-    ``%12.5E`` reals or ``-``.
+    ``TABLE_SDASTER``, ``FONCTION``); or a ``#`` block, a line of names, and rows of
+    blank-separated cells, each a ``%12.5E`` real, ``-`` or text that is not a number (a node
+    name), with at least one real per row.
 
     Examples
     --------
@@ -522,6 +523,10 @@ def looks_like_aster(head: str) -> bool:
     (True, False)
     >>> looks_like_aster("#\\n#\\n INST  FN\\n 0.00000E+00 -\\n 1.00000E-04  1.20000E+01\\n")
     True
+    >>> looks_like_aster("#\\n#my title\\nNOEUD INST\\nN12 0.00000E+00\\nN12 1.00000E-04\\n")
+    True
+    >>> looks_like_aster("# comment\\nt fn vt1 vt2\\n0 1.5 0.1 0\\n1 1.5 0.1 0\\n")
+    False
     """
     lines = [ln.strip() for ln in head.splitlines() if ln.strip()]
     if any(ln.upper().startswith("#DEBUT_TABLE") for ln in lines[:50]):
@@ -537,9 +542,18 @@ def looks_like_aster(head: str) -> bool:
            or re.match(r"^#\s*FONCTION\b", c) for c in comments):
         return True
     rest = lines[len(comments) + 1: len(comments) + 6]
-    real = re.compile(r"^[+-]?\d\.\d+E[+-]\d{2,3}$|^-$")
-    return bool(rest) and all(
-        not ln.startswith("#") and all(real.match(tok) for tok in ln.split()) for ln in rest)
+    real = re.compile(r"^[+-]?\d\.\d+E[+-]\d{2,3}$")
+    number = re.compile(r"^[+-]?(\d+\.?\d*|\.\d+)([EeDd][+-]?\d+)?$")
+
+    def row(line: str) -> bool:  # %12.5E reals, '-', and text cells (node names) that are
+        cells = line.split()     # not numbers in another format; at least one real
+        return (not line.startswith("#") and any(real.match(c) for c in cells)
+                and all(real.match(c) or c == "-" or not number.match(c) for c in cells))
+
+    names = lines[len(comments)].split() if len(lines) > len(comments) else []
+    if not names or any(number.match(c) for c in names):  # the line after '#' names columns
+        return False
+    return bool(rest) and all(row(ln) for ln in rest)
 
 
 def read_function_files(files: Sequence[tuple[str, str | os.PathLike]]

@@ -122,10 +122,11 @@ def _stored_metadata(comments: list[str]) -> tuple[str | None, dict]:
 
 def _read_kwargs(info: dict, positions: list[int]) -> dict:
     # every column is parsed (no usecols): pandas would silently drop the extra cells of a
-    # ragged row otherwise
+    # ragged row otherwise; only the columns used must be numbers (a node-name column is fine)
     return dict(sep=r"\s+" if info["sep"] is None else info["sep"], header=None,
                 skiprows=info["skip"] + (1 if info["header"] else 0),
-                comment=info["comment"] or None, decimal=info["decimal"], dtype=float,
+                comment=info["comment"] or None, decimal=info["decimal"],
+                dtype={p: float for p in positions},
                 encoding=info["encoding"], skip_blank_lines=True, engine="c",
                 compression=info["compression"])
 
