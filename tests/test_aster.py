@@ -92,6 +92,9 @@ def test_sector_obstacle_depth_of_a_bore():
     np.testing.assert_allclose(t["P_USUR_OBST_SECT"], np.sqrt(r_o**2 + 2 * vo / (width * np.pi))
                                - r_o, rtol=1e-9, atol=1e-300)
     assert "P_USUR_OBST" in t.columns and (t["P_USUR_OBST"] > 0).all()
+    # the metadata name the dimensions natively (what the obstacle update reads)
+    assert t.attrs["dimensions"]["obstacle_width"] == width
+    assert t.attrs["dimensions"]["obstacle_radius"] == r_o
 
 
 def edf(power, t, a=1e-13, b=1.2, n=2.44e-8, s=1.14e-16):

@@ -380,7 +380,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         frame = pd.concat([state.rows.reindex(columns=frame.columns), frame],
                           ignore_index=True)
     frame.attrs = {
-        "contact_type": str(contact_type).upper(), "dimensions": dict(dimensions or {}),
+        "contact_type": str(contact_type).upper(), "dimensions": _dimensions_dict(geometry),
         "law": law_obj.name, "coefficients_mobile": mobile, "coefficients_obstacle": obstacle,
         "materials": None if materials is None else list(materials),
         "sector_edges": None if edges is None else edges.tolist(), "time_scale": time_scale,
@@ -400,6 +400,13 @@ def _depths(geometry, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
     dm = np.broadcast_to(dm, volume_mobile.shape).astype(float)
     do = np.broadcast_to(do, volume_mobile.shape).astype(float)
     return dm, np.where((volume_obstacle == 0) & np.isfinite(dm), 0.0, do)
+
+
+def _dimensions_dict(geometry) -> dict:
+    """The geometry's dimensions with native names (SI, angles in degrees), for ``attrs``."""
+    out = dict(geometry.to_dict())
+    out.pop("contact_type", None)
+    return out
 
 
 def _power_dict(result) -> dict:
