@@ -187,3 +187,23 @@ def test_wrong_kinds_of_input(tmp_path):
         read_history([tmp_path / "a.csv"], format="csv")
     with pytest.raises(KeywordError, match=r"\['format'\] do not apply to an in-memory table"):
         read_history({"t": [0.0, 1.0]}, format="csv")
+
+
+def test_columns_of_different_lengths_are_refused_also_when_streaming(tmp_path):
+    # An HDF5 group or an NPZ archive can hold arrays of different lengths: reading whole or by
+    # chunks of any size must refuse them (never silently truncate), naming the columns.
+    import h5py
+
+    from fretwear.io import iter_history_chunks
+
+    arrays = {"time": np.arange(6.0), "fn": np.ones(5), "vt1": np.ones(6), "vt2": np.zeros(6)}
+    with h5py.File(tmp_path / "h.h5", "w") as f:
+        for k, v in arrays.items():
+            f.create_dataset(f"shock/{k}", data=v)
+    np.savez(tmp_path / "h.npz", **arrays)
+    for name in ("h.h5", "h.npz"):
+        with pytest.raises(HistoryError, match="'normal_force' has 5 samples but 'time' has 6"):
+            read_history(tmp_path / name)
+        for size in (2, 4, 100):
+            with pytest.raises(FormatError, match="different lengths .*'fn': 5"):
+                list(iter_history_chunks(tmp_path / name, chunk_size=size))

@@ -352,6 +352,21 @@ def read_history(path: Any, format: str | None = None, *, units: Mapping[str, st
                          metadata=metadata)
 
 
+def check_lengths(sizes: list[int], names: list[str], label: str) -> int:
+    """The common length of the columns read, or a :class:`FormatError` naming the culprits.
+
+    Examples
+    --------
+    >>> check_lengths([3, 3], ["time", "fn"], "h.npz")
+    3
+    """
+    if len(set(sizes)) > 1:
+        detail = ", ".join(f"{n!r}: {k}" for n, k in zip(names, sizes, strict=True))
+        raise FormatError(f"{label}: the columns used have different lengths ({detail}); every "
+                          "channel needs one value per instant")
+    return sizes[0] if sizes else 0
+
+
 def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
     n = min((a.size for a in arrays), default=0)
     for start in range(0, n, size):
@@ -403,8 +418,13 @@ def iter_history_chunks(path: Any, chunk_size: int = 1_000_000, format: str | No
     source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
                                                          options)
     positions = list(mapping.values())
-    blocks = (source.iter_blocks(positions, size) if source.iter_blocks is not None
-              else _slices(source.read(positions), size))
+    if source.iter_blocks is not None:
+        blocks = source.iter_blocks(positions, size)
+    else:
+        whole = source.read(positions)
+        check_lengths([a.size for a in whole], [source.columns[p] for p in positions],
+                      source.label)
+        blocks = _slices(whole, size)
     channels = list(mapping)
     pending: list[list[np.ndarray]] = []
     pending_rows = 0

@@ -226,7 +226,13 @@ def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         with h5.File(path, "r") as f:
             datasets = [f[gname][names[p]] for p in positions]
-            n = min(d.shape[0] for d in datasets)
+            sizes = [d.shape[0] for d in datasets]
+            if len(set(sizes)) > 1:
+                detail = ", ".join(f"{names[p]!r}: {k}" for p, k in zip(positions, sizes,
+                                                                         strict=True))
+                raise FormatError(f"{path}: the datasets used have different lengths "
+                                  f"({detail}); every channel needs one value per instant")
+            n = sizes[0]
             for start in range(0, n, size):
                 yield [np.asarray(d[start:start + size], dtype=float) for d in datasets]
 
