@@ -178,3 +178,17 @@ def test_function_file_with_several_functions_for_one_channel_is_refused():
                                           r"given for the single channel 'fn'"):
         read_history({"fn": FIXTURES / "fonction_pairs.txt", "vt1": FIXTURES / "fonction_vt1.txt",
                       "vt2": FIXTURES / "fonction_vt2.txt"})
+
+
+def test_function_pairs_file_is_recognised_by_content(tmp_path):
+    # (INST, value) pairs side by side: read as IMPR_FONCTION functions without format=
+    # (values: the literals of fixtures/fonction_pairs.txt).
+    h = read_history(FIXTURES / "fonction_pairs.txt")
+    assert h.metadata["format"] == "aster-function"
+    assert h.time.tolist() == [0.0, 1e-3]
+    assert h.normal_force.tolist() == [0.0, 5.0] and h.vt1.tolist() == [0.01, 0.02]
+    bad = tmp_path / "pairs.txt"
+    bad.write_text("#\n#FONCTION\n INST  FN  INST  VT1\n 0.0  1.0  0.0  2.0\n"
+                   " 1.0  1.0  1.5  2.0\n")
+    with pytest.raises(FormatError, match=r"\(VT1\): instant at row 1 is 1.5 but .*\(FN\) has"):
+        read_history(bad)
