@@ -82,7 +82,9 @@ def test_errors_exit_2_and_name_the_culprit(capsys, ramp_file, args, words):
 
 def test_missing_file(capsys, tmp_path):
     assert main(["power", str(tmp_path / "none.csv")]) == 2
-    assert "none.csv" in capsys.readouterr().err
+    assert "none.csv' does not exist" in capsys.readouterr().err
+    assert main(["power", str(tmp_path)]) == 2
+    assert "is a directory, not a file" in capsys.readouterr().err
 
 
 # --------------------------------------------------------------------------- reading options

@@ -74,7 +74,8 @@ def _history_argument(values: tuple[str, ...]):
             plain.append(value)
     for path in [*keyed.values(), *plain]:
         if not Path(path).is_file():
-            raise click.BadParameter(f"file {path!r} does not exist", param_hint="HISTORY")
+            what = "is a directory, not a file" if Path(path).is_dir() else "does not exist"
+            raise click.BadParameter(f"{path!r} {what}", param_hint="HISTORY")
     if keyed and plain:
         raise click.BadParameter(
             f"mix of CHANNEL=FILE {list(keyed)} and plain files {plain}: give every function "
