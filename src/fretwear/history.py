@@ -277,6 +277,16 @@ def contact_angle(dy, dz) -> np.ndarray:
     dy, dz : array_like
         Local displacements [m] (any common unit).
 
+    Returns
+    -------
+    numpy.ndarray
+        θ [deg] in (-180, 180].
+
+    Notes
+    -----
+    θ = atan2(dz, dy); -180 is folded to +180, and θ = 0 when dy = dz = 0, signed zeros
+    included (SPEC §3).
+
     Examples
     --------
     >>> contact_angle([1.0, 0.0, -1.0, 0.0, -0.0], [0.0, 1.0, -0.0, 0.0, -0.0]).tolist()

@@ -75,6 +75,18 @@ def sector_edges(sectors: int | Sequence[float] | np.ndarray) -> np.ndarray:
 def sector_index(angle, edges: np.ndarray) -> np.ndarray:
     """Index (0-based) of the sector holding each contact angle [deg] in (-180, 180].
 
+    Parameters
+    ----------
+    angle : array_like
+        Contact angles θ [deg] (see :func:`fretwear.history.contact_angle`).
+    edges : numpy.ndarray
+        Sector edges [deg] from :func:`sector_edges`.
+
+    Returns
+    -------
+    numpy.ndarray
+        j such that ``edges[j] < θ <= edges[j+1]`` (θ = -180 goes to sector 0) [-].
+
     Examples
     --------
     >>> sector_index([-180.0, -90.0, -89.0, 0.0, 180.0], sector_edges(4)).tolist()
