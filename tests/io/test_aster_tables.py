@@ -192,3 +192,31 @@ def test_function_pairs_file_is_recognised_by_content(tmp_path):
                    " 1.0  1.0  1.5  2.0\n")
     with pytest.raises(FormatError, match=r"\(VT1\): instant at row 1 is 1.5 but .*\(FN\) has"):
         read_history(bad)
+
+
+def test_table_of_several_shock_points_needs_a_selection(tmp_path):
+    # fixtures/impr_table_tableau.txt with its rows repeated for a second node N13 (values x2):
+    # without select= the mixed table is refused naming NOEUD; select= keeps one node's rows.
+    from fretwear.errors import KeywordError
+
+    lines = TABLEAU.read_text().splitlines()
+    rows = lines[4:]
+    doubled = []
+    for r in rows:
+        cells = r.split()
+        cells[0], cells[2] = "N13", f"{2 * float(cells[2]):12.5E}"  # VINT1 doubled
+        doubled.append(" ".join(cells))
+    path = tmp_path / "two.txt"
+    path.write_text("\n".join(lines[:4] + rows + doubled) + "\n")
+    with pytest.raises(FormatError, match=r"column 'NOEUD' holds several values \['N12', 'N13'\]"
+                                          r".*select=NOEUD=N12"):
+        read_history(path)
+    n12 = read_history(path, select={"NOEUD": "N12"})
+    assert n12.normal_force.tolist() == [0.0, 12.5, 25.0, 12.5, 0.0]
+    n13 = read_history(path, select="noeud=N13")
+    assert n13.time.tolist() == [0.0, 1e-3, 2e-3, 3e-3, 4e-3]
+    assert n13.normal_force.tolist() == [0.0, 25.0, 50.0, 25.0, 0.0]
+    with pytest.raises(KeywordError, match=r"never equals 'N14'; its values: \['N12', 'N13'\]"):
+        read_history(path, select="NOEUD=N14")
+    with pytest.raises(KeywordError, match="give 'COLUMN=VALUE'"):
+        read_history(path, select="NOEUD")

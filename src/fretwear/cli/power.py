@@ -165,7 +165,8 @@ def _print_table(result, caught: list[str]) -> None:
                    "are named 0, 1, ... Repeatable.")
 @click.option("--read-option", "read_options", multiple=True, metavar="KEY=VALUE",
               help="Option of the format's reader: csv delimiter/decimal/comment/header/"
-                   "encoding, hdf5 group, aster index/title (a file holding several tables). "
+                   "encoding, hdf5 group, aster index/title (a file holding several tables) "
+                   "and select=NOEUD=N12 (the rows of one shock point). "
                    "Repeatable.")
 @click.option("--chunk-size", type=click.IntRange(min=2), default=1_000_000, show_default=True,
               help="Samples read per chunk (memory bound).")

@@ -43,9 +43,40 @@ ASTER_NAMES: Mapping[str, str] = MappingProxyType({
     "vt2": "VT2", "dy": "DYLOC", "dz": "DZLOC", "stick": "VINT13"})
 
 
+def _select_rows(frame: Any, select: Any, label: str) -> Any:
+    """Rows of a Code_Aster table where every ``{column: value}`` matches (``"COL=VALUE"`` too)."""
+    if isinstance(select, str):
+        column, sep, value = select.partition("=")
+        if not sep:
+            raise KeywordError(f"select={select!r}: give 'COLUMN=VALUE' (e.g. 'NOEUD=N12') or "
+                               "a mapping {column: value}")
+        select = {column.strip(): value.strip()}
+    if not isinstance(select, Mapping) or not select:
+        raise KeywordError(f"select={select!r}: give a mapping {{column: value}} or "
+                           "'COLUMN=VALUE'")
+    keep = np.ones(len(frame), dtype=bool)
+    names = [str(c) for c in frame.columns]
+    for column, value in select.items():
+        hits = [j for j, c in enumerate(names) if c.upper() == str(column).upper()]
+        if len(hits) != 1:
+            raise KeywordError(f"{label}: select={{{column!r}: ...}}: no single column of that "
+                               f"name; columns: {names}")
+        cells = frame.iloc[:, hits[0]]
+        match = cells.astype(str).str.strip() == str(value).strip()
+        if not match.any():
+            raise KeywordError(f"{label}: select: column {names[hits[0]]!r} never equals "
+                               f"{value!r}; its values: {[str(v) for v in cells.unique()[:10]]}")
+        keep &= match.to_numpy()
+    out = frame.loc[keep].reset_index(drop=True)
+    out.attrs.update(frame.attrs)
+    return out
+
+
 def _open_aster(path: str | os.PathLike, *, index: int | None = None,
-                title: str | None = None) -> Source:
+                title: str | None = None, select: Any = None) -> Source:
     frame = _aster.read_aster_table(path, index=index, title=title)
+    if select is not None:
+        frame = _select_rows(frame, select, str(path))
     names = [str(c) for c in frame.columns]
     if len(names) >= 4 and len(names) % 2 == 0 and len(set(names[0::2])) == 1 \
             and len(set(names[1::2])) == len(names) // 2:
@@ -61,6 +92,8 @@ def _open_aster(path: str | os.PathLike, *, index: int | None = None,
                       read=lambda positions: [arrays[p] for p in positions],
                       metadata={"aster_title": frame.attrs.get("title", "")})
 
+    _check_one_shock(frame, names, str(path))
+
     def read(positions: list[int]) -> list[np.ndarray]:
         out = []
         for p in positions:
@@ -73,6 +106,27 @@ def _open_aster(path: str | os.PathLike, *, index: int | None = None,
 
     return Source(label=str(path), format="aster", columns=names, read=read,
                   metadata={"aster_title": frame.attrs.get("title", "")})
+
+
+def _check_one_shock(frame: Any, names: list[str], label: str) -> None:
+    """Refuse a table mixing several shock points (a text column such as NOEUD with several
+    values while the instants restart), naming the column and a filter to use."""
+    times = [j for j, c in enumerate(names) if channel_of(c) == "time"]
+    if len(times) != 1:
+        return
+    t = frame.iloc[:, times[0]].to_numpy(dtype=float, na_value=np.nan)
+    if t.size < 2 or bool(np.all(np.diff(t) > 0)):
+        return
+    for j, kind in enumerate(frame.attrs.get("types", [])):
+        values = frame.iloc[:, j].dropna().unique() if str(kind).startswith("K") else []
+        if len(values) > 1:
+            shown = [str(v) for v in values[:5]]
+            raise FormatError(
+                f"{label}: column {names[j]!r} holds several values {shown} and the instants "
+                f"of {names[times[0]]!r} restart: the table mixes several shock points; choose "
+                f"one with select={{'{names[j]}': '{shown[0]}'}} (command line: --read-option "
+                f"select={names[j]}={shown[0]}), or print one per table with IMPR_TABLE(..., "
+                f"FILTRE=_F(NOM_PARA='{names[j]}', VALE_K='{shown[0]}'))")
 
 
 def _open_functions(files: Any) -> Source:
@@ -129,7 +183,7 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({
     "npz": FileFormat("npz", (".npz",), _binary.open_npz, _binary.write_npz, (), (),
                       "NumPy .npz archive, one array per channel"),
     "aster": FileFormat("aster", (".resu", ".tab", ".table"), _open_aster, _write_aster,
-                        ("index", "title"), ("table_format", "float_format"),
+                        ("index", "title", "select"), ("table_format", "float_format"),
                         "Code_Aster IMPR_TABLE text table (FORMAT='TABLEAU' or 'ASTER')"),
     "aster-function": FileFormat("aster-function", (), _open_functions, None, (), (),
                                  "Code_Aster IMPR_FONCTION TABLEAU files, one per channel"),
@@ -321,7 +375,9 @@ def read_history(path: Any, format: str | None = None, *, units: Mapping[str, st
         Name of the history; default the name stored in the file, else the file's stem.
     **options
         Options of the format's reader: csv ``delimiter``, ``decimal``, ``comment``,
-        ``header``, ``encoding``; hdf5 ``group``; aster ``index``, ``title``.
+        ``header``, ``encoding``; hdf5 ``group``; aster ``index``, ``title`` (which table of
+        the file) and ``select`` (rows of one shock point: ``{"NOEUD": "N12"}`` or
+        ``"NOEUD=N12"``).
 
     Returns
     -------
