@@ -280,7 +280,8 @@ def test_perforation_is_reported_with_sector_angle_and_depth():
 
 
 def test_discret_round_trip_and_layout(tmp_path):
-    """DISCRET file: 721 rows THETA = 0..360 by 0.5 deg, JEU and R = R_m + JEU; read back."""
+    """DISCRET file: 721 rows THETA = 0..360 by 0.5 deg, JEU and R (the same clearance under
+    Code_Aster's name); read back."""
     angles = np.arange(720) * 0.5
     gaps = 0.5e-3 + 0.1e-3 * np.sin(np.radians(3 * angles)) ** 2
     prof = DiscreteObstacle(angles, gaps, RM)
@@ -296,21 +297,62 @@ def test_discret_round_trip_and_layout(tmp_path):
     from fretwear.io.aster import read_aster_table  # the same file is a Code_Aster TABLEAU
 
     frame = read_aster_table(path)
-    np.testing.assert_allclose(frame["R"] - frame["JEU"], RM, rtol=1e-9)
+    np.testing.assert_array_equal(frame["R"], frame["JEU"])
+    np.testing.assert_allclose(frame["JEU"].to_numpy()[:-1], gaps, rtol=1e-10)
     radii_only = tmp_path / "radii.txt"
-    radii_only.write_text("THETA R\n0 0.01\n120 0.011\n240 0.012\n")
+    radii_only.write_text("THETA RADIUS\n0 0.01\n120 0.011\n240 0.012\n")
     d = read_discret(radii_only, mobile_radius=0.0095)
     assert d.gap(60.0) == pytest.approx(1.0e-3, rel=1e-12)  # linear in angle: (0.5+1.5)/2 mm
 
 
+def test_code_aster_discret_table_is_read_as_the_clearance(tmp_path):
+    """A Code_Aster-style DISCRET obstacle (SPEC §8: 721 points 0..360 by 0.5°, 0.5 mm when
+    new), ASTER layout with string columns LIEU/TYPE and THETA, R: R is the clearance, the
+    string columns are ignored, and a new 0.5 mm figure gives a bore of gap 0.5 mm. An R
+    column holding radii (>= R_m) is refused with the fix (name it RADIUS)."""
+    theta = np.arange(721) * 0.5
+    lines = ["#DEBUT_TABLE", "#TITRE obstacle DISCRET", "LIEU TYPE THETA R", "K8 K24 R R"]
+    lines += [f"DEFIOBST DISCRET {t:12.5E} {5e-4:12.5E}" for t in theta]
+    lines.append("#FIN_TABLE")
+    path = tmp_path / "aster_discret.tab"
+    path.write_text("\n".join(lines) + "\n")
+    d = read_discret(path, mobile_radius=RM)
+    assert d.angles.size == 720 and d.angles[-1] == 359.5
+    np.testing.assert_array_equal(d.gaps, 5e-4)
+    r = update_obstacle(d, Mobile(RM, WALL), 1, [0.0], width=WIDTH, resolution=0.5)
+    np.testing.assert_allclose(r.clearance_initial, 5e-4, rtol=0, atol=1e-12)  # R_o − R_m
+    bad = tmp_path / "radii_as_r.txt"
+    bad.write_text("THETA R\n0 0.01\n120 0.011\n240 0.012\n")
+    from fretwear.errors import FormatError
+
+    with pytest.raises(FormatError, match="name the column RADIUS"):
+        read_discret(bad, mobile_radius=RM)
+
+
 def test_worn_figure_file_feeds_the_next_dynamics(tmp_path):
+    """The DISCRET file of the worn figure, read back by load_obstacle_profile and by the
+    dynamics' own loader ([dynamics.shocks] obstacle = "profile", profile_file): the shock
+    gets the 720 angles 0..359.5 deg and the worn clearances written (11 digits)."""
     vm = np.zeros(10)
     vm[5] = 1e-9
     r = update_obstacle(CircleObstacle(RM, RO), Mobile(RM, WALL), EDGES10, vm, width=WIDTH,
                         resolution=0.25)
-    prof = load_obstacle_profile(r.write_discret(tmp_path / "worn.txt"))
+    path = r.write_discret(tmp_path / "worn.txt")
+    prof = load_obstacle_profile(path)
     np.testing.assert_allclose(prof.gap(r.angle), r.clearance_worn, rtol=1e-10)
     np.testing.assert_allclose(prof.radius([18.0]), RM + r.clearance_worn[36], rtol=1e-10)
+    dynamics = pytest.importorskip("fretwear.dynamics.config")
+    setup = dynamics.dynamics_from_config({
+        "duration_s": 0.1,
+        "modes": {"frequencies_Hz": [10.0], "damping_ratios": [0.01], "masses_kg": [1.0],
+                  "shock_shapes": [[[1.0], [1.0]]]},
+        "shocks": [{"point": 0, "obstacle": "profile", "profile_file": path.name,
+                    "normal_stiffness_N_per_m": 1e6}],
+        "forces": [{"point": 0, "direction": "y", "kind": "harmonic", "amplitude": 1.0,
+                    "frequency_Hz": 5.0}]}, directory=tmp_path)
+    shock = setup.shocks[0]
+    np.testing.assert_allclose(shock.profile_angles, r.angle[:-1], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(shock.profile_gaps, r.clearance_worn[:-1], rtol=1e-10)
 
 
 def _table(names="native"):
@@ -550,9 +592,10 @@ def test_discret_reader_errors_name_file_and_line(tmp_path):
     with pytest.raises(FormatError, match=r"bad.txt: line 2: .*THETA"):
         read_discret(bad)
     bad.write_text("THETA JEU\n0 5e-4\n90 abc\n")
-    with pytest.raises(FormatError, match=r"bad.txt: line 3: a cell is not a number"):
+    with pytest.raises(FormatError, match=r"bad.txt: line 3: a cell of \['THETA', 'JEU'\] is "
+                                          "not a number"):
         read_discret(bad)
-    bad.write_text("THETA R\n0 0.01\n120 0.01\n240 0.01\n")
+    bad.write_text("THETA RADIUS\n0 0.01\n120 0.01\n240 0.01\n")
     with pytest.raises(FormatError, match="mobile radius"):
         read_discret(bad)
     with pytest.raises(FormatError, match="not found"):

@@ -21,17 +21,20 @@ Three obstacle models share one interface (``radius``, ``gap``, ``mobile_radius`
 DISCRET file layout adopted (a Code_Aster IMPR_TABLE 'TABLEAU'-style text table)::
 
     #
-    # fretwear DISCRET obstacle: clearance figure, angle THETA [deg], gap JEU [m], radius R [m]
+    # fretwear DISCRET obstacle: clearance figure, angle THETA [deg], clearance JEU [m] = R [m]
     # mobile_radius = 9.50000000000E-03
     #
     THETA JEU R
-     0.0000000000E+00  5.0000000000E-04  1.0000000000E-02
+     0.0000000000E+00  5.0000000000E-04  5.0000000000E-04
      ...                (721 rows, THETA = 0, 0.5, ..., 360; the last row repeats the first)
 
-``JEU`` is the radial clearance seen from the mobile (0.5 mm for a new Code_Aster DISCRET
-obstacle) and ``R = mobile_radius + JEU``. The reader accepts THETA with JEU, or THETA with R and a
-mobile radius (header line or argument), native names ``angle``/``gap``/``radius`` too, any
-increasing angle grid covering one turn, and '-' or NaN cells nowhere.
+``JEU`` is the clearance seen from the mobile (0.5 mm for a new Code_Aster DISCRET obstacle,
+SPEC §8); ``R`` repeats it under the name Code_Aster's obstacle tables give the polar radius of
+the clearance figure, so a Code_Aster reader taking (THETA, R) gets the clearance too. The
+reader accepts THETA with JEU (preferred) or with R (Code_Aster: the clearance), or with RADIUS
+(the obstacle boundary's radius R_m + gap, which needs a mobile radius from the header line or
+the argument); native names ``angle``/``gap``/``radius`` too; other columns (e.g. Code_Aster's
+LIEU, TYPE) are ignored; any increasing angle grid covering one turn; no '-' or NaN cells.
 """
 
 from __future__ import annotations
@@ -401,15 +404,12 @@ def write_discret(path, obstacle, *, step: float = DISCRET_STEP, gaps=None,
     g = obstacle.gap(a) if gaps is None else np.asarray(gaps, dtype=float)
     if g.shape != a.shape:
         raise InputError(f"write_discret: {g.size} gaps for {a.size} angles (step {step} deg)")
-    lines = ["#", f"# {title}: clearance figure, angle THETA [deg], gap JEU [m], radius R [m]"]
+    lines = ["#", f"# {title}: clearance figure, angle THETA [deg], clearance JEU [m] = R [m]"]
     if rm is not None:
         lines.append(f"# mobile_radius = {rm:.11E}")
-    lines += ["#", "THETA JEU R" if rm is not None else "THETA JEU"]
+    lines += ["#", "THETA JEU R"]
     for ai, gi in zip(a, g, strict=True):
-        row = f"{ai: .10E} {gi: .10E}"
-        if rm is not None:
-            row += f" {rm + gi: .10E}"
-        lines.append(row)
+        lines.append(f"{ai: .10E} {gi: .10E} {gi: .10E}")
     target = Path(path)
     with atomic_write(target, "w", encoding="utf-8") as fh:
         fh.write("\n".join(lines) + "\n")
@@ -417,7 +417,7 @@ def write_discret(path, obstacle, *, step: float = DISCRET_STEP, gaps=None,
 
 
 _ALIASES = {"THETA": "THETA", "ANGLE": "THETA", "ANGLE_DEG": "THETA",
-            "JEU": "JEU", "GAP": "JEU", "R": "R", "RAYON": "R", "RADIUS": "R"}
+            "JEU": "JEU", "GAP": "JEU", "R": "R", "RAYON": "RADIUS", "RADIUS": "RADIUS"}
 
 
 def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacle:
@@ -427,11 +427,12 @@ def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacl
     ----------
     path : str or path-like
         Text file: '#' comment lines (``# mobile_radius = ...`` is read), a line of column names
-        (THETA and JEU, or THETA and R; native names angle/gap/radius accepted; other columns
-        ignored), then numeric rows. Code_Aster's ``#DEBUT_TABLE``/``#FIN_TABLE`` and type lines
-        (``R``, ``K8``...) are skipped.
+        (THETA with JEU, or R = Code_Aster's name of the clearance, or RADIUS = R_m + clearance;
+        native names angle/gap/radius accepted; other columns ignored), then rows.
+        Code_Aster's ``#DEBUT_TABLE``/``#FIN_TABLE`` and type lines (``R``, ``K8``...) are
+        skipped.
     mobile_radius : float, optional
-        Mobile outer radius [m]; overrides the header; needed when only R is given.
+        Mobile outer radius [m]; overrides the header; needed when only RADIUS is given.
 
     Returns
     -------
@@ -460,10 +461,12 @@ def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacl
         cells = line.replace(",", " ").replace(";", " ").split()
         if names is None:
             names = [_ALIASES.get(c.strip('"').upper(), c.upper()) for c in cells]
-            if "THETA" not in names or not ({"JEU", "R"} & set(names)):
+            if "THETA" not in names or not ({"JEU", "R", "RADIUS"} & set(names)):
                 raise FormatError(
                     f"{p}: line {lineno}: the column names {cells} need THETA (angle [deg]) and "
-                    "JEU (gap [m]) or R (radius [m])")
+                    "JEU or R (clearance [m]), or RADIUS (obstacle radius R_m + clearance [m])")
+            value = next(c for c in ("JEU", "R", "RADIUS") if c in names)
+            wanted = [names.index("THETA"), names.index(value)]
             continue
         if all(re.fullmatch(r"[A-Z]\d*", c.upper()) for c in cells):  # ASTER type line: R K8
             continue
@@ -471,22 +474,26 @@ def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacl
             raise FormatError(
                 f"{p}: line {lineno} has {len(cells)} cells, expected {len(names)} ({names})")
         try:
-            rows.append([float(c.replace("D", "E").replace("d", "e")) for c in cells])
+            rows.append([float(cells[i].replace("D", "E").replace("d", "e")) for i in wanted])
         except ValueError:
-            raise FormatError(f"{p}: line {lineno}: a cell is not a number: {line!r}") from None
+            raise FormatError(f"{p}: line {lineno}: a cell of {[names[i] for i in wanted]} is not "
+                              f"a number: {line!r}") from None
     if names is None or not rows:
         raise FormatError(f"{p}: no DISCRET table found (need a THETA JEU header and rows)")
     data = np.array(rows)
     rm = mobile_radius if mobile_radius is not None else header_rm
-    theta = data[:, names.index("THETA")]
-    if "JEU" in names:
-        gaps = data[:, names.index("JEU")]
-    else:
+    theta, gaps = data[:, 0], data[:, 1]
+    if value == "RADIUS":
         if rm is None:
             raise FormatError(
-                f"{p}: the table gives radii R but no mobile radius: add a '# mobile_radius = ...'"
-                " header line or pass mobile_radius=")
-        gaps = data[:, names.index("R")] - float(rm)
+                f"{p}: the table gives obstacle radii (RADIUS) but no mobile radius: add a "
+                "'# mobile_radius = ...' header line or pass mobile_radius=")
+        gaps = gaps - float(rm)
+    elif value == "R" and rm is not None and gaps.min() >= float(rm):
+        raise FormatError(
+            f"{p}: column R holds {gaps.min():g}..{gaps.max():g} m, not less than the mobile "
+            f"radius {float(rm):g} m: in a DISCRET table R is the clearance (0.5e-3 m for a new "
+            "Code_Aster obstacle); if these are radii of the obstacle, name the column RADIUS")
     try:
         return DiscreteObstacle(theta, gaps, rm)
     except InputError as exc:
