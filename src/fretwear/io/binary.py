@@ -162,6 +162,7 @@ def write_parquet(history: ContactHistory, path: str | os.PathLike, *,
 # --------------------------------------------------------------------------- HDF5
 def _find_group(h5: Any, handle: Any, group: str | None, path: Path) -> Any:
     if group is not None:
+        group = str(group)  # a numeric group name typed on the command line
         if group not in handle or not isinstance(handle[group], h5.Group):
             raise FormatError(f"{path}: no group {group!r}; groups: {_groups(h5, handle)}")
         return handle[group]
