@@ -553,9 +553,10 @@ def test_random_non_circular_case_matches_brute_force_search():
         assert got == pytest.approx(ref, abs=1e-12), direction
 
 
-def test_volume_beyond_the_wedge_is_nan_with_a_range_warning():
+def test_volume_beyond_the_wedge_is_nan_with_a_range_warning(tmp_path):
     """2V/(lΔθ) > R_m² (SPEC §6: beyond the range, NaN and a warning naming the limit): the
-    mobile depth is NaN, the perforation is reported, the clearance is undefined (NaN)."""
+    mobile depth is NaN, the perforation is reported, the clearance is undefined (NaN); no
+    DISCRET file is written for it (error naming the cause), the figure says so."""
     from fretwear.errors import RangeWarning
 
     vm = np.zeros(10)
@@ -566,6 +567,16 @@ def test_volume_beyond_the_wedge_is_nan_with_a_range_warning():
                             width=WIDTH, resolution=1.0)
     assert math.isnan(r.depth.sector_depth_mobile[4]) and r.perforated_sectors == (5,)
     assert np.isnan(r.clearance_worn).all() and not np.isnan(r.clearance_initial).any()
+    with pytest.raises(InputError, match=r"no DISCRET obstacle written.*sectors \[5\]"):
+        r.write_discret(tmp_path / "worn.txt")
+    assert not (tmp_path / "worn.txt").exists()
+    from fretwear.plotting.obstacle import obstacle_figure
+
+    fig = obstacle_figure(r)
+    assert "worn: undefined" in fig.axes[0].get_title()
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
 
 
 def test_touching_obstacle_zero_gap():

@@ -110,3 +110,28 @@ def test_example_case_runs_the_wear_case_then_the_update(tmp_path, capsys):
     p = pd.read_csv(out)
     assert (p["clearance_worn"] >= p["clearance_initial"] - 1e-15).all()
     assert p["clearance_worn"].max() > p["clearance_initial"].max()
+
+
+def test_planes_options_step_and_closing_circle(tmp_path, capsys):
+    """Two planes, normal at 30°, gaps 0.4 / 0.2 mm, closed by a circle of radius 50 mm, on a
+    2° grid: the new clearance is g/|cos ψ| (closed form: the disk's normal travel reaches the
+    gap) and, along the planes (ψ = ±90°), the disk touches the closing circle at
+    s = R_c − R_m. Options that describe planes without --plane-gap are refused."""
+    table = _wear_table(tmp_path / "wear.csv", 0.0, 0.0)
+    args = ["obstacle", "--table", str(table), "--mobile-radius", str(RM), "--wall-thickness",
+            str(WALL), "--width", str(WIDTH)]
+    out = tmp_path / "planes.csv"
+    assert main(args + ["--plane-gap", "4e-4", "--plane-gap-opposite", "2e-4", "--orientation",
+                        "30", "--closing-radius", "0.05", "--step", "2", "-o", str(out)]) == 0
+    p = pd.read_csv(out)
+    assert len(p) == 181 and p["angle"].iloc[1] == 2.0
+    c = np.cos(np.radians(p["angle"] - 30.0))
+    sel = np.abs(c) > 0.3
+    expected = np.where(c > 0, 4e-4, 2e-4) / np.abs(c)
+    np.testing.assert_allclose(p["clearance_initial"][sel], expected[sel], rtol=1e-9)
+    along = p["angle"].isin([120.0, 300.0])
+    np.testing.assert_allclose(p["clearance_initial"][along], 0.05 - RM, rtol=1e-6)
+    np.testing.assert_array_equal(p["clearance_worn"], p["clearance_initial"])  # no wear
+    capsys.readouterr()
+    assert main(args + ["--gap", str(GAP), "--orientation", "30"]) == 2
+    assert "--orientation describe two planes" in capsys.readouterr().err

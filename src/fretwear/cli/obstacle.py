@@ -68,8 +68,11 @@ def _summary(result, echo) -> None:
                                              "--orientation [m].")
 @click.option("--plane-gap-opposite", type=float, help="Two planes: gap to the opposite plane "
                                                       "[m].")
-@click.option("--orientation", type=float, default=0.0, show_default=True,
-              help="Two planes: angle of the first plane's normal [deg].")
+@click.option("--orientation", type=float,
+              help="Two planes: angle of the first plane's normal [deg] (default 0).")
+@click.option("--closing-radius", type=float,
+              help="Two planes: radius of the far circle closing the figure [m] (default "
+                   "100 × (R_m + gap)).")
 @click.option("--discrete", "discrete_file", type=click.Path(exists=True, dir_okay=False,
                                                               path_type=Path),
               help="NEW obstacle as a DISCRET table (THETA [deg], JEU [m]).")
@@ -79,6 +82,8 @@ def _summary(result, echo) -> None:
               help="PERCEMENT: perforation at depth > this × wall thickness (default 1.0).")
 @click.option("--resolution", type=float, help="Angular step of the exact search [deg] "
                                               "(default 0.05).")
+@click.option("--step", type=float, help="Angular step of the output grid [deg] (default 0.5: "
+                                        "Code_Aster's 721 points).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
               help="Profile table: .csv, or a Code_Aster TABLEAU for any other suffix.")
 @click.option("--format", "fmt", type=click.Choice(["csv", "TABLEAU", "ASTER"],
@@ -90,8 +95,9 @@ def _summary(result, echo) -> None:
               help="Write obstacle_polar.png and .svg into this directory.")
 @click.option("-q", "--quiet", is_flag=True, help="No summary.")
 def command(case_file, table_path, instant, mobile_radius, wall_thickness, width, gap,
-            bore_radius, plane_gap, plane_gap_opposite, orientation, discrete_file, shape,
-            perforation, resolution, output, fmt, discret_path, plot_dir, quiet) -> None:
+            bore_radius, plane_gap, plane_gap_opposite, orientation, closing_radius,
+            discrete_file, shape, perforation, resolution, step, output, fmt, discret_path,
+            plot_dir, quiet) -> None:
     from fretwear.errors import FretwearWarning, KeywordError
     from fretwear.obstacle import obstacle_from_config
 
@@ -114,7 +120,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
         raise click.UsageError("give a case file CASE.toml or --table WEAR_TABLE")
     overrides = {"mobile_radius_m": mobile_radius, "wall_thickness_m": wall_thickness,
                  "width_m": width, "shape": shape, "perforation": perforation,
-                 "instant": instant, "resolution_deg": resolution}
+                 "instant": instant, "resolution_deg": resolution, "step_deg": step}
     section.update({k: v for k, v in overrides.items() if v is not None})
     models = {"gap_m": gap, "bore_radius_m": bore_radius, "plane_gap_m": plane_gap,
               "file": None if discrete_file is None else str(discrete_file.resolve())}
@@ -122,15 +128,24 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
     if len(given) > 1:
         raise click.UsageError("give one obstacle: --gap, --bore-radius, --plane-gap or "
                                "--discrete")
+    if plane_gap is None:
+        stray = [opt for opt, v in (("--plane-gap-opposite", plane_gap_opposite),
+                                    ("--orientation", orientation),
+                                    ("--closing-radius", closing_radius)) if v is not None]
+        if stray:
+            raise click.UsageError(f"{', '.join(stray)} describe two planes: give --plane-gap "
+                                   "too (or put the planes in the case's [obstacle] section)")
     if given:
         for key in ("type", "gap_m", "bore_radius_m", "plane_gap_m", "plane_gap_opposite_m",
                     "orientation_deg", "file", "closing_radius_m"):
             section.pop(key, None)
         section.update(given)
         if plane_gap is not None:
-            section.update(type="planes", orientation_deg=orientation)
-            if plane_gap_opposite is not None:
-                section["plane_gap_opposite_m"] = plane_gap_opposite
+            section["type"] = "planes"
+            for key, v in (("orientation_deg", orientation), ("closing_radius_m", closing_radius),
+                           ("plane_gap_opposite_m", plane_gap_opposite)):
+                if v is not None:
+                    section[key] = v
         elif discrete_file is not None:
             section["type"] = "discrete"
     if table_path is not None:
@@ -162,10 +177,10 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
     plot_dir = plot_dir if plot_dir is not None else setup.plot
     if output is not None:
         echo(f"profile table written to {result.write(output, format=fmt)}")
-    if discret_path is not None:
-        echo(f"DISCRET obstacle written to {result.write_discret(discret_path)}")
     if plot_dir is not None:
         from fretwear.plotting.obstacle import plot_obstacle
 
         files = plot_obstacle(result, plot_dir)
         echo(f"figures written to {plot_dir}: " + ", ".join(f.name for f in files))
+    if discret_path is not None:
+        echo(f"DISCRET obstacle written to {result.write_discret(discret_path)}")

@@ -268,7 +268,20 @@ class ObstacleResult:
                                  float_format="%17.10E")
 
     def write_discret(self, path) -> Path:
-        """Write the worn clearance figure as a DISCRET file (read by ``load_obstacle_profile``)."""
+        """Write the worn clearance figure as a DISCRET file (read by ``load_obstacle_profile``).
+
+        Raises
+        ------
+        InputError
+            When the worn clearance is undefined (NaN: a mobile depth past its centre).
+        """
+        bad = ~np.isfinite(self.clearance_worn)
+        if bad.any():
+            raise InputError(
+                f"no DISCRET obstacle written to {str(path)!r}: the worn clearance is undefined "
+                f"(NaN) in {int(bad.sum())} of {bad.size} directions because a mobile depth is "
+                f"beyond its centre (perforated sectors {list(self.perforated_sectors)}); use an "
+                "earlier instant")
         step = float(self.angle[1] - self.angle[0])
         title = "fretwear worn obstacle (MODI_OBSTACLE)" + (
             f" at INST = {self.instant:g}" if self.instant is not None else "")

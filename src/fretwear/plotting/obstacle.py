@@ -18,7 +18,9 @@ def obstacle_figure(result):
     """A matplotlib figure of an obstacle update.
 
     Left: polar plot of the clearance figure, new and worn [mm] against the direction [deg],
-    the sector edges drawn as spokes and perforated sectors shaded. Right: worn depths of the
+    the sector edges drawn as spokes and perforated sectors shaded; the radial axis is clipped
+    at 5 × the 10th percentile of the clearances when larger ones exist (the directions along
+    two planes), and said so in the title. Right: worn depths of the
     mobile and of the obstacle [mm] against the angle [deg].
 
     Parameters
@@ -35,23 +37,37 @@ def obstacle_figure(result):
     theta = np.radians(result.angle)
     ax.plot(theta, result.clearance_initial * 1e3, color="0.4", lw=1.2, ls="--", label="new")
     ax.plot(theta, result.clearance_worn * 1e3, color="C3", lw=1.6, label="worn")
-    top = np.nanmax(np.concatenate([result.clearance_initial, result.clearance_worn])) * 1e3
+    both = np.concatenate([result.clearance_initial, result.clearance_worn]) * 1e3
+    top = np.nanmax(both)
+    # between planes the directions along them see the far closing circle (~100 × the gap):
+    # clip the radial axis at 5 × the 10th percentile so the contact region stays readable
+    cap = 5.0 * np.nanpercentile(both, 10) if np.isfinite(both).any() else np.nan
+    clipped = bool(np.isfinite(cap) and cap > 0 and top > cap)
+    if clipped:
+        top = cap
     edges = result.depth.edges
     for e in edges[:-1]:
         ax.plot([np.radians(e)] * 2, [0, top], color="0.85", lw=0.6, zorder=0)
     for j in result.perforated_sectors:
         span = np.radians(np.linspace(edges[j - 1], edges[j], 30))
         ax.fill_between(span, 0, top, color="C3", alpha=0.12, lw=0)
-    low = np.nanmin(np.concatenate([result.clearance_initial, result.clearance_worn])) * 1e3
-    if np.isfinite(low) and np.isfinite(top) and top > low:
-        ax.set_ylim(max(0.0, low - 1.5 * (top - low)), top + 0.05 * (top - low))
+    low = np.nanmin(both)
+    if np.isfinite(low) and np.isfinite(top) and top > 0:
+        # a span of at least 2 % of the clearance: rounding noise (1e-15 m) is not zoomed into
+        span = max(top - low, 0.02 * top)
+        ax.set_ylim(max(0.0, low - 1.5 * span), top + 0.05 * span)
     from matplotlib.ticker import MaxNLocator
 
     ax.yaxis.set_major_locator(MaxNLocator(4))
     ax.set_rlabel_position(100)
     ax.tick_params(axis="y", labelsize=7)
-    ax.set_title("clearance [mm] (radial axis does not start at 0)"
-                 if ax.get_ylim()[0] > 0 else "clearance [mm]", pad=14, fontsize=10)
+    title = ("clearance [mm] (radial axis does not start at 0)" if ax.get_ylim()[0] > 0
+             else "clearance [mm]")
+    if clipped:
+        title += f"\nclipped at {top:.3g} mm (largest {np.nanmax(both):.3g} mm)"
+    if not np.isfinite(result.clearance_worn).any():
+        title += "\nworn: undefined (mobile worn past its centre)"
+    ax.set_title(title, pad=14, fontsize=10)
     ax.legend(loc="lower left", bbox_to_anchor=(-0.15, -0.12), fontsize=8)
     ax2 = fig.add_subplot(1, 2, 2)
     ang = np.mod(result.angle + 180.0, 360.0) - 180.0
