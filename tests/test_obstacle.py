@@ -385,6 +385,10 @@ def test_table_native_and_aster_names_give_the_same_update(tmp_path):
     inst, edges, vm, vo = sector_volumes(_table(), instant=1.0)
     assert edges.tolist() == [-180.0, -90.0, 0.0, 90.0, 180.0]
     assert vm.tolist() == [0, 1e-9, 0, 0] and vo.tolist() == [0, 5e-10, 0, 0]
+    glob = pd.DataFrame({"instant": [1.0], "volume_mobile_cumulated": [1e-9],
+                         "volume_obstacle_cumulated": [5e-10]})  # a global row, no sector
+    mixed = pd.concat([glob, _table()], ignore_index=True)
+    assert sector_volumes(mixed, instant=1.0)[2].tolist() == [0, 1e-9, 0, 0]
 
 
 def test_profile_table_outputs(tmp_path):
@@ -463,6 +467,11 @@ def test_config_builds_models_and_runs(tmp_path):
     p = obstacle_from_config({"type": "planes", "plane_gap_m": 3e-4, "orientation_deg": 90,
                               "mobile_radius_m": RM, "wall_thickness_m": WALL})
     assert float(p.obstacle.gap(90.0)) == pytest.approx(3e-4, rel=1e-12)
+    from fretwear.errors import UnusedKeywordWarning
+
+    with pytest.warns(UnusedKeywordWarning, match="'planes' does not use gap_m"):
+        obstacle_from_config({"type": "planes", "plane_gap_m": 3e-4, "gap_m": 1e-4,
+                              "mobile_radius_m": RM, "wall_thickness_m": WALL})
 
 
 @pytest.mark.parametrize("kind,direction", [("smooth-circle", 18.0), ("smooth-circle", 90.0),

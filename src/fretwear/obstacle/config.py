@@ -19,12 +19,13 @@ Keys carry their unit in their name, like the rest of the case file; every key i
 from __future__ import annotations
 
 import difflib
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from fretwear.errors import KeywordError
+from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.obstacle.clearance import RESOLUTION
 from fretwear.obstacle.depth import DEPTH_SHAPES
 from fretwear.obstacle.profiles import (
@@ -63,6 +64,14 @@ OBSTACLE_KEYS: dict[str, tuple[type | tuple[type, ...], str]] = {
     "output": (str, "profile table to write (.csv, or Code_Aster TABLEAU otherwise)"),
     "discret": (str, "DISCRET obstacle file of the worn clearance figure to write"),
     "plot": (str, "directory for the polar plot (obstacle_polar.png and .svg)"),
+}
+
+
+#: The keys that belong to one obstacle type (a key of another type is ignored, with a warning).
+_MODEL_KEYS: dict[str, tuple[str, ...]] = {
+    "circle": ("gap_m", "bore_radius_m"),
+    "planes": ("plane_gap_m", "plane_gap_opposite_m", "orientation_deg", "closing_radius_m"),
+    "discrete": ("file",),
 }
 
 
@@ -129,6 +138,11 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
     KeywordError
         An unknown key (with the closest valid one), a missing one, a wrong type.
 
+    Warns
+    -----
+    UnusedKeywordWarning
+        A key of another obstacle type (e.g. ``gap_m`` with ``type = "planes"``).
+
     Examples
     --------
     >>> s = obstacle_from_config({"obstacle": {"gap_m": 5e-4, "wall_thickness_m": 1e-3},
@@ -170,6 +184,11 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
         raise KeywordError(f"[obstacle] type = {model!r} is unknown"
                            f"{f' (did you mean {close[0]!r}?)' if close else ''}; choose one of "
                            f"{', '.join(OBSTACLE_MODELS)}")
+    unused = [k for kind, keys in _MODEL_KEYS.items() if kind != model for k in keys
+              if k in config]
+    if unused:
+        warnings.warn(f"[obstacle] type = {model!r} does not use {', '.join(unused)} (keys of "
+                      f"another obstacle type): ignored", UnusedKeywordWarning, stacklevel=2)
     if model == "circle":
         if "gap_m" in config and "bore_radius_m" in config:
             raise KeywordError("[obstacle]: give gap_m or bore_radius_m, not both")

@@ -92,7 +92,8 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
         Sector-mode wear table, native (``instant``, ``sector``, ``angle_start``, ``angle_end``,
         ``volume_mobile_cumulated``, ``volume_obstacle_cumulated``) or Code_Aster names (INST,
         SECTEUR, ANGLE_DEBUT, ANGLE_FIN, V_USUR_TUBE_CUMU, V_USUR_OBST_CUMU). The obstacle
-        column may be absent or empty at that instant (no obstacle wear: zero volumes).
+        column may be absent or empty at that instant (no obstacle wear: zero volumes). Rows
+        with neither angle (global rows of a mixed table) are skipped.
     instant : float, optional
         Instant [user time unit] to read (default the last one).
 
@@ -136,6 +137,9 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
                 f"{' ...' if available.size > 20 else ''}; pick one of them")
         chosen = float(available[np.flatnonzero(hit)[0]])
     rows = np.flatnonzero(np.isclose(inst, chosen, rtol=1e-9, atol=1e-12 * max(1.0, abs(chosen))))
+    sector_rows = rows[np.isfinite(start[rows]) | np.isfinite(end[rows])]
+    if sector_rows.size:  # rows without any angle are global rows of a mixed table: skip them
+        rows = sector_rows
     order = rows[np.argsort(start[rows], kind="stable")]
     s, e = start[order], end[order]
     label = (lambda k: f"sector {int(sec_col.iloc[order[k]])}") if sec_col is not None else (
