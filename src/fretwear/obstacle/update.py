@@ -370,8 +370,8 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
 
     References
     ----------
-    SPEC §3 (sector depths) and §8 (obstacle update); Code_Aster R7.20.01 (POST_USURE) §5-§6,
-    whose MODI_OBSTACLE this replaces.
+    SPEC §3 (sector depths) and §8 (obstacle update); the Code_Aster theory note of the wear
+    operator POST_USURE (SPEC's reference document), whose MODI_OBSTACLE step this replaces.
 
     Examples
     --------
