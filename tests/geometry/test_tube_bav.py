@@ -143,3 +143,22 @@ def test_range_beyond_tube_radius():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert geometry.depth_from_volume(geometry.max_volume)[0] == pytest.approx(R, rel=1e-12)
+
+
+def test_bar_without_wear_has_exactly_zero_depth():
+    """SPEC §6 TUBE_BAV: d_m = D·V_m/V, d_o = D − d_m; with V_o = 0 the share is exactly 1, so
+    d_m = D and d_o = 0 exactly (no rounding residue such as 3e-21 m in a service-life table)."""
+    import numpy as np
+
+    from fretwear.geometry import contact_geometry
+
+    for tilt in (0.0, 1.0):
+        g = contact_geometry("TUBE_BAV", mobile_radius=9.525e-3, obstacle_width=12.7e-3,
+                             tilt_angle=tilt)
+        v = np.array([1e-12, 3.7e-10, 1.1e-9, 5.3e-9])
+        d_m, d_o = g.depth_from_volume(v, 0.0)
+        assert np.all(d_o == 0.0)
+        d_total, _ = g.depth_from_volume(v)
+        np.testing.assert_array_equal(d_m, d_total)
+        v_m, v_o = g.volume_from_depth(d_m, 0.0)
+        assert np.all(v_o == 0.0)

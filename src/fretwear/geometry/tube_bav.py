@@ -200,7 +200,8 @@ class TubeBav(ContactGeometry):
                                  self.angle("tilt_angle"))
         depth = np.where(depth <= self.max_depth, depth, np.nan)
         with np.errstate(invalid="ignore", divide="ignore"):
-            depth_mobile = np.where(total > 0.0, depth * volume_mobile / total, 0.0)
+            # the share first: exactly 1 when the bar does not wear, so d_o is exactly 0
+            depth_mobile = np.where(total > 0.0, depth * (volume_mobile / total), 0.0)
         depth_mobile = np.where(np.isnan(depth), np.nan, depth_mobile)
         depth_obstacle = np.where(total > 0.0, depth - depth_mobile, 0.0)
         depth_obstacle = np.where(np.isnan(depth), np.nan, np.maximum(depth_obstacle, 0.0))
@@ -213,6 +214,6 @@ class TubeBav(ContactGeometry):
         total = flat_trace_volume(np.where(valid, depth, 0.0), self.mobile_radius,
                                   self.obstacle_width, self.angle("tilt_angle")) / cos_impact
         with np.errstate(invalid="ignore", divide="ignore"):
-            volume_mobile = np.where(depth > 0.0, total * depth_mobile / depth, 0.0)
-            volume_obstacle = np.where(depth > 0.0, total * depth_obstacle / depth, 0.0)
+            volume_mobile = np.where(depth > 0.0, total * (depth_mobile / depth), 0.0)
+            volume_obstacle = np.where(depth > 0.0, total * (depth_obstacle / depth), 0.0)
         return (np.where(valid, volume_mobile, np.nan), np.where(valid, volume_obstacle, np.nan))
