@@ -178,3 +178,57 @@ def test_restart_from_a_multi_table_code_aster_file(tmp_path):
         run_case({**case, "restart": {"table": "two.tab"}})
     with pytest.raises(KeywordError, match=r"table_index and instant need \[restart\] table"):
         run_case({**case, "restart": {"table_index": 0}})
+
+
+DATABASE_CASE = """
+[power]
+value_W = 0.01
+[law]
+materials = ["I600", "A405"]
+{database}
+[geometry]
+contact_type = "TUBE_BAV"
+mobile_radius_m = 0.0111
+obstacle_width_m = 0.0127
+[time]
+instants = [1, 2]
+unit = "year"
+"""
+HEADER = "contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
+
+
+def test_law_database_files_relative_to_the_case(tmp_path):
+    """Seed §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹; `[law] database` files (relative to the case
+    file, later wins) replace it, and V = K·P·t (SPEC §4) scales by the ratio of the K's."""
+    (tmp_path / "coefs").mkdir()
+    (tmp_path / "coefs" / "a.csv").write_text(HEADER + "TUBE_BAV,I600,A405,ARCHARD,COEF_USURE,"
+                                              "3.1e-14,1/Pa\n", encoding="utf-8")
+    (tmp_path / "coefs" / "b.csv").write_text(HEADER + "TUBE_BAV,I600,A405,ARCHARD,coefficient,"
+                                              "1.55e-14,m3/J\n", encoding="utf-8")
+    year = 31_536_000.0
+    base = run_case(write(tmp_path, DATABASE_CASE.format(database="")))
+    np.testing.assert_allclose(base.table["volume_mobile"],
+                               6.2e-14 * 0.01 * year * np.array([1, 2]), rtol=1e-15)
+    one = run_case(write(tmp_path, DATABASE_CASE.format(database='database = "coefs/a.csv"')))
+    np.testing.assert_allclose(one.table["volume_mobile"] / base.table["volume_mobile"],
+                               3.1e-14 / 6.2e-14, rtol=1e-15)
+    two = run_case(write(tmp_path, DATABASE_CASE.format(
+        database='database = ["coefs/a.csv", "coefs/b.csv"]')))
+    np.testing.assert_allclose(two.table["volume_mobile"] / base.table["volume_mobile"],
+                               1.55e-14 / 6.2e-14, rtol=1e-15)
+    assert two.table.attrs["coefficient_files"] == [str(tmp_path / "coefs" / "a.csv"),
+                                                    str(tmp_path / "coefs" / "b.csv")]
+
+
+def test_law_database_errors(tmp_path):
+    missing = write(tmp_path, DATABASE_CASE.format(database='database = ["nowhere.csv"]'))
+    with pytest.raises(InputError, match=r"\[law\] database file .*nowhere.csv.* does not exist"):
+        run_case(missing)
+    with pytest.raises(KeywordError, match="wrong type"):
+        validate_case({"law": {"database": 3}})
+    with pytest.raises(KeywordError, match="file names"):
+        run_case({**POWER_CASE, "law": {"materials": ["I600", "A405"], "database": [1]}})
+    (tmp_path / "a.csv").write_text(HEADER, encoding="utf-8")
+    with pytest.raises(KeywordError, match="materials"):
+        run_case({**POWER_CASE, "_directory": str(tmp_path),
+                  "law": {"mobile": {"COEF_USURE": 1e-14}, "database": ["a.csv"]}})

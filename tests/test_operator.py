@@ -327,3 +327,70 @@ def test_restart_from_a_sector_table_with_global_rows():
     long = sector_table([1.0, 3.0])
     np.testing.assert_allclose(second["volume_mobile_cumulated"].iloc[-4:],
                                long["volume_mobile_cumulated"].iloc[-4:], rtol=1e-14)
+
+
+# --------------------------------------------------------------------------- user coefficient files
+def coefficient_csv(path, rows):
+    """A user coefficient file in the format of fretwear.database (docs/laws.md)."""
+    lines = ["contact_type,mobile_material,obstacle_material,law,parameter,value,unit"]
+    lines += [f"TUBE_BAV,{m},{o},ARCHARD,COEF_USURE,{k!r},1/Pa" for m, o, k in rows]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_coefficient_file_overrides_a_builtin_pair(tmp_path):
+    """Seed §3: TUBE_BAV I600/A405 Archard K = 6.2e-14 Pa⁻¹. A user file giving K' = 3.1e-15
+    replaces it; Archard is linear in K (V = K·P·t, SPEC §4), so V'/V = K'/K exactly."""
+    pytest.importorskip("fretwear.database")
+    k_builtin, k_user = 6.2e-14, 3.1e-15
+    mine = coefficient_csv(tmp_path / "mine.csv", [("I600", "A405", k_user)])
+    base = archard_table([1.0, 2.0], coefficients=None, materials=("I600", "A405"))
+    user = archard_table([1.0, 2.0], coefficients=None, materials=("I600", "A405"),
+                         coefficient_files=mine)
+    np.testing.assert_allclose(base["volume_mobile"], k_builtin * P * YEAR * np.array([1, 2]),
+                               rtol=1e-15)
+    np.testing.assert_allclose(user["volume_mobile"] / base["volume_mobile"],
+                               k_user / k_builtin, rtol=1e-15)
+    assert user.attrs["coefficients_mobile"] == {"coefficient": k_user}
+    assert user.attrs["coefficient_files"] == [str(mine)]
+    assert str(mine) in user.attrs["coefficient_sources"]["mobile.coefficient"]
+    assert "built-in" in base.attrs["coefficient_sources"]["mobile.coefficient"]
+    # a list of files: the later one wins (load_database order)
+    other = coefficient_csv(tmp_path / "other.csv", [("I600", "A405", 1.0e-14)])
+    both = archard_table([1.0], coefficients=None, materials=("I600", "A405"),
+                         coefficient_files=[mine, other])
+    np.testing.assert_allclose(both["volume_mobile"], 1.0e-14 * P * YEAR, rtol=1e-15)
+
+
+def test_coefficient_file_adds_a_pair(tmp_path):
+    """The seed's TUBE_BAV table has no I690TT/A405 box: the lookup fails; a user row for it
+    makes the run work with V = K·P·t (SPEC §4)."""
+    pytest.importorskip("fretwear.database")
+    from fretwear.errors import DatabaseError
+
+    with pytest.raises(DatabaseError, match="I690TT on obstacle A405"):
+        archard_table([1.0], coefficients=None, materials=("I690TT", "A405"))
+    mine = coefficient_csv(tmp_path / "mine.csv", [("I690TT", "A405", 2.5e-15)])
+    t = archard_table([1.0, 3.0], coefficients=None, materials=("i690tt", "a405"),
+                      coefficient_files=str(mine))
+    np.testing.assert_allclose(t["volume_mobile"], 2.5e-15 * P * YEAR * np.array([1, 3]),
+                               rtol=1e-15)
+    np.testing.assert_allclose(t["depth_mobile"], bav_depth(t["volume_mobile"]), rtol=1e-12)
+
+
+def test_coefficient_file_errors(tmp_path):
+    pytest.importorskip("fretwear.database")
+    from fretwear.errors import FormatError
+
+    missing = tmp_path / "no_such_coefficients.csv"
+    with pytest.raises(InputError, match="no_such_coefficients.csv.*does not exist"):
+        archard_table([1.0], coefficients=None, materials=("I600", "A405"),
+                      coefficient_files=[missing])
+    mine = coefficient_csv(tmp_path / "mine.csv", [("I600", "A405", 1e-14)])
+    with pytest.raises(KeywordError, match="give materials too"):
+        archard_table([1.0], coefficient_files=mine)
+    bad = tmp_path / "bad.csv"
+    bad.write_text("contact_type,law\nTUBE_BAV,ARCHARD\n", encoding="utf-8")
+    with pytest.raises(FormatError, match="bad.csv"):
+        archard_table([1.0], coefficients=None, materials=("I600", "A405"),
+                      coefficient_files=bad)

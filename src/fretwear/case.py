@@ -75,6 +75,10 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
                             "(MATER_USURE), e.g. [\"I600\", \"Z10C13\"]"),
         "obstacle_wear": (bool, "take the obstacle coefficient from the database "
                                 "(USURE_OBST), default false"),
+        "database": ((list, str), "your coefficient CSV file(s) (format of docs/laws.md) "
+                                  "extending/overriding the built-in table for materials, "
+                                  "relative to the case file; later files win (fretwear "
+                                  "extension)"),
         "force_max_N": ((int, float), "KWU_EPRI force class range [N] (FNOR_MAXI)"),
         "speed_max_m_per_s": ((int, float), "KWU_EPRI speed class range [m/s] (VTAN_MAXI)"),
     },
@@ -329,6 +333,10 @@ def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
     materials = law.get("materials")
     if materials is not None and len(materials) != 2:
         raise KeywordError(f"case: [law] materials must be [mobile, obstacle], got {materials}")
+    files = _database_files(case, law.get("database"))
+    if files and materials is None:
+        raise KeywordError("case: [law] database extends the coefficient database, which is "
+                           "read for [law] materials only: give materials too")
     return dict(
         contact_type=geometry["contact_type"],
         dimensions={_DIMENSIONS[k]: float(v) for k, v in geometry.items() if k in _DIMENSIONS},
@@ -342,7 +350,26 @@ def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
         t_start=power.get("t_start_s"), t_end=power.get("t_end_s"),
         blocks=power.get("blocks", 1),
         stationarity_threshold=power.get("stationarity_threshold", 0.1),
-        force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"))
+        force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"),
+        coefficient_files=files or None)
+
+
+def _database_files(case: Mapping[str, Any], files) -> list[str]:
+    """The ``[law] database`` files, relative to the case file, each checked to exist."""
+    if files is None:
+        return []
+    items = [files] if isinstance(files, str) else list(files)
+    out = []
+    for item in items:
+        if not isinstance(item, str):
+            raise KeywordError(f"case: [law] database = {files!r}: give file names (strings), "
+                               "e.g. [\"my_coefficients.csv\"]")
+        path = _path(case, item)
+        if not path.is_file():
+            raise InputError(f"case: [law] database file {str(path)!r} does not exist (paths are "
+                             "relative to the case file)")
+        out.append(str(path))
+    return out
 
 
 def _restart_table(case: Mapping[str, Any], restart: Mapping[str, Any]):

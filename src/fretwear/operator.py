@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -225,7 +226,8 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                initial_instant: float | None = None, tube_replacement: float | None = None,
                t_start: float | None = None, t_end: float | None = None, blocks: int = 1,
                stationarity_threshold: float = 0.1, force_max: float | None = None,
-               speed_max: float | None = None) -> pd.DataFrame:
+               speed_max: float | None = None,
+               coefficient_files=None) -> pd.DataFrame:
     """The service-life wear table of one contact (SPEC §7; Code_Aster's POST_USURE).
 
     Parameters
@@ -273,6 +275,11 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         Relative block spread above which a StationarityWarning is raised [-].
     force_max, speed_max : float, optional
         KWU_EPRI class ranges FNOR_MAXI [N] and VTAN_MAXI [m/s] (default: the history's maxima).
+    coefficient_files : path-like or sequence of path-like, optional
+        The user's coefficient CSV file(s), in the format of :mod:`fretwear.database`
+        (docs/laws.md), extending and overriding the built-in table for ``materials``; a later
+        file wins over an earlier one (``lookup(..., extra=coefficient_files)``). A fretwear
+        extension: POST_USURE has no such keyword.
 
     Returns
     -------
@@ -284,10 +291,11 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
     Raises
     ------
     KeywordError
-        Unknown law, missing coefficient, sector mode with a non-Archard law.
+        Unknown law, missing coefficient, sector mode with a non-Archard law,
+        ``coefficient_files`` without ``materials``.
     InputError
         Bad instants, sector count differing from the initial table's, replacement before the
-        origin.
+        origin, a coefficient file that does not exist (a malformed one is a FormatError).
 
     Notes
     -----
@@ -309,6 +317,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
     [3.6e-13, 7.2e-13]
     """
     law_obj = _law(law)
+    files = _coefficient_files(coefficient_files, materials)
     restart = initial_state is not None
     if initial_instant is not None and not restart:
         raise KeywordError("initial_instant (INST_INIT of ETAT_INIT) needs an initial_state "
@@ -334,9 +343,9 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         raise InputError("sectors need a contact history with dy and dz (RESU_GENE): a power "
                          "alone (PUIS_USURE) has no contact angle")
 
-    mobile, obstacle = _resolve_coefficients(
+    mobile, obstacle, sources = _resolve_coefficients(
         law_obj, contact_type, coefficients, obstacle_coefficients, materials, obstacle_wear,
-        history, t_start, t_end, force_max, speed_max)
+        history, t_start, t_end, force_max, speed_max, files)
 
     from fretwear.geometry import contact_geometry
 
@@ -383,6 +392,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         "contact_type": str(contact_type).upper(), "dimensions": _dimensions_dict(geometry),
         "law": law_obj.name, "coefficients_mobile": mobile, "coefficients_obstacle": obstacle,
         "materials": None if materials is None else list(materials),
+        "coefficient_files": files, "coefficient_sources": sources,
         "sector_edges": None if edges is None else edges.tolist(), "time_scale": time_scale,
         "origin": origin, "tube_replacement": tube_replacement,
         "power": None if result is None else _power_dict(result),
@@ -487,9 +497,34 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
     return pd.DataFrame({c: data[c] for c in SECTOR_COLUMNS}), edges
 
 
+def _coefficient_files(files, materials) -> list[str] | None:
+    """The user's coefficient files as a list of path strings (None for none), each checked to
+    exist; they only make sense with a database pair."""
+    if files is None:
+        return None
+    items = [files] if isinstance(files, str | os.PathLike) else list(files)
+    if not items:
+        return None
+    for item in items:
+        if not isinstance(item, str | os.PathLike):
+            raise InputError(f"coefficient_files must be paths of CSV files, got {item!r}")
+        if not Path(item).is_file():
+            raise InputError(f"coefficient file {str(item)!r} (coefficient_files) does not exist; "
+                             "give the path of a CSV in the coefficient-database format "
+                             "(docs/laws.md)")
+    if materials is None:
+        raise KeywordError("coefficient_files extend the coefficient database, which is read for "
+                           "materials (MATER_USURE) only: give materials too, or the "
+                           "coefficients directly")
+    return [os.fspath(item) for item in items]
+
+
 def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients, materials,
-                          obstacle_wear, history, t_start, t_end, force_max, speed_max):
-    """(mobile coefficients, obstacle coefficients or None) of the law, native names."""
+                          obstacle_wear, history, t_start, t_end, force_max, speed_max,
+                          coefficient_files=None):
+    """(mobile coefficients, obstacle coefficients or None, database sources or None) of the
+    law, native names."""
+    sources = None
     given_m = dict(coefficients or {})
     given_o = None if obstacle_coefficients is None else dict(obstacle_coefficients)
     if materials is not None:
@@ -501,7 +536,8 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
                                "(OBSTACLE): ask for obstacle_wear (USURE_OBST) instead")
         if len(materials) != 2:
             raise InputError(f"materials must be a (mobile, obstacle) pair, got {materials!r}")
-        given_m, found_o = _database(contact_type, materials, law.name, obstacle_wear)
+        given_m, found_o, sources = _database(contact_type, materials, law.name, obstacle_wear,
+                                              coefficient_files)
         if obstacle_wear:
             if not found_o:
                 raise KeywordError(
@@ -529,19 +565,23 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
             if coefs is not None and coefs.get("intensity") is None:
                 stats = law.statistics(history, t_start=t_start, t_end=t_end, **coefs)
                 coefs["intensity"] = float(stats.intensity)
-    return mobile, obstacle
+    return mobile, obstacle, sources
 
 
-def _database(contact_type, materials, law_name, obstacle_wear) -> tuple[dict, dict | None]:
-    """(mobile, obstacle) coefficient dicts of a database pair (SPEC §5)."""
+def _database(contact_type, materials, law_name, obstacle_wear, coefficient_files=None
+              ) -> tuple[dict, dict | None, dict | None]:
+    """(mobile, obstacle, sources) coefficient dicts of a database pair (SPEC §5), the user's
+    coefficient files extending the built-in table."""
     from fretwear.database import lookup
 
     found = lookup(contact_type, materials[0], materials[1], law_name,
-                   obstacle=bool(obstacle_wear))
+                   obstacle=bool(obstacle_wear), extra=coefficient_files)
     mobile = getattr(found, "mobile", None)
     obstacle = getattr(found, "obstacle", None)
     if mobile is None and isinstance(found, Mapping):
         mobile, obstacle = found.get("mobile"), found.get("obstacle")
     if mobile is None:
         raise InputError(f"unexpected coefficient database record {found!r}")
-    return dict(mobile), (dict(obstacle) if obstacle else None)
+    sources = getattr(found, "sources", None)
+    return (dict(mobile), (dict(obstacle) if obstacle else None),
+            None if sources is None else dict(sources))

@@ -69,7 +69,8 @@ def test_help_documents_every_key(capsys):
             assert f"{key}:" in text, key
     for native, (aster, unit, _) in COLUMNS.items():
         assert f"{native} ({aster}) [{unit}]" in text
-    for option in ("--output", "--plot", "--aster-names", "--aster-format", "--quiet"):
+    for option in ("--output", "--plot", "--aster-names", "--aster-format", "--database",
+                   "--quiet"):
         assert option in text
 
 
@@ -136,3 +137,33 @@ def test_example_continuing_a_code_aster_table(capsys):
                                rtol=1e-12)
     assert main(["run", str(case)]) == 0
     assert "continues data/grappe_2_enco_10000h.tab from instant 10000" in capsys.readouterr().out
+
+
+def test_database_option_adds_to_the_case_list(tmp_path, capsys):
+    """Seed §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹. `--database` files come after the case's
+    `[law] database` (later wins); V = K·P·t (SPEC §4) scales by the ratio of the K's."""
+    header = "contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
+    (tmp_path / "case_file.csv").write_text(
+        header + "TUBE_BAV,I600,A405,ARCHARD,COEF_USURE,3.1e-14,1/Pa\n", encoding="utf-8")
+    (tmp_path / "cli_file.csv").write_text(
+        header + "TUBE_BAV,I600,A405,ARCHARD,COEF_USURE,1.24e-14,1/Pa\n", encoding="utf-8")
+    case = tmp_path / "case.toml"
+    case.write_text('[power]\nvalue_W = 0.01\n[law]\nmaterials = ["I600", "A405"]\n'
+                    'database = ["case_file.csv"]\n[geometry]\ncontact_type = "TUBE_BAV"\n'
+                    'mobile_radius_m = 0.0111\nobstacle_width_m = 0.0127\n'
+                    '[time]\ninstants = [1, 2]\nunit = "year"\n', encoding="utf-8")
+    year = 31_536_000.0
+    out = tmp_path / "case.csv"
+    assert main(["run", str(case), "-o", str(out)]) == 0
+    np.testing.assert_allclose(pd.read_csv(out)["volume_mobile"],
+                               3.1e-14 * 0.01 * year * np.array([1, 2]), rtol=1e-15)
+    capsys.readouterr()
+    assert main(["run", str(case), "-o", str(out), "--database",
+                 str(tmp_path / "cli_file.csv")]) == 0
+    printed = " ".join(capsys.readouterr().out.split())
+    assert "cli_file.csv" in printed  # the summary names the coefficient's file
+    np.testing.assert_allclose(pd.read_csv(out)["volume_mobile"],
+                               1.24e-14 * 0.01 * year * np.array([1, 2]), rtol=1e-15)
+    assert case.read_text(encoding="utf-8").count("database") == 1  # the case file untouched
+    assert main(["run", str(case), "--database", str(tmp_path / "absent.csv")]) == 2
+    assert "absent.csv" in capsys.readouterr().err

@@ -110,6 +110,12 @@ def _summary(result, console) -> None:
     if attrs.get("tube_replacement") is not None:
         console.print(f"tube replaced by a new one at instant {attrs['tube_replacement']:g} "
                       "(TUBE_NEUF)")
+    for key, source in (attrs.get("coefficient_sources") or {}).items():
+        body, _, name = key.partition(".")
+        value = (attrs.get(f"coefficients_{body}") or {}).get(name)
+        shown = "" if value is None else f" = {float(value):.4g}"
+        console.print(f"{body} {name}{shown} from the database: {source}", markup=False,
+                      highlight=False)
     intensity = (attrs.get("coefficients_mobile") or {}).get("intensity")
     if intensity is not None:
         console.print(f"KWU-EPRI wear-intensity factor w = {float(intensity):.4g}")
@@ -167,9 +173,13 @@ def _summary(result, console) -> None:
 @click.option("--aster-format", type=click.Choice(["TABLEAU", "ASTER"], case_sensitive=False),
               default="TABLEAU", show_default=True,
               help="IMPR_TABLE format of a .tab/.resu/.txt output (LIRE_TABLE's FORMAT).")
+@click.option("--database", "databases", multiple=True, metavar="CSV",
+              type=click.Path(exists=True, dir_okay=False, path_type=Path),
+              help="A coefficient CSV of your own (format in docs/laws.md) for [law] materials, "
+                   "added after the case's [law] database files (repeatable; later files win).")
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
-            aster_format: str, quiet: bool) -> None:
+            aster_format: str, databases: tuple[Path, ...], quiet: bool) -> None:
     from rich.console import Console
     from rich.progress import (
         BarColumn,
@@ -180,8 +190,16 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         TimeElapsedColumn,
     )
 
-    from fretwear.case import run_case
+    from fretwear.case import load_case, run_case
 
+    case: Path | dict = case_file
+    if databases:  # the command line's files come after the case's (later files win)
+        case = load_case(case_file)
+        law = dict(case.get("law", {}))
+        given = law.get("database", [])
+        law["database"] = ([given] if isinstance(given, str) else list(given)) + [
+            str(p.resolve()) for p in databases]
+        case["law"] = law
     console = Console(stderr=False, quiet=quiet)
     columns = (SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
                TaskProgressColumn(), TimeElapsedColumn())
@@ -191,7 +209,7 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         def step(description: str, done: int | None = None, total: int | None = None) -> None:
             bar.update(task, description=description, completed=done or 0, total=total)
 
-        result = run_case(case_file, progress=step)
+        result = run_case(case, progress=step)
     _summary(result, console)
     if output is not None:
         written = write_table(result.table, output, aster_names=aster_names,
