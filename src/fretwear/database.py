@@ -74,6 +74,10 @@ _UNIT_SPELLINGS: dict[str, tuple[str, ...]] = {
 }
 
 
+#: Where a user's own coefficient CSV goes, for error messages.
+_EXTRA_HINT = ("your own CSV (lookup(extra=...), wear_table(coefficient_files=...), case file "
+               "[law] database = [...], or fretwear run --database)")
+
 def _canonical_unit(text: str) -> str:
     out = str(text).strip().replace(" ", "").replace("³", "3").replace("m^3", "m3")
     out = out.replace("⁻¹", "^-1").replace("⁻ᵇ", "^-b").replace("·", "*").replace("−", "-")
@@ -378,13 +382,13 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
         known = [c for c in CONTACT_TYPE_NAMES if c in set(table.contact_type)]
         raise DatabaseError(f"no coefficients for contact type {ct} in the database; it has "
                             f"{known}. Give the coefficients explicitly, or add rows with "
-                            "extra=your.csv")
+                            f"{_EXTRA_HINT}")
     of_law = of_type[of_type.law == lw]
     if of_law.empty:
         raise DatabaseError(
             f"no {lw} coefficients for {ct} in the database; {ct} has: "
             + "; ".join(f"{g}: {_pairs_text(r)}" for g, r in of_type.groupby("law", sort=False))
-            + f". Give the {lw} coefficients explicitly, or add rows with extra=your.csv")
+            + f". Give the {lw} coefficients explicitly, or add rows with {_EXTRA_HINT}")
     box = of_law[(of_law.mobile_material == m1) & (of_law.obstacle_material == m2)]
     mob = box[box.body == "mobile"]
     if mob.empty:
@@ -404,7 +408,7 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
         raise DatabaseError(
             f"{what} for {ct} / {lw}, mobile {m1} on obstacle {m2}{hint}; {ct}/{lw} has "
             f"(mobile/obstacle): {_pairs_text(of_law)}. Give the coefficients explicitly, or add "
-            "rows with extra=your.csv")
+            f"rows with {_EXTRA_HINT}")
     obs = box[box.body == "obstacle"]
     if obstacle and obs.empty:
         with_obstacle = of_law[of_law.body == "obstacle"]
