@@ -78,6 +78,7 @@ _UNIT_SPELLINGS: dict[str, tuple[str, ...]] = {
 _EXTRA_HINT = ("your own CSV (lookup(extra=...), wear_table(coefficient_files=...), case file "
                "[law] database = [...], or fretwear run --database)")
 
+
 def _canonical_unit(text: str) -> str:
     out = str(text).strip().replace(" ", "").replace("³", "3").replace("m^3", "m3")
     out = out.replace("⁻¹", "^-1").replace("⁻ᵇ", "^-b").replace("·", "*").replace("−", "-")
