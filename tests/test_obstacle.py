@@ -284,7 +284,7 @@ def test_discret_round_trip_and_layout(tmp_path):
     Code_Aster's name); read back."""
     angles = np.arange(720) * 0.5
     gaps = 0.5e-3 + 0.1e-3 * np.sin(np.radians(3 * angles)) ** 2
-    prof = DiscreteObstacle(angles, gaps, RM)
+    prof = DiscreteObstacle(angles, gaps, RM, clearance_figure=True)
     path = write_discret(tmp_path / "obst.txt", prof)
     rows = [ln for ln in path.read_text().splitlines() if ln and not ln.startswith("#")]
     assert rows[0].split() == ["THETA", "JEU", "R"] and len(rows) == 722
@@ -303,6 +303,51 @@ def test_discret_round_trip_and_layout(tmp_path):
     radii_only.write_text("THETA RADIUS\n0 0.01\n120 0.011\n240 0.012\n")
     d = read_discret(radii_only, mobile_radius=0.0095)
     assert d.gap(60.0) == pytest.approx(1.0e-3, rel=1e-12)  # linear in angle: (0.5+1.5)/2 mm
+
+
+def test_discret_figure_of_two_planes_gives_the_planes_back(tmp_path):
+    """A DISCRET table is a clearance figure. Written for two planes (normal at 30°, gaps 0.4 /
+    0.2 mm, closing circle 30 mm), it holds g/|cos ψ| (closed form); read back, the obstacle
+    behind it (the figure dilated by the mobile's disk) is the planes, (R_m + g)/|cos ψ|, and
+    the update's new clearance is the table again. Reading the same numbers as radial gaps
+    (column RADIUS = R_m + JEU) would put the planes elsewhere: R_m + g/|cos ψ|."""
+    planes = PlanesObstacle(RM, 4e-4, 2e-4, orientation=30.0, closing_radius=0.03)
+    path = write_discret(tmp_path / "planes.txt", planes)
+    figure = read_discret(path)
+    a = figure.angles
+    c = np.cos(np.radians(a - 30.0))
+    g = np.where(c > 0, 4e-4, 2e-4)
+    sel = np.abs(c) > 0.3
+    np.testing.assert_allclose(figure.gaps[sel], g[sel] / np.abs(c[sel]), rtol=1e-9)
+    # the plane point (R_m + g)/|cos ψ| comes from the figure point at the same distance
+    # along the plane, which the 0.5° table samples exactly up to ~11 mm (g₋ side): |cos| > 0.7
+    near = np.abs(c) > 0.7
+    np.testing.assert_allclose(figure.radius(a[near]), (RM + g[near]) / np.abs(c[near]),
+                               rtol=1e-9)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a real figure: no "not the figure of" warning
+        r = update_obstacle(figure, Mobile(RM, WALL), 1, [0.0], width=WIDTH, resolution=0.1)
+    np.testing.assert_allclose(r.clearance_initial[:-1][sel], figure.gaps[sel], rtol=1e-7)
+    radial = DiscreteObstacle(a, figure.gaps, RM)  # the wrong reading, for contrast
+    k = np.flatnonzero(a == 90.0)[0]  # 60° off the normal: 0.8 mm of clearance
+    assert float(radial.clearance([90.0], resolution=0.1)[0]) < 0.9 * figure.gaps[k]
+
+
+def test_made_up_figure_with_narrow_dents_is_reported():
+    """A trefoil table 0.5 + 0.1·cos 3φ mm has dents of curvature radius 0.32 mm at 60°, 180°,
+    300°: no disk of 9.5 mm has that clearance figure (the closing by the disk fills them), so
+    the update warns; the lobes (convex) are kept, the dents only open (closing ⊇ figure)."""
+    from fretwear.errors import FretwearWarning
+
+    a = np.arange(0.0, 360.0, 0.5)
+    table = DiscreteObstacle(a, 5e-4 + 1e-4 * np.cos(np.radians(3 * a)), RM,
+                             clearance_figure=True)
+    with pytest.warns(FretwearWarning, match="not the figure of a mobile of radius 0.0095"):
+        r = update_obstacle(table, Mobile(RM, WALL), 1, [0.0], width=WIDTH, resolution=0.25)
+    # lobe tip, to the polygons' O(h²) error (chord sagitta ~2e-8 m at 0.25°)
+    assert r.clearance_initial[0] == pytest.approx(6e-4, abs=5e-8)
+    assert (r.clearance_initial >= table.gap(r.angle) - 5e-8).all()
+    assert r.clearance_initial[360] > 4e-4 + 1e-5  # the dent at 180° is filled
 
 
 def test_code_aster_discret_table_is_read_as_the_clearance(tmp_path):
@@ -340,7 +385,7 @@ def test_worn_figure_file_feeds_the_next_dynamics(tmp_path):
     path = r.write_discret(tmp_path / "worn.txt")
     prof = load_obstacle_profile(path)
     np.testing.assert_allclose(prof.gap(r.angle), r.clearance_worn, rtol=1e-10)
-    np.testing.assert_allclose(prof.radius([18.0]), RM + r.clearance_worn[36], rtol=1e-10)
+    assert prof.clearance_figure and prof.mobile_radius == pytest.approx(RM, rel=1e-11)
     dynamics = pytest.importorskip("fretwear.dynamics.config")
     setup = dynamics.dynamics_from_config({
         "duration_s": 0.1,

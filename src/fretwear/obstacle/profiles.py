@@ -15,8 +15,10 @@ Three obstacle models share one interface (``radius``, ``gap``, ``mobile_radius`
   ``g₋`` (opposite), closed far away by a circle of radius ``closing_radius`` so the figure stays
   bounded (the open directions then show a large but finite clearance);
 * :class:`DiscreteObstacle` — a periodic table of (angle, gap) points, linearly interpolated in
-  angle; Code_Aster's DEFI_OBSTACLE 'DISCRET' layout (721 points, 0…360° by 0.5°) is read and
-  written by :func:`read_discret` / :func:`write_discret`.
+  angle: radial gaps (radius = R_m + gap), or a clearance figure whose obstacle is the figure
+  dilated by the mobile's disk (:mod:`fretwear.obstacle.dilation`); Code_Aster's DEFI_OBSTACLE
+  'DISCRET' layout (721 points, 0…360° by 0.5°, a clearance figure) is read and written by
+  :func:`read_discret` / :func:`write_discret`.
 
 DISCRET file layout adopted (a Code_Aster IMPR_TABLE 'TABLEAU'-style text table)::
 
@@ -276,7 +278,7 @@ class PlanesObstacle(_Obstacle):
 
 @dataclass(frozen=True)
 class DiscreteObstacle(_Obstacle):
-    """A table of points of the clearance figure, periodic, linear in angle between points.
+    """A periodic table of (angle, gap) points: radial gaps, or a clearance figure.
 
     Parameters
     ----------
@@ -284,25 +286,39 @@ class DiscreteObstacle(_Obstacle):
         Angles [deg], strictly increasing, spanning one turn at most (e.g. 0…360 or −180…180; a
         last point at first + 360 must repeat the first gap).
     gaps : array_like
-        Radial gap [m] at each angle, >= 0.
+        Gap [m] at each angle, >= 0: the radial gap of the obstacle's inner boundary, or (with
+        ``clearance_figure``) the clearance figure, how far the new mobile's centre can move.
     mobile_radius : float or None
-        Outer radius of the mobile R_m [m]; needed for ``radius`` (radius = R_m + gap) and for
-        the obstacle update; may be None for a bare clearance figure.
+        Outer radius of the mobile R_m [m]; needed for ``radius`` and for the obstacle update;
+        may be None for a bare table.
+    clearance_figure : bool
+        False (default): radius(φ) = R_m + gap(φ). True (a Code_Aster DISCRET table, a DISCRET
+        file read by :func:`read_discret`, a worn figure): the points are the clearance figure
+        C (the polygon through them) and the obstacle's inner boundary is C dilated by the
+        mobile's disk, so the new mobile's clearance is the table again
+        (:mod:`fretwear.obstacle.dilation`).
 
     Notes
     -----
-    gap(φ) is the periodic piecewise-linear interpolant of the table in φ; radius(φ) = R_m + gap(φ).
+    gap(φ) is the periodic piecewise-linear interpolant of the table in φ. radius(φ) = R_m +
+    gap(φ), or, for a clearance figure, the polar radius of C ⊕ D(R_m). Both agree for a circle;
+    for two planes the figure g/|cos ψ| gives (R_m + g)/|cos ψ|, not R_m + g/|cos ψ|.
 
     Examples
     --------
     >>> d = DiscreteObstacle([0.0, 90.0, 180.0, 270.0], [1e-3, 2e-3, 1e-3, 2e-3], 0.01)
     >>> [round(float(g), 9) for g in d.gap([45.0, 315.0, -45.0])]
     [0.0015, 0.0015, 0.0015]
+    >>> f = DiscreteObstacle(np.arange(0.0, 360.0, 0.5), np.full(720, 5e-4), 0.0095,
+    ...                      clearance_figure=True)
+    >>> round(float(f.radius(30.0)), 12)      # a 0.5 mm figure: a bore of 10 mm
+    0.01
     """
 
     angles: np.ndarray
     gaps: np.ndarray
     mobile_radius: float | None = None
+    clearance_figure: bool = False
 
     def __post_init__(self):
         a = np.array(self.angles, dtype=float).ravel()
@@ -338,6 +354,7 @@ class DiscreteObstacle(_Obstacle):
         object.__setattr__(self, "angles", a)
         object.__setattr__(self, "gaps", g)
         object.__setattr__(self, "mobile_radius", rm)
+        object.__setattr__(self, "clearance_figure", bool(self.clearance_figure))
         a.flags.writeable = False
         g.flags.writeable = False
 
@@ -350,11 +367,19 @@ class DiscreteObstacle(_Obstacle):
         return np.interp(np.mod(x - a0, 360.0) + a0, xp, fp)
 
     def radius(self, angle) -> np.ndarray:
-        """Polar radius [m] = mobile_radius + gap(angle)."""
+        """Polar radius [m] of the obstacle's inner boundary at ``angle`` [deg].
+
+        mobile_radius + gap(angle), or for a clearance figure the radius of the figure dilated
+        by the mobile's disk.
+        """
         if self.mobile_radius is None:
             raise InputError(
                 "this discrete obstacle has no mobile_radius: give it (mobile_radius=...) to "
                 "turn gaps into radii")
+        if self.clearance_figure:
+            from fretwear.obstacle.dilation import dilated_radius
+
+            return dilated_radius(angle, self.angles, self.gaps, self.mobile_radius)
         return self.mobile_radius + self.gap(angle)
 
 
@@ -378,7 +403,9 @@ def write_discret(path, obstacle, *, step: float = DISCRET_STEP, gaps=None,
     path : str or path-like
         Output file (written atomically).
     obstacle : obstacle model or None
-        Profile sampled on the grid; its ``mobile_radius`` is written in the header.
+        Obstacle whose clearance figure is written (``clearance(angle)`` of the new mobile; its
+        ``gap`` directly for a bore or a clearance-figure table); its ``mobile_radius`` is
+        written in the header.
     step : float
         Angular step [deg] (0.5 for Code_Aster's 721 points).
     gaps : array_like, optional
@@ -401,7 +428,13 @@ def write_discret(path, obstacle, *, step: float = DISCRET_STEP, gaps=None,
     """
     a = discret_angles(step)
     rm = getattr(obstacle, "mobile_radius", None)
-    g = obstacle.gap(a) if gaps is None else np.asarray(gaps, dtype=float)
+    if gaps is not None:
+        g = np.asarray(gaps, dtype=float)
+    elif isinstance(obstacle, CircleObstacle) or getattr(obstacle, "clearance_figure", False):
+        g = obstacle.gap(a)  # already the clearance figure
+    else:  # the figure of the new mobile, not the radial gap (they differ off a bore)
+        g = obstacle.clearance(a[:-1])
+        g = np.append(g, g[0])
     if g.shape != a.shape:
         raise InputError(f"write_discret: {g.size} gaps for {a.size} angles (step {step} deg)")
     lines = ["#", f"# {title}: clearance figure, angle THETA [deg], clearance JEU [m] = R [m]"]
@@ -495,7 +528,7 @@ def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacl
             f"radius {float(rm):g} m: in a DISCRET table R is the clearance (0.5e-3 m for a new "
             "Code_Aster obstacle); if these are radii of the obstacle, name the column RADIUS")
     try:
-        return DiscreteObstacle(theta, gaps, rm)
+        return DiscreteObstacle(theta, gaps, rm, clearance_figure=value != "RADIUS")
     except InputError as exc:
         raise InputError(f"{p}: {exc}") from None
 
@@ -512,7 +545,7 @@ def load_obstacle_profile(path, *, mobile_radius: float | None = None) -> Discre
     >>> p = pathlib.Path(tempfile.mkdtemp()) / "o.txt"
     >>> _ = write_discret(p, CircleObstacle(0.01, 0.0105))
     >>> prof = load_obstacle_profile(p)
-    >>> [round(float(r), 12) for r in prof.radius([0.0, 123.4])]
-    [0.0105, 0.0105]
+    >>> prof.clearance_figure, [round(float(r), 12) for r in prof.radius([0.0, 123.5])]
+    (True, [0.0105, 0.0105])
     """
     return read_discret(path, mobile_radius=mobile_radius)

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import FormatError, InputError, PerforationWarning
+from fretwear.errors import FormatError, FretwearWarning, InputError, PerforationWarning
 from fretwear.obstacle.clearance import RESOLUTION, clearance_figure, polar_polygon
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, worn_depth_profiles
 from fretwear.obstacle.profiles import (
@@ -243,7 +243,8 @@ class ObstacleResult:
 
     def clearance_profile(self) -> DiscreteObstacle:
         """The worn clearance figure as a discrete obstacle (for the next dynamic computation)."""
-        return DiscreteObstacle(self.angle, self.clearance_worn, self.mobile.outer_radius)
+        return DiscreteObstacle(self.angle, self.clearance_worn, self.mobile.outer_radius,
+                                clearance_figure=True)
 
     def write(self, path, format: str | None = None) -> Path:
         """Write the profile table: CSV (``.csv``) or Code_Aster ``TABLEAU``/``ASTER`` text.
@@ -319,6 +320,27 @@ def _check_perforation(depth: WornDepth, mobile: Mobile, fraction: float) -> tup
                 f"{what} at angle {at:g} deg exceeds PERCEMENT {fraction:g} × wall thickness "
                 f"{mobile.wall_thickness:g} m = {limit:.4g} m", PerforationWarning, stacklevel=3)
     return tuple(hits)
+
+
+def _check_figure(figure, angle, initial) -> None:
+    """Warn when a clearance-figure table is not the figure its mobile can have.
+
+    The obstacle behind a figure C is C ⊕ D(R_m); the new mobile's clearance in it is the
+    closing of C by the disk, which is C itself for any real figure (an erosion by the disk)
+    but fills dents narrower than the mobile in a made-up one.
+    """
+    table = figure.gap(angle)
+    diff = np.abs(initial - table)
+    tol = 1e-3 * float(np.max(table)) + 1e-9
+    if np.nanmax(diff) > tol:
+        k = int(np.nanargmax(diff))
+        warnings.warn(
+            f"the clearance figure table is not the figure of a mobile of radius "
+            f"{figure.mobile_radius:g} m: at {angle[k]:g} deg it gives {table[k]:.4g} m but the "
+            f"mobile's clearance in the obstacle behind it is {initial[k]:.4g} m (dents narrower "
+            "than the mobile are filled); the update uses the latter (clearance_initial). If "
+            "the table holds radial gaps of the obstacle, give it as RADIUS = R_m + gap",
+            FretwearWarning, stacklevel=3)
 
 
 def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obstacle=None, *,
@@ -426,6 +448,8 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
     worn = clearance_figure(turn, polar_polygon(worn_mobile, cuts, resolution),
                             polar_polygon(worn_obstacle, cuts, resolution))
     initial, worn = np.append(initial, initial[0]), np.append(worn, worn[0])
+    if getattr(obstacle, "clearance_figure", False):
+        _check_figure(obstacle, angle, initial)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         dm, do = depth.mobile(angle), depth.obstacle(angle)
