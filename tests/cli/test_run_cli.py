@@ -160,7 +160,7 @@ def test_database_option_adds_to_the_case_list(tmp_path, capsys):
     capsys.readouterr()
     assert main(["run", str(case), "-o", str(out), "--database",
                  str(tmp_path / "cli_file.csv")]) == 0
-    printed = " ".join(capsys.readouterr().out.split())
+    printed = "".join(capsys.readouterr().out.split())  # wherever rich wraps the path
     assert "cli_file.csv" in printed  # the summary names the coefficient's file
     np.testing.assert_allclose(pd.read_csv(out)["volume_mobile"],
                                1.24e-14 * 0.01 * year * np.array([1, 2]), rtol=1e-15)
