@@ -159,6 +159,45 @@ unit = "h"
     np.testing.assert_allclose(r.table["volume_mobile"], 1e-14 * 0.5 * 3600.0, rtol=1e-12)
 
 
+def test_kwu_epri_case_computes_the_power_once(tmp_path, monkeypatch):
+    """KWU_EPRI needs the history's classes, not a second power computation: the table equals
+    wear_table on the history itself (independent path, SPEC §2/§4)."""
+    import fretwear.power
+    from fretwear.operator import wear_table
+
+    rows = "\n".join(f"{t:.1f},{10.0 + t},30.0,40.0" for t in np.arange(0.0, 2.01, 0.1))
+    (tmp_path / "h.csv").write_text("time,normal_force,vt1,vt2\n" + rows + "\n",
+                                    encoding="utf-8")
+    path = write(tmp_path, """
+[history]
+file = "h.csv"
+[law]
+name = "KWU_EPRI"
+mobile = { COEF_USURE = 1e-14, reference_intensity = 2.0 }
+[geometry]
+contact_type = "TUBE_BAV"
+mobile_radius_m = 0.0111
+obstacle_width_m = 0.0127
+[time]
+instants = [1.0]
+unit = "h"
+""")
+    from fretwear.io import read_history
+
+    expected = wear_table(read_history(tmp_path / "h.csv"), contact_type="TUBE_BAV",
+                          dimensions={"mobile_radius": 0.0111, "obstacle_width": 0.0127},
+                          instants=[1.0], law="KWU_EPRI", time_scale=3600.0,
+                          coefficients={"COEF_USURE": 1e-14, "reference_intensity": 2.0})
+    calls = []
+    once = fretwear.power.wear_power
+    monkeypatch.setattr(fretwear.power, "wear_power",
+                        lambda *a, **k: calls.append(1) or once(*a, **k))
+    r = run_case(path)
+    assert len(calls) == 1
+    np.testing.assert_allclose(r.table["volume_mobile"], expected["volume_mobile"], rtol=1e-15)
+    assert r.table.attrs["power"] == expected.attrs["power"]
+
+
 def test_restart_from_a_multi_table_code_aster_file(tmp_path):
     """Two tables in one IMPR_TABLE file (the hand-written fixture, then a copy with the volumes
     doubled): [restart] table_index picks one; V = V_file(INST=2) + K·P·Δt (SPEC §7, §4)."""

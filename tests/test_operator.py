@@ -285,6 +285,25 @@ def test_kwu_epri_uses_history_intensity():
     assert t.attrs["coefficients_mobile"]["intensity"] == pytest.approx(w)
 
 
+def test_kwu_epri_power_result_with_its_history():
+    """A PowerResult with history= gives the table of the history itself (same power, same
+    KWU_EPRI classes, SPEC §2/§4): an independent path through wear_power."""
+    from fretwear.power import wear_power
+
+    h = sector_history()
+    args = dict(contact_type="TUBE_BAV", dimensions=BAV, instants=[1.0, 2.0], law="KWU_EPRI",
+                coefficients={"COEF_USURE": 1e-13, "reference_intensity": 2.0},
+                time_scale=3600.0, t_start=1.0, t_end=7.0)
+    direct = wear_table(h, **args)
+    given = wear_table(wear_power(h, t_start=1.0, t_end=7.0), history=h, **args)
+    pd.testing.assert_frame_equal(given, direct)
+    assert given.attrs == direct.attrs
+    with pytest.raises(InputError, match="history is the ContactHistory a PowerResult"):
+        wear_table(h, history=h, **args)
+    with pytest.raises(InputError, match="with a PowerResult source only"):
+        wear_table(1.0, history=h, **args)
+
+
 def test_sector_tube_replacement():
     """Tube replaced at 1 h: its sector volumes restart from zero, the obstacle's continue
     (SPEC §7 TUBE_NEUF); V_j = k_j·P_j·t (SPEC §3) with P_1 = P_3 = 0.5 W."""

@@ -140,9 +140,50 @@ def keys_help() -> str:
     return "\n".join(lines)
 
 
-def _hint(key: str, choices) -> str:
+def keyword_hint(key: str, choices) -> str:
+    """`` (did you mean 'x'?)`` naming the closest of ``choices`` to ``key``, or ``""``."""
     close = difflib.get_close_matches(key, list(choices), n=1)
     return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def check_keys(items: Mapping[str, Any], spec: Mapping[str, tuple[Any, str]], source: str, *,
+               key_prefix: str = "") -> None:
+    """Check the keys and value types of one table of a TOML file against its key list.
+
+    Parameters
+    ----------
+    items : mapping
+        The table (key -> value).
+    spec : mapping
+        key -> (expected type or tuple of types, description with unit), as :data:`KEYS`.
+        ``True``/``False`` are accepted only where the type is ``bool``.
+    source : str
+        What the messages start with (the file, or the table such as ``[obstacle]``).
+    key_prefix : str
+        Put before the key in the messages (e.g. ``"[geometry] "``).
+
+    Raises
+    ------
+    KeywordError
+        An unknown key (with the closest valid one and the list of valid keys), or a value of
+        the wrong type (with the key's description).
+
+    Examples
+    --------
+    >>> try:
+    ...     check_keys({"cycle": 2}, {"cycles": (int, "number of cycles")}, "[iterate]")
+    ... except KeywordError as exc:
+    ...     print(exc)
+    [iterate]: unknown key cycle (did you mean 'cycles'?); valid keys: cycles
+    """
+    for key, value in items.items():
+        if key not in spec:
+            raise KeywordError(f"{source}: unknown key {key_prefix}{key}{keyword_hint(key, spec)}; "
+                               f"valid keys: {', '.join(spec)}")
+        kind = spec[key][0]
+        if (isinstance(value, bool) and kind is not bool) or not isinstance(value, kind):
+            raise KeywordError(f"{source}: {key_prefix}{key} = {value!r} has the wrong type; "
+                               f"expected {spec[key][1]}")
 
 
 def validate_case(case: Mapping[str, Any], source: str = "case") -> dict[str, Any]:
@@ -171,25 +212,14 @@ def validate_case(case: Mapping[str, Any], source: str = "case") -> dict[str, An
                 out[name] = dict(value)
                 continue
             if name not in KEYS:
-                raise KeywordError(f"{source}: unknown section [{name}]{_hint(name, sections)}; "
-                                   f"valid sections: {', '.join(sections)}")
-            spec, where, items = KEYS[name], f"[{name}] ", dict(value)
-            out[name] = items
+                raise KeywordError(f"{source}: unknown section [{name}]"
+                                   f"{keyword_hint(name, sections)}; valid sections: "
+                                   f"{', '.join(sections)}")
+            out[name] = dict(value)
+            check_keys(out[name], KEYS[name], source, key_prefix=f"[{name}] ")
         else:
-            spec, where, items = KEYS[""], "", {name: value}
             out[name] = value
-        for key, val in items.items():
-            if key not in spec:
-                raise KeywordError(f"{source}: unknown key {where}{key}{_hint(key, spec)}; "
-                                   f"valid keys: {', '.join(spec)}")
-            kind = spec[key][0]
-            if isinstance(val, bool) and kind is not bool:
-                ok = False
-            else:
-                ok = isinstance(val, kind)
-            if not ok:
-                raise KeywordError(f"{source}: {where}{key} = {val!r} has the wrong type; "
-                                   f"expected {spec[key][1]}")
+            check_keys({name: value}, KEYS[""], source)
     return out
 
 
@@ -437,12 +467,13 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
             if "name" in history_spec:
                 history = history.replace(name=history_spec["name"])
             power = chunked_power(history, args, step)
-            source = power if args["law"].upper() != "KWU_EPRI" else history
         else:
             power = float(case["power"]["value_W"])
-            source = power
         step("building the wear table")
-        table = _table(source, history, args)
+        from fretwear.operator import wear_table
+
+        # The power is computed once, above; the history only gives KWU_EPRI its classes.
+        table = wear_table(power, history=history, **args)
     texts = [f"{w.category.__name__}: {w.message}" for w in caught
              if issubclass(w.category, FretwearWarning | UserWarning)]
     seen: list[str] = []
@@ -454,16 +485,6 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
     unit = case.get("time", {}).get("unit")
     table.attrs["time_unit"] = unit if unit else f"{args['time_scale']:g} s"
     return CaseResult(table=table, power=power, warnings=seen, case=case, history=history)
-
-
-def _table(source, history, args):
-    from fretwear.operator import wear_table
-
-    kwargs = dict(args)
-    if hasattr(source, "total"):  # a PowerResult: do not window/block/split again
-        for k in ("t_start", "t_end", "blocks", "stationarity_threshold", "sectors"):
-            kwargs.pop(k)
-    return wear_table(source, **kwargs)
 
 
 #: Histories longer than this many samples get their power computed chunk by chunk (progress).

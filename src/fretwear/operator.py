@@ -165,8 +165,13 @@ def _cumulated(law, power: float, coefficients, elapsed_s: np.ndarray, previous:
     return out
 
 
-def _power_of(source, *, t_start, t_end, blocks, sectors, stationarity_threshold):
-    """(PowerResult or None, history or None, total power [W])."""
+def _power_of(source, history, *, t_start, t_end, blocks, sectors, stationarity_threshold):
+    """(PowerResult or None, history or None, total power [W]); ``history`` goes with a
+    PowerResult only (the history it was computed from)."""
+    is_result = hasattr(source, "total") and hasattr(source, "blocks")
+    if history is not None and (not is_result or not isinstance(history, ContactHistory)):
+        raise InputError("history is the ContactHistory a PowerResult source was computed from "
+                         "(for the KWU_EPRI classes); give it with a PowerResult source only")
     if isinstance(source, str | os.PathLike):
         from fretwear.io import read_history
 
@@ -177,8 +182,8 @@ def _power_of(source, *, t_start, t_end, blocks, sectors, stationarity_threshold
         result = wear_power(source, t_start=t_start, t_end=t_end, blocks=blocks,
                             sectors=sectors, stationarity_threshold=stationarity_threshold)
         return result, source, float(result.total)
-    if hasattr(source, "total") and hasattr(source, "blocks"):  # a PowerResult
-        return source, None, float(source.total)
+    if is_result:
+        return source, history, float(source.total)
     try:
         power = float(source)
     except (TypeError, ValueError):
@@ -227,7 +232,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                t_start: float | None = None, t_end: float | None = None, blocks: int = 1,
                stationarity_threshold: float = 0.1, force_max: float | None = None,
                speed_max: float | None = None,
-               coefficient_files=None) -> pd.DataFrame:
+               coefficient_files=None, history: ContactHistory | None = None) -> pd.DataFrame:
     """The service-life wear table of one contact (SPEC §7; Code_Aster's POST_USURE).
 
     Parameters
@@ -280,6 +285,9 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         (docs/laws.md), extending and overriding the built-in table for ``materials``; a later
         file wins over an earlier one (``lookup(..., extra=coefficient_files)``). A fretwear
         extension: POST_USURE has no such keyword.
+    history : ContactHistory, optional
+        With a PowerResult ``source``, the history it was computed from: the KWU_EPRI law reads
+        its force/speed classes over ``[t_start, t_end]`` without computing the power again.
 
     Returns
     -------
@@ -295,7 +303,8 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         ``coefficient_files`` without ``materials``.
     InputError
         Bad instants, sector count differing from the initial table's, replacement before the
-        origin, a coefficient file that does not exist (a malformed one is a FormatError).
+        origin, a coefficient file that does not exist (a malformed one is a FormatError),
+        ``history`` without a PowerResult ``source``.
 
     Notes
     -----
@@ -336,7 +345,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
     origin = 0.0 if state is None else state.origin
 
     result, history, power = _power_of(
-        source, t_start=t_start, t_end=t_end, blocks=blocks, sectors=sectors,
+        source, history, t_start=t_start, t_end=t_end, blocks=blocks, sectors=sectors,
         stationarity_threshold=stationarity_threshold)
     sector_mode = result is not None and getattr(result, "sectors", None) is not None
     if sectors is not None and not sector_mode:
@@ -379,8 +388,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         vm, vo = body_volumes(power, prev_m, prev_o)
         dm, do = _depths(geometry, vm, vo)
         frame = pd.DataFrame({**head, "volume_mobile": vm, "volume_obstacle": vo,
-                              "depth_mobile": np.broadcast_to(dm, vm.shape).astype(float),
-                              "depth_obstacle": np.broadcast_to(do, vm.shape).astype(float)})
+                              "depth_mobile": dm, "depth_obstacle": do})
         edges = None
     else:
         frame, edges = _sector_frame(head, result, law_obj, mobile, obstacle, sector_coefficients,
@@ -489,8 +497,7 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
     total_m, total_o = cum_m.sum(axis=1), cum_o.sum(axis=1)
     dm, do = _depths(geometry, total_m, total_o)
     glob = {"volume_mobile": total_m, "volume_obstacle": total_o,
-            "depth_mobile": np.broadcast_to(dm, total_m.shape).astype(float),
-            "depth_obstacle": np.broadcast_to(do, total_m.shape).astype(float)}
+            "depth_mobile": dm, "depth_obstacle": do}
     data = {k: np.repeat(np.asarray(v), m) for k, v in {**head, **glob}.items()}
     for c, parts in cols.items():  # instant-major order: row = i*m + j
         data[c] = np.column_stack(parts).ravel()
@@ -559,8 +566,8 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
     if law.needs_history:
         if history is None:
             raise KeywordError(f"the {law.name} law needs the contact history's force/speed "
-                               "classes: give a history (RESU_GENE), not a power alone "
-                               "(PUIS_USURE)")
+                               "classes: give a history (RESU_GENE), or history= with a "
+                               "PowerResult, not a power alone (PUIS_USURE)")
         for coefs in (mobile, obstacle):
             if coefs is not None and coefs.get("intensity") is None:
                 stats = law.statistics(history, t_start=t_start, t_end=t_end, **coefs)
