@@ -14,6 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from fretwear.history import contact_angle
 from fretwear.sectors import sector_index
 
 #: Columns of ``block_stats``: per-block integrals, window-clipped.
@@ -45,13 +46,11 @@ class ChunkSums(NamedTuple):
     groups: np.ndarray       # [len(GROUP_FIELDS)]
 
 
-
-
 def reference_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
     """Sector of each sample by the reference rule ``sector_index(θ, edges)``, θ via arctan2.
 
-    θ = atan2(dz, dy) in degrees folded into (-180, 180], and θ = 0 whenever dy = dz = 0
-    (including negative zeros).
+    θ = :func:`fretwear.history.contact_angle` (atan2(dz, dy) in degrees folded into
+    (-180, 180], and θ = 0 whenever dy = dz = 0, including negative zeros).
 
     Examples
     --------
@@ -59,13 +58,7 @@ def reference_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
     ...                        np.array([-180.0, 0.0, 180.0])).tolist()
     [0, 1, 0]
     """
-    y = np.asarray(dy, dtype=float)
-    z = np.asarray(dz, dtype=float)
-    theta = np.degrees(np.arctan2(z, y))
-    theta = np.where(theta <= -180.0, 180.0, theta)
-    theta = np.where((y == 0) & (z == 0), 0.0, theta)
-    return sector_index(theta, edges)
-
+    return sector_index(contact_angle(dy, dz), edges)
 
 
 def _lin(g0, g1, t0, t1, x):
@@ -82,14 +75,12 @@ def _groups_from_episodes(start, end, peak, open_left, open_right, min_rest) -> 
         return out
     new = np.ones(start.size, dtype=bool)
     new[1:] = (start[1:] - end[:-1]) >= min_rest
-    gid = np.cumsum(new) - 1
     first_idx = np.flatnonzero(new)
     g_start = start[first_idx]
     last_idx = np.append(first_idx[1:] - 1, start.size - 1)
     g_end = end[last_idx]
     g_peak = np.maximum.reduceat(peak, first_idx)
     ng = g_start.size
-    del gid
     out[0] = ng
     out[1:5] = g_start[0], g_end[0], g_peak[0], float(open_left)
     out[5:9] = g_start[-1], g_end[-1], g_peak[-1], float(open_right)
@@ -192,7 +183,7 @@ def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     # contact (above-threshold) part [ca, cb] of each piece, linear force
     above_a, above_b = fa > threshold, fb > threshold
     full = above_a & above_b
-    ca, cb = np.where(full, pa, pa), np.where(full, pb, pa)
+    ca, cb = pa.copy(), np.where(full, pb, pa)
     fca, fcb = fa.copy(), fb.copy()
     sa, sb = sg[:-1], sg[1:]
     sca, scb = sa.copy(), sb.copy()
