@@ -33,7 +33,6 @@ an unknown key is an error naming it and the closest valid one. Example::
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -41,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from fretwear.case import check_keys
 from fretwear.dynamics.excitation import BaseAcceleration, NodalForce, Signal
 from fretwear.dynamics.modal import ModalModel, uniform_beam_modes
 from fretwear.dynamics.shocks import Shock
@@ -125,16 +125,7 @@ DYNAMICS_KEYS: dict[str, dict[str, tuple[Any, str]]] = {
 
 
 def _check(section: str, items: Mapping[str, Any], where: str) -> None:
-    spec = DYNAMICS_KEYS[section]
-    for key, value in items.items():
-        if key not in spec:
-            close = difflib.get_close_matches(key, spec, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise KeywordError(f"{where}: unknown key {key}{hint}; valid keys: {', '.join(spec)}")
-        kind = spec[key][0]
-        if (isinstance(value, bool) and kind is not bool) or not isinstance(value, kind):
-            raise KeywordError(f"{where} {key} = {value!r} has the wrong type; expected "
-                               f"{spec[key][1]}")
+    check_keys(items, DYNAMICS_KEYS[section], where)
 
 
 def _need(items: Mapping, key: str, where: str, section: str):

@@ -15,7 +15,6 @@ obstacle and the mobile's wall), a ``[dynamics]`` section (:mod:`fretwear.dynami
 
 from __future__ import annotations
 
-import difflib
 import json
 import warnings
 from collections.abc import Callable, Mapping
@@ -43,15 +42,9 @@ ITERATE_KEYS: dict[str, tuple[Any, str]] = {
 
 
 def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
-    for key, value in section.items():
-        if key not in ITERATE_KEYS:
-            close = difflib.get_close_matches(key, ITERATE_KEYS, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise KeywordError(f"[iterate]: unknown key {key}{hint}; valid keys: "
-                               f"{', '.join(ITERATE_KEYS)}")
-        kind = ITERATE_KEYS[key][0]
-        if (isinstance(value, bool) and kind is not bool) or not isinstance(value, kind):
-            raise KeywordError(f"[iterate] {key} = {value!r}: expected {ITERATE_KEYS[key][1]}")
+    from fretwear.case import check_keys
+
+    check_keys(section, ITERATE_KEYS, "[iterate]")
     out = dict(section)
     if out.get("cycles", 1) < 1:
         raise KeywordError(f"[iterate] cycles must be >= 1, got {out['cycles']}")

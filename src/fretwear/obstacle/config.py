@@ -18,13 +18,13 @@ Keys carry their unit in their name, like the rest of the case file; every key i
 
 from __future__ import annotations
 
-import difflib
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from fretwear.case import check_keys, keyword_hint
 from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.obstacle.clearance import RESOLUTION
 from fretwear.obstacle.depth import DEPTH_SHAPES
@@ -157,17 +157,7 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
         config = config["obstacle"]
     geometry = geometry or {}
     base = Path(directory) if directory is not None else Path(".")
-    for key, value in config.items():
-        if key not in OBSTACLE_KEYS:
-            close = difflib.get_close_matches(key, OBSTACLE_KEYS, n=1)
-            hint = f" (did you mean {close[0]!r}?)" if close else ""
-            raise KeywordError(f"[obstacle]: unknown key {key}{hint}; valid keys: "
-                               f"{', '.join(OBSTACLE_KEYS)}")
-        kind = OBSTACLE_KEYS[key][0]
-        if isinstance(value, bool) or not isinstance(value, kind):
-            raise KeywordError(f"[obstacle] {key} = {value!r}: expected "
-                               f"{'a number' if kind is _NUMBER else kind.__name__} "
-                               f"({OBSTACLE_KEYS[key][1]})")
+    check_keys(config, OBSTACLE_KEYS, "[obstacle]")
 
     def path(key):
         if key not in config:
@@ -180,9 +170,8 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
     mobile = Mobile(rm, float(_need(config, "wall_thickness_m")))
     model = config.get("type", "circle")
     if model not in OBSTACLE_MODELS:
-        close = difflib.get_close_matches(model, OBSTACLE_MODELS, n=1)
         raise KeywordError(f"[obstacle] type = {model!r} is unknown"
-                           f"{f' (did you mean {close[0]!r}?)' if close else ''}; choose one of "
+                           f"{keyword_hint(model, OBSTACLE_MODELS)}; choose one of "
                            f"{', '.join(OBSTACLE_MODELS)}")
     unused = [k for kind, keys in _MODEL_KEYS.items() if kind != model for k in keys
               if k in config]
