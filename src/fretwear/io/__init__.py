@@ -271,6 +271,12 @@ def _is_path(value: Any) -> bool:
     return isinstance(value, (str, os.PathLike))
 
 
+def _require_file(path: str | os.PathLike) -> None:
+    if not Path(path).is_file():
+        what = "is a directory, not a file" if Path(path).is_dir() else "does not exist"
+        raise InputError(f"file {str(path)!r} {what}")
+
+
 def _frame_source(table: Any) -> Source:
     names = [str(c) for c in table.keys()]
     values = (list(table.values()) if isinstance(table, Mapping)
@@ -303,14 +309,10 @@ def open_source(path: Any, format: str | None = None, **options: Any) -> Source:
         if _format_name(format) != "aster-function":
             raise FormatError(f"a list or mapping of files is read with format='aster-function', "
                               f"not {format!r}; read other formats one file at a time")
-        files = list(path.values()) if isinstance(path, Mapping) else list(path)
-        for f in files:
-            if not Path(f).is_file():
-                raise InputError(f"file {str(f)!r} does not exist")
+        for f in (path.values() if isinstance(path, Mapping) else path):
+            _require_file(f)
     else:
-        if not Path(path).is_file():
-            raise InputError(f"file {str(path)!r} does not exist"
-                             + (" (it is a directory)" if Path(path).is_dir() else ""))
+        _require_file(path)
     name = _format_name(format) if format is not None else guess_format(path)
     fmt = FORMATS[name]
     unknown = sorted(set(options) - set(fmt.read_options))
