@@ -221,13 +221,21 @@ class ContactGeometry:
     def _volume_from_depth(self, depth_mobile: np.ndarray, depth_obstacle: np.ndarray):
         raise NotImplementedError
 
-    def _warn_range(self, invalid: np.ndarray, what: str) -> None:
-        count = int(np.count_nonzero(invalid))
+    def _apply(self, relation, kind: str, mobile, obstacle):
+        """``relation`` on the validated pair of ``kind`` ("volume"/"depth"): NaN inputs give
+        NaN, and new NaNs (beyond the range) a RangeWarning at the public method's caller."""
+        a, b = _volumes_or_depths(kind, mobile, obstacle)
+        x, y = relation(a, b)
+        given = ~(np.isnan(a) | np.isnan(b))
+        x = np.where(given, np.asarray(x, dtype=float), np.nan)
+        y = np.where(given, np.asarray(y, dtype=float), np.nan)
+        count = int(np.count_nonzero(given & (np.isnan(x) | np.isnan(y))))
         if count:
             warnings.warn(
-                f"{self.contact_type}: {count} {what} beyond the range of the relation "
+                f"{self.contact_type}: {count} {kind}(s) beyond the range of the relation "
                 f"({self.range_limit}); the result there is NaN",
                 RangeWarning, stacklevel=3)
+        return _out(x), _out(y)
 
     def depth_from_volume(self, volume_mobile, volume_obstacle=0.0):
         """Worn depths of mobile and obstacle from their worn volumes.
@@ -245,15 +253,7 @@ class ContactGeometry:
         depth_mobile, depth_obstacle : numpy.ndarray or float
             d_m, d_o [m], of the broadcast shape; NaN (with a RangeWarning) beyond the range.
         """
-        vm, vo = _volumes_or_depths("volume", volume_mobile, volume_obstacle)
-        dm, do = self._depth_from_volume(vm, vo)
-        dm = np.asarray(dm, dtype=float)
-        do = np.asarray(do, dtype=float)
-        given = ~(np.isnan(vm) | np.isnan(vo))
-        dm = np.where(given, dm, np.nan)
-        do = np.where(given, do, np.nan)
-        self._warn_range(given & (np.isnan(dm) | np.isnan(do)), "volume(s)")
-        return _out(dm), _out(do)
+        return self._apply(self._depth_from_volume, "volume", volume_mobile, volume_obstacle)
 
     def volume_from_depth(self, depth_mobile, depth_obstacle=0.0):
         """Worn volumes of mobile and obstacle from their worn depths.
@@ -270,12 +270,4 @@ class ContactGeometry:
         volume_mobile, volume_obstacle : numpy.ndarray or float
             V_m, V_o [m³]; NaN (with a RangeWarning) beyond the range.
         """
-        dm, do = _volumes_or_depths("depth", depth_mobile, depth_obstacle)
-        vm, vo = self._volume_from_depth(dm, do)
-        vm = np.asarray(vm, dtype=float)
-        vo = np.asarray(vo, dtype=float)
-        given = ~(np.isnan(dm) | np.isnan(do))
-        vm = np.where(given, vm, np.nan)
-        vo = np.where(given, vo, np.nan)
-        self._warn_range(given & (np.isnan(vm) | np.isnan(vo)), "depth(s)")
-        return _out(vm), _out(vo)
+        return self._apply(self._volume_from_depth, "depth", depth_mobile, depth_obstacle)

@@ -13,6 +13,7 @@ import warnings
 import numpy as np
 
 from fretwear.errors import InputError, RangeWarning
+from fretwear.geometry.base import _out
 
 __all__ = [
     "sector_depth_mobile",
@@ -45,11 +46,6 @@ def _inputs(value, value_name, unit, radius, radius_name, width, arc_deg):
             f"{value_name} {array.shape}, {radius_name} {r.shape}, width {l.shape} and arc_deg "
             f"{arc.shape} do not broadcast together") from None
     return array, r, l, np.radians(arc)
-
-
-def _out(array):
-    array = np.asarray(array, dtype=float)
-    return array[()] if array.ndim == 0 else array
 
 
 def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
