@@ -30,6 +30,7 @@ from fretwear.io.channels import (
     Source,
     build_history,
     channel_of,
+    check_lengths,
     resolve_columns,
     resolve_units,
 )
@@ -421,21 +422,6 @@ def read_history(path: Any, format: str | None = None, *, units: Mapping[str, st
     return build_history(dict(zip(mapping, arrays, strict=True)), columns=source.columns,
                          mapping=mapping, factors=factors, label=source.label, name=label,
                          metadata=metadata)
-
-
-def check_lengths(sizes: list[int], names: list[str], label: str) -> int:
-    """The common length of the columns read, or a :class:`FormatError` naming the culprits.
-
-    Examples
-    --------
-    >>> check_lengths([3, 3], ["time", "fn"], "h.npz")
-    3
-    """
-    if len(set(sizes)) > 1:
-        detail = ", ".join(f"{n!r}: {k}" for n, k in zip(names, sizes, strict=True))
-        raise FormatError(f"{label}: the columns used have different lengths ({detail}); every "
-                          "channel needs one value per instant")
-    return sizes[0] if sizes else 0
 
 
 def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:

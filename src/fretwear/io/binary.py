@@ -29,7 +29,7 @@ import numpy as np
 from fretwear.errors import FormatError
 from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
 from fretwear.io.atomic import atomic_path, atomic_write
-from fretwear.io.channels import Source
+from fretwear.io.channels import Source, check_lengths
 
 _NPZ_META = "__fretwear__"
 
@@ -227,13 +227,8 @@ def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         with h5.File(path, "r") as f:
             datasets = [f[gname][names[p]] for p in positions]
-            sizes = [d.shape[0] for d in datasets]
-            if len(set(sizes)) > 1:
-                detail = ", ".join(f"{names[p]!r}: {k}" for p, k in zip(positions, sizes,
-                                                                         strict=True))
-                raise FormatError(f"{path}: the datasets used have different lengths "
-                                  f"({detail}); every channel needs one value per instant")
-            n = sizes[0]
+            n = check_lengths([d.shape[0] for d in datasets], [names[p] for p in positions],
+                              str(path))
             for start in range(0, n, size):
                 yield [np.asarray(d[start:start + size], dtype=float) for d in datasets]
 

@@ -370,6 +370,21 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
     return chosen, factors
 
 
+def check_lengths(sizes: list[int], names: list[str], label: str) -> int:
+    """The common length of the columns read, or a :class:`FormatError` naming the culprits.
+
+    Examples
+    --------
+    >>> check_lengths([3, 3], ["time", "fn"], "h.npz")
+    3
+    """
+    if len(set(sizes)) > 1:
+        detail = ", ".join(f"{n!r}: {k}" for n, k in zip(names, sizes, strict=True))
+        raise FormatError(f"{label}: the columns used have different lengths ({detail}); every "
+                          "channel needs one value per instant")
+    return sizes[0] if sizes else 0
+
+
 def build_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
                   mapping: Mapping[str, int], factors: Mapping[str, float], label: str,
                   name: str, metadata: Mapping[str, Any], first_row: int = 0) -> ContactHistory:
