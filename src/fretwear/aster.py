@@ -27,6 +27,7 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.geometry.base import ASTER_KEYWORDS
 
 
 class _F(dict):
@@ -80,12 +81,8 @@ FACTOR_KEYWORDS: dict[str, tuple[str, ...]] = {
     "SECTEUR": ("CONTACT", "COEF_USUR_MOBILE", "COEF_USUR_OBST", "ANGL_INIT", "ANGL_FIN"),
     "ETAT_INIT": ("TABL_USURE", "INST_INIT"),
 }
-#: Geometry keyword -> native dimension name.
-DIMENSIONS: dict[str, str] = {
-    "RAYON_MOBILE": "mobile_radius", "RAYON_OBST": "obstacle_radius",
-    "LARGEUR_OBST": "obstacle_width", "ANGL_INCLI": "tilt_angle",
-    "ANGL_ISTHME": "isthmus_angle", "ANGL_IMPACT": "impact_angle",
-}
+#: Geometry keyword -> native dimension name (the geometry's table, inverted).
+DIMENSIONS: dict[str, str] = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
 _TUBE_NEUF_KEYWORDS = ("TUBE_NEUF", "TABL_USURE", "INST", "TITRE", "INFO")
 
 
