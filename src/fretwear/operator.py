@@ -576,19 +576,12 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
 
 
 def _database(contact_type, materials, law_name, obstacle_wear, coefficient_files=None
-              ) -> tuple[dict, dict | None, dict | None]:
+              ) -> tuple[dict, dict | None, dict]:
     """(mobile, obstacle, sources) coefficient dicts of a database pair (SPEC §5), the user's
     coefficient files extending the built-in table."""
     from fretwear.database import lookup
 
     found = lookup(contact_type, materials[0], materials[1], law_name,
                    obstacle=bool(obstacle_wear), extra=coefficient_files)
-    mobile = getattr(found, "mobile", None)
-    obstacle = getattr(found, "obstacle", None)
-    if mobile is None and isinstance(found, Mapping):
-        mobile, obstacle = found.get("mobile"), found.get("obstacle")
-    if mobile is None:
-        raise InputError(f"unexpected coefficient database record {found!r}")
-    sources = getattr(found, "sources", None)
-    return (dict(mobile), (dict(obstacle) if obstacle else None),
-            None if sources is None else dict(sources))
+    return (dict(found.mobile), dict(found.obstacle) if found.obstacle else None,
+            dict(found.sources))
