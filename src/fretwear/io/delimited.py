@@ -131,8 +131,12 @@ def _read_kwargs(info: dict, positions: list[int]) -> dict:
                 compression=info["compression"])
 
 
-def _diagnose(path: Path, info: dict, positions: list[int], first_row: int = 0) -> FormatError:
-    """Find the first non-numeric cell among ``positions`` (for the error message)."""
+def _diagnose(path: Path, info: dict, positions: list[int], exc: ValueError) -> FormatError:
+    """The error of a failed read: a ragged row (pandas' ParserError), else the first
+    non-numeric cell among ``positions``."""
+    if isinstance(exc, pd.errors.ParserError):
+        return FormatError(f"{path}: {str(exc).strip()}; every row must have the same number of "
+                           "cells as the header")
     kwargs = _read_kwargs(info, positions)
     kwargs["dtype"] = str
     kwargs["keep_default_na"] = False
@@ -196,10 +200,7 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
         try:
             frame = pd.read_csv(path, **_read_kwargs(info, positions))
         except ValueError as exc:
-            if isinstance(exc, pd.errors.ParserError):
-                raise FormatError(f"{path}: {str(exc).strip()}; every row must have the same "
-                                  "number of cells as the header") from None
-            raise _diagnose(path, info, positions) from None
+            raise _diagnose(path, info, positions, exc) from None
         return [frame[pos].to_numpy(dtype=float) for pos in positions]
 
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
@@ -208,10 +209,7 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
                 for frame in reader:
                     yield [frame[pos].to_numpy(dtype=float) for pos in positions]
         except ValueError as exc:
-            if isinstance(exc, pd.errors.ParserError):
-                raise FormatError(f"{path}: {str(exc).strip()}; every row must have the same "
-                                  "number of cells as the header") from None
-            raise _diagnose(path, info, positions) from None
+            raise _diagnose(path, info, positions, exc) from None
 
     hint = ("" if info["header"] else "; the file has no header line: name the columns by "
             "position, e.g. columns={0: 'time', 1: 'normal_force', 2: 'vt1', 3: 'vt2'}")
