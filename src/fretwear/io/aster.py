@@ -143,7 +143,11 @@ def _infer_type(col: np.ndarray, values: np.ndarray | None) -> str:
         if present.size and set("".join(present)) <= set("0123456789+-"):
             return "I"
         return "R"
-    width = max((len(_unquote(c)) for c in present), default=1)
+    return _string_type(max((len(_unquote(c)) for c in present), default=1))
+
+
+def _string_type(width: int) -> str:
+    """The narrowest Code_Aster string type (K8 ... K80) holding ``width`` characters."""
     return f"K{next((w for w in _STRING_WIDTHS if width <= w), 80)}"
 
 
@@ -347,8 +351,7 @@ def _kind(series: pd.Series) -> str:
         return "I"
     if pd.api.types.is_float_dtype(series):
         return "R"
-    width = max([len(str(v)) for v in series if v is not None] + [1])
-    return f"K{next((w for w in _STRING_WIDTHS if width <= w), 80)}"
+    return _string_type(max([len(str(v)) for v in series if v is not None] + [1]))
 
 
 def format_aster_table(frame: pd.DataFrame, *, format: str = "TABLEAU", title: str | None = None,
