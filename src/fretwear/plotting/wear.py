@@ -15,17 +15,15 @@ from fretwear.plotting._common import pyplot as _pyplot
 from fretwear.plotting._common import save_figure
 
 
-def _save(fig, directory: Path, stem: str) -> list[Path]:
-    return save_figure(fig, directory, stem, dpi=120)
-
-
 def _unit(table: pd.DataFrame) -> str:
+    """The table's time unit: its ``time_unit``, else the first name of its ``time_scale`` in
+    :data:`fretwear.case.TIME_UNITS`, else the scale in seconds."""
     if table.attrs.get("time_unit"):
         return str(table.attrs["time_unit"])
-    scale = table.attrs.get("time_scale", 1.0)
-    names = {1.0: "s", 60.0: "min", 3600.0: "h", 86400.0: "day", 604800.0: "week",
-             31536000.0: "year"}
-    return names.get(float(scale), f"× {float(scale):g} s")
+    from fretwear.case import TIME_UNITS
+
+    scale = float(table.attrs.get("time_scale", 1.0))
+    return next((name for name, s in TIME_UNITS.items() if s == scale), f"× {scale:g} s")
 
 
 def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: str = "wear"
@@ -96,7 +94,7 @@ def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: 
     title = table.attrs.get("title") or "wear table"
     fig.suptitle(f"{title}: {table.attrs.get('contact_type', '')} "
                  f"{table.attrs.get('law', '')}".strip())
-    files = _save(fig, directory, f"{stem}_history")
+    files = save_figure(fig, directory, f"{stem}_history")
     plt.close(fig)
     if "sector" in table.columns and table["sector"].notna().any():
         last = table[table["instant"] == table["instant"].max()].sort_values("sector")
@@ -113,13 +111,13 @@ def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: 
         axes[1].set_title(f"sector depth [mm] at instant {last['instant'].iloc[0]:g} {unit}")
         axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
         # radial labels where the bars are lowest, so that they do not hide the bars
-        quiet = float(np.degrees(start[int(np.argmin(last["sector_power"].to_numpy()))]
-                                 + width[int(np.argmin(last["sector_power"].to_numpy()))] / 2))
+        low = int(np.argmin(last["sector_power"].to_numpy()))
+        quiet = float(np.degrees(start[low] + width[low] / 2))
         for ax in axes:  # contact angle atan2(dz, dy) in (-180, 180] deg, as the table
             ax.set_thetagrids(range(0, 360, 45),
                               [f"{a if a <= 180 else a - 360}°" for a in range(0, 360, 45)])
             ax.set_rlabel_position(quiet)
             ax.tick_params(axis="y", labelsize="small")
-        files += _save(fig, directory, f"{stem}_sectors")
+        files += save_figure(fig, directory, f"{stem}_sectors")
         plt.close(fig)
     return files
