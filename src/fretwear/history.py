@@ -31,6 +31,9 @@ from fretwear.errors import HistoryError
 CHANNELS: tuple[str, ...] = (
     "time", "normal_force", "ft1", "ft2", "vn", "vt1", "vt2", "dy", "dz", "stick",
 )
+#: Default number of samples per chunk when a history file is streamed (about 80 MB for ten
+#: channels); used by fretwear.io, fretwear.power and the KWU-EPRI statistics.
+DEFAULT_CHUNK_SIZE = 1_000_000
 #: Channels a history cannot do without.
 REQUIRED: tuple[str, ...] = ("time", "normal_force", "vt1", "vt2")
 #: Channels that may be absent (None).

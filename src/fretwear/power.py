@@ -29,13 +29,11 @@ from typing import Any
 import numpy as np
 
 from fretwear.errors import HistoryError, InputError, KeywordError, StationarityWarning
-from fretwear.history import ContactHistory
+from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.kernels import BLOCK_STATS, GROUP_FIELDS, fused
 from fretwear.sectors import sector_edges as _sector_edges
 from fretwear.statistics import ContactStatistics, _jsonable, finalize_statistics, merge_groups
 
-#: Default number of samples per chunk when a file is streamed.
-DEFAULT_CHUNK_SIZE = 1_000_000
 _SAMPLE = ("time", "normal_force", "vt1", "vt2", "dy", "dz", "stick")
 
 

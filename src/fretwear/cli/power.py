@@ -13,6 +13,7 @@ from pathlib import Path
 
 import click
 
+from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.statistics import STATISTICS_UNITS
 
 
@@ -168,7 +169,8 @@ def _print_table(result, caught: list[str]) -> None:
                    "encoding, hdf5 group, aster index/title (a file holding several tables) "
                    "and select=NOEUD=N12 (the rows of one shock point). "
                    "Repeatable.")
-@click.option("--chunk-size", type=click.IntRange(min=2), default=1_000_000, show_default=True,
+@click.option("--chunk-size", type=click.IntRange(min=2), default=DEFAULT_CHUNK_SIZE,
+              show_default=True,
               help="Samples read per chunk (memory bound).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (SI units) instead of tables.")
 def command(history, sectors, blocks, t_start, t_end, threshold, force_threshold, rest_time,

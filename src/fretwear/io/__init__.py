@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from fretwear.errors import FormatError, InputError, KeywordError
-from fretwear.history import CHANNELS, ContactHistory
+from fretwear.history import CHANNELS, DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import aster as _aster
 from fretwear.io import binary as _binary
 from fretwear.io import delimited as _delimited
@@ -430,8 +430,8 @@ def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
         yield [a[start:start + size] for a in arrays]
 
 
-def iter_history_chunks(path: Any, chunk_size: int = 1_000_000, format: str | None = None, *,
-                        units: Mapping[str, str] | None = None,
+def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
+                        format: str | None = None, *, units: Mapping[str, str] | None = None,
                         columns: Mapping[Any, str | None] | None = None, name: str | None = None,
                         **options: Any) -> Iterator[ContactHistory]:
     """Read a history chunk by chunk, with bounded memory; consecutive chunks share one sample.

@@ -29,9 +29,8 @@ from typing import Any
 import numpy as np
 
 from fretwear.errors import HistoryError, InputError, LawWarning
+from fretwear.history import DEFAULT_CHUNK_SIZE
 
-#: Samples per chunk when a history file is streamed (as fretwear.power).
-DEFAULT_CHUNK_SIZE = 1_000_000
 #: Number of classes per axis.
 N_CLASSES = 5
 #: Impact cells: speed class v = 1 (row 0), every force class.
