@@ -503,9 +503,6 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     if isinstance(history, str | os.PathLike):
         from fretwear.io import iter_history_chunks
 
-        if isinstance(chunk_size, bool) or not isinstance(chunk_size, int | np.integer) \
-                or chunk_size < 2:
-            raise InputError(f"chunk_size must be an integer >= 2 samples, got {chunk_size!r}")
         return _from_chunks(
             lambda: iter_history_chunks(history, chunk_size, **read_options), options)
     if read_options:
