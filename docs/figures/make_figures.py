@@ -12,28 +12,23 @@ import math
 import sys
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from fretwear.geometry import contact_geometry
+from fretwear.geometry._shapes import lens_area, lens_half_chord, sagitta
+from fretwear.geometry.enco import Tube3Enco, Tube4Enco
+from fretwear.geometry.grappe_notch import NOTCH_LAWS, notch_depth_limit
+from fretwear.geometry.tube_alesage import tilted_lunule_volume
+from fretwear.plotting._common import pyplot, save_figure
 
-from fretwear.geometry import contact_geometry  # noqa: E402
-from fretwear.geometry._shapes import lens_area, lens_half_chord, sagitta  # noqa: E402
-from fretwear.geometry.enco import Tube3Enco, Tube4Enco  # noqa: E402
-from fretwear.geometry.grappe_notch import NOTCH_LAWS, notch_depth_limit  # noqa: E402
-from fretwear.geometry.tube_alesage import tilted_lunule_volume  # noqa: E402
-from fretwear.io.atomic import atomic_path  # noqa: E402
-
+plt = pyplot()
 HERE = Path(__file__).resolve().parent
 MM = 1e3
 MM3 = 1e9
 
 
 def _save(fig, name: str) -> Path:
-    target = HERE / name
-    with atomic_path(target) as tmp:
-        fig.savefig(tmp, dpi=120, format="png", bbox_inches="tight")
+    (target,) = save_figure(fig, HERE, Path(name).stem, formats=("png",))
     plt.close(fig)
     return target
 
@@ -269,15 +264,28 @@ def _lobed_hole(ax, lobes: int, r_land: float, half_opening_deg: float, alpha_de
     ax.plot(xs + (xs[0],), ys + (ys[0],), color="0.3", lw=1.0)
 
 
+def _broached_plate(ax, lobes: int, r_o: float, half_opening_deg: float, title: str) -> None:
+    """The plate around a broached hole of ``lobes`` lobes (lands on the circle r_o), drawn on
+    square hidden axes."""
+    square = 2.2
+    ax.add_patch(plt.Rectangle((-square, -square), 2 * square, 2 * square, color="0.7",
+                               zorder=-1))
+    _lobed_hole(ax, lobes, r_o, half_opening_deg, 20.0, 0.45)
+    count = {3: "three", 4: "four"}[lobes]
+    ax.text(-2.1, -2.1, f"plate: lands on the circle $R_o$, {count} lobes", fontsize=8)
+    ax.set_xlim(-square, square)
+    ax.set_ylim(-square, square)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    ax.set_title(title)
+
+
 def figure_tube_3_enco() -> Path:
     """Sketch: trefoil hole with the tube on an isthmus edge, and the worn section at the edge."""
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(10.5, 5.0))
     # -- left: trefoil hole, tube pushed towards the edge of a land
     r_o, r_m = 1.0, 0.93
-    square = 2.2
-    ax0.add_patch(plt.Rectangle((-square, -square), 2 * square, 2 * square, color="0.7",
-                                zorder=-1))
-    _lobed_hole(ax0, 3, r_o, 28.0, 20.0, 0.45)
+    _broached_plate(ax0, 3, r_o, 28.0, "TUBE_3_ENCO: tube on an isthmus edge (sketch)")
     edge = math.radians(120.0 - 28.0)  # leading edge of the lobe at 120°
     offset = r_o - r_m + 0.04
     centre = (offset * math.cos(edge), offset * math.sin(edge))
@@ -288,12 +296,6 @@ def figure_tube_3_enco() -> Path:
     ax0.annotate("isthmus edge", (ex, ey), (0.9, 1.75), color="tab:red",
                  arrowprops={"arrowstyle": "->", "color": "tab:red"})
     ax0.text(0.0, -0.1, "tube $R_m$", color="tab:blue", ha="center")
-    ax0.text(-2.1, -2.1, "plate: lands on the circle $R_o$, three lobes", fontsize=8)
-    ax0.set_xlim(-square, square)
-    ax0.set_ylim(-square, square)
-    ax0.set_aspect("equal")
-    ax0.set_axis_off()
-    ax0.set_title("TUBE_3_ENCO: tube on an isthmus edge (sketch)")
 
     # -- right: zoom at the edge, worn section = half lens + flank triangle
     rm, ro, depth, alpha = 1.0, 1.25, 0.1, 50.0
@@ -365,10 +367,8 @@ def figure_tube_4_enco() -> Path:
     fig, (ax0, ax1) = plt.subplots(1, 2, figsize=(11.5, 5.0),
                                    gridspec_kw={"width_ratios": [1.0, 1.25]})
     r_o, r_m, half_opening, protrusion = 1.0, 0.93, 28.0, 0.04
-    square = 2.2
-    ax0.add_patch(plt.Rectangle((-square, -square), 2 * square, 2 * square, color="0.7",
-                                zorder=-1))
-    _lobed_hole(ax0, 4, r_o, half_opening, 20.0, 0.45)
+    _broached_plate(ax0, 4, r_o, half_opening,
+                    "TUBE_4_ENCO: tube on the two edges of a lobe (sketch)")
     beta = math.radians(half_opening)
     # the tube, pushed towards the lobe at 90°, reaches both of its edges (r_o sin β, r_o cos β)
     # and (−r_o sin β, r_o cos β) by the same protrusion: centre on the lobe's axis
@@ -384,12 +384,6 @@ def figure_tube_4_enco() -> Path:
     ax0.text(0.0, 1.9, "two isthmus edges: each carries half of $V_m$ and $V_o$",
              color="tab:red", ha="center", fontsize=8)
     ax0.text(0.0, -0.15, "tube $R_m$", color="tab:blue", ha="center")
-    ax0.text(-2.1, -2.1, "plate: lands on the circle $R_o$, four lobes", fontsize=8)
-    ax0.set_xlim(-square, square)
-    ax0.set_ylim(-square, square)
-    ax0.set_aspect("equal")
-    ax0.set_axis_off()
-    ax0.set_title("TUBE_4_ENCO: tube on the two edges of a lobe (sketch)")
     _enco_relation(ax1)
     ax1.set_title("TUBE_3_ENCO (one edge) and TUBE_4_ENCO (two edges)\n"
                   + ax1.get_title(), fontsize=9)
