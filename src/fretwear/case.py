@@ -303,8 +303,18 @@ def _path(case: Mapping[str, Any], value: str) -> Path:
     return p if p.is_absolute() else Path(case.get("_directory", ".")) / p
 
 
-def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
+def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
+                   ) -> dict[str, Any]:
     """The keyword arguments of :func:`fretwear.operator.wear_table` for a validated case.
+
+    Parameters
+    ----------
+    case : mapping
+        A validated case (:func:`validate_case`).
+    history_elsewhere : bool
+        The history does not come from the case's ``[history]`` or ``[power]`` (``fretwear
+        iterate`` simulates it): neither ``[history] file`` nor ``[power] value_W`` is asked
+        for.
 
     Raises
     ------
@@ -323,7 +333,7 @@ def case_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
     history, power = case.get("history", {}), case.get("power", {})
     law, geometry = case.get("law", {}), case.get("geometry", {})
     sectors, time, restart = case.get("sectors", {}), case.get("time", {}), case.get("restart", {})
-    if ("file" in history) == ("value_W" in power):
+    if not history_elsewhere and ("file" in history) == ("value_W" in power):
         raise KeywordError("case: give exactly one of [history] file (a contact history) and "
                            "[power] value_W (a given power)")
     if "value_W" in power:

@@ -122,6 +122,12 @@ def test_case_errors(tmp_path):
     c["history"] = {"file": "x.csv"}
     with pytest.raises(KeywordError, match="history"):
         load_iterate_case(c)
+    # sector mode is Archard only (operator._sector_frame): refused before any dynamics runs
+    c = case(tmp_path)
+    c["law"] = {"name": "KWU_EPRI", "mobile": {"COEF_USURE": 1e-14}}
+    with pytest.raises(KeywordError, match="KWU_EPRI.*Archard coefficients only"):
+        iterate_case(c, output=tmp_path / "kwu")
+    assert not (tmp_path / "kwu").exists()
 
 
 def test_beam_config_matches_blevins():

@@ -137,13 +137,16 @@ class IterationResult:
 def _wear_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
     from fretwear.case import case_arguments
 
-    c = {k: v for k, v in case.items() if k not in ("dynamics", "iterate")}
-    # the history comes from [dynamics]: a placeholder (case_arguments does not open it)
-    c["history"] = {"file": "<fretwear.dynamics>"}
-    args = case_arguments(c)
+    # the history comes from [dynamics] (load_iterate_case refuses [history] and value_W)
+    args = case_arguments(case, history_elsewhere=True)
     if args["sectors"] is None:
         raise KeywordError("case: the loop needs [sectors] (count or edges_deg): the obstacle "
                            "update uses the cumulated sector volumes")
+    if str(args["law"]).upper() != "ARCHARD":
+        # refused here, before any dynamics, rather than by wear_table after the first cycle's
+        raise KeywordError(f"case: [law] name = {args['law']!r}: the loop's wear tables are "
+                           "sector tables (SECTEUR), which take Archard coefficients only; "
+                           "use ARCHARD")
     return args
 
 
@@ -236,13 +239,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             say(f"cycle {k}/{n_cycles}: wear power")
             power, history, contact = _cycle_power(result, iw, args)
             say(f"cycle {k}/{n_cycles}: wear table")
-            kwargs = dict(args, initial_state=previous)
-            if args["law"].upper() == "KWU_EPRI":
-                table = wear_table(history, **kwargs)
-            else:
-                for key in ("t_start", "t_end", "blocks", "stationarity_threshold", "sectors"):
-                    kwargs.pop(key)
-                table = wear_table(power, **kwargs)
+            table = wear_table(power, initial_state=previous, **args)
             say(f"cycle {k}/{n_cycles}: obstacle update")
             update = obstacle.update(table)
             previous = table
@@ -291,7 +288,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
 
 
 #: Wear-shock histories up to this many samples are read whole by the loop; longer ones are
-#: reduced chunk by chunk from their Parquet file (bounded memory; KWU_EPRI always reads whole).
+#: reduced chunk by chunk from their Parquet file (bounded memory).
 LOOP_IN_MEMORY = 2_000_000
 #: Samples kept (evenly spaced) for the figure of a history reduced chunk by chunk.
 PLOT_SAMPLES = 200_000
@@ -314,7 +311,7 @@ def _cycle_power(result, iw: int, args: Mapping[str, Any]):
 
     path = result.files[result.shock_names[iw]]
     n = pq.ParquetFile(path).metadata.num_rows
-    if n <= LOOP_IN_MEMORY or args["law"].upper() == "KWU_EPRI":
+    if n <= LOOP_IN_MEMORY:
         history = result.history(iw)
         return chunked_power(history, args), history, float(np.mean(history.normal_force > 0))
     from fretwear.io import iter_history_chunks
