@@ -484,12 +484,9 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
 
         # The power is computed once, above; the history only gives KWU_EPRI its classes.
         table = wear_table(power, history=history, **args)
-    texts = [f"{w.category.__name__}: {w.message}" for w in caught
-             if issubclass(w.category, FretwearWarning | UserWarning)]
-    seen: list[str] = []
-    for t in texts:  # keep order, drop repeats
-        if t not in seen:
-            seen.append(t)
+    seen = list(dict.fromkeys(  # keep order, drop repeats
+        f"{w.category.__name__}: {w.message}" for w in caught
+        if issubclass(w.category, FretwearWarning | UserWarning)))
     if "title" in case:
         table.attrs["title"] = case["title"]
     unit = case.get("time", {}).get("unit")
