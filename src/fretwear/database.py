@@ -85,11 +85,6 @@ def _canonical_unit(text: str) -> str:
     return out
 
 
-def _unit_of(law: str, parameter: str) -> str:
-    unit = WEAR_LAWS[law].units[parameter]
-    return unit
-
-
 def _unit_ok(expected: str, given: str) -> bool:
     spellings = _UNIT_SPELLINGS.get(expected, (expected,))
     return _canonical_unit(given) in {_canonical_unit(s) for s in (expected, *spellings)}
@@ -130,7 +125,7 @@ def _validate(frame: pd.DataFrame, where: str, *, builtin: bool) -> pd.DataFrame
         raise FormatError(f"{where}, line {line[i]}: column 'value' must be a finite number >= 0, "
                           f"got {frame['value'].iloc[i]!r}")
     out["value"] = values
-    parameters = []
+    parameters, units = [], []
     for i, row in enumerate(out.itertuples(index=False)):
         at = f"{where}, line {line[i]}"
         if row.contact_type not in CONTACT_TYPE_NAMES:
@@ -149,15 +144,16 @@ def _validate(frame: pd.DataFrame, where: str, *, builtin: bool) -> pd.DataFrame
                 f"{at}: {row.law} has no coefficient {row.parameter!r}; accepted: "
                 + ", ".join(f"{p} ({law.aster_keywords[p]})" if p in law.aster_keywords else p
                             for p in storable))
-        expected = _unit_of(row.law, name)
+        expected = law.units[name]
         if not _unit_ok(expected, row.unit):
             raise FormatError(
                 f"{at}: unit {row.unit!r} for {row.law} {name}; expected {expected} (SI; also "
                 f"written {', '.join(repr(s) for s in _UNIT_SPELLINGS.get(expected, ()))}): "
                 "convert the value to SI")
         parameters.append(name)
+        units.append(expected)
     out["parameter"] = parameters
-    out["unit"] = [_unit_of(r.law, r.parameter) for r in out.itertuples(index=False)]
+    out["unit"] = units
     dup = out.duplicated(list(KEY), keep=False)
     if dup.any():
         rows = [int(x) for x in line[dup.to_numpy()]]
@@ -205,8 +201,6 @@ def read_coefficients(path: str | os.PathLike) -> pd.DataFrame:
         semicolon = ";" in header and "," not in header
         frame = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig",
                             sep=";" if semicolon else ",")
-    except FileNotFoundError:
-        raise
     except (UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
         raise FormatError(f"{path}: not a readable UTF-8 CSV coefficient file ({exc})") from None
     frame.columns = [str(c).strip() for c in frame.columns]
