@@ -175,6 +175,15 @@ class ContactGeometry:
             if type(value) is not float:  # ints, numpy scalars -> plain float (JSON-ready)
                 object.__setattr__(self, name, number)
 
+    def _check_room(self, hole: str, mobile: str) -> None:
+        """The hole of radius R_o must hold the mobile: R_o > R_m (``hole``/``mobile`` name
+        the two radii in the message, e.g. "the bore radius", "the mobile radius")."""
+        if not self.obstacle_radius > self.mobile_radius:
+            raise InputError(
+                f"{self.contact_type}: {hole} obstacle_radius (RAYON_OBST) = "
+                f"{self.obstacle_radius:g} m must exceed {mobile} mobile_radius "
+                f"(RAYON_MOBILE) = {self.mobile_radius:g} m")
+
     # ------------------------------------------------------------------ helpers
     def angle(self, name: str) -> float:
         """Dimension ``name`` [deg] converted to radians [rad] (0 when not given)."""

@@ -28,7 +28,6 @@ from typing import ClassVar
 
 import numpy as np
 
-from fretwear.errors import InputError
 from fretwear.geometry._shapes import frustum_volume, lens_area, lens_depth_limit, solve_monotone
 from fretwear.geometry.base import ContactGeometry
 
@@ -258,11 +257,7 @@ class _BroachedHole(ContactGeometry):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not self.obstacle_radius > self.mobile_radius:
-            raise InputError(
-                f"{self.contact_type}: the radius of the lands obstacle_radius (RAYON_OBST) = "
-                f"{self.obstacle_radius:g} m must exceed the tube radius mobile_radius "
-                f"(RAYON_MOBILE) = {self.mobile_radius:g} m")
+        self._check_room("the radius of the lands", "the tube radius")
 
     @property
     def kappa(self) -> float:

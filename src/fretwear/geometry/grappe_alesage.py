@@ -12,7 +12,6 @@ from typing import ClassVar
 
 import numpy as np
 
-from fretwear.errors import InputError
 from fretwear.geometry._shapes import lens_depth_limit, lunule_areas, lunule_depths
 from fretwear.geometry.base import ContactGeometry
 
@@ -65,11 +64,7 @@ class GrappeAlesage(ContactGeometry):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        if not self.obstacle_radius > self.mobile_radius:
-            raise InputError(
-                f"{self.contact_type}: the bore radius obstacle_radius (RAYON_OBST) = "
-                f"{self.obstacle_radius:g} m must exceed the mobile radius mobile_radius "
-                f"(RAYON_MOBILE) = {self.mobile_radius:g} m")
+        self._check_room("the bore radius", "the mobile radius")
 
     @property
     def max_depth(self) -> float:

@@ -22,7 +22,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from fretwear.errors import InputError, KeywordError, UnusedKeywordWarning
+from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.geometry._shapes import (
     frustum_volume,
     lens_area,
@@ -133,11 +133,8 @@ class TubeAlesage(ContactGeometry):
                     f"model, which does not use tilt_angle (ANGL_INCLI) = {self.tilt_angle:g} "
                     "deg: ignored; give RAYON_OBST for the tilted lunule model",
                     UnusedKeywordWarning, stacklevel=3)
-        elif not self.obstacle_radius > self.mobile_radius:
-            raise InputError(
-                f"TUBE_ALESAGE: the hole radius obstacle_radius (RAYON_OBST) = "
-                f"{self.obstacle_radius:g} m must exceed the tube radius mobile_radius "
-                f"(RAYON_MOBILE) = {self.mobile_radius:g} m")
+        else:
+            self._check_room("the hole radius", "the tube radius")
 
     @property
     def uniform(self) -> bool:
