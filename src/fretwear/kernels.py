@@ -153,18 +153,21 @@ if HAVE_NUMBA:
         return g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
 
     @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-    def _sector_of(y, z, qe, table, ns):  # pragma: no cover - compiled
-        """Sector of (y, z) by pseudo-angle lookup, and whether it is ambiguous."""
+    def _pseudo(y, z):  # pragma: no cover - compiled
+        """:func:`pseudo_angle` of one point."""
         s = abs(y) + abs(z)
-        exact = y == 0.0 or z == 0.0
         if s == 0.0:
-            q = 0.0
-        elif y >= 0.0:
-            q = z / s
-        elif z >= 0.0:
-            q = 2.0 - z / s
-        else:
-            q = -2.0 - z / s
+            return 0.0
+        if y >= 0.0:
+            return z / s
+        if z >= 0.0:
+            return 2.0 - z / s
+        return -2.0 - z / s
+
+    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+    def _sector_of(q, exact, qe, table, ns):  # pragma: no cover - compiled
+        """Sector of pseudo-angle q by lookup, and whether it is ambiguous (``exact``: the point
+        lies on an axis, its q is exact)."""
         bi = int((q + 2.0) * (_NBINS / 4.0))
         if bi > _NBINS - 1:
             bi = _NBINS - 1
@@ -186,7 +189,9 @@ if HAVE_NUMBA:
         ns = qe.shape[0] - 1
         n_amb = 0
         for i in range(dy.shape[0]):
-            j, amb = _sector_of(dy[i], dz[i], qe, table, ns)
+            y = dy[i]
+            z = dz[i]
+            j, amb = _sector_of(_pseudo(y, z), y == 0.0 or z == 0.0, qe, table, ns)
             out[i] = -1 if amb else j
             n_amb += amb
         return n_amb
@@ -318,19 +323,11 @@ if HAVE_NUMBA:
                 elif mode == 1:
                     y = dy[i]
                     z = dz[i]
-                    sa = abs(y) + abs(z)
-                    if sa == 0.0:
-                        q = 0.0
-                    elif y >= 0.0:
-                        q = z / sa
-                    elif z >= 0.0:
-                        q = 2.0 - z / sa
-                    else:
-                        q = -2.0 - z / sa
+                    q = _pseudo(y, z)
                     if q > q_lo and q < q_hi:  # same sector as the last one, clear of its edges
                         j = j_last
                     else:
-                        j, amb = _sector_of(y, z, qe, table, ns)
+                        j, amb = _sector_of(q, y == 0.0 or z == 0.0, qe, table, ns)
                         if amb:
                             return 1, fmax
                         j_last = j
