@@ -41,6 +41,12 @@ _SERIES_LIMIT = 0.5
 _SERIES = [(-1.0) ** k / float(np.prod(np.arange(1, 2 * k + 4))) for k in range(7)]
 
 
+def _out(array):
+    """A float array, or a float scalar for a 0-d result (scalars in, scalar out)."""
+    array = np.asarray(array, dtype=float)
+    return array[()] if array.ndim == 0 else array
+
+
 def _u_minus_sin(u: np.ndarray) -> np.ndarray:
     """u − sin(u) with full relative precision for small u (u ≥ 0)."""
     u = np.asarray(u, dtype=float)
@@ -98,7 +104,7 @@ def segment_area(radius, half_chord):
         valid = (ratio >= 0.0) & (ratio <= 1.0)
         phi = np.arcsin(np.where(valid, ratio, np.nan))
         area = 0.5 * rho * rho * _u_minus_sin(2.0 * phi)
-    return area[()] if area.ndim == 0 else area
+    return _out(area)
 
 
 def sagitta(radius, half_chord):
@@ -140,7 +146,7 @@ def sagitta(radius, half_chord):
         valid = (x >= 0.0) & (x <= rho)
         root = np.sqrt(np.where(valid, rho * rho - x * x, np.nan))
         s = x * x / (rho + root)
-    return s[()] if s.ndim == 0 else s
+    return _out(s)
 
 
 def lens_half_chord(mobile_radius, obstacle_radius, depth):
@@ -191,7 +197,7 @@ def lens_half_chord(mobile_radius, obstacle_radius, depth):
         product = d * (2.0 * ro + d) * (2.0 * rm - d) * (2.0 * (ro - rm) + d)
         x = np.sqrt(np.where((d >= 0.0) & (product >= 0.0), product, np.nan)) / (2.0 * c)
         x = np.where(d == 0.0, 0.0, x)
-    return x[()] if x.ndim == 0 else x
+    return _out(x)
 
 
 def lens_depth_limit(mobile_radius, obstacle_radius):
@@ -230,7 +236,7 @@ def lens_depth_limit(mobile_radius, obstacle_radius):
         # sqrt(ro² - rm²) written as sqrt((ro - rm)·(ro + rm)): no cancellation when ro ≈ rm.
         g = ro - rm
         limit = np.sqrt(g * (ro + rm)) - g
-    return limit[()] if limit.ndim == 0 else limit
+    return _out(limit)
 
 
 def lens_area(mobile_radius, obstacle_radius, depth):
@@ -279,7 +285,7 @@ def lens_area(mobile_radius, obstacle_radius, depth):
         x = np.where(d <= limit + tolerance, np.minimum(x, rm), np.nan)
         area = segment_area(rm, x) - segment_area(ro, x)
     area = np.asarray(area, dtype=float)
-    return area[()] if area.ndim == 0 else area
+    return _out(area)
 
 
 def frustum_volume(area: Callable, depth, width, tilt):
@@ -334,7 +340,7 @@ def frustum_volume(area: Callable, depth, width, tilt):
         wedge = np.where(short, d / np.where(short, theta, 1.0) * a1 / 3.0, 0.0)
         frustum = l / 3.0 * (a1 + np.sqrt(a1 * a2) + a2)
     volume = np.where(short, wedge, frustum)
-    return volume[()] if volume.ndim == 0 else volume
+    return _out(volume)
 
 
 def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
@@ -449,7 +455,7 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
         if index.size:
             root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
     root = root.reshape(shape)
-    return root[()] if root.ndim == 0 else root
+    return _out(root)
 
 
 def _interface_segment(half_chord, interface_sagitta):
@@ -519,8 +525,7 @@ def lunule_areas(mobile_radius, obstacle_radius, depth_mobile, depth_obstacle):
         area_o = np.maximum(seg_r - seg_o, 0.0)
     area_m = np.where(np.isnan(x), np.nan, area_m)
     area_o = np.where(np.isnan(x), np.nan, area_o)
-    return (area_m[()] if area_m.ndim == 0 else area_m,
-            area_o[()] if area_o.ndim == 0 else area_o)
+    return _out(area_m), _out(area_o)
 
 
 def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
@@ -582,7 +587,7 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
         dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
     dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
     dm = np.where(np.isnan(whole), np.nan, dm)
-    return dm[()] if dm.ndim == 0 else dm
+    return _out(dm)
 
 
 def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
@@ -629,4 +634,4 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
     dm = lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share)
     dm = np.asarray(dm, dtype=float)
     do = np.where(np.isnan(depth), np.nan, np.maximum(depth - dm, 0.0))
-    return (dm[()] if dm.ndim == 0 else dm, do[()] if do.ndim == 0 else do)
+    return _out(dm), _out(do)

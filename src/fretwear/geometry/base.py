@@ -30,6 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from fretwear.errors import InputError, KeywordError, RangeWarning
+from fretwear.geometry._shapes import _out
 
 __all__ = [
     "ANGLE_DIMENSIONS",
@@ -103,11 +104,6 @@ def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndar
             f"{arrays[1].shape}) do not broadcast together; give arrays of the same length"
         ) from None
     return mobile_array.astype(float, copy=True), obstacle_array.astype(float, copy=True)
-
-
-def _out(array: np.ndarray):
-    array = np.asarray(array, dtype=float)
-    return array[()] if array.ndim == 0 else array
 
 
 @dataclasses.dataclass(frozen=True)

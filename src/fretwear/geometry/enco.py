@@ -28,7 +28,13 @@ from typing import ClassVar
 
 import numpy as np
 
-from fretwear.geometry._shapes import frustum_volume, lens_area, lens_depth_limit, solve_monotone
+from fretwear.geometry._shapes import (
+    _out,
+    frustum_volume,
+    lens_area,
+    lens_depth_limit,
+    solve_monotone,
+)
 from fretwear.geometry.base import ContactGeometry
 
 __all__ = [
@@ -92,7 +98,7 @@ def isthmus_section_area(depth, mobile_radius, obstacle_radius, isthmus_angle):
     wedge = math.tan(math.radians(isthmus_angle)) * d * d
     area = lens_area(mobile_radius, obstacle_radius, d) + wedge
     area = np.asarray(area, dtype=float)
-    return area[()] if area.ndim == 0 else area
+    return _out(area)
 
 
 def enco_volume(depth, mobile_radius, obstacle_radius, width, isthmus_angle, tilt_angle=0.0,
@@ -149,7 +155,7 @@ def enco_volume(depth, mobile_radius, obstacle_radius, width, isthmus_angle, til
                                                      isthmus_angle), dtype=float)
 
     volume = edges * np.asarray(frustum_volume(section, depth, width, theta), dtype=float)
-    return volume[()] if volume.ndim == 0 else volume
+    return _out(volume)
 
 
 def enco_depth(volume, mobile_radius, obstacle_radius, width, isthmus_angle, tilt_angle=0.0,
@@ -197,7 +203,7 @@ def enco_depth(volume, mobile_radius, obstacle_radius, width, isthmus_angle, til
                               tilt_angle, edges),
         v, np.zeros_like(v), np.full_like(v, limit), rtol=rtol)
     depth = np.where(v == 0.0, 0.0, np.asarray(depth, dtype=float))
-    return depth[()] if depth.ndim == 0 else depth
+    return _out(depth)
 
 
 def enco_obstacle_volume(depth_obstacle, obstacle_radius, width, kappa):
@@ -235,7 +241,7 @@ def enco_obstacle_volume(depth_obstacle, obstacle_radius, width, kappa):
     12.956714
     """
     volume = kappa * math.pi * width * obstacle_radius * np.asarray(depth_obstacle, dtype=float)
-    return volume[()] if volume.ndim == 0 else volume
+    return _out(volume)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -13,7 +13,7 @@ import warnings
 import numpy as np
 
 from fretwear.errors import InputError, RangeWarning
-from fretwear.geometry.base import _out
+from fretwear.geometry._shapes import _out
 
 __all__ = [
     "sector_depth_mobile",

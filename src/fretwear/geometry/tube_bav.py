@@ -16,7 +16,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from fretwear.geometry._shapes import solve_monotone
+from fretwear.geometry._shapes import _out, solve_monotone
 from fretwear.geometry.base import ContactGeometry
 
 __all__ = ["TubeBav", "flat_trace_depth", "flat_trace_volume"]
@@ -78,7 +78,7 @@ def flat_trace_volume(depth, mobile_radius, width, tilt=0.0):
         reach = l * theta
         shallow = np.maximum(d - reach, 0.0) if math.isfinite(reach) else np.zeros_like(d)
         volume = 8.0 * root / (15.0 * theta) * _power_difference_52(d, shallow)
-    return volume[()] if volume.ndim == 0 else volume
+    return _out(volume)
 
 
 def flat_trace_depth(volume, mobile_radius, width, tilt=0.0):
@@ -141,7 +141,7 @@ def flat_trace_depth(volume, mobile_radius, width, tilt=0.0):
                 np.where(long, lower, 0.0), np.where(long, upper, 0.0))
             depth = np.where(long, solved, depth)
     depth = np.asarray(depth, dtype=float)
-    return depth[()] if depth.ndim == 0 else depth
+    return _out(depth)
 
 
 @dataclasses.dataclass(frozen=True)
