@@ -84,16 +84,8 @@ class PowerResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary; units: powers [W], times [s], angles [deg]."""
-        out: dict[str, Any] = {}
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if f.name == "statistics":
-                out[f.name] = value.to_dict()
-            elif value is None:
-                out[f.name] = None
-            else:
-                out[f.name] = _jsonable(value)
-        return out
+        return {f.name: self.statistics.to_dict() if f.name == "statistics"
+                else _jsonable(getattr(self, f.name)) for f in fields(self)}
 
 
 def _as_bound(value, keyword: str) -> float | None:
