@@ -19,8 +19,8 @@ from __future__ import annotations
 import argparse
 import time
 
+from fretwear._numba import HAVE_NUMBA
 from fretwear.dynamics import NodalForce, Shock, Signal, simulate, uniform_beam_modes
-from fretwear.dynamics._kernel import HAVE_NUMBA
 
 H = 2e-5  # time step [s]
 

@@ -16,20 +16,7 @@ import math
 
 import numpy as np
 
-try:  # numba is an optional dependency ("fast" extra)
-    from numba import njit
-
-    HAVE_NUMBA = True
-except ImportError:  # pragma: no cover - exercised only without numba
-    HAVE_NUMBA = False
-
-    def njit(*args, **kwargs):
-        def wrap(func):
-            func.py_func = func
-            return func
-        if args and callable(args[0]):
-            return wrap(args[0])
-        return wrap
+from fretwear._numba import njit
 
 #: Channel columns of the output buffer, in ContactHistory order (time is column 0).
 OUT_COLUMNS = ("time", "normal_force", "ft1", "ft2", "vn", "vt1", "vt2", "dy", "dz", "stick")

@@ -37,14 +37,7 @@ import math
 
 import numpy as np
 
-try:  # numba is optional (extra "fast"); the pure-Python fallback is slow but identical
-    from numba import njit
-except ImportError:  # pragma: no cover
-    def njit(*args, **kwargs):
-        if args and callable(args[0]):
-            return args[0]
-        return lambda f: f
-
+from fretwear._numba import njit
 from fretwear.errors import InputError
 
 #: Default angular resolution [deg] of the polygons used by the clearance search.
