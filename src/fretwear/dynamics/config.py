@@ -34,7 +34,7 @@ an unknown key is an error naming it and the closest valid one. Example::
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -187,20 +187,13 @@ class DynamicsSetup:
         out = []
         for i, s in enumerate(self.shocks):
             if i in profiles:
-                s = Shock(**{**_fields(s), "obstacle": "profile",
-                             "profile_angles": profiles[i][0], "profile_gaps": profiles[i][1]})
+                s = replace(s, obstacle="profile", profile_angles=profiles[i][0],
+                            profile_gaps=profiles[i][1])
             elif self.case_obstacle[i]:
                 raise InputError(f"shock {s.label!r} has obstacle = \"case\" but no [obstacle] "
                                  "profile was given")
             out.append(s)
         return out
-
-
-def _fields(s: Shock) -> dict[str, Any]:
-    keys = ("point", "obstacle", "normal_stiffness", "gap", "angle", "normal_damping",
-            "tangential_stiffness", "tangential_damping", "friction", "preload", "origin",
-            "profile_angles", "profile_gaps", "name")
-    return {k: getattr(s, k) for k in keys}
 
 
 def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> DynamicsSetup:
