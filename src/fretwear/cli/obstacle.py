@@ -167,7 +167,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
             from fretwear.case import run_case
 
             echo("running the case for its wear table ...", err=True)
-            result = setup.update(run_case(case_file).table)
+            result = setup.update(run_case(case).table)  # the case read above
     _summary(result, echo)
     for w in caught:
         if issubclass(w.category, FretwearWarning):
