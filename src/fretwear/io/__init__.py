@@ -83,13 +83,10 @@ def _open_aster(path: str | os.PathLike, *, index: int | None = None,
             and len(set(names[1::2])) == len(names) // 2:
         # (abscissa, value) pairs sharing one abscissa name: an IMPR_FONCTION TABLEAU of several
         # functions side by side, read as such (the instants of every pair must agree)
-        pairs = _aster.function_pairs(frame, str(path))
-        for name, x, _ in pairs[1:]:
-            _aster.check_same_abscissa((f"{path} ({pairs[0][0]})", pairs[0][1]),
-                                       (f"{path} ({name})", x))
-        arrays = [pairs[0][1], *(y for _, _, y in pairs)]
-        return Source(label=str(path), format="aster-function",
-                      columns=["time", *(n for n, _, _ in pairs)],
+        columns, arrays = _aster.stack_functions(
+            [(f"{path} ({name})", name, x, y)
+             for name, x, y in _aster.function_pairs(frame, str(path))])
+        return Source(label=str(path), format="aster-function", columns=columns,
                       read=lambda positions: [arrays[p] for p in positions],
                       metadata={"aster_title": frame.attrs.get("title", "")})
 

@@ -574,23 +574,32 @@ def read_function_files(files: Sequence[tuple[str, str | os.PathLike]]
     (names, arrays, info)
         Column names (``time`` first, then one per function), their arrays, and ``{"files": ...}``.
     """
-    names: list[str] = []
-    arrays: list[np.ndarray] = []
-    reference: tuple[str, np.ndarray] | None = None
+    functions = []
     for key, path in files:
-        frame = read_aster_table(path)
         label = str(path)
-        pairs = function_pairs(frame, label)
+        pairs = function_pairs(read_aster_table(path), label)
         if key is not None and len(pairs) != 1:
             raise FormatError(f"{label} holds {len(pairs)} functions {[p[0] for p in pairs]} "
                               f"but is given for the single channel {key!r}; give one file per "
                               "channel, or pass the file in a list to use its column names")
-        for name, x, y in pairs:
-            if reference is None:
-                reference = (label, x)
-            else:
-                check_same_abscissa(reference, (label, x))
-            names.append(str(key) if key is not None else name)
-            arrays.append(y)
-    assert reference is not None
-    return ["time", *names], [reference[1], *arrays], {"files": [str(p) for _, p in files]}
+        functions += [(label, str(key) if key is not None else name, x, y)
+                      for name, x, y in pairs]
+    names, arrays = stack_functions(functions)
+    return names, arrays, {"files": [str(p) for _, p in files]}
+
+
+def stack_functions(functions: Sequence[tuple[str, str, np.ndarray, np.ndarray]]
+                    ) -> tuple[list[str], list[np.ndarray]]:
+    """Columns ``time, name...`` of functions ``(label, name, abscissa, values)`` that share
+    their instants (checked with :func:`check_same_abscissa`, ``label`` naming each one).
+
+    Examples
+    --------
+    >>> t = np.array([0.0, 1.0])
+    >>> stack_functions([("a", "FN", t, t + 1), ("b", "VT1", t.copy(), t + 2)])[0]
+    ['time', 'FN', 'VT1']
+    """
+    label, _, reference, _ = functions[0]
+    for other, _, x, _ in functions[1:]:
+        check_same_abscissa((label, reference), (other, x))
+    return ["time", *(f[1] for f in functions)], [reference, *(f[3] for f in functions)]
