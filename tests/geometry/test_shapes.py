@@ -21,14 +21,12 @@ from oracle import (
 )
 from scipy.optimize import brentq
 
+from fretwear.geometry._lunule import lunule_areas, lunule_depths, lunule_mobile_depth
 from fretwear.geometry._shapes import (
     frustum_volume,
     lens_area,
     lens_depth_limit,
     lens_half_chord,
-    lunule_areas,
-    lunule_depths,
-    lunule_mobile_depth,
     sagitta,
     segment_area,
     solve_monotone,

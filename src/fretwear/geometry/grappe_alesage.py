@@ -12,7 +12,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from fretwear.geometry._shapes import lens_depth_limit, lunule_areas, lunule_depths
+from fretwear.geometry._lunule import lunule_areas, lunule_depths
+from fretwear.geometry._shapes import lens_depth_limit
 from fretwear.geometry.base import ContactGeometry
 
 __all__ = ["GrappeAlesage"]

@@ -23,13 +23,11 @@ from typing import ClassVar
 import numpy as np
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.geometry._lunule import lunule_areas, lunule_depths, lunule_mobile_depth
 from fretwear.geometry._shapes import (
     frustum_volume,
     lens_area,
     lens_depth_limit,
-    lunule_areas,
-    lunule_depths,
-    lunule_mobile_depth,
     solve_monotone,
 )
 from fretwear.geometry.base import ContactGeometry

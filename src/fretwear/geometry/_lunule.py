@@ -1,0 +1,203 @@
+"""The lunule: the lens shared between a worn mobile and a worn bore (SPEC §6).
+
+The seed's r, α, β, γ system, corrected (segment area ρ²(φ − ½ sin 2φ)): the new common surface
+is an arc of radius r, R_m ≤ r ≤ R_o, through the ends of the lens chord of half-length x, so that
+V_m/l = seg(R_m, x) − seg(r, x), V_o/l = seg(r, x) − seg(R_o, x), d_m = s(R_m, x) − s(r, x) and
+d_o = s(r, x) − s(R_o, x). Vectorised, SI units (lengths [m], areas [m²]); derivation in
+``docs/geometry.md``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the doctests
+    _out,
+    lens_area,
+    lens_depth_limit,
+    lens_half_chord,
+    sagitta,
+    segment_area,
+    solve_monotone,
+)
+
+__all__ = ["lunule_areas", "lunule_depths", "lunule_mobile_depth"]
+
+
+def _interface_segment(half_chord, interface_sagitta):
+    """Segment area under the arc through the chord ends with the given sagitta [m²]."""
+    x = np.asarray(half_chord, dtype=float)
+    s = np.asarray(interface_sagitta, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        radius = (s * s + x * x) / (2.0 * s)
+        area = segment_area(radius, np.minimum(x, radius))
+    return np.where(x == 0.0, 0.0, area)
+
+
+def lunule_areas(mobile_radius, obstacle_radius, depth_mobile, depth_obstacle):
+    """Worn section areas of mobile and bore in a lunule, from their worn depths [m²].
+
+    Parameters
+    ----------
+    mobile_radius : float or array_like
+        Mobile outer radius R_m [m].
+    obstacle_radius : float or array_like
+        Bore radius R_o [m], > R_m.
+    depth_mobile, depth_obstacle : float or array_like
+        Worn depths d_m, d_o [m], ≥ 0, with d_m + d_o ≤ :func:`lens_depth_limit`.
+
+    Returns
+    -------
+    area_mobile, area_obstacle : numpy.ndarray or float
+        A_m = V_m/l and A_o = V_o/l [m²] (NaN beyond the lens range).
+
+    Notes
+    -----
+    The mobile protrudes by D = d_m + d_o beyond the original bore; the lens S(D) (chord
+    half-length x from :func:`lens_half_chord`) is split by the new common surface, an arc
+    through the chord ends whose apex lies d_m below the mobile's apex, i.e. of sagitta
+    σ = s(R_m, x) − d_m and radius r = (σ² + x²)/(2σ), R_m ≤ r ≤ R_o:
+
+    .. math:: A_m = \\mathrm{seg}(R_m, x) - \\mathrm{seg}(r, x), \\qquad
+              A_o = \\mathrm{seg}(r, x) - \\mathrm{seg}(R_o, x)
+
+    This is the seed's r, α, β, γ system with R_m sin α = r sin β = R_o sin γ = x and the
+    segment area ρ²(φ − ½ sin 2φ).
+
+    References
+    ----------
+    SPEC §6 (lunule); seed §4.1 and §4.5 case 2 (corrected).
+
+    Examples
+    --------
+    >>> am, ao = lunule_areas(3.0, 5.0, 2.0, 0.0)  # bore not worn: the whole lens
+    >>> bool(np.isclose(am, lens_area(3.0, 5.0, 2.0), rtol=1e-13)), float(ao)
+    (True, 0.0)
+    """
+    rm = np.asarray(mobile_radius, dtype=float)
+    ro = np.asarray(obstacle_radius, dtype=float)
+    dm = np.asarray(depth_mobile, dtype=float)
+    do = np.asarray(depth_obstacle, dtype=float)
+    depth = dm + do
+    x = lens_half_chord(rm, ro, depth)
+    limit = lens_depth_limit(rm, ro)
+    x = np.where(depth <= limit * (1.0 + 1e-12), np.minimum(x, rm), np.nan)
+    seg_m = segment_area(rm, x)
+    seg_o = segment_area(ro, x)
+    with np.errstate(invalid="ignore"):
+        seg_r = _interface_segment(x, sagitta(rm, x) - dm)
+        seg_r = np.where(do == 0.0, seg_o, np.where(dm == 0.0, seg_m, seg_r))
+        area_m = np.maximum(seg_m - seg_r, 0.0)
+        area_o = np.maximum(seg_r - seg_o, 0.0)
+    area_m = np.where(np.isnan(x), np.nan, area_m)
+    area_o = np.where(np.isnan(x), np.nan, area_o)
+    return _out(area_m), _out(area_o)
+
+
+def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
+    """Mobile's part d_m of a lunule of total depth D holding a share of its area [m].
+
+    Parameters
+    ----------
+    mobile_radius : float
+        Mobile outer radius R_m [m].
+    obstacle_radius : float
+        Bore radius R_o [m], > R_m.
+    depth : float or array_like
+        Total depth D = d_m + d_o of the lunule [m].
+    share : float or array_like
+        Mobile's share A_m/(A_m + A_o) of the lunule's area, in [0, 1].
+
+    Returns
+    -------
+    numpy.ndarray or float
+        d_m [m] (d_o = D − d_m); share 1 gives D, share 0 gives 0.
+
+    Notes
+    -----
+    Solves A_m(d_m; D) = share · S(D) for d_m in [0, D] (A_m of :func:`lunule_areas`, increasing
+    in d_m: a deeper mobile share flattens the common arc, r grows from R_m to R_o) with
+    :func:`solve_monotone`. The target is formed from the same function at d_m = D, so that the
+    bracket holds it exactly.
+
+    References
+    ----------
+    SPEC §6 (lunule, and the split at the deepest section of TUBE_ALESAGE with tilt).
+
+    Examples
+    --------
+    >>> dm = lunule_mobile_depth(3.0, 5.0, 1.0, 0.5)
+    >>> am, ao = lunule_areas(3.0, 5.0, dm, 1.0 - dm)
+    >>> bool(np.isclose(am, ao, rtol=1e-11))
+    True
+    """
+    depth = np.asarray(depth, dtype=float)
+    share = np.asarray(share, dtype=float)
+    depth, share = np.broadcast_arrays(depth, share)
+    # The chord depends on D only: computed once, the solver varies the common arc.
+    x = lens_half_chord(mobile_radius, obstacle_radius, depth)
+    limit = lens_depth_limit(mobile_radius, obstacle_radius)
+    x = np.where(depth <= limit * (1.0 + 1e-12), np.minimum(x, mobile_radius), np.nan)
+    seg_m = segment_area(mobile_radius, x)
+    s_m = sagitta(mobile_radius, x)
+
+    def mobile_area(dm):
+        return np.maximum(seg_m - _interface_segment(x, s_m - dm), 0.0)
+
+    with np.errstate(invalid="ignore"):
+        whole = mobile_area(depth)
+        # f(0) is 0 up to rounding: the target is kept inside [f(0), f(D)] so that a tiny
+        # share returns d_m = 0 rather than NaN.
+        target = np.clip(np.clip(share, 0.0, 1.0) * whole, mobile_area(np.zeros_like(depth)),
+                         whole)
+        dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
+    dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
+    dm = np.where(np.isnan(whole), np.nan, dm)
+    return _out(dm)
+
+
+def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
+    """Worn depths of mobile and bore in a lunule from their worn section areas [m].
+
+    Parameters
+    ----------
+    mobile_radius : float
+        Mobile outer radius R_m [m].
+    obstacle_radius : float
+        Bore radius R_o [m], > R_m.
+    area_mobile, area_obstacle : float or array_like
+        A_m = V_m/l, A_o = V_o/l [m²], ≥ 0.
+
+    Returns
+    -------
+    depth_mobile, depth_obstacle : numpy.ndarray or float
+        d_m, d_o [m]; NaN where A_m + A_o exceeds the lens at :func:`lens_depth_limit`.
+
+    Notes
+    -----
+    Solve S(D) = A_m + A_o for D on [0, D_max] (S of :func:`lens_area`, increasing), then split
+    D with :func:`lunule_mobile_depth` (share A_m/(A_m + A_o)). With A_o = 0, d_m = D.
+
+    References
+    ----------
+    SPEC §6 (lunule).
+
+    Examples
+    --------
+    >>> dm, do = lunule_depths(3.0, 5.0, lens_area(3.0, 5.0, 1.5), 0.0)
+    >>> round(float(dm), 12), float(do)
+    (1.5, 0.0)
+    """
+    am = np.asarray(area_mobile, dtype=float)
+    ao = np.asarray(area_obstacle, dtype=float)
+    am, ao = np.broadcast_arrays(am, ao)
+    total = am + ao
+    limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        depth = solve_monotone(lambda d: lens_area(mobile_radius, obstacle_radius, d), total,
+                               np.zeros_like(total), np.full_like(total, limit))
+        share = np.where(total > 0.0, am / total, 1.0)
+    dm = lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share)
+    dm = np.asarray(dm, dtype=float)
+    do = np.where(np.isnan(depth), np.nan, np.maximum(depth - dm, 0.0))
+    return _out(dm), _out(do)
