@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import FormatError, FretwearWarning, InputError, PerforationWarning
+from fretwear.errors import FretwearWarning, InputError, PerforationWarning
 from fretwear.obstacle.clearance import RESOLUTION, clearance_figure, polar_polygon
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, worn_depth_profiles
 from fretwear.obstacle.profiles import (
@@ -26,6 +26,7 @@ from fretwear.obstacle.profiles import (
     discret_angles,
     write_discret,
 )
+from fretwear.restart import read_wear_table
 from fretwear.sectors import sector_edges
 
 #: Native column -> Code_Aster column of the wear table columns read here.
@@ -58,29 +59,6 @@ def _column(frame: pd.DataFrame, native: str, required: bool = True):
             f"columns: {list(frame.columns)}. The obstacle update needs a sector-mode wear table "
             "(run the wear operator with sectors, e.g. [sectors] count = 10)")
     return None
-
-
-def read_wear_table(path) -> pd.DataFrame:
-    """Read a wear table: CSV (native or Code_Aster names) or a Code_Aster text table.
-
-    Examples
-    --------
-    >>> import tempfile, pathlib
-    >>> p = pathlib.Path(tempfile.mkdtemp()) / "t.csv"
-    >>> _ = p.write_text("INST,SECTEUR,ANGLE_DEBUT,ANGLE_FIN,V_USUR_TUBE_CUMU\\n1,1,-180,180,0\\n")
-    >>> read_wear_table(p).columns.tolist()
-    ['INST', 'SECTEUR', 'ANGLE_DEBUT', 'ANGLE_FIN', 'V_USUR_TUBE_CUMU']
-    """
-    p = Path(path)
-    if not p.is_file():
-        raise FormatError(f"wear table {str(p)!r} not found")
-    if p.suffix.lower() == ".csv":
-        return pd.read_csv(p)
-    if p.suffix.lower() in (".parquet", ".pq"):
-        return pd.read_parquet(p)
-    from fretwear.io.aster import read_aster_table
-
-    return read_aster_table(p)
 
 
 def sector_volumes(table: pd.DataFrame, instant: float | None = None):
@@ -467,7 +445,8 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     Parameters
     ----------
     table : pandas.DataFrame or path-like
-        Sector-mode wear table (:func:`sector_volumes` for the columns).
+        Sector-mode wear table (:func:`sector_volumes` for the columns); a file is read by
+        :func:`fretwear.restart.read_wear_table` (CSV, Parquet or Code_Aster text).
     obstacle, mobile
         As in :func:`update_obstacle`.
     instant : float, optional
@@ -493,7 +472,7 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     >>> r.instant, round(float(r.clearance_worn[180]) * 1e3, 6)   # at 90 deg [mm]
     (5.0, 0.501675)
     """
-    frame = table if isinstance(table, pd.DataFrame) else read_wear_table(table)
+    frame = table if isinstance(table, pd.DataFrame) else read_wear_table(table)  # native names
     inst, edges, vm, vo = sector_volumes(frame, instant)
     if width is None:
         width = _attr_dimension(frame, "obstacle_width")
