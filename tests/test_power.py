@@ -280,6 +280,9 @@ def test_file_is_streamed_in_chunks(tmp_path, suffix):
     kw = dict(blocks=3, sectors=10, force_threshold=0.1, minimum_rest_time=0.02,
               stationarity_threshold=math.inf)
     _same(wear_power(h, **kw), wear_power(path, chunk_size=37, **kw))
+    # A numpy integer block count (e.g. from a config array) also triggers the time-range pass.
+    kw["blocks"] = np.int64(3)
+    _same(wear_power(h, **kw), wear_power(path, chunk_size=37, **kw))
 
 
 _H = _random_history(21, 400)

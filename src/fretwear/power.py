@@ -502,7 +502,9 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
     elif isinstance(history, str | os.PathLike):
         from fretwear.io import iter_history_chunks
 
-        if (blocks if isinstance(blocks, int) else 1) > 1 and (t_start is None or t_end is None):
+        needs_range = (isinstance(blocks, int | np.integer) and not isinstance(blocks, bool)
+                       and blocks > 1)
+        if needs_range and (t_start is None or t_end is None):
             lo, hi = _time_range(history, chunk_size, read_options)
             opts["t_start"] = lo if t_start is None else t_start
             opts["t_end"] = hi if t_end is None else t_end
