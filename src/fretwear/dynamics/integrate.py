@@ -142,27 +142,29 @@ class DynamicsResult:
     final_velocity: np.ndarray
     elapsed: float
     files: dict[str, Path] | None = None
-    _histories: list[ContactHistory] | None = field(default=None, repr=False)
+    _histories: list[ContactHistory | None] | None = field(default=None, repr=False)
 
     @property
     def histories(self) -> list[ContactHistory]:
         """One :class:`ContactHistory` per shock (read back from disk when streamed)."""
-        if self._histories is None:
-            import pandas as pd
-
-            self._histories = [
-                ContactHistory.from_frame(pd.read_parquet(self.files[name]), name=name,
-                                          metadata={"source": str(self.files[name])})
-                for name in self.shock_names]
-        return self._histories
+        return [self.history(i) for i in range(len(self.shock_names))]
 
     def history(self, shock: int | str = 0) -> ContactHistory:
-        """The history of one shock, by index or name."""
+        """The history of one shock, by index or name (only its file is read when streamed)."""
         if isinstance(shock, str):
             if shock not in self.shock_names:
                 raise InputError(f"unknown shock {shock!r}; the result has {self.shock_names}")
             shock = self.shock_names.index(shock)
-        return self.histories[shock]
+        if self._histories is None:
+            self._histories = [None] * len(self.shock_names)
+        if self._histories[shock] is None:
+            import pandas as pd
+
+            name = self.shock_names[shock]
+            self._histories[shock] = ContactHistory.from_frame(
+                pd.read_parquet(self.files[name]), name=name,
+                metadata={"source": str(self.files[name])})
+        return self._histories[shock]
 
     def summary(self) -> dict[str, Any]:
         """JSON-ready summary (steps, steps per second, wear powers, energy)."""
