@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from fretwear.dynamics.modal import DIRECTIONS
 from fretwear.errors import InputError, KeywordError
 
 #: Signal families and their integer codes in the compiled kernel.
@@ -222,7 +223,7 @@ class NodalForce:
     signal: Signal
 
     def __post_init__(self) -> None:
-        if self.direction not in ("y", "z", "x"):
+        if self.direction not in DIRECTIONS:
             raise KeywordError(f"nodal force: 'direction' must be 'y', 'z' or 'x', got "
                                f"{self.direction!r}")
 
@@ -253,6 +254,6 @@ class BaseAcceleration:
     signal: Signal
 
     def __post_init__(self) -> None:
-        if self.direction not in ("y", "z", "x"):
+        if self.direction not in DIRECTIONS:
             raise KeywordError(f"base acceleration: 'direction' must be 'y', 'z' or 'x', got "
                                f"{self.direction!r}")
