@@ -100,6 +100,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
             plot_dir, quiet) -> None:
     from fretwear.errors import FretwearWarning, KeywordError
     from fretwear.obstacle import obstacle_from_config
+    from fretwear.obstacle.config import MODEL_KEYS
 
     echo = (lambda *a, **k: None) if quiet else click.echo
     section: dict = {}
@@ -136,9 +137,8 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
             raise click.UsageError(f"{', '.join(stray)} describe two planes: give --plane-gap "
                                    "too (or put the planes in the case's [obstacle] section)")
     if given:
-        for key in ("type", "gap_m", "bore_radius_m", "plane_gap_m", "plane_gap_opposite_m",
-                    "orientation_deg", "file", "closing_radius_m"):
-            section.pop(key, None)
+        for key in ("type", *(k for keys in MODEL_KEYS.values() for k in keys)):
+            section.pop(key, None)  # the options' obstacle replaces the case's
         section.update(given)
         if plane_gap is not None:
             section["type"] = "planes"

@@ -68,7 +68,7 @@ OBSTACLE_KEYS: dict[str, tuple[type | tuple[type, ...], str]] = {
 
 
 #: The keys that belong to one obstacle type (a key of another type is ignored, with a warning).
-_MODEL_KEYS: dict[str, tuple[str, ...]] = {
+MODEL_KEYS: dict[str, tuple[str, ...]] = {
     "circle": ("gap_m", "bore_radius_m"),
     "planes": ("plane_gap_m", "plane_gap_opposite_m", "orientation_deg", "closing_radius_m"),
     "discrete": ("file",),
@@ -173,7 +173,7 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
         raise KeywordError(f"[obstacle] type = {model!r} is unknown"
                            f"{keyword_hint(model, OBSTACLE_MODELS)}; choose one of "
                            f"{', '.join(OBSTACLE_MODELS)}")
-    unused = [k for kind, keys in _MODEL_KEYS.items() if kind != model for k in keys
+    unused = [k for kind, keys in MODEL_KEYS.items() if kind != model for k in keys
               if k in config]
     if unused:
         warnings.warn(f"[obstacle] type = {model!r} does not use {', '.join(unused)} (keys of "
