@@ -165,7 +165,8 @@ def test_kwu_epri_case_computes_the_power_once(tmp_path, monkeypatch):
     import fretwear.power
     from fretwear.operator import wear_table
 
-    rows = "\n".join(f"{t:.1f},{10.0 + t},30.0,40.0" for t in np.arange(0.0, 2.01, 0.1))
+    # 10-12 N at 0.05 m/s: a physical power (about 0.5 W), so every depth is in range.
+    rows = "\n".join(f"{t:.1f},{10.0 + t},0.03,0.04" for t in np.arange(0.0, 2.01, 0.1))
     (tmp_path / "h.csv").write_text("time,normal_force,vt1,vt2\n" + rows + "\n",
                                     encoding="utf-8")
     path = write(tmp_path, """
