@@ -16,6 +16,8 @@ from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry._shapes import _out
 
 __all__ = [
+    "mobile_depth_from_area_density",
+    "obstacle_depth_from_area_density",
     "sector_depth_mobile",
     "sector_depth_obstacle",
     "sector_volume_mobile",
@@ -46,6 +48,58 @@ def _inputs(value, value_name, unit, radius, radius_name, width, arc_deg):
             f"{value_name} {array.shape}, {radius_name} {r.shape}, width {l.shape} and arc_deg "
             f"{arc.shape} do not broadcast together") from None
     return array, r, l, np.radians(arc)
+
+
+def mobile_depth_from_area_density(density, radius):
+    """Depth of an annular slice removed from a convex arc, from its area per radian [m].
+
+    Parameters
+    ----------
+    density : float or array_like
+        Worn section area per radian of arc a_θ [m²/rad] (a sector: V_j/(l·Δθ)), ≥ 0.
+    radius : float or array_like
+        Radius R of the convex surface (the mobile) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        d = R − √(R² − 2a_θ) [m], written as 2a_θ/(R + √(R² − 2a_θ)) (no cancellation for thin
+        wear); NaN where 2a_θ > R² (the slice would pass the centre).
+
+    Examples
+    --------
+    >>> round(float(mobile_depth_from_area_density((0.01**2 - 0.009**2) / 2, 0.01)), 12)
+    0.001
+    """
+    density = np.asarray(density, dtype=float)
+    root2 = radius * radius - 2.0 * density
+    with np.errstate(invalid="ignore"):
+        return np.where(root2 >= 0.0,
+                        2.0 * density / (radius + np.sqrt(np.maximum(root2, 0.0))), np.nan)
+
+
+def obstacle_depth_from_area_density(density, radius):
+    """Depth of an annular slice added beyond a concave arc (a bore), from its area per radian [m].
+
+    Parameters
+    ----------
+    density : float or array_like
+        Worn section area per radian of arc a_θ [m²/rad], ≥ 0.
+    radius : float or array_like
+        Radius r of the concave surface (the bore) [m].
+
+    Returns
+    -------
+    numpy.ndarray
+        d = √(r² + 2a_θ) − r [m], written as 2a_θ/(√(r² + 2a_θ) + r).
+
+    Examples
+    --------
+    >>> round(float(obstacle_depth_from_area_density((0.011**2 - 0.01**2) / 2, 0.01)), 12)
+    0.001
+    """
+    density = np.asarray(density, dtype=float)
+    return 2.0 * density / (np.sqrt(radius * radius + 2.0 * density) + radius)
 
 
 def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
@@ -91,10 +145,10 @@ def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
     """
     v, r, l, arc = _inputs(volume, "volume", "m³", mobile_radius, "mobile_radius", width,
                            arc_deg)
-    a = 2.0 * v / (l * arc)
+    density = v / (l * arc)
+    depth = mobile_depth_from_area_density(density, r)
     with np.errstate(invalid="ignore"):
-        beyond = a > r * r
-        depth = a / (r + np.sqrt(np.where(beyond, np.nan, r * r - a)))
+        beyond = 2.0 * density > r * r
     if np.any(beyond):
         warnings.warn(
             f"sector depth of the mobile: {int(np.count_nonzero(beyond))} volume(s) exceed the "
@@ -142,8 +196,7 @@ def sector_depth_obstacle(volume, obstacle_radius, width, arc_deg):
     """
     v, r, l, arc = _inputs(volume, "volume", "m³", obstacle_radius, "obstacle_radius", width,
                            arc_deg)
-    a = 2.0 * v / (l * arc)
-    return _out(a / (np.sqrt(r * r + a) + r))
+    return _out(obstacle_depth_from_area_density(v / (l * arc), r))
 
 
 def sector_volume_mobile(depth, mobile_radius, width, arc_deg):

@@ -28,6 +28,10 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from fretwear.errors import InputError, RangeWarning
+from fretwear.geometry.sectors import (
+    mobile_depth_from_area_density,
+    obstacle_depth_from_area_density,
+)
 from fretwear.sectors import sector_edges
 
 #: The depth shapes, keyed by name (``shape=`` argument, ``[obstacle] shape`` in case files).
@@ -58,19 +62,6 @@ def sector_of(angle, edges: np.ndarray, side: str = "right") -> np.ndarray:
     else:
         idx = np.searchsorted(edges, a, side="right") - 1
     return np.clip(idx, 0, edges.size - 2)
-
-
-def _mobile_depth_from_density(density, radius):
-    """d = R − √(R² − 2a) written without cancellation; NaN beyond the centre (2a > R²)."""
-    root2 = radius * radius - 2.0 * density
-    with np.errstate(invalid="ignore"):
-        return np.where(root2 >= 0, 2.0 * density / (radius + np.sqrt(np.maximum(root2, 0.0))),
-                        np.nan)
-
-
-def _obstacle_depth_from_density(density, radius):
-    """d = √(r² + 2a) − r written without cancellation."""
-    return 2.0 * density / (radius + np.sqrt(radius * radius + 2.0 * density))
 
 
 def _sector_mean_radius(obstacle, edges: np.ndarray, points: int = 721) -> np.ndarray:
@@ -140,14 +131,14 @@ class WornDepth:
         a = np.asarray(angle, dtype=float)
         if self.shape == "uniform":
             return self.sector_depth_mobile[sector_of(a, self.edges, side)]
-        return _mobile_depth_from_density(self._area_density(0, a, side), self.mobile_radius)
+        return mobile_depth_from_area_density(self._area_density(0, a, side), self.mobile_radius)
 
     def obstacle(self, angle, side: str = "right") -> np.ndarray:
         """Obstacle's worn radial depth [m] at ``angle`` [deg]."""
         a = np.asarray(angle, dtype=float)
         if self.shape == "uniform":
             return self.sector_depth_obstacle[sector_of(a, self.edges, side)]
-        return _obstacle_depth_from_density(
+        return obstacle_depth_from_area_density(
             self._area_density(1, a, side), self.obstacle_model.radius(a))
 
 
@@ -242,7 +233,7 @@ def worn_depth_profiles(edges, volume_mobile, volume_obstacle=None, *, width: fl
             f"exceeds the whole wedge l·Δθ·R_m²/2 = {l_ * dtheta[j] * rm * rm / 2:.4g} m³; "
             "its depth is NaN", RangeWarning, stacklevel=2)
     if shape == "uniform":
-        dm = _mobile_depth_from_density(dens_m, rm)
+        dm = mobile_depth_from_area_density(dens_m, rm)
         rbar = _sector_mean_radius(obstacle, e) if (vo > 0).any() else np.full(n, np.nan)
         # root of ½Δθ d² + I d = A with I = R̄Δθ: d = 2A/(I + √(I² + 2ΔθA)), exact 0 at A = 0
         i_ = rbar * dtheta
