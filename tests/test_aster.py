@@ -13,11 +13,11 @@ import pandas as pd
 import pytest
 
 from fretwear import ContactHistory
-from fretwear.aster import _F, POST_USURE
+from fretwear.workflows.aster import _F, POST_USURE
 from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.io.aster import read_aster_table, write_aster_table
-from fretwear.operator import from_aster_names, wear_table
-from fretwear.restart import read_wear_table
+from fretwear.table import from_aster_names, wear_table
+from fretwear.table import read_wear_table
 
 FIXTURES = Path(__file__).parent / "fixtures" / "aster_tables"
 YEAR = 31_536_000.0

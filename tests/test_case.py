@@ -1,6 +1,6 @@
 """TOML case files: keys, validation, typo errors, run_case (docs/case_files.md).
 
-Expected values: Archard V = K·P·t (SPEC §4) with the time units of fretwear.case.TIME_UNITS
+Expected values: Archard V = K·P·t (SPEC §4) with the time units of fretwear.workflows.case_files.TIME_UNITS
 (a year is 365 days = 31 536 000 s, Code_Aster users' COEF_INST); chunked power equals the
 one-shot wear_power (the trapezoid reduction is exact over chunks sharing a sample, SPEC §2).
 """
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from fretwear import ContactHistory
-from fretwear.case import KEYS, chunked_power, keys_help, load_case, run_case, validate_case
+from fretwear.workflows.case_files import KEYS, chunked_power, keys_help, load_case, run_case, validate_case
 from fretwear.errors import InputError, KeywordError
 
 POWER_CASE = {
@@ -163,7 +163,7 @@ def test_kwu_epri_case_computes_the_power_once(tmp_path, monkeypatch):
     """KWU_EPRI needs the history's classes, not a second power computation: the table equals
     wear_table on the history itself (independent path, SPEC §2/§4)."""
     import fretwear.power
-    from fretwear.operator import wear_table
+    from fretwear.table import wear_table
 
     # 10-12 N at 0.05 m/s: a physical power (about 0.5 W), so every depth is in range.
     rows = "\n".join(f"{t:.1f},{10.0 + t},0.03,0.04" for t in np.arange(0.0, 2.01, 0.1))

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from fretwear.history import contact_angle
-from fretwear.kernels import (
+from fretwear.power.kernels import (
     HAVE_NUMBA,
     fast_sector_index,
     fused,
@@ -77,7 +77,7 @@ def test_close_edges_are_not_safe_but_still_exact():
 
 @pytest.mark.skipif(not HAVE_NUMBA, reason="numba not installed")
 def test_generic_directions_take_the_fast_path():
-    from fretwear.kernels import _classify_numba, _ro
+    from fretwear.power.kernels import _classify_numba, _ro
 
     rng = np.random.default_rng(11)
     y, z = rng.normal(size=100_000), rng.normal(size=100_000)

@@ -552,12 +552,12 @@ def test_other_shapes_match_brute_force_search(kind, direction):
 
 
 def test_reads_the_wear_operator_table_and_agrees_with_its_sector_depths():
-    """End to end with fretwear.operator.wear_table (sector mode): the width comes from the
+    """End to end with fretwear.table.wear_table (sector mode): the width comes from the
     table's attrs, the volumes are the table's cumulated ones, and the uniform depths equal the
     operator's SPEC §3 sector depths (an independent implementation, fretwear.geometry)."""
-    pytest.importorskip("fretwear.operator")
+    pytest.importorskip("fretwear.table")
     from fretwear.history import ContactHistory
-    from fretwear.operator import wear_table
+    from fretwear.table import wear_table
 
     t = np.linspace(0.0, 1.0, 2001)
     angle = np.radians(np.where(t < 0.5, 20.0, -100.0))  # contact at 20° then at -100°

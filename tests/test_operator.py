@@ -14,8 +14,8 @@ import pytest
 
 from fretwear import ContactHistory
 from fretwear.errors import InputError, KeywordError
-from fretwear.operator import COLUMNS, from_aster_names, to_aster_names, wear_table
-from fretwear.restart import initial_state, replace_tube
+from fretwear.table import COLUMNS, from_aster_names, to_aster_names, wear_table
+from fretwear.table import initial_state, replace_tube
 
 YEAR = 31_536_000.0
 BAV = {"mobile_radius": 0.0111, "obstacle_width": 0.0127}

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from fretwear.errors import HistoryError, InputError, StationarityWarning
 from fretwear.history import ContactHistory
-from fretwear.kernels import HAVE_NUMBA
+from fretwear.power.kernels import HAVE_NUMBA
 from fretwear.power import PowerAccumulator, PowerResult, wear_power
 
 BACKENDS = ["numpy", "numba"] if HAVE_NUMBA else ["numpy"]

@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 from fretwear.history import ContactHistory
-from fretwear.kernels import HAVE_NUMBA, fused_numpy
+from fretwear.power.kernels import HAVE_NUMBA, fused_numpy
 from fretwear.power import PowerAccumulator, wear_power
-from fretwear.statistics import contact_statistics, merge_groups
+from fretwear.power import contact_statistics
+from fretwear.power.statistics import merge_groups
 
 BACKENDS = ["numpy", "numba"] if HAVE_NUMBA else ["numpy"]
 W = 1.0  # half-width of every pulse [s]

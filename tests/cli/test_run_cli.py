@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from fretwear.case import run_case
+from fretwear.workflows.case_files import run_case
 from fretwear.cli import main
 from fretwear.io.aster import read_aster_table
 
@@ -55,10 +55,10 @@ def test_demo_outputs_plots_and_aster_table(tmp_path, capsys):
 
 
 def test_help_documents_every_key(capsys):
-    """Every key of fretwear.case.KEYS and every output column of fretwear.operator.COLUMNS
+    """Every key of fretwear.workflows.case_files.KEYS and every output column of fretwear.table.COLUMNS
     (with its Code_Aster name and unit) is in `fretwear run --help`."""
-    from fretwear.case import KEYS
-    from fretwear.operator import COLUMNS
+    from fretwear.workflows.case_files import KEYS
+    from fretwear.table import COLUMNS
 
     assert main(["run", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())  # undo click's line wrapping
@@ -94,7 +94,7 @@ def test_unknown_output_suffix(tmp_path, capsys):
 def test_sector_restart_through_each_output_format(tmp_path, capsys, suffix, options):
     """Two CLI runs chained by [restart] equal one long run (Archard, 8 sectors, SPEC §7):
     V_j(2 + 3 years) = V_j(2) + k·P_j·3 years; the table file of the first run, in each output
-    format, seeds the second (read back by fretwear.restart.read_wear_table)."""
+    format, seeds the second (read back by fretwear.table.read_wear_table)."""
     examples = Path(__file__).parents[2] / "examples"
     text = (examples / "tube_bav.toml").read_text(encoding="utf-8")
     text = text.replace('file = "data/oscillator_gap.csv"',

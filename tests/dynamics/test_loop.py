@@ -15,7 +15,7 @@ import pytest
 from click.testing import CliRunner
 
 from fretwear.dynamics.config import dynamics_from_config
-from fretwear.dynamics.loop import iterate_case, load_iterate_case
+from fretwear.workflows.loop import iterate_case, load_iterate_case
 from fretwear.errors import KeywordError
 
 K_MOBILE, K_OBSTACLE = 2e-14, 1e-14  # [1/Pa], large so that one cycle opens the gap visibly
@@ -222,7 +222,7 @@ def test_example_case_runs_one_cycle(tmp_path):
 def test_long_histories_are_reduced_by_chunks(tmp_path, monkeypatch):
     # The chunked reduction of the Parquet file (bounded memory) gives the in-memory result:
     # iter_history_chunks shares one sample between chunks, so the trapezoid sums agree.
-    import fretwear.dynamics.loop as loop
+    import fretwear.workflows.loop as loop
 
     c = case(tmp_path, cycles=1)
     c["power"] = {"t_start_s": 0.05, "blocks": 2, "t_end_s": 0.4}
@@ -257,7 +257,7 @@ def test_cycle_one_sees_the_clearance_figure_of_planes(tmp_path, monkeypatch):
     # which is R_m(1/|cos ψ| − 1) larger (1.47 mm more at 30° for R_m = 9.5 mm). Cycle 1 must
     # feed the dynamics the clearance figure: its profile, and the contacts it produces, lie on
     # the planes |dy| = g.
-    import fretwear.dynamics.loop as loop
+    import fretwear.workflows.loop as loop
 
     g, rm = 2e-4, 9.5e-3
     c = case(tmp_path, cycles=1)

@@ -25,26 +25,20 @@ CASES = ("tube_bav", "tube_tube", "tube_alesage", "tube_3_enco", "tube_4_enco",
 
 
 def _run_case(path):
-    try:
-        from fretwear.workflows.case_files import run_case
-    except ImportError:  # before the layers refactor
-        from fretwear.case import run_case
+    from fretwear.workflows.case_files import run_case
+
     return run_case(path)
 
 
 def _load_case(path):
-    try:
-        from fretwear.workflows.case_files import load_case
-    except ImportError:
-        from fretwear.case import load_case
+    from fretwear.workflows.case_files import load_case
+
     return load_case(path)
 
 
 def _iterate(path, output):
-    try:
-        from fretwear.workflows.loop import iterate_case
-    except ImportError:
-        from fretwear.dynamics.loop import iterate_case
+    from fretwear.workflows.loop import iterate_case
+
     return iterate_case(path, output=output, plot=False)
 
 

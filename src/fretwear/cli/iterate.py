@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from fretwear.dynamics.config import keys_help as dynamics_keys
-from fretwear.dynamics.loop import ITERATE_KEYS
+from fretwear.workflows.loop import ITERATE_KEYS
 
 _ITERATE = "\n".join(f"  {k}: {d}" for k, (_, d) in ITERATE_KEYS.items())
 _HELP = f"""Run the coupled loop of a case file: built-in dynamics (modal model with shocks) ->
@@ -42,7 +42,7 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
     from rich.console import Console
     from rich.table import Table
 
-    from fretwear.dynamics.loop import iterate_case
+    from fretwear.workflows.loop import iterate_case
 
     console = Console(quiet=quiet)
     err = Console(stderr=True, quiet=quiet)

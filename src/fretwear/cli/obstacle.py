@@ -108,7 +108,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
     directory = None
     case = None
     if case_file is not None:
-        from fretwear.case import load_case
+        from fretwear.workflows.case_files import load_case
 
         case = load_case(case_file)
         section = dict(case.get("obstacle", {}))
@@ -164,7 +164,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
         if setup.table is not None:
             result = setup.update()
         else:
-            from fretwear.case import run_case
+            from fretwear.workflows.case_files import run_case
 
             echo("running the case for its wear table ...", err=True)
             result = setup.update(run_case(case).table)  # the case read above

@@ -14,7 +14,7 @@ from pathlib import Path
 import click
 
 from fretwear.history import DEFAULT_CHUNK_SIZE
-from fretwear.statistics import STATISTICS_UNITS
+from fretwear.power.statistics import STATISTICS_UNITS
 
 
 def _parse_sectors(value: str | None):

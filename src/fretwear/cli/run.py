@@ -7,8 +7,8 @@ from pathlib import Path
 import click
 import numpy as np
 
-from fretwear.case import keys_help
-from fretwear.operator import COLUMNS
+from fretwear.workflows.case_files import keys_help
+from fretwear.table import COLUMNS, write_wear_table
 
 
 def columns_help() -> str:
@@ -32,62 +32,6 @@ Output columns, native (Code_Aster) [unit]; one row per instant, or per instant 
 {columns_help()}
 """
 
-_ASTER_SUFFIXES = (".tab", ".resu", ".txt")
-
-
-def write_table(table, path: Path, *, aster_names: bool = False, title: str | None = None,
-                aster_format: str = "TABLEAU") -> Path:
-    """Write a wear table atomically; the suffix chooses CSV, Parquet or a Code_Aster table.
-
-    Parameters
-    ----------
-    table : pandas.DataFrame
-        A wear table, native column names (:data:`fretwear.operator.COLUMNS`).
-    path : pathlib.Path
-        ``.csv``, ``.parquet``/``.pq``, or ``.tab``/``.resu``/``.txt`` (Code_Aster IMPR_TABLE
-        text, Code_Aster column names, reals ``%.10E``).
-    aster_names : bool
-        Code_Aster column names in CSV/Parquet too.
-    title : str, optional
-        Title line of a Code_Aster table.
-    aster_format : str
-        ``"TABLEAU"`` or ``"ASTER"`` (``#DEBUT_TABLE`` ... with a line of types): the
-        ``FORMAT`` of Code_Aster's IMPR_TABLE / LIRE_TABLE.
-
-    Examples
-    --------
-    >>> import tempfile, pandas as pd
-    >>> p = Path(tempfile.mkdtemp()) / "t.tab"
-    >>> _ = write_table(pd.DataFrame({"instant": [1.0], "volume_mobile": [2e-9]}), p)
-    >>> p.read_text().splitlines()[2].split()
-    ['INST', 'V_USUR_TUBE']
-    """
-    from fretwear.errors import InputError
-    from fretwear.io.atomic import atomic_path
-    from fretwear.operator import to_aster_names
-
-    suffix = path.suffix.lower()
-    if suffix in _ASTER_SUFFIXES:
-        from fretwear.io.aster import write_aster_table
-
-        fmt = str(aster_format).upper()
-        if fmt not in ("TABLEAU", "ASTER"):
-            raise InputError(f"aster_format must be TABLEAU or ASTER, got {aster_format!r}")
-        return write_aster_table(to_aster_names(table), path, format=fmt,
-                                 title=title or "POST_USURE fretwear", float_format="%.10E")
-    frame = to_aster_names(table) if aster_names else table
-    frame = frame.copy()
-    frame.attrs = {}
-    if suffix == ".csv":
-        with atomic_path(path) as tmp:
-            frame.to_csv(tmp, index=False)  # shortest repr: exact round trip
-    elif suffix in (".parquet", ".pq"):
-        with atomic_path(path) as tmp:
-            frame.to_parquet(tmp, index=False)
-    else:
-        raise InputError(f"output {str(path)!r}: unknown suffix {suffix!r}; use .csv, .parquet, "
-                         f"or {', '.join(_ASTER_SUFFIXES)} for a Code_Aster table")
-    return path
 
 
 def _summary(result, console) -> None:
@@ -190,7 +134,7 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         TimeElapsedColumn,
     )
 
-    from fretwear.case import load_case, run_case
+    from fretwear.workflows.case_files import load_case, run_case
 
     case: Path | dict = case_file
     if databases:  # the command line's files come after the case's (later files win)
@@ -212,7 +156,7 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         result = run_case(case, progress=step)
     _summary(result, console)
     if output is not None:
-        written = write_table(result.table, output, aster_names=aster_names,
+        written = write_wear_table(result.table, output, aster_names=aster_names,
                               title=result.table.attrs.get("title"), aster_format=aster_format)
         console.print(f"table written to [bold]{written}[/]")
     if plot_dir is not None:

@@ -6,7 +6,7 @@ coupled loop dynamics → wear table → obstacle update → dynamics (``fretwea
 Modules: :mod:`~fretwear.dynamics.modal` (modes, uniform beam), :mod:`~fretwear.dynamics.shocks`
 (obstacles, contact law), :mod:`~fretwear.dynamics.excitation` (forces, base acceleration,
 random signals), :mod:`~fretwear.dynamics.integrate` (explicit compiled integration),
-:mod:`~fretwear.dynamics.loop` (case files, coupled loop).
+:mod:`~fretwear.workflows.loop` (case files, coupled loop).
 """
 
 from __future__ import annotations

@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from fretwear.case import check_keys
+from fretwear.keys import check_keys
 from fretwear.dynamics.excitation import BaseAcceleration, NodalForce, Signal
 from fretwear.dynamics.modal import ModalModel, uniform_beam_modes
 from fretwear.dynamics.shocks import Shock

@@ -233,6 +233,29 @@ def _convert(raw: dict, label: str) -> pd.DataFrame:
     return frame
 
 
+def _raw_tables(text: str, label: str) -> list[dict]:
+    raw = _split_tables(text, label)
+    if not raw:
+        raise FormatError(f"{label}: no Code_Aster table found (expected a '#' header block and "
+                          "a line of column names, or #DEBUT_TABLE ... #FIN_TABLE)")
+    return raw
+
+
+def read_aster_tables(path_or_text: str | os.PathLike) -> list[pd.DataFrame]:
+    """Every table of a Code_Aster text file, in order (as :func:`read_aster_table` reads one).
+
+    A file receives several tables when several IMPR_TABLE or IMPR_FONCTION commands print to
+    the same unit (each appends its own ``#`` block and column names).
+
+    Examples
+    --------
+    >>> [list(t.columns) for t in read_aster_tables("#\\n#a\\nINST FN\\n0 1\\n#\\n#b\\nINST VT1\\n0 2\\n")]
+    [['INST', 'FN'], ['INST', 'VT1']]
+    """
+    text, label = _text_of(path_or_text)
+    return [_convert(raw, label) for raw in _raw_tables(text, label)]
+
+
 def list_aster_tables(path_or_text: str | os.PathLike) -> list[str]:
     """Titles of the tables of a Code_Aster text file, in order (index = position).
 
@@ -294,10 +317,7 @@ def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = Non
     ('wear table', ['R', 'R', 'K8'], [nan, 2.5e-09])
     """
     text, label = _text_of(path_or_text)
-    raw = _split_tables(text, label)
-    if not raw:
-        raise FormatError(f"{label}: no Code_Aster table found (expected a '#' header block and "
-                          "a line of column names, or #DEBUT_TABLE ... #FIN_TABLE)")
+    raw = _raw_tables(text, label)
     listing = "; ".join(f"{i}: {' / '.join(t['title']) or '(no title)'}"
                         for i, t in enumerate(raw))
     if title is not None:

@@ -34,7 +34,7 @@ from fretwear.obstacle.profiles import (
 )
 from fretwear.obstacle.update import (
     ObstacleResult,
-    read_wear_table,  # fretwear.restart's, re-exported
+    read_wear_table,  # fretwear.table's, re-exported
     sector_volumes,
     update_obstacle,
     update_obstacle_from_table,

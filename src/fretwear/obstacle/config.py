@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from fretwear.case import check_keys, keyword_hint
+from fretwear.keys import check_keys, keyword_hint
 from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.obstacle.clearance import RESOLUTION
 from fretwear.obstacle.depth import DEPTH_SHAPES
@@ -122,7 +122,7 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
     ----------
     config : mapping
         The ``[obstacle]`` section, or a whole case (with keys ``obstacle`` and ``geometry``,
-        and ``_directory`` as :func:`fretwear.case.load_case` returns it).
+        and ``_directory`` as :func:`fretwear.workflows.case_files.load_case` returns it).
     geometry : mapping, optional
         The ``[geometry]`` section for defaults (mobile_radius_m, obstacle_width_m,
         obstacle_radius_m).

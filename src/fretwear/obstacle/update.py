@@ -26,7 +26,7 @@ from fretwear.obstacle.profiles import (
     discret_angles,
     write_discret,
 )
-from fretwear.restart import read_wear_table
+from fretwear.table import read_wear_table
 from fretwear.sectors import sector_edges
 
 #: Native column -> Code_Aster column of the wear table columns read here.
@@ -446,7 +446,7 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     ----------
     table : pandas.DataFrame or path-like
         Sector-mode wear table (:func:`sector_volumes` for the columns); a file is read by
-        :func:`fretwear.restart.read_wear_table` (CSV, Parquet or Code_Aster text).
+        :func:`fretwear.table.read_wear_table` (CSV, Parquet or Code_Aster text).
     obstacle, mobile
         As in :func:`update_obstacle`.
     instant : float, optional

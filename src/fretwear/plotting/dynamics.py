@@ -98,7 +98,7 @@ def plot_iteration(summary, profiles, directory: str | os.PathLike, *,
     Parameters
     ----------
     summary : DataFrame
-        :attr:`fretwear.dynamics.loop.IterationResult.summary`.
+        :attr:`fretwear.workflows.loop.IterationResult.summary`.
     profiles : sequence of (angles [deg], clearance [m])
         The worn clearance after each cycle.
     directory : path-like

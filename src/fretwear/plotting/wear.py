@@ -1,4 +1,4 @@
-"""Figures of a service-life wear table (:func:`fretwear.operator.wear_table`).
+"""Figures of a service-life wear table (:func:`fretwear.table.wear_table`).
 
 matplotlib is imported here only, with the Agg backend (no display needed).
 """
@@ -17,10 +17,10 @@ from fretwear.plotting._common import save_figure
 
 def _unit(table: pd.DataFrame) -> str:
     """The table's time unit: its ``time_unit``, else the first name of its ``time_scale`` in
-    :data:`fretwear.case.TIME_UNITS`, else the scale in seconds."""
+    :data:`fretwear.workflows.case_files.TIME_UNITS`, else the scale in seconds."""
     if table.attrs.get("time_unit"):
         return str(table.attrs["time_unit"])
-    from fretwear.case import TIME_UNITS
+    from fretwear.timeunits import TIME_UNITS
 
     scale = float(table.attrs.get("time_scale", 1.0))
     return next((name for name, s in TIME_UNITS.items() if s == scale), f"× {scale:g} s")
@@ -56,7 +56,7 @@ def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: 
     >>> [p.name for p in plot_wear_table(t, tempfile.mkdtemp())]
     ['wear_history.png', 'wear_history.svg']
     """
-    from fretwear.operator import from_aster_names
+    from fretwear.table import from_aster_names
 
     table = from_aster_names(table)
     directory = Path(directory)

@@ -1,0 +1,60 @@
+"""Validation of user keys (case-file tables, manifest columns, keyword arguments): unknown keys
+and wrong value types become a :class:`~fretwear.errors.KeywordError` that names the key, the
+closest valid one and the expected type. Any layer may import this module.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Mapping
+from typing import Any
+
+from fretwear.errors import KeywordError
+
+__all__ = ["check_keys", "keyword_hint"]
+
+
+def keyword_hint(key: str, choices) -> str:
+    """`` (did you mean 'x'?)`` naming the closest of ``choices`` to ``key``, or ``""``."""
+    close = difflib.get_close_matches(key, list(choices), n=1)
+    return f" (did you mean {close[0]!r}?)" if close else ""
+
+
+def check_keys(items: Mapping[str, Any], spec: Mapping[str, tuple[Any, str]], source: str, *,
+               key_prefix: str = "") -> None:
+    """Check the keys and value types of one table of a TOML file against its key list.
+
+    Parameters
+    ----------
+    items : mapping
+        The table (key -> value).
+    spec : mapping
+        key -> (expected type or tuple of types, description with unit), as :data:`KEYS`.
+        ``True``/``False`` are accepted only where the type is ``bool``.
+    source : str
+        What the messages start with (the file, or the table such as ``[obstacle]``).
+    key_prefix : str
+        Put before the key in the messages (e.g. ``"[geometry] "``).
+
+    Raises
+    ------
+    KeywordError
+        An unknown key (with the closest valid one and the list of valid keys), or a value of
+        the wrong type (with the key's description).
+
+    Examples
+    --------
+    >>> try:
+    ...     check_keys({"cycle": 2}, {"cycles": (int, "number of cycles")}, "[iterate]")
+    ... except KeywordError as exc:
+    ...     print(exc)
+    [iterate]: unknown key cycle (did you mean 'cycles'?); valid keys: cycles
+    """
+    for key, value in items.items():
+        if key not in spec:
+            raise KeywordError(f"{source}: unknown key {key_prefix}{key}{keyword_hint(key, spec)}; "
+                               f"valid keys: {', '.join(spec)}")
+        kind = spec[key][0]
+        if (isinstance(value, bool) and kind is not bool) or not isinstance(value, kind):
+            raise KeywordError(f"{source}: {key_prefix}{key} = {value!r} has the wrong type; "
+                               f"expected {spec[key][1]}")

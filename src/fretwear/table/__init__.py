@@ -1,0 +1,35 @@
+"""The wear table: its schema, how it is built from a wear case, restarts, and its files.
+
+- :mod:`fretwear.table.schema`: every column's native name, Code_Aster name, unit and meaning
+  (:data:`COLUMNS`), :func:`to_aster_names`, :func:`from_aster_names`;
+- :mod:`fretwear.table.core`: :func:`wear_table`, the service-life table (theory §3, §7);
+- :mod:`fretwear.table.restart`: the initial state of a restart (ETAT_INIT) and the tube
+  replacement (TUBE_NEUF);
+- :mod:`fretwear.table.files`: :func:`read_wear_table` and :func:`write_wear_table` (CSV,
+  Parquet, Code_Aster text tables).
+"""
+
+from fretwear.table.core import wear_table
+from fretwear.table.files import read_wear_table, write_wear_table
+from fretwear.table.restart import InitialState, initial_state, replace_tube
+from fretwear.table.schema import (
+    COLUMNS,
+    GLOBAL_COLUMNS,
+    SECTOR_COLUMNS,
+    from_aster_names,
+    to_aster_names,
+)
+
+__all__ = [
+    "COLUMNS",
+    "GLOBAL_COLUMNS",
+    "SECTOR_COLUMNS",
+    "InitialState",
+    "from_aster_names",
+    "initial_state",
+    "read_wear_table",
+    "replace_tube",
+    "to_aster_names",
+    "wear_table",
+    "write_wear_table",
+]

@@ -1,0 +1,396 @@
+"""The coupled loop dynamics → wear table → obstacle update → dynamics (``fretwear iterate``).
+
+The reference document's §6: from a clearance figure, compute the dynamics; from its contact
+history, the wear table (POST_USURE); from the table's cumulated sector volumes, the worn
+clearance figure (MODI_OBSTACLE); compute the dynamics again with it, and so on. Each cycle
+continues the previous cycle's wear table through the restart (ETAT_INIT, SPEC §7), so the
+volumes accumulate over the cycles and the obstacle update always starts from the new obstacle
+with the cumulated volumes (SPEC §8).
+
+The case file holds the usual wear sections (``[law]``, ``[geometry]``, ``[sectors]``,
+``[time]``: the durations of one cycle, ``[power]`` window), an ``[obstacle]`` section (the new
+obstacle and the mobile's wall), a ``[dynamics]`` section (:mod:`fretwear.dynamics.config`) and an
+``[iterate]`` section (:data:`ITERATE_KEYS`).
+"""
+
+from __future__ import annotations
+
+import json
+import warnings
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.dynamics.config import DynamicsSetup, dynamics_from_config
+from fretwear.dynamics.integrate import simulate
+from fretwear.errors import FretwearWarning, KeywordError
+
+#: key -> (type, description with unit) of the ``[iterate]`` section.
+ITERATE_KEYS: dict[str, tuple[Any, str]] = {
+    "cycles": (int, "number of cycles dynamics → wear → obstacle (default 1)"),
+    "max_depth_m": ((int, float), "stop after the cycle where the mobile's (or obstacle's) "
+                                  "worn depth reaches this [m]"),
+    "shock": (str, "name of the shock whose history feeds the wear table (default the first)"),
+    "output": (str, "output folder, relative to the case file (default 'iterate')"),
+    "plot": (bool, "write figures for every cycle (default true)"),
+    "stop_on_perforation": (bool, "stop when the mobile is perforated (default true)"),
+}
+
+
+def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
+    from fretwear.keys import check_keys
+
+    check_keys(section, ITERATE_KEYS, "[iterate]")
+    out = dict(section)
+    if out.get("cycles", 1) < 1:
+        raise KeywordError(f"[iterate] cycles must be >= 1, got {out['cycles']}")
+    return out
+
+
+def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
+    """Read a case file (or dict) for the loop: validated wear sections plus the raw
+    ``[dynamics]`` and checked ``[iterate]`` sections; ``_directory`` is the file's folder.
+
+    Raises
+    ------
+    InputError
+        Missing file, invalid TOML.
+    KeywordError
+        Unknown sections or keys (with the closest valid name), missing sections.
+
+    Examples
+    --------
+    >>> c = load_iterate_case({
+    ...     "law": {"name": "ARCHARD", "mobile": {"COEF_USURE": 1e-14}},
+    ...     "geometry": {"contact_type": "TUBE_ALESAGE", "mobile_radius_m": 9.5e-3,
+    ...                  "obstacle_width_m": 0.02},
+    ...     "sectors": {"count": 8}, "time": {"instants": [1.0], "unit": "year"},
+    ...     "obstacle": {"gap_m": 2e-4, "wall_thickness_m": 1.1e-3},
+    ...     "dynamics": {"duration_s": 1.0}, "iterate": {"cycles": 3}})
+    >>> c["iterate"], c["dynamics"]
+    ({'cycles': 3}, {'duration_s': 1.0})
+    >>> load_iterate_case({"iterate": {"cycle": 2}})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    fretwear.errors.KeywordError: [iterate]: unknown key cycle (did you mean 'cycles'?); ...
+    """
+    from fretwear.workflows.case_files import read_case_toml, validate_case
+
+    if isinstance(case, Mapping):
+        raw = dict(case)
+        source, directory = "case", raw.pop("_directory", None)
+    else:
+        raw, directory = read_case_toml(case)
+        source = str(case)
+    dynamics = raw.pop("dynamics", None)
+    iterate = _check_iterate(raw.pop("iterate", {}))
+    if dynamics is None:
+        raise KeywordError(f"{source}: the loop needs a [dynamics] section (modes, shocks, "
+                           "excitation); see docs/dynamics.md")
+    if "obstacle" not in raw:
+        raise KeywordError(f"{source}: the loop needs an [obstacle] section (the new obstacle "
+                           "and the mobile's wall thickness) for the obstacle update")
+    if "history" in raw or "value_W" in raw.get("power", {}):
+        raise KeywordError(f"{source}: [history] file / [power] value_W are not used by the loop "
+                           "(the history comes from [dynamics]); remove them")
+    out = validate_case(raw, source=source)
+    out["dynamics"], out["iterate"] = dict(dynamics), iterate
+    out["_directory"] = directory
+    return out
+
+
+@dataclass
+class IterationResult:
+    """What the loop produced.
+
+    Attributes
+    ----------
+    summary : DataFrame
+        One row per cycle: ``cycle``, ``instant`` (end of the cycle) [user unit], ``power`` [W],
+        ``wear_power_steps`` [W] (integrated at every time step over the whole computation,
+        not only the ``[power]`` window), ``depth_mobile_max``,
+        ``depth_obstacle_max`` [m], ``clearance_min``, ``clearance_max`` [m] (after the update),
+        ``contact_fraction`` [-], ``perforated``.
+    tables : list of DataFrame
+        The wear table after each cycle (each continues the previous one).
+    profiles : list of ObstacleResult
+        The obstacle update after each cycle.
+    directory : Path or None
+        Output folder.
+    stopped : str
+        Why the loop stopped: ``"cycles"``, ``"max_depth"`` or ``"perforation"``.
+    warnings : list of str
+    """
+
+    summary: pd.DataFrame
+    tables: list[pd.DataFrame]
+    profiles: list[Any]
+    directory: Path | None
+    stopped: str
+    warnings: list[str] = field(default_factory=list)
+
+
+def _wear_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
+    from fretwear.workflows.case_files import case_arguments
+
+    # the history comes from [dynamics] (load_iterate_case refuses [history] and value_W)
+    args = case_arguments(case, history_elsewhere=True)
+    if args["sectors"] is None:
+        raise KeywordError("case: the loop needs [sectors] (count or edges_deg): the obstacle "
+                           "update uses the cumulated sector volumes")
+    if str(args["law"]).upper() != "ARCHARD":
+        # refused here, before any dynamics, rather than by wear_table after the first cycle's
+        raise KeywordError(f"case: [law] name = {args['law']!r}: the loop's wear tables are "
+                           "sector tables (SECTEUR), which take Archard coefficients only; "
+                           "use ARCHARD")
+    return args
+
+
+def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | None = None,
+                 cycles: int | None = None, plot: bool | None = None,
+                 progress: Callable[[str], None] | None = None) -> IterationResult:
+    """Run the coupled loop of a case: dynamics → wear table → obstacle update, repeated.
+
+    Parameters
+    ----------
+    case : path-like or mapping
+        The case file (or its content as a dict) with ``[dynamics]``, ``[obstacle]``,
+        ``[sectors]``, ``[law]``, ``[geometry]``, ``[time]`` and optionally ``[iterate]``.
+    output : path-like, optional
+        Output folder (default ``[iterate] output``, else ``iterate`` beside the case file);
+        ``cycle_NN/`` holds each cycle's history (Parquet), wear table (CSV), profile (CSV and
+        DISCRET) and figures; ``summary.csv`` and ``summary.json`` the per-cycle summary.
+    cycles : int, optional
+        Overrides ``[iterate] cycles``.
+    plot : bool, optional
+        Overrides ``[iterate] plot``.
+    progress : callable, optional
+        ``progress(message)`` before each stage.
+
+    Returns
+    -------
+    IterationResult
+
+    Notes
+    -----
+    Cycle k: the shocks with ``obstacle = "case"`` see the clearance figure of the new mobile
+    in the new obstacle (k = 1: how far it can translate in each direction, which differs from
+    the radial gap for planes and tables) or, for the wear shock, the worn clearance figure of
+    cycle k − 1 (a discrete polar profile, 0.5° steps); the wear shock's
+    history gives the power over the ``[power]`` window; the wear table of cycle k continues the
+    table of cycle k − 1 (ETAT_INIT) over the ``[time] instants`` (the durations of one cycle);
+    the obstacle update uses its cumulated sector volumes at the last instant.
+
+    References
+    ----------
+    Code_Aster R7.20.01 (POST_USURE) §6; EDF HT-22/98-009A (iterative wear computations).
+    """
+    from fretwear.obstacle.config import obstacle_from_config
+    from fretwear.table import wear_table
+
+    say = progress or (lambda message: None)
+    case = load_iterate_case(case)
+    it = case["iterate"]
+    n_cycles = int(cycles if cycles is not None else it.get("cycles", 1))
+    do_plot = bool(plot if plot is not None else it.get("plot", True))
+    directory = case.get("_directory")
+    if output is None:
+        out = Path(it.get("output", "iterate"))
+        output = out if out.is_absolute() or directory is None else Path(directory) / out
+    out_dir = Path(output)
+    setup: DynamicsSetup = dynamics_from_config(case["dynamics"], directory=directory)
+    names = [s.label for s in setup.shocks]
+    wear_shock = it.get("shock", names[0])
+    if wear_shock not in names:
+        raise KeywordError(f"[iterate] shock = {wear_shock!r} is not a shock of [dynamics]; "
+                           f"choose one of {names}")
+    iw = names.index(wear_shock)
+    args = _wear_arguments(case)
+    obstacle = obstacle_from_config(case)
+    new = obstacle.obstacle
+    if not setup.case_obstacle[iw]:
+        warnings.warn(f"the wear shock {wear_shock!r} does not use obstacle = \"case\": its "
+                      "obstacle will be replaced by the worn profile from cycle 2 on, but cycle 1 "
+                      "uses its own obstacle, not the [obstacle] section's", FretwearWarning,
+                      stacklevel=2)
+    grid = np.arange(0.0, 360.0, 0.5)
+    # The clearance figure of the new mobile (equal to the radial gap only for a bore).
+    new_profile = (grid, np.asarray(new.clearance(grid), dtype=float))
+    profile = new_profile
+    max_depth = it.get("max_depth_m")
+    rows, tables, profiles = [], [], []
+    previous = args.pop("initial_state")
+    stopped = "cycles"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        for k in range(1, n_cycles + 1):
+            cdir = out_dir / f"cycle_{k:02d}"
+            say(f"cycle {k}/{n_cycles}: dynamics")
+            profiles_k = {i: new_profile for i, c in enumerate(setup.case_obstacle) if c}
+            if k > 1:
+                profiles_k[iw] = profile
+            shocks = setup.shocks_with(profiles_k)
+            result = simulate(setup.model, shocks, setup.excitations,
+                              output_dir=cdir / "histories", **setup.options)
+            say(f"cycle {k}/{n_cycles}: wear power")
+            power, history, contact = _cycle_power(result, iw, args)
+            say(f"cycle {k}/{n_cycles}: wear table")
+            table = wear_table(power, initial_state=previous, **args)
+            say(f"cycle {k}/{n_cycles}: obstacle update")
+            update = obstacle.update(table)
+            previous = table
+            profile = (np.asarray(update.angle, float), np.asarray(update.clearance_worn, float))
+            seen = shocks[iw]
+            figures = {"clearance (new)": (update.angle, update.clearance_initial),
+                       "clearance seen by the dynamics": (seen.profile_angles, seen.profile_gaps)
+                       if seen.obstacle == "profile" else None,
+                       "clearance after the update": (update.angle, update.clearance_worn)}
+            _write_cycle(cdir, table, update, result, history, do_plot,
+                         {k: v for k, v in figures.items() if v is not None})
+            tables.append(table)
+            profiles.append(update)
+            instant = float(np.max(table["instant"]))
+            row = {"cycle": k, "instant": instant, "power": float(power.total),
+                   "wear_power_steps": float(result.wear_power[iw]),
+                   "depth_mobile_max": float(np.nanmax(update.depth_mobile)),
+                   "depth_obstacle_max": float(np.nanmax(update.depth_obstacle)),
+                   "clearance_min": float(np.nanmin(update.clearance_worn)),
+                   "clearance_max": float(np.nanmax(update.clearance_worn)),
+                   "contact_fraction": contact,
+                   "perforated": bool(update.perforated)}
+            rows.append(row)
+            if not np.all(np.isfinite(profile[1])):
+                warnings.warn(f"cycle {k}: the worn clearance has undefined values (depth beyond "
+                              "the geometry's range); the loop stops", FretwearWarning,
+                              stacklevel=2)
+                stopped = "invalid_profile"
+                break
+            if update.perforated and it.get("stop_on_perforation", True):
+                stopped = "perforation"
+                break
+            if max_depth is not None and max(row["depth_mobile_max"],
+                                             row["depth_obstacle_max"]) >= max_depth:
+                stopped = "max_depth"
+                break
+    summary = pd.DataFrame(rows)
+    _write_summary(out_dir, summary, stopped, do_plot, profiles)
+    texts = []
+    for w in caught:
+        t = f"{w.category.__name__}: {w.message}"
+        if t not in texts:
+            texts.append(t)
+    return IterationResult(summary=summary, tables=tables, profiles=profiles,
+                           directory=out_dir, stopped=stopped, warnings=texts)
+
+
+#: Wear-shock histories up to this many samples are read whole by the loop; longer ones are
+#: reduced chunk by chunk from their Parquet file (bounded memory).
+LOOP_IN_MEMORY = 2_000_000
+#: Samples kept (evenly spaced) for the figure of a history reduced chunk by chunk.
+PLOT_SAMPLES = 200_000
+#: Samples per chunk of that reduction.
+LOOP_CHUNK = 1_000_000
+
+
+def _cycle_power(result, iw: int, args: Mapping[str, Any]):
+    """(PowerResult, history for the wear table / figures, contact fraction) of the wear shock.
+
+    Short histories are read whole (:func:`fretwear.workflows.case_files.chunked_power`). Long ones are reduced
+    from the Parquet file by :class:`fretwear.power.PowerAccumulator` over
+    :func:`fretwear.io.iter_history_chunks` (one shared sample between chunks, so the result is
+    the one-shot reduction), keeping an evenly decimated copy for the figures.
+    """
+    import pyarrow.parquet as pq
+
+    from fretwear.workflows.case_files import chunked_power
+    from fretwear.history import CHANNELS, ContactHistory
+
+    path = result.files[result.shock_names[iw]]
+    n = pq.ParquetFile(path).metadata.num_rows
+    if n <= LOOP_IN_MEMORY:
+        history = result.history(iw)
+        return chunked_power(history, args), history, float(np.mean(history.normal_force > 0))
+    from fretwear.io import iter_history_chunks
+    from fretwear.power import PowerAccumulator
+
+    acc = PowerAccumulator(
+        t_start=args.get("t_start") if args.get("t_start") is not None else result.start_time,
+        t_end=args.get("t_end") if args.get("t_end") is not None else result.end_time,
+        blocks=args.get("blocks", 1), sectors=args.get("sectors"))
+    stride = max(1, n // PLOT_SAMPLES)
+    kept: dict[str, list] = {c: [] for c in CHANNELS}
+    in_contact = 0
+    row = 0
+    for j, chunk in enumerate(iter_history_chunks(path, chunk_size=LOOP_CHUNK)):
+        acc.update(chunk)
+        skip = 0 if j == 0 else 1  # the sample shared with the previous chunk
+        fn = chunk.normal_force[skip:]
+        in_contact += int(np.count_nonzero(fn > 0))
+        first = row + skip
+        pick = np.arange((-first) % stride, fn.size, stride)
+        for c in CHANNELS:
+            kept[c].append(np.asarray(getattr(chunk, c))[skip:][pick])
+        row = first + fn.size - 1
+    power = acc.result(stationarity_threshold=args.get("stationarity_threshold", 0.1))
+    light = ContactHistory(**{c: np.concatenate(v) for c, v in kept.items()},
+                           name=result.shock_names[iw],
+                           metadata={"source": str(path), "decimated_by": stride})
+    return power, light, in_contact / n
+
+
+def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures) -> None:
+    from fretwear.table import write_wear_table as write_table
+    from fretwear.io.atomic import atomic_write
+
+    write_table(table, cdir / "wear_table.csv")
+    update.write(cdir / "obstacle_profile.csv")
+    if np.all(np.isfinite(update.clearance_worn)):
+        update.write_discret(cdir / "obstacle_discret.txt")
+    else:
+        warnings.warn(f"{cdir.name}: the worn clearance has NaN values (depth beyond the "
+                      "geometry's range): obstacle_discret.txt not written", FretwearWarning,
+                      stacklevel=2)
+    with atomic_write(cdir / "dynamics.json", "w", encoding="utf-8") as fh:
+        json.dump(result.summary(), fh, indent=2)
+    if do_plot:
+        from fretwear.plotting.dynamics import plot_contact_history
+
+        plot_contact_history(history, cdir, profiles=figures)
+        for what, draw in (("wear-table", lambda: _plot_wear(table, cdir)),
+                           ("obstacle", lambda: _plot_obstacle(update, cdir))):
+            try:
+                draw()
+            except Exception as exc:  # noqa: BLE001 - a figure must not stop the loop
+                warnings.warn(f"{what} figure of {cdir.name} not written: {exc}",
+                              FretwearWarning, stacklevel=2)
+
+
+def _plot_wear(table, cdir: Path) -> None:
+    from fretwear.plotting.wear import plot_wear_table
+
+    plot_wear_table(table, cdir)
+
+
+def _plot_obstacle(update, cdir: Path) -> None:
+    from fretwear.plotting.obstacle import plot_obstacle
+
+    plot_obstacle(update, cdir)
+
+
+def _write_summary(out_dir: Path, summary: pd.DataFrame, stopped: str, do_plot: bool,
+                   profiles) -> None:
+    from fretwear.io.atomic import atomic_path, atomic_write
+
+    with atomic_path(out_dir / "summary.csv") as tmp:
+        summary.to_csv(tmp, index=False, float_format="%.10g")
+    with atomic_write(out_dir / "summary.json", "w", encoding="utf-8") as fh:
+        json.dump({"stopped": stopped, "cycles": summary.to_dict(orient="records")}, fh,
+                  indent=2)
+    if do_plot and len(summary):
+        from fretwear.plotting.dynamics import plot_iteration
+
+        plot_iteration(summary, [(p.angle, p.clearance_worn) for p in profiles], out_dir)
