@@ -1,4 +1,4 @@
-"""Reading and writing contact histories (SPEC §1): CSV, Parquet, HDF5, NetCDF, NPZ, Code_Aster.
+"""Reading and writing contact histories (theory §1): CSV, Parquet, HDF5, NetCDF, NPZ, Code_Aster.
 
 ``read_history`` opens a file in any supported format, maps its columns to the channels of a
 :class:`~fretwear.history.ContactHistory` through case-insensitive aliases (Code_Aster's INST,
@@ -25,6 +25,8 @@ from fretwear.history import CHANNELS, DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import aster as _aster
 from fretwear.io import binary as _binary
 from fretwear.io import delimited as _delimited
+from fretwear.io.aster_source import open_aster as _open_aster
+from fretwear.io.aster_source import open_functions as _open_functions
 from fretwear.io.channels import (
     ALIASES,
     Source,
@@ -42,105 +44,6 @@ __all__ = ["FORMATS", "ALIASES", "FileFormat", "read_history", "write_history",
 ASTER_NAMES: Mapping[str, str] = MappingProxyType({
     "time": "INST", "normal_force": "FN", "ft1": "FT1", "ft2": "FT2", "vn": "VN", "vt1": "VT1",
     "vt2": "VT2", "dy": "DYLOC", "dz": "DZLOC", "stick": "VINT13"})
-
-
-def _select_rows(frame: Any, select: Any, label: str) -> Any:
-    """Rows of a Code_Aster table where every ``{column: value}`` matches (``"COL=VALUE"`` too)."""
-    if isinstance(select, str):
-        column, sep, value = select.partition("=")
-        if not sep:
-            raise KeywordError(f"select={select!r}: give 'COLUMN=VALUE' (e.g. 'NOEUD=N12') or "
-                               "a mapping {column: value}")
-        select = {column.strip(): value.strip()}
-    if not isinstance(select, Mapping) or not select:
-        raise KeywordError(f"select={select!r}: give a mapping {{column: value}} or "
-                           "'COLUMN=VALUE'")
-    keep = np.ones(len(frame), dtype=bool)
-    names = [str(c) for c in frame.columns]
-    for column, value in select.items():
-        hits = [j for j, c in enumerate(names) if c.upper() == str(column).upper()]
-        if len(hits) != 1:
-            raise KeywordError(f"{label}: select={{{column!r}: ...}}: no single column of that "
-                               f"name; columns: {names}")
-        cells = frame.iloc[:, hits[0]]
-        match = cells.astype(str).str.strip() == str(value).strip()
-        if not match.any():
-            raise KeywordError(f"{label}: select: column {names[hits[0]]!r} never equals "
-                               f"{value!r}; its values: {[str(v) for v in cells.unique()[:10]]}")
-        keep &= match.to_numpy()
-    out = frame.loc[keep].reset_index(drop=True)
-    out.attrs.update(frame.attrs)
-    return out
-
-
-def _open_aster(path: str | os.PathLike, *, index: int | None = None,
-                title: str | None = None, select: Any = None) -> Source:
-    frame = _aster.read_aster_table(path, index=index, title=title)
-    if select is not None:
-        frame = _select_rows(frame, select, str(path))
-    names = [str(c) for c in frame.columns]
-    if len(names) >= 4 and len(names) % 2 == 0 and len(set(names[0::2])) == 1 \
-            and len(set(names[1::2])) == len(names) // 2:
-        # (abscissa, value) pairs sharing one abscissa name: an IMPR_FONCTION TABLEAU of several
-        # functions side by side, read as such (the instants of every pair must agree)
-        columns, arrays = _aster.stack_functions(
-            [(f"{path} ({name})", name, x, y)
-             for name, x, y in _aster.function_pairs(frame, str(path))])
-        return Source(label=str(path), format="aster-function", columns=columns,
-                      read=lambda positions: [arrays[p] for p in positions],
-                      metadata={"aster_title": frame.attrs.get("title", "")})
-
-    _check_one_shock(frame, names, str(path))
-
-    def read(positions: list[int]) -> list[np.ndarray]:
-        out = []
-        for p in positions:
-            try:
-                out.append(frame.iloc[:, p].to_numpy(dtype=float, na_value=np.nan))
-            except (TypeError, ValueError):
-                raise FormatError(f"{path}: column {names[p]!r} is not numeric (type "
-                                  f"{frame.attrs['types'][p]})") from None
-        return out
-
-    return Source(label=str(path), format="aster", columns=names, read=read,
-                  metadata={"aster_title": frame.attrs.get("title", "")})
-
-
-def _check_one_shock(frame: Any, names: list[str], label: str) -> None:
-    """Refuse a table mixing several shock points (a text column such as NOEUD with several
-    values while the instants restart), naming the column and a filter to use."""
-    times = [j for j, c in enumerate(names) if channel_of(c) == "time"]
-    if len(times) != 1:
-        return
-    t = frame.iloc[:, times[0]].to_numpy(dtype=float, na_value=np.nan)
-    if t.size < 2 or bool(np.all(np.diff(t) > 0)):
-        return
-    for j, kind in enumerate(frame.attrs.get("types", [])):
-        values = frame.iloc[:, j].dropna().unique() if str(kind).startswith("K") else []
-        if len(values) > 1:
-            shown = [str(v) for v in values[:5]]
-            raise FormatError(
-                f"{label}: column {names[j]!r} holds several values {shown} and the instants "
-                f"of {names[times[0]]!r} restart: the table mixes several shock points; choose "
-                f"one with select={{'{names[j]}': '{shown[0]}'}} (command line: --read-option "
-                f"select={names[j]}={shown[0]}), or print one per table with IMPR_TABLE(..., "
-                f"FILTRE=_F(NOM_PARA='{names[j]}', VALE_K='{shown[0]}'))")
-
-
-def _open_functions(files: Any) -> Source:
-    if isinstance(files, Mapping):
-        pairs = [(str(k), v) for k, v in files.items()]
-    elif isinstance(files, (str, os.PathLike)):
-        pairs = [(None, files)]
-    else:
-        pairs = [(None, v) for v in files]
-    names, arrays, info = _aster.read_function_files(pairs)  # type: ignore[arg-type]
-    label = ", ".join(info["files"])
-    hint = ("; the value columns of IMPR_FONCTION files need not be channel names: give the "
-            "files as a mapping {channel: file} (command line: CHANNEL=FILE, e.g. fn=fn.txt)")
-    return Source(label=label, format="aster-function", columns=names,
-                  read=lambda positions: [arrays[p] for p in positions],
-                  metadata={"files": info["files"]}, hint=hint)
 
 
 def _write_aster(history: ContactHistory, path: str | os.PathLike, *,
@@ -181,10 +84,13 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({
     "npz": FileFormat("npz", (".npz",), _binary.open_npz, _binary.write_npz, (), (),
                       "NumPy .npz archive, one array per channel"),
     "aster": FileFormat("aster", (".resu", ".tab", ".table"), _open_aster, _write_aster,
-                        ("index", "title", "select"), ("table_format", "float_format"),
-                        "Code_Aster IMPR_TABLE text table (FORMAT='TABLEAU' or 'ASTER')"),
-    "aster-function": FileFormat("aster-function", (), _open_functions, None, (), (),
-                                 "Code_Aster IMPR_FONCTION TABLEAU files, one per channel"),
+                        ("index", "title", "select", "node", "functions"),
+                        ("table_format", "float_format"),
+                        "Code_Aster IMPR_TABLE text table (FORMAT='TABLEAU' or 'ASTER') or "
+                        "IMPR_FONCTION file"),
+    "aster-function": FileFormat("aster-function", (), _open_functions, None, ("functions",),
+                                 (), "Code_Aster IMPR_FONCTION TABLEAU files (functions of one "
+                                     "history)"),
 })
 
 _FORMAT_ALIASES = {"h5": "hdf5", "hdf": "hdf5", "nc": "netcdf", "pq": "parquet", "txt": "csv",
@@ -399,7 +305,7 @@ def read_history(path: Any, format: str | None = None, *, units: Mapping[str, st
     Notes
     -----
     Conversion: ``x_SI = x_file · f_unit`` (e.g. ``f = 1e-3`` for mm, ``1e3`` for kN).
-    Column aliases follow SPEC §1 (see :data:`fretwear.io.channels.ALIASES`).
+    Column aliases follow theory §1 (see :data:`fretwear.io.channels.ALIASES`).
 
     Examples
     --------

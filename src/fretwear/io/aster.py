@@ -249,7 +249,8 @@ def read_aster_tables(path_or_text: str | os.PathLike) -> list[pd.DataFrame]:
 
     Examples
     --------
-    >>> [list(t.columns) for t in read_aster_tables("#\\n#a\\nINST FN\\n0 1\\n#\\n#b\\nINST VT1\\n0 2\\n")]
+    >>> text = "#\\n#a\\nINST FN\\n0 1\\n#\\n#b\\nINST VT1\\n0 2\\n"
+    >>> [list(t.columns) for t in read_aster_tables(text)]
     [['INST', 'FN'], ['INST', 'VT1']]
     """
     text, label = _text_of(path_or_text)
@@ -510,6 +511,135 @@ def function_pairs(frame: pd.DataFrame, label: str) -> list[tuple[str, np.ndarra
                               "not numeric") from None
         out.append((str(frame.columns[j + 1]), x, y))
     return out
+
+
+_CURVE = re.compile(r"^courbe\s+(\d+)\b\s*(.*)$", re.IGNORECASE)
+
+
+def curve_legends(title: str) -> list[str]:
+    """Legends of the curves listed in the title of an IMPR_FONCTION TABLEAU table.
+
+    IMPR_FONCTION writes, for curve ``i``, a line ``Courbe i`` followed by a line holding its
+    LEGENDE (by default the function's concept name); older versions write ``Courbe i legend``
+    on one line (Code_Aster ``Objects/table_graph.py``, ``TraceTableau``).
+
+    Examples
+    --------
+    >>> curve_legends("Courbe 0\\nFN_N12\\nCourbe 1\\nVT1_N12")
+    ['FN_N12', 'VT1_N12']
+    >>> curve_legends("Courbe 0 FN"), curve_legends("TABLE_SDASTER")
+    (['FN'], [])
+    """
+    lines = [ln.strip().lstrip("#").strip() for ln in str(title).splitlines()]
+    lines = [ln for ln in lines if ln]
+    legends = []
+    for k, line in enumerate(lines):
+        match = _CURVE.match(line)
+        if match:
+            legend = match.group(2).strip()
+            if not legend and k + 1 < len(lines) and not _CURVE.match(lines[k + 1]):
+                legend = lines[k + 1]
+            legends.append(legend)
+    return legends
+
+
+def is_function_table(frame: pd.DataFrame) -> bool:
+    """Whether a table is laid out as IMPR_FONCTION TABLEAU functions.
+
+    True for ``(abscissa, value)`` pairs side by side that share one abscissa name (two or more
+    functions), and for a table whose title lists ``Courbe i`` lines (one abscissa, then one
+    column per function).
+
+    Examples
+    --------
+    >>> is_function_table(read_aster_table("#\\n#x\\nINST FN INST VT1\\n0 1 0 2\\n"))
+    True
+    >>> is_function_table(read_aster_table("#\\n#Courbe 0\\n#FN\\nINST FN_0\\n0 1\\n"))
+    True
+    >>> is_function_table(read_aster_table("#\\n#x\\nINST FN VT1\\n0 1 2\\n"))
+    False
+    """
+    names = [str(c) for c in frame.columns]
+    pairs = (len(names) >= 4 and len(names) % 2 == 0 and len(set(names[0::2])) == 1
+             and len(set(names[1::2])) == len(names) // 2)
+    return pairs or bool(curve_legends(frame.attrs.get("title", "")))
+
+
+def function_columns(frame: pd.DataFrame, label: str
+                     ) -> list[tuple[str, str, np.ndarray, np.ndarray]]:
+    """The functions of an IMPR_FONCTION TABLEAU table: ``(name, legend, abscissa, values)``.
+
+    Two layouts (Code_Aster ``TraceTableau``): ``(abscissa, value)`` pairs side by side with one
+    abscissa name repeated, or one abscissa column then one column per function (IMPR_FONCTION
+    with several COURBE interpolates them all on the first one's abscissas). ``name`` is the
+    value column's name (``VINT1_0``: IMPR_FONCTION appends ``_<curve number>``), ``legend`` the
+    curve's legend from the title ('' when absent).
+
+    Examples
+    --------
+    >>> f = read_aster_table("#\\n#Courbe 0\\n#FN\\n#Courbe 1\\n#VT\\nINST A_0 B_1\\n0 1 2\\n")
+    >>> [(n, g, x.tolist(), y.tolist()) for n, g, x, y in function_columns(f, "x")]
+    [('A_0', 'FN', [0.0], [1.0]), ('B_1', 'VT', [0.0], [2.0])]
+    """
+    names = [str(c) for c in frame.columns]
+    legends = curve_legends(frame.attrs.get("title", ""))
+    pairs = (len(names) >= 4 and len(names) % 2 == 0 and len(set(names[0::2])) == 1
+             and len(set(names[1::2])) == len(names) // 2)
+    if pairs:
+        found = [(name, x, y) for name, x, y in function_pairs(frame, label)]
+    else:
+        if len(names) < 2:
+            raise FormatError(f"{label}: an IMPR_FONCTION TABLEAU table has an abscissa column "
+                              f"and at least one value column; found {names}")
+        try:
+            x = frame.iloc[:, 0].to_numpy(dtype=float)
+            found = [(names[j], x, frame.iloc[:, j].to_numpy(dtype=float))
+                     for j in range(1, len(names))]
+        except (TypeError, ValueError):
+            raise FormatError(f"{label}: function columns {names} are not all numeric") from None
+    if legends and len(legends) != len(found):
+        legends = []
+    return [(name, legends[k] if legends else "", x, y) for k, (name, x, y) in enumerate(found)]
+
+
+def duplicated_instants_message(time: np.ndarray, label: str, column: str) -> str | None:
+    """Why a printed time column repeats an instant, and the fix; None when it does not.
+
+    Code_Aster prints reals with ``FORMAT_R='E12.5'`` (``%12.5E``: 6 significant digits) by
+    default in IMPR_TABLE and IMPR_FONCTION: at ``t`` the printed instants are ``10^(e-5)``
+    apart (``e = floor(log10 t)``), so an archive step smaller than that prints neighbouring
+    instants equal (5e-5 s from t = 10 s on). Sorting and dropping the duplicates would lose
+    samples; the fix is to print more digits with FORMAT_R.
+
+    Examples
+    --------
+    >>> t = np.array([19.9999, 19.99995, 20.0, 20.0, 20.0001])
+    >>> "FORMAT_R='E16.9'" in duplicated_instants_message(t, "f.tab", "INST")
+    True
+    >>> duplicated_instants_message(np.array([0.0, 1.0]), "f.tab", "INST") is None
+    True
+    """
+    t = np.asarray(time, dtype=float)
+    steps = np.diff(t)
+    same = np.flatnonzero(steps == 0)
+    if same.size == 0:
+        return None
+    i = int(same[0]) + 1
+    step = float((t[-1] - t[0]) / (t.size - 1))  # the mean step: printing does not bias it
+    top = float(np.max(np.abs(t[np.isfinite(t)]), initial=0.0))
+    at = abs(float(t[i]))
+    resolution = 10.0 ** (np.floor(np.log10(at)) - 5) if at > 0 else 0.0
+    decimals = 9
+    if step > 0 and top > 0:
+        decimals = max(9, int(np.ceil(np.floor(np.log10(top)) - np.log10(step) + 1)))
+    fix = f"E{decimals + 7}.{decimals}"
+    about = (f"; the archive step is about {step:.3g} s while %12.5E resolves only "
+             f"{resolution:.0e} s at t = {at:.6g} s" if step > 0 else "")
+    return (f"{label}: column {column!r} repeats the instant {float(t[i]):.5E} at rows {i - 1} "
+            f"and {i}: Code_Aster prints reals with FORMAT_R='E12.5' (%12.5E, 6 significant "
+            f"digits) by default{about}, so neighbouring instants were printed equal. Print "
+            f"with more digits: IMPR_TABLE(..., FORMAT_R='{fix}') or IMPR_FONCTION(..., "
+            f"FORMAT_R='{fix}'). Sorting and dropping the duplicates would lose samples")
 
 
 def check_same_abscissa(reference: tuple[str, np.ndarray], other: tuple[str, np.ndarray]) -> None:

@@ -1,0 +1,374 @@
+"""Contact histories from Code_Aster text files: IMPR_TABLE tables and IMPR_FONCTION functions.
+
+The readers behind ``read_history(..., format="aster")`` and ``format="aster-function"``
+(:data:`fretwear.io.FORMATS`). They decide which rows of a file are the history:
+
+* ``index=`` / ``title=``: one table of a file holding several;
+* ``node=``: the shock point (POST_USURE's NOEUD / GROUP_NO): the rows whose node column
+  (``NOEUD``, ``NOEUD_CHOC``, ``GROUP_NO``, ``INTITULE`` ...) holds it, or the tables whose title
+  names it; a node that the file's node column does not hold is an error;
+* ``select=``: rows where any column equals a value (``"NOEUD=N12"``);
+* IMPR_FONCTION: the functions of a file (several IMPR_FONCTION commands printing to one unit,
+  or one command with several COURBE) are the channels of one history, named from their column
+  header, their legend, or by the user in order (``functions=``).
+
+Instants printed with too few digits (Code_Aster's default ``FORMAT_R='E12.5'``) repeat: the
+error says so and gives the FORMAT_R to print with (:func:`fretwear.io.aster.
+duplicated_instants_message`).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import FormatError, HistoryError, KeywordError
+from fretwear.io import aster as _aster
+from fretwear.io.channels import Source, channel_of
+
+__all__ = ["open_aster", "open_functions", "select_rows", "select_node", "NODE_COLUMNS"]
+
+#: Column names that hold the shock point of a row (compared case-blind); also any column
+#: whose name starts with NOEUD or GROUP_NO.
+NODE_COLUMNS = ("NOEUD", "NOEUD_CHOC", "GROUP_NO", "GROUP_NO_CHOC", "INTITULE", "NOM_CHOC")
+_SUFFIX = re.compile(r"^(?P<base>.+)_\d+$")
+
+
+def select_rows(frame: pd.DataFrame, select: Any, label: str) -> pd.DataFrame:
+    """Rows of a table where every ``{column: value}`` matches (``"COL=VALUE"`` too).
+
+    Examples
+    --------
+    >>> f = pd.DataFrame({"NOEUD": ["N1", "N2"], "INST": [0.0, 0.0]})
+    >>> select_rows(f, "noeud=N2", "t")["NOEUD"].tolist()
+    ['N2']
+    """
+    if isinstance(select, str):
+        column, sep, value = select.partition("=")
+        if not sep:
+            raise KeywordError(f"select={select!r}: give 'COLUMN=VALUE' (e.g. 'NOEUD=N12') or "
+                               "a mapping {column: value}")
+        select = {column.strip(): value.strip()}
+    if not isinstance(select, Mapping) or not select:
+        raise KeywordError(f"select={select!r}: give a mapping {{column: value}} or "
+                           "'COLUMN=VALUE'")
+    keep = np.ones(len(frame), dtype=bool)
+    names = [str(c) for c in frame.columns]
+    for column, value in select.items():
+        hits = [j for j, c in enumerate(names) if c.upper() == str(column).upper()]
+        if len(hits) != 1:
+            raise KeywordError(f"{label}: select={{{column!r}: ...}}: no single column of that "
+                               f"name; columns: {names}")
+        cells = frame.iloc[:, hits[0]]
+        match = cells.astype(str).str.strip() == str(value).strip()
+        if not match.any():
+            raise KeywordError(f"{label}: select: column {names[hits[0]]!r} never equals "
+                               f"{value!r}; its values: {[str(v) for v in cells.unique()[:10]]}")
+        keep &= match.to_numpy()
+    out = frame.loc[keep].reset_index(drop=True)
+    out.attrs.update(frame.attrs)
+    return out
+
+
+def _node_columns(frame: pd.DataFrame) -> list[int]:
+    types = frame.attrs.get("types") or [None] * frame.shape[1]
+    out = []
+    for j, (name, kind) in enumerate(zip(frame.columns, types, strict=False)):
+        upper = str(name).upper()
+        text = kind is None or str(kind).startswith("K")
+        if text and (upper in NODE_COLUMNS or upper.startswith(("NOEUD", "GROUP_NO"))):
+            out.append(j)
+    return out
+
+
+def _names(title: str, node: str) -> bool:
+    return re.search(rf"(?<![A-Za-z0-9]){re.escape(node)}(?![A-Za-z0-9])", title,
+                     re.IGNORECASE) is not None
+
+
+def select_node(tables: Sequence[pd.DataFrame], node: str, label: str
+                ) -> tuple[list[pd.DataFrame], bool]:
+    """The tables (or rows) of one shock point, and whether the file could confirm it.
+
+    Parameters
+    ----------
+    tables : sequence of DataFrame
+        The tables of a file (:func:`fretwear.io.aster.read_aster_tables`).
+    node : str
+        The node or group label (POST_USURE's NOEUD or GROUP_NO), compared case-blind.
+    label : str
+        The file, for messages.
+
+    Returns
+    -------
+    (tables, checked)
+        The rows whose node column holds ``node`` (tables without such rows dropped), or the
+        tables whose title names it; ``checked`` is False when the file holds no node at all
+        (no node column, no title naming a node): then every table is returned unchanged.
+
+    Raises
+    ------
+    KeywordError
+        The file's node columns never hold ``node`` (their values are listed), or several tables
+        and none names it.
+
+    Examples
+    --------
+    >>> f = pd.DataFrame({"NOEUD": ["N12", "N13"], "INST": [0.0, 0.0]})
+    >>> f.attrs["types"] = ["K8", "R"]
+    >>> [t["NOEUD"].tolist() for t in select_node([f], "n13", "t")[0]]
+    [['N13']]
+    """
+    wanted = str(node).strip()
+    kept: list[pd.DataFrame] = []
+    held: list[str] = []
+    titled = 0
+    for frame in tables:
+        columns = _node_columns(frame)
+        if columns:
+            match = np.zeros(len(frame), dtype=bool)
+            for j in columns:
+                cells = frame.iloc[:, j].astype(str).str.strip()
+                held += [v for v in cells.unique().tolist() if v not in held]
+                match |= (cells.str.upper() == wanted.upper()).to_numpy()
+            if match.any():
+                rows = frame.loc[match].reset_index(drop=True)
+                rows.attrs.update(frame.attrs)
+                kept.append(rows)
+        elif _names(str(frame.attrs.get("title", "")), wanted):
+            kept.append(frame)
+            titled += 1
+    if kept:
+        return kept, True
+    if held:
+        raise KeywordError(f"{label}: the shock point {wanted!r} (NOEUD/GROUP_NO) is not in "
+                           f"this file: its node column holds {held[:10]}; give one of them, or "
+                           "the file of that shock point")
+    if len(tables) > 1 and not all(_aster.is_function_table(t) or _time_first(t)
+                                   for t in tables):
+        titles = "; ".join(f"{i}: {t.attrs.get('title', '') or '(no title)'}"
+                           for i, t in enumerate(tables))
+        raise KeywordError(f"{label}: no table of this file names the shock point {wanted!r} "
+                           f"(tables: {titles}); choose one with index=<n> or title='<text>'")
+    return list(tables), False
+
+
+def _time_first(frame: pd.DataFrame) -> bool:
+    return frame.shape[1] >= 2 and channel_of(str(frame.columns[0])) == "time"
+
+
+def _numeric(frame: pd.DataFrame) -> bool:
+    types = frame.attrs.get("types") or []
+    return bool(types) and all(str(k) in ("R", "I") for k in types)
+
+
+def _function_name(column: str, legend: str) -> str:
+    """The channel name of an IMPR_FONCTION function: its column, its column without the
+    ``_<curve number>`` IMPR_FONCTION appends, or its legend; else the column as is."""
+    if channel_of(column) is not None:
+        return column
+    match = _SUFFIX.match(column)
+    if match and channel_of(match.group("base")) is not None:
+        return match.group("base")
+    if legend and channel_of(legend) is not None:
+        return legend
+    return column
+
+
+def _named(functions: list[tuple[str, str, np.ndarray, np.ndarray, str]], names: Any,
+           label: str) -> list[tuple[str, str, np.ndarray, np.ndarray]]:
+    """Rename the functions in order with the user's ``functions=`` (None drops one)."""
+    if names is None:
+        return [(lab, _function_name(name, legend), x, y) for lab, name, x, y, legend
+                in functions]
+    if isinstance(names, str):  # the command line's --read-option functions=fn,vt1,none
+        names = [None if n.strip().lower() in ("", "none", "-") else n.strip()
+                 for n in names.split(",")]
+    if not isinstance(names, Sequence):
+        raise KeywordError(f"functions={names!r}: give a list of channel names, one per function "
+                           "of the file in order (None to skip one), or 'fn,vt1,vt2'")
+    if len(names) != len(functions):
+        found = [f[1] for f in functions]
+        raise KeywordError(f"{label}: functions= names {len(names)} functions but the file holds "
+                           f"{len(functions)} ({found}); give one name per function, in order")
+    out = [(f[0], str(n), f[2], f[3]) for f, n in zip(functions, names, strict=True)
+           if n is not None]
+    if not out:
+        raise KeywordError(f"functions={list(names)}: every function is skipped")
+    return out
+
+
+def _function_source(functions: list, label: str, names: Any, metadata: dict) -> Source:
+    chosen = _named(functions, names, label)
+    columns, arrays = _aster.stack_functions(chosen)
+    _check_instants(arrays[0], label, "time")
+    hint = ("; the functions of an IMPR_FONCTION file are named from their columns or legends: "
+            "name them in order with functions=[...] (e.g. functions=['fn', 'vt1', 'vt2'])")
+    return Source(label=label, format="aster-function", columns=columns,
+                  read=lambda positions: [arrays[p] for p in positions], metadata=metadata,
+                  hint=hint)
+
+
+def _check_instants(time: np.ndarray, label: str, column: str) -> None:
+    message = _aster.duplicated_instants_message(time, label, column)
+    if message is not None:
+        raise HistoryError(message)
+
+
+def _functions_of(frame: pd.DataFrame, label: str) -> list:
+    """(label, name, abscissa, values, legend) of every function of a table."""
+    return [(f"{label} ({name})", name, x, y, legend)
+            for name, legend, x, y in _aster.function_columns(frame, label)]
+
+
+def open_aster(path: str | os.PathLike, *, index: int | None = None, title: str | None = None,
+               select: Any = None, node: str | None = None, functions: Any = None) -> Source:
+    """Open a Code_Aster text file (IMPR_TABLE or IMPR_FONCTION TABLEAU) as a history source.
+
+    Parameters
+    ----------
+    path : path-like
+        The file.
+    index, title : optional
+        Which table of a file holding several (:func:`fretwear.io.aster.read_aster_table`).
+    select : mapping or str, optional
+        Keep the rows where a column equals a value (``"NOEUD=N12"``).
+    node : str, optional
+        The shock point (NOEUD / GROUP_NO): see :func:`select_node`.
+    functions : sequence of str, optional
+        Channel names of the file's IMPR_FONCTION functions in order (None skips one); default
+        their column names (without IMPR_FONCTION's ``_<n>`` suffix) or legends.
+
+    Returns
+    -------
+    Source
+        Format ``aster`` (a table with a column per channel) or ``aster-function`` (functions
+        laid side by side: time first, then one column per function). ``metadata``: the title
+        (``aster_title``), and with ``node=`` the ``node`` and ``node_checked`` (False when the
+        file names no node, so the choice could not be confirmed).
+
+    Raises
+    ------
+    FormatError
+        Several tables that are not the functions of one history and no choice; functions with
+        different instants; a table mixing shock points without a choice.
+    HistoryError
+        Repeated instants (the message explains Code_Aster's print precision and FORMAT_R).
+    KeywordError
+        A node the file does not hold, bad ``select=`` or ``functions=``.
+    """
+    label = str(path)
+    if index is not None or title is not None:
+        tables = [_aster.read_aster_table(path, index=index, title=title)]
+    else:
+        tables = _aster.read_aster_tables(path)
+    metadata: dict[str, Any] = {}
+    if node is not None:
+        tables, checked = select_node(tables, node, label)
+        metadata.update(node=str(node).strip(), node_checked=checked)
+    if select is not None:
+        tables = [select_rows(t, select, label) for t in tables]
+    metadata["aster_title"] = "\n".join(t.attrs.get("title", "") for t in tables)
+    if len(tables) > 1:
+        if not all(_time_first(t) and _numeric(t) for t in tables):
+            _aster.read_aster_table(path)  # raises the standard "holds N tables" message
+        found = [f for t in tables for f in _functions_of(t, label)]
+        names = [_function_name(f[1], f[4]) for f in found]
+        repeated = sorted({n for n in names if names.count(n) > 1})
+        if repeated and functions is None:
+            raise FormatError(
+                f"{label} holds {len(tables)} tables that repeat the functions {repeated}: "
+                "several shock points; choose one with node='<NOEUD>', index=<n> or "
+                "title='<text>' (command line: --read-option index=<n>)")
+        return _function_source(found, label, functions, metadata)
+    frame = tables[0]
+    if _aster.is_function_table(frame) or functions is not None:
+        return _function_source(_functions_of(frame, label), label, functions, metadata)
+    names = [str(c) for c in frame.columns]
+    check_one_shock(frame, names, label)
+    times = [j for j, c in enumerate(names) if channel_of(c) == "time"]
+    if len(times) == 1:
+        _check_instants(frame.iloc[:, times[0]].to_numpy(dtype=float, na_value=np.nan), label,
+                        names[times[0]])
+
+    def read(positions: list[int]) -> list[np.ndarray]:
+        out = []
+        for p in positions:
+            try:
+                out.append(frame.iloc[:, p].to_numpy(dtype=float, na_value=np.nan))
+            except (TypeError, ValueError):
+                raise FormatError(f"{path}: column {names[p]!r} is not numeric (type "
+                                  f"{frame.attrs['types'][p]})") from None
+        return out
+
+    return Source(label=label, format="aster", columns=names, read=read, metadata=metadata)
+
+
+def check_one_shock(frame: pd.DataFrame, names: list[str], label: str) -> None:
+    """Refuse a table mixing several shock points (a text column such as NOEUD with several
+    values while the instants restart), naming the column and a filter to use."""
+    times = [j for j, c in enumerate(names) if channel_of(c) == "time"]
+    if len(times) != 1:
+        return
+    t = frame.iloc[:, times[0]].to_numpy(dtype=float, na_value=np.nan)
+    if t.size < 2 or bool(np.all(np.diff(t) > 0)):
+        return
+    for j, kind in enumerate(frame.attrs.get("types", [])):
+        values = frame.iloc[:, j].dropna().unique() if str(kind).startswith("K") else []
+        if len(values) > 1:
+            shown = [str(v) for v in values[:5]]
+            raise FormatError(
+                f"{label}: column {names[j]!r} holds several values {shown} and the instants "
+                f"of {names[times[0]]!r} restart: the table mixes several shock points; choose "
+                f"one with node='{shown[0]}' or select={{'{names[j]}': '{shown[0]}'}} (command "
+                f"line: --read-option select={names[j]}={shown[0]}), or print one per table with "
+                f"IMPR_TABLE(..., FILTRE=_F(NOM_PARA='{names[j]}', VALE_K='{shown[0]}'))")
+
+
+def open_functions(files: Any, *, functions: Any = None) -> Source:
+    """Open a set of IMPR_FONCTION TABLEAU files as one history source.
+
+    Parameters
+    ----------
+    files : mapping, path or sequence of paths
+        ``{channel: file}`` (one function per file), or files whose functions are named from
+        their columns or legends; a file may hold several functions (several tables, or several
+        columns) when it is not given for one channel.
+    functions : sequence of str, optional
+        Channel names of all the functions in order (None skips one).
+
+    Returns
+    -------
+    Source
+        Format ``aster-function``: ``time`` then one column per function.
+    """
+    if isinstance(files, Mapping):
+        pairs = [(str(k), v) for k, v in files.items()]
+    elif isinstance(files, (str, os.PathLike)):
+        pairs = [(None, files)]
+    else:
+        pairs = [(None, v) for v in files]
+    found = []
+    for key, path in pairs:
+        label = str(path)
+        own = [f for t in _aster.read_aster_tables(path) for f in _functions_of(t, label)]
+        if key is not None:
+            if len(own) != 1:
+                raise FormatError(
+                    f"{label} holds {len(own)} functions {[f[1] for f in own]} but is given "
+                    f"for the single channel {key!r}; give one file per channel, or pass the "
+                    "file in a list to use its column names")
+            own = [(label, key, own[0][2], own[0][3], "")]
+        found += own
+    labels = [str(p) for _, p in pairs]
+    label = ", ".join(labels)
+    source = _function_source(found, label, functions, {"files": labels})
+    source.hint = ("; the value columns of IMPR_FONCTION files need not be channel names: give "
+                   "the files as a mapping {channel: file} (command line: CHANNEL=FILE, e.g. "
+                   "fn=fn.txt) or name the functions in order with functions=[...]")
+    return source

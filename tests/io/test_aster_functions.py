@@ -1,0 +1,148 @@
+"""Code_Aster files as users print them: IMPR_FONCTION units holding several functions, the
+shock point of a file (NOEUD / GROUP_NO), and instants printed with too few digits.
+
+Fixtures (hand-written, not printed by Code_Aster; the layout follows Code_Aster's
+``Objects/table_graph.py`` ``TraceTableau`` and ``Objects/table_py.py`` ``ReprTable``: a
+``#``/dashes header, ``## Courbe i`` and its legend, value columns labelled
+``<NOM_RESU>_<curve number>``, reals ``%12.5E``):
+
+* ``impr_fonction_courbes.txt``: ``IMPR_FONCTION(FORMAT='TABLEAU', UNITE=40,
+  COURBE=(_F(FONCTION=FN), _F(FONCTION=VT1), _F(FONCTION=VT2)))`` — one table, one abscissa;
+* ``impr_fonction_unite.txt``: five ``IMPR_FONCTION(FORMAT='TABLEAU', UNITE=40,
+  COURBE=_F(FONCTION=...))`` commands printing VINT1, VINT5, VINT6, VINT11, VINT12 of the shock
+  N12 to the same unit — five tables.
+
+Values are the literals of ``impr_table_tableau.txt`` (the same shock printed by IMPR_TABLE).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from iohelpers import FIXTURES
+
+from fretwear.errors import FormatError, HistoryError, KeywordError
+from fretwear.io import iter_history_chunks, read_history
+
+COURBES = FIXTURES / "impr_fonction_courbes.txt"
+UNITE = FIXTURES / "impr_fonction_unite.txt"
+TABLEAU = FIXTURES / "impr_table_tableau.txt"
+FN = [0.0, 12.5, 25.0, 12.5, 0.0]
+VT1 = [0.0, 0.02, 0.03, 0.0, -0.01]
+VT2 = [0.0, -0.01, -0.02, 0.0, 0.005]
+
+
+def test_one_impr_fonction_with_several_courbe_is_one_history():
+    h = read_history(COURBES)  # format guessed from the content
+    assert h.metadata["format"] == "aster-function"
+    assert h.time.tolist() == [0.0, 1e-3, 2e-3, 3e-3, 4e-3]
+    assert h.normal_force.tolist() == FN
+    assert h.vt1.tolist() == VT1 and h.vt2.tolist() == VT2
+    # the columns were VINT1_0, VINT11_1, VINT12_2: IMPR_FONCTION's curve numbers dropped
+    assert h.metadata["columns"]["vt2"] == "VINT12"
+
+
+def test_several_impr_fonction_to_one_unit_are_one_history():
+    h = read_history(UNITE)
+    assert h.metadata["format"] == "aster-function"
+    assert h.normal_force.tolist() == FN
+    assert h.dy.tolist() == [1e-4, 2.05e-4, 2.1e-4, 2.05e-4, 1.5e-4]
+    assert h.dz.tolist() == [0.0, 1e-5, 2e-5, 3e-5, 2e-5]
+    assert h.vt1.tolist() == VT1 and h.vt2.tolist() == VT2
+    # the same history as the IMPR_TABLE print of the shock
+    ref = read_history(TABLEAU)
+    for ch in ("time", "normal_force", "dy", "dz", "vt1", "vt2"):
+        assert getattr(h, ch).tolist() == getattr(ref, ch).tolist()
+    # read in chunks too (the file is read whole, then sliced)
+    chunks = list(iter_history_chunks(UNITE, chunk_size=3))
+    assert [c.normal_force.tolist() for c in chunks] == [FN[:3], FN[2:]]
+    # one table of the unit is still reachable with index=: its function alone
+    with pytest.raises(FormatError, match=r"no column for the required channel\(s\) \['vt1', "
+                                          r"'vt2'\]"):
+        read_history(UNITE, index=0)
+
+
+def test_functions_named_by_the_user_in_order(tmp_path):
+    # legends and labels that are no channel names (LEGENDE='effort', NOM_RESU 'TOUTRESU')
+    text = COURBES.read_text().replace("VINT1_0 ", "TOUTRESU_0").replace(
+        "VINT11_1", "TOUTRESU_1").replace("VINT12_2", "TOUTRESU_2")
+    path = tmp_path / "fort.40"
+    path.write_text(text)
+    # the legends (the concepts FN, VT1, VT2) name them
+    assert read_history(path).vt2.tolist() == VT2
+    text = text.replace("## FN\n", "## effort\n").replace("## VT1\n", "## g1\n").replace(
+        "## VT2\n", "## g2\n")
+    path.write_text(text)
+    with pytest.raises(FormatError, match=r"columns found: \['time', 'TOUTRESU_0', .*name them "
+                                          r"in order with functions=\[\.\.\.\]"):
+        read_history(path, format="aster")
+    h = read_history(path, format="aster", functions=["fn", "vt2", "vt1"])  # any order
+    assert h.normal_force.tolist() == FN and h.vt1.tolist() == VT2 and h.vt2.tolist() == VT1
+    # None skips a function (here the third: vt2 is then missing, and required)
+    with pytest.raises(FormatError, match=r"required channel\(s\) \['vt2'\]"):
+        read_history(path, format="aster", functions=["fn", "vt1", None])
+    with pytest.raises(KeywordError, match=r"names 2 functions but the file holds 3"):
+        read_history(path, format="aster", functions=["fn", "vt1"])
+    # the command line's form: --read-option functions=fn,vt1,vt2
+    assert read_history(path, functions="fn, vt1, vt2").vt2.tolist() == VT2
+    # a set of files takes the same option
+    h = read_history([path], functions=["normal_force", "vt1", "vt2"])
+    assert h.vt2.tolist() == VT2
+
+
+def test_a_unit_holding_several_shock_points_needs_a_choice(tmp_path):
+    # the same function printed twice (N12 then N13): not one history
+    text = UNITE.read_text()
+    path = tmp_path / "two_nodes.txt"
+    path.write_text(text + text.replace("_N12", "_N13").replace("1.25000E+01", "2.50000E+01"))
+    with pytest.raises(FormatError, match=r"repeat the functions \['VINT1', 'VINT11', 'VINT12', "
+                                          r"'VINT5', 'VINT6'\]: several shock points; choose "
+                                          r"one with node="):
+        read_history(path)
+    # the legends (FN_N12 ... FN_N13) name the node: node= picks its tables
+    assert read_history(path, node="N12").normal_force.tolist() == FN
+    assert read_history(path, node="N13").normal_force.tolist() == [0.0, 25.0, 25.0, 25.0, 0.0]
+
+
+def test_node_selects_the_rows_of_one_shock_point(tmp_path):
+    lines = TABLEAU.read_text().splitlines()
+    rows = lines[4:]
+    n13 = [r.replace("N12", "N13", 1) for r in rows]
+    path = tmp_path / "two.txt"
+    path.write_text("\n".join(lines[:4] + rows + n13) + "\n")
+    h = read_history(path, node="N13")
+    assert h.normal_force.tolist() == FN
+    assert h.metadata["node"] == "N13" and h.metadata["node_checked"] is True
+    assert read_history(path, node="n12").time.tolist() == [0.0, 1e-3, 2e-3, 3e-3, 4e-3]
+    # the mixed table without a choice names node= among the fixes
+    with pytest.raises(FormatError, match=r"choose one with node='N12'"):
+        read_history(path)
+
+
+def test_a_node_not_in_a_single_node_file_is_an_error():
+    with pytest.raises(KeywordError, match=r"shock point 'N13' \(NOEUD/GROUP_NO\) is not in this "
+                                           r"file: its node column holds \['N12'\]"):
+        read_history(TABLEAU, node="N13")
+    h = read_history(TABLEAU, node="N12")
+    assert h.metadata["node_checked"] is True
+    # a file that names no node cannot confirm the choice: read, and recorded as unchecked
+    h = read_history(COURBES, node="N12")
+    assert h.metadata["node_checked"] is False and h.normal_force.tolist() == FN
+
+
+def test_repeated_instants_explain_the_print_precision(tmp_path):
+    # an archive step of 5e-5 s printed %12.5E around t = 20 s: every other instant repeats
+    t = 19.999 + 5e-5 * np.arange(41)
+    lines = ["#", "#TABLE_SDASTER", "INST         VINT1        VINT11       VINT12"]
+    lines += [f"{x:12.5E} {1.0:12.5E} {0.1:12.5E} {0.0:12.5E}" for x in t]
+    path = tmp_path / "n12.tab"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(HistoryError, match=r"repeats the instant 1\.99991E\+01 at rows 1 and 2: "
+                                           r"Code_Aster prints reals with FORMAT_R='E12\.5' "
+                                           r"\(%12\.5E.*archive step is about 5e-05 s.*"
+                                           r"IMPR_TABLE\(\.\.\., FORMAT_R='E16\.9'\)"):
+        read_history(path)
+    # printed with FORMAT_R='E16.9' the same instants are distinct and read
+    lines[3:] = [f"{x:16.9E} {1.0:16.9E} {0.1:16.9E} {0.0:16.9E}" for x in t]
+    path.write_text("\n".join(lines) + "\n")
+    assert len(read_history(path)) == 41
