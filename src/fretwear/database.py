@@ -1,4 +1,4 @@
-"""The wear-coefficient database (SPEC §5): the seed's §3 tables as package data, plus user CSVs.
+"""The wear-coefficient database (theory §5): the tables of Code_Aster R7.20.01 §3, plus user CSVs.
 
 One row per coefficient, columns
 
@@ -15,9 +15,10 @@ unit           SI unit of the coefficient (checked): Archard K [Pa⁻¹]; EDF_MZ
 source         provenance (optional in user files, default ``<file>:<line>``)
 ============== ==================================================================================
 
-The built-in values are the seed's, verbatim, even where Code_Aster's current source differs
-(SPEC §5). An empty box of the seed has no row: asking for it is a :class:`DatabaseError` that lists
-what exists. User files extend the built-in rows and override a row with the same
+The built-in values are those of the coefficient tables of Code_Aster's POST_USURE reference
+manual (R7.20.01 §3), verbatim, even where Code_Aster's current source differs (theory §5). An
+empty box of those tables has no row: asking for it is a :class:`DatabaseError` that lists what
+exists. User files extend the built-in rows and override a row with the same
 (contact_type, mobile_material, obstacle_material, law, body, parameter); the ``source`` and
 ``origin`` (file) columns keep the provenance of every value.
 """
@@ -38,7 +39,7 @@ import pandas as pd
 from fretwear.errors import DatabaseError, FormatError
 from fretwear.laws.registry import WEAR_LAWS
 
-#: The eight contact types of SPEC §6 (Code_Aster names), in the seed's order.
+#: The eight contact types of theory §6 (Code_Aster names), in the order of Code_Aster R7.20.01.
 CONTACT_TYPE_NAMES: tuple[str, ...] = (
     "GRAPPE_ALESAGE", "GRAPPE_1_ENCO", "GRAPPE_2_ENCO", "TUBE_BAV", "TUBE_ALESAGE",
     "TUBE_3_ENCO", "TUBE_4_ENCO", "TUBE_TUBE",
@@ -53,13 +54,14 @@ REQUIRED_COLUMNS: tuple[str, ...] = ("contact_type", "mobile_material", "obstacl
 KEY: tuple[str, ...] = ("contact_type", "mobile_material", "obstacle_material", "law", "body",
                         "parameter")
 BODIES: tuple[str, ...] = ("mobile", "obstacle")
-#: The seed's references quoted in the built-in ``source`` column (seed §7, names as given there).
+#: The references quoted in the built-in ``source`` column: the bibliography of Code_Aster R7.20.01
+#: (its §7; numbered 5 and 6 in docs/theory.md).
 REFERENCES: dict[str, str] = {
-    "[bib5]": "M. Zbinden, A. Lina, D. Harrowing (as machine-translated): rod cluster control "
-              "guides, wear tests on the ERABLE1 and ERABLE2 simulators 1995-1997, EDF-DER "
-              "HT.22/97-21A, 1998",
-    "[bib6]": "F. Guerout, M. Zbinden: review of the wear models and coefficients for steam "
-              "generator tubes, EDF-DER HT.22/93-56A, 1993",
+    "[bib5]": "M. Zbinden, A. Lina et al.: rod cluster control assemblies and guides, "
+              "synthesis of the wear tests on the ERABLE1 and ERABLE2 simulators 1995-1997, "
+              "EDF-DER HT.22/97-21A, 1998",
+    "[bib6]": "F. Guérout, M. Zbinden: bibliographic study of the wear models, review of the "
+              "wear coefficients for steam generator tubes, EDF-DER HT.22/93-56A, 1993",
 }
 
 # Accepted spellings of each unit, compared after _canonical_unit().
@@ -225,7 +227,7 @@ def load_database(paths: str | os.PathLike | Iterable[str | os.PathLike] | None 
     paths : path-like or iterable of path-like, optional
         User CSV files; a later file overrides an earlier one and the built-in rows.
     builtin : bool, optional
-        Start from the built-in table (the seed's §3). Default True.
+        Start from the built-in table (Code_Aster R7.20.01 §3). Default True.
 
     Returns
     -------
@@ -257,7 +259,7 @@ def _materials() -> pd.DataFrame:
 
 
 def materials() -> pd.DataFrame:
-    """Material codes with their names and AFNOR designations (seed §3).
+    """Material codes with their names and AFNOR designations (Code_Aster R7.20.01 §3).
 
     Examples
     --------
@@ -280,7 +282,7 @@ class DatabaseCoefficients:
         The mobile's coefficients by full parameter name (SI), ready for ``WearLaw.volume``.
     obstacle : mapping or None
         The obstacle's where the table has them (its box is not empty), else None. Whether the
-        obstacle wears is the caller's choice (SPEC §4): having values does not imply using them.
+        obstacle wears is the caller's choice (theory §4): having values does not imply using them.
     units : mapping
         Unit of each parameter.
     sources : mapping
@@ -346,12 +348,15 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
     ------
     DatabaseError
         Unknown contact type, law without rows for that contact type, unknown pair, or obstacle
-        values asked for where the seed's box is empty; the message lists what exists.
+        values asked for where the box of the reference tables is empty; the message lists what
+        exists.
 
     Notes
     -----
-    The values are the seed's §3 tables (SPEC §5), with their references ([bib5], [bib6]) in the
-    ``sources``. For EDF_MZ, A is in m³/(s·W^b) (= Pa⁻¹ when b = 1), S in m³/s, n in s⁻¹.
+    The values are the coefficient tables of Code_Aster R7.20.01 §3 (theory §5), with their
+    references in the ``sources`` (``[bib5]``, ``[bib6]``: Zbinden et al. 1998, Guérout & Zbinden
+    1993, the bibliography numbers of R7.20.01; full entries in :data:`REFERENCES`). For EDF_MZ,
+    A is in m³/(s·W^b) (= Pa⁻¹ when b = 1), S in m³/s, n in s⁻¹.
 
     Examples
     --------
@@ -407,8 +412,9 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
     obs = box[box.body == "obstacle"]
     if obstacle and obs.empty:
         with_obstacle = of_law[of_law.body == "obstacle"]
-        why = (" (an empty box of the seed's table: [bib6] gives none for the antagonists of the "
-               "tubes)" if ct.startswith("TUBE") else "")
+        why = (" (an empty box of the coefficient tables of Code_Aster's POST_USURE reference "
+               "manual, R7.20.01 §3: its source, Guérout & Zbinden 1993, gives none for the "
+               "antagonists of the tubes)" if ct.startswith("TUBE") else "")
         raise DatabaseError(
             f"no obstacle coefficient for {ct} / {lw}, {m1} on {m2}{why}; pairs of {ct}/{lw} with "
             f"obstacle values: {_pairs_text(with_obstacle)}. Give the obstacle coefficient "

@@ -1,4 +1,4 @@
-"""Contact time histories of one shock point (SPEC §1).
+"""Contact time histories of one shock point (theory §1).
 
 A :class:`ContactHistory` holds the channels of one shock point of a transient dynamic computation,
 in its local shock frame, in SI units:
@@ -288,7 +288,7 @@ def contact_angle(dy, dz) -> np.ndarray:
     Notes
     -----
     θ = atan2(dz, dy); -180 is folded to +180, and θ = 0 when dy = dz = 0, signed zeros
-    included (SPEC §3).
+    included (theory §3).
 
     Examples
     --------
@@ -299,6 +299,6 @@ def contact_angle(dy, dz) -> np.ndarray:
     z = np.asarray(dz, dtype=float)
     theta = np.degrees(np.arctan2(z, y))
     theta = np.where(theta <= -180.0, 180.0, theta)
-    # SPEC §3: 0 where dy = dz = 0, signed zeros included (atan2(0, -0.0) would give 180).
+    # theory §3: 0 where dy = dz = 0, signed zeros included (atan2(0, -0.0) would give 180).
     theta = np.where((y == 0.0) & (z == 0.0), 0.0, theta)
     return theta + 0.0  # turn -0.0 into 0.0

@@ -1,4 +1,4 @@
-"""Angular sectors of the clearance figure (SPEC §3).
+"""Angular sectors of the clearance figure (theory §3).
 
 Sector edges are angles [deg], strictly increasing, starting at -180 and ending at +180. A sample
 of contact angle θ (in (-180, 180]) belongs to sector j when ``edges[j] < θ <= edges[j+1]``,

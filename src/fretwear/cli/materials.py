@@ -1,4 +1,4 @@
-"""``fretwear materials``: print the wear-coefficient database (SPEC §5) as a table or JSON."""
+"""``fretwear materials``: print the wear-coefficient database (theory §5) as a table or JSON."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import click
 
 
 def _short_source(source: str, origin: str) -> str:
-    """The references of a built-in row (``[bib5] [bib6]``), the full source of a user row."""
+    """The reference tags of a built-in row (``[bib5] [bib6]``), the full source of a user row."""
     if origin != "built-in":
         return f"{source} [{origin}]"
     refs = re.findall(r"\[bib\d+\]", source)
@@ -35,7 +35,8 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
     One row per (contact type, mobile material, obstacle material, law). Values are SI: Archard
     K [Pa⁻¹]; EDF_MZ A [m³/(s·W^b)], b [1], n [s⁻¹], S [m³/s]. "-" in the obstacle column is an
     empty box of the reference tables (no obstacle coefficient). The built-in values are the
-    reference document's §3 tables; the material codes used are listed after the table.
+    coefficient tables of Code_Aster's POST_USURE reference manual (R7.20.01 §3); the material
+    codes used are listed after the table.
     """
     from fretwear.database import REFERENCES, load_database, materials, summary
 
@@ -93,8 +94,9 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
     notes = [f"{ref} {text}" for ref, text in REFERENCES.items()
              if any(ref in s for s in boxes.source[boxes.origin == "built-in"])]
     if (boxes.origin == "built-in").any():
-        notes.insert(0, "Built-in values: the reference document's §3 tables (POST_USURE theory "
-                        "note), verbatim.")
+        notes.insert(0, "Built-in values: the coefficient tables of Code_Aster's POST_USURE "
+                        "reference manual (R7.20.01 §3), verbatim; [bibN] is its bibliography "
+                        "number.")
     if {"GRAPPE_1_ENCO", "GRAPPE_2_ENCO"} & set(boxes.contact_type[boxes.origin == "built-in"]):
         notes.append("GRAPPE_1_ENCO and GRAPPE_2_ENCO share one table in the reference.")
     for note in notes:

@@ -1,6 +1,6 @@
 """Built-in impact-sliding dynamics: a reduced modal model with DIS_CHOC-like shocks.
 
-Users without Code_Aster can produce contact histories (every SPEC §1 channel) and run the
+Users without Code_Aster can produce contact histories (every theory §1 channel) and run the
 coupled loop dynamics → wear table → obstacle update → dynamics (``fretwear iterate``).
 
 Modules: :mod:`~fretwear.dynamics.modal` (modes, uniform beam), :mod:`~fretwear.dynamics.shocks`

@@ -56,8 +56,8 @@ def random_signal_from_psd(frequencies, psd, *, duration: float, seed: int,
 
     References
     ----------
-    M. Shinozuka, G. Deodatis, "Simulation of stochastic processes by spectral representation",
-    *Appl. Mech. Rev.* 44(4), 1991, 191-204.
+    .. [1] Shinozuka, M., & Deodatis, G. (1991). Simulation of stochastic processes by spectral
+           representation. *Applied Mechanics Reviews* 44(4), 191-204.
 
     Examples
     --------

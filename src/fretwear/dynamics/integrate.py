@@ -4,7 +4,7 @@ The loop runs compiled (numba, ``cache=True``) in :mod:`fretwear.dynamics._kerne
 prepares the arrays, checks the time step against the stability limit of the scheme with the
 contact stiffness (:func:`stability_limit`), streams the archived samples to memory or to Parquet
 files in chunks (bounded memory), and returns a :class:`DynamicsResult` with one
-:class:`~fretwear.history.ContactHistory` per shock (every SPEC §1 channel).
+:class:`~fretwear.history.ContactHistory` per shock (every theory §1 channel).
 """
 
 from __future__ import annotations
@@ -65,8 +65,8 @@ def stability_limit(model: ModalModel, shocks: Sequence[Shock] = ()) -> dict[str
 
     References
     ----------
-    T. Belytschko, W. K. Liu, B. Moran, *Nonlinear Finite Elements for Continua and Structures*,
-    Wiley, 2000, §6.3.
+    .. [1] Belytschko, T., Liu, W. K., & Moran, B. (2000). *Nonlinear Finite Elements for Continua
+           and Structures*. Wiley, §6.3.
 
     Examples
     --------
@@ -114,7 +114,7 @@ class DynamicsResult:
         Fine steps covered and steps actually taken.
     wear_power : ndarray
         Wear power of each shock integrated at every time step (not only the archived samples),
-        P = (1/T)∫Fn‖Vt‖dt with the stick rule of SPEC §2 [W]; compare with
+        P = (1/T)∫Fn‖Vt‖dt with the stick rule of theory §2 [W]; compare with
         :func:`fretwear.power.wear_power` on the history to check the archiving step.
     energy : dict
         ``external_work``, ``preload_work``, ``modal_damping_dissipation``,
@@ -314,7 +314,8 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
 
     References
     ----------
-    Code_Aster, *Algorithmes d'intégration temporelle de DYNA_VIBRA*, doc R5.06.04 (DIFF_CENTRE).
+    .. [1] Code_Aster Reference Manual R5.06.04, *Algorithmes d'intégration temporelle de
+           DYNA_VIBRA* (DIFF_CENTRE), EDF R&D.
 
     Examples
     --------

@@ -221,7 +221,8 @@ def beam_eigenvalues(ends: tuple[str, str], n_modes: int) -> np.ndarray:
 
     References
     ----------
-    R. D. Blevins, *Formulas for Natural Frequency and Mode Shape*, Van Nostrand, 1979, Table 8-1.
+    .. [1] Blevins, R. D. (1979). *Formulas for Natural Frequency and Mode Shape*. Van Nostrand
+           Reinhold, Table 8-1.
 
     Examples
     --------
@@ -368,7 +369,8 @@ def uniform_beam_modes(*, young_modulus: float, second_moment: float, mass_per_l
 
     References
     ----------
-    R. D. Blevins, *Formulas for Natural Frequency and Mode Shape*, 1979, Table 8-1.
+    .. [1] Blevins, R. D. (1979). *Formulas for Natural Frequency and Mode Shape*. Van Nostrand
+           Reinhold, Table 8-1.
 
     Examples
     --------

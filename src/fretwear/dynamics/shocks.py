@@ -85,8 +85,10 @@ class Shock:
 
     References
     ----------
-    Code_Aster, *Modélisation des chocs et du frottement dans DYNA_VIBRA*, doc R5.06.03 (DIS_CHOC);
-    J. C. Simo, T. J. R. Hughes, *Computational Inelasticity*, Springer, 1998, §2.1 (return map).
+    .. [1] Code_Aster Reference Manual R5.06.03, *Modélisation des chocs et du frottement dans
+           DYNA_VIBRA* (DIS_CHOC), EDF R&D.
+    .. [2] Simo, J. C., & Hughes, T. J. R. (1998). *Computational Inelasticity*. Springer, §2.1
+           (return map).
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""Worn volume ↔ worn depth for the eight contact geometries of POST_USURE (SPEC §3, §6).
+"""Worn volume ↔ worn depth for the eight contact geometries of POST_USURE (theory §3, §6).
 
 ``CONTACT_TYPES`` maps each Code_Aster contact name to its frozen dataclass;
 :func:`contact_geometry` builds one from keyword dimensions (native names or Code_Aster
@@ -42,7 +42,7 @@ __all__ = [
     "sector_volume_obstacle",
 ]
 
-#: Code_Aster contact name -> geometry class (SPEC §6).
+#: Code_Aster contact name -> geometry class (theory §6).
 CONTACT_TYPES: dict[str, type[ContactGeometry]] = {
     "TUBE_BAV": TubeBav,
     "TUBE_ALESAGE": TubeAlesage,

@@ -1,10 +1,10 @@
-"""The lunule: the lens shared between a worn mobile and a worn bore (SPEC §6).
+"""The lunule: the lens shared between a worn mobile and a worn bore (theory §6).
 
-The seed's r, α, β, γ system, corrected (segment area ρ²(φ − ½ sin 2φ)): the new common surface
-is an arc of radius r, R_m ≤ r ≤ R_o, through the ends of the lens chord of half-length x, so that
-V_m/l = seg(R_m, x) − seg(r, x), V_o/l = seg(r, x) − seg(R_o, x), d_m = s(R_m, x) − s(r, x) and
-d_o = s(r, x) − s(R_o, x). Vectorised, SI units (lengths [m], areas [m²]); derivation in
-``docs/geometry.md``.
+The r, α, β, γ system of Code_Aster R7.20.01 §4.1, corrected (segment area ρ²(φ − ½ sin 2φ)): the
+new common surface is an arc of radius r, R_m ≤ r ≤ R_o, through the ends of the lens chord of
+half-length x, so that V_m/l = seg(R_m, x) − seg(r, x), V_o/l = seg(r, x) − seg(R_o, x), d_m =
+s(R_m, x) − s(r, x) and d_o = s(r, x) − s(R_o, x). Vectorised, SI units (lengths [m], areas [m²]);
+derivation in ``docs/geometry.md``.
 """
 
 from __future__ import annotations
@@ -61,12 +61,14 @@ def lunule_areas(mobile_radius, obstacle_radius, depth_mobile, depth_obstacle):
     .. math:: A_m = \\mathrm{seg}(R_m, x) - \\mathrm{seg}(r, x), \\qquad
               A_o = \\mathrm{seg}(r, x) - \\mathrm{seg}(R_o, x)
 
-    This is the seed's r, α, β, γ system with R_m sin α = r sin β = R_o sin γ = x and the
+    This is the r, α, β, γ system of [2]_ with R_m sin α = r sin β = R_o sin γ = x and the
     segment area ρ²(φ − ½ sin 2φ).
 
     References
     ----------
-    SPEC §6 (lunule); seed §4.1 and §4.5 case 2 (corrected).
+    .. [1] fretwear theory, docs/theory.md §6 (lunule).
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.1 and §4.5 case 2
+           (corrected as in theory §6).
 
     Examples
     --------
@@ -122,7 +124,8 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
 
     References
     ----------
-    SPEC §6 (lunule, and the split at the deepest section of TUBE_ALESAGE with tilt).
+    .. [1] fretwear theory, docs/theory.md §6 (lunule, and the split at the deepest section of
+           TUBE_ALESAGE with tilt).
 
     Examples
     --------
@@ -180,7 +183,7 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
 
     References
     ----------
-    SPEC §6 (lunule).
+    .. [1] fretwear theory, docs/theory.md §6 (lunule).
 
     Examples
     --------

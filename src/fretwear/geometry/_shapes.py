@@ -1,4 +1,4 @@
-"""Shared plane-geometry helpers of the volume/depth relations (SPEC §6).
+"""Shared plane-geometry helpers of the volume/depth relations (theory §6).
 
 All functions are vectorised with numpy (any broadcastable shapes) and work in SI units:
 lengths [m], areas [m²], angles [rad]. They never modify their arguments.
@@ -80,12 +80,14 @@ def segment_area(radius, half_chord):
               = \\tfrac{\\rho^2}{2}\\,(2\\varphi - \\sin 2\\varphi),\\quad \\sin\\varphi = x/\\rho
 
     The second form, with a series of u − sin u for small u = 2φ, keeps full relative precision
-    for chords much shorter than the radius (seg ≈ 2x³/(3ρ)). SPEC §6 (the seed writes
-    ρ²(φ − sin 2φ), a typo).
+    for chords much shorter than the radius (seg ≈ 2x³/(3ρ)). Theory §6 [1]_ (Code_Aster R7.20.01
+    [2]_ writes ρ²(φ − sin 2φ), a typo).
 
     References
     ----------
-    SPEC §6; seed §4.1 (corrected).
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.1 (corrected as in theory
+           §6).
 
     Examples
     --------
@@ -128,7 +130,7 @@ def sagitta(radius, half_chord):
 
     References
     ----------
-    SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
 
     Examples
     --------
@@ -169,7 +171,7 @@ def lens_half_chord(mobile_radius, obstacle_radius, depth):
 
     Notes
     -----
-    SPEC §6 writes x² = R_m² − (R_o² − R_m² − c²)²/(4c²). Factorising the difference of squares
+    Theory §6 writes x² = R_m² − (R_o² − R_m² − c²)²/(4c²). Factorising the difference of squares
     gives the form used here, exact and free of cancellation at small D:
 
     .. math:: x^2 = \\frac{D\\,(2R_o + D)\\,(2R_m - D)\\,(2(R_o - R_m) + D)}{4c^2},
@@ -177,7 +179,8 @@ def lens_half_chord(mobile_radius, obstacle_radius, depth):
 
     References
     ----------
-    SPEC §6; seed §4.6 (same x).
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6 (same x).
 
     Examples
     --------
@@ -220,7 +223,8 @@ def lens_depth_limit(mobile_radius, obstacle_radius):
 
     References
     ----------
-    SPEC §6 ("valid while the chord stays beyond the mobile's centre").
+    .. [1] fretwear theory, docs/theory.md §6 ("valid while the chord stays beyond the mobile's
+           centre").
 
     Examples
     --------
@@ -263,7 +267,8 @@ def lens_area(mobile_radius, obstacle_radius, depth):
 
     References
     ----------
-    SPEC §6; seed §4.6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6.
 
     Examples
     --------
@@ -313,11 +318,12 @@ def frustum_volume(area: Callable, depth, width, tilt):
 
     with A1 = A(d), A2 = A(d − lθ). Both branches agree at d = lθ. The rule is exact when A
     grows as d² (pyramid); for A ∝ d^{3/2} it gives 5/6 of the exact wedge integral
-    (1/θ)∫A(u)du (see docs/geometry.md). SPEC §6 prescribes it.
+    (1/θ)∫A(u)du (see docs/geometry.md). Theory §6 prescribes it.
 
     References
     ----------
-    SPEC §6; seed §4.6 case 2.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6 case 2.
 
     Examples
     --------
@@ -378,8 +384,9 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
 
     References
     ----------
-    T. R. Chandrupatla, "A new hybrid quadratic/bisection algorithm for finding the zero of a
-    nonlinear function without using derivatives", Adv. Eng. Software 28 (1997) 145-149.
+    .. [1] Chandrupatla, T. R. (1997). A new hybrid quadratic/bisection algorithm for finding the
+           zero of a nonlinear function without using derivatives. *Advances in Engineering
+           Software* 28(3), 145-149.
 
     Examples
     --------

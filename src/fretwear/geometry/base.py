@@ -1,4 +1,4 @@
-"""Base contract of the contact geometries (SPEC §6, docs/DESIGN.md "Geometry").
+"""Base contract of the contact geometries (theory §6, docs/DESIGN.md "Geometry").
 
 A contact geometry is a frozen dataclass whose fields are the dimensions the contact type
 uses (SI lengths [m], user angles [deg]). Subclasses declare
@@ -108,14 +108,14 @@ def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndar
 
 @dataclasses.dataclass(frozen=True)
 class ContactGeometry:
-    """Base of the eight contact geometries: volume ↔ depth relations of SPEC §6.
+    """Base of the eight contact geometries: volume ↔ depth relations of theory §6.
 
     Subclasses are frozen dataclasses with the dimensions as fields (see module docstring).
     Build them by name with :func:`fretwear.geometry.contact_geometry`.
 
     Examples
     --------
-    Uniform wear of a tube in a hole, d_m = V_m/(2π·l·R_m) (SPEC §6): 2π·l·R_m·d with
+    Uniform wear of a tube in a hole, d_m = V_m/(2π·l·R_m) (theory §6): 2π·l·R_m·d with
     l = 20 mm, R_m = 10 mm, d = 1 µm is 1.2566 mm³.
 
     >>> import math

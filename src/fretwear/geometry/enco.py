@@ -1,4 +1,4 @@
-"""TUBE_3_ENCO / TUBE_4_ENCO: tube against an isthmus edge of a broached hole (SPEC §6).
+"""TUBE_3_ENCO / TUBE_4_ENCO: tube against an isthmus edge of a broached hole (theory §6).
 
 A steam-generator tube (radius R_m) passes through a trefoil (three lobes) or quatrefoil (four
 lobes) broached hole of a support plate: the tube bears on the lands ("isthmuses") between the
@@ -48,8 +48,8 @@ __all__ = [
 ]
 
 #: Broached-hole families, keyed by Code_Aster contact type: obstacle factor κ [-] of
-#: V_o = κ·π·l·R_o·d_o (reference document §4.6-§4.7), number of isthmus edges the tube bears on
-#: (SPEC §6), number of lobes of the hole.
+#: V_o = κ·π·l·R_o·d_o (Code_Aster R7.20.01 §4.6-§4.7), number of isthmus edges the tube bears on
+#: (theory §6), number of lobes of the hole.
 ENCO_TYPES: dict[str, dict] = {
     "TUBE_3_ENCO": {"kappa": 1.41, "edges": 1, "lobes": 3},
     "TUBE_4_ENCO": {"kappa": 1.88, "edges": 2, "lobes": 4},
@@ -80,12 +80,13 @@ def isthmus_section_area(depth, mobile_radius, obstacle_radius, isthmus_angle):
     .. math:: S'(D) = R_m^2\\arcsin\\frac{x}{R_m} - R_o^2\\arcsin\\frac{x}{R_o}
               + x\\,(R_o - R_m + D) + D^2\\tan\\alpha_i
 
-    (reference document §4.6 case 1). Half of it is the worn section at the edge: half lens on
+    (Code_Aster R7.20.01 §4.6 case 1). Half of it is the worn section at the edge: half lens on
     the land side plus the triangle of legs D and D·tan α_i over the lobe side.
 
     References
     ----------
-    Reference document (POST_USURE theory note) §4.6-§4.7; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6-§4.7.
 
     Examples
     --------
@@ -139,7 +140,8 @@ def enco_volume(depth, mobile_radius, obstacle_radius, width, isthmus_angle, til
 
     References
     ----------
-    Reference document §4.6-§4.7 (cases 1-4, typos resolved in SPEC §6).
+    .. [1] fretwear theory, docs/theory.md §6 (typos of R7.20.01 resolved).
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6-§4.7, cases 1-4.
 
     Examples
     --------
@@ -187,7 +189,9 @@ def enco_depth(volume, mobile_radius, obstacle_radius, width, isthmus_angle, til
 
     References
     ----------
-    Reference document §4.6-§4.7 ("a solver integrated into POST_USURE"); SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6-§4.7 ("a solver
+           integrated into POST_USURE").
 
     Examples
     --------
@@ -227,13 +231,14 @@ def enco_obstacle_volume(depth_obstacle, obstacle_radius, width, kappa):
 
     Notes
     -----
-    V_o = κ·π·l·R_o·d_o. The reference document writes V_o = κ·R_o·d_o·π, without the width,
-    which the dimensions need (SPEC §6). κ = 0.47 per isthmus (1.41 = 3 × 0.47,
+    V_o = κ·π·l·R_o·d_o. Code_Aster R7.20.01 [2]_ writes V_o = κ·R_o·d_o·π, without the width,
+    which the dimensions need (theory §6). κ = 0.47 per isthmus (1.41 = 3 × 0.47,
     1.88 = 4 × 0.47), the same factor as one guide-card notch (GRAPPE_1_ENCO).
 
     References
     ----------
-    Reference document §4.6-§4.7 cases 3-4; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6-§4.7, cases 3-4.
 
     Examples
     --------
@@ -298,7 +303,7 @@ class _BroachedHole(ContactGeometry):
         depth_obstacle = volume_obstacle / (self.kappa * math.pi * self.obstacle_width
                                             * self.obstacle_radius)
         depth_mobile = depth - depth_obstacle
-        # d_m < 0: V_o too large for V_m under the seed's κ relation (inconsistent input).
+        # d_m < 0: V_o too large for V_m under the κ relation of theory §6 (inconsistent input).
         # A relative tolerance absorbs the solver's rounding when V_m = 0 gives d_m ≈ 0.
         consistent = depth_mobile >= -1e-12 * depth
         depth_mobile = np.where(consistent, np.maximum(depth_mobile, 0.0), np.nan)
@@ -343,7 +348,8 @@ class Tube3Enco(_BroachedHole):
 
     References
     ----------
-    Reference document §4.6; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.6.
 
     Examples
     --------
@@ -385,7 +391,8 @@ class Tube4Enco(_BroachedHole):
 
     References
     ----------
-    Reference document §4.7; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.7.
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""GRAPPE_ALESAGE: control-rod (cluster) rodlet in a guide bore (SPEC §6, seed §4.1).
+"""GRAPPE_ALESAGE: control-rod (cluster) rodlet in a guide bore (theory §6; R7.20.01 §4.1).
 
 The rod is centred in a bore of radius R_o > R_m; the trace is one lunule. Both bodies may wear:
 the lens S(D) of total depth D = d_m + d_o holds (V_m + V_o)/l, and the new common surface, an
@@ -39,11 +39,13 @@ class GrappeAlesage(ContactGeometry):
               d_m = s(R_m, x) - s(r, x),\\ d_o = D - d_m
 
     Range: D ≤ √(R_o² − R_m²) − (R_o − R_m) (the chord reaches the rod's axis). Code_Aster sets
-    an area equal to a volume here (no width): we follow the seed and divide by l.
+    an area equal to a volume here (no width): we follow Code_Aster R7.20.01 [2]_ and divide by l.
 
     References
     ----------
-    Seed §4.1 (corrected: R_m sin α = r sin β = R_o sin γ, segment ρ²(φ − ½ sin 2φ)); SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.1 (corrected: R_m sin α =
+           r sin β = R_o sin γ, segment ρ²(φ − ½ sin 2φ)).
 
     Examples
     --------

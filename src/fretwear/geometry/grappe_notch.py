@@ -1,8 +1,8 @@
-"""Control-rod against the notch(es) of a guide card: GRAPPE_1_ENCO and GRAPPE_2_ENCO (SPEC §6).
+"""Control-rod against the notch(es) of a guide card: GRAPPE_1_ENCO and GRAPPE_2_ENCO (theory §6).
 
 A rodlet of the control-rod cluster (outer diameter 9.7 mm) slides in the notch of a guide card
 (bore diameter 10.5 mm). The worn section of the rod is an empirical cubic of its depth, fitted on
-feedback from the field [bib7 of the reference document]:
+feedback from the field (Lina & Zbinden 1995, cited by Code_Aster R7.20.01 §4.2-§4.3):
 
     V_m / l = A·d_m³ + B·d_m² + C·d_m        (d_m in mm, V_m / l in mm²)
 
@@ -40,15 +40,15 @@ __all__ = [
 ]
 
 #: Empirical notch laws, keyed by Code_Aster contact type: cubic coefficients (A, B, C) of
-#: V_m/l [mm²] in d_m [mm], obstacle factor κ [-], number of notches. Source: the reference
-#: document §4.2-§4.3 ([bib7]); D_m = 0 in both.
+#: V_m/l [mm²] in d_m [mm], obstacle factor κ [-], number of notches. Source: Code_Aster
+#: R7.20.01 §4.2-§4.3 (Lina & Zbinden 1995); D_m = 0 in both.
 NOTCH_LAWS: dict[str, dict] = {
     "GRAPPE_1_ENCO": {"coefficients": (-2.76, 10.30, 0.83), "kappa": 0.47, "notches": 1},
     "GRAPPE_2_ENCO": {"coefficients": (-5.52, 20.60, 1.66), "kappa": 0.94, "notches": 2},
 }
 
 #: Rod outer radius [m] and card bore radius [m] the polynomials were fitted for (9.7 / 10.5 mm
-#: diameters, reference document §4.2-§4.3).
+#: diameters, Code_Aster R7.20.01 §4.2-§4.3).
 CALIBRATION_MOBILE_RADIUS = 9.7e-3 / 2.0
 CALIBRATION_OBSTACLE_RADIUS = 10.5e-3 / 2.0
 #: Relative difference of a user radius from the calibration radius above which we warn.
@@ -88,7 +88,10 @@ def notch_depth_limit(contact_type: str) -> float:
 
     References
     ----------
-    Reference document (POST_USURE theory note) §4.2-§4.3.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.2-§4.3.
+    .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations between
+           worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
 
     Examples
     --------
@@ -117,8 +120,15 @@ def notch_area(depth, contact_type: str) -> np.ndarray:
 
     Notes
     -----
-    V_m / l = A·d³ + B·d² + C·d with d in mm and V_m / l in mm² (reference document §4.2-§4.3,
-    [bib7]); converted here: area [m²] = 1e-6 · P(1e3 · d [m]).
+    V_m / l = A·d³ + B·d² + C·d with d in mm and V_m / l in mm² (Code_Aster R7.20.01 §4.2-§4.3
+    [2]_, from [3]_); converted here: area [m²] = 1e-6 · P(1e3 · d [m]).
+
+    References
+    ----------
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.2-§4.3.
+    .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations
+           between worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
 
     Examples
     --------
@@ -204,7 +214,7 @@ def notch_obstacle_volume(depth_obstacle, obstacle_radius: float, width: float,
     obstacle_radius : float
         Card bore radius R_o [m].
     width : float
-        Worn height l [m] (the reference document's h).
+        Worn height l [m] (the h of Code_Aster R7.20.01).
     kappa : float
         Shape factor κ [-]: 0.47 (one notch), 0.94 (two notches).
 
@@ -215,7 +225,7 @@ def notch_obstacle_volume(depth_obstacle, obstacle_radius: float, width: float,
 
     Notes
     -----
-    V_o = κ·π·l·R_o·d_o (reference document §4.2-§4.3; its h is the width l).
+    V_o = κ·π·l·R_o·d_o (Code_Aster R7.20.01 §4.2-§4.3; its h is the width l).
 
     Examples
     --------
@@ -299,7 +309,7 @@ class Grappe1Enco(_GuideCardNotch):
     Parameters
     ----------
     obstacle_width : float
-        Worn height l of the card [m] (LARGEUR_OBST; the reference document's h).
+        Worn height l of the card [m] (LARGEUR_OBST; the h of Code_Aster R7.20.01).
     mobile_radius : float, optional
         Rod outer radius [m] (RAYON_MOBILE): only checked against the fitted 4.85 mm.
     obstacle_radius : float, optional
@@ -312,7 +322,10 @@ class Grappe1Enco(_GuideCardNotch):
 
     References
     ----------
-    Reference document §4.2 ([bib7]); SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.2.
+    .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations between
+           worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
 
     Examples
     --------
@@ -345,7 +358,10 @@ class Grappe2Enco(_GuideCardNotch):
 
     References
     ----------
-    Reference document §4.3 ([bib7]); SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.3.
+    .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations between
+           worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""Worn depth of an angular sector (SPEC §3, seed §5).
+"""Worn depth of an angular sector (theory §3; Code_Aster R7.20.01 §5).
 
 The wear of a sector j (volume V_j) is assumed to fill the sector's arc Δθ uniformly over the
 obstacle width l: on the mobile (convex) it removes an annular slice of the outer surface, in the
@@ -134,7 +134,8 @@ def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
 
     References
     ----------
-    SPEC §3; seed §5.
+    .. [1] fretwear theory, docs/theory.md §3.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §5.
 
     Examples
     --------
@@ -185,7 +186,8 @@ def sector_depth_obstacle(volume, obstacle_radius, width, arc_deg):
 
     References
     ----------
-    SPEC §3; seed §5.
+    .. [1] fretwear theory, docs/theory.md §3.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §5.
 
     Examples
     --------
@@ -225,7 +227,7 @@ def sector_volume_mobile(depth, mobile_radius, width, arc_deg):
 
     References
     ----------
-    SPEC §3.
+    .. [1] fretwear theory, docs/theory.md §3.
 
     Examples
     --------
@@ -267,7 +269,7 @@ def sector_volume_obstacle(depth, obstacle_radius, width, arc_deg):
 
     References
     ----------
-    SPEC §3.
+    .. [1] fretwear theory, docs/theory.md §3.
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""TUBE_ALESAGE: steam-generator tube in a drilled support-plate hole (SPEC §6, seed §4.5).
+"""TUBE_ALESAGE: steam-generator tube in a drilled support-plate hole (theory §6; R7.20.01 §4.5).
 
 Three situations:
 
@@ -65,7 +65,7 @@ def tilted_lunule_volume(depth, mobile_radius, obstacle_radius, width, tilt):
 
     References
     ----------
-    SPEC §6 (TUBE_ALESAGE with tilt, frustum rule).
+    .. [1] fretwear theory, docs/theory.md §6 (TUBE_ALESAGE with tilt, frustum rule).
 
     Examples
     --------
@@ -101,7 +101,8 @@ class TubeAlesage(ContactGeometry):
 
     References
     ----------
-    Seed §4.5; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.5.
 
     Examples
     --------

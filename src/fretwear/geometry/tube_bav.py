@@ -1,11 +1,11 @@
-"""TUBE_BAV: steam-generator tube against a flat anti-vibration bar (SPEC §6, seed §4.4).
+"""TUBE_BAV: tube against a flat anti-vibration bar (theory §6; Code_Aster R7.20.01 §4.4).
 
 The bar wears a flat on the tube. Its cross-section at depth D is the tube's circular segment,
-taken in the parabolic approximation A(D) = (4/3)·√(2R_m)·D^{3/2} (the seed's closed forms, as
-SPEC prescribes; the exact segment is smaller by a factor 1 − 3D/(20R_m) + O(D²/R_m²)). A bar
-tilted by θ along the tube wears a wedge; the total depth D comes from the total volume
-V = (V_m + V_o)·cos α (α = ANGL_IMPACT) and is shared in proportion to the volumes:
-d_m = D·V_m/(V_m + V_o), d_o = D − d_m.
+taken in the parabolic approximation A(D) = (4/3)·√(2R_m)·D^{3/2} (the closed forms of
+Code_Aster R7.20.01, as theory §6 prescribes; the exact segment is smaller by a factor
+1 − 3D/(20R_m) + O(D²/R_m²)). A bar tilted by θ along the tube wears a wedge; the total depth D
+comes from the total volume V = (V_m + V_o)·cos α (α = ANGL_IMPACT) and is shared in proportion
+to the volumes: d_m = D·V_m/(V_m + V_o), d_o = D − d_m.
 """
 
 from __future__ import annotations
@@ -60,7 +60,8 @@ def flat_trace_volume(depth, mobile_radius, width, tilt=0.0):
 
     References
     ----------
-    Seed §4.4 cases 1-2; SPEC §6 (TUBE_BAV, TUBE_TUBE).
+    .. [1] fretwear theory, docs/theory.md §6 (TUBE_BAV, TUBE_TUBE).
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.4, cases 1-2.
 
     Examples
     --------
@@ -113,7 +114,8 @@ def flat_trace_depth(volume, mobile_radius, width, tilt=0.0):
 
     References
     ----------
-    Seed §4.4 cases 1-2; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.4, cases 1-2.
 
     Examples
     --------

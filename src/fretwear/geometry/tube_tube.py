@@ -1,4 +1,4 @@
-"""TUBE_TUBE: two steam-generator tubes crossing at an angle θ (SPEC §6, seed §4.8).
+"""TUBE_TUBE: two steam-generator tubes crossing at an angle θ (theory §6; R7.20.01 §4.8).
 
 After a tube breaks, it may rub against a neighbour; each tube wears a flat (wear tests show
 plane worn surfaces). Each flat is a wedge along its tube, with a parabolic section
@@ -41,11 +41,13 @@ class TubeTube(ContactGeometry):
               d_o = \\left(\\frac{1}{2R_o}\\right)^{1/5}
               \\left(\\frac{15\\,\\theta V_o}{8}\\right)^{2/5}
 
-    (the seed writes d_t for d_m). Range: d_m ≤ R_m and d_o ≤ R_o (the flat reaches the axis).
+    (Code_Aster R7.20.01 [2]_ writes d_t for d_m). Range: d_m ≤ R_m and d_o ≤ R_o (the flat
+    reaches the axis).
 
     References
     ----------
-    Seed §4.8; SPEC §6.
+    .. [1] fretwear theory, docs/theory.md §6.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.8.
 
     Examples
     --------

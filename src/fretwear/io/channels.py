@@ -2,11 +2,11 @@
 
 Every reader in :mod:`fretwear.io` turns a file into a :class:`Source` (column names, the units
 the file declares, a way to read columns whole or by blocks). This module maps those columns to
-the canonical channels of :class:`fretwear.history.ContactHistory` (SPEC §1), converts them to SI
+the canonical channels of :class:`fretwear.history.ContactHistory` (theory §1), converts them to SI
 and builds the history. Column names are matched case-insensitively, ignoring spaces, dashes and
 dots, and a trailing unit in brackets (``"Fn [kN]"`` is the normal force in kilonewtons).
 
-The alias table follows SPEC §1: Code_Aster's names ``INST, FN, FT1, FT2, VN, VT1, VT2, DYLOC,
+The alias table follows theory §1: Code_Aster's names ``INST, FN, FT1, FT2, VN, VT1, VT2, DYLOC,
 DZLOC`` and its internal variables of a shock (``VINT1`` = FN, ``VINT2``/``VINT3`` = FT1/FT2,
 ``VINT5``/``VINT6`` = local DY/DZ of node 1, ``VINT10``-``VINT12`` = VN/VT1/VT2, ``VINT13`` =
 stick flag).

@@ -1,4 +1,4 @@
-"""Wear laws (SPEC §4): Archard, KWU-EPRI, EDF-MZ, their registry and the KWU-EPRI statistics.
+"""Wear laws (theory §4): Archard, KWU-EPRI, EDF-MZ, their registry and the KWU-EPRI statistics.
 
 =================== ====================================================================
 ``archard``         V = K·P·t

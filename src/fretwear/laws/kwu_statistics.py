@@ -1,11 +1,11 @@
-"""KWU-EPRI class statistics of a contact history (SPEC §4): the wear-intensity factor w.
+"""KWU-EPRI class statistics of a contact history (theory §4): the wear-intensity factor w.
 
 The contact samples (Fn > 0) are sorted into 5 normal-force classes f and 5 sliding-speed classes v.
-Choices where the seed and SPEC are silent (also in docs/laws.md):
+Choices where Code_Aster R7.20.01 and docs/theory.md are silent (also in docs/laws.md):
 
-* **Time shares.** p_vf is the share of *contact time* spent in class (v, f). Each interval
-  [t_i, t_i+1) belongs to its left sample (the convention of the stick rule and of angular sectors,
-  SPEC §2-§3), so a sample weighs its interval t_i+1 − t_i and the last sample of the window weighs
+* **Time shares.** p_vf is the share of *contact time* spent in class (v, f). Each interval [t_i,
+  t_i+1) belongs to its left sample (the convention of the stick rule and of angular sectors, theory
+  §2-§3), so a sample weighs its interval t_i+1 − t_i and the last sample of the window weighs
   nothing. With a constant time step this is the share of samples (Code_Aster counts samples).
   Shares are fractions (Σ p = 1), not percentages: w scales with that normalisation.
 * **Class bounds.** Force classes split (0, F_max] into 5 equal widths, closed on the right: a force
@@ -232,7 +232,7 @@ class KwuEpriAccumulator:
 
 @dataclass(frozen=True, eq=False)
 class KwuEpriStatistics:
-    """KWU-EPRI class statistics and wear-intensity factor of a contact (SPEC §4).
+    """KWU-EPRI class statistics and wear-intensity factor of a contact (theory §4).
 
     Arrays indexed ``[v − 1, f − 1]``: rows are speed classes v = 1..5, columns force classes
     f = 1..5.
@@ -411,7 +411,7 @@ def _maxima(chunks: Iterable[Any], t_start, t_end) -> tuple[float, float]:
     fmax = vmax = 0.0
     for chunk in chunks:
         t, fn, vs = _chunk_arrays(chunk)
-        sel = (t >= lo) & (t <= hi)   # SPEC §4: the maxima in the window (all its samples)
+        sel = (t >= lo) & (t <= hi)   # theory §4: the maxima in the window (all its samples)
         if sel.any():
             fmax = max(fmax, float(fn[sel].max()))
             vmax = max(vmax, float(vs[sel].max()))
@@ -436,10 +436,10 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     t_start, t_end : float, optional
         Window [s] (samples with ``t_start <= t <= t_end``). Default: the whole record.
     force_max : float, optional
-        F_max [N] (``FNOR_MAXI``), > 0. Default: largest normal force in the window (SPEC §4).
+        F_max [N] (``FNOR_MAXI``), > 0. Default: largest normal force in the window (theory §4).
     speed_max : float, optional
         V_max [m/s] (``VTAN_MAXI``), >= 0. Default: largest sliding speed in the window, free
-        flight included (SPEC §4: "the maxima in the window").
+        flight included (theory §4: "the maxima in the window").
     impact_factor : float, optional
         k1 (``COEF_FNOR``), correction of the impact classes. Default 1 (no correction).
     sliding_factor : float, optional
@@ -447,8 +447,8 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     k : float, optional
         Experimental constant k (``COEF_K``) [1]. Default 5.
     c : float, optional
-        Experimental constant c (``COEF_C``) [1] (it scales a force in N: SPEC calls it
-        dimensionless), > 0. Default 10.
+        Experimental constant c (``COEF_C``) [1] (it scales a force in N: Code_Aster R7.20.01
+        calls it dimensionless), > 0. Default 10.
     chunk_size : int, optional
         Samples per chunk when ``history`` is a file (>= 2). Default 10⁶.
     **read_options
@@ -471,7 +471,7 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
 
     Notes
     -----
-    With p_vf the share of contact time in class (v, f) and F̄_f, V̄_v the mid-class values:
+    With p_vf the share of contact time in class (v, f) and F̄_f, V̄_v the mid-class values [1]_:
 
     .. math:: m_h = k_1 k (\\bar F_f / c)^3 \\; (v = 1), \\qquad
               m_w = k_2 \\bar F_f \\bar V_v^2 \\; (v \\ge 2 \\text{ and } (1, 1)),
@@ -485,7 +485,9 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
 
     References
     ----------
-    [bib2] P. J. Hoffmann, D. A. Steininger, T. Schettler, ASME HTD-vol. 230 / NE-vol. 9, 1992.
+    .. [1] Hoffmann, P. J., Steininger, D. A., & Schettler, T. (1992). PWR steam generator tube
+           fretting and fatigue wear phenomena and correlations. Symposium on Flow-Induced Vibration
+           and Noise, Vol. 1, ASME HTD-Vol. 230 / NE-Vol. 9.
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""The three wear laws of POST_USURE as pure vectorised functions (SPEC §4).
+"""The three wear laws of POST_USURE as pure vectorised functions (theory §4).
 
 Every function broadcasts its array arguments with numpy rules (for instance sector powers against
 a column of durations), checks them (finite, non-negative) and returns a new array; nothing the
@@ -13,7 +13,7 @@ import numpy as np
 
 from fretwear.errors import InputError, LawWarning
 
-#: Default EDF_MZ coefficients (SPEC §4; Code_Aster's COEF_USURE, COEF_B, COEF_N, COEF_S).
+#: Default EDF_MZ coefficients (theory §4; Code_Aster's COEF_USURE, COEF_B, COEF_N, COEF_S).
 EDF_MZ_DEFAULTS = {
     "rate_coefficient": 1e-13,     # A [m³/(s·W^b)]
     "power_exponent": 1.2,         # b [1]
@@ -99,12 +99,13 @@ def archard(power, duration, coefficient) -> np.ndarray:
     -----
     .. math:: V = K \\, P \\, t
 
-    Archard's adhesive-wear relation ``V = k·Fn·L/H`` with ``K = k/H`` and the wear work
-    ``W = ∫ Fn·Vt dt = P·t`` (SPEC §4; seed §2.1).
+    Archard's adhesive-wear relation ``V = k·Fn·L/H`` [1]_ with ``K = k/H`` and the wear work
+    ``W = ∫ Fn·Vt dt = P·t`` (theory §4; Code_Aster R7.20.01 §2.1).
 
     References
     ----------
-    [bib1] J. F. Archard, "Contact and rubbing of flat surfaces", J. Appl. Phys. 24, 981 (1953).
+    .. [1] Archard, J. F. (1953). Contact and rubbing of flat surfaces. *Journal of Applied Physics*
+           24(8), 981-988.
 
     Examples
     --------
@@ -147,12 +148,13 @@ def kwu_epri(power, duration, reference_coefficient, intensity,
     .. math:: K_{KWU} = k_r \\, w / w_r, \\qquad V = K_{KWU} \\, P \\, t
 
     with :math:`w = (\\sum P_w)^2 / (\\sum P_h + \\sum P_w)` from the 5×5 force/speed classes of
-    the contact (SPEC §4; seed §2.2).
+    the contact [1]_ (theory §4; Code_Aster R7.20.01 §2.2).
 
     References
     ----------
-    [bib2] P. J. Hoffmann, D. A. Steininger, T. Schettler, "PWR steam generator tubes fretting and
-    fatigue wear phenomena and correlations", ASME HTD-vol. 230 / NE-vol. 9, 1992.
+    .. [1] Hoffmann, P. J., Steininger, D. A., & Schettler, T. (1992). PWR steam generator tube
+           fretting and fatigue wear phenomena and correlations. Symposium on Flow-Induced Vibration
+           and Noise, Vol. 1, ASME HTD-Vol. 230 / NE-Vol. 9.
 
     Examples
     --------
@@ -228,12 +230,14 @@ def edf_mz(power, duration, rate_coefficient=1e-13, power_exponent=1.2, decay_co
 
     with :math:`\\psi_1(x) = (1 - e^{-x})/x` and :math:`\\psi_2(x) = 1 - \\psi_1(x)`, evaluated
     with ``expm1`` and a Taylor series for small ``x`` so that no digit is lost when n·t is small.
-    The rate :math:`\\dot V = A P^b e^{-n t} + S (1 - e^{-n t})` goes from A·P^b at t = 0 to S.
+    The rate :math:`\\dot V = A P^b e^{-n t} + S (1 - e^{-n t})` goes from A·P^b at t = 0 to S
+    [1]_ (theory §4).
 
     References
     ----------
-    [bib4] M. Zbinden, V. Durbec, "A kinetic model for impacts/sliding wear of pressurized water
-    reactor internal components: application to rod cluster control assemblies", ASME PVP, 1996.
+    .. [1] Zbinden, M., & Durbec, V. (1996). A kinetic model for impact/sliding wear of pressurized
+           water reactor internal components: application to rod cluster control assemblies. ASME
+           Pressure Vessels and Piping Conference, Montreal.
 
     Examples
     --------
@@ -272,7 +276,7 @@ def edf_mz_rate(power, duration, rate_coefficient=1e-13, power_exponent=1.2,
 def edf_mz_equivalent_time(volume, power, rate_coefficient=1e-13, power_exponent=1.2,
                            decay_constant=2.44e-8, asymptotic_rate=1.14e-16, *,
                            rtol: float = 1e-13) -> np.ndarray:
-    """Duration at which the EDF-MZ law reaches a given volume (restart, SPEC §7).
+    """Duration at which the EDF-MZ law reaches a given volume (restart, theory §7).
 
     Parameters
     ----------

@@ -146,7 +146,7 @@ class WearLaw:
         return _warning_once(lambda: self._volume(power, duration, **c))
 
     def equivalent_time(self, volume, power, **coefficients: Any) -> np.ndarray:
-        """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (SPEC §7)."""
+        """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (theory §7)."""
         c = self._for_volume(coefficients)
         return _warning_once(lambda: self._equivalent_time(volume, power, **c))
 
@@ -248,8 +248,8 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
         history_parameters=("impact_factor", "sliding_factor", "k", "c", "force_max", "speed_max"),
         defaults={"reference_intensity": 1.0, "impact_factor": 1.0, "sliding_factor": 1.0,
                   "k": 5.0, "c": 10.0, "force_max": None, "speed_max": None},
-        # the seed calls k1, k2, k, c and w adimensional: they are numbers applied to forces in N
-        # and speeds in m/s (docs/laws.md)
+        # Code_Aster R7.20.01 calls k1, k2, k, c and w adimensional: they are numbers applied to
+        # forces in N and speeds in m/s (docs/laws.md)
         units={"reference_coefficient": "Pa⁻¹", "intensity": "1", "reference_intensity": "1",
                "impact_factor": "1", "sliding_factor": "1", "k": "1", "c": "1",
                "force_max": "N", "speed_max": "m/s"},

@@ -1,7 +1,7 @@
-"""Obstacle update (Code_Aster's MODI_OBSTACLE): the worn clearance profile (SPEC §8).
+"""Obstacle update (Code_Aster's MODI_OBSTACLE): the worn clearance profile (theory §8).
 
 From the cumulated sector volumes of a wear table at one instant, build the worn depth profiles
-of the mobile and of the obstacle over the angle (uniform per sector, SPEC §3, or a smooth
+of the mobile and of the obstacle over the angle (uniform per sector, theory §3, or a smooth
 shape keeping each sector's volume), and the new clearance in each direction: how far the worn
 mobile can translate before it touches the worn obstacle, computed exactly on the profiles.
 

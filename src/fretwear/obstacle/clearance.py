@@ -1,4 +1,4 @@
-"""Exact clearance of a worn mobile inside a worn obstacle, direction by direction (SPEC §8).
+"""Exact clearance of a worn mobile inside a worn obstacle, direction by direction (theory §8).
 
 Both bodies are star-shaped around the mobile's rest centre (the origin): the mobile is
 {ρ ≤ r_m(φ)}, the obstacle's free space is {ρ ≤ r_O(φ)}. Each boundary is discretised as a

@@ -1,4 +1,4 @@
-"""Worn-depth profiles over the angle from cumulated sector volumes (SPEC §3, §8).
+"""Worn-depth profiles over the angle from cumulated sector volumes (theory §3, §8).
 
 The worn cross-section between the new boundary r(φ) and the worn one is, per unit width, the
 polar area element: for the mobile (material removed inwards from R_m)
@@ -6,10 +6,10 @@ polar area element: for the mobile (material removed inwards from R_m)
 ``a(φ) = ½((r_o + d)² − r_o²)`` [m²/rad]. A sector's volume is kept when
 ``l·∫_sector a(φ) dφ = V_j`` (l the obstacle width). Two shapes keep it exactly:
 
-* ``"uniform"`` — constant depth over the sector (SPEC §3): mobile
+* ``"uniform"`` — constant depth over the sector (theory §3): mobile
   d = R_m − √(R_m² − 2V/(lΔθ)); obstacle, the root of ½Δθ·d² + I·d = V/l with I = ∫ r_o dφ over
   the sector, i.e. d = √(R̄² + 2V/(lΔθ)) − R̄ with the mean radius R̄ = I/Δθ (= R_o for a bore,
-  SPEC §3's formula).
+  theory §3's formula).
 * ``"smooth"`` — a continuous shape: the cumulated area A(φ) = ∫ a dφ is interpolated through
   its exact values at the sector edges by a periodic monotone cubic (Fritsch–Carlson PCHIP);
   its derivative a(φ) ≥ 0 is continuous, zero where the sector holds no volume, and its sector
@@ -36,7 +36,7 @@ from fretwear.sectors import sector_edges
 
 #: The depth shapes, keyed by name (``shape=`` argument, ``[obstacle] shape`` in case files).
 DEPTH_SHAPES: dict[str, str] = {
-    "uniform": "constant depth over each sector (SPEC §3)",
+    "uniform": "constant depth over each sector (docs/theory.md §3)",
     "smooth": "periodic monotone-cubic area density whose sector integrals are the volumes",
 }
 
@@ -188,7 +188,7 @@ def worn_depth_profiles(edges, volume_mobile, volume_obstacle=None, *, width: fl
 
     Notes
     -----
-    Uniform (SPEC §3): d_m = R_m − √(R_m² − 2V_m/(lΔθ)), d_o = √(R̄² + 2V_o/(lΔθ)) − R̄.
+    Uniform (theory §3): d_m = R_m − √(R_m² − 2V_m/(lΔθ)), d_o = √(R̄² + 2V_o/(lΔθ)) − R̄.
     Smooth: a(φ) = dA/dφ with A the periodic PCHIP through the cumulated sector areas V/l;
     d_m(φ) = R_m − √(R_m² − 2a(φ)), d_o(φ) = √(r_o(φ)² + 2a(φ)) − r_o(φ).
 

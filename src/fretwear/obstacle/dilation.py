@@ -1,4 +1,4 @@
-"""The obstacle behind a clearance figure: the figure dilated by the mobile's disk (SPEC §8).
+"""The obstacle behind a clearance figure: the figure dilated by the mobile's disk (theory §8).
 
 A clearance figure C (Code_Aster's DEFI_OBSTACLE 'DISCRET' table, or the worn figure this
 package writes) is the set of positions the mobile's centre may take: for a disk mobile of

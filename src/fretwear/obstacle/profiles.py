@@ -1,7 +1,7 @@
-"""The mobile and the obstacle's inner boundary as polar functions of the angle (SPEC §8).
+"""The mobile and the obstacle's inner boundary as polar functions of the angle (theory §8).
 
 The clearance figure is described in the shock frame of the mobile at rest: the origin is the
-mobile's centre, the angle φ [deg] is measured like the contact angle θ = atan2(Dz, Dy) of SPEC §3
+mobile's centre, the angle φ [deg] is measured like the contact angle θ = atan2(Dz, Dy) of theory §3
 (from the local y axis towards z). The obstacle's inner boundary is the polar curve
 ``radius(φ)`` [m] (the bore, the planes, or a table of points); the radial gap is
 ``gap(φ) = radius(φ) − R_m`` [m]. The mobile is a tube of outer radius ``R_m`` and wall thickness
@@ -31,7 +31,7 @@ DISCRET file layout adopted (a Code_Aster IMPR_TABLE 'TABLEAU'-style text table)
      ...                (721 rows, THETA = 0, 0.5, ..., 360; the last row repeats the first)
 
 ``JEU`` is the clearance seen from the mobile (0.5 mm for a new Code_Aster DISCRET obstacle,
-SPEC §8); ``R`` repeats it under the name Code_Aster's obstacle tables give the polar radius of
+theory §8); ``R`` repeats it under the name Code_Aster's obstacle tables give the polar radius of
 the clearance figure, so a Code_Aster reader taking (THETA, R) gets the clearance too. The
 reader accepts THETA with JEU (preferred) or with R (Code_Aster: the clearance), or with RADIUS
 (the obstacle boundary's radius R_m + gap, which needs a mobile radius from the header line or
@@ -453,7 +453,39 @@ _ALIASES = {"THETA": "THETA", "ANGLE": "THETA", "ANGLE_DEG": "THETA",
             "JEU": "JEU", "GAP": "JEU", "R": "R", "RAYON": "RADIUS", "RADIUS": "RADIUS"}
 
 
-def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacle:
+def _theta_degrees(theta: np.ndarray, unit: str | None, label: str) -> np.ndarray:
+    """THETA in degrees: given in ``unit`` ('deg'/'rad'), or recognised from its range.
+
+    Code_Aster's DEFI_OBSTACLE takes VALE angles in degrees but stores the DISCRET function
+    R = f(THETA) with THETA in radians (``op0073``: ``THETA * r8dgrd()``): a printed table runs
+    0 … 6.28319. Without ``unit``, angles within ±2π (+ print precision) spanning more than half
+    a turn in radians are radians; a span beyond 2π is degrees; a shorter span is ambiguous.
+    """
+    tol = 1e-4  # %12.5E prints 2π as 6.28319: 1.5e-6 above it
+    if unit is None:
+        span = float(theta.max() - theta.min())
+        if np.abs(theta).max() <= 2 * np.pi + tol and span > np.pi:
+            unit = "rad"
+        elif span > 2 * np.pi + tol:
+            unit = "deg"
+        else:
+            raise FormatError(
+                f"{label}: THETA runs {theta.min():g} … {theta.max():g}: less than half a turn "
+                "in radians and than 2π in degrees, the unit is ambiguous; give "
+                "angle_unit='deg' or 'rad' (Code_Aster's DEFI_OBSTACLE stores THETA in radians)")
+    if str(unit).lower() in ("deg", "degree", "degrees"):
+        return theta
+    if str(unit).lower() not in ("rad", "radian", "radians"):
+        raise InputError(f"angle_unit={unit!r}: give 'deg' or 'rad'")
+    degrees = np.degrees(theta)
+    turn = degrees[0] + 360.0
+    if abs(degrees[-1] - turn) <= np.degrees(tol):  # the printed closing point: exactly a turn
+        degrees[-1] = turn
+    return degrees
+
+
+def read_discret(path, *, mobile_radius: float | None = None,
+                 angle_unit: str | None = None) -> DiscreteObstacle:
     """Read a DISCRET obstacle table (layout in the module docstring).
 
     Parameters
@@ -466,15 +498,20 @@ def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacl
         skipped.
     mobile_radius : float, optional
         Mobile outer radius [m]; overrides the header; needed when only RADIUS is given.
+    angle_unit : {"deg", "rad"}, optional
+        Unit of THETA. Default: recognised from the range: Code_Aster's DEFI_OBSTACLE stores
+        THETA in radians (a printed table runs 0 … 6.28319), fretwear writes degrees (0 … 360).
 
     Returns
     -------
     DiscreteObstacle
+        Angles in degrees.
 
     Raises
     ------
     FormatError
-        Naming the file and the line when a column is missing or a cell is not a number.
+        Naming the file and the line when a column is missing or a cell is not a number; THETA
+        whose unit cannot be told from its range (give ``angle_unit``).
     """
     p = Path(path)
     if not p.is_file():
@@ -515,7 +552,7 @@ def read_discret(path, *, mobile_radius: float | None = None) -> DiscreteObstacl
         raise FormatError(f"{p}: no DISCRET table found (need a THETA JEU header and rows)")
     data = np.array(rows)
     rm = mobile_radius if mobile_radius is not None else header_rm
-    theta, gaps = data[:, 0], data[:, 1]
+    theta, gaps = _theta_degrees(data[:, 0], angle_unit, str(p)), data[:, 1]
     if value == "RADIUS":
         if rm is None:
             raise FormatError(

@@ -1,4 +1,4 @@
-"""Obstacle update (MODI_OBSTACLE): worn depth profiles and the new clearance figure (SPEC §8).
+"""Obstacle update (MODI_OBSTACLE): worn depth profiles and the new clearance figure (theory §8).
 
 Always start from the NEW geometry (the obstacle model and the mobile radius of the first
 dynamic computation) with the CUMULATED sector volumes of the wear table: the table continues
@@ -370,8 +370,9 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
 
     References
     ----------
-    SPEC §3 (sector depths) and §8 (obstacle update); the Code_Aster theory note of the wear
-    operator POST_USURE (SPEC's reference document), whose MODI_OBSTACLE step this replaces.
+    .. [1] fretwear theory, docs/theory.md §3 (sector depths) and §8 (obstacle update).
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §5 (sectors) and §6 (the
+           MODI_OBSTACLE step this replaces).
 
     Examples
     --------

@@ -1,4 +1,4 @@
-"""Wear power of a contact history: total, per block and per angular sector (SPEC §2-§3).
+"""Wear power of a contact history: total, per block and per angular sector (theory §2-§3).
 
 The wear power is the time average over a window [t_start, t_end] (T = t_end - t_start) of the
 product of the normal force and the sliding speed:
@@ -458,8 +458,11 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
 
     References
     ----------
-    Code_Aster theory note of POST_USURE ("Operator of computation of wear", user manual
-    U4.67.03), §2 and §5; SPEC §2-§3.
+    .. [1] fretwear theory, docs/theory.md §2-§3.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §2 (wear power and blocks)
+           and §5 (sectors).
+    .. [3] Code_Aster User Manual U4.84.05, *Opérateur POST_USURE* (U4.67.03 in older versions), EDF
+           R&D.
 
     Examples
     --------

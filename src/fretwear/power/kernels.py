@@ -1,4 +1,4 @@
-"""Fused one-pass kernels of the wear power and the contact statistics (SPEC §2-§3).
+"""Fused one-pass kernels of the wear power and the contact statistics (theory §2-§3).
 
 One call reduces one chunk of a contact history (consecutive samples) to its *partial sums*:
 

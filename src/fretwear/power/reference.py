@@ -1,5 +1,5 @@
 """Reference (plain numpy) reduction of a chunk of a contact history: the partial sums of the wear
-power and the contact statistics (SPEC §2-§3), vectorised, without numba.
+power and the contact statistics (theory §2-§3), vectorised, without numba.
 
 It is the independent implementation the compiled kernel of :mod:`fretwear.power.kernels` is tested
 against, and the fallback when numba is not installed. It refines the time grid at the window

@@ -1,7 +1,7 @@
 """Contact statistics of a shock point, like Code_Aster's POST_DYNA_MODA_T (options USURE, IMPACT).
 
 All quantities are computed on the same piecewise-linear reading of the samples as the wear power
-(SPEC §2): the normal force Fn and the sliding speed ‖Vt‖ are linear between samples, the window
+(theory §2): the normal force Fn and the sliding speed ‖Vt‖ are linear between samples, the window
 [t_start, t_end] and block edges cut intervals exactly.
 
 Definitions (F_s = ``force_threshold`` [N], τ = ``minimum_rest_time`` [s]):

@@ -1,4 +1,4 @@
-"""The wear operator: the service-life table of a contact (SPEC §3, §7).
+"""The wear operator: the service-life table of a contact (theory §3, §7).
 
 :func:`wear_table` turns a wear power (or a contact history, from which the power is computed),
 a wear law and a contact geometry into the table of worn volumes and depths at the instants of
@@ -14,10 +14,10 @@ Conventions of the table (one row per instant, or per instant and sector):
 * ``instant`` is in the user's time unit; the laws use ``t = instant × time_scale`` [s].
 * ``volume_mobile``/``volume_obstacle`` are the *cumulated* volumes of the bodies in place at
   that instant (initial state included; the tube's restart from zero at a replacement) [m³];
-  ``depth_*`` are computed from them by the contact geometry (SPEC §6).
+  ``depth_*`` are computed from them by the contact geometry (theory §6).
 * In sector mode ``volume_*_sector`` is the volume worn in the sector over ``duration`` (since
   ``origin``, by the tube in place), ``volume_*_cumulated`` the sector's cumulated volume and
-  ``depth_*_sector`` the sector depth from it (SPEC §3); ``volume_*`` is then the sum over
+  ``depth_*_sector`` the sector depth from it (theory §3); ``volume_*`` is then the sum over
   sectors of the cumulated volumes.
 """
 
@@ -101,7 +101,7 @@ def _cumulated(law, power: float, coefficients, elapsed_s: np.ndarray, previous:
     """Cumulated volume of one body at ``elapsed_s`` seconds after the origin [m³].
 
     ``previous`` is the body's volume at the origin; a linear law adds ``V(P, Δt)``, another
-    law continues from its equivalent time (SPEC §7). ``fresh_from_s`` (a replacement, seconds
+    law continues from its equivalent time (theory §7). ``fresh_from_s`` (a replacement, seconds
     after the origin) restarts the body from zero there.
     """
     if coefficients is None:  # this body does not wear
@@ -111,7 +111,7 @@ def _cumulated(law, power: float, coefficients, elapsed_s: np.ndarray, previous:
         return out
     if previous == 0.0:
         out = np.asarray(law.volume(power, elapsed_s, **coefficients), dtype=float)
-    else:  # linear: V0 + V(Δt); otherwise from the equivalent time of V0 (SPEC §7)
+    else:  # linear: V0 + V(Δt); otherwise from the equivalent time of V0 (theory §7)
         out = np.asarray(law.cumulated_volume(previous, power, elapsed_s, **coefficients),
                          dtype=float)
     out = np.broadcast_to(out, elapsed_s.shape).copy()
@@ -186,13 +186,13 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                stationarity_threshold: float = 0.1, force_max: float | None = None,
                speed_max: float | None = None,
                coefficient_files=None, history: ContactHistory | None = None) -> pd.DataFrame:
-    """The service-life wear table of one contact (SPEC §7; Code_Aster's POST_USURE).
+    """The service-life wear table of one contact (theory §7; Code_Aster's POST_USURE).
 
     Parameters
     ----------
     source : float, ContactHistory, PowerResult or path-like
         The wear power P [W] (PUIS_USURE), or a contact history (RESU_GENE) or its file, whose
-        power is computed over ``[t_start, t_end]`` [s] in ``blocks`` blocks (SPEC §2).
+        power is computed over ``[t_start, t_end]`` [s] in ``blocks`` blocks (theory §2).
     contact_type : str
         One of :data:`fretwear.geometry.CONTACT_TYPES` (CONTACT), e.g. ``"TUBE_BAV"``.
     dimensions : mapping
@@ -263,12 +263,14 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
     -----
     Per body, with ``t = duration × time_scale`` and ``V₀`` the volume at the origin:
     ``V(t) = V₀ + V_law(P, t)`` for a law linear in time, ``V(t) = V_law(P, τ₀ + t)`` with
-    ``V_law(P, τ₀) = V₀`` otherwise (SPEC §7). Sectors: ``V_j = k_j·P_j·t`` (SPEC §3).
-    Depths always come from the cumulated volumes (SPEC §6, §3).
+    ``V_law(P, τ₀) = V₀`` otherwise (theory §7). Sectors: ``V_j = k_j·P_j·t`` (theory §3).
+    Depths always come from the cumulated volumes (theory §6, §3).
 
     References
     ----------
-    Code_Aster R7.20.01 (theory of POST_USURE), §6 "actualisation du tableau".
+    .. [1] fretwear theory, docs/theory.md §7.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §6 ("actualisation du
+           tableau": updating the table).
 
     Examples
     --------
@@ -357,7 +359,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
 
 
 def _depths(geometry, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
-    """(mobile, obstacle) depths [m] from the cumulated volumes [m³] (SPEC §6).
+    """(mobile, obstacle) depths [m] from the cumulated volumes [m³] (theory §6).
 
     An obstacle without volume has no depth: exactly 0 where the mobile's depth is defined
     (the split d_o = D − D·V_m/V of a shared trace leaves a rounding residue otherwise).
@@ -521,7 +523,7 @@ def _resolve_coefficients(law, contact_type, coefficients, obstacle_coefficients
 
 def _database(contact_type, materials, law_name, obstacle_wear, coefficient_files=None
               ) -> tuple[dict, dict | None, dict]:
-    """(mobile, obstacle, sources) coefficient dicts of a database pair (SPEC §5), the user's
+    """(mobile, obstacle, sources) coefficient dicts of a database pair (theory §5), the user's
     coefficient files extending the built-in table."""
     found = lookup(contact_type, materials[0], materials[1], law_name,
                    obstacle=bool(obstacle_wear), extra=coefficient_files)

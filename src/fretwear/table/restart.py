@@ -1,6 +1,6 @@
 """Restarts of the wear table: reading previous tables, the initial state, tube replacement.
 
-SPEC §7: a previous table (ours, or a Code_Aster one read from its text file) gives the origin
+Theory §7: a previous table (ours, or a Code_Aster one read from its text file) gives the origin
 ORIG_INST (its last instant, or INST_INIT) and the cumulated volumes there; TUBE_NEUF replaces
 the tube (its volumes and depths restart from zero, the obstacle's are kept). Used by
 :func:`fretwear.table.wear_table` (``initial_state=``) and :func:`fretwear.workflows.aster.POST_USURE`.
@@ -26,7 +26,7 @@ __all__ = ["InitialState", "initial_state", "read_wear_table", "replace_tube"]
 
 @dataclass(frozen=True)
 class InitialState:
-    """The state a restart continues from (SPEC §7, ETAT_INIT).
+    """The state a restart continues from (theory §7, ETAT_INIT).
 
     Attributes
     ----------
@@ -68,7 +68,7 @@ def _column(frame: pd.DataFrame, names: Sequence[str], what: str, source: str) -
 
 def initial_state(table: pd.DataFrame | str | os.PathLike,
                   initial_instant: float | None = None) -> InitialState:
-    """The restart state of a previous wear table (ours or Code_Aster's), SPEC §7.
+    """The restart state of a previous wear table (ours or Code_Aster's), theory §7.
 
     Parameters
     ----------
@@ -140,7 +140,7 @@ def initial_state(table: pd.DataFrame | str | os.PathLike,
 
 def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None = None
                  ) -> pd.DataFrame:
-    """The wear table with the tube replaced by a new one at ``instant`` (TUBE_NEUF, SPEC §7).
+    """The wear table with the tube replaced by a new one at ``instant`` (TUBE_NEUF, theory §7).
 
     The rows after ``instant`` are dropped; on the rows at ``instant`` the tube's volumes and
     depths are set to zero and the obstacle's are kept, so that the result seeds a restart

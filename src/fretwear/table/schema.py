@@ -45,7 +45,7 @@ _TIME_TOL = 1e-9
 
 
 def to_aster_names(frame: pd.DataFrame) -> pd.DataFrame:
-    """A copy of a wear table with Code_Aster's column names (SPEC §7).
+    """A copy of a wear table with Code_Aster's column names (theory §7).
 
     Examples
     --------

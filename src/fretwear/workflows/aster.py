@@ -11,7 +11,7 @@ A Code_Aster user can paste the keywords of a POST_USURE command::
 The catalogue's rules are enforced (exactly one of PUIS_USURE, RESU_GENE, TUBE_NEUF; exactly one
 of MOBILE, MATER_USURE, SECTEUR; MATER_USURE excludes OBSTACLE; exactly one of INST, LIST_INST;
 NOEUD excludes GROUP_NO ...), each violation a :class:`~fretwear.errors.KeywordError` naming the
-keywords. The result is a DataFrame with Code_Aster's column names (SPEC §7); the computation is
+keywords. The result is a DataFrame with Code_Aster's column names (theory §7); the computation is
 :func:`fretwear.table.wear_table`. Values are SI, angles in degrees, as in Code_Aster.
 Deliberate differences from Code_Aster are listed in ``docs/code_aster.md``.
 """
@@ -211,7 +211,7 @@ def _history(kw: Mapping[str, Any]):
 
 
 def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's name
-    """Code_Aster's wear operator with its keywords (SPEC §7; POST_USURE [U4.84.05]).
+    """Code_Aster's wear operator with its keywords (theory §7; POST_USURE [U4.84.05]).
 
     Parameters
     ----------
@@ -233,7 +233,7 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     Notes
     -----
     Archard: ``V = COEF_USURE · PUIS_USURE · INST · COEF_INST``; depths from the geometry of
-    CONTACT (SPEC §4, §6).
+    CONTACT (theory §4, §6).
 
     Examples
     --------
@@ -330,7 +330,7 @@ def _obstacle_depths_that_exist(table: pd.DataFrame) -> pd.DataFrame:
     ``depth_obstacle`` (P_USUR_OBST) and ``depth_obstacle_sector`` (P_USUR_OBST_SECT) are
     dropped when the obstacle has no volume (it does not wear); ``depth_obstacle_sector`` also
     when no sector has a positive obstacle depth (a contact type without an obstacle radius,
-    e.g. TUBE_BAV's flat bar, has no sector depth of the obstacle, SPEC §3: NaN where it wears).
+    e.g. TUBE_BAV's flat bar, has no sector depth of the obstacle, theory §3: NaN where it wears).
 
     Examples
     --------

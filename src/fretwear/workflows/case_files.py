@@ -452,7 +452,7 @@ def chunked_power(history, args: Mapping[str, Any], progress=None, *,
     """Wear power of an in-memory history, in chunks when it is long, reporting progress.
 
     The chunks share their boundary sample, so the result equals
-    :func:`fretwear.power.wear_power` on the whole history (the reduction is exact, SPEC §2).
+    :func:`fretwear.power.wear_power` on the whole history (the reduction is exact, theory §2).
 
     Parameters
     ----------

@@ -1,11 +1,11 @@
 """The coupled loop dynamics → wear table → obstacle update → dynamics (``fretwear iterate``).
 
-The reference document's §6: from a clearance figure, compute the dynamics; from its contact
+Code_Aster R7.20.01 §6 (theory §8): from a clearance figure, compute the dynamics; from its contact
 history, the wear table (POST_USURE); from the table's cumulated sector volumes, the worn
 clearance figure (MODI_OBSTACLE); compute the dynamics again with it, and so on. Each cycle
-continues the previous cycle's wear table through the restart (ETAT_INIT, SPEC §7), so the
+continues the previous cycle's wear table through the restart (ETAT_INIT, theory §7), so the
 volumes accumulate over the cycles and the obstacle update always starts from the new obstacle
-with the cumulated volumes (SPEC §8).
+with the cumulated volumes (theory §8).
 
 The case file holds the usual wear sections (``[law]``, ``[geometry]``, ``[sectors]``,
 ``[time]``: the durations of one cycle, ``[power]`` window), an ``[obstacle]`` section (the new
@@ -187,7 +187,11 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
 
     References
     ----------
-    Code_Aster R7.20.01 (POST_USURE) §6; EDF HT-22/98-009A (iterative wear computations).
+    .. [1] fretwear theory, docs/theory.md §8.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §6 (updating the table, the
+           iterative loop).
+    .. [3] EDF-DER (1998). [Control rods of 1300 MW plants: iterative wear computations with
+           progressive wear of the antagonists]. Report HT-22/98-009A (in French).
     """
     from fretwear.obstacle.config import obstacle_from_config
     from fretwear.table import wear_table
