@@ -1,7 +1,7 @@
-"""Tests of the obstacle update (fretwear.obstacle, SPEC §3 sector depths and §8).
+"""Tests of the obstacle update (fretwear.obstacle, theory §3 sector depths and §8).
 
 Reference values come from closed-form geometry (disk in a disk, disk between parallel planes,
-the SPEC §3 sector-depth formulas, the polar area element), and from an independent brute-force
+the theory §3 sector-depth formulas, the polar area element), and from an independent brute-force
 search (dense polygons, point-in-polygon tests and bisection on the translation) written here.
 """
 
@@ -39,17 +39,17 @@ EDGES10 = np.linspace(-180.0, 180.0, 11)
 
 
 def spec_depth_mobile(v, r, l_, arc_deg):
-    """SPEC §3: d = R_m − √(R_m² − 2V/(l·Δθ)), Δθ in radians."""
+    """Theory §3: d = R_m − √(R_m² − 2V/(l·Δθ)), Δθ in radians."""
     return r - math.sqrt(r * r - 2 * v / (l_ * math.radians(arc_deg)))
 
 
 def spec_depth_obstacle(v, r, l_, arc_deg):
-    """SPEC §3: d = √(R_o² + 2V/(l·Δθ)) − R_o, Δθ in radians."""
+    """Theory §3: d = √(R_o² + 2V/(l·Δθ)) − R_o, Δθ in radians."""
     return math.sqrt(r * r + 2 * v / (l_ * math.radians(arc_deg))) - r
 
 
 def volume_for_depth_mobile(d, r, l_, arc_deg):
-    """Inverse of SPEC §3 (annular sector area × width)."""
+    """Inverse of theory §3 (annular sector area × width)."""
     return 0.5 * l_ * math.radians(arc_deg) * (r * r - (r - d) ** 2)
 
 
@@ -152,7 +152,7 @@ def test_planes_clearance_is_gap_over_cosine():
 
 def test_uniform_wear_all_round_opens_by_both_depths_exactly():
     """One sector (−180..180): both bodies stay circles, radii R_m − d_m and R_o + d_o, so the
-    clearance is g + d_m + d_o everywhere, even for large wear (closed form; depths SPEC §3)."""
+    clearance is g + d_m + d_o everywhere, even for large wear (closed form; depths theory §3)."""
     vm, vo = 2.0e-8, 1.0e-8
     r = update_obstacle(CircleObstacle(RM, RO), Mobile(RM, WALL), 1, [vm], [vo], width=WIDTH,
                         resolution=0.1)
@@ -166,7 +166,7 @@ def test_uniform_wear_all_round_opens_by_both_depths_exactly():
 
 def test_small_wear_in_one_sector_opens_its_direction_by_dm_plus_do():
     """First order: a sector worn by d_m (mobile) and d_o (obstacle) opens the clearance at
-    its centre by d_m + d_o (depths from SPEC §3); directions away from it are unchanged."""
+    its centre by d_m + d_o (depths from theory §3); directions away from it are unchanged."""
     dm, do = 2e-7, 1e-7
     vm = np.zeros(10)
     vo = np.zeros(10)
@@ -203,7 +203,7 @@ def test_large_wear_matches_brute_force_search(direction):
 
 
 def test_uniform_depths_are_spec_sector_depths_and_keep_volume():
-    """Uniform shape: each sector's depth is SPEC §3's, and l·∫½(R² − (R − d)²)dφ = V."""
+    """Uniform shape: each sector's depth is theory §3's, and l·∫½(R² − (R − d)²)dφ = V."""
     rng = np.random.default_rng(3)
     edges = np.array([-180.0, -100.0, -30.0, 0.0, 45.0, 180.0])
     vm = rng.uniform(0, 3e-9, 5)
@@ -351,7 +351,7 @@ def test_made_up_figure_with_narrow_dents_is_reported():
 
 
 def test_code_aster_discret_table_is_read_as_the_clearance(tmp_path):
-    """A Code_Aster-style DISCRET obstacle (SPEC §8: 721 points 0..360 by 0.5°, 0.5 mm when
+    """A Code_Aster-style DISCRET obstacle (theory §8: 721 points 0..360 by 0.5°, 0.5 mm when
     new), ASTER layout with string columns LIEU/TYPE and THETA, R: R is the clearance, the
     string columns are ignored, and a new 0.5 mm figure gives a bore of gap 0.5 mm. An R
     column holding radii (>= R_m) is refused with the fix (name it RADIUS)."""
@@ -554,7 +554,7 @@ def test_other_shapes_match_brute_force_search(kind, direction):
 def test_reads_the_wear_operator_table_and_agrees_with_its_sector_depths():
     """End to end with fretwear.table.wear_table (sector mode): the width comes from the
     table's attrs, the volumes are the table's cumulated ones, and the uniform depths equal the
-    operator's SPEC §3 sector depths (an independent implementation, fretwear.geometry)."""
+    operator's theory §3 sector depths (an independent implementation, fretwear.geometry)."""
     pytest.importorskip("fretwear.table")
     from fretwear.history import ContactHistory
     from fretwear.table import wear_table
@@ -608,7 +608,7 @@ def test_random_non_circular_case_matches_brute_force_search():
 
 
 def test_volume_beyond_the_wedge_is_nan_with_a_range_warning(tmp_path):
-    """2V/(lΔθ) > R_m² (SPEC §6: beyond the range, NaN and a warning naming the limit): the
+    """2V/(lΔθ) > R_m² (theory §6: beyond the range, NaN and a warning naming the limit): the
     mobile depth is NaN, the perforation is reported, the clearance is undefined (NaN); no
     DISCRET file is written for it (error naming the cause), the figure says so."""
     from fretwear.errors import RangeWarning
@@ -688,3 +688,34 @@ def test_more_wear_never_closes_the_clearance(vm, vo, factor, shape, circle):
     b = update_obstacle(obst, Mobile(RM, RM), 6, factor * vm, factor * vo, **kw)
     assert (a.clearance_worn >= a.clearance_initial - 1e-15).all()
     assert (b.clearance_worn >= a.clearance_worn - 1e-15).all()
+
+
+def test_discret_table_of_code_aster_with_theta_in_radians(tmp_path):
+    """Code_Aster's DEFI_OBSTACLE(TYPE='DISCRET', VALE=(θ°, r, ...)) stores R = f(THETA) with THETA
+    in radians (op0073: THETA·r8dgrd); IMPR_FONCTION prints it 0 … 6.28319 (%12.5E), the value
+    column labelled R_0. Read as the same obstacle as the degree table (0.5 mm, a new one)."""
+    theta = np.radians(np.arange(721) * 0.5)
+    lines = ["#", "#" + "-" * 80, "### ", "## ", "## Courbe 0", "## OBST_INITIAL",
+             "THETA        R_0"]
+    lines += [f"{t:12.5E} {5e-4:12.5E}" for t in theta]
+    path = tmp_path / "obstacle.txt"
+    path.write_text("\n".join(lines) + "\n")
+    d = read_discret(path, mobile_radius=RM)
+    assert d.angles.size == 720 and d.angles[0] == 0.0
+    assert d.angles[1] == pytest.approx(0.5, abs=1e-3)  # 8.72665E-03 rad printed
+    assert d.angles[-1] == pytest.approx(359.5, abs=1e-3)
+    np.testing.assert_array_equal(d.gaps, 5e-4)
+    # the same numbers in degrees are read as degrees
+    path.write_text("\n".join(lines[:6] + ["THETA R"] + [f"{a:12.5E} {5e-4:12.5E}"
+                                                        for a in np.arange(721) * 0.5]) + "\n")
+    assert read_discret(path, mobile_radius=RM).angles[1] == 0.5
+    # a span too short to tell is refused, naming the fix
+    path.write_text("THETA JEU\n0 5e-4\n1 5e-4\n2 5e-4\n")
+    from fretwear.errors import FormatError
+
+    with pytest.raises(FormatError, match=r"the unit is ambiguous; give angle_unit='deg' or "
+                                          r"'rad' \(Code_Aster's DEFI_OBSTACLE stores THETA in "
+                                          r"radians\)"):
+        read_discret(path)
+    assert read_discret(path, angle_unit="deg").angles.tolist() == [0.0, 1.0, 2.0]
+    assert read_discret(path, angle_unit="rad").angles[1] == pytest.approx(57.29577951308232)

@@ -453,6 +453,14 @@ _ALIASES = {"THETA": "THETA", "ANGLE": "THETA", "ANGLE_DEG": "THETA",
             "JEU": "JEU", "GAP": "JEU", "R": "R", "RAYON": "RADIUS", "RADIUS": "RADIUS"}
 
 
+def _column_name(cell: str) -> str:
+    """The DISCRET name of a column (IMPR_FONCTION's ``_<curve number>`` suffix dropped)."""
+    name = cell.strip('"').upper()
+    if name not in _ALIASES:
+        name = re.sub(r"_\d+$", "", name)
+    return _ALIASES.get(name, name)
+
+
 def _theta_degrees(theta: np.ndarray, unit: str | None, label: str) -> np.ndarray:
     """THETA in degrees: given in ``unit`` ('deg'/'rad'), or recognised from its range.
 
@@ -530,7 +538,7 @@ def read_discret(path, *, mobile_radius: float | None = None,
             continue
         cells = line.replace(",", " ").replace(";", " ").split()
         if names is None:
-            names = [_ALIASES.get(c.strip('"').upper(), c.upper()) for c in cells]
+            names = [_column_name(c) for c in cells]
             if "THETA" not in names or not ({"JEU", "R", "RADIUS"} & set(names)):
                 raise FormatError(
                     f"{p}: line {lineno}: the column names {cells} need THETA (angle [deg]) and "
