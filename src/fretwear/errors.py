@@ -31,6 +31,11 @@ class DatabaseError(InputError):
     """A coefficient is not in the database (unknown pair, empty box)."""
 
 
+class MissingDependencyError(FretwearError, ImportError):
+    """An optional package is not installed (or cannot be imported); the message names the
+    extra that installs it (``pip install 'fretwear[formats]'``). See :mod:`fretwear._optional`."""
+
+
 class StabilityError(FretwearError, ValueError):
     """A time step is too large for the explicit scheme to be stable."""
 

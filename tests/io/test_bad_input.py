@@ -11,7 +11,13 @@ import numpy as np
 import pytest
 from iohelpers import analytic_history
 
-from fretwear.errors import FormatError, HistoryError, InputError, KeywordError
+from fretwear.errors import (
+    FormatError,
+    HistoryError,
+    InputError,
+    KeywordError,
+    MissingDependencyError,
+)
 from fretwear.io import guess_format, read_history, write_history
 
 GOOD = "INST,FN,VT1,VT2\n0.0,1.0,0.1,0.0\n0.1,2.0,0.1,0.0\n0.2,0.0,0.1,0.0\n"
@@ -150,11 +156,13 @@ def test_missing_optional_dependency_names_the_extra(tmp_path, monkeypatch):
     path = write_history(analytic_history(n=5), tmp_path / "h.parquet")
     for module in ("pyarrow", "pyarrow.parquet"):
         monkeypatch.setitem(sys.modules, module, None)  # import now raises ImportError
-    with pytest.raises(FormatError, match=r"reading Parquet needs the optional package "
-                                          r"'pyarrow.parquet': pip install 'fretwear\[formats\]'"):
+    with pytest.raises(MissingDependencyError,
+                       match=r"reading Parquet needs the optional package 'pyarrow.parquet': "
+                             r"pip install 'fretwear\[formats\]'"):
         read_history(path)
     monkeypatch.setitem(sys.modules, "h5py", None)
-    with pytest.raises(FormatError, match=r"writing HDF5 needs the optional package 'h5py'"):
+    with pytest.raises(MissingDependencyError,
+                       match=r"writing HDF5 needs the optional package 'h5py'"):
         write_history(analytic_history(n=5), tmp_path / "h.h5")
     assert not (tmp_path / "h.h5").exists()
 

@@ -16,37 +16,21 @@ only when a file of theirs is read or written.
 
 from __future__ import annotations
 
-import importlib
 import json
 import os
 from collections.abc import Iterator
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
 
+from fretwear._optional import require
 from fretwear.errors import FormatError
 from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.io.channels import Source, check_lengths
 
 _NPZ_META = "__fretwear__"
-
-
-def require(module: str, what: str) -> ModuleType:
-    """Import an optional dependency or raise a :class:`FormatError` naming the extra to install.
-
-    Examples
-    --------
-    >>> require("json", "JSON").__name__
-    'json'
-    """
-    try:
-        return importlib.import_module(module)
-    except ImportError:
-        raise FormatError(f"{what} needs the optional package {module!r}: "
-                          "pip install 'fretwear[formats]'") from None
 
 
 def _decode(value: Any) -> str:
@@ -84,7 +68,7 @@ def open_parquet(path: str | os.PathLike) -> Source:
     >>> src.columns, src.units[1], src.read([1])[0].tolist()
     (['time', 'normal_force', 'vt1', 'vt2'], 'N', [2.0, 3.0])
     """
-    pq = require("pyarrow.parquet", "reading Parquet")
+    pq = require("pyarrow.parquet", purpose="reading Parquet")
     path = Path(path)
     try:
         schema = pq.read_schema(path)
@@ -145,8 +129,8 @@ def write_parquet(history: ContactHistory, path: str | os.PathLike, *,
     >>> pq.read_schema(p).field("vt1").metadata[b"units"]
     b'm/s'
     """
-    pa = require("pyarrow", "writing Parquet")
-    pq = require("pyarrow.parquet", "writing Parquet")
+    pa = require("pyarrow", purpose="writing Parquet")
+    pq = require("pyarrow.parquet", purpose="writing Parquet")
     fields = [pa.field(ch, pa.float64(), metadata={"units": UNITS[ch],
                                                    "description": DESCRIPTIONS[ch]})
               for ch in history.channels]
@@ -205,7 +189,7 @@ def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
     >>> src.name, src.columns, src.units[0]
     ('N1', ['time', 'normal_force', 'vt1', 'vt2'], 's')
     """
-    h5 = require("h5py", "reading HDF5")
+    h5 = require("h5py", purpose="reading HDF5")
     path = Path(path)
     try:
         handle = h5.File(path, "r")
@@ -262,7 +246,7 @@ def write_hdf5(history: ContactHistory, path: str | os.PathLike, *,
     ...     print(list(f["history"]), f["history/normal_force"].attrs["units"])
     ['time', 'normal_force', 'vt1', 'vt2'] N
     """
-    h5 = require("h5py", "writing HDF5")
+    h5 = require("h5py", purpose="writing HDF5")
     with atomic_path(path) as tmp, h5.File(tmp, "w", track_order=True) as f:
         grp = f.create_group(group, track_order=True) if group not in ("", "/") else f
         grp.attrs["name"] = history.name
@@ -287,7 +271,7 @@ def open_netcdf(path: str | os.PathLike) -> Source:
     >>> src.name, src.columns, src.units[3]
     ('N1', ['time', 'normal_force', 'vt1', 'vt2'], 'm/s')
     """
-    nc = require("netCDF4", "reading NetCDF")
+    nc = require("netCDF4", purpose="reading NetCDF")
     path = Path(path)
     try:
         ds = nc.Dataset(path, "r")
@@ -352,7 +336,7 @@ def write_netcdf(history: ContactHistory, path: str | os.PathLike) -> Path:
     ...     print(ds.variables["time"].units, ds.dimensions["time"].size)
     s 2
     """
-    nc = require("netCDF4", "writing NetCDF")
+    nc = require("netCDF4", purpose="writing NetCDF")
     with atomic_path(path) as tmp:
         with nc.Dataset(tmp, "w", format="NETCDF4") as ds:
             ds.createDimension("time", len(history))
