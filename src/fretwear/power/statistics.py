@@ -68,13 +68,13 @@ class ContactStatistics:
     impact_count : int
         Number of impacts [-].
     impact_duration_mean, impact_duration_max : float
-        Mean and largest impact duration [s] (NaN without impacts).
+        Mean and largest impact duration [s] (0 without impacts, Code_Aster's convention).
     force_max : float
         Largest normal force in the window [N].
     impact_peak_force_mean : float
-        Mean over impacts of each impact's largest force [N] (NaN without impacts).
+        Mean over impacts of each impact's largest force [N] (0 without impacts).
     force_mean_contact, force_rms_contact : float
-        Mean and RMS of Fn over the contact time [N] (NaN without contact).
+        Mean and RMS of Fn over the contact time [N] (0 without contact).
     force_mean, force_rms : float
         Mean and RMS of Fn over the whole window [N].
     sliding_distance : float
@@ -91,6 +91,11 @@ class ContactStatistics:
     force_mean_contact = ∫_c Fn dt / t_c, force_rms_contact = √(∫_c Fn² dt / t_c) with t_c the
     contact time; force_mean and force_rms use the whole window and T. The integrals are exact for
     the piecewise-linear force: ∫ Fn² dt = Δt (F_a² + F_a F_b + F_b²)/3 on each piece.
+
+    Without contact (or without impacts) the contact-time means and the impact durations and
+    peaks are 0, as Code_Aster's POST_DYNA_MODA_T writes them (``statch``: T_CHOC_MOYEN,
+    T_CHOC_MAXI = 0 when no shock is counted; ``fstat0``: MOYEN_T_CHOC, RMS_T_CHOC = 0;
+    ``impact``: F_MAX_MOY = 0), not NaN: a table of many shock points then sums and plots.
 
     Examples
     --------
@@ -256,7 +261,7 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
         dmax = max([groups[11], *durs])
         pmean = (groups[12] + sum(peaks)) / count
     else:
-        dmean = dmax = pmean = math.nan
+        dmean = dmax = pmean = 0.0  # Code_Aster's convention (statch, impact)
     with np.errstate(invalid="ignore", divide="ignore"):
         return ContactStatistics(
             duration=T,
@@ -267,8 +272,8 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
             impact_duration_max=float(dmax),
             force_max=float(force_max),
             impact_peak_force_mean=float(pmean),
-            force_mean_contact=float(tot[1] / ct) if ct > 0 else math.nan,
-            force_rms_contact=math.sqrt(tot[2] / ct) if ct > 0 else math.nan,
+            force_mean_contact=float(tot[1] / ct) if ct > 0 else 0.0,  # fstat0's convention
+            force_rms_contact=math.sqrt(tot[2] / ct) if ct > 0 else 0.0,
             force_mean=float(tot[3] / T),
             force_rms=math.sqrt(max(float(tot[4]), 0.0) / T),
             sliding_distance=float(tot[5]),
