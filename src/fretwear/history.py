@@ -24,6 +24,7 @@ from types import MappingProxyType
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from fretwear.errors import HistoryError
 
@@ -252,8 +253,6 @@ class ContactHistory:
 
     def to_frame(self):
         """The channels as a :class:`pandas.DataFrame` with canonical column names (SI units)."""
-        import pandas as pd
-
         return pd.DataFrame({ch: np.array(getattr(self, ch)) for ch in self.channels})
 
     @classmethod

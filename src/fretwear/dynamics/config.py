@@ -40,11 +40,12 @@ from typing import Any
 
 import numpy as np
 
-from fretwear.keys import check_keys
 from fretwear.dynamics.excitation import BaseAcceleration, NodalForce, Signal
 from fretwear.dynamics.modal import ModalModel, uniform_beam_modes
 from fretwear.dynamics.shocks import Shock
 from fretwear.errors import InputError, KeywordError
+from fretwear.keys import check_keys
+from fretwear.obstacle.profiles import read_discret
 
 _NUM = (int, float)
 _SIGNAL_KEYS = {
@@ -287,8 +288,6 @@ def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> Dynam
         if is_case:  # placeholder until the case's profile is known
             kind, extra = "circle", {"gap": 1.0}
         elif kind == "profile":
-            from fretwear.obstacle.profiles import read_discret
-
             prof = read_discret(_path(directory, _need(item, "profile_file", where,
                                                        "dynamics.shocks")))
             extra = {"profile_angles": prof.angles, "profile_gaps": prof.gaps}

@@ -18,7 +18,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
+from fretwear._optional import require
 from fretwear.dynamics import _kernel as K
 from fretwear.dynamics.excitation import BaseAcceleration, NodalForce
 from fretwear.dynamics.modal import DIRECTIONS, ModalModel
@@ -158,8 +160,7 @@ class DynamicsResult:
         if self._histories is None:
             self._histories = [None] * len(self.shock_names)
         if self._histories[shock] is None:
-            import pandas as pd
-
+            require("pyarrow.parquet", purpose="reading the dynamics' Parquet histories")
             name = self.shock_names[shock]
             self._histories[shock] = ContactHistory.from_frame(
                 pd.read_parquet(self.files[name]), name=name,
@@ -423,10 +424,10 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
     files: dict[str, Path] | None = None
     with contextlib.ExitStack() as stack:
         writers = None
-        if output_dir is not None:
-            import pyarrow as pa
-            import pyarrow.parquet as pq
-
+        if output_dir is not None:  # pyarrow only when streaming to Parquet
+            pa = require("pyarrow", purpose="streaming the dynamics to Parquet (output_dir)")
+            pq = require("pyarrow.parquet",
+                         purpose="streaming the dynamics to Parquet (output_dir)")
             out_dir = Path(output_dir)
             files = {nm: out_dir / f"{nm}.parquet" for nm in names}
             schema = pa.schema([(c, pa.float64()) for c in CHANNELS])
@@ -449,8 +450,6 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
                     f"(limit estimate {hcrit:.4g} s); reduce time_step"
                     + (" or disable adaptive" if adaptive else ""))
             if writers is not None:
-                import pyarrow as pa
-
                 for i, w in enumerate(writers):
                     w.write_table(pa.table({c: out[:, i, j] for j, c in enumerate(CHANNELS)}))
             else:

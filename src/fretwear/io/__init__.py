@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from fretwear._optional import optional
 from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.history import CHANNELS, DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import aster as _aster
@@ -139,12 +140,13 @@ def guess_format(path: str | os.PathLike) -> str:
     if head.startswith(b"\x89HDF\r\n\x1a\n"):
         if suffix in FORMATS["netcdf"].suffixes:
             return "netcdf"
+        h5py = optional("h5py")
+        if h5py is None:
+            return "hdf5"
         try:
-            import h5py
-
             with h5py.File(path, "r") as f:
                 return "netcdf" if "_NCProperties" in f.attrs else "hdf5"
-        except (ImportError, OSError):
+        except OSError:
             return "hdf5"
     if head[:4] in (b"CDF\x01", b"CDF\x02", b"CDF\x05"):
         return "netcdf"

@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from fretwear._optional import optional
 from fretwear.errors import FormatError, InputError
 from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
 from fretwear.io.aster import GZIP_MAGIC
@@ -270,17 +271,10 @@ def write_csv(history: ContactHistory, path: str | os.PathLike, *,
             frame.to_csv(handle, index=False, header=False, float_format=float_format,
                          sep=delimiter, lineterminator="\n")
         return target
-    arrow = None
-    if float_format is None:
-        try:
-            import pyarrow
-            import pyarrow.csv
-
-            arrow = (pyarrow, pyarrow.csv)
-        except ImportError:
-            arrow = None
-    if arrow is not None:
-        pa, pacsv = arrow
+    # pyarrow's CSV writer when installed (exact shortest round-trip), else pandas'
+    pa = optional("pyarrow") if float_format is None else None
+    pacsv = optional("pyarrow.csv") if pa is not None else None
+    if pacsv is not None:
         with atomic_write(target, "wb") as handle:
             handle.write(("\n".join(lines) + "\n").encode("utf-8"))
             pacsv.write_csv(pa.Table.from_pandas(frame, preserve_index=False), handle,

@@ -27,9 +27,11 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from fretwear.errors import HistoryError, InputError, LawWarning
 from fretwear.history import DEFAULT_CHUNK_SIZE
+from fretwear.io import iter_history_chunks
 
 #: Number of classes per axis.
 N_CLASSES = 5
@@ -288,8 +290,6 @@ class KwuEpriStatistics:
 
     def to_frame(self):
         """The 25 classes as a long :class:`pandas.DataFrame` (one row per class, SI units)."""
-        import pandas as pd
-
         v, f = np.meshgrid(np.arange(1, N_CLASSES + 1), np.arange(1, N_CLASSES + 1), indexing="ij")
         vi, fi = v.ravel() - 1, f.ravel() - 1
         return pd.DataFrame({
@@ -308,8 +308,6 @@ class KwuEpriStatistics:
 
     def share_table(self):
         """The 5×5 shares p_vf as a DataFrame, rows speed classes, columns force classes."""
-        import pandas as pd
-
         return pd.DataFrame(self.shares, index=pd.Index(range(1, 6), name="speed_class"),
                             columns=pd.Index(range(1, 6), name="force_class"))
 
@@ -503,8 +501,6 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     options = dict(t_start=t_start, t_end=t_end, force_max=force_max, speed_max=speed_max,
                    impact_factor=impact_factor, sliding_factor=sliding_factor, k=k, c=c)
     if isinstance(history, str | os.PathLike):
-        from fretwear.io import iter_history_chunks
-
         return _from_chunks(
             lambda: iter_history_chunks(history, chunk_size, **read_options), options)
     if read_options:

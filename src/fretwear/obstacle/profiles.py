@@ -50,6 +50,8 @@ import numpy as np
 
 from fretwear.errors import FormatError, InputError
 from fretwear.io.atomic import atomic_write
+from fretwear.obstacle.clearance import clearance_figure, polar_polygon
+from fretwear.obstacle.dilation import dilated_radius
 
 #: Angular step [deg] and number of points of Code_Aster's DEFI_OBSTACLE 'DISCRET' table.
 DISCRET_STEP = 0.5
@@ -146,8 +148,6 @@ class _Obstacle:
         >>> [round(float(c), 9) for c in p.clearance([0.0, 60.0])]
         [0.0005, 0.001]
         """
-        from fretwear.obstacle.clearance import clearance_figure, polar_polygon
-
         rm = self.mobile_radius
         if rm is None:
             raise InputError("the clearance of the new mobile needs the obstacle's mobile_radius")
@@ -377,8 +377,6 @@ class DiscreteObstacle(_Obstacle):
                 "this discrete obstacle has no mobile_radius: give it (mobile_radius=...) to "
                 "turn gaps into radii")
         if self.clearance_figure:
-            from fretwear.obstacle.dilation import dilated_radius
-
             return dilated_radius(angle, self.angles, self.gaps, self.mobile_radius)
         return self.mobile_radius + self.gap(angle)
 

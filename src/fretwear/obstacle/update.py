@@ -17,8 +17,10 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, PerforationWarning
+from fretwear.io.aster import write_aster_table
+from fretwear.io.atomic import atomic_write
 from fretwear.obstacle.clearance import RESOLUTION, clearance_figure, polar_polygon
-from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, worn_depth_profiles
+from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, sector_of, worn_depth_profiles
 from fretwear.obstacle.profiles import (
     DISCRET_STEP,
     DiscreteObstacle,
@@ -26,8 +28,8 @@ from fretwear.obstacle.profiles import (
     discret_angles,
     write_discret,
 )
-from fretwear.table import read_wear_table
 from fretwear.sectors import sector_edges
+from fretwear.table import read_wear_table
 
 #: Native column -> Code_Aster column of the wear table columns read here.
 WEAR_COLUMNS: dict[str, str] = {
@@ -231,8 +233,6 @@ class ObstacleResult:
         CSV, else TABLEAU). The Code_Aster table uses THETA, JEU_INIT, JEU_USE, P_USUR_TUBE,
         P_USUR_OBST.
         """
-        from fretwear.io.atomic import atomic_write
-
         target = Path(path)
         fmt = (format or ("csv" if target.suffix.lower() == ".csv" else "TABLEAU")).upper()
         frame = self.to_frame()
@@ -242,8 +242,6 @@ class ObstacleResult:
             return target
         if fmt not in ("TABLEAU", "ASTER"):
             raise InputError(f"unknown profile table format {format!r}; use csv, TABLEAU or ASTER")
-        from fretwear.io.aster import write_aster_table
-
         aster = frame.rename(columns={k: v for k, (v, _) in PROFILE_COLUMNS.items()})
         title = "fretwear obstacle update (MODI_OBSTACLE)" + (
             f" at INST = {self.instant:g}" if self.instant is not None else "")
@@ -276,8 +274,6 @@ def _check_perforation(depth: WornDepth, mobile: Mobile, fraction: float) -> tup
     limit = fraction * mobile.wall_thickness
     e = depth.edges
     fine = np.linspace(-180.0, 180.0, 7201)
-    from fretwear.obstacle.depth import sector_of
-
     idx = sector_of(fine, e)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -30,6 +30,7 @@ import numpy as np
 
 from fretwear.errors import HistoryError, InputError, KeywordError, StationarityWarning
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
+from fretwear.io import iter_history_chunks, read_history
 from fretwear.power.kernels import BLOCK_STATS, GROUP_FIELDS, fused
 from fretwear.sectors import sector_edges as _sector_edges
 from fretwear.power.statistics import ContactStatistics, _jsonable, finalize_statistics, merge_groups
@@ -370,8 +371,6 @@ class PowerAccumulator:
 
 def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float]:
     """First and last instant [s] of a history file (one streaming pass)."""
-    from fretwear.io import iter_history_chunks
-
     first = last = None
     for chunk in iter_history_chunks(path, chunk_size, **read_options):
         if first is None:
@@ -488,8 +487,6 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
     if _is_read_whole(history):
         # a set of IMPR_FONCTION files ({channel: file} or [file, ...]) or an in-memory table:
         # read whole (text functions cannot be streamed), aliases and units applied
-        from fretwear.io import read_history
-
         history = read_history(history, **read_options)
         read_options = {}
     if isinstance(history, ContactHistory):
@@ -503,8 +500,6 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         acc = PowerAccumulator(**opts)
         acc.update(history)
     elif isinstance(history, str | os.PathLike):
-        from fretwear.io import iter_history_chunks
-
         needs_range = (isinstance(blocks, int | np.integer) and not isinstance(blocks, bool)
                        and blocks > 1)
         if needs_range and (t_start is None or t_end is None):

@@ -38,10 +38,13 @@ classification (:mod:`fretwear.power.reference`), so that both paths always agre
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 
+from fretwear._optional import optional
+from fretwear.errors import KeywordError
 from fretwear.power.reference import (  # noqa: F401 - re-exported
     _NGROUP,
     _NSTAT,
@@ -52,13 +55,8 @@ from fretwear.power.reference import (  # noqa: F401 - re-exported
     reference_sector_index,
 )
 
-try:  # pragma: no cover - depends on the environment
-    import numba
-
-    HAVE_NUMBA = True
-except ImportError:  # pragma: no cover
-    numba = None
-    HAVE_NUMBA = False
+numba = optional("numba")  # extra "fast"; without it the numpy kernel runs
+HAVE_NUMBA = numba is not None
 
 #: Half-width of the ambiguity band around an edge, in pseudo-angle units (≈ rad).
 AMBIGUITY = 1e-11
@@ -142,8 +140,6 @@ def sector_table(edges: np.ndarray) -> SectorTable:
 
 
 if HAVE_NUMBA:
-    import math
-
     @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
     def _at(g0, g1, t0, t1, x):
         if x == t0:
@@ -548,7 +544,5 @@ def fused(backend: str = "auto"):
     try:
         return BACKENDS[backend]
     except KeyError:
-        from fretwear.errors import KeywordError
-
         raise KeywordError(
             f"unknown backend {backend!r}; choose one of {['auto', *BACKENDS]}") from None

@@ -24,6 +24,7 @@ Conventions of the table (one row per instant, or per instant and sector):
 from __future__ import annotations
 
 import os
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -41,7 +42,6 @@ from fretwear.laws import WEAR_LAWS
 from fretwear.power import wear_power
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _initial_state
-
 from fretwear.table.schema import (  # noqa: F401 - re-exported
     _TIME_TOL,
     COLUMNS,
@@ -435,8 +435,6 @@ def _sector_frame(head, result, law, mobile, obstacle, sector_coefficients, stat
         cols["volume_mobile_cumulated"].append(vm)
         cols["volume_obstacle_cumulated"].append(vo)
     if unradiused:
-        import warnings
-
         warnings.warn(f"sectors {unradiused}: the obstacle wears but {geometry.contact_type} has "
                       "no obstacle_radius (RAYON_OBST): their obstacle sector depth is NaN",
                       RangeWarning, stacklevel=3)
