@@ -21,7 +21,7 @@ stability limits 2/ω_contact ≈ 1.4 ms (contact frequency √((k + k_c)/m)/2π
 2m·v_reg/(μ·Fn_max) for the friction regularisation (checked at run time). One second of
 warm-up is discarded; 3 s are archived at 5 kHz.
 
-Archived channels (SPEC §1, SI units, shock-local frame): ``time`` [s], ``normal_force`` [N],
+Archived channels (theory §1, SI units, shock-local frame): ``time`` [s], ``normal_force`` [N],
 ``ft1``, ``ft2`` [N] (friction on the tube along e1, e2), ``vn`` [m/s] (``v·n``, positive moving
 into the obstacle), ``vt1``, ``vt2`` [m/s] (sliding velocity along e1, e2), ``dy``, ``dz`` [m]
 (section displacement, whose angle ``atan2(dz, dy)`` is the contact angle), ``stick`` [-].

@@ -1,4 +1,4 @@
-"""Code_Aster compatibility: POST_USURE keywords, catalogue rules, table files (SPEC §1, §7).
+"""Code_Aster compatibility: POST_USURE keywords, catalogue rules, table files (theory §1, §7).
 
 The catalogue rules are those of Code_Aster's POST_USURE command (U4.84.05): exactly one of
 PUIS_USURE / RESU_GENE / TUBE_NEUF, exactly one of MOBILE / MATER_USURE / SECTEUR, MATER_USURE
@@ -32,8 +32,8 @@ def call(**changes):
 
 
 def history():
-    """Constant Fn = 20 N, ‖Vt‖ = 0.05 m/s: P = 1 W (SPEC §2); first 4 intervals at 45°
-    (sector 2 of 2), the last 4 at −135° (sector 1): P_1 = P_2 = 0.5 W (SPEC §3)."""
+    """Constant Fn = 20 N, ‖Vt‖ = 0.05 m/s: P = 1 W (theory §2); first 4 intervals at 45°
+    (sector 2 of 2), the last 4 at −135° (sector 1): P_1 = P_2 = 0.5 W (theory §3)."""
     n = 9
     angle = np.where(np.arange(n) < 4, 45.0, -135.0)
     return ContactHistory(time=np.linspace(0, 8, n), normal_force=np.full(n, 20.0),
@@ -44,11 +44,11 @@ def history():
 # --------------------------------------------------------------------------- values
 def test_archard_power_values_and_column_names():
     t = call()
-    v = 1.2e-13 * 0.012 * YEAR * np.array([1.0, 2.0])  # V = K·P·t, SPEC §4
+    v = 1.2e-13 * 0.012 * YEAR * np.array([1.0, 2.0])  # V = K·P·t, theory §4
     np.testing.assert_allclose(t["V_USUR_TUBE"], v, rtol=1e-15)
     assert t.columns.tolist() == ["INST", "DUREE", "ORIG_INST", "PUIS_USUR_GLOBAL", "V_USUR_TUBE",
                                  "V_USUR_OBST", "P_USUR_TUBE"]  # no obstacle depth: no column
-    d = (1 / (2 * 0.0111)) ** (1 / 3) * (3 * v / (4 * 0.0127)) ** (2 / 3)  # SPEC §6 TUBE_BAV
+    d = (1 / (2 * 0.0111)) ** (1 / 3) * (3 * v / (4 * 0.0127)) ** (2 / 3)  # theory §6 TUBE_BAV
     np.testing.assert_allclose(t["P_USUR_TUBE"], d, rtol=1e-9)
     with_obst = call(OBSTACLE=_F(COEF_USURE=1e-14))
     assert "P_USUR_OBST" in with_obst.columns and (with_obst["P_USUR_OBST"] > 0).all()
@@ -71,17 +71,17 @@ def test_resu_gene_sectors_one_row_per_instant_and_sector():
                          COEF_USUR_OBST=1e-14, CONTACT="TUBE_BAV"),
                       _F(ANGL_INIT=0.0, ANGL_FIN=180.0, COEF_USUR_MOBILE=2e-13)))
     assert t["SECTEUR"].tolist() == [1, 2, 1, 2]
-    expected = np.array([1e-13, 2e-13]) * 0.5 * 3600.0 * 2.0  # V_j = k_j·P_j·t, SPEC §3
+    expected = np.array([1e-13, 2e-13]) * 0.5 * 3600.0 * 2.0  # V_j = k_j·P_j·t, theory §3
     np.testing.assert_allclose(t["V_USUR_TUBE_CUMU"].iloc[2:], expected, rtol=1e-12)
     np.testing.assert_allclose(t["V_USUR_OBST_CUMU"].iloc[2:], [1e-14 * 3600.0, 0.0], rtol=1e-12)
     assert {"P_USUR_TUBE_SECT", "ANGLE_DEBUT", "ANGLE_FIN", "P_USUR_OBST"} <= set(t.columns)
-    # TUBE_BAV's bar is flat: no sector depth of the obstacle exists (SPEC §3 needs R_o)
+    # TUBE_BAV's bar is flat: no sector depth of the obstacle exists (theory §3 needs R_o)
     assert "P_USUR_OBST_SECT" not in t.columns
 
 
 def test_sector_obstacle_depth_of_a_bore():
     """GRAPPE_ALESAGE sectors: P_USUR_OBST_SECT = √(R_o² + 2V/(l·Δθ)) − R_o and
-    P_USUR_TUBE_SECT = R_m − √(R_m² − 2V/(l·Δθ)), Δθ = π rad (SPEC §3), V = k·P_j·t."""
+    P_USUR_TUBE_SECT = R_m − √(R_m² − 2V/(l·Δθ)), Δθ = π rad (theory §3), V = k·P_j·t."""
     r_m, r_o, width = 4.84e-3, 5.25e-3, 0.02
     t = POST_USURE(RESU_GENE=history(), LOI_USURE="ARCHARD", CONTACT="GRAPPE_ALESAGE",
                    RAYON_MOBILE=r_m, RAYON_OBST=r_o, LARGEUR_OBST=width, INST=5.0,
@@ -102,14 +102,14 @@ def test_sector_obstacle_depth_of_a_bore():
 
 
 def edf(power, t, a=1e-13, b=1.2, n=2.44e-8, s=1.14e-16):
-    """SPEC §4 EDF_MZ volume [m³]."""
+    """Theory §4 EDF_MZ volume [m³]."""
     return (a * power**b - s) / n * (1 - np.exp(-n * t)) + s * t
 
 
 def test_every_keyword_of_the_catalogue_is_accepted():
     """EDF_MZ with every coefficient keyword in MOBILE and OBSTACLE, a RESU_GENE window and
-    blocks, GROUP_NO, a tilted TUBE_BAV, TITRE, INFO: V from SPEC §4 with P = 1 W (the
-    history's constant power, SPEC §2), D = (1/(2R_m))^(1/5)·(15θV/8)^(2/5) (SPEC §6, tilt,
+    blocks, GROUP_NO, a tilted TUBE_BAV, TITRE, INFO: V from theory §4 with P = 1 W (the
+    history's constant power, theory §2), D = (1/(2R_m))^(1/5)·(15θV/8)^(2/5) (theory §6, tilt,
     D < l·θ) split d_m = D·V_m/V."""
     mob = dict(COEF_USURE=2e-16, COEF_B=1.1, COEF_N=3e-8, COEF_S=1e-17)
     obs = dict(COEF_USURE=5e-17, COEF_B=1.0, COEF_N=2e-8, COEF_S=2e-18)
@@ -235,7 +235,7 @@ def test_read_hand_written_tableau_fixture():
 
 
 def test_etat_init_from_code_aster_tableau_file():
-    """New rows: V = V_file(INST=2) + K·P·Δt (SPEC §7), from the file's printed value."""
+    """New rows: V = V_file(INST=2) + K·P·Δt (theory §7), from the file's printed value."""
     t = call(ETAT_INIT=_F(TABL_USURE=str(FIXTURES / "post_usure_tableau.txt")),
              INST=(1.0, 3.0))
     assert t["INST"].tolist() == [1.0, 2.0, 3.0, 5.0]
@@ -255,7 +255,7 @@ def test_etat_init_from_code_aster_tableau_file():
 @pytest.mark.filterwarnings(
     "ignore:sectors .*obstacle_radius:fretwear.errors.RangeWarning")
 def test_etat_init_from_code_aster_sector_file():
-    """Cumulated sector volumes continue from the ASTER-format file's V_USUR_*_CUMU (SPEC §7)."""
+    """Cumulated sector volumes continue from the ASTER-format file's V_USUR_*_CUMU (theory §7)."""
     path = FIXTURES / "post_usure_secteurs.resu"
     sect = dict(PUIS_USURE=None, RESU_GENE=history(), MOBILE=None, COEF_INST=3600.0,
                 SECTEUR=(_F(ANGL_INIT=-180.0, ANGL_FIN=0.0, COEF_USUR_MOBILE=1e-13,
@@ -333,7 +333,7 @@ def test_mater_usure_and_usure_obst_from_the_database():
 
 
 def test_kwu_epri_keywords_reach_the_class_statistics():
-    """K = COEF_USURE·w (w_r = 1, SPEC §4), w from kwu_epri_statistics with the same
+    """K = COEF_USURE·w (w_r = 1, theory §4), w from kwu_epri_statistics with the same
     FNOR_MAXI, VTAN_MAXI, COEF_K, COEF_C (an independent call of the laws module)."""
     from fretwear.laws import kwu_epri_statistics
 
@@ -350,7 +350,7 @@ def test_kwu_epri_keywords_reach_the_class_statistics():
 
 
 def test_resu_gene_as_a_file(tmp_path):
-    """A history file gives the same table as the history itself (P = 1 W, SPEC §2)."""
+    """A history file gives the same table as the history itself (P = 1 W, theory §2)."""
     from fretwear.io import write_history
 
     path = tmp_path / "shock.csv"

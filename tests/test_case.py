@@ -1,8 +1,9 @@
 """TOML case files: keys, validation, typo errors, run_case (docs/case_files.md).
 
-Expected values: Archard V = K·P·t (SPEC §4) with the time units of fretwear.workflows.case_files.TIME_UNITS
-(a year is 365 days = 31 536 000 s, Code_Aster users' COEF_INST); chunked power equals the
-one-shot wear_power (the trapezoid reduction is exact over chunks sharing a sample, SPEC §2).
+Expected values: Archard V = K·P·t (theory §4) with the time units of
+fretwear.workflows.case_files.TIME_UNITS (a year is 365 days = 31 536 000 s, Code_Aster users'
+COEF_INST); chunked power equals the one-shot wear_power (the trapezoid reduction is exact over
+chunks sharing a sample, theory §2).
 """
 
 from pathlib import Path
@@ -114,7 +115,7 @@ def test_every_key_is_documented():
 
 
 def test_chunked_power_equals_one_shot():
-    """Chunks sharing a sample give the same trapezoid sums as one pass (SPEC §2)."""
+    """Chunks sharing a sample give the same trapezoid sums as one pass (theory §2)."""
     from fretwear.power import wear_power
 
     rng = np.random.default_rng(3)
@@ -135,8 +136,8 @@ def test_chunked_power_equals_one_shot():
 
 
 def test_history_file_with_units(tmp_path):
-    """Fn = 10 N, sliding 30 and 40 mm/s (‖Vt‖ = 0.05 m/s) all the time: P = 0.5 W (SPEC §2);
-    Archard V = K·P·t (SPEC §4)."""
+    """Fn = 10 N, sliding 30 and 40 mm/s (‖Vt‖ = 0.05 m/s) all the time: P = 0.5 W (theory §2);
+    Archard V = K·P·t (theory §4)."""
     rows = "\n".join(f"{t:.1f},10.0,30.0,40.0" for t in np.arange(0.0, 2.01, 0.1))
     (tmp_path / "h.csv").write_text("time,normal_force,vt1,vt2\n" + rows + "\n",
                                     encoding="utf-8")
@@ -161,7 +162,7 @@ unit = "h"
 
 def test_kwu_epri_case_computes_the_power_once(tmp_path, monkeypatch):
     """KWU_EPRI needs the history's classes, not a second power computation: the table equals
-    wear_table on the history itself (independent path, SPEC §2/§4)."""
+    wear_table on the history itself (independent path, theory §2/§4)."""
     import fretwear.power
     from fretwear.table import wear_table
 
@@ -201,7 +202,7 @@ unit = "h"
 
 def test_restart_from_a_multi_table_code_aster_file(tmp_path):
     """Two tables in one IMPR_TABLE file (the hand-written fixture, then a copy with the volumes
-    doubled): [restart] table_index picks one; V = V_file(INST=2) + K·P·Δt (SPEC §7, §4)."""
+    doubled): [restart] table_index picks one; V = V_file(INST=2) + K·P·Δt (theory §7, §4)."""
     fixture = Path(__file__).parent / "fixtures" / "aster_tables" / "post_usure_tableau.txt"
     text = fixture.read_text(encoding="utf-8")
     doubled = text.replace("4.54118E-08", "9.08236E-08").replace("9.08237E-08", "1.81647E-07")
@@ -239,7 +240,7 @@ HEADER = "contact_type,mobile_material,obstacle_material,law,parameter,value,uni
 
 def test_law_database_files_relative_to_the_case(tmp_path):
     """Seed §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹; `[law] database` files (relative to the case
-    file, later wins) replace it, and V = K·P·t (SPEC §4) scales by the ratio of the K's."""
+    file, later wins) replace it, and V = K·P·t (theory §4) scales by the ratio of the K's."""
     (tmp_path / "coefs").mkdir()
     (tmp_path / "coefs" / "a.csv").write_text(HEADER + "TUBE_BAV,I600,A405,ARCHARD,COEF_USURE,"
                                               "3.1e-14,1/Pa\n", encoding="utf-8")

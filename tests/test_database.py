@@ -1,7 +1,8 @@
-"""Coefficient database (SPEC §5) against the seed's §3 tables, lookups, user files, CLI.
+"""Coefficient database (theory §5) against the tables of Code_Aster R7.20.01 §3, lookups, user
+files, CLI.
 
-The reference is tests/fixtures/seed_tables.txt, a verbatim copy of the seed's tables, parsed here
-with its own small parser (independent of fretwear.database).
+The reference is tests/fixtures/r7_20_01_tables.txt, a verbatim copy of R7.20.01's tables, parsed
+here with its own small parser (independent of fretwear.database).
 """
 
 from __future__ import annotations
@@ -24,13 +25,13 @@ from fretwear.database import (
 )
 from fretwear.errors import DatabaseError, FormatError
 
-FIXTURE = Path(__file__).parent / "fixtures" / "seed_tables.txt"
+FIXTURE = Path(__file__).parent / "fixtures" / "r7_20_01_tables.txt"
 BUILTIN_CSV = Path(__file__).parents[1] / "src" / "fretwear" / "data" / "coefficients.csv"
 EDF_NAMES = {"A": "rate_coefficient", "B": "power_exponent", "N": "decay_constant",
              "S": "asymptotic_rate"}
 
 
-def parse_seed_tables() -> tuple[dict, dict]:
+def parse_manual_tables() -> tuple[dict, dict]:
     """{(contact, mat1, mat2, law, body, parameter): (value text, references)}, {code: text}."""
     coefficients: dict = {}
     codes: dict = {}
@@ -50,7 +51,7 @@ def parse_seed_tables() -> tuple[dict, dict]:
             mat1, mat2, mobile, obstacle, refs = fields
             for body, text in (("mobile", mobile), ("obstacle", obstacle)):
                 if not text.strip():
-                    continue   # empty box: no row (SPEC §5)
+                    continue   # empty box: no row (theory §5)
                 if law == "ARCHARD":
                     pairs = [("coefficient", text.strip())]
                 else:
@@ -68,36 +69,37 @@ def parse_seed_tables() -> tuple[dict, dict]:
     return coefficients, codes
 
 
-SEED, SEED_CODES = parse_seed_tables()
+MANUAL, MANUAL_CODES = parse_manual_tables()
 
 
 def test_fixture_parser_sanity():
-    # counts by hand from the seed: ARCHARD GRAPPE 5 + 5 pairs (×2 bodies; ENCO table for 2 types),
-    # EDF_MZ 2 + 2 pairs × 2 bodies × 4 parameters (ENCO for 2 types), tubes 13+6+2+10+2 mobiles
-    assert len(SEED) == 10 + 2 * 10 + 16 + 2 * 16 + 33 == 111
-    assert len(SEED_CODES) == 17
+    # counts by hand from R7.20.01 §3: ARCHARD GRAPPE 5 + 5 pairs (×2 bodies; ENCO table for 2
+    # types), EDF_MZ 2 + 2 pairs × 2 bodies × 4 parameters (ENCO for 2 types), tubes
+    # 13+6+2+10+2 mobiles
+    assert len(MANUAL) == 10 + 2 * 10 + 16 + 2 * 16 + 33 == 111
+    assert len(MANUAL_CODES) == 17
 
 
-def test_every_builtin_value_matches_the_seed():
+def test_every_builtin_value_matches_the_manual():
     db = load_database()
     got = {(r.contact_type, r.mobile_material, r.obstacle_material, r.law, r.body, r.parameter):
            r for r in db.itertuples()}
-    assert set(got) == set(SEED)   # nothing missing, nothing added (empty boxes have no row)
-    for key, (text, refs) in SEED.items():
+    assert set(got) == set(MANUAL)   # nothing missing, nothing added (empty boxes have no row)
+    for key, (text, refs) in MANUAL.items():
         row = got[key]
         assert row.value == float(text), key
-        for ref in refs:           # provenance names the seed's references
+        for ref in refs:           # provenance names R7.20.01's references
             assert ref in row.source, key
         assert row.origin == "built-in"
 
 
-def test_builtin_values_are_the_seeds_text_verbatim():
+def test_builtin_values_are_the_manuals_text_verbatim():
     with BUILTIN_CSV.open(encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     for r in rows:
         key = (r["contact_type"], r["mobile_material"], r["obstacle_material"], r["law"],
                r["body"], r["parameter"])
-        assert r["value"] == SEED[key][0], key
+        assert r["value"] == MANUAL[key][0], key
 
 
 def test_units():
@@ -109,12 +111,12 @@ def test_units():
                      ("EDF_MZ", "asymptotic_rate"): "m³/s"}
 
 
-def test_material_codes_match_the_seed():
+def test_material_codes_match_the_manual():
     m = materials().set_index("code")
-    assert set(m.index) == set(SEED_CODES)
-    used = {k[1] for k in SEED} | {k[2] for k in SEED}
+    assert set(m.index) == set(MANUAL_CODES)
+    used = {k[1] for k in MANUAL} | {k[2] for k in MANUAL}
     assert used <= set(m.index)
-    for code, text in SEED_CODES.items():
+    for code, text in MANUAL_CODES.items():
         afnor = re.search(r"\((.*)\)", text)
         expected = afnor.group(1) if afnor else ""
         if code == "A316L":
@@ -130,7 +132,7 @@ def test_contact_types_match_geometry_registry():
 # ----------------------------------------------------------------------------- lookup
 def test_lookup_values():
     c = lookup("GRAPPE_ALESAGE", "A304L", "A304L", "ARCHARD", obstacle=True)
-    # SPEC §5: the seed's 2.6e-15 / 3.7e-15, not Code_Aster's current 10e-15 / 15e-15
+    # theory §5: R7.20.01's 2.6e-15 / 3.7e-15, not Code_Aster's current 10e-15 / 15e-15
     assert c.mobile == {"coefficient": 2.6e-15} and c.obstacle == {"coefficient": 3.7e-15}
     assert "[bib5]" in c.sources["mobile.coefficient"]
     assert c.units == {"coefficient": "Pa⁻¹"}
@@ -301,13 +303,13 @@ def test_cli_filters_drop_constant_columns_and_explain_empty_results(tmp_path):
     assert out.exit_code == 0, out.output
     header = next(line for line in out.output.splitlines() if "mobile" in line)
     assert "contact" not in header and "law" not in header
-    # seed §3, GRAPPE_ALESAGE EDF_MZ A316L/A304L: A = 11.E-15, B = 1.61; one parameter per line
+    # R7.20.01 §3, GRAPPE_ALESAGE EDF_MZ A316L/A304L: A = 11.E-15, B = 1.61; one parameter per line
     assert "A = 1.1e-14" in out.output and "b = 1.61" in out.output
     assert "HT.22/97-21A" in out.output              # [bib5] spelled out under the table
     out = runner.invoke(command, ["--law", "KWU_EPRI"])
     text = " ".join(out.output.split())     # rich wraps at the console width
     assert out.exit_code == 0
-    # seed §3: 48 ARCHARD boxes (5+5+5+13+6+2+10+2), 6 EDF_MZ (2 per GRAPPE type)
+    # R7.20.01 §3: 48 ARCHARD boxes (5+5+5+13+6+2+10+2), 6 EDF_MZ (2 per GRAPPE type)
     assert "No KWU_EPRI coefficients" in text and "ARCHARD (48 material pairs)" in text
     assert "EDF_MZ (6 material pairs)" in text
     out = runner.invoke(command, ["--contact", "TUBE_BAV", "--law", "EDF_MZ"])

@@ -1,4 +1,4 @@
-"""ContactHistory validation and conversions (SPEC §1)."""
+"""ContactHistory validation and conversions (theory §1)."""
 
 import numpy as np
 import pytest
@@ -70,12 +70,12 @@ def test_window_and_replace_and_frame_round_trip():
 
 
 def test_angle_convention():
-    # SPEC §3: theta = atan2(dz, dy) in (-180, 180], 0 where dy = dz = 0.
+    # theory §3: theta = atan2(dz, dy) in (-180, 180], 0 where dy = dz = 0.
     h = make(dy=[1.0, 0.0, -1.0, 0.0], dz=[0.0, 1.0, -0.0, 0.0])
     assert h.angle.tolist() == [0.0, 90.0, 180.0, 0.0]
     # atan2 rounds to exactly -pi here: folded to +180 (the interval is open at -180).
     assert contact_angle([-1.0], [-1e-300]).tolist() == [180.0]
     assert make().angle.tolist() == [0.0] * 4
-    # Signed zeros, as Code_Aster prints -0.00000E+00: still the centre, theta = 0 (SPEC §3).
+    # Signed zeros, as Code_Aster prints -0.00000E+00: still the centre, theta = 0 (theory §3).
     assert contact_angle([-0.0, -0.0, 0.0], [0.0, -0.0, -0.0]).tolist() == [0.0, 0.0, 0.0]
     np.testing.assert_allclose(h.sliding_speed, np.hypot(h.vt1, h.vt2))

@@ -1,6 +1,6 @@
 """Fused kernels: the compiled one-pass kernel against the plain numpy reference.
 
-Source of truth for sectors: ``sector_index(contact_angle(dy, dz), edges)`` (SPEC §3, with
+Source of truth for sectors: ``sector_index(contact_angle(dy, dz), edges)`` (theory §3, with
 θ = 0 when dy = dz = 0); for the sums: the vectorised numpy implementation, which refines the time
 grid at window bounds and block edges and integrates each piece independently.
 """
@@ -50,7 +50,7 @@ def test_fast_sector_index_equals_reference(edges):
     rng = np.random.default_rng(7)
     y, z = _awkward_points(edges, rng)
     ref = sector_index(contact_angle(y, z), edges)
-    # the lead's contact_angle gives 180° for (dy, dz) = (-0.0, ±0.0); SPEC §3 says θ = 0 there
+    # the lead's contact_angle gives 180° for (dy, dz) = (-0.0, ±0.0); theory §3 says θ = 0 there
     origin = (y == 0) & (z == 0)
     ref[origin] = sector_index(np.zeros(origin.sum()), edges)
     np.testing.assert_array_equal(reference_sector_index(y, z, edges), ref)

@@ -1,6 +1,6 @@
-"""KWU-EPRI class statistics (SPEC §4) on histories designed to fill known classes.
+"""KWU-EPRI class statistics (theory §4) on histories designed to fill known classes.
 
-Every expected share, mid-value, m_h, m_w and w below is worked out by hand from SPEC §4 (and the
+Every expected share, mid-value, m_h, m_w and w below is worked out by hand from theory §4 (and the
 time-weighting and bound conventions documented in fretwear.laws.kwu_statistics), not by fretwear.
 """
 
@@ -50,7 +50,7 @@ def designed_history(time=None, vt_split=False) -> ContactHistory:
 
 
 def hand_sums(k1=1.0, k2=1.0, k=5.0, c=10.0):
-    """ΣP_h, ΣP_w, w of the designed record, by hand (SPEC §4)."""
+    """ΣP_h, ΣP_w, w of the designed record, by hand (theory §4)."""
     p11, p13, p22, p33, p55 = 1 / 9, 2 / 9, 2 / 9, 1 / 9, 3 / 9
     sum_h = p11 * k1 * k * (5 / c) ** 3 + p13 * k1 * k * (25 / c) ** 3       # impact: v = 1
     # sliding: (1,1) and v >= 2
@@ -240,7 +240,7 @@ def test_registry_statistics_and_volume():
 
 
 def test_default_maxima_are_the_window_maxima_free_flight_included():
-    """SPEC §4: F_max, V_max default to "the maxima in the window" (all samples of the window).
+    """Theory §4: F_max, V_max default to "the maxima in the window" (all samples of the window).
 
     Hand computation: the free-flight sample (Fn = 0) slides at 2 m/s, every contact sample at
     1 m/s, so V_max = 2 and the contact samples fall in speed class floor(5·1/2) + 1 = 3 (mid-value

@@ -1,6 +1,6 @@
-"""Wear laws (SPEC §4) and the restart equivalent time (SPEC §7).
+"""Wear laws (theory §4) and the restart equivalent time (theory §7).
 
-Reference values come from the closed forms of SPEC §4 evaluated independently: by hand, or in
+Reference values come from the closed forms of theory §4 evaluated independently: by hand, or in
 50-digit decimal arithmetic (Python's ``decimal``), never from fretwear itself.
 """
 
@@ -24,12 +24,12 @@ from fretwear.laws import (
     linear_equivalent_time,
 )
 
-A, B, N, S = 1e-13, 1.2, 2.44e-8, 1.14e-16  # SPEC §4 EDF_MZ defaults
+A, B, N, S = 1e-13, 1.2, 2.44e-8, 1.14e-16  # theory §4 EDF_MZ defaults
 YEAR = 31_536_000.0
 
 
 def edf_mz_decimal(p, t, a=A, b=B, n=N, s=S) -> float:
-    """SPEC §4 EDF_MZ formula in 50-digit decimal arithmetic (independent reference)."""
+    """Theory §4 EDF_MZ formula in 50-digit decimal arithmetic (independent reference)."""
     getcontext().prec = 50
     P, T, Aa, Bb, Nn, Ss = (Decimal(repr(float(x))) for x in (p, t, a, b, n, s))
     s0 = Aa * (P ** Bb) if P > 0 else Decimal(0)
@@ -38,7 +38,7 @@ def edf_mz_decimal(p, t, a=A, b=B, n=N, s=S) -> float:
 
 # ----------------------------------------------------------------------------- Archard
 def test_archard_value_and_linearity():
-    # V = K·P·t (SPEC §4): 1e-13 Pa⁻¹ × 0.02 W × 1 year, by hand = 6.3072e-8 m³
+    # V = K·P·t (theory §4): 1e-13 Pa⁻¹ × 0.02 W × 1 year, by hand = 6.3072e-8 m³
     assert float(archard(0.02, YEAR, 1e-13)) == pytest.approx(6.3072e-8, rel=1e-15)
     p = np.array([0.0, 0.01, 0.02, 0.05])
     t = np.array([1.0, 10.0, 100.0])
@@ -54,7 +54,7 @@ def test_archard_value_and_linearity():
 
 
 def test_archard_per_sector_coefficients_broadcast():
-    # sector mode: V_j = k_j·P_j·t for each sector j (SPEC §3)
+    # sector mode: V_j = k_j·P_j·t for each sector j (theory §3)
     k = np.array([1e-13, 2e-13, 3e-13])
     p = np.array([0.01, 0.02, 0.03])
     v = archard(p, np.array([[1.0], [2.0]]), k)
@@ -83,7 +83,7 @@ def test_inputs_not_modified():
 
 # ----------------------------------------------------------------------------- KWU-EPRI law
 def test_kwu_epri_volume():
-    # K = k_r·w/w_r, V = K·P·t (SPEC §4): 1e-14 × 3/2 × 0.04 W × 100 s = 6e-14 m³ by hand
+    # K = k_r·w/w_r, V = K·P·t (theory §4): 1e-14 × 3/2 × 0.04 W × 100 s = 6e-14 m³ by hand
     v = kwu_epri(0.04, 100.0, reference_coefficient=1e-14, intensity=3.0, reference_intensity=2.0)
     assert float(v) == pytest.approx(6e-14, rel=1e-15)
     assert float(kwu_epri(0.04, 100.0, 1e-14, 3.0)) == pytest.approx(1.2e-13, rel=1e-15)
@@ -107,7 +107,7 @@ def test_edf_mz_small_nt_keeps_digits_when_s_dominates():
 
 
 def test_edf_mz_initial_slope_is_a_p_b():
-    # dV/dt(0) = A·P^b (SPEC §4): finite difference over h with n·h = 2.4e-8
+    # dV/dt(0) = A·P^b (theory §4): finite difference over h with n·h = 2.4e-8
     for p in (0.005, 0.05, 0.5):
         h = 1.0
         slope = float(edf_mz(p, h)) / h
@@ -192,7 +192,7 @@ def test_equivalent_time_edge_cases():
 
 
 def test_restart_continuity_edf_mz():
-    # SPEC §7: V(t1), then continuing t2 from the equivalent time, equals V(t1 + t2)
+    # theory §7: V(t1), then continuing t2 from the equivalent time, equals V(t1 + t2)
     law = WEAR_LAWS["EDF_MZ"]
     coefficients = {"rate_coefficient": 2.6e-15, "power_exponent": 1.0}
     for p in (0.002, 0.05, 0.8):
@@ -282,7 +282,7 @@ from hypothesis import strategies as st  # noqa: E402
        n=st.one_of(st.just(0.0), st.floats(1e-12, 1e-6)),
        s=st.one_of(st.just(0.0), st.floats(1e-20, 1e-15)))
 def test_restart_continuity_property(p, t1, t2, a, b, n, s):
-    # SPEC §7: continuing from the equivalent time reproduces the uninterrupted law (reference:
+    # theory §7: continuing from the equivalent time reproduces the uninterrupted law (reference:
     # the law evaluated directly at t1 + t2), over wide ranges including n = 0 and S = 0
     law = WEAR_LAWS["EDF_MZ"]
     c = {"rate_coefficient": a, "power_exponent": b, "decay_constant": n, "asymptotic_rate": s}

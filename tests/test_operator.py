@@ -1,6 +1,6 @@
-"""The wear operator: service-life table, restart, tube replacement (SPEC §3, §6, §7).
+"""The wear operator: service-life table, restart, tube replacement (theory §3, §6, §7).
 
-Expected values are computed independently in each test from the closed forms of SPEC:
+Expected values are computed independently in each test from the closed forms of docs/theory.md:
 Archard V = K·P·t (§4), EDF_MZ V = ((A·P^b − S)/n)(1 − e^(−n·t)) + S·t (§4), the TUBE_BAV depth
 without tilt D = (1/(2R_m))^(1/3)·(3V/(4l))^(2/3) (§6) and the sector depth of a convex mobile
 d = R_m − √(R_m² − 2V/(l·Δθ)) (§3).
@@ -24,12 +24,12 @@ K_M, K_O = 1.2e-13, 3.0e-14  # [1/Pa]
 
 
 def bav_depth(volume, radius=BAV["mobile_radius"], width=BAV["obstacle_width"]):
-    """SPEC §6 TUBE_BAV, no tilt: D = (1/(2R))^(1/3)·(3V/(4l))^(2/3)."""
+    """Theory §6 TUBE_BAV, no tilt: D = (1/(2R))^(1/3)·(3V/(4l))^(2/3)."""
     return (1 / (2 * radius)) ** (1 / 3) * (3 * np.asarray(volume) / (4 * width)) ** (2 / 3)
 
 
 def edf(power, t, a=1e-13, b=1.2, n=2.44e-8, s=1.14e-16):
-    """SPEC §4 EDF_MZ volume [m³]."""
+    """Theory §4 EDF_MZ volume [m³]."""
     return (a * power**b - s) / n * (1 - np.exp(-n * t)) + s * t
 
 
@@ -91,7 +91,7 @@ def test_restart_from_code_aster_names():
 
 
 def test_edf_mz_continuity_across_restart():
-    """A restart continues from the equivalent time: V(t1) then V(t1 + Δt) (SPEC §7)."""
+    """A restart continues from the equivalent time: V(t1) then V(t1 + Δt) (theory §7)."""
     args = dict(contact_type="TUBE_BAV", dimensions=BAV, law="EDF_MZ", time_scale=YEAR)
     first = wear_table(P, instants=[0.5, 1.0], **args)
     second = wear_table(P, instants=[0.5, 2.0], initial_state=first, **args)
@@ -193,7 +193,7 @@ def test_column_names_round_trip():
 def sector_history():
     """Constant Fn = 20 N and sliding speed 0.05 m/s; the left samples of the first 4 intervals
     lie at 45° (sector 3 of 4), the next 4 at −135° (sector 1): P_1 = P_3 = 0.5 W, P = 1 W
-    (SPEC §2-§3: trapezoid, interval owned by its left sample)."""
+    (theory §2-§3: trapezoid, interval owned by its left sample)."""
     n = 9
     t = np.linspace(0.0, 8.0, n)
     angle = np.where(np.arange(n) < 4, 45.0, -135.0)
@@ -279,7 +279,7 @@ def test_database_pair_coefficients():
 
 
 def test_kwu_epri_uses_history_intensity():
-    """K = k_r·w/w_r (SPEC §4) with w from kwu_epri_statistics of the same history."""
+    """K = k_r·w/w_r (theory §4) with w from kwu_epri_statistics of the same history."""
     pytest.importorskip("fretwear.power")
     from fretwear.laws import kwu_epri_statistics
 
@@ -295,7 +295,7 @@ def test_kwu_epri_uses_history_intensity():
 
 def test_kwu_epri_power_result_with_its_history():
     """A PowerResult with history= gives the table of the history itself (same power, same
-    KWU_EPRI classes, SPEC §2/§4): an independent path through wear_power."""
+    KWU_EPRI classes, theory §2/§4): an independent path through wear_power."""
     from fretwear.power import wear_power
 
     h = sector_history()
@@ -318,7 +318,7 @@ def test_kwu_epri_power_result_with_its_history():
     "ignore:sectors .*obstacle_radius:fretwear.errors.RangeWarning")
 def test_sector_tube_replacement():
     """Tube replaced at 1 h: its sector volumes restart from zero, the obstacle's continue
-    (SPEC §7 TUBE_NEUF); V_j = k_j·P_j·t (SPEC §3) with P_1 = P_3 = 0.5 W."""
+    (theory §7 TUBE_NEUF); V_j = k_j·P_j·t (theory §3) with P_1 = P_3 = 0.5 W."""
     t = sector_table([1.0, 3.0], tube_replacement=1.0)
     k_m = np.array([1e-13, 2e-13, 3e-13, 4e-13])
     powers = np.array([0.5, 0.0, 0.5, 0.0])
@@ -333,7 +333,7 @@ def test_sector_tube_replacement():
 
 
 def test_sector_obstacle_depth_needs_obstacle_radius():
-    """TUBE_BAV (flat bar) has no bore radius: the concave sector depth of SPEC §3 is undefined."""
+    """TUBE_BAV (flat bar) has no bore radius: the concave sector depth (theory §3) is undefined."""
     from fretwear.errors import RangeWarning
 
     with pytest.warns(RangeWarning, match=r"sectors \[3\]: the obstacle wears but TUBE_BAV"):
@@ -349,7 +349,7 @@ def test_sector_obstacle_depth_needs_obstacle_radius():
 def test_restart_from_a_sector_table_with_global_rows():
     """A Code_Aster-like sector table that also holds one global row per instant (SECTEUR
     empty): the sector state comes from the sector rows only; the chain still equals one long
-    run (SPEC §7, V_j = k_j·P_j·t, SPEC §3)."""
+    run (theory §7, V_j = k_j·P_j·t, theory §3)."""
     first = to_aster_names(sector_table([1.0]))
     glob = first.drop_duplicates("INST")[["INST", "DUREE", "ORIG_INST", "PUIS_USUR_GLOBAL",
                                           "V_USUR_TUBE", "V_USUR_OBST", "P_USUR_TUBE"]]
@@ -375,7 +375,7 @@ def coefficient_csv(path, rows):
 
 def test_coefficient_file_overrides_a_builtin_pair(tmp_path):
     """Seed §3: TUBE_BAV I600/A405 Archard K = 6.2e-14 Pa⁻¹. A user file giving K' = 3.1e-15
-    replaces it; Archard is linear in K (V = K·P·t, SPEC §4), so V'/V = K'/K exactly."""
+    replaces it; Archard is linear in K (V = K·P·t, theory §4), so V'/V = K'/K exactly."""
     pytest.importorskip("fretwear.database")
     k_builtin, k_user = 6.2e-14, 3.1e-15
     mine = coefficient_csv(tmp_path / "mine.csv", [("I600", "A405", k_user)])
@@ -398,8 +398,8 @@ def test_coefficient_file_overrides_a_builtin_pair(tmp_path):
 
 
 def test_coefficient_file_adds_a_pair(tmp_path):
-    """The seed's TUBE_BAV table has no I690TT/A405 box: the lookup fails; a user row for it
-    makes the run work with V = K·P·t (SPEC §4)."""
+    """R7.20.01's TUBE_BAV table has no I690TT/A405 box: the lookup fails; a user row for it
+    makes the run work with V = K·P·t (theory §4)."""
     pytest.importorskip("fretwear.database")
     from fretwear.errors import DatabaseError
 

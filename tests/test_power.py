@@ -1,4 +1,4 @@
-"""Wear power (SPEC §2-§3): analytic cases, blocks, windows, sectors, streaming, errors."""
+"""Wear power (theory §2-§3): analytic cases, blocks, windows, sectors, streaming, errors."""
 
 import json
 import math
@@ -314,7 +314,7 @@ def test_any_chunking_and_merge_order_equals_one_shot(cuts, share, order, window
 
 def test_file_sets_and_tables_are_read_whole(tmp_path):
     # Independent computation: Fn = 4 N constant, ‖Vt‖ = 0.5 m/s constant (vt1 = 0.3,
-    # vt2 = 0.4): P = 2 W exactly. IMPR_FONCTION TABLEAU files (one per channel, SPEC §1) and an
+    # vt2 = 0.4): P = 2 W exactly. IMPR_FONCTION TABLEAU files (one per channel, theory §1) and an
     # in-memory table with Code_Aster names and units (kN, mm/s) go through read_history.
     import pandas as pd
 

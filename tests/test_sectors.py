@@ -1,4 +1,4 @@
-"""Sector edges and sector membership (SPEC §3)."""
+"""Sector edges and sector membership (theory §3)."""
 
 import numpy as np
 import pytest

@@ -223,7 +223,7 @@ def figure_frustum() -> Path:
     ax2.axhline(5 / 6, color="0.5", ls=":", label="5/6 (sections ∝ $D^{3/2}$)")
     ax2.set_xlabel("D / (lθ)")
     ax2.set_ylabel("frustum rule / exact wedge volume")
-    ax2.set_title("SPEC frustum rule vs exact wedge (TUBE_ALESAGE lens)")
+    ax2.set_title("frustum rule (theory §6) vs exact wedge (TUBE_ALESAGE lens)")
     ax2.grid(True, which="both", alpha=0.3)
     ax2.legend()
     return _save(fig, "geometry_frustum.png")

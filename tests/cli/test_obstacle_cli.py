@@ -1,7 +1,7 @@
 """`fretwear obstacle`: the command wires the case file / options to the obstacle update.
 
 Reference values: a single sector covering −180..180 keeps both bodies circular, so the worn
-clearance is g + d_m + d_o in every direction, with the SPEC §3 depths (closed form).
+clearance is g + d_m + d_o in every direction, with the theory §3 depths (closed form).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ def _wear_table(path, vm, vo, instants=(1.0, 5.0)):
 
 
 def _expected_clearance(vm, vo):
-    dm = RM - math.sqrt(RM**2 - 2 * vm / (WIDTH * 2 * math.pi))  # SPEC §3, Δθ = 2π
+    dm = RM - math.sqrt(RM**2 - 2 * vm / (WIDTH * 2 * math.pi))  # theory §3, Δθ = 2π
     do = math.sqrt((RM + GAP) ** 2 + 2 * vo / (WIDTH * 2 * math.pi)) - (RM + GAP)
     return GAP + dm + do
 

@@ -92,7 +92,7 @@ FIXTURES = __import__("pathlib").Path(__file__).parents[1] / "io" / "fixtures"
 
 
 def _trapezoid_power(t, fn, vt1, vt2):
-    """Independent computation: P = (1/T) ∫ Fn·‖Vt‖ dt by numpy's trapezoid rule (SPEC §2)."""
+    """Independent computation: P = (1/T) ∫ Fn·‖Vt‖ dt by numpy's trapezoid rule (theory §2)."""
     t = np.asarray(t, dtype=float)
     g = np.asarray(fn) * np.hypot(vt1, vt2)
     return float(np.trapezoid(g, t) / (t[-1] - t[0]))

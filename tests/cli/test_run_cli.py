@@ -1,7 +1,7 @@
 """`fretwear run` end to end on every example case file, outputs and errors.
 
 Checks against independent computations: the table written equals run_case's (the library
-call) and the Code_Aster table written reads back with the same values (SPEC §7 names).
+call) and the Code_Aster table written reads back with the same values (theory §7 names).
 """
 
 import tomllib
@@ -47,7 +47,7 @@ def test_demo_outputs_plots_and_aster_table(tmp_path, capsys):
     expected = run_case(case).table
     np.testing.assert_allclose(back["V_USUR_TUBE_CUMU"], expected["volume_mobile_cumulated"],
                                rtol=1e-10)
-    # the bar does not wear (no obstacle coefficient in the seed's table): no depth, exactly
+    # the bar does not wear (no obstacle coefficient in R7.20.01's table): no depth, exactly
     assert back["V_USUR_OBST"].eq(0.0).all() and back["P_USUR_OBST"].eq(0.0).all()
     pq = tmp_path / "wear.parquet"
     assert main(["run", str(case), "-q", "-o", str(pq), "--aster-names"]) == 0
@@ -92,7 +92,7 @@ def test_unknown_output_suffix(tmp_path, capsys):
 @pytest.mark.parametrize("suffix, options", [(".csv", []), (".parquet", []), (".tab", []),
                                              (".resu", ["--aster-format", "ASTER"])])
 def test_sector_restart_through_each_output_format(tmp_path, capsys, suffix, options):
-    """Two CLI runs chained by [restart] equal one long run (Archard, 8 sectors, SPEC §7):
+    """Two CLI runs chained by [restart] equal one long run (Archard, 8 sectors, theory §7):
     V_j(2 + 3 years) = V_j(2) + k·P_j·3 years; the table file of the first run, in each output
     format, seeds the second (read back by fretwear.table.read_wear_table)."""
     examples = Path(__file__).parents[2] / "examples"
@@ -124,8 +124,8 @@ def test_sector_restart_through_each_output_format(tmp_path, capsys, suffix, opt
 
 def test_example_continuing_a_code_aster_table(capsys):
     """examples/grappe_2_enco.toml restarts from a hand-written Code_Aster TABLEAU file at
-    10 000 h: V = V(10 000 h) + k·P·Δt with the seed §3 pair A316L/A304L (40e-15, 29e-15 Pa⁻¹),
-    P = 2 mW (SPEC §4, §7)."""
+    10 000 h: V = V(10 000 h) + k·P·Δt with the R7.20.01 §3 pair A316L/A304L (40e-15, 29e-15 Pa⁻¹),
+    P = 2 mW (theory §4, §7)."""
     case = Path(__file__).parents[2] / "examples" / "grappe_2_enco.toml"
     t = run_case(case).table
     assert t["instant"].tolist() == [5000.0, 10000.0, 15000.0, 20000.0]
@@ -141,7 +141,7 @@ def test_example_continuing_a_code_aster_table(capsys):
 
 def test_database_option_adds_to_the_case_list(tmp_path, capsys):
     """Seed §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹. `--database` files come after the case's
-    `[law] database` (later wins); V = K·P·t (SPEC §4) scales by the ratio of the K's."""
+    `[law] database` (later wins); V = K·P·t (theory §4) scales by the ratio of the K's."""
     header = "contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
     (tmp_path / "case_file.csv").write_text(
         header + "TUBE_BAV,I600,A405,ARCHARD,COEF_USURE,3.1e-14,1/Pa\n", encoding="utf-8")

@@ -104,7 +104,7 @@ def _friction_case(amplitude, *, kt=1e9, duration=0.5, h=5e-6, steady=True):
 
 
 def _power(h):
-    """SPEC §2 wear power of a history, computed here independently (trapezoid, stick rule)."""
+    """Theory §2 wear power of a history, computed here independently (trapezoid, stick rule)."""
     p = h.normal_force * np.hypot(h.vt1, h.vt2)
     dt = np.diff(h.time)
     return float(np.sum(0.5 * (p[1:] + p[:-1]) * dt * (h.stick[:-1] == 0)) / h.duration)
@@ -115,7 +115,7 @@ def test_coulomb_base_excitation_sliding_closed_form():
     # ÿ = A sin φ − rA sgn ẏ (φ = ωt). On the half period (φ0, φ0 + π) where ẏ > 0:
     # ẏ = (A/ω)(cos φ0 − cos φ − r(φ − φ0)); ẏ(φ0 + π) = 0 gives cos φ0 = πr/2, and
     # mean|ẏ| = (1/π)∫ẏ dφ = (2A/(πω)) sin φ0. The mass never stops while sin φ0 > r, i.e.
-    # r < 1/√(1 + π²/4) ≈ 0.537 (Den Hartog 1931). Fn = N throughout, so the SPEC §2 wear power is
+    # r < 1/√(1 + π²/4) ≈ 0.537 (Den Hartog 1931). Fn = N throughout, so the theory §2 wear power is
     # P = N·(2A/(πω))·√(1 − (πr/2)²). The run starts on this steady state: ẋ(0) = −ẏ(0).
     res, n_force, mu, m, w = _friction_case(10.0)
     amp = 10.0
@@ -124,7 +124,7 @@ def test_coulomb_base_excitation_sliding_closed_form():
     # regularisation: the stick spring k_t shifts P by O(√(μN/(k_t m A))); 0.1 % at k_t = 1e9
     assert res.wear_power[0] == pytest.approx(p_exact, rel=3e-3)
     assert _power(res.history(0)) == pytest.approx(p_exact, rel=3e-3)
-    from fretwear.power import wear_power  # the library's SPEC §2 implementation agrees
+    from fretwear.power import wear_power  # the library's theory §2 implementation agrees
 
     assert wear_power(res.history(0)).total == pytest.approx(_power(res.history(0)), rel=1e-9)
     h = res.history(0)
@@ -135,7 +135,7 @@ def test_coulomb_base_excitation_sliding_closed_form():
 
 def test_coulomb_base_excitation_sticks_below_threshold():
     # Base displacement amplitude A/ω² below μN/(mω²): friction carries the mass, no sliding,
-    # the stick flag is 1 and the wear power is exactly 0 (SPEC §2 stick rule).
+    # the stick flag is 1 and the wear power is exactly 0 (theory §2 stick rule).
     res, n_force, mu, m, w = _friction_case(2.0, kt=1e8, steady=False, duration=0.3, h=1e-5)
     h = res.history(0)
     assert np.all(h.stick[1:] == 1.0)
@@ -310,7 +310,7 @@ def _coulomb_event_driven(amplitude, r, w, duration):
 
 def test_coulomb_base_excitation_stick_slip_event_driven():
     # r = μN/(mA) = 0.75: the mass alternately sticks and slips (Den Hartog's regime with stops).
-    # The wear power N·(1/T)∫|ẏ|dt (zero while sticking, SPEC §2) and the time spent sticking
+    # The wear power N·(1/T)∫|ẏ|dt (zero while sticking, theory §2) and the time spent sticking
     # are compared with the exact event-driven solution above, both from rest.
     amp, duration = 4.0, 0.5
     res, n_force, mu, m, w = _friction_case(amp, steady=False, duration=duration)

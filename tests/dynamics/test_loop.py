@@ -1,8 +1,8 @@
 """The coupled loop dynamics → wear table → obstacle update → dynamics (``fretwear iterate``).
 
-Checks against independent computations: the wear power of each cycle's history (SPEC §2,
+Checks against independent computations: the wear power of each cycle's history (theory §2,
 trapezoid with the stick rule, computed here), Archard's V = K·P·t chained through the restart
-(SPEC §7: V_cumulated = V_previous + K·P_k·Δt), and the worn clearance fed back to the dynamics.
+(theory §7: V_cumulated = V_previous + K·P_k·Δt), and the worn clearance fed back to the dynamics.
 """
 
 from __future__ import annotations
@@ -252,7 +252,7 @@ def test_long_histories_are_reduced_by_chunks(tmp_path, monkeypatch):
 
 def test_cycle_one_sees_the_clearance_figure_of_planes(tmp_path, monkeypatch):
     # A disk of radius R_m between two planes at gap g (normal along y) can translate
-    # g/|cos ψ| along a direction ψ before it touches (the clearance figure, SPEC §8; geometry in
+    # g/|cos ψ| along a direction ψ before it touches (the clearance figure, theory §8; geometry in
     # fretwear.obstacle.PlanesObstacle Notes), not by the radial gap (R_m + g)/|cos ψ| − R_m,
     # which is R_m(1/|cos ψ| − 1) larger (1.47 mm more at 30° for R_m = 9.5 mm). Cycle 1 must
     # feed the dynamics the clearance figure: its profile, and the contacts it produces, lie on

@@ -1,6 +1,6 @@
 """The geometry contract (docs/DESIGN.md "Geometry"), checked on every entry of CONTACT_TYPES.
 
-Sources: the contract itself (SPEC §6 last paragraph: monotone relations inverted by a
+Sources: the contract itself (theory §6 last paragraph: monotone relations inverted by a
 bracketed solver, NaN and a warning naming the type beyond the range, an error naming a missing
 keyword, a warning for an unused one) and the identity depth -> volume -> depth.
 """
@@ -144,7 +144,7 @@ def test_vectorised_and_inputs_untouched(name):
     assert isinstance(geometry.depth_from_volume(1e-12)[0], float)
 
 
-# Small-depth power laws V ∝ d^p (obstacle not worn), derived from the worn shapes (SPEC §6):
+# Small-depth power laws V ∝ d^p (obstacle not worn), derived from the worn shapes (theory §6):
 # near first contact a convex body against a flat or a larger bore leaves a parabolic segment,
 # of area (2/3)·chord·d with chord ∝ √d, so p = 3/2; a tilted trace integrates the section
 # along the wedge, whose length is d/θ, adding one power (p = 5/2, both for the exact wedge

@@ -45,4 +45,5 @@ def test_every_contact_type_has_a_figure_in_the_script_and_the_page():
         assert section, f"no section for {name}"
         assert "figures/" in section.group(1), f"no figure in the {name} section"
         assert "Code_Aster" in section.group(1), f"no Code_Aster difference for {name}"
-        assert re.search(r"[Ss]eed typo", section.group(1)), f"no seed typos for {name}"
+        assert re.search(r"[Tt]ypos? of R7\.20\.01 resolved", section.group(1)), \
+            f"no resolved typos of Code_Aster R7.20.01 for {name}"

@@ -13,7 +13,7 @@ Sources of the expected values:
   A ∝ d^{3/2} (small-depth lens);
 - analytic small-depth lens: S(D) ≈ (4/3)·√(2R_e)·D^{3/2}, R_e = R_m·R_o/(R_o − R_m) (the gap
   between two circles of curvatures 1/R_m − 1/R_o is t²/(2R_e));
-- the seed (reference document §4.6-§4.7) for κ = 1.41 / 1.88 and the relations; SPEC §6 for the
+- Code_Aster R7.20.01 §4.6-§4.7 for κ = 1.41 / 1.88 and the relations; theory §6 for the
   two-edge quatrefoil and the range limit √(R_o² − R_m²) − (R_o − R_m).
 """
 
@@ -204,7 +204,7 @@ def test_solver_tolerance():
 
 
 # --------------------------------------------------------------------------- obstacle wear
-def test_obstacle_relation_seed_kappa():
+def test_obstacle_relation_manual_kappa():
     """V_o = κ·π·l·R_o·d_o, κ = 1.41 (trefoil), 1.88 (quatrefoil), i.e. 0.47 per isthmus."""
     assert ENCO_TYPES["TUBE_3_ENCO"]["kappa"] == 1.41 == pytest.approx(3 * 0.47)
     assert ENCO_TYPES["TUBE_4_ENCO"]["kappa"] == 1.88 == pytest.approx(4 * 0.47)
@@ -217,7 +217,7 @@ def test_obstacle_relation_seed_kappa():
 
 @pytest.mark.parametrize("cls", [Tube3Enco, Tube4Enco])
 def test_total_depth_from_total_volume(cls):
-    """D = d_m + d_o solves the relation with V = V_m + V_o (seed cases 3-4)."""
+    """D = d_m + d_o solves the relation with V = V_m + V_o (R7.20.01 cases 3-4)."""
     g = geometry(cls, tilt=0.5)
     dm, do = g.depth_from_volume(3e-10, 1e-10)
     d_alone, _ = g.depth_from_volume(4e-10)

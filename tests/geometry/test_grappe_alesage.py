@@ -1,9 +1,9 @@
-"""GRAPPE_ALESAGE (control-rod rodlet in a guide bore, one lunule), SPEC §6 and seed §4.1.
+"""GRAPPE_ALESAGE (control-rod rodlet in a guide bore, one lunule), theory §6, R7.20.01 §4.1.
 
 Sources: the oracle's lunule (crossings found numerically, interface circle through the
 crossings and the worn apex, areas by quadrature) times the width; the lens's small-depth
 asymptotics derived from x² ≈ 2R_oR_m·D/g (g = R_o − R_m) and a section ≈ (4/3)·x·D·(1 − …):
-checked here through the oracle only; the seed's corrected system R_m sin α = r sin β =
+checked here through the oracle only; R7.20.01's corrected system R_m sin α = r sin β =
 R_o sin γ = x, checked by recomputing the angles.
 """
 
@@ -19,7 +19,7 @@ from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.grappe_alesage import GrappeAlesage
 
-RM, RO, L = 4.85e-3, 5.25e-3, 10e-3  # 9.7 mm rodlet, 10.5 mm card bore (seed §4.2)
+RM, RO, L = 4.85e-3, 5.25e-3, 10e-3  # 9.7 mm rodlet, 10.5 mm card bore (R7.20.01 §4.2)
 
 
 @pytest.fixture
@@ -35,8 +35,8 @@ def test_volumes_against_oracle(geometry, dm, do):
     assert vo == pytest.approx(L * oo, rel=1e-9, abs=1e-9 * vm)  # oracle round-off at d_o = 0
 
 
-def test_seed_system_holds(geometry):
-    """The seed's (corrected) equations, with α, β, γ from R_m sin α = r sin β = R_o sin γ = x:
+def test_manual_system_holds(geometry):
+    """R7.20.01's (corrected) equations, with α, β, γ from R_m sin α = r sin β = R_o sin γ = x:
     V_m/l = R_m²(α − ½ sin 2α) − r²(β − ½ sin 2β), V_o/l = r²(β − …) − R_o²(γ − …)."""
     dm, do = 2e-4, 1e-4
     vm, vo = geometry.volume_from_depth(dm, do)

@@ -1,9 +1,9 @@
 """Tests of GRAPPE_1_ENCO / GRAPPE_2_ENCO (fretwear.geometry.grappe_notch).
 
 The notch relation is empirical (reference document §4.2-§4.3, [bib7]): the expected values are
-the seed's coefficients evaluated independently (numpy.polynomial), the roots of the cubic from
+R7.20.01's coefficients evaluated independently (numpy.polynomial), the roots of the cubic from
 numpy's companion-matrix eigenvalues (numpy.roots), the maximum from the derivative's roots, and
-the seed's obstacle relation V_o = κ·π·l·R_o·d_o (κ = 0.47 / 0.94; its h is the width l).
+R7.20.01's obstacle relation V_o = κ·π·l·R_o·d_o (κ = 0.47 / 0.94; its h is the width l).
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ WIDTH = 0.02
 CLASSES = {"GRAPPE_1_ENCO": Grappe1Enco, "GRAPPE_2_ENCO": Grappe2Enco}
 
 
-def seed_polynomial(name):
+def manual_polynomial(name):
     a, b, c, _ = SEED[name]
     return np.polynomial.Polynomial([0.0, c, b, a])  # coefficients in increasing degree
 
@@ -45,16 +45,16 @@ def rising_root(name, area_mm2):
 
 
 @pytest.mark.parametrize("name", SEED)
-def test_coefficients_are_the_seed_values(name):
+def test_coefficients_are_the_manual_values(name):
     a, b, c, kappa = SEED[name]
     assert NOTCH_LAWS[name]["coefficients"] == (a, b, c)
     assert NOTCH_LAWS[name]["kappa"] == kappa
 
 
 @pytest.mark.parametrize("name", SEED)
-def test_area_is_the_seed_polynomial(name):
+def test_area_is_the_manual_polynomial(name):
     depth_mm = np.array([0.0, 0.1, 1.0, 2.0, 2.5])
-    expected = seed_polynomial(name)(depth_mm) * 1e-6  # mm² -> m²
+    expected = manual_polynomial(name)(depth_mm) * 1e-6  # mm² -> m²
     np.testing.assert_allclose(notch_area(depth_mm * 1e-3, name), expected, rtol=1e-14)
     g = CLASSES[name](obstacle_width=WIDTH)
     np.testing.assert_allclose(g.volume_from_depth(depth_mm * 1e-3)[0], WIDTH * expected,
@@ -74,7 +74,7 @@ def test_two_notches_are_twice_one():
 @pytest.mark.parametrize("name", SEED)
 def test_maximum_of_the_polynomial(name):
     """d_max is the positive root of P'(d); P'' < 0 there; the area there is the largest."""
-    p = seed_polynomial(name)
+    p = manual_polynomial(name)
     critical = p.deriv().roots()
     d_max = critical[critical > 0].max()
     assert notch_depth_limit(name) * 1e3 == pytest.approx(d_max, rel=1e-14)
@@ -88,7 +88,7 @@ def test_maximum_of_the_polynomial(name):
 @pytest.mark.parametrize("name", SEED)
 def test_inverse_is_the_rising_branch_root(name):
     """notch_depth returns the smallest non-negative root (rising branch), not the other one."""
-    p = seed_polynomial(name)
+    p = manual_polynomial(name)
     areas_mm2 = p(np.array([1e-6, 0.01, 0.3, 1.0, 1.9, 2.5]))
     got = notch_depth(areas_mm2 * 1e-6, name) * 1e3
     expected = [rising_root(name, y) for y in areas_mm2]
@@ -125,7 +125,7 @@ def test_small_depth_is_linear(name):
 
 @pytest.mark.parametrize("name", SEED)
 def test_obstacle_relation(name):
-    """V_o = κ·π·l·R_o·d_o (seed, h = l), with R_o the fitted 5.25 mm unless given."""
+    """V_o = κ·π·l·R_o·d_o (R7.20.01, h = l), with R_o the fitted 5.25 mm unless given."""
     kappa = SEED[name][3]
     vo = np.array([0.0, 1e-12, 1e-9])
     for radius, kwargs in ((5.25e-3, {}), (5.25e-3, {"obstacle_radius": 5.25e-3})):

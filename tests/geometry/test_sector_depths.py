@@ -1,4 +1,4 @@
-"""Sector depths of mobile and obstacle (SPEC §3, seed §5), fretwear.geometry.sectors.
+"""Sector depths of mobile and obstacle (theory §3; R7.20.01 §5): geometry.sectors.
 
 (Named test_sector_depths.py, not test_sectors.py, so that its module name does not collide
 with tests/test_sectors.py: the test directories have no __init__.py.)

@@ -1,7 +1,7 @@
 """Shared shape helpers (fretwear.geometry._shapes) against independent computations.
 
 Sources: the independent oracle of tests/geometry/oracle.py (profile quadrature, polygons),
-elementary identities of the circle (s·(2ρ − s) = x², half disk = πρ²/2), the SPEC §6 forms of
+elementary identities of the circle (s·(2ρ − s) = x², half disk = πρ²/2), the theory §6 forms of
 x and S, and analytic pyramid volumes for the frustum rule.
 """
 
@@ -32,7 +32,7 @@ from fretwear.geometry._shapes import (
     solve_monotone,
 )
 
-RM, RO = 4.85e-3, 5.25e-3  # control-rod rodlet in its guide bore (SPEC §6 GRAPPE dimensions)
+RM, RO = 4.85e-3, 5.25e-3  # control-rod rodlet in its guide bore (theory §6 GRAPPE dimensions)
 
 
 # ----------------------------------------------------------------------------- segment, sagitta
@@ -87,7 +87,7 @@ def test_lens_matches_polygon_clipping(depth):
 
 
 def test_lens_equals_spec_closed_forms():
-    """The factorised x and the segment difference equal SPEC §6's written forms
+    """The factorised x and the segment difference equal theory §6's written forms
     x² = R_m² − (R_o² − R_m² − c²)²/(4c²), S = R_m² asin(x/R_m) − R_o² asin(x/R_o) + x·c
     (evaluated where they do not suffer from cancellation)."""
     rm, ro = 0.0111, 0.0125
@@ -127,7 +127,7 @@ def test_frustum_rule_exact_for_pyramid_sections():
 
 def test_frustum_rule_gives_five_sixths_for_three_halves_sections():
     """For A ∝ d^{3/2} (a lens at small depth, a flat trace) the rule gives (1/3)/(2/5) = 5/6
-    of the exact wedge integral (1/θ)∫A: the known bias of the SPEC's frustum rule."""
+    of the exact wedge integral (1/θ)∫A: the known bias of the frustum rule of theory §6."""
     def area(d):
         return np.maximum(d, 0.0) ** 1.5
     width, tilt, d = 0.02, math.radians(2.0), 1e-4

@@ -1,8 +1,8 @@
-"""TUBE_ALESAGE (tube in a drilled support-plate hole), SPEC §6 and seed §4.5.
+"""TUBE_ALESAGE (tube in a drilled support-plate hole), theory §6 and Code_Aster R7.20.01 §4.5.
 
 Sources: the annulus π(R² − (R − d)²)·l (elementary) for the uniform model, whose first-order
 relation d = V/(2πlR) has relative error d/(2R); the oracle's lens and lunule (numerical
-crossings, quadrature) for the two lunules; for the tilted traces the SPEC's frustum rule
+crossings, quadrature) for the two lunules; for the tilted traces the frustum rule of theory §6
 applied to the oracle's sections, and the exact wedge integral of the oracle's sections, which
 the frustum rule underestimates by the factor 5/6 at small depth (sections ∝ D^{3/2}).
 """

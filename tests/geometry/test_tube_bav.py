@@ -1,6 +1,6 @@
-"""TUBE_BAV (tube against an anti-vibration bar), SPEC §6 and seed §4.4.
+"""TUBE_BAV (tube against an anti-vibration bar), theory §6 and Code_Aster R7.20.01 §4.4.
 
-Sources: the seed's closed forms (cases 1-2) typed in independently here; the exact circular
+Sources: R7.20.01's closed forms (cases 1-2) typed in independently here; the exact circular
 segment cut by the bar (oracle quadrature) and its numerical integration along the width for
 the tilted bar; the parabolic approximation's known error: exact/parabolic section
 = 1 − (3/20)·D/R + O(D²/R²) (Taylor of R²(α − sin α cos α) with D = R(1 − cos α)), hence for a
@@ -27,17 +27,17 @@ THETA = math.radians(TILT_DEG)
 REACH = L * THETA
 
 
-def seed_depth_no_tilt(volume):
+def manual_depth_no_tilt(volume):
     """Seed §4.4 case 1: d = (1/(2R))^(1/3)·(3V/(4l))^(2/3)."""
     return (1 / (2 * R)) ** (1 / 3) * (3 * volume / (4 * L)) ** (2 / 3)
 
 
-def seed_depth_tilt_short(volume):
+def manual_depth_tilt_short(volume):
     """Seed §4.4 case 2, d < lθ: d = (1/(2R))^(1/5)·(15θV/8)^(2/5)."""
     return (1 / (2 * R)) ** (1 / 5) * (15 * THETA * volume / 8) ** (2 / 5)
 
 
-def seed_volume_tilt_long(depth):
+def manual_volume_tilt_long(depth):
     """Seed §4.4 case 2, d ≥ lθ: V = 8√(2R)/(15θ)·[d^(5/2) − (d − θl)^(5/2)]."""
     return 8 * math.sqrt(2 * R) / (15 * THETA) * (depth**2.5 - (depth - THETA * L) ** 2.5)
 
@@ -52,18 +52,18 @@ def tilted():
     return TubeBav(mobile_radius=R, obstacle_width=L, tilt_angle=TILT_DEG)
 
 
-def test_closed_forms_match_the_seed(straight, tilted):
+def test_closed_forms_match_the_manual(straight, tilted):
     volumes = np.geomspace(1e-14, 1e-8, 7)
-    assert np.allclose(straight.depth_from_volume(volumes)[0], seed_depth_no_tilt(volumes),
+    assert np.allclose(straight.depth_from_volume(volumes)[0], manual_depth_no_tilt(volumes),
                        rtol=1e-13, atol=0)
-    short = volumes[seed_depth_tilt_short(volumes) < REACH]
+    short = volumes[manual_depth_tilt_short(volumes) < REACH]
     assert short.size >= 3
-    assert np.allclose(tilted.depth_from_volume(short)[0], seed_depth_tilt_short(short),
+    assert np.allclose(tilted.depth_from_volume(short)[0], manual_depth_tilt_short(short),
                        rtol=1e-13, atol=0)
     deep = np.array([1.01, 2.0, 5.0, 40.0]) * REACH
-    assert np.allclose(tilted.volume_from_depth(deep)[0], seed_volume_tilt_long(deep),
+    assert np.allclose(tilted.volume_from_depth(deep)[0], manual_volume_tilt_long(deep),
                        rtol=1e-11, atol=0)
-    assert np.allclose(tilted.depth_from_volume(seed_volume_tilt_long(deep))[0], deep,
+    assert np.allclose(tilted.depth_from_volume(manual_volume_tilt_long(deep))[0], deep,
                        rtol=1e-11, atol=0)
 
 
@@ -146,7 +146,7 @@ def test_range_beyond_tube_radius():
 
 
 def test_bar_without_wear_has_exactly_zero_depth():
-    """SPEC §6 TUBE_BAV: d_m = D·V_m/V, d_o = D − d_m; with V_o = 0 the share is exactly 1, so
+    """Theory §6 TUBE_BAV: d_m = D·V_m/V, d_o = D − d_m; with V_o = 0 the share is exactly 1, so
     d_m = D and d_o = 0 exactly (no rounding residue such as 3e-21 m in a service-life table)."""
     import numpy as np
 

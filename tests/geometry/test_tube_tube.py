@@ -1,6 +1,6 @@
-"""TUBE_TUBE (tube against tube at a crossing angle), SPEC §6 and seed §4.8.
+"""TUBE_TUBE (tube against tube at a crossing angle), theory §6 and Code_Aster R7.20.01 §4.8.
 
-Sources: the seed's closed form d = (1/(2R))^(1/5)·(15θV/8)^(2/5) typed in here; the oracle
+Sources: R7.20.01's closed form d = (1/(2R))^(1/5)·(15θV/8)^(2/5) typed in here; the oracle
 integrating exact circular segments along an unbounded wedge, which must agree with the
 parabolic relation to its first-order error 1 − (3/28)·d/R (∫u^{3/2}(1 − 3u/(20R))du over
 ∫u^{3/2}du = 1 − (3/(20R))·(5/7)d).
@@ -22,7 +22,7 @@ RM, RO, ANGLE = 9.525e-3, 11.1e-3, 5.0
 THETA = math.radians(ANGLE)
 
 
-def seed_depth(volume, radius):
+def manual_depth(volume, radius):
     return (1 / (2 * radius)) ** (1 / 5) * (15 * THETA * volume / 8) ** (2 / 5)
 
 
@@ -31,11 +31,11 @@ def geometry():
     return TubeTube(mobile_radius=RM, tilt_angle=ANGLE, obstacle_radius=RO)
 
 
-def test_closed_form_matches_seed_for_each_tube(geometry):
+def test_closed_form_matches_the_manual_for_each_tube(geometry):
     vm, vo = np.geomspace(1e-13, 1e-8, 6), np.geomspace(1e-12, 3e-9, 6)
     dm, do = geometry.depth_from_volume(vm, vo)
-    assert np.allclose(dm, seed_depth(vm, RM), rtol=1e-13, atol=0)
-    assert np.allclose(do, seed_depth(vo, RO), rtol=1e-13, atol=0)
+    assert np.allclose(dm, manual_depth(vm, RM), rtol=1e-13, atol=0)
+    assert np.allclose(do, manual_depth(vo, RO), rtol=1e-13, atol=0)
 
 
 @pytest.mark.parametrize("ratio", [1e-4, 1e-3, 1e-2])

@@ -12,7 +12,7 @@ FIXTURES = Path(__file__).parent / "fixtures"
 
 
 def analytic_history(n: int = 201, name: str = "N12") -> ContactHistory:
-    """Every channel of SPEC §1 from closed-form signals (a contact turning at 20 Hz).
+    """Every channel of theory §1 from closed-form signals (a contact turning at 20 Hz).
 
     Fn = max(0, 50 sin 2π20t) [N], vt1 = 0.1 cos 2π20t, vt2 = 0.05 sin 2π20t [m/s],
     dy = 2e-4 cos 2π20t, dz = 2e-4 sin 2π20t [m], ft = −0.3·Fn·sign(vt), vn = 0.01 sin 2π7t,

@@ -1,6 +1,6 @@
 """Code_Aster text tables: IMPR_TABLE TABLEAU / ASTER and IMPR_FONCTION TABLEAU.
 
-Fixtures in ``fixtures/`` are written by hand from the format description of SPEC §1 and the
+Fixtures in ``fixtures/`` are written by hand from the format description of theory §1 and the
 Code_Aster documentation of IMPR_TABLE (U4.91.03), LIRE_TABLE (U7.02.03) and IMPR_FONCTION
 (U4.33.01); expected values are the literals printed in them.
 """

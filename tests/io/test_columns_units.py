@@ -1,4 +1,4 @@
-"""Column aliases (SPEC §1: Code_Aster names and internal variables), overrides, unit conversion,
+"""Column aliases (theory §1: Code_Aster names and internal variables), overrides, unit conversion,
 and the CSV dialects (delimiters, decimal comma, comments, header detection).
 
 Reference values: the literal numbers written in each test file; unit factors are the SI
@@ -17,10 +17,10 @@ from fretwear.io.channels import ALIASES, channel_of, resolve_columns, unit_fact
 
 
 @pytest.mark.parametrize("name, channel", [
-    # SPEC §1: Code_Aster names
+    # theory §1: Code_Aster names
     ("INST", "time"), ("FN", "normal_force"), ("FT1", "ft1"), ("FT2", "ft2"), ("VN", "vn"),
     ("VT1", "vt1"), ("VT2", "vt2"), ("DYLOC", "dy"), ("DZLOC", "dz"),
-    # SPEC §1: internal variables of a shock
+    # theory §1: internal variables of a shock
     ("VINT1", "normal_force"), ("VINT2", "ft1"), ("VINT3", "ft2"), ("VINT5", "dy"),
     ("VINT6", "dz"), ("VINT10", "vn"), ("VINT11", "vt1"), ("VINT12", "vt2"), ("VINT13", "stick"),
     # canonical, case and separators, unit suffixes, French
@@ -33,7 +33,7 @@ def test_aliases(name, channel):
 
 @pytest.mark.parametrize("name", ["VINT4", "DXLOC", "VINT7", "NOEUD", "x", "v"])
 def test_names_that_are_not_channels(name):
-    # VINT4/DXLOC is the local DX of node 1: not a channel of the history (SPEC §1)
+    # VINT4/DXLOC is the local DX of node 1: not a channel of the history (theory §1)
     assert channel_of(name) is None
 
 
@@ -44,7 +44,7 @@ def test_every_channel_accepts_its_own_name():
 
 
 def test_vint_columns_give_the_right_channels(tmp_path):
-    """A RECU_FONCTION export of the internal variables, as users do since 2016 (SPEC §1)."""
+    """A RECU_FONCTION export of the internal variables, as users do since 2016 (theory §1)."""
     path = tmp_path / "vint.csv"
     path.write_text("INST,VINT1,VINT2,VINT3,VINT4,VINT5,VINT6,VINT10,VINT11,VINT12,VINT13\n"
                     "0.0,0.0,0.0,0.0,9.0,1.0,2.0,0.5,0.0,0.0,0\n"

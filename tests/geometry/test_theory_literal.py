@@ -1,9 +1,9 @@
-"""Audit: every volume -> depth relation of SPEC §3 and §6 evaluated literally, against fretwear.
+"""Audit: every volume -> depth relation of theory §3 and §6 evaluated literally, against fretwear.
 
-Source of every expected value: the formulas of SPEC §6 (and §3 for the sector depths) typed in
-here as written there, independently of ``fretwear.geometry`` (the lens in its arcsine form
-R_m² asin(x/R_m) − R_o² asin(x/R_o) + x·c with SPEC's x², not the library's factorised form; the
-lunule split by solving for the arc radius r, not for the sagitta; the notch cubic in mm / mm²),
+Source of every expected value: the formulas of theory §6 (and §3 for the sector depths) typed in
+here as written there, independently of ``fretwear.geometry`` (the lens in its arcsine form R_m²
+asin(x/R_m) − R_o² asin(x/R_o) + x·c with the x² of theory §6, not the library's factorised form;
+the lunule split by solving for the arc radius r, not for the sagitta; the notch cubic in mm / mm²),
 and inverted with scipy's brentq. Realistic dimensions: 22.22 mm SG tube (R_m = 11.11 mm), 20 mm
 bar/plate, 1° tilt; control rod R_m = 4.85 mm in a 5.25 mm bore, l = 10 mm. Both branches of the
 tilted relations (D < lθ and D ≥ lθ, θ in radians) are exercised.
@@ -30,23 +30,23 @@ def _solve(func, target, lower, upper):
 
 
 def _seg(rho, x):
-    """SPEC §6: seg(ρ, x) = ρ²·asin(x/ρ) − x·√(ρ² − x²)."""
+    """Theory §6: seg(ρ, x) = ρ²·asin(x/ρ) − x·√(ρ² − x²)."""
     return rho**2 * math.asin(x / rho) - x * math.sqrt(rho**2 - x**2)
 
 
 def _sag(rho, x):
-    """SPEC §6: s(ρ, x) = ρ − √(ρ² − x²)."""
+    """Theory §6: s(ρ, x) = ρ − √(ρ² − x²)."""
     return rho - math.sqrt(rho**2 - x**2)
 
 
 def _half_chord(d, rm, ro):
-    """SPEC §6: x² = R_m² − (R_o² − R_m² − c²)²/(4c²), c = R_o − R_m + D."""
+    """Theory §6: x² = R_m² − (R_o² − R_m² − c²)²/(4c²), c = R_o − R_m + D."""
     c = ro - rm + d
     return math.sqrt(max(rm**2 - (ro**2 - rm**2 - c**2) ** 2 / (4 * c**2), 0.0))
 
 
 def _lens(d, rm, ro):
-    """SPEC §6: S = R_m²·asin(x/R_m) − R_o²·asin(x/R_o) + x·c."""
+    """Theory §6: S = R_m²·asin(x/R_m) − R_o²·asin(x/R_o) + x·c."""
     if d == 0.0:
         return 0.0
     x = _half_chord(d, rm, ro)
@@ -59,7 +59,7 @@ def _d_max(rm, ro):
 
 
 def _frustum(area, d, width, theta):
-    """SPEC §6 frustum rule: (d/θ)·A(d)/3 while d < lθ, else (l/3)(A1 + √(A1·A2) + A2)."""
+    """Theory §6 frustum rule: (d/θ)·A(d)/3 while d < lθ, else (l/3)(A1 + √(A1·A2) + A2)."""
     if theta == 0.0:
         return width * area(d)
     if d < width * theta:
@@ -69,7 +69,7 @@ def _frustum(area, d, width, theta):
 
 
 def _lunule_split(d, mobile_area, rm, ro):
-    """SPEC §6 lunule: seg(R_m, x) − seg(r, x) = V_m/l for r in [R_m, R_o]; depths by sagittas."""
+    """Theory §6 lunule: seg(R_m, x) − seg(r, x) = V_m/l for r in [R_m, R_o]; depths by sagittas."""
     x = _half_chord(d, rm, ro)
     if mobile_area <= 0.0:
         return 0.0, d
@@ -91,7 +91,7 @@ R_TUBE, L_BAR = 11.11 * MM, 20 * MM
 
 
 def _tube_bav(vm, vo, tilt_deg, impact_deg):
-    """SPEC §6 TUBE_BAV: D from (V_m + V_o)·cos α; d_m = D·V_m/V, d_o = D − d_m."""
+    """Theory §6 TUBE_BAV: D from (V_m + V_o)·cos α; d_m = D·V_m/V, d_o = D − d_m."""
     v = (vm + vo) * math.cos(math.radians(impact_deg))
     theta = math.radians(tilt_deg)
     if theta == 0.0:
@@ -148,7 +148,7 @@ def test_tube_alesage_uniform():
 
 
 def _tube_alesage(vm, vo, tilt_deg):
-    """SPEC §6 TUBE_ALESAGE with R_o: two lunules of half the volumes; tilted: frustum of S."""
+    """Theory §6 TUBE_ALESAGE with R_o: two lunules of half the volumes; tilted: frustum of S."""
     theta = math.radians(tilt_deg)
     limit = _d_max(R_TUBE, R_HOLE)
 
@@ -190,7 +190,7 @@ R_M_E, R_O_E, L_E, ALPHA_I = 9.525 * MM, 9.75 * MM, 30 * MM, 30.0
 
 
 def _enco(vm, vo, tilt_deg, kappa, per_edge):
-    """SPEC §6: S' = S + tan(α_i)·D²; V = (l/2)S' or D·S'/(6θ) or (l/6)(S'1 + √(S'1S'2) + S'2);
+    """Theory §6: S' = S + tan(α_i)·D²; V = (l/2)S' or D·S'/(6θ) or (l/6)(S'1 + √(S'1S'2) + S'2);
     V = V_m + V_o (× 1/2 per edge for TUBE_4_ENCO), V_o = κ·π·l·R_o·d_o, d_m = D − d_o."""
     theta = math.radians(tilt_deg)
     tan_a = math.tan(math.radians(ALPHA_I))
@@ -246,7 +246,7 @@ def test_guide_card_notch_beyond_maximum(contact, top_mm2):
     assert np.isfinite(dm[0]) and np.isnan(dm[1])
 
 
-# ---------------------------------------------------------------- sector depths (SPEC §3)
+# ---------------------------------------------------------------- sector depths (theory §3)
 @pytest.mark.parametrize("volume, radius, arc", [(1e-9, R_TUBE, 36.0), (5e-9, R_TUBE, 10.0),
                                                  (1e-10, R_HOLE, 90.0)])
 def test_sector_depths(volume, radius, arc):
