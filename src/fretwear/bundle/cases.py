@@ -1,0 +1,257 @@
+"""One contact's wear case: the base case with the manifest row's overrides, and its task.
+
+The base case is a TOML case file (or the same content as a dict) read by the case-file layer
+(:mod:`fretwear.workflows.case_files`); a manifest row overrides any of its keys. The merged case
+is validated there, turned into the keywords of :func:`fretwear.table.wear_table`, and shipped to
+a worker as a :class:`ContactTask` (picklable, ``to_dict``/``from_dict`` JSON-ready). Its
+:attr:`ContactTask.key` hashes everything the result depends on (the case, the history file's
+size and modification time, the reader options, the chunk size, the fretwear version), so a
+restarted run skips the contacts whose inputs did not change.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import json
+import math
+import os
+import tomllib
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.bundle.manifest import ContactRow, HistoryRef
+from fretwear.errors import InputError, KeywordError
+
+
+def path_stamp(path: str | os.PathLike) -> tuple:
+    """What identifies a file's content cheaply: (size, modification time [ns]); for a
+    directory (a Zarr store), the number of files, their total size and the latest time."""
+    p = Path(path)
+    try:
+        st = p.stat()
+    except OSError:
+        return ("missing",)
+    if not p.is_dir():
+        return (st.st_size, st.st_mtime_ns)
+    count = size = 0
+    latest = st.st_mtime_ns
+    for root, _, files in os.walk(p):
+        for f in files:
+            s = os.stat(os.path.join(root, f))
+            count, size, latest = count + 1, size + s.st_size, max(latest, s.st_mtime_ns)
+    return (count, size, latest)
+
+
+def _coerce(kind: Any, value: Any, where: str) -> Any:
+    """A manifest cell -> the type the case key expects (TOML text for lists and tables)."""
+    kinds = kind if isinstance(kind, tuple) else (kind,)
+    if isinstance(value, str) and (list in kinds or dict in kinds):
+        text = value.strip()
+        if text[:1] in "[{":
+            try:
+                return tomllib.loads(f"v = {text}")["v"]
+            except tomllib.TOMLDecodeError as exc:
+                raise KeywordError(f"{where} = {value!r}: not a TOML array or inline table "
+                                   f"({exc}); write e.g. [1, 2, 5] or {{ COEF_USURE = 1e-14 }}"
+                                   ) from None
+        if str in kinds:
+            return value
+        if list in kinds:
+            return [value]
+    if bool in kinds and not isinstance(value, bool):
+        text = str(value).strip().lower()
+        if text in ("true", "1", "1.0", "yes"):
+            return True
+        if text in ("false", "0", "0.0", "no"):
+            return False
+        raise KeywordError(f"{where} = {value!r}: give true or false")
+    if int in kinds and float not in kinds and isinstance(value, float) and value.is_integer():
+        return int(value)
+    if (int in kinds or float in kinds) and isinstance(value, str):
+        try:
+            number = float(value)
+        except ValueError:
+            raise KeywordError(f"{where} = {value!r}: not a number") from None
+        return int(number) if float not in kinds and number.is_integer() else number
+    if str in kinds and isinstance(value, int | float) and not isinstance(value, bool):
+        return str(value)
+    if list in kinds and not isinstance(value, list | tuple):
+        return [value]
+    return value
+
+
+def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[str, Any]:
+    """The base case with the row's overrides, validated (not yet checked for consistency).
+
+    Raises
+    ------
+    KeywordError
+        An override of the wrong type, or a case that does not validate.
+    """
+    from fretwear.workflows.case_files import KEYS, validate_case
+
+    case = copy.deepcopy({k: v for k, v in base.items() if k != "_directory"})
+    where = f"{source}: contact {row.contact!r}"
+    for key, value in row.overrides.items():
+        section, name = key[0], key[1]
+        column = ".".join(k for k in key if k)
+        if len(key) == 3:
+            table = case.setdefault(section, {}).setdefault(name, {})
+            table[key[2]] = value.item() if isinstance(value, np.generic) else value
+            continue
+        coerced = _coerce(KEYS[section][name][0], value, f"{where}: column {column}")
+        if section:
+            case.setdefault(section, {})[name] = coerced
+        else:
+            case[name] = coerced
+    case.get("history", {}).pop("file", None)
+    case = validate_case(case, source=where)
+    if "_directory" in base:
+        case["_directory"] = base["_directory"]
+    return case
+
+
+def _jsonable(value: Any) -> Any:
+    if isinstance(value, pd.DataFrame):
+        digest = hashlib.blake2b(pd.util.hash_pandas_object(value, index=True).values.tobytes(),
+                                 digest_size=16).hexdigest()
+        return {"table": digest, "columns": [str(c) for c in value.columns]}
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, Mapping):
+        return {str(k): _jsonable(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_jsonable(v) for v in value]
+    if isinstance(value, float) and not math.isfinite(value):
+        return repr(value)
+    return value
+
+
+@dataclass
+class ContactTask:
+    """Everything a worker needs to compute one contact's wear table.
+
+    Attributes
+    ----------
+    contact : str
+        The contact id.
+    history : HistoryRef
+        Where the history is.
+    keywords : dict
+        The keywords of :func:`fretwear.table.wear_table` (except the source).
+    read_options : dict
+        Reader options of the history (``format``, ``units``, ``columns``).
+    time_unit : str
+        The table's time unit (``"year"``, or ``"<scale> s"``).
+    key : str
+        Hash of the inputs (case, history stamp, options, chunk size, version).
+    samples : int or None
+        Number of samples when known before reading (Parquet, stores).
+    power : float or None
+        A given wear power [W] (``power.value_W``) instead of a history.
+    """
+
+    contact: str
+    history: HistoryRef
+    keywords: dict[str, Any]
+    read_options: dict[str, Any] = field(default_factory=dict)
+    time_unit: str = "s"
+    key: str = ""
+    samples: int | None = None
+    power: float | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description (a restart table given as a DataFrame stays a DataFrame)."""
+        out = asdict(self)
+        out["history"] = {**out["history"],
+                          "arrays": {k: np.asarray(v).tolist()
+                                     for k, v in self.history.arrays.items()}}
+        out["keywords"] = {k: (v if isinstance(v, pd.DataFrame) else _jsonable(v))
+                           for k, v in self.keywords.items()}
+        return out
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> ContactTask:
+        """Rebuild a task from :meth:`to_dict`."""
+        h = dict(data["history"])
+        h["arrays"] = {k: np.asarray(v, dtype=float) for k, v in h.get("arrays", {}).items()}
+        return cls(**{**data, "history": HistoryRef(**h)})
+
+
+def read_options(case: Mapping[str, Any], ref: HistoryRef) -> dict[str, Any]:
+    """Reader options of a contact's history: the case's ``[history]`` format, units, columns,
+    and the node (``select`` of a Code_Aster table, ``group`` of an HDF5 file)."""
+    spec = case.get("history", {})
+    options = {k: spec[k] for k in ("format", "units", "columns") if k in spec}
+    if ref.units:
+        from fretwear.io.channels import channel_of
+
+        declared = {channel_of(v): u for v, u in ref.units.items() if channel_of(v)}
+        options["units"] = {**declared, **options.get("units", {})}
+    return options
+
+
+def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
+               chunk_size: int) -> ContactTask:
+    """The task of one manifest row (client side: validated once, here).
+
+    Raises
+    ------
+    InputError, KeywordError
+        The merged case is invalid, or the row has neither a history nor ``power.value_W``.
+    """
+    from fretwear import __version__
+    from fretwear.workflows.case_files import case_arguments
+
+    case = merge_case(base, row, source)
+    where = f"{source}: contact {row.contact!r}"
+    given_power = "value_W" in case.get("power", {})
+    if row.history.kind == "none" and not given_power:
+        raise InputError(f"{where}: no history: give the history column (a file relative to "
+                         "the manifest) or a power.value_W column")
+    if row.history.kind != "none" and given_power:
+        raise KeywordError(f"{where}: gives both a history and power.value_W; keep one")
+    try:
+        keywords = case_arguments(case, history_elsewhere=True)
+    except InputError as exc:
+        raise type(exc)(f"{where}: {exc}") from None
+    unit = case.get("time", {}).get("unit")
+    options = read_options(case, row.history)
+    stamp: Any = None
+    if row.history.kind in ("file", "store"):
+        stamp = path_stamp(row.history.path)
+    elif row.history.kind == "memory":
+        h = hashlib.blake2b(digest_size=16)
+        for name in sorted(row.history.arrays):
+            h.update(name.encode())
+            h.update(np.ascontiguousarray(row.history.arrays[name]).tobytes())
+        stamp = h.hexdigest()
+    files = [keywords.get("initial_state")] + list(keywords.get("coefficient_files") or [])
+    stamps = [path_stamp(f) for f in files if isinstance(f, str | os.PathLike)]
+    ident = {"case": _jsonable(keywords), "history": [row.history.kind, row.history.path,
+                                                      row.history.node, row.history.index,
+                                                      stamp, stamps],
+             "read": _jsonable(options), "chunk": chunk_size, "version": __version__,
+             "power": case.get("power", {}).get("value_W")}
+    key = hashlib.blake2b(json.dumps(ident, sort_keys=True, default=str).encode(),
+                          digest_size=16).hexdigest()
+    if isinstance(keywords.get("initial_state"), os.PathLike):
+        keywords["initial_state"] = os.fspath(keywords["initial_state"])
+    samples = None
+    if row.history.kind == "memory":
+        samples = int(len(next(iter(row.history.arrays.values()), [])))
+    return ContactTask(contact=row.contact, history=row.history, keywords=keywords,
+                       read_options=options,
+                       time_unit=unit if unit else f"{keywords['time_scale']:g} s", key=key,
+                       samples=samples,
+                       power=float(case["power"]["value_W"]) if given_power else None)

@@ -1,0 +1,437 @@
+"""Running a bundle on Dask: one task per contact, long histories split in time chunks.
+
+:func:`run_bundle` reads the manifest, builds every contact's task on the client (the base case
+plus the row's overrides, validated once), skips the contacts an earlier run already computed
+with the same inputs, and submits the rest to a ``dask.distributed`` cluster: a local one (one
+single-threaded worker process per core) unless a scheduler address is given. A history longer
+than ``chunk_size`` samples in a file that can be read by row range (Parquet, a Zarr/NetCDF
+store) is split into chunks: each chunk's :class:`~fretwear.power.PowerAccumulator` partial
+state is computed by its own task, the states merge in a tree (``split_every`` per node) and a
+last task builds the wear table, so one huge contact also spreads over the workers. Results are
+written part by part as they arrive.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import time
+import uuid
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from fretwear.bundle.cases import ContactTask, build_task
+from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
+from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS, OutputDirectory, write_frame
+from fretwear.bundle.tasks import (
+    chunk_state,
+    finish_contact,
+    merge_states,
+    run_contact,
+    time_bounds,
+)
+from fretwear.errors import InputError, KeywordError
+from fretwear.history import DEFAULT_CHUNK_SIZE
+
+#: Contacts per part file (a part is also written every PART_SECONDS).
+PART_SIZE = 100
+PART_SECONDS = 10.0
+#: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting.
+_BYTES_PER_SAMPLE = 4
+
+
+def _base_case(case) -> dict[str, Any]:
+    from fretwear.workflows.case_files import load_case, validate_case
+
+    if case is None:
+        return {}
+    if isinstance(case, Mapping):
+        directory = case.get("_directory")
+        out = validate_case({k: v for k, v in case.items() if k != "_directory"},
+                            source="base case")
+        if directory is not None:
+            out["_directory"] = directory
+        return out
+    return load_case(case)
+
+
+def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | None:
+    """Row ranges ``[a, b)`` of a contact to be split (consecutive ranges share one sample, as
+    :func:`fretwear.io.iter_history_chunks`), or None to compute it in one task.
+
+    Only histories readable by row range are split (Parquet files, Zarr/NetCDF stores), and not
+    for a law that needs the whole history (KWU-EPRI's classes).
+    """
+    from fretwear.bundle.tasks import _needs_history
+
+    ref = task.history
+    n = None
+    if ref.kind == "store":
+        from fretwear.bundle.datasets import store_length
+
+        n = store_length(ref)
+    elif ref.kind == "file" and ref.node is None and Path(ref.path).is_file() \
+            and task.read_options.get("format", "parquet") == "parquet" \
+            and Path(ref.path).stat().st_size > _BYTES_PER_SAMPLE * chunk_size:
+        with open(ref.path, "rb") as handle:
+            if handle.read(4) != b"PAR1":
+                return None
+        from fretwear.bundle.datasets import require
+
+        n = require("pyarrow.parquet").ParquetFile(ref.path).metadata.num_rows
+    if n is None or n <= chunk_size or _needs_history(task):
+        return None
+    task.samples = n
+    return [(a, min(a + chunk_size, n)) for a in range(0, n - 1, chunk_size - 1)]
+
+
+class _Serial:
+    """The engine without Dask: tasks run in this process, in order (``scheduler="serial"``)."""
+
+    workers = 1
+
+    def submit(self, fn, *args, **kwargs):
+        kwargs.pop("key", None)
+        kwargs.pop("retries", None)
+        return fn(*args)
+
+    def results(self, handles):
+        for h in handles:
+            yield h, h
+
+    def close(self):
+        pass
+
+
+class _Dask:
+    """The engine on a dask.distributed cluster (local, or joined by its address)."""
+
+    def __init__(self, scheduler, workers: int | None) -> None:
+        from fretwear.bundle.datasets import require
+
+        require("dask")
+        distributed = require("distributed")
+        self._cluster = None
+        if scheduler is None:
+            n = workers or os.cpu_count() or 1
+            self._cluster = distributed.LocalCluster(
+                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                silence_logs=logging.ERROR)
+            self.client = distributed.Client(self._cluster)
+        elif isinstance(scheduler, distributed.Client):
+            self.client = scheduler
+        else:
+            if workers is not None:
+                raise KeywordError("workers applies to the local cluster started when no "
+                                   "scheduler is given; an existing cluster has its own workers")
+            try:
+                self.client = distributed.Client(scheduler, timeout="30s")
+            except OSError as exc:
+                raise InputError(f"cannot reach the Dask scheduler {scheduler!r} ({exc}); start "
+                                 "it (dask scheduler, or a dask-jobqueue cluster) or leave "
+                                 "--scheduler out for a local cluster") from None
+        self._own_client = not isinstance(scheduler, distributed.Client)
+        self._as_completed = distributed.as_completed
+        self.workers = max(1, len(self.client.scheduler_info().get("workers", {})))
+
+    def submit(self, fn, *args, key: str, retries: int = 2):
+        return self.client.submit(fn, *args, key=key, pure=False, retries=retries)
+
+    def results(self, handles):
+        for future in self._as_completed(handles):
+            try:
+                yield future, future.result()
+            except Exception as exc:  # noqa: BLE001 - a worker died too often, a lost task
+                yield future, exc
+            finally:
+                future.release()
+
+    def close(self):
+        if self._own_client:
+            self.client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+
+
+def _engine(scheduler, workers):
+    if isinstance(scheduler, str) and scheduler.lower() == "serial":
+        if workers not in (None, 1):
+            raise KeywordError("scheduler='serial' runs in this process: workers must be 1")
+        return _Serial()
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
+                                or workers < 1):
+        raise KeywordError(f"workers must be an integer >= 1, got {workers!r}")
+    return _Dask(scheduler, workers)
+
+
+def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int,
+            retries: int, tag: str):
+    """The handle of a contact's final record (a tree of chunk tasks for a long contact)."""
+    name = f"{task.contact}-{tag}"
+    if chunks is None:
+        return engine.submit(run_contact, task, chunk_size, key=f"contact-{name}",
+                             retries=retries)
+    try:
+        bounds = time_bounds(task, task.samples)
+    except Exception as exc:  # noqa: BLE001 - reading fails: let one task report it
+        del exc
+        return engine.submit(run_contact, task, chunk_size, key=f"contact-{name}",
+                             retries=retries)
+    level = [engine.submit(chunk_state, task, a, b, bounds, key=f"chunk-{name}-{k}",
+                           retries=retries) for k, (a, b) in enumerate(chunks)]
+    depth = 0
+    while len(level) > 1:
+        depth += 1
+        level = [engine.submit(merge_states, *level[i:i + split_every],
+                               key=f"merge-{name}-{depth}-{i}", retries=retries)
+                 for i in range(0, len(level), split_every)]
+    return engine.submit(finish_contact, task, level[0], key=f"finish-{name}", retries=retries)
+
+
+def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
+    return {"contact": task.contact, "key": task.key, "status": "failed", "table": None,
+            "warnings": [], "error": [type(exc).__name__, str(exc)], "samples": 0,
+            "seconds": 0.0, "attrs": None, "state": None}
+
+
+def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = None,
+               output: str | os.PathLike | None = None, force: bool = False,
+               chunk_size: int = DEFAULT_CHUNK_SIZE, split_every: int = 8, retries: int = 2,
+               table_format: str = "parquet", dataset_format: str | None = None,
+               part_size: int = PART_SIZE,
+               progress: Callable[[int, int, dict], None] | None = None) -> BundleResult:
+    """Compute the wear table of every contact of a bundle, on Dask.
+
+    Parameters
+    ----------
+    manifest : path-like, DataFrame, xarray.Dataset or Manifest
+        The contacts (:func:`fretwear.bundle.read_manifest`): a CSV/Parquet/TOML manifest, a
+        Code_Aster table of several nodes, a Zarr/NetCDF store or Dataset ``(contact, time)``.
+    case : path-like or mapping, optional
+        The base case (TOML case file or its dict) every contact starts from; the manifest's
+        columns override its keys per contact.
+    scheduler : str or distributed.Client, optional
+        None: a local cluster of ``workers`` single-threaded worker processes (default one per
+        core); ``"tcp://host:port"``: join that cluster; a Client: use it; ``"serial"``: no
+        Dask, in this process (debugging).
+    workers : int, optional
+        Worker processes of the local cluster.
+    output : path-like, optional
+        Output directory (parts as contacts finish, then ``table``, ``dataset``, ``errors.csv``,
+        ``warnings.csv``, ``summary.csv``, ``run.json``). A run into a directory holding an
+        earlier run's parts skips the contacts whose inputs did not change. None: nothing is
+        written.
+    force : bool
+        Recompute every contact even if an earlier run has it.
+    chunk_size : int
+        Samples per chunk of a long history (>= 2): the memory of a task is bounded by it.
+    split_every : int
+        Partial states merged per node of the tree (>= 2).
+    retries : int
+        Dask retries of a task whose worker died (the scheduler's ``allowed-failures`` also
+        applies).
+    table_format : str
+        ``"parquet"`` or ``"csv"`` (table and parts).
+    dataset_format : str, optional
+        ``"zarr"`` (default when zarr is installed) or ``"netcdf"``.
+    part_size : int
+        Contacts per part file (>= 1).
+    progress : callable, optional
+        ``progress(done, total, record)`` after each contact (done counts skipped ones too).
+
+    Returns
+    -------
+    BundleResult
+
+    Raises
+    ------
+    KeywordError, InputError
+        A bad manifest (unknown column, duplicated id), base case or option; a contact's own
+        problems never raise: they are rows of ``BundleResult.errors``.
+
+    Notes
+    -----
+    A contact computed in one task gives the rows of :func:`fretwear.table.wear_table` on the
+    same history and keywords bit for bit. A contact split into chunks sums its partial
+    integrals in a different order (theory §2: the reduction is exact, the floating-point sum
+    is reassociated), so its power agrees to rounding (~1e-16 relative), not bit for bit.
+    """
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 2:
+        raise KeywordError(f"chunk_size must be an integer >= 2 samples, got {chunk_size!r}")
+    if isinstance(split_every, bool) or not isinstance(split_every, int) or split_every < 2:
+        raise KeywordError(f"split_every must be an integer >= 2, got {split_every!r}")
+    if isinstance(part_size, bool) or not isinstance(part_size, int) or part_size < 1:
+        raise KeywordError(f"part_size must be an integer >= 1, got {part_size!r}")
+    if table_format not in TABLE_FORMATS:
+        raise KeywordError(f"table_format {table_format!r}: choose one of {TABLE_FORMATS}")
+    if dataset_format is not None and dataset_format not in DATASET_FORMATS:
+        raise KeywordError(f"dataset_format {dataset_format!r}: choose one of {DATASET_FORMATS}")
+    started = time.perf_counter()
+    man = manifest if isinstance(manifest, Manifest) else read_manifest(manifest)
+    base = _base_case(case)
+    if "_directory" not in base:
+        base["_directory"] = str(man.directory)
+    store = None if output is None else OutputDirectory(output, table_format=table_format)
+    previous = {} if store is None or force else store.previous()
+
+    records: dict[str, dict[str, Any]] = {}
+    pending: list[ContactTask] = []
+    walls: dict[str, float | None] = {}
+    for row in man.rows:
+        walls[row.contact] = row.wall_thickness
+        try:
+            task = build_task(base, row, man.source, chunk_size=chunk_size)
+        except (InputError, OSError) as exc:
+            records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
+            continue
+        old = previous.get(row.contact)
+        if old is not None and old.get("status") == "done" and old.get("key") == task.key:
+            records[row.contact] = {**old, "status": "skipped"}
+        else:
+            pending.append(task)
+    total = len(man.rows)
+    done_count = sum(1 for r in records.values() if r["status"] == "skipped")
+    if progress is not None:
+        for r in records.values():
+            progress(0, total, r)
+    buffer: list[dict[str, Any]] = []
+    last_flush = time.perf_counter()
+    engine = _engine(scheduler, workers) if pending else _Serial()
+    try:
+        tag = uuid.uuid4().hex[:8]
+        handles = {}
+        for task in pending:
+            try:
+                chunks = plan_chunks(task, chunk_size)
+            except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
+                del exc
+                chunks = None
+            handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
+            handles[id(handle)] = (handle, task)
+        for handle, value in engine.results([h for h, _ in handles.values()]):
+            task = handles[id(handle)][1]
+            rec = value if isinstance(value, dict) else _failed(task, value)
+            records[task.contact] = rec
+            done_count += 1
+            if store is not None:
+                buffer.append(rec)
+                now = time.perf_counter()
+                if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
+                    store.write_part(buffer)
+                    buffer, last_flush = [], now
+            if progress is not None:
+                progress(done_count, total, rec)
+        if store is not None:
+            # this run's last records, and the failures of the client-side checks
+            buffer += [r for r in records.values() if r["status"] == "failed"
+                       and "part" not in r and r not in buffer]
+            if buffer:
+                store.write_part(buffer)
+        workers_used = engine.workers
+    finally:
+        engine.close()
+    elapsed = time.perf_counter() - started
+    return _assemble(man, records, walls, store, elapsed, workers_used, dataset_format)
+
+
+def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store, elapsed: float,
+              workers: int, dataset_format: str | None) -> BundleResult:
+    """The BundleResult (and the output files) from every contact's latest record."""
+    order = [r.contact for r in man.rows]
+    identity = man.identity_frame()
+    identity["contact"] = identity["contact"].astype(str)
+    rows: dict[str, pd.DataFrame] = {}
+    for c in order:
+        rec = records[c]
+        if rec.get("table") is not None:
+            rows[c] = rec["table"]
+    missing = [records[c] for c in order if c not in rows and records[c]["status"]
+               in ("done", "skipped")]
+    if missing and store is not None:
+        rows.update(store.rows(missing))
+    frames = []
+    for c in order:
+        if c in rows:
+            f = rows[c].copy()
+            f.insert(0, "contact", c)
+            frames.append(f)
+    table = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=["contact"])
+    if "sector" in table.columns and table["sector"].isna().any():
+        table["sector"] = table["sector"].astype("Int64")
+    table = identity.merge(table, on="contact", how="right")
+    table = table[list(IDENTITY) + [c for c in table.columns if c not in IDENTITY]]
+    info = []
+    for c in order:
+        rec = records[c]
+        attrs = rec.get("attrs") or {}
+        info.append({"contact": c, "status": rec["status"], "samples": rec.get("samples", 0),
+                     "seconds": rec.get("seconds", 0.0),
+                     "power": (attrs.get("power") or {}).get("total"),
+                     "time_unit": attrs.get("time_unit"), "origin": attrs.get("origin"),
+                     "tube_replacement": attrs.get("tube_replacement"),
+                     "wall_thickness": walls.get(c)})
+    contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
+    errors = []
+    warns = []
+    for c in order:
+        rec = records[c]
+        for category, message in rec.get("warnings") or []:
+            warns.append({"contact": c, "category": category, "message": message})
+        if rec["status"] == "failed":
+            errors.append({"contact": c, "error": rec["error"][0], "message": rec["error"][1],
+                           "rows_kept": False})
+        elif rec["status"] in ("done", "skipped"):
+            ranged = [m for cat, m in rec.get("warnings") or [] if cat == "RangeWarning"]
+            if ranged:
+                errors.append({"contact": c, "error": "RangeWarning", "message": ranged[0],
+                               "rows_kept": True})
+    errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
+    errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
+                                      how="left")
+    statuses = contacts["status"].value_counts()
+    computed = [records[c] for c in order if records[c]["status"] in ("done", "failed")]
+    samples = int(sum(r.get("samples", 0) for r in computed))
+    count = len(computed)
+    stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
+             "failed": int(statuses.get("failed", 0)),
+             "skipped": int(statuses.get("skipped", 0)), "seconds": elapsed,
+             "contacts_per_s": count / elapsed if elapsed > 0 else math.nan,
+             "samples": samples, "samples_per_s": samples / elapsed if elapsed > 0 else math.nan,
+             "workers": workers, "manifest": man.source}
+    result = BundleResult(table=table, errors=errors_frame,
+                          warnings=pd.DataFrame(warns, columns=["contact", "category",
+                                                                "message"]),
+                          contacts=contacts, stats=stats,
+                          output=None if store is None else str(store.path))
+    if store is not None:
+        _write_outputs(result, store, records, dataset_format)
+    return result
+
+
+def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format):
+    import json
+
+    from fretwear.io.atomic import atomic_write
+
+    fmt = store.table_format
+    write_frame(result.table, store.path / f"table.{fmt}", fmt)
+    write_frame(result.errors, store.path / "errors.csv", "csv")
+    write_frame(result.warnings, store.path / "warnings.csv", "csv")
+    write_frame(result.summary(), store.path / "summary.csv", "csv")
+    if dataset_format is None:
+        try:
+            import zarr  # noqa: F401
+
+            dataset_format = "zarr"
+        except ImportError:
+            dataset_format = "netcdf"
+    if len(result.table):
+        store.write_dataset(result.dataset, dataset_format)
+    with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
+        json.dump(result.stats, handle, indent=1, default=str)
+    store.cleanup(r.get("part") for r in records.values() if r.get("part"))

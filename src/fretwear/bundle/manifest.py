@@ -1,0 +1,446 @@
+"""The manifest of a bundle: one row per contact, where its history is, and what differs.
+
+Sources accepted by :func:`read_manifest`:
+
+* a **table** (CSV, Parquet, or TOML ``[[contacts]]``), one row per contact: ``contact`` (unique
+  id), ``history`` (path relative to the manifest), optional ``node`` (one shock point of a
+  multi-node Code_Aster table, or the HDF5 group), identity columns ``tube_row``,
+  ``tube_column``, ``support``, and any case-file key as a column overriding the base case for
+  that row (``mobile_radius_m`` or ``geometry.mobile_radius_m``, ``law.mobile.COEF_USURE``);
+* a **Code_Aster table holding many nodes** (IMPR_TABLE of a RESU_GENE with a ``NOEUD`` column):
+  one contact per node;
+* an **xarray Dataset** (in memory) or a **Zarr / NetCDF store** with dimensions
+  ``(contact, time)`` and one variable per channel (names as in history files: ``time``,
+  ``normal_force`` or ``FN`` ...; units in each variable's ``units`` attribute); 1-D variables
+  along ``contact`` are identity columns or case-key overrides, as manifest columns.
+
+Unknown columns are errors naming the closest valid name, as in case files.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import FormatError, InputError, KeywordError
+from fretwear.keys import keyword_hint
+
+#: Columns of a manifest that are not case keys -> description (``fretwear bundle --help``).
+BUNDLE_COLUMNS: dict[str, str] = {
+    "contact": "unique id of the contact (required); also the history's name in messages",
+    "history": "contact history file, relative to the manifest (required unless the row gives "
+               "power.value_W)",
+    "node": "shock point (NOEUD) to read from a Code_Aster table holding several, or the group "
+            "of an HDF5 file",
+    "tube_row": "row of the tube in the tube sheet (identity, used by the tube-sheet map)",
+    "tube_column": "column of the tube in the tube sheet (identity)",
+    "support": "support or anti-vibration bar of the contact (identity)",
+}
+#: Identity columns carried in front of every result row, in this order.
+IDENTITY: tuple[str, ...] = ("contact", "tube_row", "tube_column", "support", "node", "history")
+#: Per-contact wall thickness [m], a manifest column while the case files have no such key.
+WALL_COLUMN = "wall_thickness_m"
+#: Case keys the manifest gives through its own columns (history <- file, contact <- name).
+_SUPPLIED = {("history", "file"): "history", ("history", "name"): "contact"}
+#: Case keys holding paths (relative to the manifest when given in a manifest cell).
+PATH_KEYS = {("restart", "table"), ("law", "database")}
+TABLE_SUFFIXES = (".csv", ".parquet", ".pq", ".toml")
+STORE_SUFFIXES = (".zarr", ".nc", ".nc4", ".netcdf", ".cdf")
+
+
+def _case_keys() -> dict[str, dict[str, tuple[Any, str]]]:
+    from fretwear.workflows.case_files import KEYS
+
+    return KEYS
+
+
+def _wall_is_case_key() -> bool:
+    return any(WALL_COLUMN in keys for keys in _case_keys().values())
+
+
+@dataclass(frozen=True)
+class HistoryRef:
+    """Where one contact's history is.
+
+    Attributes
+    ----------
+    kind : str
+        ``"file"`` (a history file), ``"store"`` (one contact of a Zarr/NetCDF store),
+        ``"memory"`` (arrays of an in-memory Dataset) or ``"none"`` (a given power).
+    path : str
+        Absolute path of the file or store ("" otherwise).
+    node : str or None
+        Shock point of a multi-node Code_Aster table (or HDF5 group).
+    index : int
+        Position of the contact along the store's ``contact`` dimension.
+    arrays : dict
+        ``{variable: 1-D array}`` of an in-memory contact, ``units`` per variable in ``units``.
+    """
+
+    kind: str
+    path: str = ""
+    node: str | None = None
+    index: int = -1
+    arrays: Mapping[str, np.ndarray] = field(default_factory=dict)
+    units: Mapping[str, str] = field(default_factory=dict)
+    time_dim: str = "time"
+
+    def label(self) -> str:
+        """Short description for tables and messages."""
+        if self.kind == "file":
+            return self.path if self.node is None else f"{self.path} [{self.node}]"
+        if self.kind == "store":
+            return f"{self.path} [contact {self.index}]"
+        return "<in-memory>" if self.kind == "memory" else ""
+
+
+@dataclass
+class ContactRow:
+    """One contact of the manifest: id, history, identity and raw case overrides."""
+
+    contact: str
+    history: HistoryRef
+    identity: dict[str, Any]
+    overrides: dict[tuple[str, ...], Any]
+    wall_thickness: float | None = None
+
+
+@dataclass
+class Manifest:
+    """The contacts of a bundle (:func:`read_manifest`)."""
+
+    rows: list[ContactRow]
+    source: str
+    directory: Path
+    kind: str
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def identity_frame(self) -> pd.DataFrame:
+        """One row per contact: the identity columns."""
+        return pd.DataFrame([{**r.identity, "contact": r.contact, "history": r.history.label()}
+                             for r in self.rows]).reindex(columns=list(IDENTITY))
+
+
+def column_key(column: str, source: str) -> tuple[str, ...] | str:
+    """What a manifest column means: a bundle column name, or the case key it overrides.
+
+    Returns
+    -------
+    str or tuple
+        The column itself for :data:`BUNDLE_COLUMNS` (and ``wall_thickness_m`` while it is not
+        a case key); else ``(section, key)`` or ``(section, key, entry)`` (an entry of an inline
+        table such as ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title.
+
+    Raises
+    ------
+    KeywordError
+        Unknown or ambiguous column, with the closest valid name.
+
+    Examples
+    --------
+    >>> column_key("mobile_radius_m", "manifest")
+    ('geometry', 'mobile_radius_m')
+    >>> column_key("law.mobile.COEF_USURE", "manifest")
+    ('law', 'mobile', 'COEF_USURE')
+    >>> try:
+    ...     column_key("mobile_radus_m", "manifest")
+    ... except KeywordError as exc:
+    ...     print(str(exc).split(";")[0])
+    manifest: unknown column 'mobile_radus_m' (did you mean 'mobile_radius_m'?)
+    """
+    keys = _case_keys()
+    if column in BUNDLE_COLUMNS or (column == WALL_COLUMN and not _wall_is_case_key()):
+        return column
+    parts = column.split(".")
+    if len(parts) > 1 and parts[0] in keys and parts[0]:
+        section, key = parts[0], parts[1]
+        if key in keys[section] and (section, key) not in _SUPPLIED:
+            if len(parts) == 2:
+                return (section, key)
+            if len(parts) == 3 and keys[section][key][0] is dict:
+                return (section, key, parts[2])
+    elif len(parts) == 1:
+        found = [s for s, ks in keys.items() if column in ks and (s, column) not in _SUPPLIED]
+        if len(found) == 1:
+            return (found[0], column)
+        if len(found) > 1:
+            raise KeywordError(f"{source}: column {column!r} is ambiguous: write it "
+                               f"{' or '.join(f'{s}.{column}' for s in found)}")
+    valid = valid_columns()
+    raise KeywordError(f"{source}: unknown column {column!r}{keyword_hint(column, valid)}; "
+                       f"a manifest has the columns {', '.join(BUNDLE_COLUMNS)}, and any case "
+                       "key as an override (bare when unique, else section.key; entries of "
+                       "inline tables as section.key.entry, e.g. law.mobile.COEF_USURE): "
+                       "fretwear bundle --help lists them")
+
+
+def valid_columns() -> list[str]:
+    """Every column name a manifest accepts (bundle columns, bare and dotted case keys)."""
+    keys = _case_keys()
+    names = list(BUNDLE_COLUMNS)
+    if not _wall_is_case_key():
+        names.append(WALL_COLUMN)
+    counts: dict[str, int] = {}
+    for section, ks in keys.items():
+        for k in ks:
+            if (section, k) not in _SUPPLIED:
+                counts[k] = counts.get(k, 0) + 1
+    for section, ks in keys.items():
+        for k in ks:
+            if (section, k) in _SUPPLIED:
+                continue
+            if counts[k] == 1:
+                names.append(k)
+            if section:
+                names.append(f"{section}.{k}")
+    return list(dict.fromkeys(names))
+
+
+def _missing(value: Any) -> bool:
+    if value is None:
+        return True
+    if isinstance(value, float | np.floating):
+        return math.isnan(value)
+    if isinstance(value, str):
+        return value.strip() == ""
+    return value is pd.NA or value is pd.NaT
+
+
+def _plain(value: Any) -> Any:
+    """numpy / pandas scalars and arrays -> plain Python values."""
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return [_plain(v) for v in value.tolist()]
+    if isinstance(value, list | tuple):
+        return [_plain(v) for v in value]
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v) for k, v in value.items()}
+    return value
+
+
+def _identity_value(value: Any) -> Any:
+    value = _plain(value)
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    return value
+
+
+def _check_unique(ids: list[str], source: str) -> None:
+    seen: set[str] = set()
+    for i, c in enumerate(ids):
+        if c in seen:
+            raise InputError(f"{source}: contact {c!r} appears twice (row {i + 1}); contact ids "
+                             "must be unique")
+        seen.add(c)
+
+
+def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[ContactRow]:
+    columns = [str(c) for c in frame.columns]
+    meaning = {c: column_key(c, source) for c in columns}
+    if "contact" not in columns:
+        raise KeywordError(f"{source}: the manifest needs a 'contact' column (unique id of each "
+                           f"contact); columns found: {columns}")
+    rows = []
+    for i, record in enumerate(frame.to_dict("records")):
+        cid = record.get("contact")
+        if _missing(cid):
+            raise InputError(f"{source}: row {i + 1} has no contact id; give every row one")
+        cid = str(_identity_value(cid))
+        identity: dict[str, Any] = {}
+        overrides: dict[tuple[str, ...], Any] = {}
+        wall = None
+        for col, value in record.items():
+            key = meaning[str(col)]
+            if _missing(value) or key in ("contact", "history", "node"):
+                continue
+            if key == WALL_COLUMN:
+                wall = _wall(value, cid, source)
+            elif isinstance(key, str):
+                identity[key] = _identity_value(value)
+            else:
+                value = _plain(value)
+                if key in PATH_KEYS:
+                    value = _absolute(value, directory)
+                overrides[key] = value
+        node = record.get("node")
+        node = None if _missing(node) else str(_identity_value(node))
+        hist = record.get("history")
+        if _missing(hist):
+            ref = HistoryRef("none", node=node)
+        else:
+            ref = HistoryRef("file", path=str(_absolute(str(hist), directory)), node=node)
+        identity["node"] = node
+        rows.append(ContactRow(cid, ref, identity, overrides, wall))
+    _check_unique([r.contact for r in rows], source)
+    return rows
+
+
+def _wall(value: Any, contact: str, source: str) -> float:
+    try:
+        wall = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{source}: contact {contact!r}: {WALL_COLUMN} = {value!r} is not a "
+                         "thickness in metres") from None
+    if not (wall > 0 and math.isfinite(wall)):
+        raise InputError(f"{source}: contact {contact!r}: {WALL_COLUMN} = {value!r} must be a "
+                         "finite thickness > 0 [m]")
+    return wall
+
+
+def _absolute(value: Any, directory: Path) -> Any:
+    if isinstance(value, list):
+        return [_absolute(v, directory) for v in value]
+    p = Path(str(value))
+    return str(p if p.is_absolute() else (directory / p).resolve())
+
+
+def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """A TOML contact table -> manifest columns (nested tables become dotted names; the inline
+    tables of dict-valued case keys stay whole)."""
+    keys = _case_keys()
+    out: dict[str, Any] = {}
+    for k, v in table.items():
+        name = f"{prefix}{k}"
+        parts = name.split(".")
+        whole = (len(parts) == 2 and parts[0] in keys and keys[parts[0]].get(parts[1], (None,))[0]
+                 is dict)
+        if isinstance(v, Mapping) and not whole:
+            out.update(_flatten(v, prefix=f"{name}."))
+        else:
+            out[name] = v
+    return out
+
+
+def _read_toml(path: Path) -> pd.DataFrame:
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"manifest {str(path)!r} is not valid TOML: {exc}") from None
+    extra = sorted(set(raw) - {"contacts"})
+    if extra or not isinstance(raw.get("contacts"), list):
+        raise KeywordError(f"manifest {str(path)!r}: a TOML manifest holds an array of tables "
+                           f"[[contacts]] (one per contact) and nothing else; found keys "
+                           f"{sorted(raw)}")
+    return pd.DataFrame([_flatten(c) for c in raw["contacts"]])
+
+
+def _is_store(path: Path) -> bool:
+    if path.suffix.lower() in STORE_SUFFIXES:
+        return True
+    return path.is_dir() and any((path / m).exists() for m in (".zgroup", "zarr.json",
+                                                              ".zattrs"))
+
+
+def read_manifest(source: Any) -> Manifest:
+    """Read the contacts of a bundle from a manifest, a Code_Aster table or a Dataset.
+
+    Parameters
+    ----------
+    source : path-like, DataFrame or xarray.Dataset
+        A manifest table (``.csv``, ``.parquet``, ``.toml``), a Code_Aster table of several
+        shock points (one contact per ``NOEUD``), a Zarr or NetCDF store or an in-memory
+        Dataset with dimensions ``(contact, time)``, or a DataFrame of manifest rows (paths
+        relative to the current directory).
+
+    Returns
+    -------
+    Manifest
+
+    Raises
+    ------
+    KeywordError
+        An unknown column (with the closest valid name), a missing ``contact`` column.
+    InputError
+        A missing file, a duplicated contact id, an unreadable table.
+
+    Examples
+    --------
+    >>> m = read_manifest(pd.DataFrame({"contact": ["a", "b"], "history": ["a.csv", "b.csv"],
+    ...                                 "tube_row": [1, 2], "mobile_radius_m": [0.0095, None]}))
+    >>> [r.contact for r in m.rows], m.rows[0].overrides
+    (['a', 'b'], {('geometry', 'mobile_radius_m'): 0.0095})
+    """
+    if isinstance(source, pd.DataFrame):
+        return Manifest(_rows_from_frame(source, "manifest", Path.cwd()), "<DataFrame>",
+                        Path.cwd(), "table")
+    if hasattr(source, "data_vars") and hasattr(source, "dims"):
+        from fretwear.bundle.datasets import rows_from_dataset
+
+        return Manifest(rows_from_dataset(source, None, "<Dataset>"), "<Dataset>", Path.cwd(),
+                        "dataset")
+    if not isinstance(source, str | os.PathLike):
+        raise InputError(f"a manifest is a file path, a DataFrame or an xarray Dataset, got "
+                         f"{type(source).__name__}")
+    path = Path(source)
+    if not path.exists():
+        raise InputError(f"manifest {str(path)!r} does not exist")
+    directory = path.resolve().parent
+    label = str(path)
+    suffix = path.suffix.lower()
+    if _is_store(path):
+        from fretwear.bundle.datasets import rows_from_dataset
+
+        return Manifest(rows_from_dataset(None, path.resolve(), label), label, directory,
+                        "dataset")
+    if suffix == ".toml":
+        frame = _read_toml(path)
+    elif suffix in (".parquet", ".pq"):
+        try:
+            frame = pd.read_parquet(path)
+        except ImportError:
+            raise InputError("reading a Parquet manifest needs pyarrow: pip install "
+                             "'fretwear[formats]'") from None
+    elif suffix == ".csv":
+        try:
+            frame = pd.read_csv(path, dtype={"contact": str, "node": str, "history": str},
+                                keep_default_na=True, skipinitialspace=True)
+        except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+            raise FormatError(f"manifest {label!r} is not a readable CSV table: {exc}") from None
+    else:
+        from fretwear.io import guess_format
+
+        if path.is_file() and guess_format(path) == "aster":
+            return Manifest(_rows_from_aster(path.resolve(), label), label, directory, "aster")
+        raise InputError(f"{label!r} is not a manifest: give a .csv, .parquet or .toml table of "
+                         "contacts, a Code_Aster table of several nodes, or a Zarr/NetCDF store "
+                         "with dimensions (contact, time)")
+    return Manifest(_rows_from_frame(frame, label, directory), label, directory, "table")
+
+
+def node_columns(frame: pd.DataFrame) -> list[str]:
+    """The text columns of a Code_Aster table naming the shock point of each row (``NOEUD``,
+    ``NOEUD_CHOC``, ``GROUP_NO`` ..., :data:`fretwear.io.aster_source.NODE_COLUMNS`)."""
+    from fretwear.io.aster_source import NODE_COLUMNS
+
+    types = frame.attrs.get("types") or [None] * frame.shape[1]
+    return [str(c) for c, kind in zip(frame.columns, types, strict=False)
+            if (kind is None or str(kind).upper().startswith("K"))
+            and (str(c).upper() in NODE_COLUMNS or str(c).upper().startswith(("NOEUD",
+                                                                              "GROUP_NO")))]
+
+
+def _rows_from_aster(path: Path, label: str) -> list[ContactRow]:
+    from fretwear.io.aster import read_aster_tables
+
+    nodes: list[str] = []
+    for frame in read_aster_tables(path):
+        for column in node_columns(frame):
+            nodes += [str(v).strip() for v in pd.unique(frame[column].dropna())]
+    nodes = list(dict.fromkeys(n for n in nodes if n))
+    if not nodes:
+        raise FormatError(f"{label}: a Code_Aster table used as a bundle needs a node column "
+                          "(NOEUD, NOEUD_CHOC, GROUP_NO ...: one contact per node); none found. "
+                          "For one contact, use fretwear run")
+    return [ContactRow(n, HistoryRef("file", path=str(path), node=n), {"node": n}, {})
+            for n in nodes]

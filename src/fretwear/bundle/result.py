@@ -1,0 +1,308 @@
+"""What a bundle run returns: every contact's wear table, the same as a Dataset, the failures,
+and a ranking of the contacts by worn depth."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.bundle.manifest import IDENTITY
+
+#: Columns of :attr:`BundleResult.errors`.
+ERROR_COLUMNS = ("contact", "error", "message", "rows_kept")
+#: Depth fraction of the wall used by :meth:`BundleResult.summary` by default (the common
+#: plugging criterion, 40 % through-wall).
+DEFAULT_LIMIT = 0.4
+#: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
+INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
+                "(PCHIP), from depth 0 at the origin of a new tube")
+
+
+@dataclass
+class BundleResult:
+    """The results of :func:`fretwear.bundle.run_bundle`.
+
+    Attributes
+    ----------
+    table : DataFrame
+        Every contact's wear table (columns of :func:`fretwear.table.wear_table`, units in
+        :data:`fretwear.table.COLUMNS`), the identity columns ``contact, tube_row, tube_column,
+        support, node, history`` in front, contacts in manifest order.
+    errors : DataFrame
+        One row per contact that failed (``error`` = the error class, ``message``,
+        ``rows_kept`` False), or whose depth left its relation's range (``error`` =
+        ``RangeWarning``, ``rows_kept`` True: its rows are in the table with NaN depths).
+    warnings : DataFrame
+        ``contact, category, message``: every warning of every contact, captured in its task.
+    contacts : DataFrame
+        One row per contact: identity, ``status`` (``done``, ``failed``, ``skipped`` = done by an
+        earlier run with the same inputs), ``samples``, ``seconds`` (compute time),
+        ``power`` [W], ``time_unit``, ``wall_thickness`` [m] (when given).
+    stats : dict
+        ``done``, ``failed``, ``skipped``, ``seconds`` (wall time), ``contacts_per_s``,
+        ``samples``, ``samples_per_s``, ``workers``.
+    output : str or None
+        The output directory.
+    """
+
+    table: pd.DataFrame
+    errors: pd.DataFrame
+    warnings: pd.DataFrame
+    contacts: pd.DataFrame
+    stats: dict[str, Any] = field(default_factory=dict)
+    output: str | None = None
+    _dataset: Any = field(default=None, repr=False)
+
+    @property
+    def dataset(self):
+        """The table as an xarray Dataset: ``contact × instant`` (× ``sector`` in sector mode),
+        identity columns as coordinates along ``contact``, units and meanings in ``attrs``."""
+        if self._dataset is None:
+            self._dataset = build_dataset(self.table, self.contacts)
+        return self._dataset
+
+    def summary(self, limit: float | None = DEFAULT_LIMIT, *, limit_m: float | None = None,
+                wall_thickness: float | None = None) -> pd.DataFrame:
+        """Contacts ranked by the tube's worn depth at the last instant, deepest first.
+
+        Parameters
+        ----------
+        limit : float, optional
+            Depth limit as a fraction of the wall [-] (default 0.4, 40 % through-wall); used
+            where the wall thickness is known.
+        limit_m : float, optional
+            Depth limit [m] for every contact instead (when no wall thickness is given).
+        wall_thickness : float, optional
+            Wall thickness [m] of every tube, where the manifest gives none.
+
+        Returns
+        -------
+        DataFrame
+            ``rank``, identity columns, ``instant`` (last, in the table's unit), ``power`` [W],
+            ``depth`` [m] (global tube depth ``depth_mobile``), ``depth_sector_max`` [m] (the
+            deepest sector, sector mode), ``wall_thickness`` [m], ``depth_fraction`` (depth /
+            wall), ``limit_depth`` [m], ``time_to_limit`` (instant at which the depth reaches
+            the limit, table unit; NaN if not reached by the last instant), ``time_to_limit_method``
+            and ``note`` (beyond the relation's range, ...). A depth beyond its relation's range
+            (NaN) ranks first. ``attrs["time_to_limit"]`` says how the time was found.
+        """
+        return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
+                         wall_thickness=wall_thickness)
+
+
+def _global_rows(rows: pd.DataFrame) -> pd.DataFrame:
+    """One row per instant (sector tables repeat the global columns on every sector row)."""
+    if "sector" in rows.columns and rows["sector"].notna().any():
+        rows = rows.drop_duplicates("instant", keep="first")
+    return rows.sort_values("instant")
+
+
+def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
+                  from_zero: bool = True) -> float:
+    """The instant at which a non-decreasing depth history reaches ``target``.
+
+    Parameters
+    ----------
+    instants : array
+        Increasing instants (any time unit; the result is in the same unit).
+    depths : array
+        Depths at those instants [m]; NaN entries are dropped.
+    target : float
+        Depth to reach [m].
+    from_zero : bool
+        Prepend (0, 0): a new tube has no wear at the origin.
+
+    Returns
+    -------
+    float
+        The instant, NaN when the last finite depth is below ``target``.
+
+    Notes
+    -----
+    depth(t) is interpolated by a piecewise monotone cubic (PCHIP, Fritsch & Carlson 1980
+    [1]_), which is monotone wherever the data are, and inverted on the bracketing interval
+    with Brent's method to 1e-12 relative.
+
+    References
+    ----------
+    .. [1] Fritsch, F. N., Carlson, R. E. (1980). Monotone piecewise cubic interpolation.
+       SIAM J. Numer. Anal. 17(2), 238-246.
+
+    Examples
+    --------
+    >>> t = np.array([1.0, 2.0, 4.0]); d = 1e-4 * t  # linear wear, 0.1 mm per unit
+    >>> round(time_to_depth(t, d, 2.5e-4), 9)
+    2.5
+    """
+    from scipy.interpolate import PchipInterpolator
+    from scipy.optimize import brentq
+
+    t = np.asarray(instants, dtype=float)
+    d = np.asarray(depths, dtype=float)
+    keep = np.isfinite(d) & np.isfinite(t)
+    t, d = t[keep], d[keep]
+    if from_zero and (t.size == 0 or t[0] > 0):
+        t, d = np.concatenate(([0.0], t)), np.concatenate(([0.0], d))
+    if t.size == 0 or d.max() < target:
+        return math.nan
+    d = np.maximum.accumulate(d)  # guard against round-off wiggles
+    i = int(np.argmax(d >= target))
+    if i == 0 or d[i] == target:
+        return float(t[i])
+    if t.size == 2:
+        return float(t[0] + (target - d[0]) * (t[1] - t[0]) / (d[1] - d[0]))
+    f = PchipInterpolator(t, d)
+    return float(brentq(lambda x: float(f(x)) - target, t[i - 1], t[i], rtol=1e-12))
+
+
+def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
+              limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
+    """The ranking of :meth:`BundleResult.summary`."""
+    from fretwear.errors import InputError
+
+    if limit is not None and not (0 < limit and math.isfinite(limit)):
+        raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
+    if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
+        raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
+    info = contacts.set_index("contact") if len(contacts) else contacts
+    given = "time_to_limit" in table.columns  # computed by the wear table itself
+    rows = []
+    for contact, group in table.groupby("contact", sort=False):
+        glob = _global_rows(group)
+        last = glob.iloc[-1]
+        depth = float(last["depth_mobile"])
+        sector_max = (float(group.loc[group["instant"] == last["instant"],
+                                      "depth_mobile_sector"].max())
+                      if "depth_mobile_sector" in group.columns else math.nan)
+        wall = math.nan
+        if "wall_thickness" in info.columns and contact in info.index:
+            given_wall = info.at[contact, "wall_thickness"]
+            wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
+        if not math.isfinite(wall) and wall_thickness is not None:
+            wall = float(wall_thickness)
+        target = (limit * wall if limit is not None and math.isfinite(wall)
+                  else (limit_m if limit_m is not None else math.nan))
+        note = ""
+        finite = np.isfinite(glob["depth_mobile"].to_numpy(dtype=float))
+        if not finite.all():
+            first_nan = float(glob["instant"].to_numpy()[~finite][0])
+            note = f"depth beyond the relation's range from instant {first_nan:g}"
+        replaced = (info.at[contact, "tube_replacement"]
+                    if "tube_replacement" in info.columns and contact in info.index else None)
+        replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
+        if given:
+            t_lim = float(group["time_to_limit"].dropna().iloc[0]) if group[
+                "time_to_limit"].notna().any() else math.nan
+            method = "wear table (time_to_limit column)"
+        elif math.isfinite(target):
+            sel = glob
+            if replaced is not None:
+                sel = glob[glob["instant"] >= replaced]
+            origin = float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel) else 0
+            t_lim = time_to_depth(sel["instant"].to_numpy(dtype=float),
+                                  sel["depth_mobile"].to_numpy(dtype=float), target,
+                                  from_zero=origin == 0)
+            method = INTERPOLATED
+        else:
+            t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
+        row = {"contact": contact, "instant": float(last["instant"]),
+               "power": float(last["power"]), "depth": depth, "depth_sector_max": sector_max,
+               "wall_thickness": wall, "depth_fraction": depth / wall if wall > 0 else math.nan,
+               "limit_depth": target, "time_to_limit": t_lim, "time_to_limit_method": method,
+               "note": note}
+        rows.append(row)
+    out = pd.DataFrame(rows, columns=["contact", "instant", "power", "depth", "depth_sector_max",
+                                      "wall_thickness", "depth_fraction", "limit_depth",
+                                      "time_to_limit", "time_to_limit_method", "note"])
+    ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
+    if len(out):
+        out = out.merge(contacts[["contact", *ident]], on="contact", how="left")
+    beyond = out["depth"].isna()
+    out = (out.assign(_beyond=beyond).sort_values(["_beyond", "depth"],
+                                                  ascending=[False, False], kind="stable")
+           .drop(columns="_beyond").reset_index(drop=True))
+    out.insert(0, "rank", np.arange(1, len(out) + 1))
+    front = ["rank", "contact", *ident]
+    out = out[front + [c for c in out.columns if c not in front]]
+    out.attrs["time_to_limit"] = INTERPOLATED if not given else "from the wear table"
+    out.attrs["limit"] = limit
+    out.attrs["limit_m"] = limit_m
+    return out
+
+
+# ----------------------------------------------------------------------------- dataset
+_CONTACT_VARS = ("power",)
+_SECTOR_ONLY = ("angle_start", "angle_end")
+
+
+def _coordinate(values: pd.Series):
+    """Identity column -> a NetCDF/Zarr-friendly array (numbers as float, else text)."""
+    numeric = pd.to_numeric(values, errors="coerce")
+    if numeric.notna().sum() == values.notna().sum() and values.notna().any():
+        return numeric.to_numpy(dtype=float)
+    return values.fillna("").astype(str).to_numpy()
+
+
+def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
+    """The bundle's wear tables as an xarray Dataset (see :attr:`BundleResult.dataset`)."""
+    from fretwear import __version__
+    from fretwear.bundle.datasets import require
+    from fretwear.table import COLUMNS
+
+    xr = require("xarray")
+    done = contacts[contacts["status"].isin(["done", "skipped"])] if len(contacts) else contacts
+    ids = [c for c in done["contact"].astype(str)] if len(done) else []
+    sector_mode = "sector" in table.columns and table["sector"].notna().any()
+    wear = [c for c in table.columns if c in COLUMNS and c not in ("instant", "sector")]
+    global_cols = [c for c in wear if c not in _sector_columns()]
+    data = {}
+    if len(table):
+        glob = table.drop_duplicates(["contact", "instant"], keep="first")
+        g = glob.set_index(["contact", "instant"])[global_cols].to_xarray()
+        data.update({k: g[k] for k in g.data_vars})
+        if sector_mode:
+            sect = table[table["sector"].notna()].copy()
+            sect["sector"] = sect["sector"].astype(int)
+            s_cols = [c for c in wear if c in _sector_columns() and c not in _SECTOR_ONLY]
+            s = sect.set_index(["contact", "instant", "sector"])[s_cols].to_xarray()
+            data.update({k: s[k] for k in s.data_vars})
+            a = sect.drop_duplicates(["contact", "sector"]).set_index(
+                ["contact", "sector"])[list(_SECTOR_ONLY)].to_xarray()
+            data.update({k: a[k] for k in a.data_vars})
+    ds = xr.Dataset(data)
+    if "contact" in ds.dims:
+        ds = ds.reindex(contact=[c for c in ids if c in set(ds["contact"].values)])
+    info = done.set_index("contact") if len(done) else done
+    if "contact" in ds.dims:
+        order = [str(c) for c in ds["contact"].values]
+        for col in ("tube_row", "tube_column", "support", "node", "history", "time_unit",
+                    "wall_thickness", "status"):
+            if col in info.columns and info.loc[order, col].notna().any():
+                ds = ds.assign_coords({col: ("contact", _coordinate(info.loc[order, col]))})
+    for name in ds.data_vars:
+        if name in COLUMNS:
+            aster, unit, description = COLUMNS[name]
+            ds[name].attrs.update(units=unit, long_name=description, aster_name=aster)
+    units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
+    if "instant" in ds.coords:
+        ds["instant"].attrs.update(
+            units=units[0] if len(units) == 1 else "see the time_unit coordinate",
+            long_name=COLUMNS["instant"][2])
+    if "sector" in ds.coords:
+        ds["sector"].attrs.update(units="1", long_name=COLUMNS["sector"][2])
+    if "wall_thickness" in ds.coords:
+        ds["wall_thickness"].attrs.update(units="m", long_name="wall thickness of the tube")
+    ds.attrs.update(title="fretwear bundle: wear tables of every contact",
+                    fretwear_version=__version__,
+                    conventions="SI units (m, m³, W); instants in the time unit of the case")
+    return ds
+
+
+def _sector_columns() -> tuple[str, ...]:
+    from fretwear.table import GLOBAL_COLUMNS, SECTOR_COLUMNS
+
+    return tuple(c for c in SECTOR_COLUMNS if c not in GLOBAL_COLUMNS)

@@ -1,0 +1,167 @@
+"""The output directory of a bundle run: parts written as contacts finish, and the final files.
+
+Layout of ``OUT/``::
+
+    parts/part-<run>-<n>.parquet   rows of the contacts of part n (``contact`` + wear columns)
+    parts/part-<run>-<n>.json      one record per contact of that part: input key, status,
+                                   warnings, error, samples, compute time, table metadata
+    table.parquet | table.csv      every contact's wear table, identity columns in front
+    dataset.zarr | dataset.nc      the same as an xarray Dataset (contact × instant × sector)
+    errors.csv, warnings.csv, summary.csv, run.json
+
+A part's rows are written first and its JSON last, both atomically (temporary file + rename), so
+a part exists only once complete: a run killed at any moment leaves whole parts. The next run
+reads the JSON records, skips every contact whose input key is unchanged and whose status was
+``done``, and recomputes the others (``force=True`` recomputes all).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import time
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from fretwear.errors import InputError
+from fretwear.io.atomic import atomic_path, atomic_write
+
+TABLE_FORMATS = ("parquet", "csv")
+DATASET_FORMATS = ("zarr", "netcdf")
+#: Float format of CSV outputs: 17 significant digits round-trip every float64 exactly.
+CSV_FLOAT = "%.17g"
+
+
+def write_frame(frame: pd.DataFrame, path: Path, fmt: str) -> Path:
+    """Write a table atomically as Parquet or CSV (floats round-trip exactly in both)."""
+    with atomic_path(path) as tmp:
+        if fmt == "parquet":
+            try:
+                frame.to_parquet(tmp, index=False)
+            except ImportError:
+                raise InputError("writing Parquet needs pyarrow: pip install 'fretwear[formats]'"
+                                 ", or choose the csv table format") from None
+        else:
+            frame.to_csv(tmp, index=False, float_format=CSV_FLOAT)
+    return path
+
+
+def read_frame(path: Path) -> pd.DataFrame:
+    """Read a table written by :func:`write_frame`."""
+    if path.suffix == ".parquet":
+        return pd.read_parquet(path)
+    return pd.read_csv(path, dtype={"contact": str})
+
+
+class OutputDirectory:
+    """Parts and final files of one bundle output directory.
+
+    Parameters
+    ----------
+    path : path-like
+        The directory (created).
+    table_format : str
+        ``"parquet"`` or ``"csv"`` for the parts and the final table.
+    """
+
+    def __init__(self, path: str | os.PathLike, *, table_format: str = "parquet") -> None:
+        if table_format not in TABLE_FORMATS:
+            raise InputError(f"table format {table_format!r}: choose one of {TABLE_FORMATS}")
+        self.path = Path(path)
+        if self.path.exists() and not self.path.is_dir():
+            raise InputError(f"output {str(self.path)!r} exists and is not a directory; give a "
+                             "directory for the bundle's results")
+        self.parts = self.path / "parts"
+        self.parts.mkdir(parents=True, exist_ok=True)
+        self.table_format = table_format
+        self._run = f"{time.time_ns():020d}"
+        self._seq = 0
+
+    def previous(self) -> dict[str, dict[str, Any]]:
+        """The latest record of every contact in the existing parts (``part`` = its stem)."""
+        out: dict[str, dict[str, Any]] = {}
+        for js in sorted(self.parts.glob("part-*.json")):
+            try:
+                data = json.loads(js.read_text(encoding="utf-8"))
+            except (OSError, json.JSONDecodeError):
+                continue  # not a part this code wrote whole: ignored, its contacts recomputed
+            for rec in data.get("contacts", []):
+                out[rec["contact"]] = {**rec, "part": data["part"],
+                                       "rows_file": data.get("rows_file")}
+        return out
+
+    def write_part(self, records: list[dict[str, Any]]) -> str:
+        """Write one part (rows, then records); returns its stem."""
+        stem = f"part-{self._run}-{self._seq:06d}"
+        self._seq += 1
+        frames = [rows_of(r) for r in records if r.get("table") is not None]
+        rows_file = None
+        if frames:
+            rows_file = f"{stem}.{self.table_format}"
+            write_frame(pd.concat(frames, ignore_index=True), self.parts / rows_file,
+                        self.table_format)
+        meta = {"part": stem, "rows_file": rows_file,
+                "contacts": [{k: v for k, v in r.items() if k not in ("table", "state")}
+                             for r in records]}
+        with atomic_write(self.parts / f"{stem}.json", encoding="utf-8") as handle:
+            json.dump(meta, handle, indent=1, default=str)
+        for r in records:
+            r["part"], r["rows_file"] = stem, rows_file
+        return stem
+
+    def rows(self, records: Iterable[Mapping[str, Any]]) -> dict[str, pd.DataFrame]:
+        """``{contact: its rows}`` read back from the parts of the given records."""
+        by_file: dict[str, set[str]] = {}
+        for r in records:
+            if r.get("rows_file"):
+                by_file.setdefault(r["rows_file"], set()).add(r["contact"])
+        out: dict[str, pd.DataFrame] = {}
+        for name, contacts in by_file.items():
+            frame = read_frame(self.parts / name)
+            frame["contact"] = frame["contact"].astype(str)
+            for contact, rows in frame[frame["contact"].isin(contacts)].groupby(
+                    "contact", sort=False):
+                out[str(contact)] = rows.drop(columns="contact").reset_index(drop=True)
+        return out
+
+    def cleanup(self, keep: Iterable[str]) -> None:
+        """Remove the parts no current record refers to (superseded by a later run)."""
+        keep = set(keep)
+        for p in self.parts.glob("part-*"):
+            if p.name.split(".")[0] not in keep:
+                p.unlink(missing_ok=True)
+
+    def write_dataset(self, dataset, fmt: str) -> Path:
+        """Write the dataset atomically: a NetCDF file, or a Zarr directory swapped in whole."""
+        if fmt not in DATASET_FORMATS:
+            raise InputError(f"dataset format {fmt!r}: choose one of {DATASET_FORMATS}")
+        if fmt == "netcdf":
+            target = self.path / "dataset.nc"
+            with atomic_path(target) as tmp:
+                dataset.to_netcdf(tmp)
+            return target
+        target = self.path / "dataset.zarr"
+        tmp = self.path / f".dataset.zarr.{self._run}.tmp"
+        shutil.rmtree(tmp, ignore_errors=True)
+        try:
+            dataset.to_zarr(tmp, mode="w", consolidated=False)
+            old = self.path / f".dataset.zarr.{self._run}.old"
+            if target.exists():
+                os.replace(target, old)
+            os.replace(tmp, target)
+            shutil.rmtree(old, ignore_errors=True)
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+        return target
+
+
+def rows_of(record: Mapping[str, Any]) -> pd.DataFrame:
+    """A contact's wear table with its id in front (what a part stores)."""
+    table = record["table"]
+    out = table.copy()
+    out.insert(0, "contact", record["contact"])
+    return out

@@ -1,0 +1,322 @@
+"""What a worker runs: one contact, or one time chunk of a long contact, and their merge.
+
+Every function here takes plain picklable values and returns a *record* (a dict): the contact's
+wear table or partial power state, its warnings (captured inside the task, one list per
+contact) and, when it failed, the error class and message. Nothing raises out of a task for a
+bad input: the batch goes on and the contact is reported in ``BundleResult.errors``.
+
+Warnings are captured with :func:`warnings.catch_warnings`, whose state is global to a process;
+a lock makes the tasks of one worker process take turns, so a worker running several threads
+cannot mix two contacts' warnings (the local cluster runs one thread per worker process).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import threading
+import time
+import warnings
+from typing import Any
+
+import numpy as np
+
+from fretwear.bundle.cases import ContactTask
+from fretwear.bundle.datasets import frame_of, store_arrays
+
+_LOCK = threading.Lock()
+#: Table attributes kept in a contact's record (JSON-ready; the power statistics are dropped).
+_ATTRS = ("contact_type", "dimensions", "law", "coefficients_mobile", "coefficients_obstacle",
+          "materials", "coefficient_sources", "sector_edges", "time_scale", "origin",
+          "tube_replacement")
+
+
+def _plain(value: Any) -> Any:
+    if isinstance(value, dict):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, np.generic):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value if value is None or isinstance(value, bool | int | float | str) else str(value)
+
+
+def _attrs(table, task: ContactTask) -> dict[str, Any]:
+    out = {k: _plain(table.attrs.get(k)) for k in _ATTRS}
+    power = table.attrs.get("power") or {}
+    out["power"] = {k: _plain(power.get(k)) for k in ("total", "blocks", "spread", "t_start",
+                                                      "t_end", "duration", "sectors")}
+    out["time_unit"] = task.time_unit
+    return out
+
+
+@contextlib.contextmanager
+def captured():
+    """Run a block with this process's warnings recorded (one task at a time per process)."""
+    with _LOCK, warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        yield caught
+
+
+def _warning_list(caught) -> list[list[str]]:
+    return [list(x) for x in dict.fromkeys(
+        (w.category.__name__, str(w.message)) for w in caught)]
+
+
+def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None,
+            samples: int = 0, seconds: float = 0.0, state=None) -> dict[str, Any]:
+    return {"contact": task.contact, "key": task.key, "status": status, "table": table,
+            "warnings": _warning_list(caught), "error": error, "samples": int(samples),
+            "seconds": seconds, "attrs": None if table is None else _attrs(table, task),
+            "state": state}
+
+
+def _error(exc: BaseException) -> list[str]:
+    return [type(exc).__name__, str(exc)]
+
+
+# ----------------------------------------------------------------------------- reading
+def _read_in_memory(arrays: dict, task: ContactTask, first_row: int = 0):
+    """A ContactHistory from raw arrays (aliases and units as for a file)."""
+    from fretwear.io import read_history
+
+    options = {k: v for k, v in task.read_options.items() if k in ("units", "columns")}
+    history = read_history(frame_of(arrays), name=task.contact, **options)
+    return history
+
+
+def _file_options(task: ContactTask) -> dict[str, Any]:
+    """Reader options of a history file; the node is the ``node=`` of a Code_Aster table or
+    the ``group=`` of an HDF5 file."""
+    options = dict(task.read_options)
+    node = task.history.node
+    if node is not None:
+        from fretwear.errors import KeywordError
+        from fretwear.io import guess_format
+
+        fmt = options.get("format") or guess_format(task.history.path)
+        if fmt == "hdf5":
+            options["group"] = node
+        elif fmt in ("aster", "aster-function"):
+            options["node"] = node
+        else:
+            raise KeywordError(f"{task.history.path}: node {node!r} selects a shock point of a "
+                               f"Code_Aster table or the group of an HDF5 file, not of a "
+                               f"{fmt} file; leave the node cell empty")
+    return options
+
+
+def parquet_rows(task: ContactTask, start: int, stop: int):
+    """Rows ``[start, stop)`` of a Parquet history, as a ContactHistory (only the row groups
+    holding them are read); aliases and units as :func:`fretwear.io.read_history`."""
+    from fretwear.bundle.datasets import require
+    from fretwear.io import open_source
+    from fretwear.io.channels import build_history, resolve_columns, resolve_units
+
+    pq = require("pyarrow.parquet")
+    path = task.history.path
+    options = {k: v for k, v in task.read_options.items() if k not in ("units", "columns")}
+    source = open_source(path, **options)
+    mapping = resolve_columns(source.columns, task.read_options.get("columns"),
+                              label=source.label, hint=source.hint)
+    unit_of, factors = resolve_units(mapping, source.units, task.read_options.get("units"),
+                                     label=source.label)
+    handle = pq.ParquetFile(path, pre_buffer=False)
+    try:
+        meta = handle.metadata
+        sizes = [meta.row_group(g).num_rows for g in range(meta.num_row_groups)]
+        bounds = np.cumsum([0] + sizes)
+        groups = [g for g in range(len(sizes)) if bounds[g] < stop and bounds[g + 1] > start]
+        names = [source.columns[p] for p in mapping.values()]
+        table = handle.read_row_groups(groups, columns=names)
+    finally:
+        handle.close()
+    offset = start - int(bounds[groups[0]])
+    arrays = {ch: table.column(i).to_numpy().astype(float, copy=False)[offset:offset + stop - start]
+              for i, ch in enumerate(mapping)}
+    metadata = dict(source.metadata, source=source.label, format=source.format,
+                    units=unit_of, unit_factors=factors, first_row=start)
+    return build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
+                         label=source.label, name=task.contact, metadata=metadata,
+                         first_row=start)
+
+
+def read_part(task: ContactTask, start: int, stop: int):
+    """Samples ``[start, stop)`` of a contact whose length is known (Parquet, store)."""
+    if task.history.kind == "store":
+        return _read_in_memory(store_arrays(task.history, start, stop), task, start)
+    return parquet_rows(task, start, stop)
+
+
+# ----------------------------------------------------------------------------- computing
+def _wear_table(source, task: ContactTask, history=None):
+    from fretwear.table import wear_table
+
+    if history is not None:
+        return wear_table(source, history=history, **task.keywords)
+    return wear_table(source, **task.keywords)
+
+
+def _power_options(task: ContactTask) -> dict[str, Any]:
+    kw = task.keywords
+    return dict(t_start=kw.get("t_start"), t_end=kw.get("t_end"), blocks=kw.get("blocks", 1),
+                sectors=kw.get("sectors"))
+
+
+def _needs_history(task: ContactTask) -> bool:
+    from fretwear.laws import WEAR_LAWS
+
+    law = WEAR_LAWS.get(str(task.keywords.get("law", "ARCHARD")).upper())
+    return bool(law is not None and law.needs_history)
+
+
+def _compute(task: ContactTask, chunk_size: int):
+    """(table, samples) of one whole contact."""
+    ref = task.history
+    if ref.kind == "none":
+        return _wear_table(task.power, task), 0
+    if ref.kind == "memory":
+        history = _read_in_memory(dict(ref.arrays), task)
+    elif ref.kind == "store":
+        history = _read_in_memory(store_arrays(ref), task)
+    else:
+        from fretwear.io import iter_history_chunks, read_history
+
+        options = _file_options(task)
+        chunks = iter_history_chunks(ref.path, chunk_size, name=task.contact, **options)
+        try:
+            history = next(chunks)
+            longer = next(chunks, None) is not None
+        finally:
+            chunks.close()
+        if longer:
+            if _needs_history(task):  # the law's classes need the history whole
+                history = read_history(ref.path, name=task.contact, **options)
+            else:  # streamed as fretwear.power.wear_power does: memory bounded by the chunk
+                return _streamed(task, chunk_size, options)
+    return _wear_table(history, task), len(history)
+
+
+def _streamed(task: ContactTask, chunk_size: int, options: dict[str, Any]):
+    """(table, samples) of a history file longer than a chunk, read chunk by chunk."""
+    from fretwear.io import iter_history_chunks
+    from fretwear.power import PowerAccumulator
+
+    opts = _power_options(task)
+    if opts["blocks"] > 1 and (opts["t_start"] is None or opts["t_end"] is None):
+        first = last = None  # the block edges need the time range first (one more pass)
+        for chunk in iter_history_chunks(task.history.path, chunk_size, **options):
+            first = float(chunk.time[0]) if first is None else first
+            last = float(chunk.time[-1])
+        opts["t_start"] = first if opts["t_start"] is None else opts["t_start"]
+        opts["t_end"] = last if opts["t_end"] is None else opts["t_end"]
+    acc = PowerAccumulator(**opts)
+    for chunk in iter_history_chunks(task.history.path, chunk_size, name=task.contact,
+                                     **options):
+        acc.update(chunk)
+    power = acc.result(stationarity_threshold=task.keywords.get("stationarity_threshold", 0.1))
+    return _wear_table(power, task), acc.samples
+
+
+def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any]:
+    """Compute one contact's wear table; a failure becomes an error record.
+
+    Parameters
+    ----------
+    task : ContactTask
+    chunk_size : int
+        Samples per chunk when a history file is longer (streamed, memory bounded).
+
+    Returns
+    -------
+    dict
+        ``contact``, ``key``, ``status`` (``"done"`` or ``"failed"``), ``table`` (DataFrame or
+        None), ``warnings`` (``[category, message]`` pairs), ``error`` (``[class, message]`` or
+        None), ``samples``, ``seconds`` (compute time), ``attrs`` (the table's metadata).
+    """
+    start = time.perf_counter()
+    with captured() as caught:
+        try:
+            table, samples = _compute(task, chunk_size)
+        except Exception as exc:  # noqa: BLE001 - a bad contact must not stop the batch
+            return _record(task, status="failed", caught=caught, error=_error(exc),
+                           seconds=time.perf_counter() - start)
+    return _record(task, status="done", table=table, caught=caught, samples=samples,
+                   seconds=time.perf_counter() - start)
+
+
+def chunk_state(task: ContactTask, start: int, stop: int, bounds: tuple[float, float]
+                ) -> dict[str, Any]:
+    """The partial power state of samples ``[start, stop)`` of a long contact."""
+    from fretwear.power import PowerAccumulator
+
+    t0 = time.perf_counter()
+    opts = _power_options(task)
+    opts["t_start"] = bounds[0] if opts["t_start"] is None else opts["t_start"]
+    opts["t_end"] = bounds[1] if opts["t_end"] is None else opts["t_end"]
+    with captured() as caught:
+        try:
+            acc = PowerAccumulator(**opts).update(read_part(task, start, stop))
+        except Exception as exc:  # noqa: BLE001
+            return _record(task, status="failed", caught=caught, error=_error(exc),
+                           seconds=time.perf_counter() - t0)
+    return _record(task, status="partial", caught=caught, state=acc,
+                   seconds=time.perf_counter() - t0)
+
+
+def merge_states(*records: dict[str, Any]) -> dict[str, Any]:
+    """Merge partial records of consecutive chunks, left to right (a node of the tree)."""
+    out = dict(records[0])
+    out["warnings"] = [w for r in records for w in r["warnings"]]
+    out["seconds"] = sum(r["seconds"] for r in records)
+    failed = [r for r in records if r["status"] == "failed"]
+    if failed:
+        out.update(status="failed", error=failed[0]["error"], state=None)
+        return out
+    with captured() as caught:
+        try:
+            state = records[0]["state"]
+            for r in records[1:]:
+                state = state.merge(r["state"])
+        except Exception as exc:  # noqa: BLE001
+            out.update(status="failed", error=_error(exc), state=None)
+            return out
+    out["warnings"] += _warning_list(caught)
+    out["state"] = state
+    return out
+
+
+def finish_contact(task: ContactTask, merged: dict[str, Any]) -> dict[str, Any]:
+    """The wear table of a long contact from the merged power state of all its chunks."""
+    t0 = time.perf_counter()
+    if merged["status"] == "failed":
+        rec = _record(task, status="failed", error=merged["error"], seconds=merged["seconds"])
+        rec["warnings"] = merged["warnings"]
+        return rec
+    with captured() as caught:
+        try:
+            state = merged["state"]
+            power = state.result(stationarity_threshold=task.keywords.get(
+                "stationarity_threshold", 0.1))
+            table = _wear_table(power, task)
+        except Exception as exc:  # noqa: BLE001
+            rec = _record(task, status="failed", caught=caught, error=_error(exc),
+                          seconds=merged["seconds"] + time.perf_counter() - t0)
+            rec["warnings"] = merged["warnings"] + rec["warnings"]
+            return rec
+    rec = _record(task, status="done", table=table, caught=caught, samples=state.samples,
+                  seconds=merged["seconds"] + time.perf_counter() - t0)
+    rec["warnings"] = [list(w) for w in dict.fromkeys(
+        tuple(w) for w in merged["warnings"] + rec["warnings"])]
+    return rec
+
+
+def time_bounds(task: ContactTask, samples: int) -> tuple[float, float]:
+    """First and last instant [s] of a contact of known length (two one-sample reads)."""
+    first = read_part(task, 0, 2).time[0]
+    last = read_part(task, samples - 2, samples).time[-1]
+    return float(first), float(last)
