@@ -315,7 +315,7 @@ def test_wear_table_accepts_code_aster_file_path(tmp_path):
 
 
 def test_mater_usure_and_usure_obst_from_the_database():
-    """Seed §3: GRAPPE_ALESAGE A304L/A304L Archard 2.6e-15 (rod) and 3.7e-15 (guide)."""
+    """R7.20.01 §3: GRAPPE_ALESAGE A304L/A304L Archard 2.6e-15 (rod) and 3.7e-15 (guide)."""
     kw = dict(CONTACT="GRAPPE_ALESAGE", RAYON_MOBILE=4.84e-3, RAYON_OBST=5.25e-3,
               LARGEUR_OBST=0.02, COEF_INST=3600.0, MOBILE=None)
     t = call(MATER_USURE="A304L/A304L", USURE_OBST="OUI", **kw)

@@ -239,8 +239,8 @@ HEADER = "contact_type,mobile_material,obstacle_material,law,parameter,value,uni
 
 
 def test_law_database_files_relative_to_the_case(tmp_path):
-    """Seed §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹; `[law] database` files (relative to the case
-    file, later wins) replace it, and V = K·P·t (theory §4) scales by the ratio of the K's."""
+    """R7.20.01 §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹; `[law] database` files (relative to the
+    case file, later wins) replace it, and V = K·P·t (theory §4) scales by the ratio of the K's."""
     (tmp_path / "coefs").mkdir()
     (tmp_path / "coefs" / "a.csv").write_text(HEADER + "TUBE_BAV,I600,A405,ARCHARD,COEF_USURE,"
                                               "3.1e-14,1/Pa\n", encoding="utf-8")

@@ -267,7 +267,7 @@ def test_cli_table_and_json(tmp_path):
 
 # ----------------------------------------------------------------------------- review additions
 def test_lookup_errors_point_at_swapped_materials_and_other_laws():
-    """Seed §3: TUBE_BAV has I600/A405 (mobile I600), GRAPPE_ALESAGE has A304LNI/A304L for
+    """R7.20.01 §3: TUBE_BAV has I600/A405 (mobile I600), GRAPPE_ALESAGE has A304LNI/A304L for
     ARCHARD only (its EDF_MZ table holds A304L/A304L and A316L/A304L)."""
     with pytest.raises(DatabaseError, match=r"table has mobile I600 on obstacle A405.*order "
                                             r"mobile, obstacle"):

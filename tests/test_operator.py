@@ -254,7 +254,7 @@ def test_sector_restart_chain_equals_long_run_and_count_must_match():
 
 # --------------------------------------------------------------------------- database
 def test_database_pair_coefficients():
-    """Seed §3 tables: TUBE_BAV I600TT/Z6C13 Archard 9.2e-15 (no obstacle value);
+    """R7.20.01 §3 tables: TUBE_BAV I600TT/Z6C13 Archard 9.2e-15 (no obstacle value);
     GRAPPE_ALESAGE A304L/A304L Archard 2.6e-15 / 3.7e-15."""
     pytest.importorskip("fretwear.database")
     from fretwear.errors import DatabaseError
@@ -374,7 +374,7 @@ def coefficient_csv(path, rows):
 
 
 def test_coefficient_file_overrides_a_builtin_pair(tmp_path):
-    """Seed §3: TUBE_BAV I600/A405 Archard K = 6.2e-14 Pa⁻¹. A user file giving K' = 3.1e-15
+    """R7.20.01 §3: TUBE_BAV I600/A405 Archard K = 6.2e-14 Pa⁻¹. A user file giving K' = 3.1e-15
     replaces it; Archard is linear in K (V = K·P·t, theory §4), so V'/V = K'/K exactly."""
     pytest.importorskip("fretwear.database")
     k_builtin, k_user = 6.2e-14, 3.1e-15

@@ -417,7 +417,7 @@ def figure_grappe_notch() -> Path:
     ax0.set_aspect("equal")
     ax0.set_axis_off()
     ax0.set_title("Guide card, bore ⌀ 10.5 mm, worn height $l$ along the rod\n"
-                  "(schematic: the reference document gives no drawing of the notch)",
+                  "(schematic: Code_Aster R7.20.01 gives no drawing of the notch)",
                   fontsize=9)
     d = np.linspace(0.0, 3.6, 400)
     for (name, law), color in zip(NOTCH_LAWS.items(), ("tab:blue", "tab:orange"), strict=True):

@@ -140,7 +140,7 @@ def test_example_continuing_a_code_aster_table(capsys):
 
 
 def test_database_option_adds_to_the_case_list(tmp_path, capsys):
-    """Seed §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹. `--database` files come after the case's
+    """R7.20.01 §3: TUBE_BAV I600/A405 K = 6.2e-14 Pa⁻¹. `--database` files come after the case's
     `[law] database` (later wins); V = K·P·t (theory §4) scales by the ratio of the K's."""
     header = "contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
     (tmp_path / "case_file.csv").write_text(

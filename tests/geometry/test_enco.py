@@ -110,7 +110,8 @@ def test_small_depth_asymptotics():
 
 # --------------------------------------------------------------------------- relations
 def test_no_tilt_volume_is_half_width_times_section():
-    """Seed §4.6 case 1: V_m = (l/2)·[S(d) + d² tan α]; the quatrefoil carries twice (two edges)."""
+    """R7.20.01 §4.6 case 1: V_m = (l/2)·[S(d) + d² tan α]; the quatrefoil carries twice (two
+    edges)."""
     depth = np.array([0.0, 2e-5, 4e-4])
     s_prime = isthmus_section_area(depth, RM, RO, 30.0)
     np.testing.assert_allclose(geometry().volume_from_depth(depth)[0], 0.5 * L * s_prime,

@@ -1,9 +1,9 @@
 """Tests of GRAPPE_1_ENCO / GRAPPE_2_ENCO (fretwear.geometry.grappe_notch).
 
-The notch relation is empirical (reference document §4.2-§4.3, [bib7]): the expected values are
-R7.20.01's coefficients evaluated independently (numpy.polynomial), the roots of the cubic from
-numpy's companion-matrix eigenvalues (numpy.roots), the maximum from the derivative's roots, and
-R7.20.01's obstacle relation V_o = κ·π·l·R_o·d_o (κ = 0.47 / 0.94; its h is the width l).
+The notch relation is empirical (Code_Aster R7.20.01 §4.2-§4.3, from Lina & Zbinden 1995): the
+expected values are R7.20.01's coefficients evaluated independently (numpy.polynomial), the roots of
+the cubic from numpy's companion-matrix eigenvalues (numpy.roots), the maximum from the derivative's
+roots, and R7.20.01's obstacle relation V_o = κ·π·l·R_o·d_o (κ = 0.47 / 0.94; its h is the width l).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from fretwear.geometry.grappe_notch import (
     notch_depth_limit,
 )
 
-# Seed §4.2-§4.3: V_m/l = A d³ + B d² + C d + D (d in mm, V_m/l in mm²), D = 0.
+# R7.20.01 §4.2-§4.3: V_m/l = A d³ + B d² + C d + D (d in mm, V_m/l in mm²), D = 0.
 SEED = {"GRAPPE_1_ENCO": (-2.76, 10.30, 0.83, 0.47), "GRAPPE_2_ENCO": (-5.52, 20.60, 1.66, 0.94)}
 WIDTH = 0.02
 CLASSES = {"GRAPPE_1_ENCO": Grappe1Enco, "GRAPPE_2_ENCO": Grappe2Enco}

@@ -28,17 +28,17 @@ REACH = L * THETA
 
 
 def manual_depth_no_tilt(volume):
-    """Seed §4.4 case 1: d = (1/(2R))^(1/3)·(3V/(4l))^(2/3)."""
+    """R7.20.01 §4.4 case 1: d = (1/(2R))^(1/3)·(3V/(4l))^(2/3)."""
     return (1 / (2 * R)) ** (1 / 3) * (3 * volume / (4 * L)) ** (2 / 3)
 
 
 def manual_depth_tilt_short(volume):
-    """Seed §4.4 case 2, d < lθ: d = (1/(2R))^(1/5)·(15θV/8)^(2/5)."""
+    """R7.20.01 §4.4 case 2, d < lθ: d = (1/(2R))^(1/5)·(15θV/8)^(2/5)."""
     return (1 / (2 * R)) ** (1 / 5) * (15 * THETA * volume / 8) ** (2 / 5)
 
 
 def manual_volume_tilt_long(depth):
-    """Seed §4.4 case 2, d ≥ lθ: V = 8√(2R)/(15θ)·[d^(5/2) − (d − θl)^(5/2)]."""
+    """R7.20.01 §4.4 case 2, d ≥ lθ: V = 8√(2R)/(15θ)·[d^(5/2) − (d − θl)^(5/2)]."""
     return 8 * math.sqrt(2 * R) / (15 * THETA) * (depth**2.5 - (depth - THETA * L) ** 2.5)
 
 

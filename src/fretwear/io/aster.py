@@ -3,7 +3,7 @@
 Generic: also used for wear tables (ETAT_INIT restarts) and for contact histories.
 
 Formats (Code_Aster user documentation U4.91.03 IMPR_TABLE, U4.33.01 IMPR_FONCTION, U7.02.03
-LIRE_TABLE; SPEC §1):
+LIRE_TABLE; theory §1):
 
 * ``TABLEAU``: a block of lines starting with ``#`` (title), a line of column names, then one
   line per row, cells separated by blanks, reals printed ``%12.5E``, ``-`` for an empty cell.
