@@ -91,7 +91,7 @@ def notch_depth_limit(contact_type: str) -> float:
     .. [1] fretwear theory, docs/theory.md §6.
     .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.2-§4.3.
     .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations between
-           worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
+           worn volume and wear depth]. EDF-DER report HT.22/95-06A (in French).
 
     Examples
     --------
@@ -128,7 +128,7 @@ def notch_area(depth, contact_type: str) -> np.ndarray:
     .. [1] fretwear theory, docs/theory.md §6.
     .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.2-§4.3.
     .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations
-           between worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
+           between worn volume and wear depth]. EDF-DER report HT.22/95-06A (in French).
 
     Examples
     --------
@@ -325,7 +325,7 @@ class Grappe1Enco(_GuideCardNotch):
     .. [1] fretwear theory, docs/theory.md §6.
     .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.2.
     .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations between
-           worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
+           worn volume and wear depth]. EDF-DER report HT.22/95-06A (in French).
 
     Examples
     --------
@@ -361,7 +361,7 @@ class Grappe2Enco(_GuideCardNotch):
     .. [1] fretwear theory, docs/theory.md §6.
     .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §4.3.
     .. [3] Lina, A., & Zbinden, M. (1995). [Wear of control-rod rodlet cladding: relations between
-           worn volume and wear depth]. EDF-DER report HT-22/95-06A (in French).
+           worn volume and wear depth]. EDF-DER report HT.22/95-06A (in French).
 
     Examples
     --------

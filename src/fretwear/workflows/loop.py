@@ -191,7 +191,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §6 (updating the table, the
            iterative loop).
     .. [3] EDF-DER (1998). [Control rods of 1300 MW plants: iterative wear computations with
-           progressive wear of the antagonists]. Report HT-22/98-009A (in French).
+           progressive wear of the antagonists]. Report HT.22/98-009A (in French).
     """
     from fretwear.obstacle.config import obstacle_from_config
     from fretwear.table import wear_table
