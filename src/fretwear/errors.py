@@ -60,5 +60,9 @@ class LawWarning(FretwearWarning):
     """A wear law is used outside its usual regime (e.g. EDF_MZ with S > A·P^b)."""
 
 
+class ConfidenceWarning(FretwearWarning):
+    """A confidence interval rests on too few samples or on correlated ones (too narrow)."""
+
+
 class PerforationWarning(FretwearWarning):
     """The mobile's worn depth passed the perforation criterion (PERCEMENT × wall thickness)."""
