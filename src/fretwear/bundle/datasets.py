@@ -19,26 +19,16 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import FormatError, InputError
+from fretwear._optional import require as _require
+from fretwear.errors import FormatError
 
 CONTACT_DIM = "contact"
 
 
-def require(module: str):
-    """Import an optional dependency of the bundle runner, or an error naming the extra."""
-    try:
-        from fretwear._optional import require as _require
-    except ImportError:
-        _require = None
-    if _require is not None:
-        return _require(module, "bundle")
-    import importlib
-
-    try:
-        return importlib.import_module(module)
-    except ImportError:
-        raise InputError(f"the bundle runner needs the optional package {module!r}: pip install "
-                         "'fretwear[bundle]'") from None
+def require(module: str, purpose: str = "the bundle runner"):
+    """Import an optional dependency, or a MissingDependencyError naming the extra to install
+    (``fretwear[bundle]`` for dask, distributed, xarray, zarr)."""
+    return _require(module, purpose=purpose)
 
 
 def open_store(path: str | os.PathLike):

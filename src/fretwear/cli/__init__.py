@@ -19,6 +19,7 @@ SUBCOMMANDS: dict[str, str] = {
     "run": "Run a case file: the service-life wear table.",
     "obstacle": "Update the obstacle's clearance profile from a wear table.",
     "iterate": "Coupled loop dynamics -> wear -> obstacle update -> dynamics.",
+    "bundle": "Every contact of a tube bundle from a manifest, on Dask.",
 }
 
 
@@ -48,7 +49,8 @@ def cli() -> None:
 def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code."""
     try:
-        cli.main(args=argv, prog_name="fretwear", standalone_mode=False)
+        # without standalone mode, click returns the code of a command's ctx.exit(code)
+        code = cli.main(args=argv, prog_name="fretwear", standalone_mode=False)
     except click.exceptions.Exit as exc:
         return int(exc.exit_code)
     except click.ClickException as exc:
@@ -64,7 +66,7 @@ def main(argv: list[str] | None = None) -> int:
             click.echo(f"fretwear: error: {exc}", err=True)
             return 2
         raise
-    return 0
+    return code if isinstance(code, int) else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -1,0 +1,153 @@
+"""``fretwear bundle MANIFEST``: the wear tables of every contact of a tube bundle, on Dask."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import click
+
+from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
+
+#: Exit code when some contacts failed or left their relation's range (the others are written).
+EXIT_SOME_FAILED = 1
+
+_COLUMNS = "\n".join(f"  {name}: {text}" for name, text in BUNDLE_COLUMNS.items())
+_HELP = f"""Compute the wear table of every contact of a bundle (docs/bundle.md).
+
+MANIFEST is a table of contacts (.csv, .parquet, or .toml with [[contacts]]), a Code_Aster
+table holding several nodes (one contact per NOEUD), or a Zarr/NetCDF store with dimensions
+(contact, time). Each contact starts from the base case (--case, a TOML case file of
+`fretwear run`) and the manifest's columns override its keys for that contact. The work runs on
+a local Dask cluster (one worker process per core, --workers) or joins an existing one
+(--scheduler tcp://host:port). Results go to OUT/: table.parquet|csv, dataset.zarr|nc,
+errors.csv, warnings.csv, summary.csv, run.json and the parts written as contacts finish; a
+second run into OUT skips the contacts whose inputs did not change (--force recomputes).
+
+\b
+Manifest columns:
+{_COLUMNS}
+  {WALL_COLUMN}: wall thickness of the tube [m] (depth as a fraction of the wall,
+    time to reach the limit)
+  any case key (`fretwear run --help`), bare when unique or as section.key, e.g.
+    mobile_radius_m, geometry.obstacle_radius_m, law.mobile.COEF_USURE, law.materials
+    (lists and inline tables in TOML syntax in a CSV cell: [1, 2, 5])
+
+\b
+Exit status: 0 every contact computed; {EXIT_SOME_FAILED} some contacts failed or their depth
+left the relation's range (listed in OUT/errors.csv; the others are written); 2 the run could
+not start (bad manifest, case or option; the message says which).
+"""
+
+
+def _summary(result, console, top: int, limit: float) -> None:
+    from rich.table import Table
+
+    summary = result.summary(limit)
+    if not len(summary):
+        return
+    table = Table(title=f"the {min(top, len(summary))} deepest contacts (last instant; limit "
+                        f"{limit:.0%} of the wall)")
+    for col in ("rank", "contact", "row", "col", "support", "P [W]", "depth [mm]",
+                "depth/wall", "time to limit"):
+        table.add_column(col, justify="right")
+
+    def text(v, fmt="{}"):
+        return "" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
+
+    for r in summary.head(top).itertuples():
+        depth = "beyond range" if math.isnan(r.depth) else f"{r.depth * 1e3:.4g}"
+        table.add_row(str(r.rank), str(r.contact), text(getattr(r, "tube_row", None)),
+                      text(getattr(r, "tube_column", None)), text(getattr(r, "support", None)),
+                      f"{r.power:.4g}", depth, text(r.depth_fraction, "{:.1%}"),
+                      text(r.time_to_limit, "{:.4g}"))
+    console.print(table)
+    if summary["time_to_limit"].notna().any():
+        console.print(f"time to limit: {summary.attrs['time_to_limit']}", style="dim",
+                      markup=False, highlight=False)
+
+
+@click.command(help=_HELP, context_settings={"max_content_width": 100})
+@click.argument("manifest", type=click.Path(exists=True, path_type=Path))
+@click.option("--case", "case_file", type=click.Path(exists=True, dir_okay=False, path_type=Path),
+              help="Base case file (TOML, keys of `fretwear run`).")
+@click.option("--scheduler", metavar="ADDRESS",
+              help="Join this Dask scheduler (tcp://host:port) instead of a local cluster.")
+@click.option("--workers", type=click.IntRange(min=1),
+              help="Worker processes of the local cluster (default: one per core).")
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
+              help="Output directory (default: <MANIFEST stem>_bundle in the current one).")
+@click.option("--force", is_flag=True, help="Recompute every contact, even unchanged ones.")
+@click.option("--chunk-size", type=click.IntRange(min=2), default=1_000_000, show_default=True,
+              help="Samples per chunk of a long history (memory per task).")
+@click.option("--table-format", type=click.Choice(["parquet", "csv"]), default="parquet",
+              show_default=True, help="Format of the table and of the parts.")
+@click.option("--dataset-format", type=click.Choice(["zarr", "netcdf"]),
+              help="Format of the dataset (default zarr).")
+@click.option("--limit", type=click.FloatRange(min=0, min_open=True), default=0.4,
+              show_default=True, help="Depth limit, fraction of the wall, for the summary.")
+@click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
+              help="Write the figures (tube-sheet map, power distribution, worst depths).")
+@click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
+              help="Contacts shown in the terminal summary.")
+@click.option("-q", "--quiet", is_flag=True, help="No progress bar and no summary.")
+def command(manifest: Path, case_file: Path | None, scheduler: str | None, workers: int | None,
+            output: Path | None, force: bool, chunk_size: int, table_format: str,
+            dataset_format: str | None, limit: float, plot_dir: Path | None, top: int,
+            quiet: bool) -> None:
+    from rich.console import Console
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    from fretwear.bundle import run_bundle
+
+    console = Console(quiet=quiet)
+    if output is None:
+        output = Path.cwd() / f"{manifest.name.split('.')[0]}_bundle"
+    columns = (TextColumn("contacts"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+               TimeRemainingColumn())
+    with Progress(*columns, console=Console(stderr=True, quiet=quiet), transient=True) as bar:
+        task = bar.add_task("contacts", total=None)
+
+        def step(done: int, total: int, record: dict) -> None:
+            bar.update(task, completed=done, total=total)
+
+        result = run_bundle(manifest, case_file, scheduler=scheduler, workers=workers,
+                            output=output, force=force, chunk_size=chunk_size,
+                            table_format=table_format, dataset_format=dataset_format,
+                            progress=step)
+    _summary(result, console, top, limit)
+    s = result.stats
+    errors = result.errors
+    if len(errors):
+        console.print(f"[yellow]{len(errors)} contact(s) in {output / 'errors.csv'}:[/]")
+        for r in errors.head(10).itertuples():
+            console.print(f"  {r.contact}: {r.error}: {r.message}", markup=False,
+                          highlight=False, style="yellow")
+    if plot_dir is not None and len(result.table):
+        from fretwear.plotting._common import save_figure
+        from fretwear.plotting.bundle import (
+            plot_power_distribution,
+            plot_tube_sheet,
+            plot_worst_depths,
+        )
+
+        figures = [(plot_power_distribution(result), "bundle_power"),
+                   (plot_worst_depths(result, limit=limit), "bundle_worst_depths")]
+        if result.contacts[["tube_row", "tube_column"]].notna().all(axis=None):
+            figures.insert(0, (plot_tube_sheet(result.summary(limit)), "bundle_tube_sheet"))
+        for fig, stem in figures:
+            save_figure(fig, plot_dir, stem, close=True)
+        console.print(f"figures written to [bold]{plot_dir}[/]")
+    click.echo(f"done {s['done']}, failed {s['failed']}, skipped {s['skipped']} of "
+               f"{s['contacts']} contacts in {s['seconds']:.1f} s on {s['workers']} worker(s): "
+               f"{s['contacts_per_s']:.3g} contacts/s, {s['samples_per_s']:.3g} samples/s; "
+               f"results in {output}")
+    if len(errors):
+        raise click.exceptions.Exit(EXIT_SOME_FAILED)
