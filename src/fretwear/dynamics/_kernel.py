@@ -82,7 +82,7 @@ def _geometry(kind, gap, angle, oy, oz, prof_a, prof_r, plo, phi, uy, uz):
 def advance(n_out, record_first, init, k0, t0, h, m_coarse, archive_every, adaptive,
             q, v, a, omega, zeta, invmass, mass, shapes,
             lshape, lkind, lhp, tab_t, tab_v, tab_off, ptr,
-            skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r, prof_off,
+            skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, mus, spre, prof_a, prof_r, prof_off,
             fs, uprev, incontact, frame, chan, energy, wear, pprev, out, counters):
     """Integrate until ``n_out`` archive samples are written to ``out`` (n_out, ns, 10).
 
@@ -198,6 +198,10 @@ def advance(n_out, record_first, init, k0, t0, h, m_coarse, archive_every, adapt
             g1 = 0.0
             g2 = 0.0
             stick = 0.0
+            # sliding at the previous step (Code_Aster's ftang): the slip force is stored in
+            # fs and the stick flag is 0; then the threshold is the dynamic one
+            sliding = chan[i, C_STICK] == 0.0 and (fs[i, 0] != 0.0 or fs[i, 1] != 0.0
+                                                   or fs[i, 2] != 0.0)
             if delta > 0.0:
                 if incontact[i] == 0:
                     incontact[i] = 1
@@ -207,7 +211,7 @@ def advance(n_out, record_first, init, k0, t0, h, m_coarse, archive_every, adapt
                 fn = kn[i] * delta + cn[i] * vn
                 if fn < 0.0:
                     fn = 0.0
-                if mu[i] > 0.0 and fn > 0.0:
+                if (mu[i] > 0.0 or mus[i] > 0.0) and fn > 0.0:
                     # tangential increments and velocities (normal parts removed)
                     d0 = u0 - uprev[i, 0]
                     d1 = u1 - uprev[i, 1]
@@ -225,7 +229,7 @@ def advance(n_out, record_first, init, k0, t0, h, m_coarse, archive_every, adapt
                     t1_ = e1 - ct[i] * x1
                     t2_ = e2 - ct[i] * w2
                     norm = math.sqrt(t0_ * t0_ + t1_ * t1_ + t2_ * t2_)
-                    lim = mu[i] * fn
+                    lim = (mu[i] if sliding else mus[i]) * fn
                     if norm <= lim:
                         stick = 1.0
                         g0 = t0_
@@ -235,7 +239,7 @@ def advance(n_out, record_first, init, k0, t0, h, m_coarse, archive_every, adapt
                         fs[i, 1] = e1
                         fs[i, 2] = e2
                     else:
-                        sc = lim / norm
+                        sc = mu[i] * fn / norm  # slides at the dynamic coefficient
                         g0 = t0_ * sc
                         g1 = t1_ * sc
                         g2 = t2_ * sc

@@ -111,8 +111,12 @@ DYNAMICS_KEYS: dict[str, dict[str, tuple[Any, str]]] = {
         "normal_stiffness_N_per_m": (_NUM, "penalty normal stiffness [N/m] (RIGI_NOR)"),
         "normal_damping_N_s_per_m": (_NUM, "normal damping [N·s/m] (AMOR_NOR)"),
         "tangential_stiffness_N_per_m": (_NUM, "stick stiffness [N/m] (RIGI_TAN)"),
-        "tangential_damping_N_s_per_m": (_NUM, "tangential damping [N·s/m] (AMOR_TAN)"),
-        "friction": (_NUM, "Coulomb coefficient [-] (COULOMB)"),
+        "tangential_damping_N_s_per_m": (_NUM, "tangential damping [N·s/m] (AMOR_TAN; "
+                                               "default: Code_Aster's value, critical on the "
+                                               "mode sliding most, dtmprep_noli_choc)"),
+        "friction": (_NUM, "dynamic Coulomb coefficient [-] (COULOMB, or COULOMB_DYNA)"),
+        "static_friction": (_NUM, "static Coulomb coefficient [-] (COULOMB_STAT; default "
+                                  "friction)"),
         "preload_N": (_NUM, "constant force towards the obstacle [N]"),
     },
     "dynamics.forces": {
@@ -299,8 +303,11 @@ def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> Dynam
             angle=float(item.get("angle_deg", 0.0)),
             normal_damping=float(item.get("normal_damping_N_s_per_m", 0.0)),
             tangential_stiffness=float(item.get("tangential_stiffness_N_per_m", 0.0)),
-            tangential_damping=float(item.get("tangential_damping_N_s_per_m", 0.0)),
+            tangential_damping=(float(item["tangential_damping_N_s_per_m"])
+                                if "tangential_damping_N_s_per_m" in item else None),
             friction=float(item.get("friction", 0.0)), preload=float(item.get("preload_N", 0.0)),
+            static_friction=(float(item["static_friction"]) if "static_friction" in item
+                             else None),
             origin=tuple(item.get("origin_m", (0.0, 0.0))), **extra))
         case_obstacle.append(is_case)
     archive = float(top.get("archive_step_s", max(1e-4, float(top.get("time_step_s", 0.0)))))

@@ -24,7 +24,7 @@ from fretwear._optional import require
 from fretwear.dynamics import _kernel as K
 from fretwear.dynamics.excitation import BaseAcceleration, NodalForce
 from fretwear.dynamics.modal import DIRECTIONS, ModalModel
-from fretwear.dynamics.shocks import Shock
+from fretwear.dynamics.shocks import Shock, with_code_aster_damping
 from fretwear.errors import InputError, StabilityError
 from fretwear.history import CHANNELS, ContactHistory
 from fretwear.io.atomic import atomic_path
@@ -78,6 +78,7 @@ def stability_limit(model: ModalModel, shocks: Sequence[Shock] = ()) -> dict[str
     >>> stability_limit(m, [s])["time_step_limit"]   # 2/√(k/m)
     0.002
     """
+    shocks = with_code_aster_damping(model, shocks)
     omega = model.omega
     w2 = float(np.max(omega) ** 2)
     xi_modes = float(np.max(model.damping_ratios))
@@ -228,6 +229,7 @@ def _shock_arrays(model: ModalModel, shocks: Sequence[Shock]):
     kt = np.array([s.tangential_stiffness for s in shocks], float)
     ct = np.array([s.tangential_damping for s in shocks], float)
     mu = np.array([s.friction for s in shocks], float)
+    mus = np.array([s.static_friction for s in shocks], float)
     spre = np.column_stack([np.cos(sangle), np.sin(sangle)]) * np.array(
         [s.preload for s in shocks], float)[:, None]
     pa, pr, po = [], [], [0]
@@ -238,7 +240,7 @@ def _shock_arrays(model: ModalModel, shocks: Sequence[Shock]):
         po.append(po[-1] + (pa[-1].size if s.obstacle == "profile" else 0))
     prof_a = np.concatenate(pa) if pa else np.zeros(1)
     prof_r = np.concatenate(pr) if pr else np.zeros(1)
-    return (shapes, skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r,
+    return (shapes, skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, mus, spre, prof_a, prof_r,
             np.array(po, np.int64))
 
 
@@ -334,6 +336,7 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
     shocks = list(shocks)
     if not shocks:
         raise InputError("simulate: give at least one shock (a Shock per contact point)")
+    shocks = with_code_aster_damping(model, shocks)  # tangential_damping=None: Code_Aster's
     if not (0 < safety <= 1):
         raise InputError(f"simulate: 'safety' must be in (0, 1], got {safety}")
     if not (np.isfinite(duration) and duration > 0):
@@ -393,7 +396,7 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
                 f"simulation runs to {t_final:g} s (beyond its end the signal would stay "
                 f"constant); give the Signal a duration >= {t_final:g} s")
     lshape, lkind, lhp, tab_t, tab_v, tab_off = _loads(model, excitations)
-    (shapes, skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r,
+    (shapes, skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, mus, spre, prof_a, prof_r,
      prof_off) = _shock_arrays(model, shocks)
     omega = np.ascontiguousarray(model.omega, dtype=float)
     zeta = np.ascontiguousarray(model.damping_ratios, dtype=float)
@@ -411,7 +414,7 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
     pprev = np.zeros(5)
     adv = K.advance if compiled else K.advance.py_func
     common_loads = (lshape, lkind, lhp, tab_t, tab_v, tab_off, ptr)
-    common_shocks = (skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, spre, prof_a, prof_r,
+    common_shocks = (skind, sgap, sangle, sorig, kn, cn, kt, ct, mu, mus, spre, prof_a, prof_r,
                      prof_off, fs, uprev, incontact, frame, chan)
     counters = np.zeros(2, np.int64)
     adv(0, False, True, 0, float(start_time), h, m_coarse, every, adaptive, q, v, a, omega,
@@ -480,7 +483,8 @@ def simulate(model: ModalModel, shocks: Sequence[Shock],
             cols = {c: data[:, i, j] for j, c in enumerate(CHANNELS)}
             histories.append(ContactHistory(**cols, name=nm, metadata={
                 "source": "fretwear.dynamics.simulate", "shock": nm,
-                "obstacle": shocks[i].obstacle, "time_step": h, "archive_step": archive_step}))
+                "obstacle": shocks[i].obstacle, "time_step": h, "archive_step": archive_step,
+                "tangential_damping": shocks[i].tangential_damping}))
     return DynamicsResult(
         shock_names=names, time_step=h, coarse_step=h * m_coarse, archive_step=archive_step,
         start_time=float(start_time), end_time=t_end, n_steps=int(counters[0]),

@@ -15,17 +15,27 @@ the keys of :data:`OBSTACLES`:
 
 Contact law (penalty): penetration δ > 0 gives the normal force
 ``Fn = max(0, k_n δ + c_n δ̇)`` (never a pulling force). Friction is Coulomb with a tangential
-spring-dashpot (elastic stick) and a return map onto the Coulomb cone |Ft| ≤ μ Fn (slip).
+spring-dashpot (elastic stick) and a return map onto the Coulomb cone (slip): a sticking contact
+slips when its tangential force passes μ_s Fn (static coefficient, Code_Aster COULOMB_STAT) and
+then slides with μ_d Fn (dynamic coefficient, COULOMB_DYNA or COULOMB) until it sticks again.
+
+:func:`code_aster_tangential_damping` gives the tangential damping Code_Aster uses when AMOR_TAN
+is not given (``dtmprep_noli_choc``): the case file's ``[[dynamics.shocks]]`` takes it by
+default; a :class:`Shock` built in Python takes it with ``tangential_damping=None``.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Any
+import math
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from fretwear.errors import InputError, KeywordError
+
+if TYPE_CHECKING:  # typing only: modal imports nothing from here
+    from fretwear.dynamics.modal import ModalModel
 
 #: Obstacle families and their integer codes in the compiled kernel.
 OBSTACLES: dict[str, int] = {"plane": 0, "two_planes": 1, "circle": 2, "profile": 3}
@@ -54,10 +64,16 @@ class Shock:
     tangential_stiffness : float
         Tangential (stick) stiffness k_t [N/m] (RIGI_TAN), >= 0. 0 with ``friction > 0`` is an
         error (the elastic-stick model needs it).
-    tangential_damping : float
-        Tangential damping c_t [N·s/m] (AMOR_TAN), >= 0.
+    tangential_damping : float or None
+        Tangential damping c_t [N·s/m] (AMOR_TAN), >= 0. None: Code_Aster's value when AMOR_TAN
+        is absent, computed from the modal model by :func:`simulate
+        <fretwear.dynamics.integrate.simulate>` (:func:`code_aster_tangential_damping`).
     friction : float
-        Coulomb coefficient μ [-] (COULOMB), >= 0.
+        Dynamic Coulomb coefficient μ_d [-] (COULOMB, or COULOMB_DYNA), >= 0: the sliding force
+        is μ_d·Fn.
+    static_friction : float, optional
+        Static Coulomb coefficient μ_s [-] (COULOMB_STAT), >= 0: a sticking contact slips when
+        its tangential force exceeds μ_s·Fn. Default: ``friction`` (one coefficient).
     preload : float
         A constant force [N] pushing the mobile's shock point towards the obstacle, along the
         normal (plane) or along ``angle`` (other families). 0 by default.
@@ -80,8 +96,11 @@ class Shock:
     Normal force on the mobile −Fn·n with Fn = max(0, k_n δ + c_n δ̇). Tangential: with the
     elastic force Fs carried over from the previous step (projected on the new tangent plane),
     trial Ft* = Fs − k_t Δu_t − c_t v_t; stick if |Ft*| ≤ μ Fn (Fs ← Fs − k_t Δu_t), else slip
-    with Ft = μ Fn Ft*/|Ft*| and Fs ← Ft (return map). Local frame of the history: t1 = the in-plane
-    tangent (−n_z, n_y), t2 = the axial direction x.
+    with Ft = μ_d Fn Ft*/|Ft*| and Fs ← Ft (return map), where μ = μ_s when the contact stuck at
+    the previous step (or has just closed) and μ = μ_d while it slides (Code_Aster's ``ftang``:
+    the static threshold breaks adhesion, sliding goes on at μ_d until the tangential velocity
+    turns). With μ_s = μ_d this is the plain return map. Local frame of the history: t1 = the
+    in-plane tangent (−n_z, n_y), t2 = the axial direction x.
 
     References
     ----------
@@ -105,7 +124,7 @@ class Shock:
     angle: float = 0.0
     normal_damping: float = 0.0
     tangential_stiffness: float = 0.0
-    tangential_damping: float = 0.0
+    tangential_damping: float | None = 0.0
     friction: float = 0.0
     preload: float = 0.0
     origin: tuple[float, float] = (0.0, 0.0)
@@ -113,14 +132,20 @@ class Shock:
     profile_gaps: Any = None
     name: str = ""
     metadata: dict = field(default_factory=dict)
+    static_friction: float | None = None
 
     def __post_init__(self) -> None:
         if self.obstacle not in OBSTACLES:
             raise KeywordError(f"shock {self.name or self.point!r}: unknown obstacle "
                                f"{self.obstacle!r}; choose one of {list(OBSTACLES)}")
         label = self.name or str(self.point)
+        if self.static_friction is None:
+            object.__setattr__(self, "static_friction", self.friction)
         for key in ("normal_stiffness", "normal_damping", "tangential_stiffness",
-                    "tangential_damping", "friction", "gap", "angle", "preload"):
+                    "tangential_damping", "friction", "static_friction", "gap", "angle",
+                    "preload"):
+            if key == "tangential_damping" and self.tangential_damping is None:
+                continue  # Code_Aster's default, resolved against the modal model
             v = float(getattr(self, key))
             if not np.isfinite(v):
                 raise InputError(f"shock {label!r}: {key!r} must be finite, got {v!r}")
@@ -128,11 +153,14 @@ class Shock:
         if self.normal_stiffness <= 0:
             raise InputError(f"shock {label!r}: 'normal_stiffness' must be > 0 [N/m], got "
                              f"{self.normal_stiffness}")
-        for key in ("normal_damping", "tangential_stiffness", "tangential_damping", "friction"):
-            if getattr(self, key) < 0:
-                raise InputError(f"shock {label!r}: {key!r} must be >= 0, got {getattr(self, key)}")
-        if self.friction > 0 and self.tangential_stiffness <= 0:
-            raise InputError(f"shock {label!r}: 'friction' = {self.friction} needs a "
+        for key in ("normal_damping", "tangential_stiffness", "tangential_damping", "friction",
+                    "static_friction"):
+            value = getattr(self, key)
+            if value is not None and value < 0:
+                raise InputError(f"shock {label!r}: {key!r} must be >= 0, got {value}")
+        mu = max(self.friction, self.static_friction)
+        if mu > 0 and self.tangential_stiffness <= 0:
+            raise InputError(f"shock {label!r}: 'friction' = {mu} needs a "
                              "'tangential_stiffness' > 0 [N/m] (the elastic-stick spring); give "
                              "one, e.g. equal to the normal stiffness")
         if self.obstacle in ("two_planes", "circle") and self.gap < 0:
@@ -237,3 +265,103 @@ def circle_profile(gap: float, n_points: int = 721) -> tuple[np.ndarray, np.ndar
     """
     angles = np.linspace(0.0, 360.0, n_points)
     return angles, np.full(n_points, float(gap))
+
+
+def _tangent_shapes(model: ModalModel, shock: Shock) -> np.ndarray:
+    """|φ_t,r| [-]: each mode's displacement at the shock point in the contact's tangent plane.
+
+    Plane obstacles: the in-plane tangent (−sin a, cos a) and the axial x (Code_Aster's PLAN_Y /
+    PLAN_Z take the two axes of the plane). A circle or a profile has no fixed tangent: the whole
+    displacement (y, z, x) (Code_Aster's CERCLE takes the axial x only, which gives 0 for the
+    in-plane shapes fretwear's beams have).
+    """
+    phi = model.shock_shapes[model.shock_index(shock.point)]  # (3, n): y, z, x
+    if shock.obstacle in ("plane", "two_planes"):
+        a = math.radians(shock.angle)
+        in_plane = -math.sin(a) * phi[0] + math.cos(a) * phi[1]
+        return np.sqrt(in_plane**2 + phi[2] ** 2)
+    return np.sqrt(np.sum(phi**2, axis=0))
+
+
+def code_aster_tangential_damping(model: ModalModel, shock: Shock) -> float:
+    """The tangential damping Code_Aster gives a shock without AMOR_TAN [N·s/m].
+
+    Code_Aster's DYNA_VIBRA (``dtmprep_noli_choc``, § 3.9) computes, when RIGI_TAN > 0 and
+    AMOR_TAN is absent, the damping that makes the tangential spring of the shock critically
+    damped on the mode that moves the shock point most along the contact's tangent plane, minus
+    that mode's own damping: with m, ω, ξ the mode's effective mass at the shock point, circular
+    frequency and damping ratio and k = ω² m,
+
+    .. math:: c_t = 2\\sqrt{m\\,(k + k_t)} - 2\\,\\xi\\sqrt{k\\,m}, \\qquad c_t \\ge 0.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The modes (frequencies [Hz], damping ratios [-], masses [kg], shapes at the shock).
+    shock : Shock
+        The contact: its ``tangential_stiffness`` k_t [N/m], obstacle and point.
+
+    Returns
+    -------
+    float
+        c_t [N·s/m]; 0 when k_t = 0 (Code_Aster leaves AMOR_TAN at 0 then) or when no elastic
+        mode moves the point along the tangent plane.
+
+    Notes
+    -----
+    The mode is the elastic one (ω > 0) with the largest tangential displacement per unit
+    modal mass |φ_t,r|/√m_r, and m = m_r/|φ_t,r|² is its mass seen at the shock point. Code_Aster
+    takes the mode with the largest m_r·|φ_t,r| and uses its generalised mass m_r as is: the same
+    for mass-normalised modes (m_r = 1) and for a shape of unit amplitude at the shock (as in
+    Code_Aster's test SDND100A), but fretwear's form does not depend on how the modes are
+    normalised. The tangent plane: see :func:`_tangent_shapes`.
+
+    References
+    ----------
+    .. [1] Code_Aster source ``bibfor/dyna_gene/dtmprep_noli_choc.F90`` (§ 3.9 "Special treatment
+           for the tangential damping"), EDF R&D.
+    .. [2] Code_Aster validation test SDND100A (one degree of freedom sliding with Coulomb
+           friction, ``astest/sdnd100a.comm``), EDF R&D.
+
+    Examples
+    --------
+    SDND100A: m = 1 kg, k = 1e4 N/m (ξ = 0), RIGI_TAN = 4e5 N/m: c_t = 2√(1 · 4.1e5).
+
+    >>> from fretwear.dynamics.modal import ModalModel
+    >>> m = ModalModel(frequencies=[100.0 / (2 * math.pi)], damping_ratios=0.0, masses=1.0,
+    ...                shock_shapes=[[[1.0], [0.0]]])
+    >>> s = Shock(point=0, obstacle="plane", angle=90.0, normal_stiffness=20.0, gap=-0.5,
+    ...           tangential_stiffness=4e5, friction=0.1)
+    >>> round(code_aster_tangential_damping(m, s), 4)
+    1280.6248
+    """
+    kt = float(shock.tangential_stiffness)
+    if kt <= 0:
+        return 0.0
+    omega = model.omega
+    phi_t = _tangent_shapes(model, shock)
+    weight = np.where(omega > 0, phi_t / np.sqrt(model.masses), 0.0)
+    r = int(np.argmax(weight))
+    if weight[r] <= 0:
+        return 0.0
+    mass = float(model.masses[r] / phi_t[r] ** 2)
+    k = float(omega[r] ** 2 * mass)
+    xi = float(model.damping_ratios[r])
+    return max(0.0, 2.0 * math.sqrt(mass * (k + kt)) - 2.0 * xi * math.sqrt(k * mass))
+
+
+def with_code_aster_damping(model: ModalModel, shocks) -> list[Shock]:
+    """The shocks, those with ``tangential_damping=None`` given Code_Aster's value.
+
+    The value is recorded in the shock's ``metadata["tangential_damping"]`` with its source
+    (``"dtmprep_noli_choc"``).
+    """
+    out = []
+    for s in shocks:
+        if s.tangential_damping is None:
+            c = code_aster_tangential_damping(model, s)
+            meta = dict(s.metadata, tangential_damping={"value_N_s_per_m": c,
+                                                        "source": "dtmprep_noli_choc"})
+            s = replace(s, tangential_damping=c, metadata=meta)
+        out.append(s)
+    return out
