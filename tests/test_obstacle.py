@@ -624,9 +624,9 @@ def test_volume_beyond_the_wedge_is_nan_with_a_range_warning(tmp_path):
     with pytest.raises(InputError, match=r"no DISCRET obstacle written.*sectors \[5\]"):
         r.write_discret(tmp_path / "worn.txt")
     assert not (tmp_path / "worn.txt").exists()
-    from fretwear.plotting.obstacle import obstacle_figure
+    from fretwear.plotting.obstacle import plot_obstacle
 
-    fig = obstacle_figure(r)
+    fig = plot_obstacle(r)
     assert "worn: undefined" in fig.axes[0].get_title()
     import matplotlib.pyplot as plt
 

@@ -6,12 +6,14 @@ numba's dispatchers, expose the original function as ``py_func``.
 
 from __future__ import annotations
 
-try:  # numba is an optional dependency ("fast" extra)
-    from numba import njit
+from fretwear._optional import optional
 
-    HAVE_NUMBA = True
-except ImportError:  # pragma: no cover - exercised only without numba
-    HAVE_NUMBA = False
+_numba = optional("numba")  # the "fast" extra
+HAVE_NUMBA = _numba is not None
+
+if HAVE_NUMBA:
+    njit = _numba.njit
+else:  # pragma: no cover - exercised only without numba
 
     def njit(*args, **kwargs):
         def wrap(func):

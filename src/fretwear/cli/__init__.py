@@ -12,6 +12,7 @@ import sys
 import click
 
 from fretwear import __version__
+from fretwear.errors import FretwearError
 
 SUBCOMMANDS: dict[str, str] = {
     "power": "Wear power, block and sector powers and contact statistics of a history.",
@@ -60,8 +61,6 @@ def main(argv: list[str] | None = None) -> int:
         click.echo("Aborted.", err=True)
         return 1
     except Exception as exc:  # noqa: BLE001 - turn library errors into a clean message
-        from fretwear.errors import FretwearError
-
         if isinstance(exc, FretwearError | FileNotFoundError | ValueError):
             click.echo(f"fretwear: error: {exc}", err=True)
             return 2

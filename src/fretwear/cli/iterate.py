@@ -5,9 +5,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
+from rich.console import Console
+from rich.table import Table
 
 from fretwear.dynamics.config import keys_help as dynamics_keys
-from fretwear.workflows.loop import ITERATE_KEYS
+from fretwear.workflows.loop import ITERATE_KEYS, iterate_case
 
 _ITERATE = "\n".join(f"  {k}: {d}" for k, (_, d) in ITERATE_KEYS.items())
 _HELP = f"""Run the coupled loop of a case file: built-in dynamics (modal model with shocks) ->
@@ -39,11 +41,6 @@ Units: SI (m, N, s, W; angles in degrees). Full reference: docs/dynamics.md.
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: bool,
             quiet: bool) -> None:
-    from rich.console import Console
-    from rich.table import Table
-
-    from fretwear.workflows.loop import iterate_case
-
     console = Console(quiet=quiet)
     err = Console(stderr=True, quiet=quiet)
     with err.status("reading the case") as status:

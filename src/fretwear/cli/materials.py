@@ -6,6 +6,13 @@ import json
 import re
 
 import click
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+
+from fretwear.database import REFERENCES, load_database, materials, summary
+from fretwear.geometry import CONTACT_TYPES
+from fretwear.laws import WEAR_LAWS
 
 
 def _short_source(source: str, origin: str) -> str:
@@ -18,9 +25,8 @@ def _short_source(source: str, origin: str) -> str:
 
 @click.command("materials")
 @click.option("--contact", "contact_type", metavar="TYPE",
-              help="Only this contact type (TUBE_BAV, TUBE_ALESAGE, TUBE_3_ENCO, TUBE_4_ENCO, "
-                   "TUBE_TUBE, GRAPPE_ALESAGE, GRAPPE_1_ENCO, GRAPPE_2_ENCO); any case.")
-@click.option("--law", metavar="LAW", help="Only this law (ARCHARD, KWU_EPRI, EDF_MZ); any case.")
+              help=f"Only this contact type ({', '.join(CONTACT_TYPES)}); any case.")
+@click.option("--law", metavar="LAW", help=f"Only this law ({', '.join(WEAR_LAWS)}); any case.")
 @click.option("--database", "databases", multiple=True, metavar="CSV",
               type=click.Path(exists=True, dir_okay=False),
               help="A coefficient CSV of your own that extends/overrides the built-in table "
@@ -38,8 +44,6 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
     coefficient tables of Code_Aster's POST_USURE reference manual (R7.20.01 §3); the material
     codes used are listed after the table.
     """
-    from fretwear.database import REFERENCES, load_database, materials, summary
-
     table = load_database(list(databases) or None)
     boxes = summary(table, contact_type=contact_type, law=law)
     used = set(boxes.mobile_material) | set(boxes.obstacle_material)
@@ -54,11 +58,6 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
                                "materials": codes.to_dict(orient="records")},
                               ensure_ascii=False, indent=1))
         return
-
-    from rich.console import Console
-    from rich.markup import escape
-    from rich.table import Table
-
     console = Console()
     ct = contact_type.strip().upper() if contact_type else None
     lw = law.strip().upper() if law else None

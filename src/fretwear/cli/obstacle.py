@@ -8,6 +8,13 @@ from pathlib import Path
 import click
 import numpy as np
 
+from fretwear._optional import require
+from fretwear.errors import FretwearWarning, KeywordError
+from fretwear.obstacle import obstacle_from_config
+from fretwear.obstacle.config import MODEL_KEYS
+from fretwear.plotting import plot_obstacle, save_figure
+from fretwear.workflows.case_files import load_case, run_case
+
 _HELP = """Update the obstacle's clearance figure from a wear table (MODI_OBSTACLE).
 
 Either a case file CASE (its [obstacle] section; the wear table is its `table` key, --table,
@@ -98,18 +105,12 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
             bore_radius, plane_gap, plane_gap_opposite, orientation, closing_radius,
             discrete_file, shape, perforation, resolution, step, output, fmt, discret_path,
             plot_dir, quiet) -> None:
-    from fretwear.errors import FretwearWarning, KeywordError
-    from fretwear.obstacle import obstacle_from_config
-    from fretwear.obstacle.config import MODEL_KEYS
-
     echo = (lambda *a, **k: None) if quiet else click.echo
     section: dict = {}
     geometry: dict = {}
     directory = None
     case = None
     if case_file is not None:
-        from fretwear.workflows.case_files import load_case
-
         case = load_case(case_file)
         section = dict(case.get("obstacle", {}))
         geometry = dict(case.get("geometry", {}))
@@ -164,8 +165,6 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
         if setup.table is not None:
             result = setup.update()
         else:
-            from fretwear.workflows.case_files import run_case
-
             echo("running the case for its wear table ...", err=True)
             result = setup.update(run_case(case).table)  # the case read above
     _summary(result, echo)
@@ -178,9 +177,8 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
     if output is not None:
         echo(f"profile table written to {result.write(output, format=fmt)}")
     if plot_dir is not None:
-        from fretwear.plotting.obstacle import plot_obstacle
-
-        files = plot_obstacle(result, plot_dir)
+        require("matplotlib.pyplot", purpose="the obstacle figure (--plot or [obstacle] plot)")
+        files = save_figure(plot_obstacle(result), plot_dir, "obstacle_polar", close=True)
         echo(f"figures written to {plot_dir}: " + ", ".join(f.name for f in files))
     if discret_path is not None:
         echo(f"DISCRET obstacle written to {result.write_discret(discret_path)}")

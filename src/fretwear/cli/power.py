@@ -12,8 +12,11 @@ import warnings
 from pathlib import Path
 
 import click
+from rich.console import Console
+from rich.table import Table
 
 from fretwear.history import DEFAULT_CHUNK_SIZE
+from fretwear.power import wear_power
 from fretwear.power.statistics import STATISTICS_UNITS
 
 
@@ -95,9 +98,6 @@ def _fmt(value, unit: str = "") -> str:
 
 
 def _print_table(result, caught: list[str]) -> None:
-    from rich.console import Console
-    from rich.table import Table
-
     console = Console()
     head = Table(title=f"Wear power of {result.name or 'history'}", show_header=False)
     head.add_column("quantity")
@@ -183,8 +183,6 @@ def command(history, sectors, blocks, t_start, t_end, threshold, force_threshold
     CHANNEL=FILE... (e.g. fn=fn.txt vt1=vt1.txt vt2=vt2.txt). Output: the power [W], the block
     and sector powers [W] and the contact statistics (SI units).
     """
-    from fretwear.power import wear_power
-
     source = _history_argument(history)
     options = dict((k, _option_value(v)) for k, v in _pairs(
         read_options, "--read-option", "KEY=VALUE (e.g. group=/shock/N12)", split=False).items())

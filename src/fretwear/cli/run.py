@@ -6,9 +6,21 @@ from pathlib import Path
 
 import click
 import numpy as np
+from rich.console import Console
+from rich.progress import (
+    BarColumn,
+    Progress,
+    SpinnerColumn,
+    TaskProgressColumn,
+    TextColumn,
+    TimeElapsedColumn,
+)
+from rich.table import Table
 
-from fretwear.workflows.case_files import keys_help
+from fretwear._optional import require
+from fretwear.plotting import save_figure, wear_figures
 from fretwear.table import COLUMNS, write_wear_table
+from fretwear.workflows.case_files import keys_help, load_case, run_case
 
 
 def columns_help() -> str:
@@ -33,10 +45,7 @@ Output columns, native (Code_Aster) [unit]; one row per instant, or per instant 
 """
 
 
-
 def _summary(result, console) -> None:
-    from rich.table import Table
-
     table = result.table
     attrs = table.attrs
     title = attrs.get("title") or "fretwear run"
@@ -124,18 +133,8 @@ def _summary(result, console) -> None:
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
             aster_format: str, databases: tuple[Path, ...], quiet: bool) -> None:
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        Progress,
-        SpinnerColumn,
-        TaskProgressColumn,
-        TextColumn,
-        TimeElapsedColumn,
-    )
-
-    from fretwear.workflows.case_files import load_case, run_case
-
+    if plot_dir is not None:  # before the computation, not after it
+        require("matplotlib.pyplot", purpose="--plot")
     case: Path | dict = case_file
     if databases:  # the command line's files come after the case's (later files win)
         case = load_case(case_file)
@@ -160,8 +159,7 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
                               title=result.table.attrs.get("title"), aster_format=aster_format)
         console.print(f"table written to [bold]{written}[/]")
     if plot_dir is not None:
-        from fretwear.plotting.wear import plot_wear_table
-
-        files = plot_wear_table(result.table, plot_dir)
+        files = [path for name, fig in wear_figures(result.table).items()
+                 for path in save_figure(fig, plot_dir, f"wear_{name}", close=True)]
         console.print(f"figures written to [bold]{plot_dir}[/]: "
                       + ", ".join(f.name for f in files))

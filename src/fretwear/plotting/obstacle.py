@@ -1,39 +1,19 @@
 """Figures of an obstacle update (:func:`fretwear.obstacle.update_obstacle`).
 
-matplotlib is imported here only, with the Agg backend (no display needed).
+Each function takes the :class:`~fretwear.obstacle.ObstacleResult`, accepts ``ax=`` and returns
+the matplotlib Figure; nothing is written (the CLI and the loop save them with
+:func:`fretwear.plotting.save_figure`).
 """
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import numpy as np
 
-from fretwear.plotting._common import pyplot as _pyplot
-from fretwear.plotting._common import save_figure
+from fretwear.plotting._common import figure_and_axes, matplotlib_module
 
 
-def obstacle_figure(result):
-    """A matplotlib figure of an obstacle update.
-
-    Left: polar plot of the clearance figure, new and worn [mm] against the direction [deg],
-    the sector edges drawn as spokes and perforated sectors shaded; the radial axis is clipped
-    at 5 × the 10th percentile of the clearances when larger ones exist (the directions along
-    two planes), and said so in the title. Right: worn depths of the
-    mobile and of the obstacle [mm] against the angle [deg].
-
-    Parameters
-    ----------
-    result : fretwear.obstacle.ObstacleResult
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-    """
-    plt = _pyplot()
-    fig = plt.figure(figsize=(11, 5))
-    ax = fig.add_subplot(1, 2, 1, projection="polar")
+def _draw_clearance(ax, result) -> None:
+    """Polar plot of the clearance figure, new and worn [mm], sector spokes, perforations."""
     theta = np.radians(result.angle)
     ax.plot(theta, result.clearance_initial * 1e3, color="0.4", lw=1.2, ls="--", label="new")
     ax.plot(theta, result.clearance_worn * 1e3, color="C3", lw=1.6, label="worn")
@@ -56,9 +36,7 @@ def obstacle_figure(result):
         # a span of at least 2 % of the clearance: rounding noise (1e-15 m) is not zoomed into
         span = max(top - low, 0.02 * top)
         ax.set_ylim(max(0.0, low - 1.5 * span), top + 0.05 * span)
-    from matplotlib.ticker import MaxNLocator
-
-    ax.yaxis.set_major_locator(MaxNLocator(4))
+    ax.yaxis.set_major_locator(matplotlib_module("ticker").MaxNLocator(4))
     ax.set_rlabel_position(100)
     ax.tick_params(axis="y", labelsize=7)
     title = ("clearance [mm] (radial axis does not start at 0)" if ax.get_ylim()[0] > 0
@@ -69,48 +47,93 @@ def obstacle_figure(result):
         title += "\nworn: undefined (mobile worn past its centre)"
     ax.set_title(title, pad=14, fontsize=10)
     ax.legend(loc="lower left", bbox_to_anchor=(-0.15, -0.12), fontsize=8)
-    ax2 = fig.add_subplot(1, 2, 2)
+
+
+def _draw_depth(ax, result) -> None:
+    """Worn depths of mobile and obstacle [mm] against the angle [deg]."""
+    edges = result.depth.edges
     ang = np.mod(result.angle + 180.0, 360.0) - 180.0
     order = np.argsort(ang, kind="stable")
-    ax2.plot(ang[order], result.depth_mobile[order] * 1e3, color="C0", label="mobile")
-    ax2.plot(ang[order], result.depth_obstacle[order] * 1e3, color="C1", label="obstacle")
+    ax.plot(ang[order], result.depth_mobile[order] * 1e3, color="C0", label="mobile")
+    ax.plot(ang[order], result.depth_obstacle[order] * 1e3, color="C1", label="obstacle")
     limit = result.perforation * result.mobile.wall_thickness * 1e3
     deepest = np.nanmax(result.depth_mobile, initial=0.0) * 1e3
     if result.perforated or deepest >= 0.3 * limit:
-        ax2.axhline(limit, color="C3", ls=":", lw=1,
-                    label=f"perforation ({result.perforation:g} × wall)")
+        ax.axhline(limit, color="C3", ls=":", lw=1,
+                   label=f"perforation ({result.perforation:g} × wall)")
     for e in edges:
-        ax2.axvline(e, color="0.85", lw=0.6, zorder=0)
-    ax2.set_xlim(-180, 180)
-    ax2.set_xticks(np.arange(-180, 181, 60))
-    ax2.set_xlabel("angle [deg]")
-    ax2.set_ylabel("worn depth [mm]")
-    ax2.legend(fontsize=8)
-    when = "" if result.instant is None else f" at instant {result.instant:g}"
-    fig.suptitle(f"obstacle update ({result.depth.shape} depth){when}")
-    fig.tight_layout()
-    return fig
+        ax.axvline(e, color="0.85", lw=0.6, zorder=0)
+    ax.set_xlim(-180, 180)
+    ax.set_xticks(np.arange(-180, 181, 60))
+    ax.set_xlabel("angle [deg]")
+    ax.set_ylabel("worn depth [mm]")
+    ax.legend(fontsize=8)
 
 
-def plot_obstacle(result, directory: str | os.PathLike, *, stem: str = "obstacle_polar"
-                  ) -> list[Path]:
-    """Write :func:`obstacle_figure` as ``<stem>.png`` and ``<stem>.svg`` in ``directory``.
+def plot_clearance(result, *, ax=None):
+    """The clearance figure of an obstacle update, new and worn [mm], on a polar Axes.
+
+    The sector edges are drawn as spokes and perforated sectors shaded; the radial axis is
+    clipped at 5 × the 10th percentile of the clearances when larger ones exist (the directions
+    along two planes), and the title says so.
 
     Parameters
     ----------
     result : fretwear.obstacle.ObstacleResult
-    directory : path-like
-        Output folder (created); files written atomically.
-    stem : str
-        File-name stem.
+    ax : polar matplotlib Axes or Figure, optional
+        Default: a new figure.
 
     Returns
     -------
-    list of pathlib.Path
+    matplotlib.figure.Figure
     """
-    plt = _pyplot()
-    fig = obstacle_figure(result)
-    try:
-        return save_figure(fig, directory, stem, dpi=120)
-    finally:
-        plt.close(fig)
+    fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(projection="polar")],
+                                      figsize=(6, 5.5), what="plot_clearance", polar=(0,))
+    _draw_clearance(axis, result)
+    return fig
+
+
+def plot_obstacle_depth(result, *, ax=None):
+    """Worn depths of the mobile and the obstacle [mm] against the angle [deg], with the
+    perforation depth when the mobile comes near it.
+
+    Parameters
+    ----------
+    result : fretwear.obstacle.ObstacleResult
+    ax : matplotlib Axes or Figure, optional
+        Default: a new figure.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(6, 4.5),
+                                      what="plot_obstacle_depth")
+    _draw_depth(axis, result)
+    return fig
+
+
+def plot_obstacle(result, *, ax=None):
+    """An obstacle update: the clearance figure (left, :func:`plot_clearance`) and the worn
+    depths (right, :func:`plot_obstacle_depth`).
+
+    Parameters
+    ----------
+    result : fretwear.obstacle.ObstacleResult
+    ax : (polar Axes, Axes) or Figure, optional
+        Default: a new figure with both.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    fig, (polar, cart), own = figure_and_axes(
+        ax, 2, lambda f: [f.add_subplot(1, 2, 1, projection="polar"), f.add_subplot(1, 2, 2)],
+        figsize=(11, 5), what="plot_obstacle", polar=(0,))
+    _draw_clearance(polar, result)
+    _draw_depth(cart, result)
+    if own:
+        when = "" if result.instant is None else f" at instant {result.instant:g}"
+        fig.suptitle(f"obstacle update ({result.depth.shape} depth){when}")
+        fig.tight_layout()
+    return fig

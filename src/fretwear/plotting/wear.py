@@ -1,123 +1,222 @@
 """Figures of a service-life wear table (:func:`fretwear.table.wear_table`).
 
-matplotlib is imported here only, with the Agg backend (no display needed).
+Each function takes the table, accepts ``ax=`` and returns the matplotlib Figure; nothing is
+written (the CLI and the loop save them with :func:`fretwear.plotting.save_figure`).
 """
 
 from __future__ import annotations
 
-import os
-from pathlib import Path
-
 import numpy as np
 import pandas as pd
 
-from fretwear.plotting._common import pyplot as _pyplot
-from fretwear.plotting._common import save_figure
+from fretwear.errors import InputError
+from fretwear.plotting._common import figure_and_axes
+from fretwear.table import from_aster_names
+from fretwear.timeunits import TIME_UNITS
+
+#: quantity -> (column prefix, scale from SI, axis label)
+_QUANTITIES = {"volume": ("volume", 1e9, "cumulated worn volume [mm³]"),
+               "depth": ("depth", 1e3, "worn depth [mm]")}
 
 
 def _unit(table: pd.DataFrame) -> str:
     """The table's time unit: its ``time_unit``, else the first name of its ``time_scale`` in
-    :data:`fretwear.workflows.case_files.TIME_UNITS`, else the scale in seconds."""
+    :data:`fretwear.timeunits.TIME_UNITS`, else the scale in seconds."""
     if table.attrs.get("time_unit"):
         return str(table.attrs["time_unit"])
-    from fretwear.timeunits import TIME_UNITS
-
     scale = float(table.attrs.get("time_scale", 1.0))
     return next((name for name, s in TIME_UNITS.items() if s == scale), f"× {scale:g} s")
 
 
-def plot_wear_table(table: pd.DataFrame, directory: str | os.PathLike, *, stem: str = "wear"
-                    ) -> list[Path]:
-    """Write the figures of a wear table as PNG and SVG files.
+def _title(table: pd.DataFrame) -> str:
+    title = table.attrs.get("title") or "wear table"
+    return (f"{title}: {table.attrs.get('contact_type', '')} "
+            f"{table.attrs.get('law', '')}").strip()
 
-    Parameters
-    ----------
-    table : pandas.DataFrame
-        A wear table with native column names (Code_Aster names are converted).
-    directory : path-like
-        Output directory (created), files written atomically.
-    stem : str
-        File-name prefix.
 
-    Returns
-    -------
-    list of pathlib.Path
-        ``<stem>_history.png/.svg`` (volumes [mm³] and depths [mm] of tube and obstacle against
-        time; a replaced tube's curve is broken at the replacement, a restart origin is marked)
-        and, in sector mode, ``<stem>_sectors.png/.svg`` (sector power [W] and sector
-        depths [mm] at the last instant on polar axes).
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> t = pd.DataFrame({"instant": [1.0, 2.0], "volume_mobile": [1e-9, 2e-9],
-    ...                   "volume_obstacle": [0.0, 0.0], "depth_mobile": [1e-4, 1.6e-4],
-    ...                   "depth_obstacle": [0.0, 0.0]})
-    >>> [p.name for p in plot_wear_table(t, tempfile.mkdtemp())]
-    ['wear_history.png', 'wear_history.svg']
-    """
-    from fretwear.table import from_aster_names
-
-    table = from_aster_names(table)
-    directory = Path(directory)
-    plt = _pyplot()
-    unit = _unit(table)
+def _draw_history(ax, table: pd.DataFrame, quantity: str) -> None:
+    """Draw one quantity (volume or depth) of tube and obstacle against the instants."""
+    if quantity not in _QUANTITIES:
+        raise InputError(f"quantity={quantity!r}: choose one of {list(_QUANTITIES)}")
+    column, scale, label = _QUANTITIES[quantity]
     glob = table.drop_duplicates("instant", keep="last").sort_values("instant")
-    fig, (ax_v, ax_d) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
     t = glob["instant"].to_numpy(dtype=float)
     replaced = table.attrs.get("tube_replacement")
     origin = table.attrs.get("origin") or 0.0
     # the tube's curve is broken at a replacement (the old and the new tube are two bodies)
     new_tube = np.zeros(t.shape, bool) if replaced is None else t >= float(replaced)
-    for ax, column, scale in ((ax_v, "volume", 1e9), (ax_d, "depth", 1e3)):
-        mobile = glob[f"{column}_mobile"].to_numpy(dtype=float) * scale
-        ax.plot(t, np.where(new_tube, np.nan, mobile), "o-", color="C0", label="tube (mobile)")
-        if new_tube.any():
-            ax.plot(t[new_tube], mobile[new_tube], "o-", color="C0", mfc="white",
-                    label="new tube")
-            ax.axvline(float(replaced), color="0.4", ls=":", lw=1)
-        ax.plot(t, glob[f"{column}_obstacle"] * scale, "s--", color="C1", label="obstacle")
-        if origin:
-            ax.axvline(float(origin), color="0.6", ls="-.", lw=1)
-        ax.grid(alpha=0.3)
+    mobile = glob[f"{column}_mobile"].to_numpy(dtype=float) * scale
+    ax.plot(t, np.where(new_tube, np.nan, mobile), "o-", color="C0", label="tube (mobile)")
     if new_tube.any():
-        ax_v.annotate("tube replaced", (float(replaced), 1.0), xycoords=("data", "axes fraction"),
-                      xytext=(3, -12), textcoords="offset points", fontsize="small")
+        ax.plot(t[new_tube], mobile[new_tube], "o-", color="C0", mfc="white", label="new tube")
+        ax.axvline(float(replaced), color="0.4", ls=":", lw=1)
+        ax.annotate("tube replaced", (float(replaced), 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(3, -12), textcoords="offset points", fontsize="small")
+    ax.plot(t, glob[f"{column}_obstacle"] * scale, "s--", color="C1", label="obstacle")
     if origin:
-        ax_v.annotate("restart", (float(origin), 1.0), xycoords=("data", "axes fraction"),
-                      xytext=(3, -24), textcoords="offset points", fontsize="small")
-    ax_v.set_ylabel("cumulated worn volume [mm³]")
-    ax_v.legend()
-    ax_d.set_ylabel("worn depth [mm]")
-    ax_d.set_xlabel(f"instant [{unit}]")
-    ax_d.legend()
-    title = table.attrs.get("title") or "wear table"
-    fig.suptitle(f"{title}: {table.attrs.get('contact_type', '')} "
-                 f"{table.attrs.get('law', '')}".strip())
-    files = save_figure(fig, directory, f"{stem}_history")
-    plt.close(fig)
+        ax.axvline(float(origin), color="0.6", ls="-.", lw=1)
+        ax.annotate("restart", (float(origin), 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(3, -24), textcoords="offset points", fontsize="small")
+    ax.grid(alpha=0.3)
+    ax.set_ylabel(label)
+    ax.set_xlabel(f"instant [{_unit(table)}]")
+    ax.legend()
+
+
+def plot_wear_history(table: pd.DataFrame, quantity: str = "depth", *, ax=None):
+    """Worn depth (or volume) of the tube and the obstacle against the instants.
+
+    A replaced tube's curve is broken at the replacement; a restart origin is marked.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A wear table (native or Code_Aster column names); in sector mode the global rows are
+        used.
+    quantity : {"depth", "volume"}
+        Worn depth [mm] or cumulated worn volume [mm³].
+    ax : matplotlib Axes or Figure, optional
+        Where to draw (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"instant": [1.0, 2.0], "volume_mobile": [1e-9, 2e-9],
+    ...                   "volume_obstacle": [0.0, 0.0], "depth_mobile": [1e-4, 1.6e-4],
+    ...                   "depth_obstacle": [0.0, 0.0]})
+    >>> fig = plot_wear_history(t)
+    >>> fig.axes[0].get_ylabel()
+    'worn depth [mm]'
+    """
+    table = from_aster_names(table)
+    fig, (axis,), own = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(7, 4),
+                                        what="plot_wear_history")
+    _draw_history(axis, table, quantity)
+    if own:
+        axis.set_title(_title(table))
+    return fig
+
+
+def plot_wear_table(table: pd.DataFrame, *, ax=None):
+    """Cumulated worn volumes [mm³] (top) and worn depths [mm] (bottom) against the instants.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A wear table with native column names (Code_Aster names are converted).
+    ax : two matplotlib Axes, or a Figure, optional
+        The volume and depth axes (default: a new figure with both, sharing the time axis).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    plot_sector_wear : the sector power and depths of a sector table.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"instant": [1.0, 2.0], "volume_mobile": [1e-9, 2e-9],
+    ...                   "volume_obstacle": [0.0, 0.0], "depth_mobile": [1e-4, 1.6e-4],
+    ...                   "depth_obstacle": [0.0, 0.0]})
+    >>> fig = plot_wear_table(t)
+    >>> [a.get_ylabel() for a in fig.axes]
+    ['cumulated worn volume [mm³]', 'worn depth [mm]']
+    """
+    table = from_aster_names(table)
+
+    def layout(fig):
+        top = fig.add_subplot(2, 1, 1)
+        return [top, fig.add_subplot(2, 1, 2, sharex=top)]
+
+    fig, (ax_v, ax_d), own = figure_and_axes(ax, 2, layout, figsize=(7, 6.5),
+                                             what="plot_wear_table")
+    _draw_history(ax_v, table, "volume")
+    _draw_history(ax_d, table, "depth")
+    if own:
+        ax_v.set_xlabel("")
+        ax_v.tick_params(labelbottom=False)
+        fig.suptitle(_title(table))
+    return fig
+
+
+def plot_sector_wear(table: pd.DataFrame, *, ax=None):
+    """Sector wear power [W] and sector depths [mm] at the last instant, on polar axes.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A sector wear table (``sector``, ``angle_start``, ``angle_end``, ``sector_power``,
+        ``depth_mobile_sector``, ``depth_obstacle_sector``).
+    ax : two polar Axes, or a Figure, optional
+        Default: a new figure with both.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    InputError
+        The table has no sectors.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"instant": [1.0, 1.0], "sector": [1, 2], "angle_start": [-180.0, 0.0],
+    ...                   "angle_end": [0.0, 180.0], "sector_power": [0.1, 0.3],
+    ...                   "depth_mobile_sector": [1e-5, 3e-5], "depth_obstacle_sector": [0.0, 0.0]})
+    >>> [a.name for a in plot_sector_wear(t).axes]
+    ['polar', 'polar']
+    """
+    table = from_aster_names(table)
+    if "sector" not in table.columns or not table["sector"].notna().any():
+        raise InputError("plot_sector_wear needs a sector wear table (column 'sector'); "
+                         "this table has no sectors")
+    unit = _unit(table)
+    last = table[table["instant"] == table["instant"].max()].sort_values("sector")
+    start = np.radians(last["angle_start"].to_numpy(dtype=float))
+    width = np.radians(last["angle_end"].to_numpy(dtype=float)) - start
+    fig, axes, _ = figure_and_axes(
+        ax, 2, lambda f: [f.add_subplot(1, 2, i, projection="polar") for i in (1, 2)],
+        figsize=(11, 5), what="plot_sector_wear", polar=(0, 1))
+    axes[0].bar(start, last["sector_power"], width=width, align="edge", alpha=0.7,
+                edgecolor="k")
+    axes[0].set_title("sector wear power [W]")
+    axes[1].bar(start, last["depth_mobile_sector"] * 1e3, width=width, align="edge",
+                alpha=0.7, edgecolor="k", label="tube")
+    axes[1].bar(start, last["depth_obstacle_sector"].fillna(0.0) * 1e3, width=width,
+                align="edge", alpha=0.4, edgecolor="k", label="obstacle")
+    axes[1].set_title(f"sector depth [mm] at instant {last['instant'].iloc[0]:g} {unit}")
+    axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
+    # radial labels where the bars are lowest, so that they do not hide the bars
+    low = int(np.argmin(last["sector_power"].to_numpy()))
+    quiet = float(np.degrees(start[low] + width[low] / 2))
+    for axis in axes:  # contact angle atan2(dz, dy) in (-180, 180] deg, as the table
+        axis.set_thetagrids(range(0, 360, 45),
+                            [f"{a if a <= 180 else a - 360}°" for a in range(0, 360, 45)])
+        axis.set_rlabel_position(quiet)
+        axis.tick_params(axis="y", labelsize="small")
+    return fig
+
+
+def wear_figures(table: pd.DataFrame) -> dict[str, object]:
+    """Every figure of a wear table: ``{"history": ..., "sectors": ...}`` (sectors only for a
+    sector table), each a new matplotlib Figure; what ``fretwear run --plot`` saves as
+    ``wear_history.png``/``.svg`` and ``wear_sectors.png``/``.svg``.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"instant": [1.0], "volume_mobile": [1e-9], "volume_obstacle": [0.0],
+    ...                   "depth_mobile": [1e-4], "depth_obstacle": [0.0]})
+    >>> list(wear_figures(t))
+    ['history']
+    """
+    table = from_aster_names(table)
+    out = {"history": plot_wear_table(table)}
     if "sector" in table.columns and table["sector"].notna().any():
-        last = table[table["instant"] == table["instant"].max()].sort_values("sector")
-        start = np.radians(last["angle_start"].to_numpy(dtype=float))
-        width = np.radians(last["angle_end"].to_numpy(dtype=float)) - start
-        fig, axes = plt.subplots(1, 2, figsize=(11, 5), subplot_kw={"projection": "polar"})
-        axes[0].bar(start, last["sector_power"], width=width, align="edge", alpha=0.7,
-                    edgecolor="k")
-        axes[0].set_title("sector wear power [W]")
-        axes[1].bar(start, last["depth_mobile_sector"] * 1e3, width=width, align="edge",
-                    alpha=0.7, edgecolor="k", label="tube")
-        axes[1].bar(start, last["depth_obstacle_sector"].fillna(0.0) * 1e3, width=width,
-                    align="edge", alpha=0.4, edgecolor="k", label="obstacle")
-        axes[1].set_title(f"sector depth [mm] at instant {last['instant'].iloc[0]:g} {unit}")
-        axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
-        # radial labels where the bars are lowest, so that they do not hide the bars
-        low = int(np.argmin(last["sector_power"].to_numpy()))
-        quiet = float(np.degrees(start[low] + width[low] / 2))
-        for ax in axes:  # contact angle atan2(dz, dy) in (-180, 180] deg, as the table
-            ax.set_thetagrids(range(0, 360, 45),
-                              [f"{a if a <= 180 else a - 360}°" for a in range(0, 360, 45)])
-            ax.set_rlabel_position(quiet)
-            ax.tick_params(axis="y", labelsize="small")
-        files += save_figure(fig, directory, f"{stem}_sectors")
-        plt.close(fig)
-    return files
+        out["sectors"] = plot_sector_wear(table)
+    return out

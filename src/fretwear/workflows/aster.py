@@ -28,6 +28,9 @@ import pandas as pd
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.geometry.base import ASTER_KEYWORDS
+from fretwear.history import ContactHistory
+from fretwear.laws import WEAR_LAWS
+from fretwear.table import replace_tube, to_aster_names, wear_table
 
 
 class _F(dict):
@@ -201,8 +204,6 @@ def _history(kw: Mapping[str, Any]):
             raise KeywordError(f"POST_USURE: NOEUD/GROUP_NO {label!r} is not in RESU_GENE; it "
                                f"holds {list(source)}")
         source = source[label]
-    from fretwear.history import ContactHistory
-
     if not isinstance(source, ContactHistory | str | os.PathLike):
         raise KeywordError(f"POST_USURE: RESU_GENE must be a ContactHistory, the path of a "
                            f"history file, or a mapping node label -> either; got "
@@ -252,9 +253,6 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     kind = _one_of(kw, ("PUIS_USURE", "RESU_GENE", "TUBE_NEUF"))
     if kind == "TUBE_NEUF":
         return _tube_neuf(kw)
-    from fretwear.laws import WEAR_LAWS
-    from fretwear.table import to_aster_names, wear_table
-
     law = str(kw.get("LOI_USURE", "")).upper()
     if not law:
         raise KeywordError("POST_USURE: LOI_USURE is required (ARCHARD, KWU_EPRI or EDF_MZ)")
@@ -352,8 +350,6 @@ def _obstacle_depths_that_exist(table: pd.DataFrame) -> pd.DataFrame:
 
 def _law_keywords(fact: Mapping[str, Any], law: str, name: str) -> dict[str, float]:
     """The law's coefficients from MOBILE/OBSTACLE keywords (Code_Aster names)."""
-    from fretwear.laws import WEAR_LAWS
-
     known = set(dict(getattr(WEAR_LAWS[law], "aster_keywords", {})).values())
     extra = [k for k in fact if k not in known]
     if extra:
@@ -390,9 +386,6 @@ def _secteurs(secteurs: list[dict], contact: Any):
 
 
 def _tube_neuf(kw: Mapping[str, Any]) -> pd.DataFrame:
-    from fretwear.table import to_aster_names
-    from fretwear.table import replace_tube
-
     _yes(kw["TUBE_NEUF"], "TUBE_NEUF")
     if kw.get("TABL_USURE") is None:
         raise KeywordError("POST_USURE: TUBE_NEUF='OUI' needs TABL_USURE (the table of the "

@@ -36,7 +36,10 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, KeywordError
+from fretwear.io import read_history
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
+from fretwear.power import PowerAccumulator, wear_power
+from fretwear.table import read_wear_table, wear_table
 from fretwear.timeunits import TIME_UNITS  # noqa: F401 - re-exported
 
 #: section -> key -> (expected type, description with unit). "*" sections are free tables.
@@ -371,8 +374,6 @@ def _restart_table(case: Mapping[str, Any], restart: Mapping[str, Any]):
     path = _path(case, restart["table"])
     if "table_index" not in restart:
         return path
-    from fretwear.table import read_wear_table
-
     return read_wear_table(path, index=restart["table_index"])
 
 
@@ -418,8 +419,6 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
         history = None
         if "file" in history_spec:
             step("reading the history")
-            from fretwear.io import read_history
-
             options = {k: history_spec[k] for k in ("format", "units", "columns")
                        if k in history_spec}
             history = read_history(_path(case, history_spec["file"]), **options)
@@ -429,8 +428,6 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
         else:
             power = float(case["power"]["value_W"])
         step("building the wear table")
-        from fretwear.table import wear_table
-
         # The power is computed once, above; the history only gives KWU_EPRI its classes.
         table = wear_table(power, history=history, **args)
     seen = list(dict.fromkeys(  # keep order, drop repeats
@@ -464,8 +461,6 @@ def chunked_power(history, args: Mapping[str, Any], progress=None, *,
     chunk_samples : int
         Samples per chunk (>= 2).
     """
-    from fretwear.power import PowerAccumulator, wear_power
-
     step = progress or (lambda description, done=None, total=None: None)
     options = dict(t_start=args.get("t_start"), t_end=args.get("t_end"),
                    blocks=args.get("blocks", 1), sectors=args.get("sectors"))

@@ -25,9 +25,30 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from fretwear._optional import require
 from fretwear.dynamics.config import DynamicsSetup, dynamics_from_config
 from fretwear.dynamics.integrate import simulate
 from fretwear.errors import FretwearWarning, KeywordError
+from fretwear.history import CHANNELS, ContactHistory
+from fretwear.io import iter_history_chunks
+from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.keys import check_keys
+from fretwear.obstacle.config import obstacle_from_config
+from fretwear.plotting import (
+    plot_contact_history,
+    plot_iteration,
+    plot_obstacle,
+    save_figure,
+    wear_figures,
+)
+from fretwear.power import PowerAccumulator
+from fretwear.table import wear_table, write_wear_table
+from fretwear.workflows.case_files import (
+    case_arguments,
+    chunked_power,
+    read_case_toml,
+    validate_case,
+)
 
 #: key -> (type, description with unit) of the ``[iterate]`` section.
 ITERATE_KEYS: dict[str, tuple[Any, str]] = {
@@ -42,8 +63,6 @@ ITERATE_KEYS: dict[str, tuple[Any, str]] = {
 
 
 def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
-    from fretwear.keys import check_keys
-
     check_keys(section, ITERATE_KEYS, "[iterate]")
     out = dict(section)
     if out.get("cycles", 1) < 1:
@@ -78,8 +97,6 @@ def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
     ...
     fretwear.errors.KeywordError: [iterate]: unknown key cycle (did you mean 'cycles'?); ...
     """
-    from fretwear.workflows.case_files import read_case_toml, validate_case
-
     if isinstance(case, Mapping):
         raw = dict(case)
         source, directory = "case", raw.pop("_directory", None)
@@ -135,8 +152,6 @@ class IterationResult:
 
 
 def _wear_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
-    from fretwear.workflows.case_files import case_arguments
-
     # the history comes from [dynamics] (load_iterate_case refuses [history] and value_W)
     args = case_arguments(case, history_elsewhere=True)
     if args["sectors"] is None:
@@ -193,14 +208,16 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     .. [3] EDF-DER (1998). [Control rods of 1300 MW plants: iterative wear computations with
            progressive wear of the antagonists]. Report HT.22/98-009A (in French).
     """
-    from fretwear.obstacle.config import obstacle_from_config
-    from fretwear.table import wear_table
-
     say = progress or (lambda message: None)
+    # the dynamics histories of every cycle are Parquet files: say so before computing anything
+    require("pyarrow.parquet", purpose="the coupled loop (its dynamics histories are Parquet)")
     case = load_iterate_case(case)
     it = case["iterate"]
     n_cycles = int(cycles if cycles is not None else it.get("cycles", 1))
     do_plot = bool(plot if plot is not None else it.get("plot", True))
+    if do_plot:  # before any computation, not after the first cycle
+        require("matplotlib.pyplot", purpose="the loop's figures ([iterate] plot = false or "
+                                             "plot=False skips them)")
     directory = case.get("_directory")
     if output is None:
         out = Path(it.get("output", "iterate"))
@@ -303,24 +320,17 @@ LOOP_CHUNK = 1_000_000
 def _cycle_power(result, iw: int, args: Mapping[str, Any]):
     """(PowerResult, history for the wear table / figures, contact fraction) of the wear shock.
 
-    Short histories are read whole (:func:`fretwear.workflows.case_files.chunked_power`). Long ones are reduced
-    from the Parquet file by :class:`fretwear.power.PowerAccumulator` over
+    Short histories are read whole (:func:`fretwear.workflows.case_files.chunked_power`). Long
+    ones are reduced from the Parquet file by :class:`fretwear.power.PowerAccumulator` over
     :func:`fretwear.io.iter_history_chunks` (one shared sample between chunks, so the result is
     the one-shot reduction), keeping an evenly decimated copy for the figures.
     """
-    import pyarrow.parquet as pq
-
-    from fretwear.workflows.case_files import chunked_power
-    from fretwear.history import CHANNELS, ContactHistory
-
+    pq = require("pyarrow.parquet", purpose="the coupled loop (its dynamics histories are Parquet)")
     path = result.files[result.shock_names[iw]]
     n = pq.ParquetFile(path).metadata.num_rows
     if n <= LOOP_IN_MEMORY:
         history = result.history(iw)
         return chunked_power(history, args), history, float(np.mean(history.normal_force > 0))
-    from fretwear.io import iter_history_chunks
-    from fretwear.power import PowerAccumulator
-
     acc = PowerAccumulator(
         t_start=args.get("t_start") if args.get("t_start") is not None else result.start_time,
         t_end=args.get("t_end") if args.get("t_end") is not None else result.end_time,
@@ -347,10 +357,7 @@ def _cycle_power(result, iw: int, args: Mapping[str, Any]):
 
 
 def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures) -> None:
-    from fretwear.table import write_wear_table as write_table
-    from fretwear.io.atomic import atomic_write
-
-    write_table(table, cdir / "wear_table.csv")
+    write_wear_table(table, cdir / "wear_table.csv")
     update.write(cdir / "obstacle_profile.csv")
     if np.all(np.isfinite(update.clearance_worn)):
         update.write_discret(cdir / "obstacle_discret.txt")
@@ -361,40 +368,26 @@ def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figu
     with atomic_write(cdir / "dynamics.json", "w", encoding="utf-8") as fh:
         json.dump(result.summary(), fh, indent=2)
     if do_plot:
-        from fretwear.plotting.dynamics import plot_contact_history
-
-        plot_contact_history(history, cdir, profiles=figures)
-        for what, draw in (("wear-table", lambda: _plot_wear(table, cdir)),
-                           ("obstacle", lambda: _plot_obstacle(update, cdir))):
+        save_figure(plot_contact_history(history, profiles=figures), cdir, "contact_history",
+                    dpi=110, close=True)
+        for what, draw in (
+                ("wear-table", lambda: {f"wear_{k}": f for k, f in wear_figures(table).items()}),
+                ("obstacle", lambda: {"obstacle_polar": plot_obstacle(update)})):
             try:
-                draw()
+                for stem, fig in draw().items():
+                    save_figure(fig, cdir, stem, close=True)
             except Exception as exc:  # noqa: BLE001 - a figure must not stop the loop
                 warnings.warn(f"{what} figure of {cdir.name} not written: {exc}",
                               FretwearWarning, stacklevel=2)
 
 
-def _plot_wear(table, cdir: Path) -> None:
-    from fretwear.plotting.wear import plot_wear_table
-
-    plot_wear_table(table, cdir)
-
-
-def _plot_obstacle(update, cdir: Path) -> None:
-    from fretwear.plotting.obstacle import plot_obstacle
-
-    plot_obstacle(update, cdir)
-
-
 def _write_summary(out_dir: Path, summary: pd.DataFrame, stopped: str, do_plot: bool,
                    profiles) -> None:
-    from fretwear.io.atomic import atomic_path, atomic_write
-
     with atomic_path(out_dir / "summary.csv") as tmp:
         summary.to_csv(tmp, index=False, float_format="%.10g")
     with atomic_write(out_dir / "summary.json", "w", encoding="utf-8") as fh:
         json.dump({"stopped": stopped, "cycles": summary.to_dict(orient="records")}, fh,
                   indent=2)
     if do_plot and len(summary):
-        from fretwear.plotting.dynamics import plot_iteration
-
-        plot_iteration(summary, [(p.angle, p.clearance_worn) for p in profiles], out_dir)
+        fig = plot_iteration(summary, [(p.angle, p.clearance_worn) for p in profiles])
+        save_figure(fig, out_dir, "iteration", dpi=110, close=True)
