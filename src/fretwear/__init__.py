@@ -59,6 +59,8 @@ _LAZY: dict[str, str] = {
     "sector_depth_obstacle": "fretwear.geometry",
     "table": "fretwear.table",
     "wear_table": "fretwear.table",
+    "WearCase": "fretwear.table",
+    "wear_table_from_case": "fretwear.table",
     "write_wear_table": "fretwear.table",
     "to_aster_names": "fretwear.table",
     "from_aster_names": "fretwear.table",

@@ -2,13 +2,18 @@
 
 - :mod:`fretwear.table.schema`: every column's native name, Code_Aster name, unit and meaning
   (:data:`COLUMNS`), :func:`to_aster_names`, :func:`from_aster_names`;
-- :mod:`fretwear.table.core`: :func:`wear_table`, the service-life table (theory §3, §7);
+- :mod:`fretwear.table.case`: :class:`WearCase`, the validated description of one contact's
+  wear computation, with each coefficient's source (:class:`Coefficient`);
+- :mod:`fretwear.table.build`: :func:`wear_table_from_case`, the service-life table of a case
+  (theory §3, §7); :mod:`fretwear.table.core`: :func:`wear_table`, the same from keywords;
 - :mod:`fretwear.table.restart`: the initial state of a restart (ETAT_INIT) and the tube
   replacement (TUBE_NEUF);
 - :mod:`fretwear.table.files`: :func:`read_wear_table` and :func:`write_wear_table` (CSV,
   Parquet, Code_Aster text tables).
 """
 
+from fretwear.table.build import wear_table_from_case
+from fretwear.table.case import Coefficient, WearCase
 from fretwear.table.core import wear_table
 from fretwear.table.files import read_wear_table, write_wear_table
 from fretwear.table.restart import InitialState, initial_state, replace_tube
@@ -22,14 +27,17 @@ from fretwear.table.schema import (
 
 __all__ = [
     "COLUMNS",
+    "Coefficient",
     "GLOBAL_COLUMNS",
     "SECTOR_COLUMNS",
     "InitialState",
+    "WearCase",
     "from_aster_names",
     "initial_state",
     "read_wear_table",
     "replace_tube",
     "to_aster_names",
     "wear_table",
+    "wear_table_from_case",
     "write_wear_table",
 ]

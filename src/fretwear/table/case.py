@@ -1,0 +1,547 @@
+"""The wear case: one validated, immutable description of one contact's wear computation.
+
+:class:`WearCase` holds everything :func:`fretwear.table.wear_table_from_case` needs besides the
+wear power (or the contact history it comes from): the contact geometry, the wear law and its
+coefficients (each tagged with where it came from: :class:`Coefficient`), the material pair and
+coefficient files, the angular sectors and their coefficients, the instants and their unit, the
+window of the power computation, the restart state (ETAT_INIT) and the tube replacement
+(TUBE_NEUF), the wall thickness and the depth limit, and a name.
+
+Every rule between keywords is checked here, once: :meth:`WearCase.from_keywords` resolves what
+the user gave (database look-up, coefficient files, the initial table read into an
+:class:`~fretwear.table.restart.InitialState`), and the constructor checks the consistency of the
+resolved values, so a case rebuilt by :meth:`WearCase.from_dict` on another machine (a worker
+without the user's files) is checked by the same code. A case pickles, and ``to_dict()`` is
+JSON-ready (floats written by ``json`` round-trip exactly).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import InputError, KeywordError
+from fretwear.geometry import contact_geometry
+from fretwear.laws import WEAR_LAWS, get_law
+from fretwear.sectors import sector_edges
+from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
+from fretwear.table.coefficients import (
+    USER,
+    Coefficient,
+    coefficient_file_paths,
+    law_coefficients,
+    laws_with,
+    material_pair,
+    plain,
+    resolve_coefficients,
+    sector_parameter,
+)
+from fretwear.table.restart import InitialState
+from fretwear.table.restart import initial_state as _read_initial_state
+from fretwear.table.schema import _TIME_TOL
+
+__all__ = ["Coefficient", "WearCase", "law_coefficients"]
+
+#: The Code_Aster names of the KWU-EPRI class ranges given as separate keywords.
+_HISTORY_KEYWORDS = {"force_max": "FNOR_MAXI", "speed_max": "VTAN_MAXI"}
+#: Format tag of :meth:`WearCase.to_dict`.
+FORMAT = "fretwear.WearCase/1"
+
+
+def _real(value: Any, name: str, *, none: bool = True) -> float | None:
+    if value is None and none:
+        return None
+    if isinstance(value, bool | str | bytes) or value is None:
+        ok = False
+    else:
+        try:
+            out = float(value)
+            ok = math.isfinite(out)
+        except (TypeError, ValueError):
+            ok = False
+    if not ok:
+        raise InputError(f"{name} must be a finite number, got {value!r}")
+    return out
+
+
+def _instants(instants, restart: bool) -> tuple[float, ...]:
+    try:
+        arr = np.atleast_1d(np.asarray(instants, dtype=float)).ravel()
+    except (TypeError, ValueError):
+        raise InputError(f"instants must be numbers (user time unit), got {instants!r}") from None
+    if arr.size == 0 or not np.isfinite(arr).all():
+        raise InputError(f"instants must be finite numbers and at least one, got {arr.tolist()}")
+    if (arr < 0).any() or (restart and (arr <= 0).any()):
+        low = "> 0 (they count from the restart origin)" if restart else ">= 0"
+        raise InputError(f"instants (INST) must be {low}, got {arr.tolist()}")
+    if (np.diff(arr) <= 0).any():
+        raise InputError(f"instants (INST) must be strictly increasing, got {arr.tolist()}")
+    return tuple(arr.tolist())
+
+
+def _coefficient_map(value, body: str) -> FrozenMap:
+    if not isinstance(value, Mapping):
+        raise InputError(f"{body} coefficients must be a mapping name -> Coefficient, got "
+                         f"{type(value).__name__}")
+    out = {}
+    for name, c in value.items():
+        if isinstance(c, Mapping):
+            c = Coefficient(plain(c.get("value")), str(c.get("source", USER)))
+        elif not isinstance(c, Coefficient):
+            c = Coefficient(plain(c), USER)
+        out[str(name)] = c
+    return FrozenMap(out)
+
+
+def _sector_pairs(pairs, n: int) -> tuple[tuple[float, float | None], ...]:
+    """(mobile, obstacle or None) Archard coefficients [1/Pa] of each of the ``n`` sectors."""
+    pairs = list(pairs)
+    if len(pairs) == 1 and n > 1:
+        pairs = pairs * n
+    if len(pairs) != n:
+        raise InputError(f"sector_coefficients has {len(pairs)} entries for {n} sectors; give "
+                         "one (mobile, obstacle) pair [1/Pa] per sector, or one for all")
+    out = []
+    for j, pair in enumerate(pairs):
+        if np.isscalar(pair):
+            pair = (pair, None)
+        if len(pair) != 2:
+            raise InputError(f"sector_coefficients[{j}] must be a (mobile, obstacle) pair "
+                             f"[1/Pa], got {pair!r}")
+        out.append((float(pair[0]), None if pair[1] is None else float(pair[1])))
+    return tuple(out)
+
+
+def _restart_state(table, initial_instant) -> tuple[InitialState | None, str | None]:
+    """(the restart state, where it came from) of ``initial_state=``: read once, here."""
+    if table is None:
+        return None, None
+    if isinstance(table, InitialState):
+        return table, "(InitialState)"
+    label = "(DataFrame)" if isinstance(table, pd.DataFrame) else os.fspath(table)
+    return _read_initial_state(table, initial_instant), label
+
+
+# --------------------------------------------------------------------------- the wear case
+@dataclass(frozen=True, eq=False, kw_only=True)
+class WearCase:
+    """One contact's wear computation, validated: everything but the wear power (theory §7).
+
+    Build it with :meth:`from_keywords` (the keywords of :func:`fretwear.table.wear_table`) and
+    compute its table with :func:`fretwear.table.wear_table_from_case`; :meth:`to_dict` /
+    :meth:`from_dict` and pickle carry it to another process or machine.
+
+    Attributes
+    ----------
+    contact_type : str
+        Code_Aster contact type (CONTACT), upper case, e.g. ``"TUBE_BAV"``.
+    dimensions : mapping
+        The geometry's dimensions, native names: lengths [m], angles [deg] (defaults included).
+    instants : tuple of float
+        Durations of service after the origin [user time unit] (INST), strictly increasing.
+    law : str
+        Wear law (LOI_USURE), a key of :data:`fretwear.laws.WEAR_LAWS`.
+    coefficients, obstacle_coefficients : mapping of str to Coefficient
+        The law's coefficients of the mobile / obstacle by native name, SI, each with its
+        source; ``obstacle_coefficients`` None: the obstacle does not wear.
+    materials : (str, str) or None
+        Database material pair (MATER_USURE) the coefficients came from.
+    obstacle_wear : bool
+        Obstacle coefficients from the database (USURE_OBST).
+    coefficient_files : tuple of str or None
+        The user's coefficient CSV files that extended the database.
+    sectors : int, tuple of float or None
+        Number of equal sectors, or their edges [deg] (SECTEUR).
+    sector_coefficients : tuple of (float, float or None) or None
+        Archard coefficients (mobile, obstacle) [1/Pa] of every sector.
+    time_scale : float
+        Seconds per user time unit [s] (COEF_INST).
+    time_unit : str or None
+        Name of the user time unit (``"year"``, ...), for the table's metadata.
+    t_start, t_end : float or None
+        Window of the history [s] (INST_INIT, INST_FIN of RESU_GENE).
+    blocks : int
+        Blocks of the power computation (NB_BLOC).
+    stationarity_threshold : float
+        Relative block spread above which a StationarityWarning is given [-].
+    force_max, speed_max : float or None
+        KWU-EPRI class ranges [N], [m/s] (FNOR_MAXI, VTAN_MAXI); None: the window's maxima.
+    initial_state : InitialState or None
+        The restart state (ETAT_INIT), read from the initial table.
+    initial_instant : float or None
+        INST_INIT of ETAT_INIT [user time unit] the state was read at (None: the table's last).
+    initial_table : str or None
+        Where the restart state came from (a path, ``"(DataFrame)"``), for the provenance.
+    tube_replacement : float or None
+        Instant [user time unit] of the tube's replacement by a new one (TUBE_NEUF).
+    wall_thickness : float or None
+        Wall thickness of the mobile [m], when known.
+    depth_limit : float
+        Depth limit as a fraction of the wall thickness [-] (default 0.4, a plugging criterion).
+    name : str or None
+        A name or title of the case.
+
+    Examples
+    --------
+    >>> case = WearCase.from_keywords(contact_type="TUBE_ALESAGE", instants=[1.0, 2.0],
+    ...                               dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02},
+    ...                               coefficients={"COEF_USURE": 1e-14}, time_scale=3.6e3)
+    >>> case.coefficients["coefficient"]
+    Coefficient(value=1e-14, source='user')
+    >>> WearCase.from_dict(case.to_dict()) == case
+    True
+    """
+
+    contact_type: str
+    dimensions: Mapping[str, float] = dataclasses.field(default_factory=dict)
+    instants: tuple[float, ...]
+    law: str = "ARCHARD"
+    coefficients: Mapping[str, Coefficient] = dataclasses.field(default_factory=dict)
+    obstacle_coefficients: Mapping[str, Coefficient] | None = None
+    materials: tuple[str, str] | None = None
+    obstacle_wear: bool = False
+    coefficient_files: tuple[str, ...] | None = None
+    sectors: int | tuple[float, ...] | None = None
+    sector_coefficients: tuple[tuple[float, float | None], ...] | None = None
+    time_scale: float = 1.0
+    time_unit: str | None = None
+    t_start: float | None = None
+    t_end: float | None = None
+    blocks: int = 1
+    stationarity_threshold: float = 0.1
+    force_max: float | None = None
+    speed_max: float | None = None
+    initial_state: InitialState | None = None
+    initial_instant: float | None = None
+    initial_table: str | None = None
+    tube_replacement: float | None = None
+    wall_thickness: float | None = None
+    depth_limit: float = 0.4
+    name: str | None = None
+
+    # ----------------------------------------------------------------------- construction
+    @classmethod
+    def from_keywords(cls, *, contact_type: str, dimensions: Mapping[str, float] | None = None,
+                      instants, law: str = "ARCHARD",
+                      coefficients: Mapping[str, float] | None = None,
+                      obstacle_coefficients: Mapping[str, float] | None = None,
+                      materials: tuple[str, str] | None = None, obstacle_wear: bool = False,
+                      sectors=None, sector_coefficients=None, time_scale: float = 1.0,
+                      initial_state=None, initial_instant: float | None = None,
+                      tube_replacement: float | None = None, t_start: float | None = None,
+                      t_end: float | None = None, blocks: int = 1,
+                      stationarity_threshold: float = 0.1, force_max: float | None = None,
+                      speed_max: float | None = None, coefficient_files=None,
+                      wall_thickness: float | None = None, depth_limit: float = 0.4,
+                      time_unit: str | None = None, name: str | None = None) -> WearCase:
+        """The case of the keywords of :func:`fretwear.table.wear_table` (but ``source`` and
+        ``history``), resolved and validated.
+
+        Resolving: the law's coefficients by native name with their defaults, or the database
+        row of ``materials`` (extended by ``coefficient_files``); the initial table read into an
+        :class:`~fretwear.table.InitialState` at ``initial_instant``. Each coefficient keeps its
+        source (:class:`Coefficient`).
+
+        Raises
+        ------
+        KeywordError
+            Keywords that exclude each other or need another one, naming both and the fix.
+        InputError
+            A bad value (instants, time scale, sector coefficients, ...), a missing file.
+        DatabaseError
+            A material pair without coefficients.
+        """
+        wear_law = get_law(law)
+        files = coefficient_file_paths(coefficient_files, materials)
+        state, label = _restart_state(initial_state, initial_instant)
+        mobile, obstacle = resolve_coefficients(
+            wear_law, contact_type, coefficients, obstacle_coefficients, materials, obstacle_wear,
+            force_max, speed_max, files)
+        return cls(contact_type=contact_type, dimensions=dict(dimensions or {}),
+                   instants=instants, law=wear_law.name, coefficients=mobile,
+                   obstacle_coefficients=obstacle, materials=materials,
+                   obstacle_wear=obstacle_wear, coefficient_files=files, sectors=sectors,
+                   sector_coefficients=sector_coefficients, time_scale=time_scale,
+                   time_unit=time_unit, t_start=t_start, t_end=t_end, blocks=blocks,
+                   stationarity_threshold=stationarity_threshold, force_max=force_max,
+                   speed_max=speed_max, initial_state=state, initial_instant=initial_instant,
+                   initial_table=label, tube_replacement=tube_replacement,
+                   wall_thickness=wall_thickness, depth_limit=depth_limit, name=name)
+
+    def __post_init__(self) -> None:
+        """Normalise the values and check every rule between them (the one place)."""
+        def put(name: str, value: Any) -> None:
+            object.__setattr__(self, name, value)
+
+        if self.name is not None and not isinstance(self.name, str):
+            raise InputError(f"name must be a string, got {self.name!r}")
+        law = get_law(self.law)
+        put("law", law.name)
+        geometry = contact_geometry(self.contact_type, **dict(self.dimensions or {}))
+        put("contact_type", geometry.contact_type)
+        put("dimensions", FrozenMap(geometry.dimensions()))
+        put("coefficients", _coefficient_map(self.coefficients, "mobile"))
+        if self.obstacle_coefficients is not None:
+            put("obstacle_coefficients", _coefficient_map(self.obstacle_coefficients, "obstacle"))
+        state = self.initial_state
+        if state is not None and not isinstance(state, InitialState):
+            raise InputError("initial_state must be an InitialState (WearCase.from_keywords reads "
+                             f"a table or a file into one), got {type(state).__name__}")
+        if self.initial_instant is not None:
+            if state is None:
+                raise KeywordError("initial_instant (INST_INIT of ETAT_INIT) needs an "
+                                   "initial_state (TABL_USURE): give the table to continue")
+            put("initial_instant", _real(self.initial_instant, "initial_instant (INST_INIT)"))
+        put("instants", _instants(self.instants, state is not None))
+        self._check_time()
+        self._check_materials()
+        self._check_history_keywords(law)
+        self._check_sectors(law, geometry, state)
+        self._check_window()
+        self._check_wall()
+
+    def _check_time(self) -> None:
+        try:
+            scale = float(self.time_scale)
+        except (TypeError, ValueError):
+            scale = math.nan
+        if not math.isfinite(scale) or scale <= 0:
+            raise InputError(f"time_scale (COEF_INST) must be > 0 [s per unit], got "
+                             f"{self.time_scale!r}")
+        object.__setattr__(self, "time_scale", scale)
+        if self.time_unit is not None and not isinstance(self.time_unit, str):
+            raise InputError(f"time_unit must be the name of the unit, got {self.time_unit!r}")
+        if self.tube_replacement is not None:
+            at = _real(self.tube_replacement, "tube_replacement (TUBE_NEUF)")
+            origin = self.origin
+            if at < origin - _TIME_TOL * max(1.0, abs(origin)):
+                raise InputError(f"tube_replacement (TUBE_NEUF) at {at:g} is before the origin "
+                                 f"{origin:g} of this run; replace the tube in the initial table "
+                                 "with replace_tube() instead")
+            object.__setattr__(self, "tube_replacement", at)
+
+    def _check_materials(self) -> None:
+        if self.materials is not None:
+            object.__setattr__(self, "materials", material_pair(self.materials))
+        if not isinstance(self.obstacle_wear, bool | np.bool_):
+            raise InputError(f"obstacle_wear (USURE_OBST) must be True or False, got "
+                             f"{self.obstacle_wear!r}")
+        object.__setattr__(self, "obstacle_wear", bool(self.obstacle_wear))
+        if self.obstacle_wear and self.materials is None:
+            raise KeywordError("obstacle_wear (USURE_OBST) takes the obstacle coefficient from "
+                               "the database: give materials (MATER_USURE) too")
+        if self.coefficient_files is not None:
+            files = tuple(os.fspath(f) for f in self.coefficient_files) or None
+            object.__setattr__(self, "coefficient_files", files)
+            if files and self.materials is None:
+                raise KeywordError("coefficient_files extend the coefficient database, which is "
+                                   "read for materials (MATER_USURE) only: give materials too, "
+                                   "or the coefficients directly")
+
+    def _check_history_keywords(self, law) -> None:
+        """The class ranges FNOR_MAXI/VTAN_MAXI belong to laws with history statistics."""
+        for name, keyword in _HISTORY_KEYWORDS.items():
+            value = getattr(self, name)
+            if value is None:
+                continue
+            if name not in law.accepted:
+                owners = laws_with(lambda lw, n=name: n in lw.accepted)
+                raise KeywordError(f"{keyword} ({name}) belongs to LOI_USURE={owners}, not "
+                                   f"{law.name}: remove it (it is a class range of the "
+                                   "history statistics)")
+            object.__setattr__(self, name, _real(value, f"{name} ({keyword})"))
+
+    def _check_sectors(self, law, geometry, state: InitialState | None) -> None:
+        if self.sectors is None:
+            if self.sector_coefficients is not None:
+                raise KeywordError("sector_coefficients (SECTEUR COEF_USUR_MOBILE/COEF_USUR_OBST) "
+                                   "need sectors: give sectors= (a count or edges [deg])")
+            if state is not None and state.sector_count:
+                raise InputError(f"the initial wear table has {state.sector_count} sectors and "
+                                 "this run has none; the number of sectors must match")
+            return
+        spec = self.sectors
+        if isinstance(spec, int | np.integer) and not isinstance(spec, bool):
+            spec = int(spec)
+        elif not isinstance(spec, bool):
+            try:
+                spec = tuple(float(v) for v in np.asarray(spec, dtype=float).ravel())
+            except (TypeError, ValueError):
+                pass  # sector_edges names the problem
+        edges = sector_edges(spec)
+        object.__setattr__(self, "sectors", spec)
+        if sector_parameter(law) is None:
+            raise KeywordError(
+                f"law {law.name!r} with sectors: SECTEUR belongs to LOI_USURE="
+                f"{laws_with(lambda lw: sector_parameter(lw) is not None)} (sector tables take "
+                "Archard coefficients only: V_j = k_j·P_j·t); use law='ARCHARD' or remove sectors")
+        m = edges.size - 1
+        if state is not None:
+            if state.sector_count != m:
+                raise InputError(f"the initial wear table has {state.sector_count} sectors and "
+                                 f"this run has {m}; the number of sectors must match")
+            if not np.allclose(state.edges, edges, atol=1e-6):
+                raise InputError(f"the initial wear table's sector edges {state.edges.tolist()} "
+                                 f"differ from this run's {edges.tolist()} [deg]; use the same")
+        if self.sector_coefficients is not None:
+            object.__setattr__(self, "sector_coefficients",
+                               _sector_pairs(self.sector_coefficients, m))
+        elif self.coefficients.get(sector_parameter(law)) is None or \
+                self.coefficients[sector_parameter(law)].value is None:
+            raise KeywordError("sector mode needs Archard coefficients: give "
+                               "sector_coefficients (SECTEUR COEF_USUR_MOBILE) or coefficients")
+        if getattr(geometry, "mobile_radius", None) is None or \
+                getattr(geometry, "obstacle_width", None) is None:
+            raise KeywordError("sector depths need mobile_radius (RAYON_MOBILE) and "
+                               "obstacle_width (LARGEUR_OBST); give them in the dimensions")
+
+    def _check_window(self) -> None:
+        for name, keyword in (("t_start", "INST_INIT"), ("t_end", "INST_FIN")):
+            object.__setattr__(self, name, _real(getattr(self, name), f"{name} ({keyword}) [s]"))
+        if self.t_start is not None and self.t_end is not None and self.t_end <= self.t_start:
+            raise InputError(f"t_end (INST_FIN) = {self.t_end:g} s must be after t_start "
+                             f"(INST_INIT) = {self.t_start:g} s")
+        blocks = self.blocks
+        if isinstance(blocks, bool) or not isinstance(blocks, int | np.integer) or blocks < 1:
+            raise InputError(f"blocks (NB_BLOC) must be a whole number >= 1, got {blocks!r}")
+        object.__setattr__(self, "blocks", int(blocks))
+        threshold = _real(self.stationarity_threshold, "stationarity_threshold", none=False)
+        if threshold < 0:
+            raise InputError(f"stationarity_threshold must be >= 0 [-], got {threshold:g}")
+        object.__setattr__(self, "stationarity_threshold", threshold)
+
+    def _check_wall(self) -> None:
+        if self.wall_thickness is not None:
+            wall = _real(self.wall_thickness, "wall_thickness [m]")
+            if wall <= 0:
+                raise InputError(f"wall_thickness must be > 0 [m], got {wall:g}")
+            object.__setattr__(self, "wall_thickness", wall)
+        limit = _real(self.depth_limit, "depth_limit", none=False)
+        if not 0 < limit <= 1:
+            raise InputError(f"depth_limit is a fraction of the wall thickness, 0 < depth_limit "
+                             f"<= 1 [-], got {limit:g} (e.g. 0.4 for a plugging criterion)")
+        object.__setattr__(self, "depth_limit", limit)
+
+    # ----------------------------------------------------------------------- derived values
+    @property
+    def wear_law(self):
+        """The :class:`~fretwear.laws.WearLaw` of :attr:`law`."""
+        return WEAR_LAWS[self.law]
+
+    @property
+    def geometry(self):
+        """The contact geometry (:func:`fretwear.geometry.contact_geometry`)."""
+        return contact_geometry(self.contact_type, **self.dimensions)
+
+    @property
+    def origin(self) -> float:
+        """ORIG_INST of the new rows [user time unit]: 0, or the restart state's origin."""
+        return 0.0 if self.initial_state is None else float(self.initial_state.origin)
+
+    @property
+    def sector_edges(self) -> np.ndarray | None:
+        """The sector edges [deg], or None without sectors."""
+        return None if self.sectors is None else sector_edges(self.sectors)
+
+    def coefficient_values(self, body: str = "mobile") -> dict[str, Any] | None:
+        """The coefficients of ``body`` (``"mobile"`` or ``"obstacle"``) as a plain dict of
+        values (None: that body does not wear)."""
+        coefs = self.coefficients if body == "mobile" else self.obstacle_coefficients
+        return None if coefs is None else {k: c.value for k, c in coefs.items()}
+
+    @property
+    def coefficient_sources(self) -> dict[str, str]:
+        """``"<body>.<coefficient>"`` -> source, for both bodies."""
+        out = {f"mobile.{k}": c.source for k, c in self.coefficients.items()}
+        for k, c in (self.obstacle_coefficients or {}).items():
+            out[f"obstacle.{k}"] = c.source
+        return out
+
+    def replace(self, **changes: Any) -> WearCase:
+        """A copy with some fields changed, validated again."""
+        return dataclasses.replace(self, **changes)
+
+    def with_initial_state(self, table, initial_instant: float | None = None) -> WearCase:
+        """The same case continuing ``table`` (a wear table, its file or an InitialState) from
+        ``initial_instant`` [user time unit] (default its last instant): ETAT_INIT."""
+        state, label = _restart_state(table, initial_instant)
+        return self.replace(initial_state=state, initial_instant=initial_instant,
+                            initial_table=label)
+
+    # ----------------------------------------------------------------------- dict / JSON
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready dict of the case (NaN written as None); :meth:`from_dict` rebuilds it.
+
+        Examples
+        --------
+        >>> case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0],
+        ...     dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02},
+        ...     coefficients={"COEF_USURE": 1e-14})
+        >>> case.to_dict()["coefficients"]
+        {'coefficient': {'value': 1e-14, 'source': 'user'}}
+        """
+        out: dict[str, Any] = {"format": FORMAT}
+        for f in dataclasses.fields(self):
+            value = getattr(self, f.name)
+            if f.name in ("coefficients", "obstacle_coefficients"):
+                value = None if value is None else {
+                    k: {"value": c.value, "source": c.source} for k, c in value.items()}
+            elif f.name == "initial_state":
+                value = None if value is None else state_to_dict(value)
+            out[f.name] = jsonable(value)
+        return out
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> WearCase:
+        """The case of :meth:`to_dict` (or of its JSON), validated again.
+
+        Raises
+        ------
+        KeywordError
+            A key that is not a field of the case, or another format.
+        """
+        data = dict(data)
+        fmt = data.pop("format", FORMAT)
+        if fmt != FORMAT:
+            raise KeywordError(f"not a wear case of this version: format {fmt!r}, expected "
+                               f"{FORMAT!r}")
+        names = {f.name for f in dataclasses.fields(cls)}
+        unknown = sorted(set(data) - names)
+        if unknown:
+            raise KeywordError(f"unknown wear-case key(s) {unknown}; a wear case has "
+                               f"{sorted(names)}")
+        if data.get("initial_state") is not None:
+            data["initial_state"] = state_from_dict(data["initial_state"])
+        for name in ("materials", "coefficient_files"):
+            if data.get(name) is not None:
+                data[name] = tuple(data[name])
+        if isinstance(data.get("sectors"), list):
+            data["sectors"] = tuple(data["sectors"])
+        if data.get("sector_coefficients") is not None:
+            data["sector_coefficients"] = tuple(tuple(p) for p in data["sector_coefficients"])
+        return cls(**data)
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON text (floats round-trip exactly)."""
+        return json.dumps(self.to_dict(), allow_nan=False)
+
+    @classmethod
+    def from_json(cls, text: str) -> WearCase:
+        """The case of :meth:`to_json`'s text."""
+        return cls.from_dict(json.loads(text))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, WearCase):
+            return NotImplemented
+        return self.to_dict() == other.to_dict()
+
+    def __hash__(self) -> int:
+        return hash(self.to_json())
