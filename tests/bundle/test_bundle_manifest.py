@@ -1,0 +1,207 @@
+"""Manifests: columns, overrides of the base case, the sources a bundle can come from.
+
+Every contact's rows are compared bit for bit with the single-contact wear table
+(fretwear.table.wear_table) of the same history and case; for a contact whose manifest row
+overrides a key, the reference case is a separate TOML file holding that value, read by the
+case-file layer (an independent path to the same keywords). These tests run without Dask
+(``scheduler="serial"``); tests/bundle/test_bundle_dask.py runs the same on a cluster.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from bundle_helpers import (
+    BASE_CASE,
+    assert_identical,
+    oscillator,
+    reference,
+    rows_of,
+    scaled,
+    write_bundle,
+)
+
+from fretwear.bundle import read_manifest, run_bundle
+from fretwear.bundle.manifest import column_key
+from fretwear.errors import InputError, KeywordError
+from fretwear.io import write_history
+
+
+def test_column_names_bare_dotted_and_entries():
+    assert column_key("mobile_radius_m", "m") == ("geometry", "mobile_radius_m")
+    assert column_key("geometry.mobile_radius_m", "m") == ("geometry", "mobile_radius_m")
+    assert column_key("law.mobile.COEF_USURE", "m") == ("law", "mobile", "COEF_USURE")
+    assert column_key("instants", "m") == ("time", "instants")
+    assert column_key("tube_row", "m") == "tube_row"
+
+
+def test_unknown_column_names_the_closest_key():
+    with pytest.raises(KeywordError, match=r"unknown column 'mobile_radus_m' \(did you mean "
+                                           r"'mobile_radius_m'\?\)"):
+        column_key("mobile_radus_m", "m")
+    with pytest.raises(KeywordError, match=r"'tube_rwo' \(did you mean 'tube_row'\?\)"):
+        column_key("tube_rwo", "m")
+    # [history] name is the contact column: `name` is the law's
+    assert column_key("name", "m") == ("law", "name")
+    # the history file and the contact id have their own columns
+    with pytest.raises(KeywordError, match="unknown column 'history.file'"):
+        column_key("history.file", "m")
+
+
+def test_unknown_column_stops_the_run_before_any_work(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 2,
+                                  extra={"obstacle_widht_m": [0.01, 0.01]})
+    with pytest.raises(KeywordError, match="did you mean 'obstacle_width_m'"):
+        run_bundle(manifest, case, scheduler="serial")
+
+
+def test_duplicated_contact_and_missing_contact_column(tmp_path):
+    with pytest.raises(InputError, match="contact 'a' appears twice"):
+        read_manifest(pd.DataFrame({"contact": ["a", "a"], "history": ["x", "y"]}))
+    with pytest.raises(KeywordError, match="needs a 'contact' column"):
+        read_manifest(pd.DataFrame({"history": ["x"]}))
+    bad = tmp_path / "m.toml"
+    bad.write_text("[contact]\nhistory = 'x'\n")
+    with pytest.raises(KeywordError, match=r"\[\[contacts\]\]"):
+        read_manifest(bad)
+
+
+def test_csv_parquet_and_toml_manifests_agree(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    frame = pd.read_csv(manifest)
+    frame.to_parquet(tmp_path / "manifest.parquet")
+    (tmp_path / "manifest.toml").write_text("".join(
+        f'[[contacts]]\ncontact = "{r.contact}"\nhistory = "{r.history}"\n'
+        f"tube_row = {r.tube_row}\ntube_column = {r.tube_column}\nsupport = \"{r.support}\"\n"
+        for r in frame.itertuples()))
+    tables = [run_bundle(tmp_path / name, case, scheduler="serial").table
+              for name in ("manifest.csv", "manifest.parquet", "manifest.toml")]
+    for t in tables[1:]:
+        pd.testing.assert_frame_equal(t, tables[0])
+    assert tables[0]["tube_row"].tolist()[:1] == [1]
+
+
+def test_rows_equal_the_single_contact_table_with_overrides(tmp_path):
+    h = oscillator()
+    # contact 1: another tube radius; contact 2: its own coefficient, blocks, instants (CSV
+    # cells in TOML syntax); contact 3: database materials instead of the coefficient
+    manifest, case = write_bundle(tmp_path, h, 4, extra={
+        "mobile_radius_m": [None, 8.0e-3, None, None],
+        "law.mobile.COEF_USURE": [None, None, 2.0e-14, None],
+        "blocks": [None, None, 2, None],
+        "power.t_start_s": [None, None, 0.1, None],
+        "power.t_end_s": [None, None, 0.5, None],
+        "instants": [None, None, "[1, 3]", None],
+        "law.materials": [None, None, None, '["I600TT", "Z6C13"]'],
+    })
+    # the materials row must drop the base case's coefficient: give it in its own case
+    cases = {0: BASE_CASE,
+             1: BASE_CASE.replace("mobile_radius_m = 9.525e-3", "mobile_radius_m = 8.0e-3"),
+             2: BASE_CASE.replace("9.2e-15", "2.0e-14").replace(
+                 "instants = [0.5, 1, 2, 5]", "instants = [1, 3]")
+             + "[power]\nblocks = 2\nt_start_s = 0.1\nt_end_s = 0.5\n"}
+    base3 = BASE_CASE.replace("mobile = { COEF_USURE = 9.2e-15 }", "")
+    cases[3] = base3.replace("[law]\n", '[law]\nmaterials = ["I600TT", "Z6C13"]\n')
+    result = run_bundle(manifest, case, scheduler="serial", force=True)
+    # row 3 overrides materials while the base case gives a coefficient: refused (the case
+    # layer's rule), reported for that contact only
+    assert result.errors["contact"].tolist() == ["R2C2-AVB"]
+    assert "materials" in result.errors["message"].iloc[0]
+    for k in range(3):
+        ref_case = tmp_path / f"ref{k}.toml"
+        ref_case.write_text(cases[k])
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.parquet", ref_case))
+    # the same materials row against a base case without a coefficient works
+    (tmp_path / "base3.toml").write_text(base3)
+    ref_case = tmp_path / "ref3.toml"
+    ref_case.write_text(cases[3])
+    frame = pd.read_csv(manifest).iloc[[3]]
+    frame = frame[["contact", "history", "law.materials"]]
+    frame["history"] = str(tmp_path) + "/" + frame["history"]
+    again = run_bundle(frame, tmp_path / "base3.toml", scheduler="serial")
+    assert again.errors.empty
+    assert_identical(rows_of(again, "R2C2-AVB"), reference(tmp_path / "histories/t3.parquet",
+                                                           ref_case))
+
+
+def test_a_bad_override_fails_its_contact_only(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 3,
+                                  extra={"blocks": [None, "two", None]})
+    result = run_bundle(manifest, case, scheduler="serial")
+    assert result.errors[["contact", "error"]].values.tolist() == [["R1C2-AVB", "KeywordError"]]
+    assert "not a number" in result.errors["message"].iloc[0]
+    assert result.stats["done"] == 2 and result.stats["failed"] == 1
+
+
+def test_given_power_rows_need_no_history(tmp_path):
+    case = tmp_path / "base.toml"
+    case.write_text(BASE_CASE.replace("[sectors]\ncount = 4\n", ""))
+    frame = pd.DataFrame({"contact": ["p1", "p2"], "power.value_W": [1e-3, 2e-3]})
+    result = run_bundle(frame, case, scheduler="serial")
+    assert result.errors.empty
+    # Archard: V = K·P·t at 5 years (theory §4)
+    v = result.table.groupby("contact")["volume_mobile"].last()
+    assert v["p2"] == pytest.approx(9.2e-15 * 2e-3 * 5 * 31536000.0, rel=1e-15)
+    # neither history nor power
+    result = run_bundle(pd.DataFrame({"contact": ["x"]}), case, scheduler="serial")
+    assert "no history" in result.errors["message"].iloc[0]
+
+
+def test_code_aster_table_of_several_nodes(tmp_path):
+    """One contact per NOEUD; each equals read_history(file, node=...) + wear_table."""
+    from fretwear.io.aster import write_aster_table
+
+    h = oscillator()
+    frames = []
+    for k, node in enumerate(("N12", "N13")):
+        g = scaled(h, k)
+        frames.append(pd.DataFrame({"NOEUD": node, "INST": g.time, "FN": g.normal_force,
+                                    "VT1": g.vt1, "VT2": g.vt2, "DYLOC": g.dy, "DZLOC": g.dz}))
+    path = tmp_path / "choc.tab"
+    write_aster_table(pd.concat(frames, ignore_index=True), path, float_format="%.17E")
+    (tmp_path / "base.toml").write_text(BASE_CASE)
+    manifest = read_manifest(path)
+    assert [r.contact for r in manifest.rows] == ["N12", "N13"]
+    result = run_bundle(path, tmp_path / "base.toml", scheduler="serial")
+    assert result.errors.empty
+    for node in ("N12", "N13"):
+        assert_identical(rows_of(result, node),
+                         reference(path, tmp_path / "base.toml", node=node))
+    assert result.table["node"].unique().tolist() == ["N12", "N13"]
+
+
+def _dataset(h, count=3):
+    xr = pytest.importorskip("xarray")
+    data = {c: (("contact", "time"), np.stack([getattr(scaled(h, k), c) for k in range(count)]))
+            for c in h.channels if c != "time"}
+    ds = xr.Dataset(data, coords={"contact": [f"c{k}" for k in range(count)], "time": h.time,
+                                  "tube_row": ("contact", np.arange(1, count + 1)),
+                                  "obstacle_width_m": ("contact", [12.7e-3, 10e-3, 12.7e-3])})
+    ds["dy"].attrs["units"] = "m"
+    return ds
+
+
+@pytest.mark.parametrize("where", ["memory", "zarr", "netcdf"])
+def test_dataset_and_stores_contact_by_time(tmp_path, where):
+    h = oscillator()
+    ds = _dataset(h)
+    (tmp_path / "base.toml").write_text(BASE_CASE)
+    source = ds
+    if where == "zarr":
+        pytest.importorskip("zarr")
+        source = tmp_path / "bundle.zarr"
+        ds.to_zarr(source, mode="w", consolidated=False, zarr_format=2)
+    elif where == "netcdf":
+        source = tmp_path / "bundle.nc"
+        ds.to_netcdf(source)
+    result = run_bundle(source, tmp_path / "base.toml", scheduler="serial")
+    assert result.errors.empty
+    (tmp_path / "narrow.toml").write_text(BASE_CASE.replace("12.7e-3", "10e-3"))
+    for k in range(3):
+        write_history(scaled(h, k), tmp_path / f"c{k}.parquet")
+        case = tmp_path / ("narrow.toml" if k == 1 else "base.toml")
+        assert_identical(rows_of(result, f"c{k}"), reference(tmp_path / f"c{k}.parquet", case))
+    assert result.table.groupby("contact")["tube_row"].first().tolist() == [1, 2, 3]
