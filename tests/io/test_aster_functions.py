@@ -146,3 +146,21 @@ def test_repeated_instants_explain_the_print_precision(tmp_path):
     lines[3:] = [f"{x:16.9E} {1.0:16.9E} {0.1:16.9E} {0.0:16.9E}" for x in t]
     path.write_text("\n".join(lines) + "\n")
     assert len(read_history(path)) == 41
+
+
+def test_node_of_a_single_shock_file_of_another_format(tmp_path):
+    """CSV, Parquet, HDF5 ... files hold one shock point: a node is checked against the one
+    the file stores (fretwear writes its metadata), else recorded as unchecked."""
+    from iohelpers import analytic_history
+
+    from fretwear.io import write_history
+
+    path = write_history(analytic_history(name="N12"), tmp_path / "n12.csv")
+    assert read_history(path, node="N12").metadata["node_checked"] is True
+    with pytest.raises(KeywordError, match=r"'N13' \(NOEUD/GROUP_NO\) is not in this file: it "
+                                           r"holds the history of 'N12'"):
+        read_history(path, node="N13")
+    bare = tmp_path / "bare.csv"
+    bare.write_text("t,fn,vt1,vt2\n0,1,0,0\n1,1,1,0\n")
+    h = read_history(bare, node="N13")
+    assert h.metadata["node"] == "N13" and h.metadata["node_checked"] is False

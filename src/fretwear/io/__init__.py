@@ -241,11 +241,38 @@ def _stem(path: Any) -> str:
     return ""
 
 
+def _takes_node(path: Any, format: str | None) -> bool:
+    """Whether the reader of ``path`` selects a shock point (``node=``): Code_Aster tables."""
+    if format is not None:
+        return "node" in FORMATS[_format_name(format)].read_options
+    return _is_path(path) and Path(path).is_file() and guess_format(path) == "aster"
+
+
+def _check_stored_node(source: Source, node: str) -> None:
+    """Check ``node`` against the node a native file stores (its metadata), else record it as
+    unchecked."""
+    stored = source.metadata.get("node")
+    if stored is None:
+        source.metadata.update(node=node, node_checked=False)
+    elif str(stored).strip().upper() != node.upper():
+        raise KeywordError(f"{source.label}: the shock point {node!r} (NOEUD/GROUP_NO) is not "
+                           f"in this file: it holds the history of {stored!r}")
+    else:
+        source.metadata.update(node=str(stored), node_checked=True)
+
+
 def _prepare(path: Any, format: str | None, units: Mapping[str, str] | None,
              columns: Mapping[Any, str | None] | None, name: str | None,
              options: Mapping[str, Any]) -> tuple[Source, dict[str, int], dict[str, float], str,
                                                   dict[str, Any]]:
+    options = dict(options)
+    node = options.get("node")
+    own = node is not None and not _takes_node(path, format)
+    if own:  # one shock point per file in these formats: nothing to select
+        options.pop("node")
     source = open_source(path, format, **options)
+    if own:
+        _check_stored_node(source, str(node).strip())
     mapping = resolve_columns(source.columns, columns, label=source.label, hint=source.hint)
     unit_of, factors = resolve_units(mapping, source.units, units, label=source.label)
     used = {ch: source.columns[p] for ch, p in mapping.items()}
@@ -284,8 +311,12 @@ def read_history(path: Any, format: str | None = None, *, units: Mapping[str, st
     **options
         Options of the format's reader: csv ``delimiter``, ``decimal``, ``comment``,
         ``header``, ``encoding``; hdf5 ``group``; aster ``index``, ``title`` (which table of
-        the file) and ``select`` (rows of one shock point: ``{"NOEUD": "N12"}`` or
-        ``"NOEUD=N12"``).
+        the file), ``select`` (rows where a column equals a value: ``{"NOEUD": "N12"}`` or
+        ``"NOEUD=N12"``), ``node`` (the shock point, POST_USURE's NOEUD / GROUP_NO: its rows or
+        tables; an error when the file's node column does not hold it) and ``functions``
+        (channel names of an IMPR_FONCTION file's functions, in order). ``node`` is accepted
+        for every format: the other formats hold one shock point, recorded as unchecked
+        (``metadata["node_checked"]`` False).
 
     Returns
     -------

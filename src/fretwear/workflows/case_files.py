@@ -55,6 +55,11 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
         "units": (dict, "units of the file's values, converted to SI, e.g. { length = \"mm\", "
                         "force = \"kN\" } or per channel { dy = \"mm\" }"),
         "columns": (dict, "column -> channel overrides, e.g. { VINT1 = \"normal_force\" }"),
+        "node": (str, "shock point (NOEUD / GROUP_NO): its rows or tables in a Code_Aster file "
+                      "holding several; an error when the file's node column does not hold it"),
+        "options": (dict, "options of the format's reader, e.g. { select = \"NOEUD=N12\" }, "
+                          "{ index = 1 }, { delimiter = \";\" }, { functions = [\"fn\", "
+                          "\"vt1\", \"vt2\"] } (docs/formats.md)"),
     },
     "power": {
         "value_W": ((int, float), "a given wear power [W] instead of a history (PUIS_USURE)"),
@@ -419,9 +424,8 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
         history = None
         if "file" in history_spec:
             step("reading the history")
-            options = {k: history_spec[k] for k in ("format", "units", "columns")
-                       if k in history_spec}
-            history = read_history(_path(case, history_spec["file"]), **options)
+            history = read_history(_path(case, history_spec["file"]),
+                                   **history_options(history_spec))
             if "name" in history_spec:
                 history = history.replace(name=history_spec["name"])
             power = chunked_power(history, args, step)
@@ -442,6 +446,26 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
 
 #: Histories longer than this many samples get their power computed chunk by chunk (progress).
 CHUNK_SAMPLES = 200_000
+
+
+def history_options(spec: Mapping[str, Any]) -> dict[str, Any]:
+    """The :func:`fretwear.io.read_history` options of a ``[history]`` section.
+
+    ``format``, ``units``, ``columns``, ``node`` (the shock point: POST_USURE's NOEUD) and the
+    reader's own ``options`` table (``select``, ``index``, ``delimiter`` ...).
+
+    Examples
+    --------
+    >>> history_options({"file": "n12.tab", "node": "N12", "options": {"index": 1}})
+    {'node': 'N12', 'index': 1}
+    """
+    options = {k: spec[k] for k in ("format", "units", "columns", "node") if k in spec}
+    extra = dict(spec.get("options", {}))
+    clash = sorted(set(extra) & (set(options) | {"name", "file"}))
+    if clash:
+        raise KeywordError(f"case: [history] options = {{{', '.join(clash)} = ...}}: give "
+                           f"{', '.join(clash)} as [history] keys, not reader options")
+    return {**options, **extra}
 
 
 def chunked_power(history, args: Mapping[str, Any], progress=None, *,
