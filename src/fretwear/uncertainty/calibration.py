@@ -1,0 +1,533 @@
+"""Calibration of the wear coefficients on inspections (Bayesian update of a factor).
+
+Eddy-current inspections measure worn depths y_i of contacts (and sectors) at instants t_i.
+The prediction of contact k is d_k(f, t), with f a factor on every wear coefficient, common to
+the contacts calibrated together (:mod:`fretwear.uncertainty.model`). With a lognormal prior
+ln f ~ N(μ₀, τ₀²) and a lognormal measurement error ln y_i = ln d_k(f, t_i) + ε_i,
+ε_i ~ N(0, σ_i²), the posterior of λ = ln f is
+
+    p(λ | y) ∝ N(λ; μ₀, τ₀²) · Π_i N(ln y_i; ln d_k(e^λ, t_i), σ_i²).
+
+Where every ln d_k(e^λ, t_i) is affine in λ, a_i + b_i·λ (Archard or KWU-EPRI from a new tube
+with a power-law depth relation: TUBE_BAV without tilt b = 2/3, TUBE_TUBE b = 2/5, the uniform
+TUBE_ALESAGE b = 1), the posterior is normal (conjugate update):
+
+    1/τ² = 1/τ₀² + Σ b_i²/σ_i²,   μ = τ²·(μ₀/τ₀² + Σ b_i·(ln y_i − a_i)/σ_i²).
+
+Otherwise (tilted contacts, lunules, restarts, EDF-MZ) the posterior is computed by quadrature
+on a fine grid of λ. Because every depth grows with f, the posterior predictive quantiles of a
+depth at a future instant are the depths at the posterior quantiles of f, and the probability
+of exceeding a limit L is P(f > f_L) with d(f_L, T) = L: both are exact, without sampling.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import InputError, RangeWarning
+from fretwear.geometry._shapes import solve_monotone
+from fretwear.uncertainty.cases import prepare_case
+from fretwear.uncertainty.distributions import LogNormal
+from fretwear.uncertainty.model import ContactModel, models_from_table
+
+__all__ = ["CalibrationResult", "GridPosterior", "calibrate", "read_inspections"]
+
+#: Columns of an inspection table: name -> (unit, meaning).
+INSPECTION_COLUMNS: dict[str, tuple[str, str]] = {
+    "contact": ("-", "contact name (as in the predictions); optional with one contact"),
+    "sector": ("1", "1-based sector of a sector depth; empty or absent: the global depth"),
+    "instant": ("user time unit", "instant of the inspection (the case's time unit)"),
+    "depth": ("m", "measured depth of the tube (or depth_mm [mm])"),
+    "measurement_sigma": ("-", "standard deviation of ln(depth) of this measurement "
+                               "(optional; default the measurement_sigma argument)"),
+}
+
+#: Default prior of the factor: median 1 (the coefficients as given), a factor 3 either way
+#: at 95 % (σ_ln = ln 3 / 1.96 = 0.56).
+DEFAULT_PRIOR = LogNormal(1.0, scatter=3.0)
+
+_GRID = 4001
+_LINEAR_TOL = 1e-9
+
+
+# ---------------------------------------------------------------------- the posterior
+@dataclass(frozen=True, eq=False)
+class GridPosterior:
+    """Distribution of the factor f = e^λ tabulated on a grid of λ = ln f.
+
+    Attributes
+    ----------
+    log_factor : numpy.ndarray
+        Grid of λ [-], increasing.
+    density : numpy.ndarray
+        Density of λ on the grid [-], integrating to 1 (trapezoid rule).
+    """
+
+    log_factor: np.ndarray
+    density: np.ndarray
+
+    @property
+    def _cdf_table(self) -> np.ndarray:
+        lam, p = self.log_factor, self.density
+        cdf = np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(lam))])
+        return cdf / cdf[-1]
+
+    def cdf(self, f) -> np.ndarray:
+        """P(factor ≤ f)."""
+        with np.errstate(divide="ignore"):
+            lam = np.log(np.asarray(f, dtype=float))
+        return np.interp(lam, self.log_factor, self._cdf_table, left=0.0, right=1.0)
+
+    def ppf(self, u) -> np.ndarray:
+        """Quantile function of the factor, u in (0, 1)."""
+        cdf = self._cdf_table
+        keep = np.concatenate([[True], np.diff(cdf) > 0])
+        return np.exp(np.interp(np.asarray(u, dtype=float), cdf[keep], self.log_factor[keep]))
+
+    def pdf(self, f) -> np.ndarray:
+        """Density of the factor [1/-] (p_λ(ln f)/f)."""
+        f = np.asarray(f, dtype=float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lam = np.log(f)
+            return np.where(f > 0, np.interp(lam, self.log_factor, self.density, left=0.0,
+                                             right=0.0) / f, 0.0)
+
+    @property
+    def median(self) -> float:
+        """Median of the factor [-]."""
+        return float(self.ppf(0.5))
+
+    @property
+    def mean_ln(self) -> float:
+        """Mean of ln f [-]."""
+        return float(np.trapezoid(self.log_factor * self.density, self.log_factor))
+
+    @property
+    def sigma_ln(self) -> float:
+        """Standard deviation of ln f [-]."""
+        m = self.mean_ln
+        return float(math.sqrt(np.trapezoid((self.log_factor - m) ** 2 * self.density,
+                                            self.log_factor)))
+
+    def __str__(self) -> str:
+        return f"grid posterior(median={self.median:.4g}, sigma_ln={self.sigma_ln:.3g})"
+
+
+def _mean_ln(dist) -> float:
+    return math.log(dist.median) if isinstance(dist, LogNormal) else dist.mean_ln
+
+
+# ---------------------------------------------------------------------- inspections
+def read_inspections(source) -> pd.DataFrame:
+    """Inspection table (:data:`INSPECTION_COLUMNS`) from a CSV file or a DataFrame.
+
+    Returns a new DataFrame with ``contact`` (str, "" when absent), ``sector`` (float, NaN for
+    the global depth), ``instant``, ``depth`` [m] and ``measurement_sigma`` (NaN when absent).
+
+    Raises
+    ------
+    InputError
+        A missing column, a depth ≤ 0 or not finite, an unknown column.
+
+    Examples
+    --------
+    >>> read_inspections(pd.DataFrame({"instant": [10.0], "depth_mm": [0.3]}))["depth"].tolist()
+    [0.0003]
+    """
+    if isinstance(source, str | os.PathLike):
+        try:
+            frame = pd.read_csv(source, comment="#", skipinitialspace=True)
+        except FileNotFoundError:
+            raise InputError(f"inspection file {os.fspath(source)!r} does not exist") from None
+    elif isinstance(source, pd.DataFrame):
+        frame = source.copy()
+    else:
+        raise InputError(f"inspections must be a CSV path or a DataFrame, got "
+                         f"{type(source).__name__}")
+    frame.columns = [str(c).strip() for c in frame.columns]
+    known = set(INSPECTION_COLUMNS) | {"depth_mm"}
+    unknown = [c for c in frame.columns if c not in known]
+    if unknown:
+        raise InputError(f"inspections: unknown column(s) {unknown}; the columns are "
+                         f"{sorted(known)} (depth in m, or depth_mm in mm)")
+    if "depth" not in frame and "depth_mm" in frame:
+        frame["depth"] = pd.to_numeric(frame.pop("depth_mm"), errors="coerce") * 1e-3
+    for col in ("instant", "depth"):
+        if col not in frame:
+            raise InputError(f"inspections: the column {col!r} is missing "
+                             f"({INSPECTION_COLUMNS[col][1]} [{INSPECTION_COLUMNS[col][0]}])")
+    out = pd.DataFrame({
+        "contact": frame["contact"].fillna("").astype(str) if "contact" in frame else "",
+        "sector": pd.to_numeric(frame["sector"], errors="coerce") if "sector" in frame
+        else np.nan,
+        "instant": pd.to_numeric(frame["instant"], errors="coerce"),
+        "depth": pd.to_numeric(frame["depth"], errors="coerce"),
+        "measurement_sigma": pd.to_numeric(frame["measurement_sigma"], errors="coerce")
+        if "measurement_sigma" in frame else np.nan}, index=range(len(frame)))
+    if out.empty:
+        raise InputError("inspections: the table has no rows")
+    for col in ("instant", "depth"):
+        bad = ~np.isfinite(out[col].to_numpy(dtype=float))
+        if col == "depth":
+            bad |= out[col].to_numpy(dtype=float) <= 0
+        if bad.any():
+            row = int(np.flatnonzero(bad)[0])
+            raise InputError(f"inspections row {row + 1}: {col} must be a finite number"
+                             f"{' > 0 [m]' if col == 'depth' else ''}, got "
+                             f"{frame[col].iloc[row] if col in frame else 'nothing'!r}")
+    return out
+
+
+# ---------------------------------------------------------------------- predictions
+def _contact_models(item, name: str) -> dict[str, ContactModel]:
+    if isinstance(item, ContactModel):
+        return {"global": item}
+    if isinstance(item, pd.DataFrame):
+        return models_from_table(item, name=name)
+    table = getattr(item, "table", None)
+    if isinstance(table, pd.DataFrame):
+        return models_from_table(table, name=name)
+    if isinstance(item, tuple) and len(item) == 2:
+        return prepare_case(item[0], item[1]).models
+    raise InputError(f"prediction {name!r}: give a wear table (with its attrs), a run_case "
+                     f"result, a ContactModel or a (case, power) pair, got "
+                     f"{type(item).__name__}")
+
+
+def _predictions(predictions) -> dict[str, dict[str, ContactModel]]:
+    if isinstance(predictions, Mapping):
+        return {str(k): _contact_models(v, str(k)) for k, v in predictions.items()}
+    contacts = getattr(predictions, "contact_models", None)
+    if callable(contacts):  # a bundle's results
+        return {str(k): v for k, v in contacts().items()}
+    return {"": _contact_models(predictions, "")}
+
+
+# ---------------------------------------------------------------------- the update
+@dataclass(frozen=True, eq=False)
+class _Observation:
+    model: ContactModel
+    elapsed: float  # [s]
+    log_depth: float
+    sigma: float
+
+
+def _log_predicted(obs: Sequence[_Observation], lam: np.ndarray) -> np.ndarray:
+    """ln d_i(e^λ, t_i), shape (n_obs, n_λ); +inf beyond the geometric range."""
+    f = np.exp(lam)
+    rows = []
+    for o in obs:
+        d = o.model.depth(np.full(lam.shape, o.elapsed), factor=f, warn=False)
+        with np.errstate(divide="ignore"):
+            rows.append(np.where(np.isnan(d), np.inf, np.log(d)))
+    return np.array(rows)
+
+
+def _affine(obs, mu0, tau0) -> tuple[np.ndarray, np.ndarray] | None:
+    """(a_i, b_i) when every ln d_i(e^λ) is affine in λ over μ₀ ± 6τ₀, else None."""
+    lam = mu0 + tau0 * np.linspace(-6.0, 6.0, 13) if tau0 > 0 else mu0 + np.linspace(-1, 1, 13)
+    g = _log_predicted(obs, lam)
+    if not np.isfinite(g).all():
+        return None
+    b = (g[:, -1] - g[:, 0]) / (lam[-1] - lam[0])
+    a = g[:, 0] - b * lam[0]
+    residual = np.abs(g - (a[:, None] + b[:, None] * lam[None, :]))
+    if residual.max() > _LINEAR_TOL * max(1.0, float(np.abs(g).max())):
+        return None
+    return a, b
+
+
+def _log_posterior(obs, lam, mu0, tau0) -> np.ndarray:
+    g = _log_predicted(obs, lam)
+    y = np.array([o.log_depth for o in obs])[:, None]
+    s = np.array([o.sigma for o in obs])[:, None]
+    with np.errstate(invalid="ignore"):
+        loglik = -0.5 * np.sum(((y - g) / s) ** 2, axis=0)
+    loglik = np.where(np.isnan(loglik), -np.inf, loglik)
+    return loglik - 0.5 * ((lam - mu0) / tau0) ** 2
+
+
+def _grid_posterior(obs, mu0, tau0) -> GridPosterior:
+    """Posterior of λ on a grid that covers its mass (two passes: locate, then resolve)."""
+    half = 20.0 * tau0
+    for _ in range(6):
+        lam = np.linspace(mu0 - half, mu0 + half, 1601)
+        lp = _log_posterior(obs, lam, mu0, tau0)
+        if not np.isfinite(lp).any():
+            raise InputError("calibration: no factor explains the inspections (every predicted "
+                             "depth is beyond the geometric range); check the units (depth [m])")
+        keep = lp > lp.max() - 60.0
+        if not (keep[0] or keep[-1]):
+            break
+        half *= 4.0
+    idx = np.flatnonzero(keep)
+    lo, hi = lam[max(idx[0] - 1, 0)], lam[min(idx[-1] + 1, lam.size - 1)]
+    fine = np.linspace(lo, hi, _GRID)
+    lp = _log_posterior(obs, fine, mu0, tau0)
+    p = np.exp(lp - lp.max())
+    p /= np.trapezoid(p, fine)
+    return GridPosterior(log_factor=fine, density=p)
+
+
+# ---------------------------------------------------------------------- result
+@dataclass(frozen=True, eq=False)
+class CalibrationResult:
+    """Posterior of the wear-coefficient factor and what it predicts.
+
+    Attributes
+    ----------
+    prior : LogNormal
+        Prior of the factor f [-].
+    posterior : LogNormal or GridPosterior
+        Posterior of f [-] (LogNormal for the conjugate update).
+    method : str
+        ``"conjugate"`` or ``"grid"``.
+    observations : DataFrame
+        The inspections with their predictions: ``contact``, ``sector``, ``instant``,
+        ``depth`` [m], ``measurement_sigma`` [-], ``prior_depth`` (median prediction under the
+        prior) and ``posterior_depth`` (under the posterior) [m].
+    models : dict
+        contact -> {"global"/"sector j" -> ContactModel}.
+    predictive : DataFrame or None
+        The forecast at ``calibrate(..., forecast=...)`` (:meth:`forecast`).
+    """
+
+    prior: LogNormal
+    posterior: Any
+    method: str
+    observations: pd.DataFrame
+    models: dict
+    predictive: pd.DataFrame | None = None
+
+    @property
+    def factor_median(self) -> float:
+        """Posterior median of the factor [-]."""
+        return float(self.posterior.median)
+
+    def factor_interval(self, level: float = 0.95) -> tuple[float, float]:
+        """Central posterior interval of the factor [-]."""
+        return (float(self.posterior.ppf(0.5 * (1 - level))),
+                float(self.posterior.ppf(0.5 * (1 + level))))
+
+    def forecast(self, instant: float, *, limit: float | None = None,
+                 q: Sequence[float] = (0.05, 0.5, 0.95)) -> pd.DataFrame:
+        """Posterior predictive depth and exceedance of every contact (and sector) at
+        ``instant``.
+
+        Parameters
+        ----------
+        instant : float
+            Future instant [user time unit of the cases] (e.g. the next outage).
+        limit : float, optional
+            Depth limit [m] (default each model's depth_limit × wall_thickness).
+        q : sequence of float
+            Quantile levels of the depth [-].
+
+        Returns
+        -------
+        DataFrame
+            One row per contact and depth (global, sector j): ``contact``, ``sector``,
+            ``instant``, ``depth_prior_q50``, ``depth_q..`` [m] (posterior quantiles),
+            ``limit`` [m], ``exceedance_prior``, ``exceedance`` (posterior) [-],
+            ``wall_fraction_q50`` [-].
+
+        Notes
+        -----
+        d(f, T) grows with f, so the depth's q-quantile is d(F⁻¹(q), T) and
+        P(d > L) = 1 − F(f_L) with d(f_L, T) = L, solved on λ = ln f (exact, no sampling).
+        """
+        rows = []
+        for contact, models in self.models.items():
+            for model in models.values():
+                rows.append(_forecast_row(contact, model, float(instant), limit, q,
+                                          self.prior, self.posterior))
+        return pd.DataFrame(rows)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary."""
+        low, high = self.factor_interval()
+        return {"method": self.method, "prior": self.prior.to_dict(),
+                "posterior": {"median": self.factor_median,
+                              "sigma_ln": float(_sigma(self.posterior)),
+                              "interval_95": [low, high]},
+                "observations": self.observations.to_dict(orient="records"),
+                "predictive": None if self.predictive is None
+                else self.predictive.to_dict(orient="records")}
+
+
+def _sigma(dist) -> float:
+    return float(dist.sigma_ln)
+
+
+def _exceed(model, elapsed, limit, dist, lam_lo, lam_hi) -> float:
+    """P(d(f, T) > limit) under ``dist``: 1 − F(f_L), d(f_L, T) = limit."""
+
+    def g(lam):
+        d = model.depth(np.full(np.shape(lam), elapsed), factor=np.exp(lam), warn=False)
+        return np.where(np.isnan(d), 2.0 * limit + 1.0, d)
+
+    lo, hi = float(lam_lo), float(lam_hi)
+    if g(np.array([hi]))[0] <= limit:
+        return float(1.0 - dist.cdf(math.exp(hi)))  # beyond the grid: mass above hi
+    if g(np.array([lo]))[0] > limit:
+        return float(1.0 - dist.cdf(math.exp(lo)))
+    lam_l = float(solve_monotone(g, np.array([limit]), np.array([lo]), np.array([hi]),
+                                 rtol=1e-12, atol=1e-14)[0])
+    return float(1.0 - dist.cdf(math.exp(lam_l)))
+
+
+def _forecast_row(contact, model: ContactModel, instant, limit, q, prior, posterior) -> dict:
+    if instant < model.origin:
+        raise InputError(f"forecast instant {instant:g} is before the origin {model.origin:g} "
+                         f"of contact {contact!r}")
+    elapsed = (instant - model.origin) * model.time_scale
+    value = model.limit_depth if limit is None else float(limit)
+    row: dict[str, Any] = {"contact": contact, "sector": model.sector, "instant": instant}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        f_prior = float(prior.ppf(0.5))
+        row["depth_prior_q50"] = float(model.depth(elapsed, factor=f_prior, warn=False))
+        for level in q:
+            f = float(posterior.ppf(level))
+            row[f"depth_q{100 * level:g}"] = float(model.depth(elapsed, factor=f, warn=False))
+        row["limit"] = value
+        if value is not None:
+            m, s = _mean_ln(posterior), _sigma(posterior)
+            mp, sp = math.log(prior.median), prior.sigma_ln
+            lo = min(m - 12 * s, mp - 12 * sp)
+            hi = max(m + 12 * s, mp + 12 * sp)
+            row["exceedance_prior"] = _exceed(model, elapsed, value, prior, lo, hi)
+            row["exceedance"] = _exceed(model, elapsed, value, posterior, lo, hi)
+        else:
+            row["exceedance_prior"] = row["exceedance"] = math.nan
+        if model.wall_thickness is not None:
+            row["wall_fraction_q50"] = row["depth_q50"] / model.wall_thickness \
+                if "depth_q50" in row else math.nan
+    return row
+
+
+def calibrate(predictions, inspections, *, prior: LogNormal = DEFAULT_PRIOR,
+              measurement_sigma: float | None = 0.1, method: str = "auto",
+              forecast: float | None = None, limit: float | None = None
+              ) -> CalibrationResult:
+    """Bayesian update of a factor on the wear coefficients from inspected depths.
+
+    Parameters
+    ----------
+    predictions : wear table, run_case result, ContactModel, (case, power), or a mapping of
+        contact name to one of them
+        What predicts each contact's depth (a wear table must carry its metadata, attrs).
+    inspections : DataFrame or path-like
+        Measured depths (:func:`read_inspections`): ``contact``, ``sector`` (optional),
+        ``instant`` [user time unit], ``depth`` [m] (or ``depth_mm``), ``measurement_sigma``
+        (optional).
+    prior : LogNormal
+        Prior of the factor f [-] (default median 1, a factor 3 either way at 95 %).
+    measurement_sigma : float
+        Standard deviation of ln(measured depth) [-] (0.1: about 10 % of the depth), for rows
+        without their own.
+    method : str
+        ``"auto"`` (conjugate when every prediction is a power law of f, else grid),
+        ``"conjugate"`` (refused when it does not apply) or ``"grid"``.
+    forecast : float, optional
+        Instant [user time unit] of the posterior predictive (:meth:`CalibrationResult.forecast`).
+    limit : float, optional
+        Depth limit [m] for the forecast (default depth_limit × wall_thickness of each model).
+
+    Returns
+    -------
+    CalibrationResult
+
+    Raises
+    ------
+    InputError
+        An inspection of an unknown contact or sector, before the origin of its prediction,
+        a bad measurement sigma, ``method="conjugate"`` where the model is not a power law.
+
+    Notes
+    -----
+    Module docstring: the likelihood, the conjugate update and the grid quadrature.
+
+    References
+    ----------
+    .. [1] A. Gelman, J. B. Carlin, H. S. Stern, D. B. Dunson, A. Vehtari, D. B. Rubin,
+       *Bayesian Data Analysis*, 3rd ed., CRC Press (2013), §2.5 (normal model with known
+       variance) and §3.
+    """
+    if method not in ("auto", "conjugate", "grid"):
+        raise InputError(f"method must be 'auto', 'conjugate' or 'grid', got {method!r}")
+    if not isinstance(prior, LogNormal) or prior.median is None:
+        raise InputError("prior must be a LogNormal with a median, e.g. LogNormal(1.0, "
+                         "sigma_ln=0.5)")
+    if prior.sigma_ln <= 0:
+        raise InputError("the prior's sigma_ln must be > 0 (a prior of zero width cannot "
+                         "be updated)")
+    table = read_inspections(inspections)
+    models = _predictions(predictions)
+    observations = []
+    for i, row in table.iterrows():
+        contact = row["contact"]
+        if contact not in models:
+            if contact == "" and len(models) == 1:
+                contact = next(iter(models))
+            else:
+                raise InputError(f"inspections row {i + 1}: unknown contact {contact!r}; the "
+                                 f"predictions have {sorted(models)}")
+        key = "global" if not np.isfinite(row["sector"]) else f"sector {int(row['sector'])}"
+        if key not in models[contact]:
+            raise InputError(f"inspections row {i + 1}: contact {contact!r} has no {key} "
+                             f"(it has {sorted(models[contact])})")
+        model = models[contact][key]
+        if row["instant"] < model.origin:
+            raise InputError(f"inspections row {i + 1}: instant {row['instant']:g} is before the "
+                             f"origin {model.origin:g} of the prediction of {contact!r}")
+        sigma = row["measurement_sigma"] if np.isfinite(row["measurement_sigma"]) \
+            else measurement_sigma
+        if sigma is None or not (math.isfinite(float(sigma)) and float(sigma) > 0):
+            raise InputError(f"inspections row {i + 1}: the measurement sigma (of ln depth) must "
+                             f"be > 0, got {sigma!r}")
+        observations.append(_Observation(model, (row["instant"] - model.origin)
+                                         * model.time_scale, math.log(row["depth"]),
+                                         float(sigma)))
+        table.loc[i, "contact"] = contact
+        table.loc[i, "measurement_sigma"] = float(sigma)
+    mu0, tau0 = math.log(prior.median), prior.sigma_ln
+    affine = None if method == "grid" else _affine(observations, mu0, tau0)
+    if method == "conjugate" and affine is None:
+        raise InputError("method='conjugate' needs every predicted depth to be a power law of "
+                         "the factor (Archard/KWU-EPRI from a new tube on TUBE_BAV without tilt, "
+                         "TUBE_TUBE, uniform TUBE_ALESAGE); use method='grid'")
+    if affine is not None:
+        a, b = affine
+        y = np.array([o.log_depth for o in observations])
+        s2 = np.array([o.sigma for o in observations]) ** 2
+        precision = 1 / tau0 ** 2 + np.sum(b ** 2 / s2)
+        mean = (mu0 / tau0 ** 2 + np.sum(b * (y - a) / s2)) / precision
+        posterior: Any = LogNormal(math.exp(mean), sigma_ln=math.sqrt(1 / precision))
+        used = "conjugate"
+    else:
+        posterior = _grid_posterior(observations, mu0, tau0)
+        used = "grid"
+    f_prior, f_post = float(prior.median), float(posterior.median)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        table["prior_depth"] = [float(o.model.depth(o.elapsed, factor=f_prior, warn=False))
+                                for o in observations]
+        table["posterior_depth"] = [float(o.model.depth(o.elapsed, factor=f_post, warn=False))
+                                    for o in observations]
+    result = CalibrationResult(prior=prior, posterior=posterior, method=used,
+                               observations=table, models=models)
+    if forecast is not None:
+        result = CalibrationResult(prior=prior, posterior=posterior, method=used,
+                                   observations=table, models=models,
+                                   predictive=result.forecast(forecast, limit=limit))
+    return result
+

@@ -1,0 +1,140 @@
+"""From what the user has (a wear case and a power, a wear table, a model) to contact models.
+
+A *case* is the description of one contact's wear computation: the keywords of
+:func:`fretwear.table.wear_table` as a mapping (plus ``wall_thickness`` [m] and
+``depth_limit`` [-]), a wear-case object (``fretwear.table.WearCase``), a wear table with its
+metadata (``DataFrame.attrs``), or a :class:`~fretwear.uncertainty.model.ContactModel`. The
+*power* is a number [W], a :class:`~fretwear.power.PowerResult` (its block powers give the
+interval), a :class:`~fretwear.power.confidence.PowerInterval` (an ensemble of runs), or a
+contact history (object or file) from which the power is computed with the case's window,
+blocks and sectors.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import pandas as pd
+
+from fretwear import table as fretwear_table
+from fretwear.errors import InputError
+from fretwear.history import ContactHistory
+from fretwear.io import read_history
+from fretwear.power import PowerResult, wear_power
+from fretwear.power.confidence import PowerInterval
+from fretwear.table import wear_table
+from fretwear.uncertainty.model import ContactModel, models_from_table
+
+__all__ = ["PreparedCase", "prepare_case"]
+
+#: Case keys that describe the wall, not the wear computation (fretwear.uncertainty).
+WALL_KEYS = ("wall_thickness", "depth_limit")
+
+
+@dataclass(frozen=True, eq=False)
+class PreparedCase:
+    """A case ready for propagation: its models, the power's uncertainty, its nominal table.
+
+    Attributes
+    ----------
+    models : dict of str to ContactModel
+        ``"global"`` and, in sector mode, ``"sector 1"`` ...
+    power : PowerResult, PowerInterval or None
+        What the power's uncertainty is known from (None: a bare number).
+    table : DataFrame or None
+        The nominal wear table.
+    durations : numpy.ndarray
+        Instants of the case after the origin [user time unit].
+    """
+
+    models: dict[str, ContactModel]
+    power: Any
+    table: pd.DataFrame | None
+    durations: Any
+
+    @property
+    def model(self) -> ContactModel:
+        """The global model."""
+        return self.models["global"]
+
+
+def _durations(table: pd.DataFrame) -> Any:
+    origin = float(table.attrs.get("origin") or 0.0)
+    rows = table[(table["origin"] == origin) & (table["instant"] >= origin)]
+    return rows["duration"].drop_duplicates().to_numpy(dtype=float)
+
+
+def _source(power, keywords: dict[str, Any]):
+    """(source for wear_table, the power's uncertainty object)."""
+    if isinstance(power, PowerInterval):
+        return float(power.estimate), power
+    if isinstance(power, PowerResult):
+        return power, power
+    if isinstance(power, str | os.PathLike):
+        power = read_history(power)
+    if isinstance(power, ContactHistory):
+        result = wear_power(power, **{k: keywords[k] for k in (
+            "t_start", "t_end", "blocks", "sectors", "stationarity_threshold") if k in keywords})
+        keywords["history"] = power
+        return result, result
+    if power is None:
+        raise InputError("give the wear power: a number [W], a PowerResult, a PowerInterval or "
+                         "a contact history")
+    return power, None
+
+
+def prepare_case(case, power=None, *, wall_thickness: float | None = None,
+                 depth_limit: float | None = None) -> PreparedCase:
+    """The contact models and the power's uncertainty of ``case`` with ``power``.
+
+    Parameters
+    ----------
+    case : mapping, WearCase, DataFrame or ContactModel
+        The wear case (module docstring).
+    power : float, PowerResult, PowerInterval, ContactHistory or path-like, optional
+        The wear power source [W] (not needed with a wear table or a model).
+    wall_thickness : float, optional
+        Wall thickness of the tube [m] (default the case's).
+    depth_limit : float, optional
+        Depth limit as a fraction of the wall [-] (default the case's, else 0.4).
+
+    Returns
+    -------
+    PreparedCase
+    """
+    options = {"wall_thickness": wall_thickness, "depth_limit": depth_limit}
+    if isinstance(case, ContactModel):
+        changes = {k: v for k, v in options.items() if v is not None}
+        model = dataclasses.replace(case, **changes) if changes else case
+        uncertainty = power if isinstance(power, PowerResult | PowerInterval) else None
+        return PreparedCase({"global": model}, uncertainty, None, None)
+    if isinstance(case, pd.DataFrame):
+        models = models_from_table(case, **options)
+        uncertainty = power if isinstance(power, PowerResult | PowerInterval) else None
+        return PreparedCase(models, uncertainty, case, _durations(case))
+    if hasattr(case, "to_dict") and type(case).__name__ == "WearCase":
+        source, uncertainty = _source(power, {})
+        table = fretwear_table.wear_table_from_case(case, source)
+        for key in WALL_KEYS:
+            if options[key] is None:
+                options[key] = getattr(case, key, None)
+        models = models_from_table(table, sector_coefficients=getattr(
+            case, "sector_coefficients", None), **options)
+        return PreparedCase(models, uncertainty, table, _durations(table))
+    if not isinstance(case, Mapping):
+        raise InputError(f"case must be the keywords of wear_table (a mapping), a WearCase, a "
+                         f"wear table or a ContactModel, got {type(case).__name__}")
+    keywords = dict(case)
+    for key in WALL_KEYS:
+        value = keywords.pop(key, None)
+        if options[key] is None:
+            options[key] = value
+    source, uncertainty = _source(power, keywords)
+    table = wear_table(source, **keywords)
+    models = models_from_table(table, sector_coefficients=keywords.get("sector_coefficients"),
+                               **options)
+    return PreparedCase(models, uncertainty, table, _durations(table))

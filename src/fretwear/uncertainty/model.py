@@ -1,0 +1,456 @@
+"""The wear prediction of one contact as a vectorised function of its uncertain inputs.
+
+:class:`ContactModel` holds what a wear table was computed from (law and coefficients, power,
+contact geometry, time axis, volumes at the origin) and evaluates the worn depth of the mobile
+for arrays of inputs at once: a factor on the wear coefficients, the wear power, the law's
+coefficients, at any times. It is the forward model of the Monte Carlo propagation and of the
+calibration on inspections; with its nominal inputs it gives the wear table's depths.
+
+The volume of a body after ``t`` seconds from the origin, with wear-coefficient factor ``f``
+(docs/uncertainty.md §1), is
+
+* ``V₀ + f·Σ_j V_law(P_j, t)`` for a law linear in time (Archard, KWU-EPRI; one term, or one per
+  sector when the global depth of a sector table is asked for),
+* ``f·V_law(P, τ₀ + t)`` with ``f·V_law(P, τ₀) = V₀`` otherwise (EDF-MZ restart, docs/theory §7),
+
+which is the law with every coefficient that multiplies the volume scaled by ``f`` (K for
+Archard, k_r for KWU-EPRI, A and S together for EDF-MZ). The factor applies to both bodies.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from fretwear.errors import InputError, KeywordError, RangeWarning
+from fretwear.geometry import contact_geometry
+from fretwear.geometry._shapes import solve_monotone
+from fretwear.geometry.base import ContactGeometry
+from fretwear.geometry.sectors import sector_depth_mobile
+from fretwear.laws import get_law
+from fretwear.laws.registry import WearLaw
+
+__all__ = ["ContactModel", "model_from_table", "models_from_table"]
+
+_TIME_TOL = 1e-9
+
+
+def _dict(value) -> dict | None:
+    return None if value is None else dict(value)
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class ContactModel:
+    """Worn depth of one contact, or of one angular sector of it, as a function of its inputs.
+
+    Parameters
+    ----------
+    law : WearLaw
+        The wear law (``fretwear.laws.WEAR_LAWS[...]``).
+    geometry : ContactGeometry
+        Contact geometry with its dimensions (SI, angles [deg]).
+    powers : tuple of float
+        Wear power of each volume term [W]: one term (the global power, or one sector's power),
+        or one per sector for the global depth of a sector table (Archard only).
+    coefficients_mobile, coefficients_obstacle : tuple of (dict or None)
+        Law coefficients of each term (native names); None: the body does not wear.
+    time_scale : float
+        Seconds per user time unit [s].
+    origin : float
+        Origin of the run [user time unit]; times are counted from it.
+    initial_mobile, initial_obstacle : float
+        Volumes of the bodies at the origin [m³] (global, or of the sector).
+    sector_arc : float, optional
+        Angular extent of the sector [deg]; None for the global depth.
+    name : str
+        Contact name (and sector) for messages.
+    sector : int, optional
+        1-based sector number.
+    wall_thickness : float, optional
+        Wall thickness of the mobile (tube) [m].
+    depth_limit : float
+        Depth limit as a fraction of the wall [-] (plugging criterion, default 0.4).
+
+    Examples
+    --------
+    Archard, TUBE_BAV without tilt: D = (1/(2R))^(1/3)·(3V/(4l))^(2/3) with V = f·K·P·t.
+
+    >>> from fretwear.laws import get_law
+    >>> from fretwear.geometry import contact_geometry
+    >>> m = ContactModel(law=get_law("ARCHARD"),
+    ...                  geometry=contact_geometry("TUBE_BAV", mobile_radius=0.01,
+    ...                                            obstacle_width=0.02),
+    ...                  powers=(0.01,), coefficients_mobile=({"coefficient": 1e-14},),
+    ...                  coefficients_obstacle=(None,), time_scale=3.15e7)
+    >>> d = m.depth(3.15e7, factor=[1.0, 8.0])
+    >>> round(float(d[1] / d[0]), 12)  # 8^(2/3)
+    4.0
+    """
+
+    law: WearLaw
+    geometry: ContactGeometry
+    powers: tuple[float, ...]
+    coefficients_mobile: tuple[dict | None, ...]
+    coefficients_obstacle: tuple[dict | None, ...]
+    time_scale: float = 1.0
+    origin: float = 0.0
+    initial_mobile: float = 0.0
+    initial_obstacle: float = 0.0
+    sector_arc: float | None = None
+    name: str = ""
+    sector: int | None = None
+    wall_thickness: float | None = None
+    depth_limit: float = 0.4
+
+    def __post_init__(self) -> None:
+        n = len(self.powers)
+        if n == 0 or len(self.coefficients_mobile) != n or len(self.coefficients_obstacle) != n:
+            raise InputError("ContactModel: give one power and one coefficient set per term")
+        if n > 1 and not self.law.linear_in_time:
+            raise KeywordError(f"several volume terms (sectors) need a law linear in time, not "
+                               f"{self.law.name}")
+        if not (math.isfinite(self.time_scale) and self.time_scale > 0):
+            raise InputError(f"time_scale must be > 0 [s per unit], got {self.time_scale!r}")
+        if self.wall_thickness is not None and not (
+                math.isfinite(self.wall_thickness) and self.wall_thickness > 0):
+            raise InputError(f"wall_thickness must be finite and > 0 [m], got "
+                             f"{self.wall_thickness!r}")
+        if not (math.isfinite(self.depth_limit) and 0 < self.depth_limit):
+            raise InputError(f"depth_limit must be a fraction of the wall > 0 [-], got "
+                             f"{self.depth_limit!r}")
+
+    # ------------------------------------------------------------------ nominal values
+    @property
+    def power(self) -> float:
+        """Total nominal wear power of the terms [W]."""
+        return float(sum(self.powers))
+
+    @property
+    def limit_depth(self) -> float | None:
+        """The depth limit [m] = depth_limit × wall_thickness, None without a wall."""
+        return None if self.wall_thickness is None else self.depth_limit * self.wall_thickness
+
+    def nominal(self, name: str, body: str = "mobile") -> float | None:
+        """Nominal value of a law coefficient of ``body`` (one term only), None if absent."""
+        coefs = (self.coefficients_mobile if body == "mobile" else self.coefficients_obstacle)[0]
+        if coefs is None:
+            return None
+        value = coefs.get(name)
+        return None if value is None else float(value)
+
+    def with_dimensions(self, **dimensions: float) -> ContactModel:
+        """The same model with other dimensions (SI, angles [deg]), validated."""
+        geometry = contact_geometry(self.geometry.contact_type,
+                                    **{**self.geometry.dimensions(), **dimensions})
+        return dataclasses.replace(self, geometry=geometry)
+
+    # ------------------------------------------------------------------ forward model
+    def _terms(self, power, coefficients, obstacle_coefficients):
+        powers = list(self.powers)
+        if power is not None:
+            power = np.asarray(power, dtype=float)
+            if len(powers) == 1:
+                powers = [power]
+            else:
+                total = self.power
+                if total <= 0:
+                    raise InputError("the nominal power is 0: it cannot be scaled per sector")
+                powers = [p * (power / total) for p in powers]
+        mobile = [_dict(c) for c in self.coefficients_mobile]
+        obstacle = [_dict(c) for c in self.coefficients_obstacle]
+        for given, body, coefs in ((coefficients, "mobile", mobile),
+                                   (obstacle_coefficients, "obstacle", obstacle)):
+            if not given:
+                continue
+            if len(coefs) > 1:
+                raise KeywordError("coefficients of a sector table's global depth differ per "
+                                   "sector: vary them through the wear-coefficient factor")
+            if coefs[0] is None:
+                raise KeywordError(f"the {body} does not wear in this case: it has no "
+                                   f"coefficient {sorted(given)} to vary")
+            resolved = self.law.resolve(**dict(given))
+            coefs[0].update({k: resolved[k] for k in given_names(self.law, given)})
+        return powers, mobile, obstacle
+
+    def _body(self, elapsed, factor, powers, coefs, initial):
+        if all(c is None for c in coefs):
+            return np.broadcast_to(np.asarray(initial, dtype=float) + 0.0 * elapsed,
+                                   np.broadcast(elapsed, factor).shape).astype(float)
+        if self.law.linear_in_time:
+            total = 0.0
+            for p, c in zip(powers, coefs, strict=True):
+                if c is not None:
+                    total = total + self.law.volume(p, elapsed, **c)
+            return initial + factor * total
+        (p,), (c,) = powers, coefs
+        if initial == 0.0:
+            return factor * self.law.volume(p, elapsed, **c)
+        return factor * self.law.cumulated_volume(initial / factor, p, elapsed, **c)
+
+    def volumes(self, elapsed_s, *, factor=1.0, power=None, coefficients=None,
+                obstacle_coefficients=None):
+        """Cumulated volumes (mobile, obstacle) [m³] after ``elapsed_s`` [s] from the origin.
+
+        Parameters
+        ----------
+        elapsed_s : array_like
+            Time since the origin [s], ≥ 0.
+        factor : array_like
+            Wear-coefficient factor f > 0 [-] (scales every body's new wear).
+        power : array_like, optional
+            Total wear power [W] (default the nominal; sector terms scale with it).
+        coefficients, obstacle_coefficients : mapping, optional
+            Law coefficients (native names or Code_Aster keywords) replacing the nominal ones,
+            arrays allowed (one term only).
+
+        Returns
+        -------
+        (numpy.ndarray, numpy.ndarray)
+            V_m, V_o [m³], the broadcast shape of the arguments.
+        """
+        t = np.asarray(elapsed_s, dtype=float)
+        f = np.asarray(factor, dtype=float)
+        if not (np.isfinite(f) & (f > 0)).all():
+            raise InputError("the wear-coefficient factor must be finite and > 0 [-]")
+        powers, mobile, obstacle = self._terms(power, coefficients, obstacle_coefficients)
+        vm = self._body(t, f, powers, mobile, self.initial_mobile)
+        vo = self._body(t, f, powers, obstacle, self.initial_obstacle)
+        shape = np.broadcast_shapes(np.shape(vm), np.shape(vo))
+        return (np.broadcast_to(vm, shape).astype(float), np.broadcast_to(vo, shape).astype(float))
+
+    def depth(self, elapsed_s, *, factor=1.0, power=None, coefficients=None,
+              obstacle_coefficients=None, warn: bool = True) -> np.ndarray:
+        """Worn depth of the mobile [m] (global, or of the sector) after ``elapsed_s`` [s].
+
+        Same inputs as :meth:`volumes`. NaN beyond the geometric relation's range (with a
+        RangeWarning when ``warn``).
+        """
+        vm, vo = self.volumes(elapsed_s, factor=factor, power=power, coefficients=coefficients,
+                              obstacle_coefficients=obstacle_coefficients)
+        with warnings.catch_warnings():
+            if not warn:
+                warnings.simplefilter("ignore", RangeWarning)
+            if self.sector_arc is None:
+                dm, _ = self.geometry.depth_from_volume(vm.ravel(), vo.ravel())
+            else:
+                g = self.geometry
+                dm = sector_depth_mobile(vm.ravel(), g.mobile_radius, g.obstacle_width,
+                                         self.sector_arc)
+        return np.asarray(dm, dtype=float).reshape(vm.shape)
+
+    def time_to_depth(self, depth, *, factor=1.0, power=None, coefficients=None,
+                      obstacle_coefficients=None, rtol: float = 1e-12) -> np.ndarray:
+        """Time since the origin [s] at which the mobile's depth reaches ``depth`` [m].
+
+        depth(t) is non-decreasing; it is inverted by a bracketed solver (Chandrupatla) on the
+        law and the geometry, to ``rtol`` relative on the time. 0 where the depth is already
+        reached at the origin; ``inf`` where it is never reached (no wear, or a power of 0).
+
+        Examples
+        --------
+        >>> from fretwear.laws import get_law
+        >>> from fretwear.geometry import contact_geometry
+        >>> g = contact_geometry("TUBE_ALESAGE", mobile_radius=0.01, obstacle_width=0.02)
+        >>> m = ContactModel(law=get_law("ARCHARD"), geometry=g, powers=(0.01,),
+        ...                  coefficients_mobile=({"coefficient": 1e-14},),
+        ...                  coefficients_obstacle=(None,))
+        >>> t = m.time_to_depth(1e-4)  # uniform wear: V = 2π·l·R·d = K·P·t
+        >>> round(float(t) / (2 * np.pi * 0.02 * 0.01 * 1e-4 / 1e-16), 10)
+        1.0
+        """
+        target = np.asarray(depth, dtype=float)
+        shape = np.broadcast_shapes(target.shape, np.shape(factor), np.shape(power)
+                                    if power is not None else (),
+                                    *[np.shape(v) for v in (coefficients or {}).values()],
+                                    *[np.shape(v) for v in (obstacle_coefficients or {}).values()])
+        target = np.broadcast_to(target, shape).astype(float)
+        if not (np.isfinite(target) & (target > 0)).all():
+            raise InputError(f"the depth to reach must be finite and > 0 [m], got {depth!r}")
+        kw = {"factor": np.broadcast_to(np.asarray(factor, dtype=float), shape),
+              "power": None if power is None else np.broadcast_to(
+                  np.asarray(power, dtype=float), shape),
+              "coefficients": None if not coefficients else {
+                  k: np.broadcast_to(np.asarray(v, dtype=float), shape)
+                  for k, v in coefficients.items()},
+              "obstacle_coefficients": None if not obstacle_coefficients else {
+                  k: np.broadcast_to(np.asarray(v, dtype=float), shape)
+                  for k, v in obstacle_coefficients.items()}}
+        above = 2.0 * target + 1.0  # stands for "beyond the relation's range" (deeper than any)
+
+        def g(t):
+            d = self.depth(t, warn=False, **kw)
+            return np.where(np.isnan(d), above, d)
+
+        zero = np.zeros(shape)
+        start = g(zero)
+        done = start >= target
+        hi = np.full(shape, self.time_scale)
+        lo = np.zeros(shape)
+        below = ~done & (g(hi) < target)
+        for _ in range(80):  # ×16 each: up to 10^96 s
+            if not below.any():
+                break
+            lo = np.where(below, hi, lo)
+            hi = np.where(below, hi * 16.0, hi)
+            below = below & (g(hi) < target)
+        never = below
+        active = ~done & ~never
+        out = np.where(done, 0.0, np.inf)
+        if active.any():
+            solved = solve_monotone(g, np.where(active, target, 0.0), np.where(active, lo, 0.0),
+                                    np.where(active, hi, 0.0), rtol=rtol)
+            out = np.where(active, solved, out)
+        return out if out.ndim else float(out)
+
+
+def given_names(law: WearLaw, given: Mapping[str, Any]) -> list[str]:
+    """Native names of the coefficients in ``given`` (Code_Aster keywords translated)."""
+    by_keyword = {kw: p for p, kw in law.aster_keywords.items()}
+    return [by_keyword.get(k, k) for k in given]
+
+
+# ---------------------------------------------------------------------- from a wear table
+def _attrs(table: pd.DataFrame) -> dict:
+    attrs = dict(getattr(table, "attrs", {}) or {})
+    missing = [k for k in ("contact_type", "dimensions", "law", "coefficients_mobile",
+                           "time_scale") if k not in attrs]
+    if missing:
+        raise InputError(f"the wear table has no run metadata ({', '.join(missing)} missing "
+                         "from DataFrame.attrs): give the table returned by wear_table / "
+                         "run_case, or the case that computes it")
+    return attrs
+
+
+def _origin_rows(table: pd.DataFrame, origin: float) -> pd.DataFrame:
+    tol = _TIME_TOL * max(1.0, abs(origin))
+    at = table[np.asarray(table["instant"], dtype=float) <= origin + tol]
+    if at.empty:
+        return at
+    last = float(at["instant"].iloc[-1])
+    return at[np.abs(np.asarray(at["instant"], dtype=float) - last) <= tol]
+
+
+def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
+                      wall_thickness: float | None = None, depth_limit: float | None = None,
+                      name: str = "") -> dict[str, ContactModel]:
+    """The models of a wear table: ``"global"`` and, in sector mode, ``"sector 1"`` ...
+
+    Parameters
+    ----------
+    table : DataFrame
+        A wear table from :func:`fretwear.table.wear_table` (its ``attrs`` hold the run: law,
+        coefficients, geometry, power, time scale).
+    sector_coefficients : sequence of (float, float or None), optional
+        Archard coefficients (mobile, obstacle) [Pa⁻¹] per sector, as given to wear_table
+        (default ``attrs["sector_coefficients"]``, else the law's coefficients).
+    wall_thickness : float, optional
+        Wall thickness [m] (default ``attrs["wall_thickness"]``).
+    depth_limit : float, optional
+        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or 0.4).
+    name : str
+        Contact name.
+
+    Returns
+    -------
+    dict of str to ContactModel
+
+    Raises
+    ------
+    InputError
+        The table has no metadata, or the tube is replaced after the origin (not modelled).
+    """
+    a = _attrs(table)
+    law = get_law(a["law"])
+    geometry = contact_geometry(a["contact_type"], **dict(a["dimensions"]))
+    origin = float(a.get("origin") or 0.0)
+    replacement = a.get("tube_replacement")
+    if replacement is not None and float(replacement) > origin + _TIME_TOL * max(1, origin):
+        raise InputError("the wear table replaces the tube after its origin (TUBE_NEUF): the "
+                         "uncertainty model continues one tube; compute from the replacement on "
+                         "(a restart of replace_tube's table)")
+    wall = wall_thickness if wall_thickness is not None else a.get("wall_thickness")
+    limit = depth_limit if depth_limit is not None else a.get("depth_limit")
+    common = {"law": law, "geometry": geometry, "time_scale": float(a["time_scale"]),
+              "origin": origin, "wall_thickness": None if wall is None else float(wall),
+              "depth_limit": 0.4 if limit is None else float(limit)}
+    mobile = _dict(a.get("coefficients_mobile"))
+    obstacle = _dict(a.get("coefficients_obstacle"))
+    power_info = a.get("power") or {}
+    at = _origin_rows(table, origin)
+    edges = a.get("sector_edges")
+    if edges is None:
+        total = float(power_info.get("total", table["power"].iloc[-1]))
+        v0m = float(at["volume_mobile"].iloc[0]) if len(at) else 0.0
+        v0o = float(at["volume_obstacle"].iloc[0]) if len(at) else 0.0
+        return {"global": ContactModel(powers=(total,), coefficients_mobile=(mobile,),
+                                       coefficients_obstacle=(obstacle,), initial_mobile=v0m,
+                                       initial_obstacle=v0o, name=name, **common)}
+    edges = np.asarray(edges, dtype=float)
+    m = edges.size - 1
+    sector_powers = np.asarray(power_info.get("sectors"), dtype=float)
+    if sector_powers.size != m:
+        raise InputError("the sector table's attrs['power'] lacks the sector powers")
+    pairs = sector_coefficients if sector_coefficients is not None else a.get(
+        "sector_coefficients")
+    key = law.parameters[0]
+    k_m, k_o = _sector_pairs(pairs, m, mobile.get(key),
+                             None if obstacle is None else obstacle.get(key))
+    coefs_m = tuple({key: k} for k in k_m)
+    coefs_o = tuple(None if k is None else {key: k} for k in k_o)
+    v0m_s = np.zeros(m)
+    v0o_s = np.zeros(m)
+    if len(at):
+        by_sector = at.set_index("sector")
+        for j in range(m):
+            if j + 1 in by_sector.index:
+                row = by_sector.loc[j + 1]
+                v0m_s[j] = float(np.atleast_1d(row["volume_mobile_cumulated"])[-1])
+                v0o_s[j] = float(np.atleast_1d(row["volume_obstacle_cumulated"])[-1])
+    out = {"global": ContactModel(powers=tuple(float(p) for p in sector_powers),
+                                  coefficients_mobile=coefs_m, coefficients_obstacle=coefs_o,
+                                  initial_mobile=float(v0m_s.sum()),
+                                  initial_obstacle=float(v0o_s.sum()), name=name, **common)}
+    for j in range(m):
+        out[f"sector {j + 1}"] = ContactModel(
+            powers=(float(sector_powers[j]),), coefficients_mobile=(coefs_m[j],),
+            coefficients_obstacle=(coefs_o[j],), initial_mobile=float(v0m_s[j]),
+            initial_obstacle=float(v0o_s[j]), sector_arc=float(edges[j + 1] - edges[j]),
+            name=f"{name} sector {j + 1}".strip(), sector=j + 1, **common)
+    return out
+
+
+def _sector_pairs(pairs, m: int, mobile, obstacle):
+    """(mobile, obstacle) Archard coefficients [Pa⁻¹] of each of ``m`` sectors: the pairs as
+    wear_table reads them (one pair for all allowed; an obstacle None: it does not wear)."""
+    if pairs is None:
+        return [float(mobile)] * m, [None if obstacle is None else float(obstacle)] * m
+    pairs = list(pairs)
+    if len(pairs) == 1:
+        pairs = pairs * m
+    if len(pairs) != m:
+        raise InputError(f"sector_coefficients has {len(pairs)} entries for {m} sectors")
+    pairs = [(p, None) if np.isscalar(p) else tuple(p) for p in pairs]
+    k_m = [float(p[0]) for p in pairs]
+    k_o = [None if p[1] is None else float(p[1]) for p in pairs]
+    if any(k is not None for k in k_o):  # wear_table: a missing one is 0 when others wear
+        k_o = [0.0 if k is None else k for k in k_o]
+    return k_m, k_o
+
+
+def model_from_table(table: pd.DataFrame, *, sector: int | None = None, **options
+                     ) -> ContactModel:
+    """The model of a wear table's global depth (``sector=None``) or of one sector (1-based).
+
+    Options as :func:`models_from_table`.
+    """
+    models = models_from_table(table, **options)
+    key = "global" if sector is None else f"sector {int(sector)}"
+    if key not in models:
+        raise InputError(f"the wear table has no {key}; it has {sorted(models)}")
+    return models[key]
