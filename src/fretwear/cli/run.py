@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import click
@@ -18,6 +19,7 @@ from rich.progress import (
 from rich.table import Table
 
 from fretwear._optional import require
+from fretwear.errors import ConfidenceWarning
 from fretwear.plotting import save_figure, wear_figures
 from fretwear.table import COLUMNS, write_wear_table
 from fretwear.workflows.case_files import keys_help, load_case, run_case
@@ -73,9 +75,16 @@ def _summary(result, console) -> None:
     if intensity is not None:
         console.print(f"KWU-EPRI wear-intensity factor w = {float(intensity):.4g}")
     blocks = getattr(power, "blocks", None)
+    notes: list[str] = []
     if blocks is not None and len(blocks) > 1:
         console.print(f"block powers [W]: {', '.join(f'{b:.4g}' for b in blocks)}; spread "
                       f"(max-min)/mean = {float(power.spread):.3g}")
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ConfidenceWarning)
+            interval = power.confidence_interval(0.95)
+        notes = [str(w.message) for w in caught]
+        console.print(f"{interval}  (batch means over {len(blocks)} blocks)", markup=False,
+                      highlight=False)
     last = table[table["instant"] == table["instant"].iloc[-1]]
     if "sector" in table.columns and table["sector"].notna().any():
         st = Table(title=f"sectors at instant {last['instant'].iloc[0]:g} "
@@ -109,9 +118,9 @@ def _summary(result, console) -> None:
                    mm(r["depth_mobile"]), f"{r['volume_obstacle'] * 1e9:.4g}",
                    mm(r["depth_obstacle"]))
     console.print(gt)
-    if result.warnings:
+    if result.warnings or notes:
         console.print("[yellow]warnings:[/]")
-        for w in result.warnings:
+        for w in [*result.warnings, *notes]:
             console.print(f"  - {w}", markup=False, highlight=False, style="yellow")
 
 
