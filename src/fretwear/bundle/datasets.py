@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import functools
 import os
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -39,8 +40,11 @@ def open_store(path: str | os.PathLike):
     if is_zarr:
         require("zarr")
     try:
-        return xr.open_dataset(p, engine="zarr" if is_zarr else None,
-                               **({"chunks": None} if is_zarr else {}))
+        with warnings.catch_warnings():
+            # a store without consolidated metadata is read all the same: not the user's concern
+            warnings.filterwarnings("ignore", message=".*consolidated metadata.*")
+            return xr.open_dataset(p, engine="zarr" if is_zarr else None,
+                                   **({"chunks": None} if is_zarr else {}))
     except (OSError, ValueError, KeyError) as exc:
         raise FormatError(f"{p}: not a readable {'Zarr' if is_zarr else 'NetCDF'} store "
                           f"({exc})") from None

@@ -403,8 +403,9 @@ def read_manifest(source: Any) -> Manifest:
                              "'fretwear[formats]'") from None
     elif suffix == ".csv":
         try:
+            # only empty cells are missing: a contact may be called "NA" or "nan"
             frame = pd.read_csv(path, dtype={"contact": str, "node": str, "history": str},
-                                keep_default_na=True, skipinitialspace=True)
+                                keep_default_na=False, na_values=[""], skipinitialspace=True)
         except (pd.errors.ParserError, UnicodeDecodeError) as exc:
             raise FormatError(f"manifest {label!r} is not a readable CSV table: {exc}") from None
     else:

@@ -27,6 +27,7 @@ from typing import Any
 
 import pandas as pd
 
+from fretwear.bundle.datasets import require
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
 
@@ -148,7 +149,10 @@ class OutputDirectory:
         tmp = self.path / f".dataset.zarr.{self._run}.tmp"
         shutil.rmtree(tmp, ignore_errors=True)
         try:
-            dataset.to_zarr(tmp, mode="w", consolidated=False)
+            # Zarr format 2 (readable by every zarr version; format 3 has no string type yet)
+            zarr = require("zarr")
+            version2 = {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
+            dataset.to_zarr(tmp, mode="w", consolidated=True, **version2)
             old = self.path / f".dataset.zarr.{self._run}.old"
             if target.exists():
                 os.replace(target, old)

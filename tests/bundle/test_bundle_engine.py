@@ -1,0 +1,226 @@
+"""The bundle engine without Dask (``scheduler="serial"``): chunked contacts and their merge
+tree, failures, per-contact warnings, restarts, the summary and the dataset."""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+import pandas as pd
+import pytest
+from bundle_helpers import (
+    BASE_CASE,
+    assert_identical,
+    oscillator,
+    reference,
+    rows_of,
+    scaled,
+    write_bundle,
+)
+
+from fretwear.bundle import engine as engine_module
+from fretwear.bundle import run_bundle, time_to_depth
+from fretwear.errors import StationarityWarning
+from fretwear.io import iter_history_chunks, write_history
+from fretwear.power import PowerAccumulator
+from fretwear.table import wear_table
+from fretwear.workflows.case_files import case_arguments, load_case
+
+YEAR = 31536000.0
+
+
+def test_long_contact_splits_into_chunks_merged_in_a_tree(tmp_path, monkeypatch):
+    h = oscillator()
+    path = tmp_path / "long.parquet"
+    write_history(h, path, row_group_size=400)
+    (tmp_path / "base.toml").write_text(BASE_CASE + "[power]\nblocks = 3\n")
+    frame = pd.DataFrame({"contact": ["long"], "history": [str(path)]})
+    merges = []
+    real = engine_module.merge_states
+    monkeypatch.setattr(engine_module, "merge_states",
+                        lambda *r: merges.append(len(r)) or real(*r))
+    # 3001 samples in chunks of 500 sharing one sample: ceil(3000/499) = 7 chunks, merged in
+    # pairs: 4 merges (the last of one state), then 2, then 1
+    result = run_bundle(frame, tmp_path / "base.toml", scheduler="serial", chunk_size=500,
+                        split_every=2)
+    assert result.errors.empty
+    assert merges == [2, 2, 2, 1, 2, 2, 2]
+    assert result.contacts["samples"].tolist() == [len(h)]
+    got = rows_of(result, "long")
+    # the same sums in another order: equal to rounding (theory §2), not bit for bit
+    with pytest.warns(StationarityWarning):  # 3 blocks of a 0.6 s start-up record
+        expected = reference(path, tmp_path / "base.toml")
+    for c in expected.columns:
+        np.testing.assert_allclose(got[c], expected[c], rtol=1e-13, atol=0, err_msg=c)
+    # and equal to the sequential fold of the same chunks (PowerAccumulator.update)
+    kw = case_arguments(load_case(tmp_path / "base.toml"), history_elsewhere=True)
+    acc = PowerAccumulator(t_start=h.time[0], t_end=h.time[-1], blocks=3, sectors=4)
+    for chunk in iter_history_chunks(path, 500):
+        acc.update(chunk)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        folded = wear_table(acc.result(), **kw)
+    for c in folded.columns:
+        np.testing.assert_allclose(got[c], folded[c], rtol=1e-13, atol=0, err_msg=c)
+    # a chunk larger than the history: one task, bit for bit
+    whole = run_bundle(frame, tmp_path / "base.toml", scheduler="serial")
+    assert_identical(rows_of(whole, "long"), expected)
+
+
+def test_bad_contacts_land_in_errors_and_the_others_complete(tmp_path):
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 3)
+    frame = pd.read_csv(manifest)
+    (tmp_path / "histories" / "corrupt.parquet").write_bytes(b"PAR1 this is not parquet")
+    bad = scaled(h, 0).to_frame()
+    bad.loc[17, "vt1"] = np.nan
+    bad.to_csv(tmp_path / "histories" / "nan.csv", index=False)
+    extra = pd.DataFrame({"contact": ["missing", "corrupt", "nan", "deep"],
+                          "history": ["histories/none.parquet", "histories/corrupt.parquet",
+                                      "histories/nan.csv", "histories/t0.parquet"]})
+    frame = pd.concat([frame, extra], ignore_index=True)
+    # "deep": a bore (lunule) worn past its relation's range by a huge coefficient
+    frame["contact_type"] = [None] * 6 + ["TUBE_ALESAGE"]
+    frame["obstacle_radius_m"] = [None] * 6 + [9.725e-3]
+    frame["law.mobile.COEF_USURE"] = [None] * 6 + [1e-10]
+    frame["sectors.count"] = [None] * 6 + [1]
+    frame.to_csv(manifest, index=False)
+    result = run_bundle(manifest, case, scheduler="serial")
+    errors = result.errors.set_index("contact")
+    assert errors.loc["missing", "error"] == "InputError"
+    assert "does not exist" in errors.loc["missing", "message"]
+    assert errors.loc["corrupt", "error"] == "FormatError"
+    assert errors.loc["nan", "error"] == "HistoryError"
+    assert "row 17" in errors.loc["nan", "message"]
+    assert errors.loc["deep", "error"] == "RangeWarning"
+    assert bool(errors.loc["deep", "rows_kept"]) is True
+    assert not errors.loc[["missing", "corrupt", "nan"], "rows_kept"].any()
+    assert result.stats["done"] == 4 and result.stats["failed"] == 3
+    assert rows_of(result, "deep")["depth_mobile"].isna().any()
+    for k in range(3):
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.parquet", case))
+    # the beyond-range contact ranks first in the summary
+    assert result.summary()["contact"].iloc[0] == "deep"
+
+
+def test_warnings_belong_to_their_contact(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 2, extra={"blocks": [4, None]})
+    result = run_bundle(manifest, case, scheduler="serial")
+    assert set(result.warnings["contact"]) == {"R1C1-AVB"}
+    assert result.warnings["category"].tolist() == ["StationarityWarning"]
+
+
+def test_threads_of_one_process_never_mix_warnings(tmp_path):
+    """Tasks running in threads of one worker: each record holds its own warnings only."""
+    from fretwear.bundle.cases import build_task
+    from fretwear.bundle.manifest import read_manifest
+    from fretwear.bundle.tasks import run_contact
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 2, extra={"blocks": [4, None]})
+    m = read_manifest(manifest)
+    base = load_case(case)
+    tasks = [build_task(base, row, "m", chunk_size=10**6) for row in m.rows] * 8
+    with ThreadPoolExecutor(max_workers=8) as pool:
+        records = list(pool.map(run_contact, tasks))
+    for rec in records:
+        expected = 1 if rec["contact"] == "R1C1-AVB" else 0
+        assert len(rec["warnings"]) == expected, rec["warnings"]
+
+
+def test_restart_skips_unchanged_contacts(tmp_path):
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 4)
+    out = tmp_path / "out"
+    first = run_bundle(manifest, case, scheduler="serial", output=out, part_size=1)
+    assert first.stats["done"] == 4
+    again = run_bundle(manifest, case, scheduler="serial", output=out)
+    assert again.stats["skipped"] == 4 and again.stats["done"] == 0
+    pd.testing.assert_frame_equal(again.table, first.table)
+    # a changed history and a changed override are recomputed, nothing else
+    write_history(scaled(h, 7), tmp_path / "histories" / "t1.parquet")
+    frame = pd.read_csv(manifest)
+    frame["obstacle_width_m"] = [None, None, 10e-3, None]
+    frame.to_csv(manifest, index=False)
+    third = run_bundle(manifest, case, scheduler="serial", output=out)
+    status = third.contacts.set_index("contact")["status"]
+    assert status.to_dict() == {"R1C1-AVB": "skipped", "R1C2-AVB": "done",
+                                "R2C1-AVB": "done", "R2C2-AVB": "skipped"}
+    assert_identical(rows_of(third, "R1C2-AVB"),
+                     reference(tmp_path / "histories/t1.parquet", case))
+    forced = run_bundle(manifest, case, scheduler="serial", output=out, force=True)
+    assert forced.stats["done"] == 4
+    pd.testing.assert_frame_equal(forced.table, third.table)
+    # files: the table read back is the result's; superseded parts are removed
+    stored = pd.read_parquet(out / "table.parquet")
+    pd.testing.assert_frame_equal(stored, forced.table, check_dtype=False)
+    run = json.loads((out / "run.json").read_text())
+    assert run["done"] == 4
+    names = {p.name.split(".")[0] for p in (out / "parts").iterdir()}
+    assert len(names) == 1  # forced run wrote its 4 contacts in one part
+
+
+def test_csv_outputs_round_trip_exactly(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    result = run_bundle(manifest, case, scheduler="serial", output=tmp_path / "o",
+                        table_format="csv", dataset_format="netcdf")
+    stored = pd.read_csv(tmp_path / "o" / "table.csv")
+    for c in ("power", "volume_mobile_sector", "depth_mobile_sector"):
+        assert np.array_equal(stored[c].to_numpy(), result.table[c].to_numpy())
+    xr = pytest.importorskip("xarray")
+    ds = xr.open_dataset(tmp_path / "o" / "dataset.nc")
+    assert np.array_equal(ds["depth_mobile"].values, result.dataset["depth_mobile"].values)
+    ds.close()
+
+
+def test_dataset_dimensions_values_and_units(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    result = run_bundle(manifest, case, scheduler="serial")
+    ds = result.dataset
+    assert dict(ds.sizes) == {"contact": 3, "instant": 4, "sector": 4}
+    assert ds["instant"].values.tolist() == [0.5, 1, 2, 5]
+    assert ds["instant"].attrs["units"] == "year"
+    assert ds["depth_mobile_sector"].attrs["units"] == "m"
+    assert ds["volume_mobile"].attrs["aster_name"] == "V_USUR_TUBE"
+    t = result.table
+    row = t[(t.contact == "R1C2-AVB") & (t.instant == 2.0) & (t.sector == 3)].iloc[0]
+    cell = ds.sel(contact="R1C2-AVB", instant=2.0, sector=3)
+    assert cell["depth_mobile_sector"].item() == row["depth_mobile_sector"]
+    assert cell["depth_mobile"].item() == row["depth_mobile"]
+    assert ds["tube_row"].values.tolist() == [1, 1, 2]
+
+
+def test_time_to_depth_linear_and_monotone():
+    t = np.array([1.0, 2.0, 4.0, 8.0])
+    assert time_to_depth(t, 2e-5 * t, 5e-5) == pytest.approx(2.5, rel=1e-12)
+    assert math.isnan(time_to_depth(t, 2e-5 * t, 1.0))
+    assert time_to_depth(t, 2e-5 * t, 1e-5) == pytest.approx(0.5, rel=1e-12)  # from (0, 0)
+
+
+def test_summary_time_to_limit_against_archard_on_a_flat_bar(tmp_path):
+    """TUBE_BAV, no tilt (theory §6): D = (1/(2R))^(1/3)·(3V/(4l))^(2/3) with V = K·P·t, so
+    the depth reaches d at t = (4l/3)·d^(3/2)·(2R)^(1/2)/(K·P)."""
+    R, width, K, wall = 9.525e-3, 12.7e-3, 9.2e-15, 1.09e-3
+    case = tmp_path / "base.toml"
+    case.write_text(BASE_CASE.replace("[sectors]\ncount = 4\n", "").replace(
+        "instants = [0.5, 1, 2, 5]", f"instants = {list(range(1, 41))}"))
+    powers = [5e-3, 2e-2, 1e-3]
+    frame = pd.DataFrame({"contact": ["a", "b", "c"], "power.value_W": powers,
+                          "wall_thickness_m": [wall, wall, None]})
+    result = run_bundle(frame, case, scheduler="serial")
+    s = result.summary(0.4).set_index("contact")
+    assert s.index.tolist() == ["b", "a", "c"]  # deepest first
+    assert s.loc["b", "depth_fraction"] == s.loc["b", "depth"] / wall
+    for name, p in zip("ab", powers, strict=False):
+        d = 0.4 * wall
+        exact = (4 * width / 3) * d ** 1.5 * math.sqrt(2 * R) / (K * p) / YEAR
+        assert s.loc[name, "limit_depth"] == pytest.approx(d, rel=1e-15)
+        assert s.loc[name, "time_to_limit"] == pytest.approx(exact, rel=2e-3), name
+    assert math.isnan(s.loc["c", "time_to_limit"])  # no wall given
+    s_m = result.summary(limit_m=0.4 * wall).set_index("contact")
+    assert s_m.loc["c", "time_to_limit"] > 40 or math.isnan(s_m.loc["c", "time_to_limit"])
+    assert "PCHIP" in result.summary().attrs["time_to_limit"]
