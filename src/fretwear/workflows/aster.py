@@ -12,7 +12,8 @@ The catalogue's rules are enforced (exactly one of PUIS_USURE, RESU_GENE, TUBE_N
 of MOBILE, MATER_USURE, SECTEUR; MATER_USURE excludes OBSTACLE; exactly one of INST, LIST_INST;
 NOEUD excludes GROUP_NO ...), each violation a :class:`~fretwear.errors.KeywordError` naming the
 keywords. The result is a DataFrame with Code_Aster's column names (theory §7); the computation is
-:func:`fretwear.table.wear_table`. Values are SI, angles in degrees, as in Code_Aster.
+:func:`fretwear.table.wear_table_from_case` of a :class:`~fretwear.table.WearCase`. Values are
+SI, angles in degrees, as in Code_Aster.
 Deliberate differences from Code_Aster are listed in ``docs/code_aster.md``.
 """
 
@@ -30,7 +31,7 @@ from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.geometry.base import ASTER_KEYWORDS
 from fretwear.history import ContactHistory
 from fretwear.laws import WEAR_LAWS
-from fretwear.table import replace_tube, to_aster_names, wear_table
+from fretwear.table import WearCase, replace_tube, to_aster_names, wear_table_from_case
 
 
 class _F(dict):
@@ -272,12 +273,6 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         for k in ("NOEUD", "GROUP_NO", "INST_INIT", "INST_FIN", "NB_BLOC"):
             if k in kw:
                 raise KeywordError(f"POST_USURE: {k} applies to RESU_GENE, not to PUIS_USURE")
-    if law != "KWU_EPRI":
-        for k in ("FNOR_MAXI", "VTAN_MAXI"):
-            if k in kw:
-                raise KeywordError(f"POST_USURE: {k} belongs to LOI_USURE='KWU_EPRI', not {law}")
-    if coef_kind == "SECTEUR" and law != "ARCHARD":
-        raise KeywordError(f"POST_USURE: SECTEUR belongs to LOI_USURE='ARCHARD', not {law}")
 
     mobile = _fact(kw.get("MOBILE"), "MOBILE")
     obstacle = _fact(kw.get("OBSTACLE"), "OBSTACLE")
@@ -307,8 +302,10 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     etat_instant = None
     if etat and etat[0].get("INST_INIT") is not None:
         etat_instant = _real(etat[0]["INST_INIT"], "ETAT_INIT INST_INIT")
-    table = wear_table(
-        source, contact_type=str(contact), dimensions=dimensions, instants=instants, law=law,
+    # the rules between the keywords (FNOR_MAXI with KWU_EPRI, SECTEUR with ARCHARD, ...)
+    # are the wear case's, checked once by WearCase
+    case = WearCase.from_keywords(
+        contact_type=str(contact), dimensions=dimensions, instants=instants, law=law,
         coefficients=coefficients,
         obstacle_coefficients=_law_keywords(obstacle[0], law, "OBSTACLE") if obstacle else None,
         materials=_materials(kw["MATER_USURE"]) if coef_kind == "MATER_USURE" else None,
@@ -319,6 +316,7 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         initial_instant=etat_instant, t_start=optional("INST_INIT"), t_end=optional("INST_FIN"),
         blocks=_integer(kw.get("NB_BLOC", 1), "NB_BLOC"),
         force_max=optional("FNOR_MAXI"), speed_max=optional("VTAN_MAXI"))
+    table = wear_table_from_case(case, source)
     return to_aster_names(_obstacle_depths_that_exist(table))
 
 

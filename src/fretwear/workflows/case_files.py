@@ -39,7 +39,7 @@ from fretwear.errors import FretwearWarning, InputError, KeywordError
 from fretwear.io import read_history
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
 from fretwear.power import PowerAccumulator, wear_power
-from fretwear.table import read_wear_table, wear_table
+from fretwear.table import WearCase, read_wear_table, wear_table_from_case
 from fretwear.timeunits import TIME_UNITS  # noqa: F401 - re-exported
 
 #: section -> key -> (expected type, description with unit). "*" sections are free tables.
@@ -241,6 +241,8 @@ class CaseResult:
         The validated case.
     history : ContactHistory or None
         The contact history read, if any.
+    wear_case : WearCase or None
+        The validated wear case the table was built from.
     """
 
     table: pd.DataFrame
@@ -248,6 +250,7 @@ class CaseResult:
     warnings: list[str] = field(default_factory=list)
     case: dict[str, Any] = field(default_factory=dict)
     history: Any = None
+    wear_case: WearCase | None = None
 
     @property
     def total_power(self) -> float:
@@ -328,12 +331,10 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
         raise KeywordError("case: [sectors] obstacle_coefficients_per_Pa needs "
                            "mobile_coefficients_per_Pa too")
     materials = law.get("materials")
-    if materials is not None and len(materials) != 2:
-        raise KeywordError(f"case: [law] materials must be [mobile, obstacle], got {materials}")
     files = _database_files(case, law.get("database"))
-    if files and materials is None:
-        raise KeywordError("case: [law] database extends the coefficient database, which is "
-                           "read for [law] materials only: give materials too")
+    wall = case.get("obstacle", {}).get("wall_thickness_m")
+    # the rules between the keys (materials a pair, database files need materials, sectors
+    # Archard only, ...) are the wear case's: fretwear.table.WearCase checks them once
     return dict(
         contact_type=geometry["contact_type"],
         dimensions={_DIMENSIONS[k]: float(v) for k, v in geometry.items() if k in _DIMENSIONS},
@@ -348,7 +349,26 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
         blocks=power.get("blocks", 1),
         stationarity_threshold=power.get("stationarity_threshold", 0.1),
         force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"),
-        coefficient_files=files or None)
+        coefficient_files=files or None, time_unit=time.get("unit"), name=case.get("title"),
+        wall_thickness=wall)
+
+
+def wear_case(case: Mapping[str, Any], *, history_elsewhere: bool = False) -> WearCase:
+    """The validated :class:`~fretwear.table.WearCase` of a validated case file.
+
+    ``WearCase.from_keywords(**case_arguments(case))``: the database row of ``[law] materials``
+    is looked up and the ``[restart] table`` read here, once.
+
+    Examples
+    --------
+    >>> c = wear_case({"power": {"value_W": 0.01}, "law": {"mobile": {"COEF_USURE": 1e-14}},
+    ...                "geometry": {"contact_type": "TUBE_BAV", "mobile_radius_m": 0.01,
+    ...                             "obstacle_width_m": 0.02},
+    ...                "time": {"instants": [1], "unit": "h"}})
+    >>> c.time_scale, c.coefficients["coefficient"].source
+    (3600.0, 'user')
+    """
+    return WearCase.from_keywords(**case_arguments(case, history_elsewhere=history_elsewhere))
 
 
 def _database_files(case: Mapping[str, Any], files) -> list[str]:
@@ -417,10 +437,11 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
     else:
         case = load_case(case)
     step = progress or (lambda description, done=None, total=None: None)
-    args = case_arguments(case)
     history_spec = case.get("history", {})
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
+        args = case_arguments(case)
+        wear = WearCase.from_keywords(**args)  # every rule checked before the history is read
         history = None
         if "file" in history_spec:
             step("reading the history")
@@ -433,15 +454,12 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
             power = float(case["power"]["value_W"])
         step("building the wear table")
         # The power is computed once, above; the history only gives KWU_EPRI its classes.
-        table = wear_table(power, history=history, **args)
+        table = wear_table_from_case(wear, power, history=history)
     seen = list(dict.fromkeys(  # keep order, drop repeats
         f"{w.category.__name__}: {w.message}" for w in caught
         if issubclass(w.category, FretwearWarning | UserWarning)))
-    if "title" in case:
-        table.attrs["title"] = case["title"]
-    unit = case.get("time", {}).get("unit")
-    table.attrs["time_unit"] = unit if unit else f"{args['time_scale']:g} s"
-    return CaseResult(table=table, power=power, warnings=seen, case=case, history=history)
+    return CaseResult(table=table, power=power, warnings=seen, case=case, history=history,
+                      wear_case=wear)
 
 
 #: Histories longer than this many samples get their power computed chunk by chunk (progress).

@@ -42,7 +42,7 @@ from fretwear.plotting import (
     wear_figures,
 )
 from fretwear.power import PowerAccumulator
-from fretwear.table import wear_table, write_wear_table
+from fretwear.table import WearCase, wear_table_from_case, write_wear_table
 from fretwear.workflows.case_files import (
     case_arguments,
     chunked_power,
@@ -151,18 +151,15 @@ class IterationResult:
     warnings: list[str] = field(default_factory=list)
 
 
-def _wear_arguments(case: Mapping[str, Any]) -> dict[str, Any]:
+def _wear_case(case: Mapping[str, Any]) -> tuple[dict[str, Any], WearCase]:
+    """(the wear keywords, the validated wear case) of the loop's case, before any dynamics."""
     # the history comes from [dynamics] (load_iterate_case refuses [history] and value_W)
     args = case_arguments(case, history_elsewhere=True)
-    if args["sectors"] is None:
+    wear = WearCase.from_keywords(**args)  # every rule of the wear keywords, checked once
+    if wear.sectors is None:
         raise KeywordError("case: the loop needs [sectors] (count or edges_deg): the obstacle "
                            "update uses the cumulated sector volumes")
-    if str(args["law"]).upper() != "ARCHARD":
-        # refused here, before any dynamics, rather than by wear_table after the first cycle's
-        raise KeywordError(f"case: [law] name = {args['law']!r}: the loop's wear tables are "
-                           "sector tables (SECTEUR), which take Archard coefficients only; "
-                           "use ARCHARD")
-    return args
+    return args, wear
 
 
 def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | None = None,
@@ -230,7 +227,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
         raise KeywordError(f"[iterate] shock = {wear_shock!r} is not a shock of [dynamics]; "
                            f"choose one of {names}")
     iw = names.index(wear_shock)
-    args = _wear_arguments(case)
+    args, wear = _wear_case(case)
     obstacle = obstacle_from_config(case)
     new = obstacle.obstacle
     if not setup.case_obstacle[iw]:
@@ -244,7 +241,6 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     profile = new_profile
     max_depth = it.get("max_depth_m")
     rows, tables, profiles = [], [], []
-    previous = args.pop("initial_state")
     stopped = "cycles"
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -260,10 +256,10 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             say(f"cycle {k}/{n_cycles}: wear power")
             power, history, contact = _cycle_power(result, iw, args)
             say(f"cycle {k}/{n_cycles}: wear table")
-            table = wear_table(power, initial_state=previous, **args)
+            table = wear_table_from_case(wear, power)
             say(f"cycle {k}/{n_cycles}: obstacle update")
             update = obstacle.update(table)
-            previous = table
+            wear = wear.with_initial_state(table)  # the next cycle continues this table
             profile = (np.asarray(update.angle, float), np.asarray(update.clearance_worn, float))
             seen = shocks[iw]
             figures = {"clearance (new)": (update.angle, update.clearance_initial),
