@@ -8,14 +8,19 @@ bore (concave) it adds an annular slice beyond the bore's surface. Δθ is in ra
 
 from __future__ import annotations
 
+import math
 import warnings
+from dataclasses import dataclass
+from typing import Any, ClassVar
 
 import numpy as np
 
-from fretwear.errors import InputError, RangeWarning
+from fretwear.errors import InputError, KeywordError, RangeWarning, UnusedKeywordWarning
 from fretwear.geometry._shapes import _out
 
 __all__ = [
+    "SectorGeometry",
+    "sector_geometry",
     "mobile_depth_from_area_density",
     "obstacle_depth_from_area_density",
     "sector_depth_mobile",
@@ -280,3 +285,100 @@ def sector_volume_obstacle(depth, obstacle_radius, width, arc_deg):
     d, r, l, arc = _inputs(depth, "depth", "m", obstacle_radius, "obstacle_radius", width,
                            arc_deg)
     return _out(0.5 * l * arc * d * (2.0 * r + d))
+
+
+@dataclass(frozen=True)
+class SectorGeometry:
+    """The dimensions of sector depths when no contact type is given (SECTEUR without CONTACT).
+
+    Code_Aster's POST_USURE computes sector depths from RAYON_MOBILE, RAYON_OBST and LARGEUR_OBST
+    alone (its SECTEUR has no CONTACT keyword): theory §3's depths need no contact type, the
+    global depths (theory §6) do. This object stands in for a
+    :class:`~fretwear.geometry.base.ContactGeometry` there: the same attributes, and
+    :meth:`depth_from_volume` gives NaN (the reason is :attr:`reason`).
+
+    Parameters
+    ----------
+    mobile_radius : float
+        Mobile outer radius R_m [m] (RAYON_MOBILE), > 0.
+    obstacle_width : float
+        Obstacle width l [m] (LARGEUR_OBST), > 0.
+    obstacle_radius : float, optional
+        Bore radius R_o [m] (RAYON_OBST), > 0: the obstacle's sector depths need it.
+
+    Examples
+    --------
+    >>> g = SectorGeometry(mobile_radius=0.0048, obstacle_width=0.011)
+    >>> g.contact_type, g.depth_from_volume([1e-9])
+    (None, (array([nan]), array([nan])))
+    """
+
+    mobile_radius: float
+    obstacle_width: float
+    obstacle_radius: float | None = None
+    contact_type: ClassVar[None] = None
+    #: Why the global depths are NaN.
+    reason: ClassVar[str] = (
+        "no contact type (CONTACT): the global depths P_USUR_TUBE and P_USUR_OBST need one "
+        "(theory §6); the sector depths (theory §3) need only RAYON_MOBILE, LARGEUR_OBST and "
+        "RAYON_OBST, and are computed")
+
+    def __post_init__(self) -> None:
+        for name in ("mobile_radius", "obstacle_width", "obstacle_radius"):
+            value = getattr(self, name)
+            if value is None and name == "obstacle_radius":
+                continue
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                number = math.nan
+            if not math.isfinite(number) or number <= 0:
+                raise InputError(f"{name} must be a length > 0 [m], got {value!r}")
+            object.__setattr__(self, name, number)
+
+    def dimensions(self) -> dict[str, float]:
+        """The dimensions given (native names) [m]."""
+        out = {"mobile_radius": self.mobile_radius, "obstacle_width": self.obstacle_width}
+        if self.obstacle_radius is not None:
+            out["obstacle_radius"] = self.obstacle_radius
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready description: ``contact_type`` None and the dimensions."""
+        return {"contact_type": None, **self.dimensions()}
+
+    def depth_from_volume(self, volume_mobile, volume_obstacle=0.0):
+        """NaN depths [m] of the shape of the volumes [m³]: no contact type, no global depth."""
+        shape = np.broadcast(np.asarray(volume_mobile, float), np.asarray(volume_obstacle,
+                                                                          float)).shape
+        return np.full(shape, np.nan), np.full(shape, np.nan)
+
+
+def sector_geometry(**dimensions) -> SectorGeometry:
+    """A :class:`SectorGeometry` from native dimension names, naming what is missing.
+
+    Dimensions of a contact type (tilt_angle, isthmus_angle, impact_angle) are not used without
+    one: a warning says so (Code_Aster's POST_USURE warns the same for ANGL_INCLI, ANGL_ISTHME,
+    ANGL_IMPACT with SECTEUR, message PREPOST4_3).
+
+    Raises
+    ------
+    KeywordError
+        mobile_radius (RAYON_MOBILE) or obstacle_width (LARGEUR_OBST) missing, or an unknown name.
+    """
+    dims = {k: v for k, v in dimensions.items() if v is not None}
+    known = ("mobile_radius", "obstacle_width", "obstacle_radius")
+    angles = ("tilt_angle", "isthmus_angle", "impact_angle")
+    unknown = sorted(set(dims) - set(known) - set(angles))
+    if unknown:
+        raise KeywordError(f"sector depths: unknown dimension(s) {unknown}; they take "
+                           f"{list(known)}")
+    missing = [k for k in ("mobile_radius", "obstacle_width") if k not in dims]
+    if missing:
+        raise KeywordError(f"sector depths need {missing} (RAYON_MOBILE, LARGEUR_OBST) [m]")
+    unused = [k for k in angles if k in dims and dims[k] != 0]
+    if unused:
+        warnings.warn(f"without a contact type (CONTACT) the dimensions {unused} are not used: "
+                      "sector depths depend on the radii and the width only", UnusedKeywordWarning,
+                      stacklevel=3)
+    return SectorGeometry(**{k: dims[k] for k in known if k in dims})

@@ -332,9 +332,10 @@ def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> pd.D
         cols["volume_mobile_cumulated"].append(vm)
         cols["volume_obstacle_cumulated"].append(vo)
     if unradiused:
-        warnings.warn(f"sectors {unradiused}: the obstacle wears but {geometry.contact_type} has "
-                      "no obstacle_radius (RAYON_OBST): their obstacle sector depth is NaN",
-                      RangeWarning, stacklevel=3)
+        warnings.warn(f"sectors {unradiused}: the obstacle wears but "
+                      f"{geometry.contact_type or 'the sector geometry'} has no obstacle_radius "
+                      "(RAYON_OBST): their obstacle sector depth is NaN", RangeWarning,
+                      stacklevel=3)
     total_m, total_o = cum_m.sum(axis=1), cum_o.sum(axis=1)
     dm, do = _depths(geometry, total_m, total_o)
     glob = {"volume_mobile": total_m, "volume_obstacle": total_o,
@@ -365,6 +366,7 @@ def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result) -> dict:
         "time_unit": case.time_unit or f"{case.time_scale:g} s",
         "origin": case.origin, "tube_replacement": case.tube_replacement,
         "wall_thickness": case.wall_thickness, "depth_limit": case.depth_limit,
+        "global_depth": getattr(geometry, "reason", None),  # why the global depths are NaN
         "power": None if result is None else _power_dict(result),
         "case": case.to_dict(),
     }

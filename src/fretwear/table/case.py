@@ -30,6 +30,7 @@ import pandas as pd
 
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import contact_geometry
+from fretwear.geometry.sectors import SectorGeometry, sector_geometry
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
 from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
@@ -141,8 +142,11 @@ class WearCase:
 
     Attributes
     ----------
-    contact_type : str
-        Code_Aster contact type (CONTACT), upper case, e.g. ``"TUBE_BAV"``.
+    contact_type : str or None
+        Code_Aster contact type (CONTACT), upper case, e.g. ``"TUBE_BAV"``. None only with
+        sectors (Code_Aster's SECTEUR without CONTACT): the sector depths are computed from the
+        radii and the width (theory §3), the global depths are NaN
+        (:class:`~fretwear.geometry.sectors.SectorGeometry`).
     dimensions : mapping
         The geometry's dimensions, native names: lengths [m], angles [deg] (defaults included).
     instants : tuple of float
@@ -200,7 +204,7 @@ class WearCase:
     True
     """
 
-    contact_type: str
+    contact_type: str | None
     dimensions: Mapping[str, float] = dataclasses.field(default_factory=dict)
     instants: tuple[float, ...]
     law: str = "ARCHARD"
@@ -229,8 +233,8 @@ class WearCase:
 
     # ----------------------------------------------------------------------- construction
     @classmethod
-    def from_keywords(cls, *, contact_type: str, dimensions: Mapping[str, float] | None = None,
-                      instants, law: str = "ARCHARD",
+    def from_keywords(cls, *, contact_type: str | None,
+                      dimensions: Mapping[str, float] | None = None, instants, law: str = "ARCHARD",
                       coefficients: Mapping[str, float] | None = None,
                       obstacle_coefficients: Mapping[str, float] | None = None,
                       materials: tuple[str, str] | None = None, obstacle_wear: bool = False,
@@ -285,7 +289,16 @@ class WearCase:
             raise InputError(f"name must be a string, got {self.name!r}")
         law = get_law(self.law)
         put("law", law.name)
-        geometry = contact_geometry(self.contact_type, **dict(self.dimensions or {}))
+        if self.contact_type is None:
+            if self.sectors is None:
+                raise KeywordError("contact_type (CONTACT) is required: the depths need the "
+                                   "contact geometry (only sector depths can do without it)")
+            if self.materials is not None:
+                raise KeywordError("materials (MATER_USURE) need a contact_type (CONTACT): the "
+                                   "database is keyed by it")
+            geometry = sector_geometry(**dict(self.dimensions or {}))
+        else:
+            geometry = contact_geometry(self.contact_type, **dict(self.dimensions or {}))
         put("contact_type", geometry.contact_type)
         put("dimensions", FrozenMap(geometry.dimensions()))
         put("coefficients", _coefficient_map(self.coefficients, "mobile"))
@@ -354,9 +367,9 @@ class WearCase:
                 continue
             if name not in law.accepted:
                 owners = laws_with(lambda lw, n=name: n in lw.accepted)
-                raise KeywordError(f"{keyword} ({name}) belongs to LOI_USURE={owners}, not "
-                                   f"{law.name}: remove it (it is a class range of the "
-                                   "history statistics)")
+                raise KeywordError(f"{keyword} belongs to LOI_USURE={owners}, not {law.name}: "
+                                   f"remove {name} ({keyword}), a class range of the history "
+                                   "statistics")
             object.__setattr__(self, name, _real(value, f"{name} ({keyword})"))
 
     def _check_sectors(self, law, geometry, state: InitialState | None) -> None:
@@ -438,7 +451,11 @@ class WearCase:
 
     @property
     def geometry(self):
-        """The contact geometry (:func:`fretwear.geometry.contact_geometry`)."""
+        """The contact geometry (:func:`fretwear.geometry.contact_geometry`), or the sector
+        dimensions alone without a contact type (:class:`~fretwear.geometry.sectors.
+        SectorGeometry`)."""
+        if self.contact_type is None:
+            return SectorGeometry(**self.dimensions)
         return contact_geometry(self.contact_type, **self.dimensions)
 
     @property
