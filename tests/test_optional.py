@@ -1,0 +1,199 @@
+"""Optional dependencies (fretwear._optional): each entry point that needs one, with the package
+made unimportable (``sys.modules[name] = None``, what Python does for a missing package), raises
+MissingDependencyError naming the extra to install, never a bare ModuleNotFoundError; the code
+that does not need it still runs (the dynamics without pyarrow, the power without numba)."""
+
+from __future__ import annotations
+
+import ast
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fretwear import _optional
+from fretwear.cli import main
+from fretwear.dynamics import ModalModel, Shock, simulate
+from fretwear.errors import FretwearError, MissingDependencyError
+from fretwear.history import ContactHistory
+from fretwear.io import read_history, write_history
+from fretwear.workflows.loop import iterate_case
+
+ROOT = Path(__file__).resolve().parents[1]
+PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+
+
+def _hide(monkeypatch, *modules: str) -> None:
+    for name in modules:
+        monkeypatch.setitem(sys.modules, name, None)
+
+
+def _history(n: int = 50) -> ContactHistory:
+    t = np.linspace(0.0, 1.0, n)
+    return ContactHistory(time=t, normal_force=1.0 + t, vt1=0.1 * np.cos(t),
+                          vt2=0.1 * np.sin(t), dy=1e-4 * np.cos(t), dz=1e-4 * np.sin(t))
+
+
+# ------------------------------------------------------------------------ require / optional
+@pytest.mark.parametrize("module", sorted(_optional.EXTRAS))
+def test_require_names_the_extra_of_every_optional_module(module, monkeypatch):
+    _hide(monkeypatch, module)
+    with pytest.raises(MissingDependencyError) as info:
+        _optional.require(module, purpose="this test")
+    extra = _optional.EXTRAS[module]
+    assert str(info.value) == (f"this test needs the optional package {module!r}: "
+                               f"pip install 'fretwear[{extra}]'")
+    assert isinstance(info.value, ImportError) and isinstance(info.value, FretwearError)
+    assert _optional.optional(module) is None
+
+
+def test_a_broken_install_is_not_reported_as_missing(monkeypatch, tmp_path):
+    """An ImportError from inside the package (not its absence) says so and keeps the cause."""
+    (tmp_path / "zarr").mkdir()
+    (tmp_path / "zarr" / "__init__.py").write_text("import a_module_that_does_not_exist_xyz\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.delitem(sys.modules, "zarr", raising=False)
+    with pytest.raises(MissingDependencyError, match=r"installed but cannot be imported "
+                                                     r"\(ModuleNotFoundError: .*xyz"):
+        _optional.optional("zarr")
+    monkeypatch.delitem(sys.modules, "zarr", raising=False)
+
+
+def test_an_unknown_module_is_a_programming_error():
+    with pytest.raises(KeyError, match="not an optional dependency of fretwear"):
+        _optional.require("requests")
+
+
+def _optional_uses() -> dict[str, list[str]]:
+    """module -> places in src/fretwear that require() or optional() it (string literals)."""
+    uses: dict[str, list[str]] = {}
+    for path in sorted((ROOT / "src" / "fretwear").rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        names = {alias.asname or alias.name for node in ast.walk(tree)
+                 if isinstance(node, ast.ImportFrom) and node.module == "fretwear._optional"
+                 for alias in node.names if alias.name in ("require", "optional")}
+        for node in ast.walk(tree):
+            if (isinstance(node, ast.Call) and isinstance(node.func, ast.Name)
+                    and node.func.id in names and node.args
+                    and isinstance(node.args[0], ast.Constant)
+                    and isinstance(node.args[0].value, str)):
+                uses.setdefault(node.args[0].value, []).append(
+                    f"{path.relative_to(ROOT)}:{node.lineno}")
+    return uses
+
+
+def _provides(requirement: str) -> set[str]:
+    """Top-level modules a requirement string installs (``dask[distributed]`` -> dask and
+    distributed), lower case."""
+    name, _, rest = re.match(r"([A-Za-z0-9_.\-]+)(\[[^\]]*\])?", requirement).group(1, 1, 2)
+    out = {name.lower().replace("-", "_")}
+    extras = re.match(r"[A-Za-z0-9_.\-]+\[([^\]]*)\]", requirement)
+    if extras and name.lower() == "dask" and "distributed" in extras.group(1):
+        out.add("distributed")
+    return out
+
+
+def test_every_optional_module_in_use_is_in_its_extra_of_pyproject():
+    """Each module the code requires is installed by the extra the error message names."""
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    uses = _optional_uses()
+    assert uses, "no require()/optional() call found: the scan is broken"
+    for module, places in uses.items():
+        top = module.partition(".")[0]
+        extra = _optional.EXTRAS.get(top)
+        assert extra is not None, f"{places}: {top} is not in fretwear._optional.EXTRAS"
+        assert extra in extras, (f"{places}: {top} needs the extra [{extra}], which "
+                                 "pyproject.toml does not declare")
+        provided = set().union(*(_provides(r) for r in extras[extra]))
+        assert top.lower() in provided, f"pyproject's [{extra}] does not install {top}"
+
+
+# ------------------------------------------------------------------------ formats: [formats]
+@pytest.mark.parametrize("suffix, module", [(".parquet", "pyarrow"), (".h5", "h5py"),
+                                            (".nc", "netCDF4")])
+def test_binary_formats_name_the_formats_extra(suffix, module, tmp_path, monkeypatch):
+    path = write_history(_history(), tmp_path / f"h{suffix}")
+    _hide(monkeypatch, module, f"{module}.parquet")
+    with pytest.raises(MissingDependencyError, match=r"pip install 'fretwear\[formats\]'"):
+        read_history(path)
+    with pytest.raises(MissingDependencyError, match=r"pip install 'fretwear\[formats\]'"):
+        write_history(_history(), tmp_path / f"new{suffix}")
+    assert not (tmp_path / f"new{suffix}").exists()
+
+
+def test_csv_without_pyarrow_uses_pandas(tmp_path, monkeypatch):
+    _hide(monkeypatch, "pyarrow", "pyarrow.csv")
+    back = read_history(write_history(_history(), tmp_path / "h.csv"))
+    np.testing.assert_array_equal(back.normal_force, _history().normal_force)
+
+
+# ------------------------------------------------------------------------ dynamics: pyarrow only to stream
+def _model():
+    return ModalModel(frequencies=[5.0], damping_ratios=0.02, masses=1.0,
+                      shock_shapes=[[[1.0], [0.0]]])
+
+
+def test_dynamics_runs_without_pyarrow_and_needs_it_only_to_stream(tmp_path, monkeypatch):
+    shock = Shock(point=0, obstacle="circle", gap=1.0, normal_stiffness=1e3)
+    kw = dict(duration=0.05, time_step=1e-4, initial_displacement=[1e-3])
+    _hide(monkeypatch, "pyarrow", "pyarrow.parquet")
+    in_memory = simulate(_model(), [shock], **kw)
+    assert in_memory.history(0).time.size > 10
+    with pytest.raises(MissingDependencyError,
+                       match=r"streaming the dynamics to Parquet \(output_dir\) needs the "
+                             r"optional package 'pyarrow': pip install 'fretwear\[formats\]'"):
+        simulate(_model(), [shock], output_dir=tmp_path / "h", **kw)
+
+
+@pytest.mark.parametrize("hidden, extra", [(("pyarrow", "pyarrow.parquet"), "formats"),
+                                           (("matplotlib.pyplot",), "plot")])
+def test_loop_says_which_extra_before_computing(hidden, extra, tmp_path, monkeypatch):
+    import fretwear.workflows.loop as loop
+
+    def no_dynamics(*args, **kwargs):
+        raise AssertionError("the dynamics ran before the dependency check")
+
+    monkeypatch.setattr(loop, "simulate", no_dynamics)
+    _hide(monkeypatch, *hidden)
+    with pytest.raises(MissingDependencyError, match=rf"pip install 'fretwear\[{extra}\]'"):
+        iterate_case(ROOT / "examples" / "iterate_tube_support.toml", output=tmp_path,
+                     plot=True)
+    assert not any(tmp_path.iterdir())
+
+
+# ------------------------------------------------------------------------ CLI: [plot]
+def test_cli_plot_without_matplotlib_exits_2_naming_the_extra(tmp_path, monkeypatch, capsys):
+    _hide(monkeypatch, "matplotlib.pyplot")
+    code = main(["run", str(ROOT / "examples" / "tube_bav.toml"), "-q",
+                 "--plot", str(tmp_path / "fig")])
+    assert code == 2
+    assert ("fretwear: error: --plot needs the optional package 'matplotlib.pyplot': "
+            "pip install 'fretwear[plot]'") in capsys.readouterr().err
+    assert not (tmp_path / "fig").exists()
+
+
+# ------------------------------------------------------------------------ numba: [fast], fallback
+def test_power_without_numba_falls_back_to_numpy():
+    """In a fresh interpreter without numba: no error, the numpy kernel, the same power as the
+    trapezoid rule of theory §2 computed here."""
+    code = """
+import sys
+sys.modules["numba"] = None
+import numpy as np
+from fretwear.history import ContactHistory
+from fretwear.power import wear_power
+from fretwear.power.kernels import HAVE_NUMBA, fused, fused_numpy
+from fretwear._numba import HAVE_NUMBA as H2
+t = np.linspace(0.0, 2.0, 401)
+fn, v = 1.0 + t, 0.1 + 0.0 * t
+p = wear_power(ContactHistory(time=t, normal_force=fn, vt1=v, vt2=0 * t)).total
+trapz = float(np.sum(0.5 * (fn[1:] * v[1:] + fn[:-1] * v[:-1]) * np.diff(t)) / 2.0)
+print(HAVE_NUMBA, H2, fused("auto") is fused_numpy, abs(p - trapz) <= 1e-12 * trapz)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=ROOT)
+    assert out.stdout.split() == ["False", "False", "True", "True"]
