@@ -2,16 +2,20 @@
 
 The base case is a TOML case file (or the same content as a dict) read by the case-file layer
 (:mod:`fretwear.workflows.case_files`); a manifest row overrides any of its keys. The merged case
-is validated there, turned into the keywords of :func:`fretwear.table.wear_table`, and shipped to
-a worker as a :class:`ContactTask` (picklable, ``to_dict``/``from_dict`` JSON-ready). Its
-:attr:`ContactTask.key` hashes everything the result depends on (the case, the history file's
-size and modification time, the reader options, the chunk size, the fretwear version), so a
-restarted run skips the contacts whose inputs did not change.
+is validated there and becomes a :class:`fretwear.table.WearCase` (validated once, on the
+client: the database coefficients and a restart table are resolved into it), shipped to a worker
+as ``WearCase.to_dict()`` inside a :class:`ContactTask` (picklable, ``to_dict``/``from_dict``
+JSON-ready); the worker rebuilds it with ``WearCase.from_dict`` and calls
+:func:`fretwear.table.wear_table_from_case`. :attr:`ContactTask.key` hashes everything the result
+depends on (the wear case, the history file's size and modification time, the reader options,
+the chunk size, the fretwear version), so a restarted run skips the contacts whose inputs did
+not change.
 """
 
 from __future__ import annotations
 
 import copy
+import functools
 import hashlib
 import json
 import math
@@ -147,10 +151,10 @@ class ContactTask:
         The contact id.
     history : HistoryRef
         Where the history is.
-    keywords : dict
-        The keywords of :func:`fretwear.table.wear_table` (except the source).
+    case : dict
+        The contact's :class:`fretwear.table.WearCase` as ``to_dict()`` (JSON-ready).
     read_options : dict
-        Reader options of the history (``format``, ``units``, ``columns``).
+        Reader options of the history (``format``, ``units``, ``columns``, ``node`` ...).
     time_unit : str
         The table's time unit (``"year"``, or ``"<scale> s"``).
     key : str
@@ -163,21 +167,23 @@ class ContactTask:
 
     contact: str
     history: HistoryRef
-    keywords: dict[str, Any]
+    case: dict[str, Any]
     read_options: dict[str, Any] = field(default_factory=dict)
     time_unit: str = "s"
     key: str = ""
     samples: int | None = None
     power: float | None = None
 
+    def wear_case(self):
+        """The :class:`fretwear.table.WearCase` (rebuilt once per process and task key)."""
+        return _wear_case(self.key, json.dumps(self.case, sort_keys=True))
+
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready description (a restart table given as a DataFrame stays a DataFrame)."""
+        """JSON-ready description."""
         out = asdict(self)
         out["history"] = {**out["history"],
                           "arrays": {k: np.asarray(v).tolist()
                                      for k, v in self.history.arrays.items()}}
-        out["keywords"] = {k: (v if isinstance(v, pd.DataFrame) else _jsonable(v))
-                           for k, v in self.keywords.items()}
         return out
 
     @classmethod
@@ -188,16 +194,27 @@ class ContactTask:
         return cls(**{**data, "history": HistoryRef(**h)})
 
 
+@functools.lru_cache(maxsize=64)
+def _wear_case(key: str, text: str):
+    from fretwear.table import WearCase
+
+    return WearCase.from_dict(json.loads(text))
+
+
 def read_options(case: Mapping[str, Any], ref: HistoryRef) -> dict[str, Any]:
-    """Reader options of a contact's history: the case's ``[history]`` format, units, columns,
-    and the node (``select`` of a Code_Aster table, ``group`` of an HDF5 file)."""
-    spec = case.get("history", {})
-    options = {k: spec[k] for k in ("format", "units", "columns") if k in spec}
+    """Reader options of a contact's history: the case's ``[history]`` options
+    (:func:`fretwear.workflows.case_files.history_options`), the units a store declares, and
+    the manifest's node (the shock point of a Code_Aster table, POST_USURE's NOEUD)."""
+    from fretwear.workflows.case_files import history_options
+
+    options = history_options(case.get("history", {}))
     if ref.units:
         from fretwear.io.channels import channel_of
 
         declared = {channel_of(v): u for v, u in ref.units.items() if channel_of(v)}
         options["units"] = {**declared, **options.get("units", {})}
+    if ref.node is not None:
+        options["node"] = ref.node
     return options
 
 
@@ -211,6 +228,7 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
         The merged case is invalid, or the row has neither a history nor ``power.value_W``.
     """
     from fretwear import __version__
+    from fretwear.table import WearCase
     from fretwear.workflows.case_files import case_arguments
 
     case = merge_case(base, row, source)
@@ -223,9 +241,12 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
         raise KeywordError(f"{where}: gives both a history and power.value_W; keep one")
     try:
         keywords = case_arguments(case, history_elsewhere=True)
+        if row.wall_thickness is not None:
+            keywords["wall_thickness"] = row.wall_thickness
+        wear = WearCase.from_keywords(**keywords)
     except InputError as exc:
         raise type(exc)(f"{where}: {exc}") from None
-    unit = case.get("time", {}).get("unit")
+    payload = wear.to_dict()
     options = read_options(case, row.history)
     stamp: Any = None
     if row.history.kind in ("file", "store"):
@@ -236,22 +257,19 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
             h.update(name.encode())
             h.update(np.ascontiguousarray(row.history.arrays[name]).tobytes())
         stamp = h.hexdigest()
-    files = [keywords.get("initial_state")] + list(keywords.get("coefficient_files") or [])
-    stamps = [path_stamp(f) for f in files if isinstance(f, str | os.PathLike)]
-    ident = {"case": _jsonable(keywords), "history": [row.history.kind, row.history.path,
-                                                      row.history.node, row.history.index,
-                                                      stamp, stamps],
+    power = float(case["power"]["value_W"]) if given_power else None
+    ident = {"case": _jsonable(payload),
+             "history": [row.history.kind, row.history.path, row.history.node,
+                         row.history.index, stamp],
              "read": _jsonable(options), "chunk": chunk_size, "version": __version__,
-             "power": case.get("power", {}).get("value_W")}
+             "power": power}
     key = hashlib.blake2b(json.dumps(ident, sort_keys=True, default=str).encode(),
                           digest_size=16).hexdigest()
-    if isinstance(keywords.get("initial_state"), os.PathLike):
-        keywords["initial_state"] = os.fspath(keywords["initial_state"])
     samples = None
     if row.history.kind == "memory":
         samples = int(len(next(iter(row.history.arrays.values()), [])))
-    return ContactTask(contact=row.contact, history=row.history, keywords=keywords,
+    unit = wear.time_unit
+    return ContactTask(contact=row.contact, history=row.history, case=payload,
                        read_options=options,
-                       time_unit=unit if unit else f"{keywords['time_scale']:g} s", key=key,
-                       samples=samples,
-                       power=float(case["power"]["value_W"]) if given_power else None)
+                       time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
+                       samples=samples, power=power)

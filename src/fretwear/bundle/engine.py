@@ -256,10 +256,11 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
 
     Notes
     -----
-    A contact computed in one task gives the rows of :func:`fretwear.table.wear_table` on the
-    same history and keywords bit for bit. A contact split into chunks sums its partial
-    integrals in a different order (theory §2: the reduction is exact, the floating-point sum
-    is reassociated), so its power agrees to rounding (~1e-16 relative), not bit for bit.
+    A contact computed in one task gives the rows of :func:`fretwear.table.wear_table` (that is
+    :func:`fretwear.table.wear_table_from_case`) on the same history and case bit for bit. A
+    contact split into chunks sums its partial integrals in a different order (theory §2: the
+    reduction is exact, the floating-point sum is reassociated), so its power agrees to rounding
+    (~1e-16 relative), not bit for bit.
     """
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 2:
         raise KeywordError(f"chunk_size must be an integer >= 2 samples, got {chunk_size!r}")
@@ -374,7 +375,8 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store, e
                      "power": (attrs.get("power") or {}).get("total"),
                      "time_unit": attrs.get("time_unit"), "origin": attrs.get("origin"),
                      "tube_replacement": attrs.get("tube_replacement"),
-                     "wall_thickness": walls.get(c)})
+                     "wall_thickness": attrs.get("wall_thickness", walls.get(c)),
+                     "depth_limit": attrs.get("depth_limit")})
     contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
     errors = []
     warns = []

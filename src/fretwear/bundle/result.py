@@ -65,15 +65,17 @@ class BundleResult:
             self._dataset = build_dataset(self.table, self.contacts)
         return self._dataset
 
-    def summary(self, limit: float | None = DEFAULT_LIMIT, *, limit_m: float | None = None,
+    def summary(self, limit: float | None = None, *, limit_m: float | None = None,
                 wall_thickness: float | None = None) -> pd.DataFrame:
         """Contacts ranked by the tube's worn depth at the last instant, deepest first.
 
         Parameters
         ----------
         limit : float, optional
-            Depth limit as a fraction of the wall [-] (default 0.4, 40 % through-wall); used
-            where the wall thickness is known.
+            Depth limit as a fraction of the wall [-]; default each contact's ``depth_limit``
+            (its wear case's, 0.4 = 40 % through-wall unless set); used where the wall
+            thickness is known (the case's ``wall_thickness``, or the manifest's
+            ``wall_thickness_m``).
         limit_m : float, optional
             Depth limit [m] for every contact instead (when no wall thickness is given).
         wall_thickness : float, optional
@@ -184,7 +186,12 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
             wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
         if not math.isfinite(wall) and wall_thickness is not None:
             wall = float(wall_thickness)
-        target = (limit * wall if limit is not None and math.isfinite(wall)
+        fraction = limit
+        if fraction is None:
+            own = info.at[contact, "depth_limit"] if "depth_limit" in info.columns \
+                and contact in info.index else None
+            fraction = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        target = (fraction * wall if math.isfinite(wall) and limit_m is None
                   else (limit_m if limit_m is not None else math.nan))
         note = ""
         finite = np.isfinite(glob["depth_mobile"].to_numpy(dtype=float))

@@ -28,7 +28,7 @@ _LOCK = threading.Lock()
 #: Table attributes kept in a contact's record (JSON-ready; the power statistics are dropped).
 _ATTRS = ("contact_type", "dimensions", "law", "coefficients_mobile", "coefficients_obstacle",
           "materials", "coefficient_sources", "sector_edges", "time_scale", "origin",
-          "tube_replacement")
+          "tube_replacement", "wall_thickness", "depth_limit")
 
 
 def _plain(value: Any) -> Any:
@@ -90,24 +90,8 @@ def _read_in_memory(arrays: dict, task: ContactTask, first_row: int = 0):
 
 
 def _file_options(task: ContactTask) -> dict[str, Any]:
-    """Reader options of a history file; the node is the ``node=`` of a Code_Aster table or
-    the ``group=`` of an HDF5 file."""
-    options = dict(task.read_options)
-    node = task.history.node
-    if node is not None:
-        from fretwear.errors import KeywordError
-        from fretwear.io import guess_format
-
-        fmt = options.get("format") or guess_format(task.history.path)
-        if fmt == "hdf5":
-            options["group"] = node
-        elif fmt in ("aster", "aster-function"):
-            options["node"] = node
-        else:
-            raise KeywordError(f"{task.history.path}: node {node!r} selects a shock point of a "
-                               f"Code_Aster table or the group of an HDF5 file, not of a "
-                               f"{fmt} file; leave the node cell empty")
-    return options
+    """Reader options of a history file (the node is the reader's ``node=``)."""
+    return dict(task.read_options)
 
 
 def parquet_rows(task: ContactTask, start: int, stop: int):
@@ -154,24 +138,23 @@ def read_part(task: ContactTask, start: int, stop: int):
 
 # ----------------------------------------------------------------------------- computing
 def _wear_table(source, task: ContactTask, history=None):
-    from fretwear.table import wear_table
+    from fretwear.table import wear_table_from_case
 
-    if history is not None:
-        return wear_table(source, history=history, **task.keywords)
-    return wear_table(source, **task.keywords)
+    return wear_table_from_case(task.wear_case(), source, history=history)
 
 
 def _power_options(task: ContactTask) -> dict[str, Any]:
-    kw = task.keywords
-    return dict(t_start=kw.get("t_start"), t_end=kw.get("t_end"), blocks=kw.get("blocks", 1),
-                sectors=kw.get("sectors"))
+    case = task.wear_case()
+    return dict(t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,
+                sectors=case.sectors)
+
+
+def _threshold(task: ContactTask) -> float:
+    return task.wear_case().stationarity_threshold
 
 
 def _needs_history(task: ContactTask) -> bool:
-    from fretwear.laws import WEAR_LAWS
-
-    law = WEAR_LAWS.get(str(task.keywords.get("law", "ARCHARD")).upper())
-    return bool(law is not None and law.needs_history)
+    return bool(task.wear_case().wear_law.needs_history)
 
 
 def _compute(task: ContactTask, chunk_size: int):
@@ -218,7 +201,7 @@ def _streamed(task: ContactTask, chunk_size: int, options: dict[str, Any]):
     for chunk in iter_history_chunks(task.history.path, chunk_size, name=task.contact,
                                      **options):
         acc.update(chunk)
-    power = acc.result(stationarity_threshold=task.keywords.get("stationarity_threshold", 0.1))
+    power = acc.result(stationarity_threshold=_threshold(task))
     return _wear_table(power, task), acc.samples
 
 
@@ -300,8 +283,7 @@ def finish_contact(task: ContactTask, merged: dict[str, Any]) -> dict[str, Any]:
     with captured() as caught:
         try:
             state = merged["state"]
-            power = state.result(stationarity_threshold=task.keywords.get(
-                "stationarity_threshold", 0.1))
+            power = state.result(stationarity_threshold=_threshold(task))
             table = _wear_table(power, task)
         except Exception as exc:  # noqa: BLE001
             rec = _record(task, status="failed", caught=caught, error=_error(exc),

@@ -40,14 +40,15 @@ not start (bad manifest, case or option; the message says which).
 """
 
 
-def _summary(result, console, top: int, limit: float) -> None:
+def _summary(result, console, top: int, limit: float | None) -> None:
     from rich.table import Table
 
     summary = result.summary(limit)
     if not len(summary):
         return
-    table = Table(title=f"the {min(top, len(summary))} deepest contacts (last instant; limit "
-                        f"{limit:.0%} of the wall)")
+    shown = "each case's depth_limit" if limit is None else f"{limit:.0%} of the wall"
+    table = Table(title=f"the {min(top, len(summary))} deepest contacts (last instant; limit: "
+                        f"{shown})")
     for col in ("rank", "contact", "row", "col", "support", "P [W]", "depth [mm]",
                 "depth/wall", "time to limit"):
         table.add_column(col, justify="right")
@@ -84,8 +85,9 @@ def _summary(result, console, top: int, limit: float) -> None:
               show_default=True, help="Format of the table and of the parts.")
 @click.option("--dataset-format", type=click.Choice(["zarr", "netcdf"]),
               help="Format of the dataset (default zarr).")
-@click.option("--limit", type=click.FloatRange(min=0, min_open=True), default=0.4,
-              show_default=True, help="Depth limit, fraction of the wall, for the summary.")
+@click.option("--limit", type=click.FloatRange(min=0, min_open=True),
+              help="Depth limit, fraction of the wall, for the summary (default: each "
+                   "contact's depth_limit, 0.4 unless its case sets it).")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (tube-sheet map, power distribution, worst depths).")
 @click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
@@ -93,7 +95,7 @@ def _summary(result, console, top: int, limit: float) -> None:
 @click.option("-q", "--quiet", is_flag=True, help="No progress bar and no summary.")
 def command(manifest: Path, case_file: Path | None, scheduler: str | None, workers: int | None,
             output: Path | None, force: bool, chunk_size: int, table_format: str,
-            dataset_format: str | None, limit: float, plot_dir: Path | None, top: int,
+            dataset_format: str | None, limit: float | None, plot_dir: Path | None, top: int,
             quiet: bool) -> None:
     from rich.console import Console
     from rich.progress import (
