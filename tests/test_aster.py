@@ -213,13 +213,14 @@ def test_tube_neuf_rules_and_result(tmp_path):
         POST_USURE(TUBE_NEUF="NON", TABL_USURE=call())
     old = call(OBSTACLE=_F(COEF_USURE=1e-14))
     new = POST_USURE(TUBE_NEUF="OUI", TABL_USURE=old, INST=1.0)
-    assert new["INST"].tolist() == [1.0]
+    # the later row is kept, the tube restarted at INST 1 (Archard: K·P·1 year at INST 2)
+    assert new["INST"].tolist() == [1.0, 2.0]
     assert new["V_USUR_TUBE"].iloc[0] == 0.0 and new["P_USUR_TUBE"].iloc[0] == 0.0
-    assert new["V_USUR_OBST"].iloc[0] == old["V_USUR_OBST"].iloc[0]
-    with pytest.warns(UnusedKeywordWarning, match="LOI_USURE"):
-        POST_USURE(TUBE_NEUF="OUI", TABL_USURE=old, LOI_USURE="ARCHARD")
-    # continue with a new tube against the worn obstacle
-    cont = call(ETAT_INIT=_F(TABL_USURE=new), OBSTACLE=_F(COEF_USURE=1e-14), INST=(1.0,))
+    np.testing.assert_allclose(new["V_USUR_TUBE"].iloc[1], 1.2e-13 * 0.012 * YEAR, rtol=1e-14)
+    assert new["V_USUR_OBST"].tolist() == old["V_USUR_OBST"].tolist()
+    # continue with the new tube against the worn obstacle, from the replacement
+    cont = call(ETAT_INIT=_F(TABL_USURE=new, INST_INIT=1.0), OBSTACLE=_F(COEF_USURE=1e-14),
+                INST=(1.0,))
     np.testing.assert_allclose(cont["V_USUR_TUBE"].iloc[-1], 1.2e-13 * 0.012 * YEAR, rtol=1e-14)
     np.testing.assert_allclose(cont["V_USUR_OBST"].iloc[-1], 1e-14 * 0.012 * 2 * YEAR,
                                rtol=1e-14)

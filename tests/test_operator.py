@@ -14,6 +14,7 @@ import pytest
 
 from fretwear import ContactHistory
 from fretwear.errors import InputError, KeywordError
+from fretwear.geometry import contact_geometry
 from fretwear.table import COLUMNS, from_aster_names, to_aster_names, wear_table
 from fretwear.table import initial_state, replace_tube
 
@@ -125,13 +126,26 @@ def test_tube_replacement_edf_mz_new_tube_runs_in_again():
 def test_replace_tube_table_seeds_a_new_tube():
     old = archard_table([1.0, 2.0, 3.0], obstacle_coefficients={"COEF_USURE": K_O})
     seeded = replace_tube(old, 2.0)
-    assert seeded["instant"].tolist() == [1.0, 2.0]
-    assert seeded["volume_mobile"].iloc[-1] == 0.0 and seeded["depth_mobile"].iloc[-1] == 0.0
-    assert seeded["volume_obstacle"].iloc[-1] == old["volume_obstacle"].iloc[1]
+    # the later rows are kept (as Code_Aster's TUBE_NEUF does), with the tube restarted at 2:
+    # Archard, the new tube has worn K·P·(3 − 2) years at 3 (theory §4, §7)
+    assert seeded["instant"].tolist() == [1.0, 2.0, 3.0]
+    assert seeded["volume_mobile"].iloc[1] == 0.0 and seeded["depth_mobile"].iloc[1] == 0.0
+    np.testing.assert_allclose(seeded["volume_mobile"].iloc[2], K_M * P * YEAR, rtol=1e-14)
+    geometry = contact_geometry("TUBE_BAV", **old.attrs["dimensions"])
+    np.testing.assert_allclose(seeded["depth_mobile"].iloc[2], geometry.depth_from_volume(
+        K_M * P * YEAR, seeded["volume_obstacle"].iloc[2])[0], rtol=1e-12)
+    assert seeded["volume_obstacle"].tolist() == old["volume_obstacle"].tolist()
+    assert seeded["volume_mobile"].iloc[0] == old["volume_mobile"].iloc[0]
     assert old["volume_mobile"].iloc[1] > 0  # the user's table is unchanged
-    new = archard_table([1.0], obstacle_coefficients={"COEF_USURE": K_O}, initial_state=seeded)
+    # continue from the replacement (ETAT_INIT INST_INIT = 2): a new tube, the worn obstacle
+    new = archard_table([1.0], obstacle_coefficients={"COEF_USURE": K_O}, initial_state=seeded,
+                        initial_instant=2.0)
     np.testing.assert_allclose(new["volume_mobile"].iloc[-1], K_M * P * YEAR, rtol=1e-14)
     np.testing.assert_allclose(new["volume_obstacle"].iloc[-1], K_O * P * 3 * YEAR, rtol=1e-14)
+    # or from the table's last instant (3): the new tube has worn one year already
+    new = archard_table([1.0], obstacle_coefficients={"COEF_USURE": K_O}, initial_state=seeded)
+    np.testing.assert_allclose(new["volume_mobile"].iloc[-1], 2 * K_M * P * YEAR, rtol=1e-14)
+    np.testing.assert_allclose(new["volume_obstacle"].iloc[-1], K_O * P * 4 * YEAR, rtol=1e-14)
     aster = replace_tube(to_aster_names(old))  # Code_Aster names in, Code_Aster names out
     assert "V_USUR_TUBE" in aster.columns and aster["V_USUR_TUBE"].iloc[-1] == 0.0
 
