@@ -120,7 +120,7 @@ class _Dask:
         if scheduler is None:
             n = workers or os.cpu_count() or 1
             self._cluster = distributed.LocalCluster(
-                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
                 silence_logs=logging.ERROR)
             self.client = distributed.Client(self._cluster)
         elif isinstance(scheduler, distributed.Client):

@@ -49,7 +49,8 @@ IDENTITY: tuple[str, ...] = ("contact", "tube_row", "tube_column", "support", "n
 #: Per-contact wall thickness [m], a manifest column while the case files have no such key.
 WALL_COLUMN = "wall_thickness_m"
 #: Case keys the manifest gives through its own columns (history <- file, contact <- name).
-_SUPPLIED = {("history", "file"): "history", ("history", "name"): "contact"}
+_SUPPLIED = {("history", "file"): "history", ("history", "name"): "contact",
+             ("history", "node"): "node"}
 #: Case keys holding paths (relative to the manifest when given in a manifest cell).
 PATH_KEYS = {("restart", "table"), ("law", "database")}
 TABLE_SUFFIXES = (".csv", ".parquet", ".pq", ".toml")

@@ -1,0 +1,193 @@
+"""The bundle on a real dask.distributed cluster: a LocalCluster of 2 worker processes, shared by
+the tests of this module and joined through its address (``scheduler=``), as a user joins a
+cluster started elsewhere; plus one run that starts its own local cluster (no scheduler).
+
+Checked: every contact equals the single-contact wear table bit for bit; a corrupted and a
+missing file land in ``errors`` while the rest complete; a chunked contact gives the same bits
+on the cluster as in one process; a worker that dies is replaced and its task retried; a run
+killed midway restarts without recomputing the contacts it had written; the CLI.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import pandas as pd
+import pytest
+from bundle_helpers import assert_identical, oscillator, reference, rows_of, write_bundle
+
+from fretwear.bundle import run_bundle
+from fretwear.io import write_history
+
+distributed = pytest.importorskip("distributed")
+
+
+@pytest.fixture(scope="module")
+def cluster():
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=":0") as local:
+        yield local
+
+
+@pytest.fixture(scope="module")
+def address(cluster):
+    return cluster.scheduler_address
+
+
+def test_cluster_rows_are_the_single_contact_tables_and_failures_are_rows(tmp_path, address):
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 4)
+    (tmp_path / "histories" / "corrupt.parquet").write_bytes(b"PAR1 garbage, not a table")
+    frame = pd.concat([pd.read_csv(manifest), pd.DataFrame(
+        {"contact": ["corrupt", "missing"],
+         "history": ["histories/corrupt.parquet", "histories/missing.parquet"]})])
+    frame.to_csv(manifest, index=False)
+    result = run_bundle(manifest, case, scheduler=address)
+    assert result.stats["workers"] == 2
+    assert result.errors.set_index("contact")["error"].to_dict() == {
+        "corrupt": "FormatError", "missing": "InputError"}
+    assert result.stats["done"] == 4 and result.stats["failed"] == 2
+    for k in range(4):
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.parquet", case))
+
+
+def test_chunked_contact_same_bits_on_the_cluster_as_in_one_process(tmp_path, address):
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 2)
+    write_history(h, tmp_path / "histories" / "t0.parquet", row_group_size=300)
+    options = dict(chunk_size=400, split_every=3)
+    on_cluster = run_bundle(manifest, case, scheduler=address, **options)
+    serial = run_bundle(manifest, case, scheduler="serial", **options)
+    assert on_cluster.errors.empty
+    pd.testing.assert_frame_equal(on_cluster.table, serial.table, check_exact=True)
+
+
+def _kill_first_attempt(marker: str, contact: str):
+    """Installed on the workers: the first task of ``contact`` kills its worker process."""
+    import fretwear.bundle.tasks as tasks
+
+    original = tasks.run_contact
+
+    def run_contact(task, chunk_size=1_000_000):
+        if task.contact == contact and not os.path.exists(marker):
+            open(marker, "w").close()
+            os._exit(1)  # the worker process dies: the nanny starts a new one
+        return original(task, chunk_size)
+
+    if getattr(tasks, "_original_run_contact", None) is None:
+        tasks._original_run_contact = original
+        tasks.run_contact = run_contact
+
+
+def _restore():
+    import fretwear.bundle.tasks as tasks
+
+    if getattr(tasks, "_original_run_contact", None) is not None:
+        tasks.run_contact = tasks._original_run_contact
+        tasks._original_run_contact = None
+
+
+def test_a_dead_worker_is_replaced_and_its_contact_retried(tmp_path, address):
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    marker = tmp_path / "killed"
+    with distributed.Client(address) as client:
+        client.run(_kill_first_attempt, str(marker), "R1C2-AVB")
+        try:
+            result = run_bundle(manifest, case, scheduler=address)
+        finally:
+            client.run(_restore)
+    assert marker.exists()  # a worker did die
+    assert result.errors.empty, result.errors
+    assert_identical(rows_of(result, "R1C2-AVB"),
+                     reference(tmp_path / "histories/t1.parquet", case))
+
+
+SLOW_RUN = """
+import sys, time
+import fretwear.bundle.engine as engine
+from fretwear.bundle.tasks import run_contact
+
+def slow(task, chunk_size):
+    time.sleep(0.3)
+    return run_contact(task, chunk_size)
+
+engine.run_contact = slow
+engine.run_bundle(sys.argv[1], sys.argv[2], scheduler=sys.argv[3], output=sys.argv[4],
+                  part_size=1)
+"""
+
+
+def test_a_killed_run_restarts_where_it_stopped(tmp_path, address):
+    manifest, case = write_bundle(tmp_path, oscillator(), 12)
+    out = tmp_path / "out"
+    script = tmp_path / "slow_run.py"
+    script.write_text(textwrap.dedent(SLOW_RUN))
+    proc = subprocess.Popen([sys.executable, str(script), str(manifest), str(case), address,
+                             str(out)])
+    try:
+        deadline = time.monotonic() + 120
+        while len(list((out / "parts").glob("*.json"))) < 3:
+            assert proc.poll() is None, "the run ended before it could be killed"
+            assert time.monotonic() < deadline
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGKILL)
+        proc.wait()
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    written = {c["contact"] for p in (out / "parts").glob("*.json")
+               for c in json.loads(p.read_text())["contacts"]}
+    assert 3 <= len(written) < 12
+    assert not (out / "table.parquet").exists()
+    restarted = run_bundle(manifest, case, scheduler=address, output=out)
+    status = restarted.contacts.set_index("contact")["status"]
+    assert set(status[status == "skipped"].index) == written
+    assert set(status[status == "done"].index) == set(status.index) - written
+    fresh = run_bundle(manifest, case, scheduler="serial", output=tmp_path / "fresh")
+    pd.testing.assert_frame_equal(restarted.table, fresh.table, check_exact=True)
+    stored = pd.read_parquet(out / "table.parquet")
+    pd.testing.assert_frame_equal(stored, fresh.table, check_dtype=False, check_exact=True)
+
+
+def test_cli_joins_the_scheduler_and_exits_1_when_a_contact_failed(tmp_path, address, capsys):
+    from fretwear.cli import main
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    frame = pd.read_csv(manifest)
+    frame.loc[1, "history"] = "histories/none.parquet"
+    frame["wall_thickness_m"] = 1.09e-3
+    frame.to_csv(manifest, index=False)
+    out, figs = tmp_path / "out", tmp_path / "figs"
+    code = main(["bundle", str(manifest), "--case", str(case), "--scheduler", address,
+                 "-o", str(out), "--plot", str(figs)])
+    printed = capsys.readouterr()
+    assert code == 1, printed.err
+    assert "done 2, failed 1, skipped 0 of 3 contacts" in printed.out
+    assert "R1C2-AVB: InputError" in printed.out
+    for name in ("table.parquet", "errors.csv", "warnings.csv", "summary.csv", "run.json",
+                 "dataset.zarr"):
+        assert (out / name).exists(), name
+    assert pd.read_csv(out / "errors.csv")["contact"].tolist() == ["R1C2-AVB"]
+    assert sorted(p.name for p in figs.glob("*.png")) == [
+        "bundle_power.png", "bundle_tube_sheet.png", "bundle_worst_depths.png"]
+    # a bad manifest: exit 2 with the message, before any cluster is joined
+    frame.rename(columns={"tube_row": "tube_rw"}).to_csv(manifest, index=False)
+    code = main(["bundle", str(manifest), "--case", str(case), "-o", str(out)])
+    assert code == 2
+    assert "did you mean 'tube_row'" in capsys.readouterr().err
+
+
+def test_without_a_scheduler_a_local_cluster_is_started(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    result = run_bundle(manifest, case, workers=1)  # one process: the cheapest to start
+    assert result.stats["workers"] == 1 and result.stats["done"] == 2
+    assert_identical(rows_of(result, "R1C1-AVB"),
+                     reference(tmp_path / "histories/t0.parquet", case))
