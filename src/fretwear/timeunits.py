@@ -2,10 +2,27 @@
 
 from __future__ import annotations
 
-__all__ = ["TIME_UNITS"]
+__all__ = ["TIME_UNITS", "describe_time_units"]
 
 #: Named time units -> seconds per unit (a year is 365 days, Code_Aster users' 31 536 000 s).
 TIME_UNITS: dict[str, float] = {
     "s": 1.0, "second": 1.0, "min": 60.0, "minute": 60.0, "h": 3600.0, "hour": 3600.0,
     "day": 86400.0, "week": 604800.0, "year": 31536000.0,
 }
+
+
+def describe_time_units() -> str:
+    """The names of :data:`TIME_UNITS` for a help text, synonyms together, longer units with
+    their length in days.
+
+    Examples
+    --------
+    >>> describe_time_units()
+    's/second, min/minute, h/hour, day, week or year (365 days)'
+    """
+    groups: dict[float, list[str]] = {}
+    for name, seconds in TIME_UNITS.items():
+        groups.setdefault(seconds, []).append(name)
+    parts = ["/".join(names) + (f" ({seconds / 86400.0:g} days)" if seconds > 604800.0 else "")
+             for seconds, names in groups.items()]
+    return ", ".join(parts[:-1]) + " or " + parts[-1]

@@ -12,6 +12,8 @@ from fretwear._optional import require
 from fretwear.errors import FretwearWarning, KeywordError
 from fretwear.obstacle import obstacle_from_config
 from fretwear.obstacle.config import MODEL_KEYS
+from fretwear.obstacle.depth import DEPTH_SHAPES
+from fretwear.obstacle.update import PROFILE_FORMATS
 from fretwear.plotting import plot_obstacle, save_figure
 from fretwear.workflows.case_files import load_case, run_case
 
@@ -83,7 +85,7 @@ def _summary(result, echo) -> None:
 @click.option("--discrete", "discrete_file", type=click.Path(exists=True, dir_okay=False,
                                                               path_type=Path),
               help="NEW obstacle as a DISCRET table (THETA [deg], JEU [m]).")
-@click.option("--shape", type=click.Choice(["uniform", "smooth"]),
+@click.option("--shape", type=click.Choice(list(DEPTH_SHAPES)),
               help="Depth shape within a sector (default uniform).")
 @click.option("--perforation", type=float,
               help="PERCEMENT: perforation at depth > this × wall thickness (default 1.0).")
@@ -93,8 +95,7 @@ def _summary(result, echo) -> None:
                                         "Code_Aster's 721 points).")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
               help="Profile table: .csv, or a Code_Aster TABLEAU for any other suffix.")
-@click.option("--format", "fmt", type=click.Choice(["csv", "TABLEAU", "ASTER"],
-                                                   case_sensitive=False),
+@click.option("--format", "fmt", type=click.Choice(PROFILE_FORMATS, case_sensitive=False),
               help="Force the profile table format.")
 @click.option("--discret", "discret_path", type=click.Path(dir_okay=False, path_type=Path),
               help="Write the worn clearance figure as a DISCRET obstacle file.")

@@ -16,7 +16,8 @@ from rich.console import Console
 from rich.table import Table
 
 from fretwear.errors import ConfidenceWarning
-from fretwear.history import DEFAULT_CHUNK_SIZE
+from fretwear.history import CHANNELS, DEFAULT_CHUNK_SIZE
+from fretwear.io import FORMATS
 from fretwear.power import wear_power
 from fretwear.power.statistics import STATISTICS_UNITS
 
@@ -169,15 +170,14 @@ def _print_table(result, caught: list[str], interval=None, sector_intervals=()) 
 @click.option("--rest-time", type=float, default=0.0, show_default=True,
               help="Minimum rest [s] below the force threshold between two impacts.")
 @click.option("--format", "format_", default=None,
-              help="File format (csv, parquet, hdf5, netcdf, npz, aster, aster-function); "
-                   "default: guessed from the content.")
+              help=f"File format ({', '.join(FORMATS)}); default: guessed from the content.")
 @click.option("--units", "units", multiple=True, metavar="KEY=UNIT[,...]",
               help="Units of the file's values, converted to SI: per quantity (length=mm, "
                    "force=kN, time=ms, velocity=mm/s) or per channel (dy=mm). Repeatable. "
                    "Default: the units the file declares, else SI.")
 @click.option("--column", "columns", multiple=True, metavar="COLUMN=CHANNEL",
-              help="Map a column to a channel (time, normal_force, vt1, vt2, ft1, ft2, vn, dy, "
-                   "dz, stick), or COLUMN=none to ignore it; columns of a file without header "
+              help=f"Map a column to a channel ({', '.join(CHANNELS)}), or COLUMN=none to "
+                   "ignore it; columns of a file without header "
                    "are named 0, 1, ... Repeatable.")
 @click.option("--read-option", "read_options", multiple=True, metavar="KEY=VALUE",
               help="Option of the format's reader: csv delimiter/decimal/comment/header/"

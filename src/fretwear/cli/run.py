@@ -20,6 +20,7 @@ from rich.table import Table
 
 from fretwear._optional import require
 from fretwear.errors import ConfidenceWarning
+from fretwear.io.aster import TABLE_FORMATS
 from fretwear.plotting import save_figure, wear_figures
 from fretwear.table import COLUMNS, write_wear_table
 from fretwear.workflows.case_files import keys_help, load_case, run_case
@@ -132,8 +133,8 @@ def _summary(result, console) -> None:
               help="Write PNG and SVG figures into this directory.")
 @click.option("--aster-names", is_flag=True,
               help="Code_Aster column names (INST, V_USUR_TUBE, ...) in CSV/Parquet output.")
-@click.option("--aster-format", type=click.Choice(["TABLEAU", "ASTER"], case_sensitive=False),
-              default="TABLEAU", show_default=True,
+@click.option("--aster-format", type=click.Choice(TABLE_FORMATS, case_sensitive=False),
+              default=TABLE_FORMATS[0], show_default=True,
               help="IMPR_TABLE format of a .tab/.resu/.txt output (LIRE_TABLE's FORMAT).")
 @click.option("--database", "databases", multiple=True, metavar="CSV",
               type=click.Path(exists=True, dir_okay=False, path_type=Path),

@@ -31,6 +31,8 @@ from fretwear.io.atomic import atomic_write
 
 #: First bytes of a gzip stream: text tables may be compressed (read transparently).
 GZIP_MAGIC = b"\x1f\x8b"
+#: The two layouts of IMPR_TABLE that LIRE_TABLE reads (its FORMAT keyword).
+TABLE_FORMATS: tuple[str, ...] = ("TABLEAU", "ASTER")
 _TOKEN = re.compile(r"'[^']*'|\"[^\"]*\"|\S+")
 _TYPES = ("R", "I", "K8", "K16", "K24", "K32", "K80")
 _STRING_WIDTHS = (8, 16, 24, 32, 80)
@@ -395,8 +397,9 @@ def format_aster_table(frame: pd.DataFrame, *, format: str = "TABLEAU", title: s
      1.50000E+00
     """
     fmt = str(format).upper()
-    if fmt not in ("TABLEAU", "ASTER"):
-        raise InputError(f"format={format!r}: a Code_Aster table is written 'TABLEAU' or 'ASTER'")
+    if fmt not in TABLE_FORMATS:
+        raise InputError(f"format={format!r}: a Code_Aster table is written "
+                         f"{' or '.join(map(repr, TABLE_FORMATS))}")
     try:
         float_format % 1.0
     except (TypeError, ValueError):

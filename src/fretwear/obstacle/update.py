@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, PerforationWarning
-from fretwear.io.aster import write_aster_table
+from fretwear.io.aster import TABLE_FORMATS, write_aster_table
 from fretwear.io.atomic import atomic_write
 from fretwear.obstacle.clearance import RESOLUTION, clearance_figure, polar_polygon
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, sector_of, worn_depth_profiles
@@ -40,6 +40,8 @@ WEAR_COLUMNS: dict[str, str] = {
     "volume_mobile_cumulated": "V_USUR_TUBE_CUMU",
     "volume_obstacle_cumulated": "V_USUR_OBST_CUMU",
 }
+#: Formats of the profile table: CSV, or a Code_Aster table (IMPR_TABLE's FORMAT).
+PROFILE_FORMATS: tuple[str, ...] = ("csv", *TABLE_FORMATS)
 #: Profile table columns: native -> (Code_Aster-style name, unit).
 PROFILE_COLUMNS: dict[str, tuple[str, str]] = {
     "angle": ("THETA", "deg"),
@@ -240,8 +242,9 @@ class ObstacleResult:
             with atomic_write(target, "w", encoding="utf-8", newline="") as fh:
                 frame.to_csv(fh, index=False, float_format="%.10e")
             return target
-        if fmt not in ("TABLEAU", "ASTER"):
-            raise InputError(f"unknown profile table format {format!r}; use csv, TABLEAU or ASTER")
+        if fmt not in TABLE_FORMATS:
+            raise InputError(f"unknown profile table format {format!r}; use "
+                             f"{', '.join(PROFILE_FORMATS)}")
         aster = frame.rename(columns={k: v for k, (v, _) in PROFILE_COLUMNS.items()})
         title = "fretwear obstacle update (MODI_OBSTACLE)" + (
             f" at INST = {self.instant:g}" if self.instant is not None else "")

@@ -10,7 +10,7 @@ from pathlib import Path
 import pandas as pd
 
 from fretwear.errors import FormatError, InputError
-from fretwear.io.aster import read_aster_table, write_aster_table
+from fretwear.io.aster import TABLE_FORMATS, read_aster_table, write_aster_table
 from fretwear.io.atomic import atomic_path
 from fretwear.table.schema import from_aster_names, to_aster_names
 
@@ -97,8 +97,9 @@ def write_wear_table(table, path: Path, *, aster_names: bool = False, title: str
     suffix = path.suffix.lower()
     if suffix in _ASTER_SUFFIXES:
         fmt = str(aster_format).upper()
-        if fmt not in ("TABLEAU", "ASTER"):
-            raise InputError(f"aster_format must be TABLEAU or ASTER, got {aster_format!r}")
+        if fmt not in TABLE_FORMATS:
+            raise InputError(f"aster_format must be {' or '.join(TABLE_FORMATS)}, got "
+                             f"{aster_format!r}")
         return write_aster_table(to_aster_names(table), path, format=fmt,
                                  title=title or "POST_USURE fretwear", float_format="%.10E")
     frame = to_aster_names(table) if aster_names else table

@@ -28,6 +28,7 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.geometry import CONTACT_TYPES
 from fretwear.geometry.base import ASTER_KEYWORDS
 from fretwear.history import ContactHistory
 from fretwear.laws import WEAR_LAWS
@@ -56,12 +57,12 @@ SIMPLE_KEYWORDS: dict[str, str] = {
     "INST_INIT": "start of the history window t_start [s]",
     "INST_FIN": "end of the history window t_end [s]",
     "NB_BLOC": "number of blocks of the power computation",
-    "LOI_USURE": "wear law: ARCHARD, KWU_EPRI or EDF_MZ",
+    "LOI_USURE": f"wear law: {', '.join(WEAR_LAWS)}",
     "MATER_USURE": "material pair of the database: 'MOBILE/OBSTACLE' or a (mobile, obstacle) pair",
     "USURE_OBST": "'OUI': obstacle coefficient from the database",
     "FNOR_MAXI": "KWU_EPRI force class range [N]",
     "VTAN_MAXI": "KWU_EPRI speed class range [m/s]",
-    "CONTACT": "contact type (TUBE_BAV, TUBE_ALESAGE, ...)",
+    "CONTACT": f"contact type: {', '.join(CONTACT_TYPES)}",
     "RAYON_MOBILE": "mobile radius [m]",
     "RAYON_OBST": "obstacle radius [m]",
     "LARGEUR_OBST": "obstacle width [m]",
@@ -256,7 +257,7 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         return _tube_neuf(kw)
     law = str(kw.get("LOI_USURE", "")).upper()
     if not law:
-        raise KeywordError("POST_USURE: LOI_USURE is required (ARCHARD, KWU_EPRI or EDF_MZ)")
+        raise KeywordError(f"POST_USURE: LOI_USURE is required ({', '.join(WEAR_LAWS)})")
     if law not in WEAR_LAWS:
         raise KeywordError(f"POST_USURE: LOI_USURE={kw['LOI_USURE']!r} is not a wear law; "
                            f"choose one of {sorted(WEAR_LAWS)}")

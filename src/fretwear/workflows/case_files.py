@@ -36,11 +36,13 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, KeywordError
+from fretwear.geometry import CONTACT_TYPES
 from fretwear.io import read_history
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
+from fretwear.laws import WEAR_LAWS
 from fretwear.power import PowerAccumulator, wear_power
 from fretwear.table import WearCase, read_wear_table, wear_table_from_case
-from fretwear.timeunits import TIME_UNITS  # noqa: F401 - re-exported
+from fretwear.timeunits import TIME_UNITS, describe_time_units  # noqa: F401 - re-exported
 
 #: section -> key -> (expected type, description with unit). "*" sections are free tables.
 KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
@@ -70,7 +72,7 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
                                                  "warning is given [-], default 0.1"),
     },
     "law": {
-        "name": (str, "ARCHARD, KWU_EPRI or EDF_MZ (LOI_USURE), default ARCHARD"),
+        "name": (str, f"{', '.join(WEAR_LAWS)} (LOI_USURE), default ARCHARD"),
         "mobile": (dict, "law coefficients of the mobile: the law's parameter names or "
                          "Code_Aster keywords, SI (e.g. { COEF_USURE = 1.2e-13 } [1/Pa])"),
         "obstacle": (dict, "law coefficients of the obstacle (it wears only if given)"),
@@ -86,8 +88,7 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
         "speed_max_m_per_s": ((int, float), "KWU_EPRI speed class range [m/s] (VTAN_MAXI)"),
     },
     "geometry": {
-        "contact_type": (str, "TUBE_BAV, TUBE_ALESAGE, TUBE_3_ENCO, TUBE_4_ENCO, TUBE_TUBE, "
-                              "GRAPPE_ALESAGE, GRAPPE_1_ENCO, GRAPPE_2_ENCO (CONTACT)"),
+        "contact_type": (str, f"{', '.join(CONTACT_TYPES)} (CONTACT)"),
         "mobile_radius_m": ((int, float), "outer radius of the mobile [m] (RAYON_MOBILE)"),
         "obstacle_radius_m": ((int, float), "radius of the obstacle [m] (RAYON_OBST)"),
         "obstacle_width_m": ((int, float), "width of the obstacle [m] (LARGEUR_OBST)"),
@@ -105,7 +106,7 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
     },
     "time": {
         "instants": (list, "durations of service after the origin [unit] (INST)"),
-        "unit": (str, "s, min, h, day, week or year (365 days), default s"),
+        "unit": (str, f"{describe_time_units()}, default s"),
         "seconds_per_unit": ((int, float), "seconds per time unit [s] (COEF_INST), instead "
                                            "of unit"),
         "tube_replacement": ((int, float), "instant [unit] at which the tube is replaced by a "
