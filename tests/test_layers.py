@@ -38,7 +38,8 @@ LAYERS = ("foundation", "physics", "plotting", "workflows", "api", "cli")
 #: first component under fretwear/ (module or package) -> layer.
 LAYER_OF = {
     "errors": "foundation", "keys": "foundation", "timeunits": "foundation",
-    "_optional": "foundation", "_numba": "foundation", "conftest": "foundation",
+    "_optional": "foundation", "_numba": "foundation", "_version": "foundation",
+    "conftest": "foundation",
     "history": "physics", "sectors": "physics", "io": "physics", "power": "physics",
     "laws": "physics", "database": "physics", "geometry": "physics", "table": "physics",
     "obstacle": "physics", "dynamics": "physics",
@@ -114,6 +115,10 @@ def import_graph() -> tuple[dict[str, dict[str, int]], list[str]]:
                 raise AssertionError(f"{path}:{line}: import of {full!r}, which is no module")
             parts = full.split(".")
             reached = [".".join(parts[:i]) for i in range(2, len(parts) + 1)]
+            if full == "fretwear" and name != "fretwear":
+                # an explicit import of the root package (`from fretwear import x`): an edge to
+                # the api layer (its implicit run as every module's parent is not one)
+                edges[name].setdefault("fretwear", line)
             for dep in reached:
                 if dep in ancestors or dep == name:
                     continue

@@ -14,6 +14,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
+from fretwear._version import __version__  # noqa: F401
 from fretwear.errors import (  # noqa: F401
     FretwearError,
     FretwearWarning,
@@ -21,8 +22,6 @@ from fretwear.errors import (  # noqa: F401
     InputError,
 )
 from fretwear.history import ContactHistory  # noqa: F401
-
-__version__ = "0.1.0"
 
 # Public names resolved lazily from their modules (keeps `import fretwear` fast).
 _LAZY: dict[str, str] = {
