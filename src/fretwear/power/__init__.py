@@ -6,6 +6,8 @@ Modules:
 - :mod:`fretwear.power.core`: :func:`wear_power`, :class:`PowerAccumulator` (the mergeable
   streaming reduction), :class:`PowerResult`, :func:`contact_statistics`;
 - :mod:`fretwear.power.statistics`: :class:`ContactStatistics` and the impact bookkeeping;
+- :mod:`fretwear.power.impacts`: :func:`impacts` (every impact of a window, one row each) and
+  :func:`channel_statistics` (mean, std, RMS, extrema of a channel), POST_DYNA_MODA_T-like;
 - :mod:`fretwear.power.kernels`: the fused compiled kernel (numba, with the numpy fallback);
 - :mod:`fretwear.power.reference`: the plain numpy reference kernel.
 """
@@ -17,14 +19,18 @@ from fretwear.power.core import (
     contact_statistics,
     wear_power,
 )
+from fretwear.power.impacts import IMPACT_UNITS, channel_statistics, impacts
 from fretwear.power.statistics import STATISTICS_UNITS, ContactStatistics
 
 __all__ = [
     "DEFAULT_CHUNK_SIZE",
+    "IMPACT_UNITS",
     "STATISTICS_UNITS",
     "ContactStatistics",
     "PowerAccumulator",
     "PowerResult",
+    "channel_statistics",
     "contact_statistics",
+    "impacts",
     "wear_power",
 ]
