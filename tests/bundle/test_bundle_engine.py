@@ -223,4 +223,12 @@ def test_summary_time_to_limit_against_archard_on_a_flat_bar(tmp_path):
     assert math.isnan(s.loc["c", "time_to_limit"])  # no wall given
     s_m = result.summary(limit_m=0.4 * wall).set_index("contact")
     assert s_m.loc["c", "time_to_limit"] > 40 or math.isnan(s_m.loc["c", "time_to_limit"])
-    assert "PCHIP" in result.summary().attrs["time_to_limit"]
+    assert "PCHIP" in result.summary(0.4).attrs["time_to_limit"]  # an explicit limit
+    # by default, the wear table's own limit instant when it has one (theory: the law and the
+    # geometry inverted, so equal to the closed form to the solver's tolerance)
+    if "limit_instant" in result.table.columns:
+        own = result.summary().set_index("contact")
+        assert "limit_instant" in own.attrs["time_to_limit"]
+        for name, p in zip("ab", powers, strict=False):
+            exact = (4 * width / 3) * (0.4 * wall) ** 1.5 * math.sqrt(2 * R) / (K * p) / YEAR
+            assert own.loc[name, "time_to_limit"] == pytest.approx(exact, rel=1e-9), name

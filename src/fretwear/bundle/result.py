@@ -20,6 +20,7 @@ DEFAULT_LIMIT = 0.4
 #: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
 INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
                 "(PCHIP), from depth 0 at the origin of a new tube")
+FROM_TABLE = "the wear table's limit_instant (law and geometry inverted for the case's limit)"
 
 
 @dataclass
@@ -43,8 +44,10 @@ class BundleResult:
         earlier run with the same inputs), ``samples``, ``seconds`` (compute time),
         ``power`` [W], ``time_unit``, ``wall_thickness`` [m] (when given).
     stats : dict
-        ``done``, ``failed``, ``skipped``, ``seconds`` (wall time), ``contacts_per_s``,
-        ``samples``, ``samples_per_s``, ``workers``.
+        ``contacts``, ``done``, ``failed``, ``skipped``, ``seconds`` (wall time of the run),
+        ``startup_seconds`` (starting or joining the cluster), ``contacts_per_s`` and
+        ``samples_per_s`` (computed contacts and history samples per second of the run without
+        the start-up), ``samples``, ``workers``.
     output : str or None
         The output directory.
     """
@@ -90,7 +93,10 @@ class BundleResult:
             wall), ``limit_depth`` [m], ``time_to_limit`` (instant at which the depth reaches
             the limit, table unit; NaN if not reached by the last instant), ``time_to_limit_method``
             and ``note`` (beyond the relation's range, ...). A depth beyond its relation's range
-            (NaN) ranks first. ``attrs["time_to_limit"]`` says how the time was found.
+            (NaN) ranks first. The time is the wear table's ``limit_instant`` when the table has
+            it and no other limit is asked for here; else depth(t) is interpolated between the
+            table's instants (monotone cubic) and inverted. ``attrs["time_to_limit"]`` says
+            which.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -171,7 +177,9 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     info = contacts.set_index("contact") if len(contacts) else contacts
-    given = "time_to_limit" in table.columns  # computed by the wear table itself
+    # the wear table's own limit instant (law and geometry inverted), for the case's limit
+    given = "limit_instant" in table.columns and limit is None and limit_m is None \
+        and wall_thickness is None
     rows = []
     for contact, group in table.groupby("contact", sort=False):
         glob = _global_rows(group)
@@ -201,10 +209,10 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         replaced = (info.at[contact, "tube_replacement"]
                     if "tube_replacement" in info.columns and contact in info.index else None)
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
-        if given:
-            t_lim = float(group["time_to_limit"].dropna().iloc[0]) if group[
-                "time_to_limit"].notna().any() else math.nan
-            method = "wear table (time_to_limit column)"
+        if given and glob["limit_instant"].notna().any():
+            t_lim = float(glob["limit_instant"].dropna().iloc[-1])
+            t_lim = math.nan if math.isinf(t_lim) else t_lim
+            method = FROM_TABLE
         elif math.isfinite(target):
             sel = glob
             if replaced is not None:
@@ -235,7 +243,9 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     out.insert(0, "rank", np.arange(1, len(out) + 1))
     front = ["rank", "contact", *ident]
     out = out[front + [c for c in out.columns if c not in front]]
-    out.attrs["time_to_limit"] = INTERPOLATED if not given else "from the wear table"
+    methods = [m for m in out["time_to_limit_method"].unique() if m in (INTERPOLATED,
+                                                                         FROM_TABLE)]
+    out.attrs["time_to_limit"] = "; ".join(methods) if methods else "no limit"
     out.attrs["limit"] = limit
     out.attrs["limit_m"] = limit_m
     return out
@@ -310,6 +320,8 @@ def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
 
 
 def _sector_columns() -> tuple[str, ...]:
-    from fretwear.table import GLOBAL_COLUMNS, SECTOR_COLUMNS
+    """Columns that differ between the sectors of one instant."""
+    from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
 
-    return tuple(c for c in SECTOR_COLUMNS if c not in GLOBAL_COLUMNS)
+    return tuple(c for c in COLUMNS if c not in GLOBAL_COLUMNS and (
+        c in SECTOR_COLUMNS or c.endswith("_sector")))

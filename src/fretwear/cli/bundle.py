@@ -148,7 +148,8 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
             save_figure(fig, plot_dir, stem, close=True)
         console.print(f"figures written to [bold]{plot_dir}[/]")
     click.echo(f"done {s['done']}, failed {s['failed']}, skipped {s['skipped']} of "
-               f"{s['contacts']} contacts in {s['seconds']:.1f} s on {s['workers']} worker(s): "
+               f"{s['contacts']} contacts in {s['seconds']:.1f} s (cluster start "
+               f"{s['startup_seconds']:.1f} s) on {s['workers']} worker(s): "
                f"{s['contacts_per_s']:.3g} contacts/s, {s['samples_per_s']:.3g} samples/s; "
                f"results in {output}")
     if len(errors):
