@@ -32,6 +32,7 @@ from fretwear.obstacle import (
     worn_depth_profiles,
     write_discret,
 )
+from fretwear.table.files import read_profile_table
 
 RM, GAP, WALL, WIDTH = 9.5e-3, 0.5e-3, 1.09e-3, 20e-3
 RO = RM + GAP
@@ -441,7 +442,7 @@ def test_profile_table_outputs(tmp_path):
     vm[1] = 1e-9
     r = update_obstacle(CircleObstacle(RM, RO), Mobile(RM, WALL), EDGES10, vm, width=WIDTH,
                         resolution=0.5)
-    csv = pd.read_csv(r.write(tmp_path / "p.csv"))
+    csv = read_profile_table(r.write(tmp_path / "p.csv"))
     assert list(csv.columns) == ["angle", "clearance_initial", "clearance_worn",
                                  "depth_mobile", "depth_obstacle"]
     np.testing.assert_allclose(csv["clearance_worn"], r.clearance_worn, rtol=1e-10)

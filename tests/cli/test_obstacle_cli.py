@@ -13,6 +13,7 @@ import pandas as pd
 
 from fretwear.cli import main
 from fretwear.obstacle import read_discret
+from fretwear.table.files import read_profile_table
 
 RM, GAP, WALL, WIDTH = 9.5e-3, 0.5e-3, 1.09e-3, 20e-3
 
@@ -42,7 +43,7 @@ def test_table_mode_writes_profile_discret_and_plot(tmp_path, capsys):
     out = capsys.readouterr().out
     assert code == 0, out
     assert "at instant 5" in out
-    profile = pd.read_csv(tmp_path / "profile.csv")
+    profile = read_profile_table(tmp_path / "profile.csv")
     assert len(profile) == 721
     np.testing.assert_allclose(profile["clearance_worn"], _expected_clearance(vm, vo),
                                rtol=0, atol=1e-11)
@@ -107,7 +108,7 @@ def test_example_case_runs_the_wear_case_then_the_update(tmp_path, capsys):
     out = tmp_path / "profile.csv"
     assert main(["obstacle", str(example), "-o", str(out)]) == 0
     assert "10 sectors, smooth depth" in capsys.readouterr().out
-    p = pd.read_csv(out)
+    p = read_profile_table(out)
     assert (p["clearance_worn"] >= p["clearance_initial"] - 1e-15).all()
     assert p["clearance_worn"].max() > p["clearance_initial"].max()
 
@@ -123,7 +124,7 @@ def test_planes_options_step_and_closing_circle(tmp_path, capsys):
     out = tmp_path / "planes.csv"
     assert main(args + ["--plane-gap", "4e-4", "--plane-gap-opposite", "2e-4", "--orientation",
                         "30", "--closing-radius", "0.05", "--step", "2", "-o", str(out)]) == 0
-    p = pd.read_csv(out)
+    p = read_profile_table(out)
     assert len(p) == 181 and p["angle"].iloc[1] == 2.0
     c = np.cos(np.radians(p["angle"] - 30.0))
     sel = np.abs(c) > 0.3

@@ -14,6 +14,7 @@ import pytest
 from fretwear.workflows.case_files import run_case
 from fretwear.cli import main
 from fretwear.io.aster import read_aster_table
+from fretwear.table import read_wear_table
 
 # the example cases of `fretwear run` (those with an [iterate] section belong to `fretwear iterate`)
 EXAMPLES = [p for p in sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
@@ -26,7 +27,7 @@ def test_every_example_runs(case, tmp_path, capsys):
     assert main(["run", str(case), "-o", str(out)]) == 0
     printed = capsys.readouterr().out
     assert "wear power P" in printed and "table written" in printed
-    table = pd.read_csv(out)
+    table = read_wear_table(out)
     expected = run_case(case).table
     np.testing.assert_allclose(table["volume_mobile"], expected["volume_mobile"], rtol=1e-11)
     assert np.isfinite(table["depth_mobile"]).all()
@@ -112,7 +113,7 @@ def test_sector_restart_through_each_output_format(tmp_path, capsys, suffix, opt
                            + f'\n[restart]\ntable = "{first.name}"\n', encoding="utf-8")
     out = tmp_path / "second.csv"
     assert main(["run", str(second_case), "-q", "-o", str(out)]) == 0
-    chained, long = pd.read_csv(out), run_case(long_case).table
+    chained, long = read_wear_table(out), run_case(long_case).table
     assert chained["instant"].tolist() == long["instant"].tolist()
     assert chained["origin"].tolist() == [0.0] * 16 + [2.0] * 8
     rtol = 1e-9 if suffix in (".tab", ".resu") else 1e-14  # %.10E in Code_Aster files
@@ -155,14 +156,14 @@ def test_database_option_adds_to_the_case_list(tmp_path, capsys):
     year = 31_536_000.0
     out = tmp_path / "case.csv"
     assert main(["run", str(case), "-o", str(out)]) == 0
-    np.testing.assert_allclose(pd.read_csv(out)["volume_mobile"],
+    np.testing.assert_allclose(read_wear_table(out)["volume_mobile"],
                                3.1e-14 * 0.01 * year * np.array([1, 2]), rtol=1e-15)
     capsys.readouterr()
     assert main(["run", str(case), "-o", str(out), "--database",
                  str(tmp_path / "cli_file.csv")]) == 0
     printed = "".join(capsys.readouterr().out.split())  # wherever rich wraps the path
     assert "cli_file.csv" in printed  # the summary names the coefficient's file
-    np.testing.assert_allclose(pd.read_csv(out)["volume_mobile"],
+    np.testing.assert_allclose(read_wear_table(out)["volume_mobile"],
                                1.24e-14 * 0.01 * year * np.array([1, 2]), rtol=1e-15)
     assert case.read_text(encoding="utf-8").count("database") == 1  # the case file untouched
     assert main(["run", str(case), "--database", str(tmp_path / "absent.csv")]) == 2

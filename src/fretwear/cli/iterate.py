@@ -47,10 +47,14 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
         result = iterate_case(case_file, output=output, cycles=cycles,
                               plot=False if no_plot else None,
                               progress=lambda message: status.update(message))
-    table = Table(title=f"fretwear iterate: {case_file.name} (stopped: {result.stopped})")
+    stopped = result.stopped + (f" ({result.max_depth_of} depth)"
+                                if result.stopped == "max_depth" else "")
+    table = Table(title=f"fretwear iterate: {case_file.name} (stopped: {stopped})")
     columns = (("cycle", "cycle", 1.0), ("instant", "instant", 1.0), ("power", "P [W]", 1.0),
-               ("depth_mobile_max", "depth tube [mm]", 1e3),
-               ("depth_obstacle_max", "depth obst. [mm]", 1e3),
+               ("depth_global_mobile", "global depth tube [mm]", 1e3),
+               ("depth_sector_mobile_max", "max sector depth tube [mm]", 1e3),
+               ("depth_mobile_max", "profile depth tube [mm]", 1e3),
+               ("depth_obstacle_max", "profile depth obst. [mm]", 1e3),
                ("clearance_min", "gap min [mm]", 1e3), ("clearance_max", "gap max [mm]", 1e3),
                ("contact_fraction", "in contact [-]", 1.0))
     for _, label, _ in columns:

@@ -21,6 +21,7 @@ from rich.table import Table
 from fretwear._optional import require
 from fretwear.errors import ConfidenceWarning
 from fretwear.io.aster import TABLE_FORMATS
+from fretwear.laws import WEAR_LAWS
 from fretwear.plotting import save_figure, wear_figures
 from fretwear.table import COLUMNS, write_wear_table
 from fretwear.workflows.case_files import keys_help, load_case, run_case
@@ -66,12 +67,14 @@ def _summary(result, console) -> None:
     if attrs.get("tube_replacement") is not None:
         console.print(f"tube replaced by a new one at instant {attrs['tube_replacement']:g} "
                       "(TUBE_NEUF)")
+    units = WEAR_LAWS[attrs["law"]].units if attrs.get("law") in WEAR_LAWS else {}
     for key, source in (attrs.get("coefficient_sources") or {}).items():
         body, _, name = key.partition(".")
         value = (attrs.get(f"coefficients_{body}") or {}).get(name)
-        shown = "" if value is None else f" = {float(value):.4g}"
-        console.print(f"{body} {name}{shown} from the database: {source}", markup=False,
-                      highlight=False)
+        unit = units.get(name, "1")
+        shown = " (the window's maximum)" if value is None else (
+            f" = {float(value):.4g}" + ("" if unit == "1" else f" {unit}"))
+        console.print(f"{body} {name}{shown}, source: {source}", markup=False, highlight=False)
     intensity = (attrs.get("coefficients_mobile") or {}).get("intensity")
     if intensity is not None:
         console.print(f"KWU-EPRI wear-intensity factor w = {float(intensity):.4g}")
@@ -89,40 +92,83 @@ def _summary(result, console) -> None:
     last = table[table["instant"] == table["instant"].iloc[-1]]
     if "sector" in table.columns and table["sector"].notna().any():
         st = Table(title=f"sectors at instant {last['instant'].iloc[0]:g} "
-                         "(P in W, V in mm³, d in mm)")
-        for col in ("sector", "angles (deg)", "P", "V tube", "V obst", "d tube", "d obst"):
+                         "(P in W, V in mm³, sector depths d in mm)")
+        walled = "wall_fraction_sector" in table.columns
+        for col in ("sector", "angles (deg)", "P", "V tube", "V obst", "d tube (sector)",
+                    "d obst (sector)") + (("% wall", "limit at") if walled else ()):
             st.add_column(col, justify="right")
         for _, row in last.iterrows():
+            extra = (f"{100 * row['wall_fraction_sector']:.3g}",
+                     _instant(row["limit_instant_sector"])) if walled else ()
             st.add_row(f"{int(row['sector'])}", f"{row['angle_start']:g}..{row['angle_end']:g}",
                        f"{row['sector_power']:.4g}",
                        f"{row['volume_mobile_cumulated'] * 1e9:.4g}",
                        f"{row['volume_obstacle_cumulated'] * 1e9:.4g}",
                        f"{row['depth_mobile_sector'] * 1e3:.4g}",
-                       f"{row['depth_obstacle_sector'] * 1e3:.4g}")
+                       f"{row['depth_obstacle_sector'] * 1e3:.4g}", *extra)
         console.print(st)
     row = last.iloc[0]
     console.print(
         f"at instant {row['instant']:g}: V tube = {row['volume_mobile'] * 1e9:.4g} mm³, "
-        f"V obstacle = {row['volume_obstacle'] * 1e9:.4g} mm³, depth tube = "
-        f"{row['depth_mobile'] * 1e3:.4g} mm, depth obstacle = "
+        f"V obstacle = {row['volume_obstacle'] * 1e9:.4g} mm³, global depth of the tube = "
+        f"{row['depth_mobile'] * 1e3:.4g} mm, global depth of the obstacle = "
         f"{row['depth_obstacle'] * 1e3:.4g} mm")
     glob = table.drop_duplicates("instant")
-    gt = Table(title="service life")
-    for col in ("instant", "V tube (mm³)", "depth tube (mm)", "V obst (mm³)", "depth obst (mm)"):
+    walled = "wall_fraction" in table.columns
+    gt = Table(title="service life (global depths, from the total volumes)")
+    for col in ("instant", "V tube (mm³)", "depth tube (mm)", "V obst (mm³)",
+                "depth obst (mm)") + (("% wall",) if walled else ()):
         gt.add_column(col, justify="right")
 
     def mm(depth: float) -> str:
         return "NaN (out of range)" if np.isnan(depth) else f"{depth * 1e3:.4g}"
 
     for _, r in glob.iterrows():
+        extra = (_percent_of_wall(r["wall_fraction"]),) if walled else ()
         gt.add_row(f"{r['instant']:g}", f"{r['volume_mobile'] * 1e9:.4g}",
                    mm(r["depth_mobile"]), f"{r['volume_obstacle'] * 1e9:.4g}",
-                   mm(r["depth_obstacle"]))
+                   mm(r["depth_obstacle"]), *extra)
     console.print(gt)
+    for line, style in _limit_lines(table):
+        console.print(line, markup=False, highlight=False, style=style)
     if result.warnings or notes:
         console.print("[yellow]warnings:[/]")
         for w in [*result.warnings, *notes]:
             console.print(f"  - {w}", markup=False, highlight=False, style="yellow")
+
+
+def _instant(value: float) -> str:
+    """An instant [user unit] for the summary: ``never`` for inf."""
+    return "never" if np.isinf(value) else "-" if np.isnan(value) else f"{value:.4g}"
+
+
+def _percent_of_wall(fraction: float) -> str:
+    if np.isnan(fraction):
+        return "-"
+    return f"{100 * fraction:.3g}" + (" THROUGH" if fraction > 1 else "")
+
+
+def _limit_lines(table) -> list[tuple[str, str | None]]:
+    """Lines on the wall and the limit (empty without a wall thickness)."""
+    attrs = table.attrs
+    wall = attrs.get("wall_thickness")
+    if wall is None or "limit_instant" not in table.columns:
+        return []
+    unit = attrs.get("time_unit") or "user time unit"
+    limit = attrs.get("depth_limit", 0.4) * wall
+    out = [(f"limit: {100 * attrs.get('depth_limit', 0.4):g} % of the {wall * 1e3:.4g} mm wall "
+            f"= {limit * 1e3:.4g} mm; the global depth reaches it at instant "
+            f"{_instant(table['limit_instant'].iloc[-1])} [{unit}]", "bold")]
+    if "limit_instant_sector" in table.columns:
+        last = table[table["instant"] == table["instant"].iloc[-1]]
+        first = last.loc[last["limit_instant_sector"].idxmin()]
+        out.append((f"the first sector to reach it: sector {int(first['sector'])} at instant "
+                    f"{_instant(first['limit_instant_sector'])} [{unit}]", "bold"))
+    for where, instant in (attrs.get("through_wall") or {}).items():
+        depth = "global depth" if where == "global" else f"{where} depth"
+        out.append((f"THROUGH THE WALL: the tube's {depth} passes the {wall * 1e3:.4g} mm wall "
+                    f"at instant {instant:.4g} [{unit}]", "bold red"))
+    return out
 
 
 @click.command(help=_HELP, context_settings={"max_content_width": 100})
@@ -140,9 +186,18 @@ def _summary(result, console) -> None:
               type=click.Path(exists=True, dir_okay=False, path_type=Path),
               help="A coefficient CSV of your own (format in docs/laws.md) for [law] materials, "
                    "added after the case's [law] database files (repeatable; later files win).")
+@click.option("--wall-thickness", "wall_thickness", type=click.FloatRange(min=0, min_open=True),
+              metavar="METRES",
+              help="Wall thickness of the tube [m] (overrides [geometry] wall_thickness_m): the "
+                   "table gains the depth over the wall and the instant of reaching the limit.")
+@click.option("--depth-limit", "depth_limit", type=click.FloatRange(min=0, min_open=True),
+              metavar="FRACTION",
+              help="Depth limit as a fraction of the wall [-] (overrides [geometry] "
+                   "depth_limit; default 0.4).")
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
-            aster_format: str, databases: tuple[Path, ...], quiet: bool) -> None:
+            aster_format: str, databases: tuple[Path, ...], wall_thickness: float | None,
+            depth_limit: float | None, quiet: bool) -> None:
     if plot_dir is not None:  # before the computation, not after it
         require("matplotlib.pyplot", purpose="--plot")
     case: Path | dict = case_file
@@ -153,6 +208,13 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         law["database"] = ([given] if isinstance(given, str) else list(given)) + [
             str(p.resolve()) for p in databases]
         case["law"] = law
+    if wall_thickness is not None or depth_limit is not None:
+        case = case if isinstance(case, dict) else load_case(case_file)
+        geometry = dict(case.get("geometry", {}))
+        for key, value in (("wall_thickness_m", wall_thickness), ("depth_limit", depth_limit)):
+            if value is not None:
+                geometry[key] = value
+        case["geometry"] = geometry
     console = Console(stderr=False, quiet=quiet)
     columns = (SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
                TaskProgressColumn(), TimeElapsedColumn())

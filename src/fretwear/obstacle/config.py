@@ -51,7 +51,8 @@ OBSTACLE_KEYS: dict[str, tuple[type | tuple[type, ...], str]] = {
     "closing_radius_m": (_NUMBER, "planes: radius of the far circle closing the figure [m]"),
     "file": (str, "discrete: DISCRET table of the NEW obstacle (THETA [deg], JEU [m])"),
     "mobile_radius_m": (_NUMBER, "mobile outer radius [m] (default [geometry] mobile_radius_m)"),
-    "wall_thickness_m": (_NUMBER, "mobile wall thickness [m] (required)"),
+    "wall_thickness_m": (_NUMBER, "mobile wall thickness [m] (required, default [geometry] "
+                                  "wall_thickness_m)"),
     "width_m": (_NUMBER, "obstacle width l [m] (default [geometry] obstacle_width_m)"),
     "perforation": (_NUMBER, "PERCEMENT: perforation at depth > this fraction of the wall "
                              "thickness [-], default 1.0"),
@@ -167,7 +168,9 @@ def obstacle_from_config(config: Mapping[str, Any], *, geometry: Mapping | None 
 
     rm = float(_need(config, "mobile_radius_m", geometry.get("mobile_radius_m"),
                      " or [geometry] mobile_radius_m"))
-    mobile = Mobile(rm, float(_need(config, "wall_thickness_m")))
+    mobile = Mobile(rm, float(_need(config, "wall_thickness_m",
+                                    geometry.get("wall_thickness_m"),
+                                    " or [geometry] wall_thickness_m")))
     model = config.get("type", "circle")
     if model not in OBSTACLE_MODELS:
         raise KeywordError(f"[obstacle] type = {model!r} is unknown"

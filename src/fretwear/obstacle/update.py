@@ -17,8 +17,7 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, PerforationWarning
-from fretwear.io.aster import TABLE_FORMATS, write_aster_table
-from fretwear.io.atomic import atomic_write
+from fretwear.io.aster import TABLE_FORMATS
 from fretwear.obstacle.clearance import RESOLUTION, clearance_figure, polar_polygon
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, sector_of, worn_depth_profiles
 from fretwear.obstacle.profiles import (
@@ -30,26 +29,15 @@ from fretwear.obstacle.profiles import (
 )
 from fretwear.sectors import sector_edges
 from fretwear.table import read_wear_table
+from fretwear.table.files import write_profile_table
+from fretwear.table.schema import COLUMNS, PROFILE_COLUMNS
 
-#: Native column -> Code_Aster column of the wear table columns read here.
+#: Native column -> Code_Aster column of the wear table columns read here (the table schema's).
 WEAR_COLUMNS: dict[str, str] = {
-    "instant": "INST",
-    "sector": "SECTEUR",
-    "angle_start": "ANGLE_DEBUT",
-    "angle_end": "ANGLE_FIN",
-    "volume_mobile_cumulated": "V_USUR_TUBE_CUMU",
-    "volume_obstacle_cumulated": "V_USUR_OBST_CUMU",
-}
+    name: COLUMNS[name][0] for name in ("instant", "sector", "angle_start", "angle_end",
+                                        "volume_mobile_cumulated", "volume_obstacle_cumulated")}
 #: Formats of the profile table: CSV, or a Code_Aster table (IMPR_TABLE's FORMAT).
 PROFILE_FORMATS: tuple[str, ...] = ("csv", *TABLE_FORMATS)
-#: Profile table columns: native -> (Code_Aster-style name, unit).
-PROFILE_COLUMNS: dict[str, tuple[str, str]] = {
-    "angle": ("THETA", "deg"),
-    "clearance_initial": ("JEU_INIT", "m"),
-    "clearance_worn": ("JEU_USE", "m"),
-    "depth_mobile": ("P_USUR_TUBE", "m"),
-    "depth_obstacle": ("P_USUR_OBST", "m"),
-}
 
 
 def _column(frame: pd.DataFrame, native: str, required: bool = True):
@@ -207,7 +195,7 @@ class ObstacleResult:
                               "clearance_worn": self.clearance_worn,
                               "depth_mobile": self.depth_mobile,
                               "depth_obstacle": self.depth_obstacle})
-        frame.attrs = {"units": {k: u for k, (_, u) in PROFILE_COLUMNS.items()},
+        frame.attrs = {"units": {k: u for k, (_, u, _) in PROFILE_COLUMNS.items()},
                        "instant": self.instant, "perforated_sectors": list(self.perforated_sectors),
                        **self.metadata}
         return frame
@@ -229,27 +217,22 @@ class ObstacleResult:
                                 clearance_figure=True)
 
     def write(self, path, format: str | None = None) -> Path:
-        """Write the profile table: CSV (``.csv``) or Code_Aster ``TABLEAU``/``ASTER`` text.
+        """Write the profile table: CSV (``.csv``), Parquet (``.parquet``) or Code_Aster
+        ``TABLEAU``/``ASTER`` text, by :func:`fretwear.table.files.write_profile_table` (the
+        table layer's schema :data:`~fretwear.table.schema.PROFILE_COLUMNS`, exact reals and
+        the provenance header).
 
         ``format`` is ``"csv"``, ``"TABLEAU"`` or ``"ASTER"`` (default from the suffix: .csv ->
-        CSV, else TABLEAU). The Code_Aster table uses THETA, JEU_INIT, JEU_USE, P_USUR_TUBE,
-        P_USUR_OBST.
+        CSV, .parquet -> Parquet, else TABLEAU). The Code_Aster table uses THETA, JEU_INIT,
+        JEU_USE, P_USUR_TUBE, P_USUR_OBST.
         """
-        target = Path(path)
-        fmt = (format or ("csv" if target.suffix.lower() == ".csv" else "TABLEAU")).upper()
-        frame = self.to_frame()
-        if fmt == "CSV":
-            with atomic_write(target, "w", encoding="utf-8", newline="") as fh:
-                frame.to_csv(fh, index=False, float_format="%.10e")
-            return target
-        if fmt not in TABLE_FORMATS:
+        if format is not None and str(format).upper() not in {f.upper() for f in PROFILE_FORMATS}:
             raise InputError(f"unknown profile table format {format!r}; use "
                              f"{', '.join(PROFILE_FORMATS)}")
-        aster = frame.rename(columns={k: v for k, (v, _) in PROFILE_COLUMNS.items()})
         title = "fretwear obstacle update (MODI_OBSTACLE)" + (
             f" at INST = {self.instant:g}" if self.instant is not None else "")
-        return write_aster_table(aster, target, format=fmt, title=title,
-                                 float_format="%17.10E")
+        return write_profile_table(self.to_frame(), path, format=format, title=title,
+                                   instant=self.instant)
 
     def write_discret(self, path) -> Path:
         """Write the worn clearance figure as a DISCRET file (read by ``load_obstacle_profile``).

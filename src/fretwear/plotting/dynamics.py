@@ -114,7 +114,7 @@ def plot_iteration(summary, profiles, *, ax=None):
     ax1.plot(summary["instant"], np.asarray(summary["depth_obstacle_max"]) * 1e3, "s-",
              label="obstacle")
     ax1.set_xlabel("instant [user unit]")
-    ax1.set_ylabel("max worn depth [mm]")
+    ax1.set_ylabel("max obstacle-profile depth [mm]")
     ax1.legend(fontsize=8)
     ax2.plot(summary["cycle"], summary["power"], "o-")
     ax2.set_xlabel("cycle")

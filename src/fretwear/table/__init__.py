@@ -21,6 +21,8 @@ from fretwear.table.schema import (
     COLUMNS,
     GLOBAL_COLUMNS,
     SECTOR_COLUMNS,
+    WALL_COLUMNS,
+    WALL_SECTOR_COLUMNS,
     from_aster_names,
     to_aster_names,
 )
@@ -30,6 +32,8 @@ __all__ = [
     "Coefficient",
     "GLOBAL_COLUMNS",
     "SECTOR_COLUMNS",
+    "WALL_COLUMNS",
+    "WALL_SECTOR_COLUMNS",
     "InitialState",
     "WearCase",
     "from_aster_names",

@@ -11,7 +11,9 @@ replaced on the way. The steps, one function each:
 3. :class:`_Clock`: the elapsed seconds of each instant and the replacement;
 4. :func:`_global_frame` or :func:`_sector_frame`: cumulated volumes (:func:`_cumulated`) and
    depths from them (:func:`_depths`; per sector :func:`~fretwear.geometry.sector_depth_mobile`);
-5. the initial table's rows in front, and the metadata in ``attrs`` (:func:`_attrs`).
+5. the initial table's rows in front; with a wall thickness, the depth as a fraction of the wall
+   and the instant of reaching the limit (:func:`_wall`, :mod:`fretwear.table.limit`);
+6. the metadata in ``attrs`` (:func:`_attrs`).
 
 Conventions of the table (one row per instant, or per instant and sector):
 
@@ -40,6 +42,7 @@ from fretwear.history import ContactHistory
 from fretwear.io import read_history
 from fretwear.power import wear_power
 from fretwear.table.case import WearCase
+from fretwear.table.limit import add_wall_columns
 from fretwear.table.schema import GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 __all__ = ["wear_table_from_case"]
@@ -118,7 +121,12 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
     if state is not None and len(state.rows):
         frame = pd.concat([state.rows.reindex(columns=frame.columns), frame],
                           ignore_index=True)
+    limit = None
+    if case.wall_thickness is not None:
+        frame, limit = _wall(case, frame, power, result, mobile, obstacle, clock, geometry)
     frame.attrs = _attrs(case, geometry, mobile, obstacle, sources, result)
+    if limit is not None:
+        frame.attrs.update(limit)
     return frame
 
 
@@ -346,7 +354,58 @@ def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> pd.D
     return pd.DataFrame({c: data[c] for c in SECTOR_COLUMNS})
 
 
-# --------------------------------------------------------------------------- 5. metadata
+# --------------------------------------------------------------------------- 5. the wall
+def _wall(case, frame, power, result, mobile, obstacle, clock, geometry):
+    """The wall columns (:func:`fretwear.table.limit.add_wall_columns`): the depth over the
+    wall and the instant of reaching the limit, from depth(t) through the law and geometry."""
+    law, state = case.wear_law, case.initial_state
+    fresh = clock.fresh
+
+    def functions(terms, depth_of):
+        def old(t):  # the tube in place at the origin, t seconds after it
+            vm = sum(_cumulated(law, p, km, t, pm, None, "mobile") for p, km, _, pm, _ in terms)
+            vo = sum(_cumulated(law, p, ko, t, po, None, "obstacle")
+                     for p, _, ko, _, po in terms)
+            return depth_of(np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))
+
+        def new(tau):  # a new tube, tau seconds after its replacement
+            vm = sum(_cumulated(law, p, km, tau, 0.0, None, "mobile")
+                     for p, km, _, _, _ in terms)
+            vo = sum(_cumulated(law, p, ko, fresh + tau, po, None, "obstacle")
+                     for p, _, ko, _, po in terms)
+            return depth_of(np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))
+
+        return old, new
+
+    def global_depth(vm, vo):
+        return _depths(geometry, vm, vo)[0]
+
+    sectors = None
+    if case.sectors is None:
+        terms = [(power, mobile, obstacle, 0.0 if state is None else state.volume_mobile,
+                  0.0 if state is None else state.volume_obstacle)]
+    else:
+        key = law.parameters[0]
+        edges = np.asarray(result.sector_edges, dtype=float)
+        powers = np.asarray(result.sectors, dtype=float)
+        k_m, k_o = _sector_coefficients(case, powers.size, mobile, obstacle)
+        terms = [(powers[j], {key: k_m[j]}, None if k_o is None else {key: k_o[j]},
+                  0.0 if state is None else float(state.sector_volume_mobile[j]),
+                  0.0 if state is None else float(state.sector_volume_obstacle[j]))
+                 for j in range(powers.size)]
+        sectors = []
+        for j, term in enumerate(terms):
+            arc = edges[j + 1] - edges[j]
+            sectors.append(functions([term], lambda vm, vo, arc=arc: sector_depth_mobile(
+                vm, geometry.mobile_radius, geometry.obstacle_width, arc)))
+    return add_wall_columns(
+        frame, wall=case.wall_thickness, depth_limit=case.depth_limit, origin=case.origin,
+        time_scale=case.time_scale, fresh=fresh, sector_depths=sectors, unit=case.time_unit,
+        stacklevel=4,
+        global_depth=None if case.contact_type is None else functions(terms, global_depth))
+
+
+# --------------------------------------------------------------------------- 6. metadata
 def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result) -> dict:
     """The table's metadata: the run's description, the coefficients and their sources."""
     dimensions = dict(geometry.to_dict())

@@ -1,6 +1,13 @@
-"""The wear table's schema: every column's native name, Code_Aster name, unit and meaning
-(theory §7), in one place for the builder, the readers and writers, the obstacle update and the
-Code_Aster facade.
+"""The schema of fretwear's tables: every column's native name, Code_Aster name, unit and
+meaning (theory §7, §8), in one place for the builder, the readers and writers, the obstacle
+update, the coupled loop and the Code_Aster facade.
+
+- :data:`COLUMNS`: the wear table (POST_USURE's columns and fretwear's extensions);
+- :data:`PROFILE_COLUMNS`: the obstacle update's profile table (MODI_OBSTACLE);
+- :data:`FLOAT_FORMAT`: the one format of reals in every text file fretwear writes (CSV and
+  Code_Aster tables): ``%.17g``, 17 significant digits, which round-trips every float64
+  exactly (Parquet stores the binary float64). Code_Aster's LIRE_TABLE reads it (its reals are
+  any ``[0-9.,+-eEdD]`` token).
 """
 
 from __future__ import annotations
@@ -32,7 +39,21 @@ COLUMNS: dict[str, tuple[str, str, str]] = {
     "volume_mobile_cumulated": ("V_USUR_TUBE_CUMU", "m³", "cumulated mobile volume in the sector"),
     "volume_obstacle_cumulated": ("V_USUR_OBST_CUMU", "m³",
                                   "cumulated obstacle volume in the sector"),
+    # with a wall thickness (fretwear extensions, fretwear.table.limit)
+    "wall_fraction": ("FRAC_PAROI", "1", "global depth of the mobile over its wall thickness"),
+    "limit_instant": ("INST_LIMITE", "user time unit",
+                      "instant at which the global depth reaches depth_limit × wall thickness "
+                      "(inf: never; the origin: already there)"),
+    "wall_fraction_sector": ("FRAC_PAROI_SECT", "1",
+                             "sector depth of the mobile over its wall thickness"),
+    "limit_instant_sector": ("INST_LIMITE_SECT", "user time unit",
+                             "instant at which the sector depth reaches depth_limit × wall "
+                             "thickness"),
 }
+#: Columns added when the case gives the wall thickness (global, and in sector mode).
+WALL_COLUMNS: tuple[str, ...] = ("wall_fraction", "limit_instant")
+WALL_SECTOR_COLUMNS: tuple[str, ...] = WALL_COLUMNS + ("wall_fraction_sector",
+                                                       "limit_instant_sector")
 GLOBAL_COLUMNS: tuple[str, ...] = (
     "instant", "duration", "origin", "power", "volume_mobile", "volume_obstacle",
     "depth_mobile", "depth_obstacle")
@@ -40,6 +61,17 @@ SECTOR_COLUMNS: tuple[str, ...] = GLOBAL_COLUMNS + (
     "sector", "angle_start", "angle_end", "sector_power", "volume_mobile_sector",
     "volume_obstacle_sector", "depth_mobile_sector", "depth_obstacle_sector",
     "volume_mobile_cumulated", "volume_obstacle_cumulated")
+#: Obstacle profile table (:meth:`fretwear.obstacle.ObstacleResult.to_frame`), one row per
+#: direction: native column -> (Code_Aster name, unit, description).
+PROFILE_COLUMNS: dict[str, tuple[str, str, str]] = {
+    "angle": ("THETA", "deg", "direction of the clearance, 0..360"),
+    "clearance_initial": ("JEU_INIT", "m", "clearance of the new mobile in the new obstacle"),
+    "clearance_worn": ("JEU_USE", "m", "clearance of the worn mobile in the worn obstacle"),
+    "depth_mobile": ("P_USUR_TUBE", "m", "worn radial depth of the mobile in that direction"),
+    "depth_obstacle": ("P_USUR_OBST", "m", "worn radial depth of the obstacle in that direction"),
+}
+#: printf format of every real in fretwear's text tables (CSV, Code_Aster): exact for float64.
+FLOAT_FORMAT = "%.17g"
 _FROM_ASTER = {aster: native for native, (aster, _, _) in COLUMNS.items()}
 _TIME_TOL = 1e-9
 

@@ -30,11 +30,11 @@ import pandas as pd
 
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.geometry import contact_geometry
-from fretwear.geometry._shapes import solve_monotone
 from fretwear.geometry.base import ContactGeometry
-from fretwear.geometry.sectors import sector_depth_mobile
+from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile, sector_geometry
 from fretwear.laws import get_law
 from fretwear.laws.registry import WearLaw
+from fretwear.table.limit import time_to_depth
 
 __all__ = ["ContactModel", "model_from_table", "models_from_table"]
 
@@ -94,7 +94,7 @@ class ContactModel:
     """
 
     law: WearLaw
-    geometry: ContactGeometry
+    geometry: ContactGeometry | SectorGeometry
     powers: tuple[float, ...]
     coefficients_mobile: tuple[dict | None, ...]
     coefficients_obstacle: tuple[dict | None, ...]
@@ -146,8 +146,8 @@ class ContactModel:
 
     def with_dimensions(self, **dimensions: float) -> ContactModel:
         """The same model with other dimensions (SI, angles [deg]), validated."""
-        geometry = contact_geometry(self.geometry.contact_type,
-                                    **{**self.geometry.dimensions(), **dimensions})
+        geometry = _geometry(self.geometry.contact_type,
+                             {**self.geometry.dimensions(), **dimensions})
         return dataclasses.replace(self, geometry=geometry)
 
     # ------------------------------------------------------------------ forward model
@@ -248,8 +248,9 @@ class ContactModel:
                       obstacle_coefficients=None, rtol: float = 1e-12) -> np.ndarray:
         """Time since the origin [s] at which the mobile's depth reaches ``depth`` [m].
 
-        depth(t) is non-decreasing; it is inverted by a bracketed solver (Chandrupatla) on the
-        law and the geometry, to ``rtol`` relative on the time. 0 where the depth is already
+        depth(t) is non-decreasing; it is inverted by a bracketed solver
+        (:func:`fretwear.table.limit.time_to_depth`) on the law and the geometry, to ``rtol``
+        relative on the time. 0 where the depth is already
         reached at the origin; ``inf`` where it is never reached (no wear, or a power of 0).
 
         Examples
@@ -281,32 +282,15 @@ class ContactModel:
               "obstacle_coefficients": None if not obstacle_coefficients else {
                   k: np.broadcast_to(np.asarray(v, dtype=float), shape)
                   for k, v in obstacle_coefficients.items()}}
-        above = 2.0 * target + 1.0  # stands for "beyond the relation's range" (deeper than any)
+        return time_to_depth(lambda t: self.depth(t, warn=False, **kw), target,
+                             first_guess=self.time_scale, rtol=rtol)
 
-        def g(t):
-            d = self.depth(t, warn=False, **kw)
-            return np.where(np.isnan(d), above, d)
 
-        zero = np.zeros(shape)
-        start = g(zero)
-        done = start >= target
-        hi = np.full(shape, self.time_scale)
-        lo = np.zeros(shape)
-        below = ~done & (g(hi) < target)
-        for _ in range(80):  # ×16 each: up to 10^96 s
-            if not below.any():
-                break
-            lo = np.where(below, hi, lo)
-            hi = np.where(below, hi * 16.0, hi)
-            below = below & (g(hi) < target)
-        never = below
-        active = ~done & ~never
-        out = np.where(done, 0.0, np.inf)
-        if active.any():
-            solved = solve_monotone(g, np.where(active, target, 0.0), np.where(active, lo, 0.0),
-                                    np.where(active, hi, 0.0), rtol=rtol)
-            out = np.where(active, solved, out)
-        return out if out.ndim else float(out)
+def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
+    """The contact geometry, or the sector geometry of a case without contact type."""
+    if contact_type is None:
+        return sector_geometry(**dict(dimensions))
+    return contact_geometry(contact_type, **dict(dimensions))
 
 
 def given_names(law: WearLaw, given: Mapping[str, Any]) -> list[str]:
@@ -367,7 +351,7 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
     """
     a = _attrs(table)
     law = get_law(a["law"])
-    geometry = contact_geometry(a["contact_type"], **dict(a["dimensions"]))
+    geometry = _geometry(a["contact_type"], a["dimensions"])
     origin = float(a.get("origin") or 0.0)
     replacement = a.get("tube_replacement")
     if replacement is not None and float(replacement) > origin + _TIME_TOL * max(1, origin):

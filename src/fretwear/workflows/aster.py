@@ -14,7 +14,9 @@ NOEUD excludes GROUP_NO ...), each violation a :class:`~fretwear.errors.KeywordE
 keywords. The result is a DataFrame with Code_Aster's column names (theory §7); the computation is
 :func:`fretwear.table.wear_table_from_case` of a :class:`~fretwear.table.WearCase`. Values are
 SI, angles in degrees, as in Code_Aster.
-Deliberate differences from Code_Aster are listed in ``docs/code_aster.md``.
+Deliberate differences from Code_Aster are listed in ``docs/code_aster.md``. Extras beyond the
+catalogue (:data:`EXTRA_KEYWORDS`): ``EPAIS_PAROI`` (wall thickness [m]) and ``LIMITE_PAROI``
+(depth limit, fraction of the wall), which add the columns FRAC_PAROI and INST_LIMITE.
 """
 
 from __future__ import annotations
@@ -76,7 +78,13 @@ SIMPLE_KEYWORDS: dict[str, str] = {
     "TABL_USURE": "wear table of TUBE_NEUF (DataFrame or path)",
     "TITRE": "title (ignored)",
     "INFO": "verbosity (ignored)",
+    # fretwear extras, not in Code_Aster's catalogue
+    "EPAIS_PAROI": "wall thickness of the tube [m] (fretwear extra): adds FRAC_PAROI and "
+                   "INST_LIMITE (the instant the depth reaches LIMITE_PAROI of the wall)",
+    "LIMITE_PAROI": "depth limit as a fraction of the wall [-], default 0.4 (fretwear extra)",
 }
+#: The keywords of :data:`SIMPLE_KEYWORDS` that Code_Aster's catalogue does not have.
+EXTRA_KEYWORDS: tuple[str, ...] = ("EPAIS_PAROI", "LIMITE_PAROI")
 #: Factor keywords and the keywords each accepts.
 FACTOR_KEYWORDS: dict[str, tuple[str, ...]] = {
     "MOBILE": ("COEF_USURE", "COEF_FNOR", "COEF_VTAN", "COEF_K", "COEF_C", "COEF_B", "COEF_N",
@@ -316,7 +324,10 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         initial_state=etat[0].get("TABL_USURE") if etat else None,
         initial_instant=etat_instant, t_start=optional("INST_INIT"), t_end=optional("INST_FIN"),
         blocks=_integer(kw.get("NB_BLOC", 1), "NB_BLOC"),
-        force_max=optional("FNOR_MAXI"), speed_max=optional("VTAN_MAXI"))
+        force_max=optional("FNOR_MAXI"), speed_max=optional("VTAN_MAXI"),
+        wall_thickness=optional("EPAIS_PAROI"),
+        depth_limit=0.4 if "LIMITE_PAROI" not in kw else _real(kw["LIMITE_PAROI"],
+                                                               "LIMITE_PAROI"))
     table = wear_table_from_case(case, source)
     return to_aster_names(_obstacle_depths_that_exist(table))
 

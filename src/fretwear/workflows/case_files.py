@@ -95,6 +95,11 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
         "tilt_angle_deg": ((int, float), "tilt angle [deg] (ANGL_INCLI)"),
         "isthmus_angle_deg": ((int, float), "isthmus angle [deg] (ANGL_ISTHME)"),
         "impact_angle_deg": ((int, float), "impact angle [deg] (ANGL_IMPACT)"),
+        "wall_thickness_m": ((int, float), "wall thickness of the mobile (tube) [m]: the table "
+                                           "gains the depth over the wall and the instant of "
+                                           "reaching the limit (fretwear extension)"),
+        "depth_limit": ((int, float), "depth limit as a fraction of the wall [-], default 0.4 "
+                                      "(plugging criterion)"),
     },
     "sectors": {
         "count": (int, "number of equal angular sectors over -180..180 deg"),
@@ -333,7 +338,11 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
                            "mobile_coefficients_per_Pa too")
     materials = law.get("materials")
     files = _database_files(case, law.get("database"))
-    wall = case.get("obstacle", {}).get("wall_thickness_m")
+    wall = geometry.get("wall_thickness_m", case.get("obstacle", {}).get("wall_thickness_m"))
+    if wall != case.get("obstacle", {}).get("wall_thickness_m", wall):
+        raise KeywordError(f"case: [geometry] wall_thickness_m = {wall} and [obstacle] "
+                           f"wall_thickness_m = {case['obstacle']['wall_thickness_m']} differ; "
+                           "give the tube's wall once, in [geometry]")
     # the rules between the keys (materials a pair, database files need materials, sectors
     # Archard only, ...) are the wear case's: fretwear.table.WearCase checks them once
     return dict(
@@ -351,7 +360,7 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
         stationarity_threshold=power.get("stationarity_threshold", 0.1),
         force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"),
         coefficient_files=files or None, time_unit=time.get("unit"), name=case.get("title"),
-        wall_thickness=wall)
+        wall_thickness=wall, depth_limit=geometry.get("depth_limit", 0.4))
 
 
 def wear_case(case: Mapping[str, Any], *, history_elsewhere: bool = False) -> WearCase:

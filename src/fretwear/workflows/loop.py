@@ -43,6 +43,7 @@ from fretwear.plotting import (
 )
 from fretwear.power import PowerAccumulator
 from fretwear.table import WearCase, wear_table_from_case, write_wear_table
+from fretwear.table.schema import FLOAT_FORMAT
 from fretwear.workflows.case_files import (
     case_arguments,
     chunked_power,
@@ -53,8 +54,12 @@ from fretwear.workflows.case_files import (
 #: key -> (type, description with unit) of the ``[iterate]`` section.
 ITERATE_KEYS: dict[str, tuple[Any, str]] = {
     "cycles": (int, "number of cycles dynamics → wear → obstacle (default 1)"),
-    "max_depth_m": ((int, float), "stop after the cycle where the mobile's (or obstacle's) "
-                                  "worn depth reaches this [m]"),
+    "max_depth_m": ((int, float), "stop after the cycle where the worn depth named by "
+                                  "max_depth_of reaches this [m]"),
+    "max_depth_of": (str, "which depth max_depth_m compares: 'global' (the wear table's depths "
+                          "from the total volumes), 'sector' (the largest sector depth), "
+                          "'profile' (the obstacle update's depth profiles) or 'largest' of "
+                          "them (default), each of the mobile and the obstacle"),
     "shock": (str, "name of the shock whose history feeds the wear table (default the first)"),
     "output": (str, "output folder, relative to the case file (default 'iterate')"),
     "plot": (bool, "write figures for every cycle (default true)"),
@@ -67,7 +72,36 @@ def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
     out = dict(section)
     if out.get("cycles", 1) < 1:
         raise KeywordError(f"[iterate] cycles must be >= 1, got {out['cycles']}")
+    if out.get("max_depth_of", "largest") not in DEPTHS_OF:
+        raise KeywordError(f"[iterate] max_depth_of = {out['max_depth_of']!r}: choose one of "
+                           f"{list(DEPTHS_OF)}")
     return out
+
+
+#: The depths the stop criterion max_depth_m may compare: name -> summary columns.
+DEPTHS_OF: dict[str, tuple[str, ...]] = {
+    "global": ("depth_global_mobile", "depth_global_obstacle"),
+    "sector": ("depth_sector_mobile_max", "depth_sector_obstacle_max"),
+    "profile": ("depth_mobile_max", "depth_obstacle_max"),
+}
+DEPTHS_OF["largest"] = tuple(c for cols in list(DEPTHS_OF.values()) for c in cols)
+
+
+def _table_depths(table: pd.DataFrame) -> dict[str, float]:
+    """Global and largest sector depths [m] of the mobile and the obstacle at the table's last
+    instant (NaN where the table has none)."""
+    last = table[table["instant"] == table["instant"].iloc[-1]]
+
+    def top(column: str) -> float:
+        if column not in last.columns:
+            return float("nan")
+        values = last[column].to_numpy(dtype=float)
+        return float(np.nanmax(values)) if np.isfinite(values).any() else float("nan")
+
+    return {"depth_global_mobile": top("depth_mobile"),
+            "depth_global_obstacle": top("depth_obstacle"),
+            "depth_sector_mobile_max": top("depth_mobile_sector"),
+            "depth_sector_obstacle_max": top("depth_obstacle_sector")}
 
 
 def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
@@ -130,8 +164,11 @@ class IterationResult:
         One row per cycle: ``cycle``, ``instant`` (end of the cycle) [user unit], ``power`` [W],
         ``wear_power_steps`` [W] (integrated at every time step over the whole computation,
         not only the ``[power]`` window), ``depth_mobile_max``,
-        ``depth_obstacle_max`` [m], ``clearance_min``, ``clearance_max`` [m] (after the update),
-        ``contact_fraction`` [-], ``perforated``.
+        ``depth_obstacle_max`` [m] (the largest obstacle-profile depths of the update),
+        ``clearance_min``, ``clearance_max`` [m] (after the update), ``contact_fraction`` [-],
+        ``perforated``, ``depth_global_mobile``, ``depth_global_obstacle`` [m] (the wear
+        table's global depths, from the total volumes), ``depth_sector_mobile_max``,
+        ``depth_sector_obstacle_max`` [m] (its largest sector depths) at the cycle's end.
     tables : list of DataFrame
         The wear table after each cycle (each continues the previous one).
     profiles : list of ObstacleResult
@@ -141,6 +178,8 @@ class IterationResult:
     stopped : str
         Why the loop stopped: ``"cycles"``, ``"max_depth"`` or ``"perforation"``.
     warnings : list of str
+    max_depth_of : str
+        Which depth the ``max_depth_m`` criterion compared (:data:`DEPTHS_OF`).
     """
 
     summary: pd.DataFrame
@@ -149,6 +188,7 @@ class IterationResult:
     directory: Path | None
     stopped: str
     warnings: list[str] = field(default_factory=list)
+    max_depth_of: str = "largest"
 
 
 def _wear_case(case: Mapping[str, Any]) -> tuple[dict[str, Any], WearCase]:
@@ -240,6 +280,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     new_profile = (grid, np.asarray(new.clearance(grid), dtype=float))
     profile = new_profile
     max_depth = it.get("max_depth_m")
+    depth_of = it.get("max_depth_of", "largest")
     rows, tables, profiles = [], [], []
     stopped = "cycles"
     with warnings.catch_warnings(record=True) as caught:
@@ -278,7 +319,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                    "clearance_min": float(np.nanmin(update.clearance_worn)),
                    "clearance_max": float(np.nanmax(update.clearance_worn)),
                    "contact_fraction": contact,
-                   "perforated": bool(update.perforated)}
+                   "perforated": bool(update.perforated), **_table_depths(table)}
             rows.append(row)
             if not np.all(np.isfinite(profile[1])):
                 warnings.warn(f"cycle {k}: the worn clearance has undefined values (depth beyond "
@@ -289,8 +330,8 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             if update.perforated and it.get("stop_on_perforation", True):
                 stopped = "perforation"
                 break
-            if max_depth is not None and max(row["depth_mobile_max"],
-                                             row["depth_obstacle_max"]) >= max_depth:
+            compared = [row[c] for c in DEPTHS_OF[depth_of] if np.isfinite(row[c])]
+            if max_depth is not None and compared and max(compared) >= max_depth:
                 stopped = "max_depth"
                 break
     summary = pd.DataFrame(rows)
@@ -301,7 +342,8 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
         if t not in texts:
             texts.append(t)
     return IterationResult(summary=summary, tables=tables, profiles=profiles,
-                           directory=out_dir, stopped=stopped, warnings=texts)
+                           directory=out_dir, stopped=stopped, warnings=texts,
+                           max_depth_of=depth_of)
 
 
 #: Wear-shock histories up to this many samples are read whole by the loop; longer ones are
@@ -380,7 +422,7 @@ def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figu
 def _write_summary(out_dir: Path, summary: pd.DataFrame, stopped: str, do_plot: bool,
                    profiles) -> None:
     with atomic_path(out_dir / "summary.csv") as tmp:
-        summary.to_csv(tmp, index=False, float_format="%.10g")
+        summary.to_csv(tmp, index=False, float_format=FLOAT_FORMAT)
     with atomic_write(out_dir / "summary.json", "w", encoding="utf-8") as fh:
         json.dump({"stopped": stopped, "cycles": summary.to_dict(orient="records")}, fh,
                   indent=2)

@@ -1,0 +1,180 @@
+"""The wall and its limit: depth as a fraction of the wall, time to reach the limit.
+
+A tube is plugged when its worn depth reaches a fraction of its wall thickness (commonly 40 %).
+With the case's ``wall_thickness`` [m] and ``depth_limit`` [-] the wear table gains, for the
+global depth and for every sector depth (docs/uncertainty.md §1):
+
+* ``wall_fraction`` (``wall_fraction_sector``): the depth of the mobile over the wall [-];
+* ``limit_instant`` (``limit_instant_sector``): the instant [user time unit] at which that depth
+  reaches ``depth_limit × wall_thickness``, found by inverting the monotone depth(t) through the
+  law and the geometry with a bracketed solver (not by interpolating the table's rows); ``inf``
+  when the law never gets there (no wear), the origin when it is already reached there.
+
+A depth beyond the wall (fraction > 1) is named by a :class:`~fretwear.errors.PerforationWarning`.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+
+import numpy as np
+
+from fretwear.errors import InputError, PerforationWarning
+from fretwear.geometry._shapes import solve_monotone
+
+__all__ = ["add_wall_columns", "first_time", "time_to_depth"]
+
+#: Bracket growth per step and number of steps (16⁸⁰ ≈ 10⁹⁶ times the first guess).
+_GROWTH, _STEPS = 16.0, 80
+
+
+def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
+                  first_guess: float = 1.0, rtol: float = 1e-12) -> np.ndarray:
+    """Times t ≥ 0 [s] at which a non-decreasing depth(t) reaches ``target`` [m]; vectorised.
+
+    Parameters
+    ----------
+    depth_of_time : callable
+        ``depth_of_time(t)`` for an array t [s] of the shape of ``target``, element-wise
+        (element i may use parameters of its own); NaN means beyond the relation's range
+        (deeper than any depth in it).
+    target : float or array_like
+        Depths to reach [m], > 0.
+    first_guess : float
+        A time scale to start the bracket from [s] (e.g. the user's time unit).
+    rtol : float
+        Relative tolerance on t.
+
+    Returns
+    -------
+    numpy.ndarray or float
+        t [s]: 0 where depth(0) ≥ target already, ``inf`` where the depth never reaches it.
+
+    Notes
+    -----
+    The bracket [lo, hi] grows by ×16 from ``first_guess`` until depth(hi) ≥ target, then
+    Chandrupatla's method (:func:`fretwear.geometry._shapes.solve_monotone`) narrows it to
+    ``rtol``. A NaN depth counts as above the target.
+
+    Examples
+    --------
+    >>> round(float(time_to_depth(lambda t: 1e-6 * np.sqrt(t), 1e-3)), 6)  # (1e-3/1e-6)²
+    1000000.0
+    """
+    goal = np.asarray(target, dtype=float)
+    if not (np.isfinite(goal) & (goal > 0)).all():
+        raise InputError(f"the depth to reach must be finite and > 0 [m], got {target!r}")
+    shape = goal.shape
+    above = 2.0 * goal + 1.0  # stands for "beyond the relation's range"
+
+    def g(t):
+        d = np.asarray(depth_of_time(t), dtype=float)
+        return np.where(np.isnan(d), above, np.broadcast_to(d, shape))
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # range and law warnings of trial times
+        done = g(np.zeros(shape)) >= goal
+        lo = np.zeros(shape)
+        hi = np.full(shape, float(first_guess))
+        below = ~done & (g(hi) < goal)
+        for _ in range(_STEPS):
+            if not below.any():
+                break
+            lo = np.where(below, hi, lo)
+            hi = np.where(below, hi * _GROWTH, hi)
+            below = below & (g(hi) < goal)
+        active = ~done & ~below
+        out = np.where(done, 0.0, np.inf)
+        if active.any():
+            solved = solve_monotone(g, np.where(active, goal, 0.0), np.where(active, lo, 0.0),
+                                    np.where(active, hi, 0.0), rtol=rtol)
+            out = np.where(active, solved, out)
+    return out if out.ndim else float(out)
+
+
+def first_time(old: Callable, new: Callable | None, target: float, fresh: float | None,
+               first_guess: float) -> float:
+    """Seconds after the origin [s] at which the tube in place first reaches ``target`` [m].
+
+    ``old(t)`` is the depth of the tube in place at the origin, ``new(τ)`` the depth of a tube
+    put in ``fresh`` seconds after the origin (TUBE_NEUF), τ seconds after its replacement.
+    """
+    t = float(time_to_depth(old, target, first_guess=first_guess))
+    if fresh is None or new is None or t < fresh:
+        return t
+    return fresh + float(time_to_depth(new, target, first_guess=first_guess))
+
+
+def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
+                     time_scale: float, fresh: float | None, global_depth, sector_depths=None,
+                     unit: str | None = None, stacklevel: int = 3):
+    """``frame`` with the wall columns (module docstring), and the limit's metadata.
+
+    Parameters
+    ----------
+    frame : DataFrame
+        The wear table (native columns).
+    wall : float
+        Wall thickness of the mobile [m].
+    depth_limit : float
+        Depth limit as a fraction of the wall [-].
+    origin : float
+        Origin of the run [user time unit].
+    time_scale : float
+        Seconds per user time unit [s].
+    fresh : float or None
+        Seconds after the origin of a tube replacement (None: none) [s].
+    global_depth : (callable, callable) or None
+        ``(old, new)`` depth functions of the global depth (None: no global depth).
+    sector_depths : list of (callable, callable), optional
+        The same per sector (sector mode).
+    unit : str, optional
+        Name of the user time unit, for the warning.
+
+    Returns
+    -------
+    (DataFrame, dict)
+        The table with ``wall_fraction``, ``limit_instant`` (and ``wall_fraction_sector``,
+        ``limit_instant_sector``), and ``{"limit_depth", "limit_instant", "through_wall"}``.
+    """
+    out = frame.copy()
+    limit = depth_limit * wall
+
+    def instant(fns, target):
+        if fns is None:
+            return np.nan
+        t = first_time(fns[0], fns[1], target, fresh, time_scale)
+        return origin + t / time_scale
+
+    out["wall_fraction"] = out["depth_mobile"].to_numpy(dtype=float) / wall
+    limit_at = instant(global_depth, limit)
+    out["limit_instant"] = limit_at
+    info = {"limit_depth": limit, "limit_instant": limit_at, "through_wall": {}}
+    through = []
+    if global_depth is not None and np.nanmax(out["wall_fraction"], initial=0.0) > 1.0:
+        t = instant(global_depth, wall)
+        info["through_wall"]["global"] = t
+        through.append(f"its global depth from instant {t:.6g}")
+    if sector_depths is not None:
+        sector = out["sector"].to_numpy(dtype=int)
+        out["wall_fraction_sector"] = out["depth_mobile_sector"].to_numpy(dtype=float) / wall
+        instants = np.array([instant(fns, limit) for fns in sector_depths])
+        out["limit_instant_sector"] = instants[sector - 1]
+        info["limit_instant_sector"] = instants.tolist()
+        deep = sorted(set(sector[out["wall_fraction_sector"].to_numpy() > 1.0].tolist()))
+        for j in deep:
+            t = instant(sector_depths[j - 1], wall)
+            info["through_wall"][f"sector {j}"] = t
+            through.append(f"sector {j}'s depth from instant {t:.6g}")
+    if through:
+        deepest = np.nanmax(np.concatenate([
+            out["depth_mobile"].to_numpy(dtype=float),
+            out["depth_mobile_sector"].to_numpy(dtype=float) if sector_depths else []]))
+        warnings.warn(f"the tube is worn through its wall ({wall * 1e3:.4g} mm): "
+                      f"{'; '.join(through)} [{unit or 'user time unit'}]; deepest "
+                      f"{deepest * 1e3:.4g} mm "
+                      f"({deepest / wall:.0%} of the wall). Depths past the wall are "
+                      "extrapolations of the geometry", PerforationWarning,
+                      stacklevel=stacklevel)
+    return out, info
