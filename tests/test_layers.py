@@ -24,6 +24,7 @@ re-exports everything lazily) → cli.
 from __future__ import annotations
 
 import ast
+import re
 from collections import defaultdict
 from pathlib import Path
 
@@ -31,6 +32,7 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 ROOT = SRC / "fretwear"
+DESIGN = SRC.parent / "docs" / "DESIGN.md"
 
 #: layer names, lowest first.
 LAYERS = ("foundation", "physics", "plotting", "workflows", "api", "cli")
@@ -212,6 +214,40 @@ def test_no_module_imports_an_upper_layer(graph):
     edges, _ = graph
     bad = layer_violations(edges)
     assert not bad, "imports of an upper layer:\n" + "\n".join(bad)
+
+
+def test_no_circle_between_packages(graph):
+    """The first-level packages (io, power, table, ...) depend on each other without a circle
+    either (the order docs/DESIGN.md draws)."""
+    edges, _ = graph
+    top = defaultdict(dict)
+    for name, deps in edges.items():
+        for dep, line in deps.items():
+            a, b = name.split(".")[:2], dep.split(".")[:2]
+            if a != b:
+                top[".".join(a)].setdefault(".".join(b), f"{name} -> {dep}, line {line}")
+    circles = strongly_connected(top)
+    assert not circles, "package circles:\n" + "\n".join(
+        f"{c}: " + "; ".join(top[a][b] for a in c for b in c if b in top[a]) for c in circles)
+
+
+def test_design_lists_every_module_with_its_layer(graph):
+    """docs/DESIGN.md has one line per module (its table): every module, no other, each with
+    the layer this test gives it."""
+    edges, _ = graph
+    rows = dict(re.findall(r"^\| `([\w/]+\.py)` \| (\w+) \|", DESIGN.read_text(encoding="utf-8"),
+                           re.M))
+    modules_ = modules()
+    expected = {}
+    for name in edges:
+        path = modules_[name].relative_to(ROOT).as_posix()
+        expected[path] = layer(name, edges)
+    missing = sorted(set(expected) - set(rows))
+    assert not missing, f"docs/DESIGN.md's module table lacks {missing}"
+    stale = sorted(set(rows) - set(expected))
+    assert not stale, f"docs/DESIGN.md's module table lists modules that do not exist: {stale}"
+    wrong = {p: (rows[p], expected[p]) for p in expected if rows[p] != expected[p]}
+    assert not wrong, f"layer in docs/DESIGN.md vs the import rules: {wrong}"
 
 
 def test_no_module_imports_a_deprecated_shim(graph):
