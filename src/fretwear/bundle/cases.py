@@ -23,33 +23,18 @@ import os
 import tomllib
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
+from fretwear._version import __version__
+from fretwear.bundle.datasets import path_stamp
 from fretwear.bundle.manifest import ContactRow, HistoryRef
 from fretwear.errors import InputError, KeywordError
-
-
-def path_stamp(path: str | os.PathLike) -> tuple:
-    """What identifies a file's content cheaply: (size, modification time [ns]); for a
-    directory (a Zarr store), the number of files, their total size and the latest time."""
-    p = Path(path)
-    try:
-        st = p.stat()
-    except OSError:
-        return ("missing",)
-    if not p.is_dir():
-        return (st.st_size, st.st_mtime_ns)
-    count = size = 0
-    latest = st.st_mtime_ns
-    for root, _, files in os.walk(p):
-        for f in files:
-            s = os.stat(os.path.join(root, f))
-            count, size, latest = count + 1, size + s.st_size, max(latest, s.st_mtime_ns)
-    return (count, size, latest)
+from fretwear.io.channels import channel_of
+from fretwear.table import WearCase
+from fretwear.workflows.case_files import KEYS, case_arguments, history_options, validate_case
 
 
 def _coerce(kind: Any, value: Any, where: str) -> Any:
@@ -98,8 +83,6 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
     KeywordError
         An override of the wrong type, or a case that does not validate.
     """
-    from fretwear.workflows.case_files import KEYS, validate_case
-
     case = copy.deepcopy({k: v for k, v in base.items() if k != "_directory"})
     where = f"{source}: contact {row.contact!r}"
     for key, value in row.overrides.items():
@@ -196,8 +179,6 @@ class ContactTask:
 
 @functools.lru_cache(maxsize=64)
 def _wear_case(key: str, text: str):
-    from fretwear.table import WearCase
-
     return WearCase.from_dict(json.loads(text))
 
 
@@ -205,12 +186,8 @@ def read_options(case: Mapping[str, Any], ref: HistoryRef) -> dict[str, Any]:
     """Reader options of a contact's history: the case's ``[history]`` options
     (:func:`fretwear.workflows.case_files.history_options`), the units a store declares, and
     the manifest's node (the shock point of a Code_Aster table, POST_USURE's NOEUD)."""
-    from fretwear.workflows.case_files import history_options
-
     options = history_options(case.get("history", {}))
     if ref.units:
-        from fretwear.io.channels import channel_of
-
         declared = {channel_of(v): u for v, u in ref.units.items() if channel_of(v)}
         options["units"] = {**declared, **options.get("units", {})}
     if ref.node is not None:
@@ -227,10 +204,6 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     InputError, KeywordError
         The merged case is invalid, or the row has neither a history nor ``power.value_W``.
     """
-    from fretwear import __version__
-    from fretwear.table import WearCase
-    from fretwear.workflows.case_files import case_arguments
-
     case = merge_case(base, row, source)
     where = f"{source}: contact {row.contact!r}"
     given_power = "value_W" in case.get("power", {})

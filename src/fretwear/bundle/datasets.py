@@ -15,7 +15,6 @@ import functools
 import os
 import warnings
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -30,6 +29,25 @@ def require(module: str, purpose: str = "the bundle runner"):
     """Import an optional dependency, or a MissingDependencyError naming the extra to install
     (``fretwear[bundle]`` for dask, distributed, xarray, zarr)."""
     return _require(module, purpose=purpose)
+
+
+def path_stamp(path: str | os.PathLike) -> tuple:
+    """What identifies a file's content cheaply: (size, modification time [ns]); for a
+    directory (a Zarr store), the number of files, their total size and the latest time."""
+    p = Path(path)
+    try:
+        st = p.stat()
+    except OSError:
+        return ("missing",)
+    if not p.is_dir():
+        return (st.st_size, st.st_mtime_ns)
+    count = size = 0
+    latest = st.st_mtime_ns
+    for root, _, files in os.walk(p):
+        for f in files:
+            s = os.stat(os.path.join(root, f))
+            count, size, latest = count + 1, size + s.st_size, max(latest, s.st_mtime_ns)
+    return (count, size, latest)
 
 
 def open_store(path: str | os.PathLike):
@@ -57,12 +75,10 @@ def _cached_store(path: str, stamp: tuple):
 
 def cached_store(path: str):
     """The store at ``path`` opened once per worker process (reopened when it changed)."""
-    from fretwear.bundle.cases import path_stamp
-
     return _cached_store(path, path_stamp(path))
 
 
-def _time_dim(ds, label: str) -> str:
+def time_dim(ds, label: str) -> str:
     if CONTACT_DIM not in ds.dims:
         raise FormatError(f"{label}: a bundle Dataset needs a {CONTACT_DIM!r} dimension; "
                           f"dimensions found: {list(ds.dims)}")
@@ -87,76 +103,7 @@ def channel_variables(ds, time_dim: str) -> list[str]:
     return names
 
 
-def rows_from_dataset(ds, path: Path | None, label: str) -> list:
-    """The :class:`~fretwear.bundle.manifest.ContactRow` of every contact of a Dataset/store."""
-    from fretwear.bundle.manifest import (
-        PATH_KEYS,
-        WALL_COLUMN,
-        ContactRow,
-        HistoryRef,
-        _absolute,
-        _identity_value,
-        _missing,
-        _plain,
-        _wall,
-        column_key,
-    )
-
-    if ds is None:
-        ds = open_store(path)
-    tdim = _time_dim(ds, label)
-    channels = channel_variables(ds, tdim)
-    n = ds.sizes[CONTACT_DIM]
-    if CONTACT_DIM in ds.coords:
-        ids = [str(_identity_value(v)) for v in ds[CONTACT_DIM].values]
-    else:
-        ids = [f"c{i}" for i in range(n)]
-    columns = {}
-    for name, var in ds.variables.items():
-        if name == CONTACT_DIM or var.dims != (CONTACT_DIM,):
-            continue
-        columns[str(name)] = (column_key(str(name), label), var.values)
-    units = {c: str(ds[c].attrs["units"]) for c in channels if "units" in ds[c].attrs}
-    if "time" in ds.coords and ds["time"].dims == (tdim,) and "time" not in channels:
-        shared_time = np.asarray(ds["time"].values, dtype=float)
-        if "units" in ds["time"].attrs:
-            units["time"] = str(ds["time"].attrs["units"])
-    else:
-        shared_time = None
-    directory = Path.cwd() if path is None else path.parent
-    rows = []
-    for i, cid in enumerate(ids):
-        identity: dict[str, Any] = {}
-        overrides: dict[tuple[str, ...], Any] = {}
-        wall = None
-        for key, values in columns.values():
-            value = values[i]
-            if _missing(value) or key in ("contact", "history"):
-                continue
-            if key == WALL_COLUMN:
-                wall = _wall(value, cid, label)
-            elif isinstance(key, str):
-                identity[key] = _identity_value(value)
-            else:
-                value = _plain(value)
-                overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
-        if path is None:
-            arrays = {c: np.asarray(ds[c].isel({CONTACT_DIM: i}).values, dtype=float)
-                      for c in channels}
-            if shared_time is not None:
-                arrays["time"] = shared_time
-            ref = HistoryRef("memory", arrays=_trim(arrays), units=units, time_dim=tdim)
-        else:
-            ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim)
-        identity.setdefault("node", None)
-        rows.append(ContactRow(cid, ref, identity, overrides, wall))
-    from fretwear.bundle.manifest import _check_unique
-
-    _check_unique(ids, label)
-    return rows
-
-
-def _trim(arrays: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+def trim(arrays: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Drop the NaN padding at the end of a contact shorter than the store's time axis."""
     t = arrays.get("time")
     if t is None or t.size == 0 or np.isfinite(t[-1]):
@@ -179,7 +126,7 @@ def store_arrays(ref, start: int = 0, stop: int | None = None) -> dict[str, np.n
                               f"({CONTACT_DIM}, {tdim})")
         arrays["time"] = np.asarray(ds["time"].isel({tdim: slice(start, stop)}).values,
                                     dtype=float)
-    return _trim(arrays)
+    return trim(arrays)
 
 
 def store_length(ref) -> int:

@@ -13,6 +13,7 @@ written part by part as they arrive.
 
 from __future__ import annotations
 
+import json
 import logging
 import math
 import os
@@ -25,6 +26,7 @@ from typing import Any
 import pandas as pd
 
 from fretwear.bundle.cases import ContactTask, build_task
+from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS, OutputDirectory, write_frame
@@ -32,11 +34,14 @@ from fretwear.bundle.tasks import (
     chunk_state,
     finish_contact,
     merge_states,
+    needs_history,
     run_contact,
     time_bounds,
 )
 from fretwear.errors import InputError, KeywordError
 from fretwear.history import DEFAULT_CHUNK_SIZE
+from fretwear.io.atomic import atomic_write
+from fretwear.workflows.case_files import load_case, validate_case
 
 #: Contacts per part file (a part is also written every PART_SECONDS).
 PART_SIZE = 100
@@ -46,8 +51,6 @@ _BYTES_PER_SAMPLE = 4
 
 
 def _base_case(case) -> dict[str, Any]:
-    from fretwear.workflows.case_files import load_case, validate_case
-
     if case is None:
         return {}
     if isinstance(case, Mapping):
@@ -67,13 +70,9 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
     Only histories readable by row range are split (Parquet files, Zarr/NetCDF stores), and not
     for a law that needs the whole history (KWU-EPRI's classes).
     """
-    from fretwear.bundle.tasks import _needs_history
-
     ref = task.history
     n = None
     if ref.kind == "store":
-        from fretwear.bundle.datasets import store_length
-
         n = store_length(ref)
     elif ref.kind == "file" and ref.node is None and Path(ref.path).is_file() \
             and task.read_options.get("format", "parquet") == "parquet" \
@@ -81,10 +80,8 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
         with open(ref.path, "rb") as handle:
             if handle.read(4) != b"PAR1":
                 return None
-        from fretwear.bundle.datasets import require
-
         n = require("pyarrow.parquet").ParquetFile(ref.path).metadata.num_rows
-    if n is None or n <= chunk_size or _needs_history(task):
+    if n is None or n <= chunk_size or needs_history(task):
         return None
     task.samples = n
     return [(a, min(a + chunk_size, n)) for a in range(0, n - 1, chunk_size - 1)]
@@ -112,8 +109,6 @@ class _Dask:
     """The engine on a dask.distributed cluster (local, or joined by its address)."""
 
     def __init__(self, scheduler, workers: int | None) -> None:
-        from fretwear.bundle.datasets import require
-
         require("dask")
         distributed = require("distributed")
         self._cluster = None
@@ -423,10 +418,6 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
 
 
 def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format):
-    import json
-
-    from fretwear.io.atomic import atomic_write
-
     fmt = store.table_format
     write_frame(result.table, store.path / f"table.{fmt}", fmt)
     write_frame(result.errors, store.path / "errors.csv", "csv")

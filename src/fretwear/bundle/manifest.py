@@ -30,8 +30,13 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from fretwear.bundle.datasets import CONTACT_DIM, channel_variables, open_store, time_dim, trim
 from fretwear.errors import FormatError, InputError, KeywordError
+from fretwear.io import guess_format
+from fretwear.io.aster import read_aster_tables
+from fretwear.io.aster_source import NODE_COLUMNS
 from fretwear.keys import keyword_hint
+from fretwear.workflows.case_files import KEYS
 
 #: Columns of a manifest that are not case keys -> description (``fretwear bundle --help``).
 BUNDLE_COLUMNS: dict[str, str] = {
@@ -58,8 +63,6 @@ STORE_SUFFIXES = (".zarr", ".nc", ".nc4", ".netcdf", ".cdf")
 
 
 def _case_keys() -> dict[str, dict[str, tuple[Any, str]]]:
-    from fretwear.workflows.case_files import KEYS
-
     return KEYS
 
 
@@ -376,8 +379,6 @@ def read_manifest(source: Any) -> Manifest:
         return Manifest(_rows_from_frame(source, "manifest", Path.cwd()), "<DataFrame>",
                         Path.cwd(), "table")
     if hasattr(source, "data_vars") and hasattr(source, "dims"):
-        from fretwear.bundle.datasets import rows_from_dataset
-
         return Manifest(rows_from_dataset(source, None, "<Dataset>"), "<Dataset>", Path.cwd(),
                         "dataset")
     if not isinstance(source, str | os.PathLike):
@@ -390,8 +391,6 @@ def read_manifest(source: Any) -> Manifest:
     label = str(path)
     suffix = path.suffix.lower()
     if _is_store(path):
-        from fretwear.bundle.datasets import rows_from_dataset
-
         return Manifest(rows_from_dataset(None, path.resolve(), label), label, directory,
                         "dataset")
     if suffix == ".toml":
@@ -410,8 +409,6 @@ def read_manifest(source: Any) -> Manifest:
         except (pd.errors.ParserError, UnicodeDecodeError) as exc:
             raise FormatError(f"manifest {label!r} is not a readable CSV table: {exc}") from None
     else:
-        from fretwear.io import guess_format
-
         if path.is_file() and guess_format(path) == "aster":
             return Manifest(_rows_from_aster(path.resolve(), label), label, directory, "aster")
         raise InputError(f"{label!r} is not a manifest: give a .csv, .parquet or .toml table of "
@@ -423,8 +420,6 @@ def read_manifest(source: Any) -> Manifest:
 def node_columns(frame: pd.DataFrame) -> list[str]:
     """The text columns of a Code_Aster table naming the shock point of each row (``NOEUD``,
     ``NOEUD_CHOC``, ``GROUP_NO`` ..., :data:`fretwear.io.aster_source.NODE_COLUMNS`)."""
-    from fretwear.io.aster_source import NODE_COLUMNS
-
     types = frame.attrs.get("types") or [None] * frame.shape[1]
     return [str(c) for c, kind in zip(frame.columns, types, strict=False)
             if (kind is None or str(kind).upper().startswith("K"))
@@ -433,8 +428,6 @@ def node_columns(frame: pd.DataFrame) -> list[str]:
 
 
 def _rows_from_aster(path: Path, label: str) -> list[ContactRow]:
-    from fretwear.io.aster import read_aster_tables
-
     nodes: list[str] = []
     for frame in read_aster_tables(path):
         for column in node_columns(frame):
@@ -446,3 +439,58 @@ def _rows_from_aster(path: Path, label: str) -> list[ContactRow]:
                           "For one contact, use fretwear run")
     return [ContactRow(n, HistoryRef("file", path=str(path), node=n), {"node": n}, {})
             for n in nodes]
+
+
+def rows_from_dataset(ds, path: Path | None, label: str) -> list:
+    """The :class:`ContactRow` of every contact of a Dataset or store (layout in
+    :mod:`fretwear.bundle.datasets`)."""
+    if ds is None:
+        ds = open_store(path)
+    tdim = time_dim(ds, label)
+    channels = channel_variables(ds, tdim)
+    n = ds.sizes[CONTACT_DIM]
+    if CONTACT_DIM in ds.coords:
+        ids = [str(_identity_value(v)) for v in ds[CONTACT_DIM].values]
+    else:
+        ids = [f"c{i}" for i in range(n)]
+    columns = {}
+    for name, var in ds.variables.items():
+        if name == CONTACT_DIM or var.dims != (CONTACT_DIM,):
+            continue
+        columns[str(name)] = (column_key(str(name), label), var.values)
+    units = {c: str(ds[c].attrs["units"]) for c in channels if "units" in ds[c].attrs}
+    if "time" in ds.coords and ds["time"].dims == (tdim,) and "time" not in channels:
+        shared_time = np.asarray(ds["time"].values, dtype=float)
+        if "units" in ds["time"].attrs:
+            units["time"] = str(ds["time"].attrs["units"])
+    else:
+        shared_time = None
+    directory = Path.cwd() if path is None else path.parent
+    rows = []
+    for i, cid in enumerate(ids):
+        identity: dict[str, Any] = {}
+        overrides: dict[tuple[str, ...], Any] = {}
+        wall = None
+        for key, values in columns.values():
+            value = values[i]
+            if _missing(value) or key in ("contact", "history"):
+                continue
+            if key == WALL_COLUMN:
+                wall = _wall(value, cid, label)
+            elif isinstance(key, str):
+                identity[key] = _identity_value(value)
+            else:
+                value = _plain(value)
+                overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
+        if path is None:
+            arrays = {c: np.asarray(ds[c].isel({CONTACT_DIM: i}).values, dtype=float)
+                      for c in channels}
+            if shared_time is not None:
+                arrays["time"] = shared_time
+            ref = HistoryRef("memory", arrays=trim(arrays), units=units, time_dim=tdim)
+        else:
+            ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim)
+        identity.setdefault("node", None)
+        rows.append(ContactRow(cid, ref, identity, overrides, wall))
+    _check_unique(ids, label)
+    return rows

@@ -9,8 +9,14 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from scipy.interpolate import PchipInterpolator
+from scipy.optimize import brentq
 
+from fretwear._version import __version__
+from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY
+from fretwear.errors import InputError
+from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 #: Columns of :attr:`BundleResult.errors`.
 ERROR_COLUMNS = ("contact", "error", "message", "rows_kept")
@@ -146,9 +152,6 @@ def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
     >>> round(time_to_depth(t, d, 2.5e-4), 9)
     2.5
     """
-    from scipy.interpolate import PchipInterpolator
-    from scipy.optimize import brentq
-
     t = np.asarray(instants, dtype=float)
     d = np.asarray(depths, dtype=float)
     keep = np.isfinite(d) & np.isfinite(t)
@@ -170,8 +173,6 @@ def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
 def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
     """The ranking of :meth:`BundleResult.summary`."""
-    from fretwear.errors import InputError
-
     if limit is not None and not (0 < limit and math.isfinite(limit)):
         raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
@@ -266,10 +267,6 @@ def _coordinate(values: pd.Series):
 
 def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
     """The bundle's wear tables as an xarray Dataset (see :attr:`BundleResult.dataset`)."""
-    from fretwear import __version__
-    from fretwear.bundle.datasets import require
-    from fretwear.table import COLUMNS
-
     xr = require("xarray")
     done = contacts[contacts["status"].isin(["done", "skipped"])] if len(contacts) else contacts
     ids = [c for c in done["contact"].astype(str)] if len(done) else []
@@ -321,7 +318,5 @@ def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
 
 def _sector_columns() -> tuple[str, ...]:
     """Columns that differ between the sectors of one instant."""
-    from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
-
     return tuple(c for c in COLUMNS if c not in GLOBAL_COLUMNS and (
         c in SECTOR_COLUMNS or c.endswith("_sector")))

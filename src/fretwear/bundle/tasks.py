@@ -22,7 +22,11 @@ from typing import Any
 import numpy as np
 
 from fretwear.bundle.cases import ContactTask
-from fretwear.bundle.datasets import frame_of, store_arrays
+from fretwear.bundle.datasets import frame_of, require, store_arrays
+from fretwear.io import iter_history_chunks, open_source, read_history
+from fretwear.io.channels import build_history, resolve_columns, resolve_units
+from fretwear.power import PowerAccumulator
+from fretwear.table import wear_table_from_case
 
 _LOCK = threading.Lock()
 #: Table attributes kept in a contact's record (JSON-ready; the power statistics are dropped).
@@ -82,8 +86,6 @@ def _error(exc: BaseException) -> list[str]:
 # ----------------------------------------------------------------------------- reading
 def _read_in_memory(arrays: dict, task: ContactTask, first_row: int = 0):
     """A ContactHistory from raw arrays (aliases and units as for a file)."""
-    from fretwear.io import read_history
-
     options = {k: v for k, v in task.read_options.items() if k in ("units", "columns")}
     history = read_history(frame_of(arrays), name=task.contact, **options)
     return history
@@ -97,10 +99,6 @@ def _file_options(task: ContactTask) -> dict[str, Any]:
 def parquet_rows(task: ContactTask, start: int, stop: int):
     """Rows ``[start, stop)`` of a Parquet history, as a ContactHistory (only the row groups
     holding them are read); aliases and units as :func:`fretwear.io.read_history`."""
-    from fretwear.bundle.datasets import require
-    from fretwear.io import open_source
-    from fretwear.io.channels import build_history, resolve_columns, resolve_units
-
     pq = require("pyarrow.parquet")
     path = task.history.path
     options = {k: v for k, v in task.read_options.items() if k not in ("units", "columns")}
@@ -138,8 +136,6 @@ def read_part(task: ContactTask, start: int, stop: int):
 
 # ----------------------------------------------------------------------------- computing
 def _wear_table(source, task: ContactTask, history=None):
-    from fretwear.table import wear_table_from_case
-
     return wear_table_from_case(task.wear_case(), source, history=history)
 
 
@@ -153,7 +149,7 @@ def _threshold(task: ContactTask) -> float:
     return task.wear_case().stationarity_threshold
 
 
-def _needs_history(task: ContactTask) -> bool:
+def needs_history(task: ContactTask) -> bool:
     return bool(task.wear_case().wear_law.needs_history)
 
 
@@ -167,8 +163,6 @@ def _compute(task: ContactTask, chunk_size: int):
     elif ref.kind == "store":
         history = _read_in_memory(store_arrays(ref), task)
     else:
-        from fretwear.io import iter_history_chunks, read_history
-
         options = _file_options(task)
         chunks = iter_history_chunks(ref.path, chunk_size, name=task.contact, **options)
         try:
@@ -177,7 +171,7 @@ def _compute(task: ContactTask, chunk_size: int):
         finally:
             chunks.close()
         if longer:
-            if _needs_history(task):  # the law's classes need the history whole
+            if needs_history(task):  # the law's classes need the history whole
                 history = read_history(ref.path, name=task.contact, **options)
             else:  # streamed as fretwear.power.wear_power does: memory bounded by the chunk
                 return _streamed(task, chunk_size, options)
@@ -186,9 +180,6 @@ def _compute(task: ContactTask, chunk_size: int):
 
 def _streamed(task: ContactTask, chunk_size: int, options: dict[str, Any]):
     """(table, samples) of a history file longer than a chunk, read chunk by chunk."""
-    from fretwear.io import iter_history_chunks
-    from fretwear.power import PowerAccumulator
-
     opts = _power_options(task)
     if opts["blocks"] > 1 and (opts["t_start"] is None or opts["t_end"] is None):
         first = last = None  # the block edges need the time range first (one more pass)
@@ -235,8 +226,6 @@ def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any
 def chunk_state(task: ContactTask, start: int, stop: int, bounds: tuple[float, float]
                 ) -> dict[str, Any]:
     """The partial power state of samples ``[start, stop)`` of a long contact."""
-    from fretwear.power import PowerAccumulator
-
     t0 = time.perf_counter()
     opts = _power_options(task)
     opts["t_start"] = bounds[0] if opts["t_start"] is None else opts["t_start"]
