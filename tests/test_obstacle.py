@@ -664,7 +664,7 @@ def test_discret_reader_errors_name_file_and_line(tmp_path):
     bad.write_text("THETA RADIUS\n0 0.01\n120 0.01\n240 0.01\n")
     with pytest.raises(FormatError, match="mobile radius"):
         read_discret(bad)
-    with pytest.raises(FormatError, match="not found"):
+    with pytest.raises(InputError, match="missing.txt' does not exist"):
         load_obstacle_profile(tmp_path / "missing.txt")
     bad.write_text("THETA JEU\n0 5e-4\n90 5e-4\n90 5e-4\n")
     with pytest.raises(InputError, match=r"bad.txt: .*row 2 \(90 deg\) does not exceed row 1"):

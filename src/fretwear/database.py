@@ -37,6 +37,7 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import DatabaseError, FormatError
+from fretwear.io.guard import readable_file, reading
 from fretwear.laws.registry import WEAR_LAWS
 
 #: The eight contact types of theory §6 (Code_Aster names), in the order of Code_Aster R7.20.01.
@@ -195,14 +196,16 @@ def read_coefficients(path: str | os.PathLike) -> pd.DataFrame:
     >>> read_coefficients(p)[["parameter", "value", "unit", "body"]].values.tolist()
     [['coefficient', 3e-15, 'Pa⁻¹', 'mobile']]
     """
-    path = Path(path)
+    path = readable_file(path, "coefficient file")
     try:
-        with open(path, encoding="utf-8-sig") as stream:   # a spreadsheet's BOM is dropped
+        with reading(path, "CSV coefficient", "coefficient file"), \
+                open(path, encoding="utf-8-sig") as stream:   # a spreadsheet's BOM is dropped
             header = stream.readline()
         # a spreadsheet with a decimal comma saves ';'-separated files: read those too
         semicolon = ";" in header and "," not in header
-        frame = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig",
-                            sep=";" if semicolon else ",")
+        with reading(path, "CSV coefficient", "coefficient file"):
+            frame = pd.read_csv(path, dtype=str, keep_default_na=False, encoding="utf-8-sig",
+                                sep=";" if semicolon else ",")
     except (UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
         raise FormatError(f"{path}: not a readable UTF-8 CSV coefficient file ({exc})") from None
     frame.columns = [str(c).strip() for c in frame.columns]

@@ -37,6 +37,7 @@ from fretwear.io.channels import (
     resolve_columns,
     resolve_units,
 )
+from fretwear.io.guard import HDF5_MAGIC, probe, readable_file, reading
 
 __all__ = ["FORMATS", "ALIASES", "FileFormat", "read_history", "write_history",
            "iter_history_chunks", "guess_format", "open_source"]
@@ -129,29 +130,25 @@ def guess_format(path: str | os.PathLike) -> str:
     >>> guess_format(d / "a.txt"), guess_format(d / "b.out")
     ('aster', 'csv')
     """
-    path = Path(path)
-    with open(path, "rb") as handle:
+    path = readable_file(path, "history file")
+    with reading(path, "history", "history file"), open(path, "rb") as handle:
         head = handle.read(65536)
     suffix = path.suffix.lower()
     if not head:
         raise FormatError(f"{path}: the file is empty")
     if head.startswith(b"PAR1"):
         return "parquet"
-    if head.startswith(b"\x89HDF\r\n\x1a\n"):
+    if head.startswith(HDF5_MAGIC):
         if suffix in FORMATS["netcdf"].suffixes:
             return "netcdf"
-        h5py = optional("h5py")
-        if h5py is None:
+        if optional("h5py") is None:
             return "hdf5"
-        try:
-            with h5py.File(path, "r") as f:
-                return "netcdf" if "_NCProperties" in f.attrs else "hdf5"
-        except OSError:
-            return "hdf5"
+        # the structure is walked in a child process: a damaged file cannot crash this one
+        return "netcdf" if probe(path, "hdf5").get("netcdf") else "hdf5"
     if head[:4] in (b"CDF\x01", b"CDF\x02", b"CDF\x05"):
         return "netcdf"
     if head.startswith(b"PK\x03\x04"):
-        with zipfile.ZipFile(path) as zf:
+        with reading(path, "npz"), zipfile.ZipFile(path) as zf:
             if any(n.endswith(".npy") for n in zf.namelist()):
                 return "npz"
         raise FormatError(f"{path}: a zip archive without .npy arrays; known formats: "
@@ -160,14 +157,17 @@ def guess_format(path: str | os.PathLike) -> str:
         raise FormatError(f"{path}: a single .npy array has no column names; save the channels "
                           "with numpy.savez(path, time=..., normal_force=..., ...) instead")
     if head.startswith(_aster.GZIP_MAGIC):  # compressed text: CSV or a Code_Aster table
-        with gzip.open(path, "rb") as handle:
+        with reading(path, "gzip-compressed text"), gzip.open(path, "rb") as handle:
             head = handle.read(65536)
         if not head:
             raise FormatError(f"{path}: the file is empty (once decompressed)")
+    if head[:2] in _delimited.UTF16_BOMS:  # UTF-16 text (a spreadsheet's "Unicode text")
+        return "aster" if _aster.looks_like_aster(head.decode("utf-16", errors="replace")) \
+            else "csv"
     if b"\x00" in head:
         raise FormatError(f"{path}: binary content of no known format; known formats: "
                           f"{list(FORMATS)}; give format= if it is one of them")
-    text = head.decode("utf-8", errors="replace")
+    text = head.decode("utf-8-sig", errors="replace")  # a BOM is dropped
     if _aster.looks_like_aster(text):
         return "aster"
     return "csv"
@@ -178,9 +178,25 @@ def _is_path(value: Any) -> bool:
 
 
 def _require_file(path: str | os.PathLike) -> None:
-    if not Path(path).is_file():
-        what = "is a directory, not a file" if Path(path).is_dir() else "does not exist"
-        raise InputError(f"file {str(path)!r} {what}")
+    readable_file(path, "history file")
+
+
+def _guarded(source: Source, path: Any, format: str) -> Source:
+    """``source`` whose column readers turn a damaged file's exceptions into fretwear errors."""
+    read, blocks = source.read, source.iter_blocks
+
+    def guarded_read(positions: list[int]) -> list[np.ndarray]:
+        with reading(path, format, "history file"):
+            return read(positions)
+
+    def guarded_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
+        with reading(path, format, "history file"):
+            yield from blocks(positions, size)  # type: ignore[misc]
+
+    source.read = guarded_read
+    if blocks is not None:
+        source.iter_blocks = guarded_blocks
+    return source
 
 
 def _frame_source(table: Any) -> Source:
@@ -225,7 +241,18 @@ def open_source(path: Any, format: str | None = None, **options: Any) -> Source:
     if unknown:
         raise KeywordError(f"option(s) {unknown} unknown for the {name!r} reader; its options "
                            f"are {list(fmt.read_options)} (common: units=, columns=, name=)")
-    return fmt.open(path, **options)
+    label = source_label(path)
+    with reading(label, name, "history file"):
+        source = fmt.open(path, **options)
+    return _guarded(source, label, name)
+
+
+def source_label(path: Any) -> str:
+    """The file (or files) a history is read from, as quoted in messages."""
+    if _is_path(path):
+        return os.fspath(path) if isinstance(path, os.PathLike) else str(path)
+    files = path.values() if isinstance(path, Mapping) else path
+    return ", ".join(str(f) for f in files)
 
 
 def _stem(path: Any) -> str:
@@ -454,7 +481,8 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     if pending_rows or k == 0:
         parts = ([] if carry is None else [carry]) + pending
         if not parts:
-            raise FormatError(f"{source.label}: no samples")
+            raise FormatError(f"{source.label}: no data rows (a header only?); a history "
+                              "needs at least two instants")
         yield emit(parts, k, row - (0 if carry is None else 1))
 
 

@@ -28,6 +28,7 @@ import pandas as pd
 
 from fretwear.errors import FormatError, InputError
 from fretwear.io.atomic import atomic_write
+from fretwear.io.guard import readable_file, reading
 
 #: First bytes of a gzip stream: text tables may be compressed (read transparently).
 GZIP_MAGIC = b"\x1f\x8b"
@@ -42,14 +43,15 @@ def _text_of(path_or_text: str | os.PathLike) -> tuple[str, str]:
     """(text, label): a path is read; a string holding a newline is the table itself."""
     if isinstance(path_or_text, str) and "\n" in path_or_text:
         return path_or_text, "<text>"
-    path = Path(path_or_text)
-    if not path.is_file():
-        raise InputError(f"Code_Aster table file {str(path)!r} does not exist")
-    data = path.read_bytes()
-    if data[:2] == GZIP_MAGIC:
-        data = gzip.decompress(data)
+    path = readable_file(path_or_text, "Code_Aster table file")
+    with reading(path, "Code_Aster table", "Code_Aster table file"):
+        data = path.read_bytes()
+        if data[:2] == GZIP_MAGIC:
+            data = gzip.decompress(data)
+        if data[:2] in (b"\xff\xfe", b"\xfe\xff"):  # UTF-16 with its byte-order mark
+            return data.decode("utf-16"), str(path)
     try:
-        return data.decode("utf-8"), str(path)
+        return data.decode("utf-8-sig"), str(path)  # a BOM is dropped
     except UnicodeDecodeError:
         return data.decode("latin-1"), str(path)
 
@@ -204,6 +206,8 @@ def _convert(raw: dict, label: str) -> pd.DataFrame:
         if kind is not None and not kind.startswith("K") and kind not in ("R", "I"):
             raise FormatError(f"{label}: column {names[j]!r} has unknown type {kind!r}; known "
                               f"types: {', '.join(_TYPES)}")
+        if col.dtype == object and fast is not None:  # pandas keeps integers beyond 64 bits
+            col = np.array([str(c) for c in col], dtype=object)  # as Python ints: tokens
         if col.dtype.kind in "iuf" and (kind is None or not kind.startswith("K")):
             values = col.astype(float)  # parsed by pandas: no '-' in this column
             if kind is None:
@@ -224,6 +228,12 @@ def _convert(raw: dict, label: str) -> pd.DataFrame:
                     raise FormatError(f"{label}, line {raw['rows'][i][0]}: column {names[j]!r} "
                                       f"of type {kind} holds {c!r}, not a number")
         assert values is not None
+        if kind == "I" and np.nanmax(np.abs(values), initial=0.0) >= 2.0 ** 63:
+            if types is not None:  # a declared integer beyond 64 bits: not a Code_Aster integer
+                i = int(np.flatnonzero(np.abs(values) >= 2.0 ** 63)[0])
+                raise FormatError(f"{label}, line {raw['rows'][i][0]}: column {names[j]!r} of "
+                                  f"type I holds {values[i]:.17g}, beyond 64-bit integers")
+            kind = kinds[-1] = "R"  # digits only but too large for an integer: a real
         if kind == "I":
             series[j] = (pd.Series(values).astype("Int64") if np.isnan(values).any()
                          else pd.Series(values.astype(np.int64)))

@@ -29,6 +29,7 @@ from fretwear.errors import FormatError
 from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.io.channels import Source, check_lengths
+from fretwear.io.guard import probe
 
 _NPZ_META = "__fretwear__"
 
@@ -191,6 +192,7 @@ def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
     """
     h5 = require("h5py", purpose="reading HDF5")
     path = Path(path)
+    probe(path, "hdf5")  # a damaged file crashes or hangs the C library: check it apart first
     try:
         handle = h5.File(path, "r")
     except OSError as exc:
@@ -273,6 +275,7 @@ def open_netcdf(path: str | os.PathLike) -> Source:
     """
     nc = require("netCDF4", purpose="reading NetCDF")
     path = Path(path)
+    probe(path, "netcdf")  # a damaged file crashes or hangs the C library: check it apart first
     try:
         ds = nc.Dataset(path, "r")
     except OSError as exc:
@@ -364,21 +367,59 @@ def open_npz(path: str | os.PathLike) -> Source:
     ['INST', 'FN']
     """
     path = Path(path)
-    try:
-        archive = np.load(path, allow_pickle=False)
-    except (OSError, ValueError) as exc:
-        raise FormatError(f"{path}: not a readable .npz archive ({exc})") from None
-    with archive:
-        names = [k for k in archive.files if k != _NPZ_META and archive[k].ndim == 1]
-        stored = _loads(str(archive[_NPZ_META])) if _NPZ_META in archive.files else {}
-    units = {i: stored["units"][k] for i, k in enumerate(names) if k in stored.get("units", {})}
+    headers = npz_headers(path)  # shapes and types only: no array is decompressed here
+    names = [k for k, (shape, _) in headers.items() if k != _NPZ_META and len(shape) == 1]
+    stored: dict = {}
+    if _NPZ_META in headers and headers[_NPZ_META][1].kind == "U":
+        with np.load(path, allow_pickle=False) as archive:
+            stored = _loads(str(archive[_NPZ_META]))
+    units = {i: stored["units"][k] for i, k in enumerate(names)
+             if isinstance(stored.get("units"), dict) and k in stored["units"]}
 
     def read(positions: list[int]) -> list[np.ndarray]:
+        for p in positions:
+            kind = headers[names[p]][1]
+            if kind.kind not in "biuf":
+                raise FormatError(f"{path}: array {names[p]!r} holds {kind} values, not numbers "
+                                  "(object arrays are never unpickled); save float arrays")
         with np.load(path, allow_pickle=False) as f:
             return [np.asarray(f[names[p]], dtype=float) for p in positions]
 
     return Source(label=str(path), format="npz", columns=names, read=read, units=units,
                   name=stored.get("name"), metadata=stored.get("metadata", {}))
+
+
+def npz_headers(path: str | os.PathLike) -> dict[str, tuple[tuple[int, ...], np.dtype]]:
+    """Shape and dtype of every array of an ``.npz`` archive, read from the ``.npy`` headers
+    (nothing is decompressed beyond them).
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "h.npz"
+    >>> np.savez(p, INST=[0.0, 1.0], N=np.array(["a"]))
+    >>> {k: (s, str(d)) for k, (s, d) in npz_headers(p).items()}
+    {'INST': ((2,), 'float64'), 'N': ((1,), '<U1')}
+    """
+    import zipfile
+
+    out = {}
+    with zipfile.ZipFile(path) as zf:
+        for info in zf.infolist():
+            if not info.filename.endswith(".npy"):
+                continue
+            with zf.open(info) as handle:
+                version = np.lib.format.read_magic(handle)
+                if version == (1, 0):
+                    shape, _, dtype = np.lib.format.read_array_header_1_0(handle)
+                elif version == (2, 0):
+                    shape, _, dtype = np.lib.format.read_array_header_2_0(handle)
+                else:  # (3, 0): a UTF-8 header, no public reader: load that one array
+                    with np.load(path, allow_pickle=False) as archive:
+                        array = archive[info.filename[:-4]]
+                    shape, dtype = array.shape, array.dtype
+            out[info.filename[:-4]] = (tuple(shape), np.dtype(dtype))
+    return out
 
 
 def write_npz(history: ContactHistory, path: str | os.PathLike) -> Path:

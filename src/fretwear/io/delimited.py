@@ -27,6 +27,8 @@ from fretwear.io.channels import Source, split_unit
 #: First line of the files written by :func:`write_csv` (their metadata lines are read back).
 MAGIC = "# fretwear contact history"
 _CANDIDATES = ("\t", ";", ",", "|")
+#: byte-order marks of UTF-16 text (little and big endian)
+UTF16_BOMS = (b"\xff\xfe", b"\xfe\xff")
 _DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
 
 
@@ -50,7 +52,7 @@ def _split(line: str, sep: str | None) -> list[str]:
 
 
 def scan(path: Path, *, delimiter: str | None = None, decimal: str | None = None,
-         comment: str = "#", header: bool | None = None, encoding: str = "utf-8-sig") -> dict:
+         comment: str = "#", header: bool | None = None, encoding: str | None = None) -> dict:
     """Inspect the head of a delimited file: comment lines, delimiter, decimal, header, names.
 
     Returns a dict with ``skip`` (lines before the header or first data line), ``sep`` (None
@@ -58,8 +60,11 @@ def scan(path: Path, *, delimiter: str | None = None, decimal: str | None = None
     ``comments`` (the leading comment lines).
     """
     compressed = is_gzip(path)
+    opener = gzip.open if compressed else open
+    if encoding is None:  # UTF-8 (a BOM is dropped), or UTF-16 when the file starts with its BOM
+        with opener(path, "rb") as raw:
+            encoding = "utf-16" if raw.read(2) in UTF16_BOMS else "utf-8-sig"
     try:
-        opener = gzip.open if compressed else open
         with opener(path, "rt", encoding=encoding) as handle:
             head = [line.rstrip("\r\n") for _, line in zip(range(400), handle, strict=False)]
     except UnicodeDecodeError:
@@ -139,9 +144,12 @@ def _diagnose(path: Path, info: dict, positions: list[int], exc: ValueError) -> 
         return FormatError(f"{path}: {str(exc).strip()}; every row must have the same number of "
                            "cells as the header")
     kwargs = _read_kwargs(info, positions)
-    kwargs["dtype"] = str
+    kwargs["dtype"] = str  # every cell as text, whatever the columns found
     kwargs["keep_default_na"] = False
     frame = pd.read_csv(path, **kwargs)
+    short = _short_rows(frame, positions, path, info)
+    if short is not None:
+        return short
     for pos in positions:
         col = frame[pos]
         text = col.str.strip()
@@ -158,9 +166,29 @@ def _diagnose(path: Path, info: dict, positions: list[int], exc: ValueError) -> 
     return FormatError(f"{path}: could not read the columns as numbers")
 
 
+def _columns(frame: pd.DataFrame, positions: list[int], path: Path, info: dict
+             ) -> list[np.ndarray]:
+    """The columns at ``positions`` as float arrays; rows shorter than the header are named."""
+    short = _short_rows(frame, positions, path, info)
+    if short is not None:
+        raise short
+    return [frame[pos].to_numpy(dtype=float) for pos in positions]
+
+
+def _short_rows(frame: pd.DataFrame, positions: list[int], path: Path, info: dict
+                ) -> FormatError | None:
+    short = [p for p in positions if p not in frame.columns]
+    if not short:
+        return None
+    return FormatError(f"{path}: the header names {len(info['names'])} columns "
+                       f"{info['names']} but the data rows hold {frame.shape[1]} cells: no "
+                       f"values for {[info['names'][p] for p in short]}; every row must have "
+                       "the same number of cells as the header")
+
+
 def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
              decimal: str | None = None, comment: str = "#", header: bool | None = None,
-             encoding: str = "utf-8-sig") -> Source:
+             encoding: str | None = None) -> Source:
     """Open a delimited text file as a :class:`~fretwear.io.channels.Source`.
 
     Parameters
@@ -176,8 +204,9 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
     header : bool, optional
         Whether the first non-comment line names the columns; default guessed (it does unless
         every cell is a number). Without a header the columns are named ``0``, ``1`` ...
-    encoding : str
-        Text encoding (default UTF-8, with or without BOM).
+    encoding : str, optional
+        Text encoding; default UTF-8 (with or without BOM), or UTF-16 when the file starts with
+        a UTF-16 byte-order mark. Line ends may be ``\\n`` or ``\\r\\n``.
 
     Returns
     -------
@@ -200,15 +229,19 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
     def read(positions: list[int]) -> list[np.ndarray]:
         try:
             frame = pd.read_csv(path, **_read_kwargs(info, positions))
+        except pd.errors.EmptyDataError:  # a header and no data rows
+            return [np.empty(0) for _ in positions]
         except ValueError as exc:
             raise _diagnose(path, info, positions, exc) from None
-        return [frame[pos].to_numpy(dtype=float) for pos in positions]
+        return _columns(frame, positions, path, info)
 
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         try:
             with pd.read_csv(path, chunksize=size, **_read_kwargs(info, positions)) as reader:
                 for frame in reader:
-                    yield [frame[pos].to_numpy(dtype=float) for pos in positions]
+                    yield _columns(frame, positions, path, info)
+        except pd.errors.EmptyDataError:  # a header and no data rows: no blocks
+            return
         except ValueError as exc:
             raise _diagnose(path, info, positions, exc) from None
 

@@ -50,6 +50,7 @@ import numpy as np
 
 from fretwear.errors import FormatError, InputError
 from fretwear.io.atomic import atomic_write
+from fretwear.io.guard import readable_file, reading
 from fretwear.obstacle.clearance import clearance_figure, polar_polygon
 from fretwear.obstacle.dilation import dilated_radius
 
@@ -519,13 +520,13 @@ def read_discret(path, *, mobile_radius: float | None = None,
         Naming the file and the line when a column is missing or a cell is not a number; THETA
         whose unit cannot be told from its range (give ``angle_unit``).
     """
-    p = Path(path)
-    if not p.is_file():
-        raise FormatError(f"obstacle file {str(p)!r} not found")
+    p = readable_file(path, "DISCRET obstacle file")
     header_rm = None
     names = None
     rows: list[list[float]] = []
-    for lineno, raw in enumerate(p.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+    with reading(p, "DISCRET obstacle", "DISCRET obstacle file"):
+        text = p.read_text(encoding="utf-8-sig", errors="replace")
+    for lineno, raw in enumerate(text.splitlines(), 1):
         line = raw.strip()
         if not line:
             continue

@@ -20,6 +20,7 @@ from fretwear._optional import require
 from fretwear.errors import FormatError, InputError
 from fretwear.io.aster import TABLE_FORMATS, read_aster_table, write_aster_table
 from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.io.guard import readable_file, reading
 from fretwear.table.provenance import PARQUET_KEY, header_lines, parse_header, provenance
 from fretwear.table.schema import FLOAT_FORMAT, PROFILE_COLUMNS, from_aster_names, to_aster_names
 
@@ -53,20 +54,29 @@ def read_wear_table(path: str | os.PathLike, *, index: int | None = None) -> pd.
     >>> read_wear_table(p).columns.tolist()
     ['instant', 'volume_mobile']
     """
-    p = Path(path)
-    if not p.is_file():
-        raise InputError(f"wear table file {str(p)!r} does not exist; give the path of a table "
-                         "written by fretwear or by Code_Aster's IMPR_TABLE")
+    try:
+        p = readable_file(path, "wear table file")
+    except InputError as exc:
+        raise InputError(f"{exc}; give the path of a table written by fretwear or by "
+                         "Code_Aster's IMPR_TABLE") from None
     suffix = p.suffix.lower()
     if suffix == ".csv":
-        header, skip = _comment_lines(p)
-        frame = pd.read_csv(p, skiprows=skip)
+        with reading(p, "csv", "wear table file"):
+            try:
+                header, skip = _comment_lines(p)
+                frame = pd.read_csv(p, encoding="utf-8-sig", skiprows=skip)
+            except pd.errors.EmptyDataError:
+                raise FormatError(f"{p}: empty wear table (no header line); give a table "
+                                  "written by fretwear or by Code_Aster's IMPR_TABLE") from None
     elif suffix in (".parquet", ".pq"):
-        frame = pd.read_parquet(p)
-        header = _parquet_provenance(p)
+        require("pyarrow.parquet", purpose="reading a Parquet wear table")
+        with reading(p, "parquet", "wear table file"):
+            frame = pd.read_parquet(p)
+            header = _parquet_provenance(p)
     else:
         try:
-            frame = read_aster_table(p, index=index)
+            with reading(p, "aster", "wear table file"):
+                frame = read_aster_table(p, index=index)
         except FormatError as exc:
             raise FormatError(f"{exc} [wear table: in a case file give [restart] table_index "
                               "= <n>; in Python read_wear_table(path, index=<n>)]") from None

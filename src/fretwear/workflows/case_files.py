@@ -38,6 +38,7 @@ import pandas as pd
 from fretwear.errors import FretwearWarning, InputError, KeywordError
 from fretwear.geometry import CONTACT_TYPES
 from fretwear.io import read_history
+from fretwear.io.guard import readable_file, reading
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
 from fretwear.laws import WEAR_LAWS
 from fretwear.power import PowerAccumulator, wear_power
@@ -221,11 +222,11 @@ def read_case_toml(path: str | os.PathLike) -> tuple[dict[str, Any], str]:
     InputError
         The file does not exist or is not valid TOML (with the parser's line and column).
     """
-    p = Path(path)
-    if not p.is_file():
-        raise InputError(f"case file {str(p)!r} does not exist")
+    p = readable_file(path, "case file")
     try:
-        raw = tomllib.loads(p.read_text(encoding="utf-8"))
+        with reading(p, "TOML", "case file"):
+            text = p.read_text(encoding="utf-8-sig")  # a BOM is dropped
+        raw = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"case file {str(p)!r} is not valid TOML: {exc}") from None
     return raw, str(p.resolve().parent)

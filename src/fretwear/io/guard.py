@@ -1,0 +1,368 @@
+"""Reading files safely: every failure a file can cause becomes a fretwear error naming the file.
+
+Three layers of protection, used by every reader of fretwear (histories, wear tables, databases,
+case files, obstacle tables):
+
+* :func:`readable_file` checks a path before it is opened (missing, a directory, a name too
+  long, no read permission) and raises :class:`~fretwear.errors.InputError` naming the user's
+  path and the fix.
+* :func:`reading` is a context manager around the parsing of one file: the exceptions a
+  damaged file makes the parsing libraries raise (truncated gzip ``EOFError`` and ``zlib.error``,
+  ``zipfile.BadZipFile``, ``UnicodeDecodeError``, pandas' ``EmptyDataError``/``ParserError``,
+  pyarrow's ``OSError``/``ArrowInvalid``, h5py's ``RuntimeError``/``KeyError``, netCDF4's errors,
+  ``MemoryError`` from a corrupt size field ...) become a :class:`~fretwear.errors.FormatError`
+  naming the file and its format; operating-system errors become an
+  :class:`~fretwear.errors.InputError`.
+* :func:`probe` checks an HDF5 or NetCDF file before the C library opens it in this process:
+  the signature and the size it declares (a truncated file is refused), then its structure is
+  walked by a child process (``sys.executable``) with a time limit, so a file that makes the C
+  library crash (segmentation fault) or loop forever ends in a :class:`FormatError`, not in a
+  dead or hung interpreter. The result is remembered per file (path, size, modification time).
+
+Examples
+--------
+>>> import tempfile, pathlib
+>>> p = pathlib.Path(tempfile.mkdtemp()) / "h.csv.gz"
+>>> _ = p.write_bytes(b"\\x1f\\x8b\\x08\\x00" + b"\\x00" * 6 + b"\\x01")  # a truncated gzip
+>>> import gzip
+>>> try:
+...     with reading(p, "csv"):
+...         _ = gzip.open(p).read()
+... except FormatError as exc:
+...     print(str(exc).split(" (")[0])
+... # doctest: +ELLIPSIS
+/...h.csv.gz: damaged or truncated csv file
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import json
+import os
+import stat
+import struct
+import subprocess
+import sys
+import zipfile
+import zlib
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from fretwear.errors import FormatError, FretwearError, InputError
+
+__all__ = ["readable_file", "reading", "probe", "PROBE_TIMEOUT", "BINARY_FORMATS"]
+
+#: Seconds the child process may take to walk an HDF5/NetCDF file's structure before the file
+#: is declared unreadable (a corrupt file can make the C library loop forever).
+PROBE_TIMEOUT = 30.0
+#: Formats parsed by C libraries (pyarrow, h5py, netCDF4, numpy's zip reader): any exception
+#: they raise while reading is the file's fault.
+BINARY_FORMATS = frozenset({"parquet", "hdf5", "netcdf", "npz"})
+
+HDF5_MAGIC = b"\x89HDF\r\n\x1a\n"
+NETCDF_CLASSIC_MAGIC = (b"CDF\x01", b"CDF\x02", b"CDF\x05")
+
+# exceptions that mean "the bytes of this file are damaged", whatever the format
+_DAMAGED: tuple[type[BaseException], ...] = (
+    EOFError, zlib.error, zipfile.BadZipFile, UnicodeError, struct.error, MemoryError,
+    OverflowError, NotImplementedError)
+# and, for formats parsed by C libraries, whatever they raise
+_LIBRARY: tuple[type[BaseException], ...] = (
+    ValueError, TypeError, KeyError, IndexError, RuntimeError, AttributeError)
+
+
+def _pandas_errors() -> tuple[type[BaseException], ...]:
+    try:
+        import pandas as pd
+    except ImportError:  # pragma: no cover - pandas is a core dependency
+        return ()
+    return (pd.errors.EmptyDataError, pd.errors.ParserError)
+
+
+def _os_problem(exc: OSError) -> str | None:
+    """A plain-words reason for an operating-system error, or None when it is not one."""
+    reasons = {errno.ENOENT: "does not exist", errno.EACCES: "cannot be read (permission "
+               "denied): check its permissions", errno.EPERM: "cannot be read (operation not "
+               "permitted)", errno.EISDIR: "is a directory, not a file", errno.ENOTDIR:
+               "has a parent that is not a directory", errno.ENAMETOOLONG: "has a name too "
+               "long for the file system", errno.ELOOP: "is a loop of symbolic links",
+               errno.EIO: "cannot be read (input/output error of the disk)"}
+    if isinstance(exc, FileNotFoundError):
+        return reasons[errno.ENOENT]
+    if isinstance(exc, PermissionError):
+        return reasons[errno.EACCES]
+    if isinstance(exc, IsADirectoryError):
+        return reasons[errno.EISDIR]
+    return reasons.get(exc.errno) if isinstance(exc.errno, int) else None
+
+
+def readable_file(path: Any, what: str = "file") -> Path:
+    """The path of an existing, readable regular file, or an :class:`InputError` saying why not.
+
+    Parameters
+    ----------
+    path : path-like
+        The user's path.
+    what : str
+        What the file is, for the message (``"history file"``, ``"wear table"`` ...).
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    InputError
+        The path is empty, does not exist, is a directory, has a name too long, is not readable.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> try:
+    ...     readable_file(d, "history file")
+    ... except InputError as exc:
+    ...     print(str(exc).split("' ")[1])
+    is a directory, not a file
+    """
+    if not isinstance(path, (str, os.PathLike)):
+        raise InputError(f"{what}: expected a file path, got {type(path).__name__} {path!r}")
+    text = os.fspath(path)
+    if isinstance(text, bytes):
+        text = os.fsdecode(text)
+    if not text.strip() or "\x00" in text:
+        raise InputError(f"{what} {text!r}: not a valid file name")
+    p = Path(text)
+    try:
+        mode = p.stat().st_mode
+    except OSError as exc:
+        reason = _os_problem(exc) or f"cannot be read ({exc.strerror or exc})"
+        raise InputError(f"{what} {text!r} {reason}") from None
+    except ValueError as exc:  # e.g. an embedded NUL on some platforms
+        raise InputError(f"{what} {text!r}: not a valid file name ({exc})") from None
+    if stat.S_ISDIR(mode):
+        raise InputError(f"{what} {text!r} is a directory, not a file")
+    if not stat.S_ISREG(mode) and not stat.S_ISFIFO(mode):
+        raise InputError(f"{what} {text!r} is not a regular file")
+    if not os.access(p, os.R_OK):
+        raise InputError(f"{what} {text!r} cannot be read (permission denied): check its "
+                         "permissions")
+    return p
+
+
+@contextlib.contextmanager
+def reading(path: Any, format: str, what: str = "file") -> Iterator[None]:
+    """Turn whatever the parsing of ``path`` raises into a fretwear error naming the file.
+
+    fretwear errors pass unchanged. Operating-system errors (permission, a directory, a name
+    too long, a disk error) become :class:`InputError`; damaged content (truncated gzip or zip,
+    bad encoding, no data, a corrupt binary file: see the module docstring) becomes
+    :class:`FormatError` ``"<path>: damaged or truncated <format> file (<what went wrong>)"``.
+    Other exceptions of formats parsed in Python pass unchanged (they are bugs of fretwear).
+
+    Parameters
+    ----------
+    path : path-like or str
+        The user's file (or a label), quoted in the message.
+    format : str
+        Its format (``csv``, ``aster``, ``parquet``, ``hdf5``, ``netcdf``, ``npz``, ``toml`` ...).
+    what : str
+        What the file is, for operating-system errors.
+    """
+    label = os.fspath(path) if isinstance(path, os.PathLike) else str(path)
+    damaged = _DAMAGED + _pandas_errors() + (_LIBRARY if format in BINARY_FORMATS else ())
+    try:
+        yield
+    except FretwearError:
+        raise
+    except OSError as exc:
+        reason = _os_problem(exc)
+        if reason is not None:
+            name = exc.filename if isinstance(exc.filename, str) else label
+            if os.path.basename(name).startswith(".") and name.endswith(".tmp"):
+                name = label  # never the name of an atomic writer's temporary file
+            raise InputError(f"{what} {name!r} {reason}") from exc
+        raise FormatError(f"{label}: damaged or truncated {format} file ({_describe(exc)}); "
+                          "write it again or check the transfer") from exc
+    except damaged as exc:
+        if isinstance(exc, UnicodeError):
+            raise FormatError(f"{label}: not {format} text in the expected encoding "
+                              f"({_describe(exc)}); save it as UTF-8, or give its encoding "
+                              "(reader option encoding=..., e.g. 'latin-1')") from exc
+        raise FormatError(f"{label}: damaged or truncated {format} file ({_describe(exc)}); "
+                          "write it again or check the transfer") from exc
+
+
+def _describe(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+    text = text[:300]
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+# --------------------------------------------------------------------------- HDF5 / NetCDF
+_PROBED: dict[tuple, dict] = {}
+
+_CHILD = r"""
+import json, sys
+path, fmt = sys.argv[1], sys.argv[2]
+try:
+    if fmt == "hdf5":
+        import h5py
+    else:
+        import netCDF4
+except Exception as exc:
+    print(json.dumps({"import": repr(exc)})); sys.exit(4)
+info = {}
+try:
+    if fmt == "hdf5":
+        def touch(obj):
+            for k in list(obj.attrs):
+                obj.attrs[k]
+            if isinstance(obj, h5py.Dataset):
+                obj.shape, obj.dtype
+                if obj.ndim == 1 and obj.shape[0]:
+                    obj[0]; obj[obj.shape[0] - 1]
+        with h5py.File(path, "r") as f:
+            info["netcdf"] = "_NCProperties" in f.attrs
+            touch(f)
+            f.visititems(lambda name, obj: touch(obj))
+    else:
+        with netCDF4.Dataset(path, "r") as ds:
+            def walk(g):
+                for k in g.ncattrs():
+                    g.getncattr(k)
+                for d in g.dimensions.values():
+                    len(d)
+                for v in g.variables.values():
+                    v.dimensions, v.dtype, v.shape
+                    for k in v.ncattrs():
+                        v.getncattr(k)
+                    if v.ndim == 1 and v.shape[0]:
+                        v[0]; v[v.shape[0] - 1]
+                for sub in g.groups.values():
+                    walk(sub)
+            walk(ds)
+except BaseException as exc:
+    print(json.dumps({"error": f"{type(exc).__name__}: {exc}"[:300]})); sys.exit(3)
+print(json.dumps(info))
+"""
+
+
+def _check_hdf5_superblock(path: Path, size: int) -> None:
+    """Signature (at 0, 512, 1024 ...) and the end-of-file address against the file's size."""
+    with open(path, "rb") as handle:
+        offset = 0
+        while True:
+            handle.seek(offset)
+            head = handle.read(96)
+            if head[:8] == HDF5_MAGIC:
+                break
+            offset = 512 if offset == 0 else offset * 2
+            if offset >= size:
+                raise FormatError(f"{path}: not a readable HDF5 file (no HDF5 signature: "
+                                  "not an HDF5 or NetCDF-4 file)")
+    if len(head) < 12:
+        raise FormatError(f"{path}: truncated HDF5 file ({size} bytes: the superblock is cut)")
+    version = head[8]
+    if version in (0, 1):
+        width, at = head[13], 24  # base, free-space, end-of-file addresses
+        skip = 2
+    elif version in (2, 3):
+        width, at = head[9], 12  # base, superblock extension, end-of-file addresses
+        skip = 2
+    else:
+        raise FormatError(f"{path}: HDF5 superblock version {version} is unknown (0 to 3); "
+                          "the file is damaged")
+    if width not in (2, 4, 8, 16):
+        raise FormatError(f"{path}: HDF5 superblock declares {width}-byte addresses; the file "
+                          "is damaged")
+    if width == 16 or len(head) < at + (skip + 1) * width:
+        return
+    start = at + skip * width
+    eof = int.from_bytes(head[start:start + width], "little")
+    base = int.from_bytes(head[at:at + width], "little")
+    undefined = (1 << (8 * width)) - 1
+    if eof != undefined and base != undefined and base + eof > size:
+        raise FormatError(f"{path}: truncated HDF5 file: it holds {size} bytes but its "
+                          f"superblock says {base + eof}; the copy or the write was cut short")
+
+
+def _check_netcdf_classic(path: Path, size: int) -> None:
+    """A classic NetCDF header is at least 32 bytes (magic, record count, three lists)."""
+    if size < 32:
+        raise FormatError(f"{path}: truncated NetCDF file ({size} bytes: the header is cut)")
+
+
+def probe(path: str | os.PathLike, format: str) -> dict:
+    """Check an HDF5 or NetCDF file before the C library opens it in this process.
+
+    The signature and the size declared by the superblock are checked here; then a child
+    process opens the file, reads every attribute, the shape and the first and last value of
+    every 1-D dataset or variable. A child that crashes (segmentation fault), raises or runs
+    longer than :data:`PROBE_TIMEOUT` seconds makes a :class:`FormatError` here. The outcome is
+    remembered for the file's (path, size, modification time).
+
+    Parameters
+    ----------
+    path : path-like
+        The file.
+    format : {"hdf5", "netcdf"}
+        The library that will open it.
+
+    Returns
+    -------
+    dict
+        ``{"netcdf": bool}`` for HDF5 (whether the root holds ``_NCProperties``: a NetCDF-4
+        file); ``{}`` otherwise, or when the child could not run (no library: the reader then
+        names the missing extra).
+
+    Raises
+    ------
+    FormatError
+        The file is truncated, damaged, or makes the library crash, fail or hang.
+    """
+    p = Path(path)
+    st = p.stat()
+    key = (str(p.resolve()), st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, format)
+    if key in _PROBED:
+        return dict(_PROBED[key])
+    with open(p, "rb") as handle:
+        head = handle.read(8)
+    if head[:8] == HDF5_MAGIC or format == "hdf5":
+        _check_hdf5_superblock(p, st.st_size)
+    elif head[:4] in NETCDF_CLASSIC_MAGIC:
+        _check_netcdf_classic(p, st.st_size)
+    library = "HDF5" if format == "hdf5" else "NetCDF"
+    try:
+        done = subprocess.run([sys.executable, "-c", _CHILD, str(p), format],
+                              capture_output=True, text=True, timeout=PROBE_TIMEOUT)
+    except subprocess.TimeoutExpired:
+        raise FormatError(f"{p}: the {library} library did not finish reading the file's "
+                          f"structure in {PROBE_TIMEOUT:g} s: the file is damaged (a corrupt "
+                          "attribute or index makes the library loop)") from None
+    except OSError:  # no interpreter to run the check: let the library open it
+        return {}
+    if done.returncode < 0:
+        import signal
+
+        try:
+            sig = signal.Signals(-done.returncode).name
+        except ValueError:
+            sig = f"signal {-done.returncode}"
+        raise FormatError(f"{p}: the {library} library crashed ({sig}) reading this file: it "
+                          "is damaged; write it again or check the transfer")
+    lines = done.stdout.strip().splitlines()
+    try:
+        info = json.loads(lines[-1]) if lines else {}
+    except json.JSONDecodeError:
+        info = {}
+    if done.returncode == 3:
+        raise FormatError(f"{p}: not a readable {format} file ({info.get('error', '?')})")
+    if done.returncode != 0 or "import" in info:
+        return {}
+    if len(_PROBED) > 256:
+        _PROBED.clear()
+    _PROBED[key] = info
+    return dict(info)
