@@ -3,248 +3,293 @@
 A Code_Aster user can paste the keywords of a POST_USURE command::
 
     from fretwear.workflows.aster import POST_USURE, _F
-    table = POST_USURE(RESU_GENE="shock_N12.csv", NOEUD="N12", LOI_USURE="ARCHARD",
+    table = POST_USURE(RESU_GENE="shock_N12.tab", NOEUD="N12", LOI_USURE="ARCHARD",
                        MOBILE=_F(COEF_USURE=1.2e-13), CONTACT="TUBE_BAV",
                        RAYON_MOBILE=9.525e-3, LARGEUR_OBST=12.7e-3,
-                       INST=(1.0, 5.0, 10.0), COEF_INST=3.1536e7)
+                       INST=(1.0, 10.0), COEF_INST=3.1536e7)
 
-The catalogue's rules are enforced (exactly one of PUIS_USURE, RESU_GENE, TUBE_NEUF; exactly one
-of MOBILE, MATER_USURE, SECTEUR; MATER_USURE excludes OBSTACLE; exactly one of INST, LIST_INST;
-NOEUD excludes GROUP_NO ...), each violation a :class:`~fretwear.errors.KeywordError` naming the
-keywords. The result is a DataFrame with Code_Aster's column names (theory §7); the computation is
-:func:`fretwear.table.wear_table_from_case` of a :class:`~fretwear.table.WearCase`. Values are
-SI, angles in degrees, as in Code_Aster.
-Deliberate differences from Code_Aster are listed in ``docs/code_aster.md``. Extras beyond the
-catalogue (:data:`EXTRA_KEYWORDS`): ``EPAIS_PAROI`` (wall thickness [m]) and ``LIMITE_PAROI``
-(depth limit, fraction of the wall), which add the columns FRAC_PAROI and INST_LIMITE.
+The keywords, their types, defaults and allowed values, the blocks and the rules between them are
+one description, :data:`CATALOGUE`, a copy of Code_Aster's catalogue
+(``code_aster/Cata/Commands/post_usure.py``, code_aster 16) checked by
+:meth:`~fretwear.workflows.aster_catalogue.Catalogue.check`: an unknown keyword, a keyword of an
+inactive block (FNOR_MAXI without LOI_USURE='KWU_EPRI'), a wrong type or a violated rule
+(UN_PARMI, EXCLUS, PRESENT_PRESENT, PRESENT_ABSENT) is a :class:`~fretwear.errors.KeywordError`
+naming the keywords. The result is a DataFrame with Code_Aster's column names (theory §7); the
+computation is :func:`fretwear.table.wear_table_from_case` of a :class:`~fretwear.table.WearCase`.
+Values are SI, angles in degrees, as in Code_Aster. Deliberate differences from Code_Aster are
+listed in ``docs/code_aster.md``. Extras beyond the catalogue (:data:`EXTRA_KEYWORDS`):
+``EPAIS_PAROI`` (wall thickness [m]) and ``LIMITE_PAROI`` (depth limit, fraction of the wall),
+which add the columns FRAC_PAROI and INST_LIMITE.
 """
 
 from __future__ import annotations
 
 import os
 import warnings
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.database import load_database
+from fretwear.errors import DatabaseError, FretwearWarning, KeywordError, UnusedKeywordWarning
 from fretwear.geometry import CONTACT_TYPES
 from fretwear.geometry.base import ASTER_KEYWORDS
 from fretwear.history import ContactHistory
+from fretwear.io import read_history
 from fretwear.laws import WEAR_LAWS
 from fretwear.table import WearCase, replace_tube, to_aster_names, wear_table_from_case
+from fretwear.workflows.aster_catalogue import (
+    _F,
+    EXCLUS,
+    PRESENT_ABSENT,
+    PRESENT_PRESENT,
+    UN_PARMI,
+    Bloc,
+    Catalogue,
+    Fact,
+    Simp,
+    absent,
+    equal_to,
+    exists,
+    first,
+)
+from fretwear.workflows.aster_dyna import POST_DYNA_MODA_T  # noqa: F401 - the other facade
+
+__all__ = ["POST_USURE", "POST_DYNA_MODA_T", "_F", "CATALOGUE", "MATERIAL_CODES",
+           "SIMPLE_KEYWORDS", "FACTOR_KEYWORDS", "EXTRA_KEYWORDS", "materials_of"]
+
+#: LARGEUR_OBST of a SECTEUR computation without it [m] (Code_Aster's op0153: ``haut = 0.011``).
+DEFAULT_SECTOR_WIDTH = 0.011
 
 
-class _F(dict):
-    """A factor keyword (``MOBILE=_F(COEF_USURE=1e-13)``), a plain dict of keywords.
-
-    Examples
-    --------
-    >>> _F(COEF_USURE=1e-13)["COEF_USURE"]
-    1e-13
-    """
-
-    def __repr__(self) -> str:
-        return "_F(" + ", ".join(f"{k}={v!r}" for k, v in self.items()) + ")"
+def _r(text: str, **kw: Any) -> Simp:
+    return Simp("R", help=text, **kw)
 
 
-#: Simple keywords of POST_USURE and their fretwear meaning.
-SIMPLE_KEYWORDS: dict[str, str] = {
-    "PUIS_USURE": "wear power [W]",
-    "RESU_GENE": "contact history: a ContactHistory, a path, or a mapping label -> either",
-    "NOEUD": "shock node label (selects in a RESU_GENE mapping)",
-    "GROUP_NO": "shock node group label (selects in a RESU_GENE mapping)",
-    "INST_INIT": "start of the history window t_start [s]",
-    "INST_FIN": "end of the history window t_end [s]",
-    "NB_BLOC": "number of blocks of the power computation",
-    "LOI_USURE": f"wear law: {', '.join(WEAR_LAWS)}",
-    "MATER_USURE": "material pair of the database: 'MOBILE/OBSTACLE' or a (mobile, obstacle) pair",
-    "USURE_OBST": "'OUI': obstacle coefficient from the database",
-    "FNOR_MAXI": "KWU_EPRI force class range [N]",
-    "VTAN_MAXI": "KWU_EPRI speed class range [m/s]",
-    "CONTACT": f"contact type: {', '.join(CONTACT_TYPES)}",
-    "RAYON_MOBILE": "mobile radius [m]",
-    "RAYON_OBST": "obstacle radius [m]",
-    "LARGEUR_OBST": "obstacle width [m]",
-    "ANGL_INCLI": "tilt angle [deg]",
-    "ANGL_ISTHME": "isthmus angle [deg]",
-    "ANGL_IMPACT": "impact angle [deg]",
-    "INST": "instants of service [user unit] (or the replacement instant under TUBE_NEUF)",
-    "LIST_INST": "instants of service, a sequence [user unit]",
-    "COEF_INST": "seconds per user time unit [s]",
-    "TUBE_NEUF": "'OUI': replace the tube in TABL_USURE",
-    "TABL_USURE": "wear table of TUBE_NEUF (DataFrame or path)",
-    "TITRE": "title (ignored)",
-    "INFO": "verbosity (ignored)",
-    # fretwear extras, not in Code_Aster's catalogue
-    "EPAIS_PAROI": "wall thickness of the tube [m] (fretwear extra): adds FRAC_PAROI and "
-                   "INST_LIMITE (the instant the depth reaches LIMITE_PAROI of the wall)",
-    "LIMITE_PAROI": "depth limit as a fraction of the wall [-], default 0.4 (fretwear extra)",
-}
-#: The keywords of :data:`SIMPLE_KEYWORDS` that Code_Aster's catalogue does not have.
+def _law(keywords: dict[str, Simp], help: str, required: tuple[str, ...] = ()) -> Fact:
+    keys = {k: Simp(v.type, "o" if k in required else "f", v.default, v.into, v.max, v.help)
+            for k, v in keywords.items()}
+    return Fact(keys, help=help)
+
+
+_ARCHARD = {"COEF_USURE": _r("Archard coefficient K [Pa⁻¹]")}
+_KWU = {"COEF_FNOR": _r("impact factor k1 [-]"), "COEF_VTAN": _r("sliding factor k2 [-]"),
+        "COEF_USURE": _r("reference coefficient k_r [Pa⁻¹]"),
+        "COEF_K": _r("k [-]", default=5.0), "COEF_C": _r("c [-]", default=10.0)}
+_EDF_MZ = {"COEF_USURE": _r("A [m³/(s·W^b)]", default=1.0e-13),
+           "COEF_B": _r("b [-]", default=1.2), "COEF_N": _r("n [s⁻¹]", default=2.44e-8),
+           "COEF_S": _r("S [m³/s]", default=1.14e-16)}
+_MATERIALS = {
+    "MATER_USURE": Simp("material", help="material pair of the database: Code_Aster's "
+                                    "'I600_Z6C13' (MOBILE_OBSTACLE, or one of its codes such as "
+                                    "'NITRURE_A304L'), 'I600/Z6C13' or a (mobile, obstacle) pair"),
+    "USURE_OBST": Simp("TXM", into=("OUI",), help="'OUI': the obstacle's coefficient from the "
+                                                  "database too")}
+_LAW_RULES = (UN_PARMI("MOBILE", "MATER_USURE"), EXCLUS("MATER_USURE", "OBSTACLE"),
+              EXCLUS("MOBILE", "USURE_OBST"))
+_LENGTH = "[m]"
+
+#: POST_USURE's catalogue: keywords, types, defaults, allowed values, blocks and rules, as in
+#: code_aster 16's ``code_aster/Cata/Commands/post_usure.py`` (the rules' notes say where
+#: fretwear accepts more).
+CATALOGUE = Catalogue(
+    name="POST_USURE",
+    source="code_aster/Cata/Commands/post_usure.py (code_aster 16, 2022)",
+    rules=(
+        UN_PARMI("TUBE_NEUF", "RESU_GENE", "PUIS_USURE"),
+        UN_PARMI("TUBE_NEUF", "LOI_USURE"),
+        PRESENT_ABSENT("TUBE_NEUF", "ETAT_INIT", "INST_FIN"),
+        PRESENT_ABSENT("TUBE_NEUF", "RAYON_MOBILE", "RAYON_OBST", "LARGEUR_OBST", "CONTACT"),
+        PRESENT_ABSENT("TUBE_NEUF", "ANGL_INCLI", "ANGL_ISTHME", "ANGL_IMPACT"),
+        PRESENT_PRESENT("ANGL_INCLI", "CONTACT"),
+        PRESENT_PRESENT("ANGL_ISTHME", "CONTACT"),
+        PRESENT_PRESENT("ANGL_IMPACT", "CONTACT"),
+    ),
+    keywords={
+        "reuse": Simp("concept", "c", help="the table continued: the TABL_USURE of ETAT_INIT or "
+                                           "TUBE_NEUF (fretwear returns a new table and never "
+                                           "modifies the one given)"),
+        "TUBE_NEUF": Simp("TXM", into=("OUI",), help="'OUI': replace the tube of TABL_USURE by "
+                                                     "a new one at INST"),
+        "ETAT_INIT": Fact({"TABL_USURE": Simp("table", help="the table to continue"),
+                           "INST_INIT": _r("its instant to continue from [user unit]")},
+                          help="restart from a previous wear table"),
+        "RESU_GENE": Simp("history", help="contact history: a ContactHistory, a history file, a "
+                                          "list of IMPR_FONCTION files, or a mapping node label "
+                                          "-> either"),
+        "INST_FIN": _r("end of the history window t_end [s]"),
+        "PUIS_USURE": _r("wear power [W]"),
+        "LOI_USURE": Simp("TXM", into=tuple(WEAR_LAWS),
+                          help=f"wear law: {', '.join(WEAR_LAWS)}"),
+        "CONTACT": Simp("TXM", into=tuple(CONTACT_TYPES),
+                        help=f"contact type: {', '.join(CONTACT_TYPES)}"),
+        "RAYON_MOBILE": _r(f"mobile radius {_LENGTH}"),
+        "RAYON_OBST": _r(f"obstacle radius {_LENGTH}"),
+        "LARGEUR_OBST": _r(f"obstacle width {_LENGTH} (with SECTEUR, default 0.011 m as in "
+                           "Code_Aster)"),
+        "ANGL_INCLI": _r("tilt angle [deg]"),
+        "ANGL_ISTHME": _r("isthmus angle [deg]"),
+        "ANGL_IMPACT": _r("impact angle [deg]"),
+        "INFO": Simp("I", default=1, into=(1, 2), help="verbosity (ignored)"),
+        "TITRE": Simp("TXM", help="title of the table (attrs['title'])"),
+        # fretwear extras, not in Code_Aster's catalogue
+        "EPAIS_PAROI": _r("wall thickness of the tube [m] (fretwear extra): adds FRAC_PAROI and "
+                          "INST_LIMITE (the instant the depth reaches LIMITE_PAROI of the wall)"),
+        "LIMITE_PAROI": _r("depth limit as a fraction of the wall [-], default 0.4 (fretwear "
+                           "extra)"),
+    },
+    blocs=(
+        Bloc("RESU_GENE is given", exists("RESU_GENE"),
+             {"NOEUD": Simp("node", "c", help="shock node label: selects its rows or tables in "
+                                              "RESU_GENE"),
+              "GROUP_NO": Simp("group", help="shock node group label: the same")},
+             rules=(EXCLUS("NOEUD", "GROUP_NO", note="Code_Aster: UN_PARMI, a tran_gene holds "
+                                                     "every shock; a fretwear history or a "
+                                                     "single-node file needs neither"),)),
+        Bloc("LOI_USURE='ARCHARD'", equal_to("LOI_USURE", "ARCHARD"),
+             {"MOBILE": _law(_ARCHARD, "the mobile's coefficient", ("COEF_USURE",)),
+              "OBSTACLE": _law(_ARCHARD, "the obstacle's coefficient", ("COEF_USURE",)),
+              "SECTEUR": Fact({"COEF_USUR_MOBILE": _r("sector coefficient of the mobile "
+                                                      "[Pa⁻¹], default 0"),
+                               "COEF_USUR_OBST": _r("sector coefficient of the obstacle [Pa⁻¹]"),
+                               "ANGL_INIT": _r("start angle [deg]: -180 in the first sector, "
+                                               "then the previous ANGL_FIN"),
+                               "ANGL_FIN": _r("end angle [deg]: 180 in the last sector"),
+                               "CONTACT": Simp("TXM", into=tuple(CONTACT_TYPES),
+                                               help="contact type (catalogues up to code_aster "
+                                                    "13; it does not change a sector's depth)")},
+                              max="**", help="angular sectors and their coefficients"),
+              **_MATERIALS},
+             rules=(UN_PARMI("MOBILE", "MATER_USURE", "SECTEUR"), *_LAW_RULES[1:])),
+        Bloc("LOI_USURE='KWU_EPRI'", equal_to("LOI_USURE", "KWU_EPRI"),
+             {"MOBILE": _law(_KWU, "the mobile's coefficients"),
+              "OBSTACLE": _law(_KWU, "the obstacle's coefficients", ("COEF_USURE",)),
+              **_MATERIALS,
+              "FNOR_MAXI": _r("force class range [N] (default the largest force)"),
+              "VTAN_MAXI": _r("speed class range [m/s] (default the largest speed)")},
+             rules=_LAW_RULES),
+        Bloc("LOI_USURE='EDF_MZ'", equal_to("LOI_USURE", "EDF_MZ"),
+             {"MOBILE": _law(_EDF_MZ, "the mobile's coefficients"),
+              "OBSTACLE": _law(_EDF_MZ, "the obstacle's coefficients"),
+              **_MATERIALS},
+             rules=_LAW_RULES),
+        Bloc("TUBE_NEUF is absent", absent("TUBE_NEUF"),
+             {"INST_INIT": _r("start of the history window t_start [s]"),
+              "NB_BLOC": Simp("I", default=1, help="number of blocks of the power computation"),
+              "COEF_INST": _r("seconds per user time unit [s]", default=1.0),
+              "INST": _r("instants of service [user unit]", max="**"),
+              "LIST_INST": Simp("listr8", help="instants of service, a sequence [user unit]")},
+             rules=(UN_PARMI("INST", "LIST_INST"),)),
+        Bloc("TUBE_NEUF='OUI'", exists("TUBE_NEUF"),
+             {"INST": _r("instant of the replacement [user unit] (default the last); one "
+                         "value", max="**"),
+              "TABL_USURE": Simp("table", "o", help="the table of the tube replaced")}),
+    ),
+)
+
+#: The keywords that Code_Aster's catalogue does not have.
 EXTRA_KEYWORDS: tuple[str, ...] = ("EPAIS_PAROI", "LIMITE_PAROI")
-#: Factor keywords and the keywords each accepts.
+#: Every keyword of POST_USURE and its meaning (from :data:`CATALOGUE`).
+SIMPLE_KEYWORDS: dict[str, str] = {
+    k: v for k, v in CATALOGUE.describe().items()
+    if not isinstance(CATALOGUE.all_keywords()[k][0], Fact)}
+#: Factor keywords and the keywords each accepts (every block's, from :data:`CATALOGUE`).
 FACTOR_KEYWORDS: dict[str, tuple[str, ...]] = {
-    "MOBILE": ("COEF_USURE", "COEF_FNOR", "COEF_VTAN", "COEF_K", "COEF_C", "COEF_B", "COEF_N",
-               "COEF_S"),
-    "OBSTACLE": ("COEF_USURE", "COEF_FNOR", "COEF_VTAN", "COEF_K", "COEF_C", "COEF_B", "COEF_N",
-                 "COEF_S"),
-    "SECTEUR": ("CONTACT", "COEF_USUR_MOBILE", "COEF_USUR_OBST", "ANGL_INIT", "ANGL_FIN"),
-    "ETAT_INIT": ("TABL_USURE", "INST_INIT"),
-}
+    k: tuple(dict.fromkeys(key for d in defs for key in d.keywords))
+    for k, defs in CATALOGUE.all_keywords().items() if isinstance(defs[0], Fact)}
 #: Geometry keyword -> native dimension name (the geometry's table, inverted).
 DIMENSIONS: dict[str, str] = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
-_TUBE_NEUF_KEYWORDS = ("TUBE_NEUF", "TABL_USURE", "INST", "TITRE", "INFO")
+
+#: Code_Aster's MATER_USURE codes (its database routine ``usuban``) that fretwear's database
+#: (the coefficient tables of Code_Aster R7.20.01 §3, theory §5) names otherwise:
+#: code -> ((mobile, obstacle), why).
+MATERIAL_CODES: dict[str, tuple[tuple[str, str], str]] = {
+    "NITRURE_A304L": (("A304LNI", "A304L"), "a nitrided 304L control rod on 304L"),
+    "CHROME_A304L": (("A304LCR", "A304L"), "a chromium-plated 304L control rod on 304L"),
+    "I690_Z6C13": (("I690TT", "Z6C13"), "Inconel 690 on Z6C13: the reference manual's pair "
+                                        "is the thermally treated I690TT"),
+}
 
 
-def _one_of(kw: Mapping[str, Any], names: Sequence[str], context: str = "") -> str:
-    given = [n for n in names if kw.get(n) is not None]
-    if len(given) != 1:
-        what = "none" if not given else " and ".join(given)
-        raise KeywordError(f"POST_USURE{context}: exactly one of {', '.join(names)} is required, "
-                           f"got {what}")
-    return given[0]
+def materials_of(value: Any) -> tuple[str, str]:
+    """The (mobile, obstacle) material codes of a MATER_USURE value.
 
-
-def _exclusive(kw: Mapping[str, Any], a: str, b: str, context: str = "") -> None:
-    if kw.get(a) is not None and kw.get(b) is not None:
-        raise KeywordError(f"POST_USURE{context}: {a} excludes {b}; give only one of them")
-
-
-def _fact(value: Any, name: str, multiple: bool = False) -> list[dict]:
-    """A factor keyword's occurrences as a list of dicts, unknown keywords rejected."""
-    if value is None:
-        return []
-    items = list(value) if isinstance(value, list | tuple) else [value]
-    if not multiple and len(items) != 1:
-        raise KeywordError(f"POST_USURE: {name} takes one occurrence, got {len(items)}")
-    out = []
-    for i, item in enumerate(items):
-        if not isinstance(item, Mapping):
-            raise KeywordError(f"POST_USURE: {name} must be given as _F(...), got {item!r}")
-        unknown = [k for k in item if k not in FACTOR_KEYWORDS[name]]
-        if unknown:
-            where = f"{name}[{i}]" if multiple else name
-            raise KeywordError(f"POST_USURE: unknown keyword(s) {unknown} in {where}; it accepts "
-                               f"{list(FACTOR_KEYWORDS[name])}")
-        out.append(dict(item))
-    return out
-
-
-def _real(value: Any, name: str) -> float:
-    """A keyword's real value (Code_Aster ``typ='R'``), or an error naming the keyword.
+    Code_Aster writes ``'I600_Z6C13'`` (mobile and obstacle joined by an underscore, as in its
+    ``usuban``); ``'I600/Z6C13'``, ``'I600 Z6C13'`` and a pair ``('I600', 'Z6C13')`` are accepted
+    too. A Code_Aster code of :data:`MATERIAL_CODES` maps to fretwear's pair with a warning.
 
     Examples
     --------
-    >>> _real(3, "COEF_INST")
-    3.0
+    >>> materials_of("I600_Z6C13"), materials_of(("I600", "Z10C13"))
+    (('I600', 'Z6C13'), ('I600', 'Z10C13'))
     """
-    if isinstance(value, bool | str | bytes) or value is None:
-        ok = False
-    else:
-        try:
-            out = float(value)
-            ok = bool(np.isfinite(out))
-        except (TypeError, ValueError):
-            ok = False
-    if not ok:
-        raise KeywordError(f"POST_USURE: {name} must be a finite real number, got {value!r}")
-    return out
-
-
-def _integer(value: Any, name: str) -> int:
-    """A keyword's integer value (Code_Aster ``typ='I'``), or an error naming the keyword.
-
-    Examples
-    --------
-    >>> _integer(4.0, "NB_BLOC")
-    4
-    """
-    real = _real(value, name)
-    if real != int(real):
-        raise KeywordError(f"POST_USURE: {name} must be a whole number, got {value!r}")
-    return int(real)
-
-
-def _reals(value: Any, name: str) -> list[float]:
-    """A keyword's list of reals (``max='**'``): a number or a sequence of numbers."""
-    if np.isscalar(value) or isinstance(value, bool):
-        return [_real(value, name)]
-    try:
-        items = list(value)
-    except TypeError:
-        raise KeywordError(f"POST_USURE: {name} must be a real or a sequence of reals, "
-                           f"got {value!r}") from None
-    return [_real(v, f"{name}[{i}]") for i, v in enumerate(items)]
-
-
-def _yes(value: Any, name: str) -> bool:
-    if value is None:
-        return False
-    if str(value).upper() != "OUI":
-        raise KeywordError(f"POST_USURE: {name} accepts only 'OUI', got {value!r}")
-    return True
-
-
-def _materials(value: Any) -> tuple[str, str]:
     if isinstance(value, str):
-        for sep in ("/", " ", ","):
-            parts = [p for p in value.split(sep) if p]
+        code = value.strip().upper()
+        if code in MATERIAL_CODES:
+            pair, why = MATERIAL_CODES[code]
+            warnings.warn(f"POST_USURE: MATER_USURE='{value}' is Code_Aster's code for {why}: "
+                          f"fretwear's pair {pair[0]}/{pair[1]} (its coefficients are the "
+                          "reference manual's, theory §5)", FretwearWarning, stacklevel=3)
+            return pair
+        for sep in ("/", "_", " ", ","):
+            parts = [p.strip() for p in code.split(sep) if p.strip()]
             if len(parts) == 2:
-                return parts[0].strip(), parts[1].strip()
-    elif isinstance(value, Sequence) and len(value) == 2:
-        return str(value[0]), str(value[1])
+                return parts[0], parts[1]
+    elif isinstance(value, list | tuple) and len(value) == 2:
+        return str(value[0]).strip().upper(), str(value[1]).strip().upper()
     raise KeywordError(f"POST_USURE: MATER_USURE must name the mobile and obstacle materials, "
-                       f"e.g. 'I600/Z10C13' or ('I600', 'Z10C13'), got {value!r}")
+                       f"e.g. 'I600_Z6C13' (Code_Aster), 'I600/Z6C13' or ('I600', 'Z6C13'), "
+                       f"got {value!r}")
 
 
-def _history(kw: Mapping[str, Any]):
-    source = kw["RESU_GENE"]
-    _exclusive(kw, "NOEUD", "GROUP_NO")
-    label = kw.get("NOEUD", kw.get("GROUP_NO"))
-    if isinstance(source, Mapping):
-        if label is None:
-            if len(source) != 1:
-                raise KeywordError(f"POST_USURE: RESU_GENE holds the nodes {list(source)}: pick "
-                                   "one with NOEUD or GROUP_NO")
-            label = next(iter(source))
-        if label not in source:
-            raise KeywordError(f"POST_USURE: NOEUD/GROUP_NO {label!r} is not in RESU_GENE; it "
-                               f"holds {list(source)}")
-        source = source[label]
-    if not isinstance(source, ContactHistory | str | os.PathLike):
-        raise KeywordError(f"POST_USURE: RESU_GENE must be a ContactHistory, the path of a "
-                           f"history file, or a mapping node label -> either; got "
-                           f"{type(source).__name__}")
-    return source
+def _aster_pairs(contact: str, law: str) -> str:
+    """The database's pairs of a contact type and law in MATER_USURE's Code_Aster form."""
+    db = load_database()
+    rows = db[(db["contact_type"] == contact) & (db["law"] == law)]
+    pairs = dict.fromkeys(f"{m}_{o}" for m, o in zip(rows["mobile_material"],
+                                                       rows["obstacle_material"], strict=True))
+    codes = [f"{c} (= {p[0]}_{p[1]})" for c, (p, _) in MATERIAL_CODES.items()
+             if f"{p[0]}_{p[1]}" in pairs]
+    text = ", ".join(pairs) or "none"
+    return text + (f"; Code_Aster's codes {', '.join(codes)}" if codes else "")
 
 
 def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's name
-    """Code_Aster's wear operator with its keywords (theory §7; POST_USURE [U4.84.05]).
+    """Code_Aster's wear operator with its keywords (theory §7; POST_USURE, U4.84.05).
 
     Parameters
     ----------
     **keywords
-        The keywords of the command (see :data:`SIMPLE_KEYWORDS`, :data:`FACTOR_KEYWORDS`),
-        SI units, angles in degrees. Factor keywords as :class:`_F` (or tuples of them).
+        The keywords of the command (:data:`CATALOGUE`; :data:`SIMPLE_KEYWORDS`,
+        :data:`FACTOR_KEYWORDS`), SI units, angles in degrees. Factor keywords as :class:`_F`
+        (or tuples of them).
 
     Returns
     -------
     pandas.DataFrame
         The wear table with Code_Aster's column names (PUIS_USUR_GLOBAL, INST, DUREE,
-        ORIG_INST, V_USUR_TUBE, ...); P_USUR_OBST only when the obstacle wears.
+        ORIG_INST, V_USUR_TUBE, ...); P_USUR_OBST only when the obstacle wears. With SECTEUR
+        and no CONTACT the global depths are NaN (``attrs['global_depth']`` says why).
 
     Raises
     ------
     KeywordError
-        An unknown keyword, or a violated catalogue rule, naming the keywords.
+        An unknown keyword, a keyword of an inactive block, a bad value or a violated catalogue
+        rule, naming the keywords.
+    DatabaseError
+        A MATER_USURE pair without coefficients (the pairs that exist are listed).
 
     Notes
     -----
     Archard: ``V = COEF_USURE · PUIS_USURE · INST · COEF_INST``; depths from the geometry of
-    CONTACT (theory §4, §6).
+    CONTACT (theory §4, §6). Forms Code_Aster accepts and fretwear follows: ``reuse=`` with
+    ETAT_INIT or TUBE_NEUF (the table given to TABL_USURE; the result is a new table), ANGL_INIT
+    in the first SECTEUR only, SECTEUR without COEF_USUR_MOBILE (0), without LARGEUR_OBST
+    (0.011 m, warned), without CONTACT (sector depths only), PUIS_USURE with INST_INIT,
+    INST_FIN or NB_BLOC (ignored, warned), TUBE_NEUF before the last instant (later rows kept,
+    the tube restarted from zero).
 
     Examples
     --------
@@ -254,82 +299,116 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     >>> t[["INST", "V_USUR_TUBE"]].values.tolist()
     [[1.0, 3.6e-13]]
     """
-    allowed = set(SIMPLE_KEYWORDS) | set(FACTOR_KEYWORDS)
-    unknown = sorted(k for k in keywords if k not in allowed)
-    if unknown:
-        raise KeywordError(f"POST_USURE: unknown keyword(s) {unknown}; POST_USURE accepts "
-                           f"{sorted(allowed)}")
-    kw = {k: v for k, v in keywords.items() if v is not None}
-    kind = _one_of(kw, ("PUIS_USURE", "RESU_GENE", "TUBE_NEUF"))
-    if kind == "TUBE_NEUF":
-        return _tube_neuf(kw)
-    law = str(kw.get("LOI_USURE", "")).upper()
-    if not law:
-        raise KeywordError(f"POST_USURE: LOI_USURE is required ({', '.join(WEAR_LAWS)})")
-    if law not in WEAR_LAWS:
-        raise KeywordError(f"POST_USURE: LOI_USURE={kw['LOI_USURE']!r} is not a wear law; "
-                           f"choose one of {sorted(WEAR_LAWS)}")
-    if "TABL_USURE" in kw:
-        raise KeywordError("POST_USURE: TABL_USURE goes under TUBE_NEUF='OUI', or inside "
-                           "ETAT_INIT=_F(TABL_USURE=...) to continue a table")
-    coef_kind = _one_of(kw, ("MOBILE", "MATER_USURE", "SECTEUR"))
-    _exclusive(kw, "MATER_USURE", "OBSTACLE")
-    if "USURE_OBST" in kw and coef_kind != "MATER_USURE":
-        raise KeywordError("POST_USURE: USURE_OBST goes with MATER_USURE (the obstacle "
-                           "coefficient comes from the database); give OBSTACLE=_F(...) instead")
-    times = _one_of(kw, ("INST", "LIST_INST"))
-    if kind == "PUIS_USURE":
-        for k in ("NOEUD", "GROUP_NO", "INST_INIT", "INST_FIN", "NB_BLOC"):
-            if k in kw:
-                raise KeywordError(f"POST_USURE: {k} applies to RESU_GENE, not to PUIS_USURE")
-
-    mobile = _fact(kw.get("MOBILE"), "MOBILE")
-    obstacle = _fact(kw.get("OBSTACLE"), "OBSTACLE")
-    etat = _fact(kw.get("ETAT_INIT"), "ETAT_INIT")
-    secteurs = _fact(kw.get("SECTEUR"), "SECTEUR", multiple=True)
-    if etat and etat[0].get("TABL_USURE") is None:
-        raise KeywordError("POST_USURE: ETAT_INIT needs TABL_USURE (the table to continue)")
+    kw = CATALOGUE.check(keywords)
+    _check_reuse(kw)
+    if "TUBE_NEUF" in kw:
+        instant = kw.get("INST", [None])
+        if len(instant) != 1:
+            raise KeywordError(f"POST_USURE: under TUBE_NEUF, INST is one instant (of the "
+                               f"replacement), got {instant}")
+        return to_aster_names(replace_tube(kw["TABL_USURE"], instant[0]))
+    law = kw["LOI_USURE"]
+    if "PUIS_USURE" in kw:
+        ignored = [k for k in ("INST_INIT", "INST_FIN", "NB_BLOC") if k in kw]
+        if ignored:
+            warnings.warn(f"POST_USURE: {', '.join(ignored)} apply to RESU_GENE (the window and "
+                          "blocks of the power computed from the history); with PUIS_USURE they "
+                          "are ignored, as in Code_Aster", UnusedKeywordWarning, stacklevel=2)
+            kw = {k: v for k, v in kw.items() if k not in ignored}
+    if "USURE_OBST" in kw and "MATER_USURE" not in kw:
+        warnings.warn("POST_USURE: USURE_OBST takes the obstacle's coefficient from the database "
+                      "of MATER_USURE; without MATER_USURE it is ignored", UnusedKeywordWarning,
+                      stacklevel=2)
     contact = kw.get("CONTACT")
     sectors = sector_coefficients = None
-    if secteurs:
-        sectors, sector_coefficients, contact = _secteurs(secteurs, contact)
-    if contact is None:
-        raise KeywordError("POST_USURE: CONTACT is required (the contact type gives the depths)")
-    dimensions = {DIMENSIONS[k]: _real(v, k) for k, v in kw.items() if k in DIMENSIONS}
-    instants = _reals(kw[times], times)
-    coefficients = None
-    if mobile:
-        coefficients = _law_keywords(mobile[0], law, "MOBILE")
-
-    def optional(name: str) -> float | None:
-        return None if name not in kw else _real(kw[name], name)
-
-    if kind == "PUIS_USURE":
-        source = _real(kw["PUIS_USURE"], "PUIS_USURE")
-    else:
-        source = _history(kw)
-    etat_instant = None
-    if etat and etat[0].get("INST_INIT") is not None:
-        etat_instant = _real(etat[0]["INST_INIT"], "ETAT_INIT INST_INIT")
-    # the rules between the keywords (FNOR_MAXI with KWU_EPRI, SECTEUR with ARCHARD, ...)
-    # are the wear case's, checked once by WearCase
-    case = WearCase.from_keywords(
-        contact_type=str(contact), dimensions=dimensions, instants=instants, law=law,
-        coefficients=coefficients,
-        obstacle_coefficients=_law_keywords(obstacle[0], law, "OBSTACLE") if obstacle else None,
-        materials=_materials(kw["MATER_USURE"]) if coef_kind == "MATER_USURE" else None,
-        obstacle_wear=_yes(kw.get("USURE_OBST"), "USURE_OBST"), sectors=sectors,
-        sector_coefficients=sector_coefficients,
-        time_scale=_real(kw.get("COEF_INST", 1.0), "COEF_INST"),
-        initial_state=etat[0].get("TABL_USURE") if etat else None,
-        initial_instant=etat_instant, t_start=optional("INST_INIT"), t_end=optional("INST_FIN"),
-        blocks=_integer(kw.get("NB_BLOC", 1), "NB_BLOC"),
-        force_max=optional("FNOR_MAXI"), speed_max=optional("VTAN_MAXI"),
-        wall_thickness=optional("EPAIS_PAROI"),
-        depth_limit=0.4 if "LIMITE_PAROI" not in kw else _real(kw["LIMITE_PAROI"],
-                                                               "LIMITE_PAROI"))
+    dimensions = {DIMENSIONS[k]: v for k, v in kw.items() if k in DIMENSIONS}
+    if "SECTEUR" in kw:
+        sectors, sector_coefficients, contact = _secteurs(kw["SECTEUR"], contact)
+        if "obstacle_width" not in dimensions:
+            warnings.warn(f"POST_USURE: SECTEUR without LARGEUR_OBST: the sector depths use "
+                          f"LARGEUR_OBST = {DEFAULT_SECTOR_WIDTH} m, Code_Aster's default "
+                          "(op0153); give LARGEUR_OBST", UnusedKeywordWarning, stacklevel=2)
+            dimensions["obstacle_width"] = DEFAULT_SECTOR_WIDTH
+    elif contact is None:
+        raise KeywordError("POST_USURE: CONTACT is required (the contact type gives the depths; "
+                           "only SECTEUR computes its sector depths without it)")
+    materials = materials_of(kw["MATER_USURE"]) if "MATER_USURE" in kw else None
+    etat = first(kw.get("ETAT_INIT", []))
+    if kw.get("ETAT_INIT") and "TABL_USURE" not in etat:
+        raise KeywordError("POST_USURE: ETAT_INIT needs TABL_USURE (the table to continue)")
+    mobile, obstacle = first(kw.get("MOBILE", [])), first(kw.get("OBSTACLE", []))
+    source = (kw["PUIS_USURE"] if "PUIS_USURE" in kw
+              else _history_source(kw["RESU_GENE"], kw.get("NOEUD", kw.get("GROUP_NO"))))
+    try:
+        case = WearCase.from_keywords(
+            contact_type=contact, dimensions=dimensions,
+            instants=kw["INST"] if "INST" in kw else kw["LIST_INST"], law=law,
+            coefficients=mobile or None, obstacle_coefficients=obstacle or None,
+            materials=materials, obstacle_wear="USURE_OBST" in kw and materials is not None,
+            sectors=sectors, sector_coefficients=sector_coefficients,
+            time_scale=kw.get("COEF_INST", 1.0), initial_state=etat.get("TABL_USURE"),
+            initial_instant=etat.get("INST_INIT"), t_start=kw.get("INST_INIT"),
+            t_end=kw.get("INST_FIN"), blocks=kw.get("NB_BLOC", 1),
+            force_max=kw.get("FNOR_MAXI"), speed_max=kw.get("VTAN_MAXI"),
+            wall_thickness=kw.get("EPAIS_PAROI"), depth_limit=kw.get("LIMITE_PAROI", 0.4),
+            name=kw.get("TITRE"))
+    except DatabaseError as exc:
+        if materials is None or contact is None:
+            raise
+        raise DatabaseError(f"{exc} MATER_USURE in Code_Aster's form for {contact}/{law}: "
+                            f"{_aster_pairs(contact, law)}") from None
     table = wear_table_from_case(case, source)
     return to_aster_names(_obstacle_depths_that_exist(table))
+
+
+def _same_table(a: Any, b: Any) -> bool:
+    if a is b:
+        return True
+    if isinstance(a, str | os.PathLike) and isinstance(b, str | os.PathLike):
+        return os.path.abspath(os.fspath(a)) == os.path.abspath(os.fspath(b))
+    return False
+
+
+def _check_reuse(kw: Mapping[str, Any]) -> None:
+    """``reuse=`` names the table POST_USURE continues (Code_Aster's ``reentrant='f:TABL_USURE'``):
+    the TABL_USURE of TUBE_NEUF or of ETAT_INIT (op0153: PREPOST4_7, PREPOST4_13)."""
+    if "reuse" not in kw:
+        return
+    target = kw.get("TABL_USURE", first(kw.get("ETAT_INIT", [])).get("TABL_USURE"))
+    if target is None:
+        raise KeywordError("POST_USURE: reuse= continues the table given to TABL_USURE (under "
+                           "ETAT_INIT or TUBE_NEUF); give that table there too")
+    if not _same_table(kw["reuse"], target):
+        raise KeywordError("POST_USURE: reuse= must be the table given to TABL_USURE (Code_Aster "
+                           "continues that table: PREPOST4_7 / PREPOST4_13)")
+
+
+def _history_source(value: Any, node: str | None):
+    """RESU_GENE's history for the shock point ``node`` (NOEUD / GROUP_NO), or its file."""
+    if isinstance(value, Mapping):
+        if node is None:
+            if len(value) != 1:
+                raise KeywordError(f"POST_USURE: RESU_GENE holds the nodes {list(value)}: pick "
+                                   "one with NOEUD or GROUP_NO")
+            node = next(iter(value))
+        if node not in value:
+            raise KeywordError(f"POST_USURE: NOEUD/GROUP_NO {node!r} is not in RESU_GENE; it "
+                               f"holds {list(value)}")
+        value, node = value[node], None
+    if isinstance(value, ContactHistory):
+        stored = value.metadata.get("node") or None
+        if node is not None and stored is not None and str(stored).upper() != node.upper():
+            raise KeywordError(f"POST_USURE: NOEUD/GROUP_NO {node!r} but RESU_GENE is the "
+                               f"history of {stored!r}")
+        return value
+    if isinstance(value, str | os.PathLike):
+        return value if node is None else read_history(value, node=node)
+    if isinstance(value, list | tuple) and value and all(isinstance(v, str | os.PathLike)
+                                                         for v in value):
+        return read_history(list(value), **({} if node is None else {"node": node}))
+    raise KeywordError(f"POST_USURE: RESU_GENE must be a ContactHistory, the path of a history "
+                       f"file, a list of IMPR_FONCTION files, or a mapping node label -> either; "
+                       f"got {type(value).__name__}")
 
 
 def _obstacle_depths_that_exist(table: pd.DataFrame) -> pd.DataFrame:
@@ -358,57 +437,45 @@ def _obstacle_depths_that_exist(table: pd.DataFrame) -> pd.DataFrame:
     return table.drop(columns=[c for c in drop if c in table.columns])
 
 
-def _law_keywords(fact: Mapping[str, Any], law: str, name: str) -> dict[str, float]:
-    """The law's coefficients from MOBILE/OBSTACLE keywords (Code_Aster names)."""
-    known = set(dict(getattr(WEAR_LAWS[law], "aster_keywords", {})).values())
-    extra = [k for k in fact if k not in known]
-    if extra:
-        raise KeywordError(f"POST_USURE: {name} keyword(s) {extra} do not belong to "
-                           f"LOI_USURE='{law}', which takes {sorted(known)}")
-    return {k: _real(v, f"{name} {k}") for k, v in fact.items()}
-
-
-def _secteurs(secteurs: list[dict], contact: Any):
+def _secteurs(secteurs: list[dict], contact: str | None):
+    """Sector edges [deg], (k_mobile, k_obstacle) pairs [Pa⁻¹] and the contact type of the
+    SECTEUR occurrences (Code_Aster's op0153: ANGL_INIT read in the first occurrence only and
+    equal to -180, ANGL_FIN increasing, the last equal to 180, within 1e-4 deg)."""
+    tol = 1e-4
     edges: list[float] = []
     pairs = []
     for i, s in enumerate(secteurs):
-        for k in ("ANGL_INIT", "ANGL_FIN", "COEF_USUR_MOBILE"):
-            if s.get(k) is None:
-                raise KeywordError(f"POST_USURE: SECTEUR[{i}] needs {k}")
-        start = _real(s["ANGL_INIT"], f"SECTEUR[{i}] ANGL_INIT")
-        if not edges:
-            edges.append(start)
-        elif abs(start - edges[-1]) > 1e-9:
-            raise KeywordError(f"POST_USURE: SECTEUR[{i}] ANGL_INIT = {s['ANGL_INIT']} must equal "
-                               f"the ANGL_FIN of SECTEUR[{i - 1}] ({edges[-1]}): sectors are "
-                               "contiguous from -180 to 180 deg")
-        edges.append(_real(s["ANGL_FIN"], f"SECTEUR[{i}] ANGL_FIN"))
-        obst = s.get("COEF_USUR_OBST")
-        pairs.append((_real(s["COEF_USUR_MOBILE"], f"SECTEUR[{i}] COEF_USUR_MOBILE"),
-                      None if obst is None else _real(obst, f"SECTEUR[{i}] COEF_USUR_OBST")))
-    kinds = {str(s["CONTACT"]).upper() for s in secteurs if s.get("CONTACT") is not None}
-    if contact is None:
+        where = f"POST_USURE: SECTEUR[{i}]"
+        if i == 0:
+            if "ANGL_INIT" not in s:
+                raise KeywordError(f"{where} needs ANGL_INIT = -180 (the sectors cover "
+                                   "-180..180 deg)")
+            if abs(s["ANGL_INIT"] + 180.0) > tol:
+                raise KeywordError(f"{where} ANGL_INIT = {s['ANGL_INIT']:g} deg: the first sector "
+                                   "starts at -180 deg (the sectors cover -180..180 deg)")
+            edges.append(-180.0)
+        elif "ANGL_INIT" in s and abs(s["ANGL_INIT"] - edges[-1]) > tol:
+            raise KeywordError(f"{where} ANGL_INIT = {s['ANGL_INIT']:g} deg must equal the "
+                               f"ANGL_FIN of SECTEUR[{i - 1}] ({edges[-1]:g} deg): sectors are "
+                               "contiguous from -180 to 180 deg (or give ANGL_INIT in the first "
+                               "sector only)")
+        if "ANGL_FIN" not in s:
+            raise KeywordError(f"{where} needs ANGL_FIN (the sector's end angle [deg])")
+        end = s["ANGL_FIN"]
+        if end <= edges[-1]:
+            raise KeywordError(f"{where} ANGL_FIN = {end:g} deg must exceed its start "
+                               f"{edges[-1]:g} deg (the angles increase from -180 to 180 deg)")
+        edges.append(end)
+        pairs.append((s.get("COEF_USUR_MOBILE", 0.0), s.get("COEF_USUR_OBST")))
+    if abs(edges[-1] - 180.0) > tol:
+        raise KeywordError(f"POST_USURE: SECTEUR[{len(secteurs) - 1}] ANGL_FIN = {edges[-1]:g} "
+                           "deg: the last sector ends at 180 deg (the sectors cover -180..180 "
+                           "deg)")
+    edges[-1] = 180.0
+    kinds = {s["CONTACT"] for s in secteurs if "CONTACT" in s}
+    if contact is None and kinds:
         if len(kinds) != 1:
             raise KeywordError(f"POST_USURE: the SECTEUR occurrences give the contact types "
-                               f"{sorted(kinds) or 'none'}; give one CONTACT for the global depth")
+                               f"{sorted(kinds)}; give one CONTACT for the global depth")
         contact = kinds.pop()
     return edges, pairs, contact
-
-
-def _tube_neuf(kw: Mapping[str, Any]) -> pd.DataFrame:
-    _yes(kw["TUBE_NEUF"], "TUBE_NEUF")
-    if kw.get("TABL_USURE") is None:
-        raise KeywordError("POST_USURE: TUBE_NEUF='OUI' needs TABL_USURE (the table of the "
-                           "tube being replaced)")
-    extra = sorted(k for k in kw if k not in _TUBE_NEUF_KEYWORDS)
-    if extra:
-        warnings.warn(f"POST_USURE: with TUBE_NEUF only {list(_TUBE_NEUF_KEYWORDS)} are used; "
-                      f"ignored {extra}", UnusedKeywordWarning, stacklevel=3)
-    instant = kw.get("INST")
-    if instant is not None and not np.isscalar(instant):
-        if len(instant) != 1:
-            raise KeywordError("POST_USURE: under TUBE_NEUF, INST is one instant (of the "
-                               f"replacement), got {list(instant)}")
-        instant = instant[0]
-    return to_aster_names(replace_tube(kw["TABL_USURE"], None if instant is None
-                                       else _real(instant, "INST")))
