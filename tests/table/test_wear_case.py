@@ -131,6 +131,16 @@ def test_from_dict_names_unknown_keys():
         WearCase.from_dict(data)
 
 
+def test_from_keywords_takes_exactly_the_keywords_of_wear_table():
+    import inspect
+
+    table = inspect.signature(wear_table).parameters
+    case = inspect.signature(WearCase.from_keywords).parameters
+    assert set(table) - {"source", "history"} == set(case)
+    assert {k: v.default for k, v in case.items()} == {
+        k: v.default for k, v in table.items() if k not in ("source", "history")}
+
+
 def test_fretwear_exports_the_case():
     assert fretwear.WearCase is WearCase
     assert fretwear.wear_table_from_case is wear_table_from_case

@@ -93,7 +93,9 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
 
     References
     ----------
-    .. [1] Code_Aster R7.20.01, theory of POST_USURE, §6 "actualisation du tableau".
+    .. [1] fretwear theory, docs/theory.md §3, §6, §7.
+    .. [2] Code_Aster Reference Manual R7.20.01 (theory of POST_USURE), §6 ("actualisation du
+           tableau": updating the table).
 
     Examples
     --------

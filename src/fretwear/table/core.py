@@ -134,10 +134,10 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
 
     Notes
     -----
-    Per body, with ``t = duration × time_scale`` and ``V₀`` the volume at the origin:
-    ``V(t) = V₀ + V_law(P, t)`` for a law linear in time, ``V(t) = V_law(P, τ₀ + t)`` with
-    ``V_law(P, τ₀) = V₀`` otherwise (theory §7). Sectors: ``V_j = k_j·P_j·t`` (theory §3).
-    Depths always come from the cumulated volumes (theory §6, §3).
+    ``wear_table(source, **keywords)`` is ``wear_table_from_case(WearCase.from_keywords(
+    **keywords), source)``: the equations (cumulated volumes per body, a restart continuing
+    from the equivalent time, sector volumes ``V_j = k_j·P_j·t``, depths from the cumulated
+    volumes) are those of :func:`~fretwear.table.wear_table_from_case`.
 
     References
     ----------
