@@ -181,14 +181,14 @@ def test_law_warnings_name_the_body():
 
 
 def test_attrs_carry_the_case_and_the_wall():
-    t = wear_table(P, **base(wall_thickness=1.09e-3, depth_limit=0.5, name="N12",
+    t = wear_table(P, **base(wall_thickness=1e-2, depth_limit=0.5, name="N12",
                              time_unit="year"))
-    assert t.attrs["wall_thickness"] == 1.09e-3 and t.attrs["depth_limit"] == 0.5
+    assert t.attrs["wall_thickness"] == 1e-2 and t.attrs["depth_limit"] == 0.5
     assert t.attrs["title"] == "N12" and t.attrs["time_unit"] == "year"
     np.testing.assert_allclose(t["volume_mobile"], 1.2e-13 * P * YEAR * np.array([1.0, 2.0]),
                                rtol=1e-15)
     assert WearCase.from_dict(t.attrs["case"]) == WearCase.from_keywords(
-        **base(wall_thickness=1.09e-3, depth_limit=0.5, name="N12", time_unit="year"))
+        **base(wall_thickness=1e-2, depth_limit=0.5, name="N12", time_unit="year"))
 
 
 # --------------------------------------------------------------------------- validation
