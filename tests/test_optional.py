@@ -131,7 +131,7 @@ def test_csv_without_pyarrow_uses_pandas(tmp_path, monkeypatch):
     np.testing.assert_array_equal(back.normal_force, _history().normal_force)
 
 
-# ------------------------------------------------------------------------ dynamics: pyarrow only to stream
+# ---------------------------------------------------------- dynamics: pyarrow only to stream
 def _model():
     return ModalModel(frequencies=[5.0], damping_ratios=0.02, masses=1.0,
                       shock_shapes=[[[1.0], [0.0]]])
@@ -197,3 +197,30 @@ print(HAVE_NUMBA, H2, fused("auto") is fused_numpy, abs(p - trapz) <= 1e-12 * tr
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True, cwd=ROOT)
     assert out.stdout.split() == ["False", "False", "True", "True"]
+
+
+def test_every_module_imports_without_any_optional_package():
+    """Optional packages are never imported at a module's top: with all of them unimportable, a
+    fresh interpreter imports every module of fretwear."""
+    code = f"""
+import importlib, pathlib, sys, warnings
+for name in {sorted(_optional.EXTRAS)!r}:
+    sys.modules[name] = None
+root = pathlib.Path({str(ROOT / "src" / "fretwear")!r})
+failed = []
+for path in sorted(root.rglob("*.py")):
+    parts = path.relative_to(root.parent).with_suffix("").parts
+    name = ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+    if name.endswith("conftest"):
+        continue
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # the shims warn
+        try:
+            importlib.import_module(name)
+        except Exception as exc:
+            failed.append(f"{{name}}: {{type(exc).__name__}}: {{exc}}")
+print("\\n".join(failed) or "ok")
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=ROOT)
+    assert out.stdout.strip() == "ok", out.stdout
