@@ -293,20 +293,31 @@ def open_aster(path: str | os.PathLike, *, index: int | None = None, title: str 
     check_one_shock(frame, names, label)
     times = [j for j, c in enumerate(names) if channel_of(c) == "time"]
     if len(times) == 1:
-        _check_instants(frame.iloc[:, times[0]].to_numpy(dtype=float, na_value=np.nan), label,
-                        names[times[0]])
+        _check_instants(numeric_column(frame, times[0], label), label, names[times[0]])
 
     def read(positions: list[int]) -> list[np.ndarray]:
         out = []
         for p in positions:
-            try:
-                out.append(frame.iloc[:, p].to_numpy(dtype=float, na_value=np.nan))
-            except (TypeError, ValueError):
-                raise FormatError(f"{path}: column {names[p]!r} is not numeric (type "
-                                  f"{frame.attrs['types'][p]})") from None
+            out.append(numeric_column(frame, p, label))
         return out
 
     return Source(label=label, format="aster", columns=names, read=read, metadata=metadata)
+
+
+def numeric_column(frame: pd.DataFrame, j: int, label: str) -> np.ndarray:
+    """Column ``j`` of a Code_Aster table as floats (``-`` is NaN), or a :class:`FormatError`
+    naming the column, its type and the first cell that is not a number."""
+    column = frame.iloc[:, j]
+    try:
+        return column.to_numpy(dtype=float, na_value=np.nan)
+    except (TypeError, ValueError):
+        pass
+    kind = (frame.attrs.get("types") or ["?"] * frame.shape[1])[j]
+    bad = next((i for i, v in enumerate(column) if v is not None
+                and pd.isna(pd.to_numeric(v, errors="coerce"))), None)
+    cell = "" if bad is None else f"; row {bad} holds {column.iloc[bad]!r}"
+    raise FormatError(f"{label}: column {str(frame.columns[j])!r} is not numeric (type "
+                      f"{kind}{cell}); fix the cell, or map another column to this channel")
 
 
 def check_one_shock(frame: pd.DataFrame, names: list[str], label: str) -> None:
@@ -315,7 +326,7 @@ def check_one_shock(frame: pd.DataFrame, names: list[str], label: str) -> None:
     times = [j for j, c in enumerate(names) if channel_of(c) == "time"]
     if len(times) != 1:
         return
-    t = frame.iloc[:, times[0]].to_numpy(dtype=float, na_value=np.nan)
+    t = numeric_column(frame, times[0], label)
     if t.size < 2 or bool(np.all(np.diff(t) > 0)):
         return
     for j, kind in enumerate(frame.attrs.get("types", [])):
