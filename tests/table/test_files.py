@@ -1,6 +1,6 @@
 """Table files: one schema, one exact float format, one provenance header in every format.
 
-Round trips are checked bit for bit: ``%.17g`` (17 significant digits) round-trips every
+Round trips are checked bit for bit: ``%.16E`` (17 significant digits) round-trips every
 float64 (IEEE 754: 17 digits identify a double), Parquet stores the binary values.
 """
 
@@ -46,7 +46,7 @@ def test_every_format_round_trips_exactly_with_its_provenance(table, tmp_path, s
     assert prov["version"] == fretwear.__version__
     assert prov["kind"] == "wear table" and prov["name"] == "N12 span 3"
     assert prov["law"] == "EDF_MZ" and prov["contact_type"] == "TUBE_BAV"
-    assert prov["time_unit"] == "year" and prov["float_format"] == FLOAT_FORMAT == "%.17g"
+    assert prov["time_unit"] == "year" and prov["float_format"] == FLOAT_FORMAT == "%.16E"
     assert prov["date"].endswith("+00:00")
     coefficients = prov["coefficients"]
     assert coefficients["mobile.rate_coefficient"] == {"value": 1.1e-13, "source": "user"}

@@ -93,7 +93,7 @@ def write_wear_table(table, path: Path, *, aster_names: bool = False, title: str
     """Write a wear table atomically; the suffix chooses CSV, Parquet or a Code_Aster table.
 
     Every format carries the provenance header (:mod:`fretwear.table.provenance`) and writes
-    reals exactly (text: :data:`~fretwear.table.schema.FLOAT_FORMAT`, ``%.17g``).
+    reals exactly (text: :data:`~fretwear.table.schema.FLOAT_FORMAT`, ``%.16E``).
 
     Parameters
     ----------

@@ -65,7 +65,7 @@ def provenance(attrs: Mapping[str, Any] | None, *, kind: str = "wear table",
     >>> p = provenance({"law": "ARCHARD", "coefficients_mobile": {"coefficient": 1e-13},
     ...                 "coefficient_sources": {"mobile.coefficient": "user"}})
     >>> p["law"], p["coefficients"], p["float_format"]
-    ('ARCHARD', {'mobile.coefficient': {'value': 1e-13, 'source': 'user'}}, '%.17g')
+    ('ARCHARD', {'mobile.coefficient': {'value': 1e-13, 'source': 'user'}}, '%.16E')
     """
     attrs = dict(attrs or {})
     sources = dict(attrs.get("coefficient_sources") or {})

@@ -5,9 +5,11 @@ update, the coupled loop and the Code_Aster facade.
 - :data:`COLUMNS`: the wear table (POST_USURE's columns and fretwear's extensions);
 - :data:`PROFILE_COLUMNS`: the obstacle update's profile table (MODI_OBSTACLE);
 - :data:`FLOAT_FORMAT`: the one format of reals in every text file fretwear writes (CSV and
-  Code_Aster tables): ``%.17g``, 17 significant digits, which round-trips every float64
-  exactly (Parquet stores the binary float64). Code_Aster's LIRE_TABLE reads it (its reals are
-  any ``[0-9.,+-eEdD]`` token).
+  Code_Aster tables): ``%.16E``, 17 significant digits, which round-trips every float64
+  exactly (Parquet stores the binary float64), always with a mantissa point and an exponent.
+  The exponent matters: Code_Aster's LIRE_TABLE (``TableReader.convert``) tries ``int()``
+  before ``float()`` on each TABLEAU cell, so a real printed ``1`` (as ``%g`` prints 1.0)
+  would come back as an integer and turn the INST column into integers.
 """
 
 from __future__ import annotations
@@ -70,8 +72,9 @@ PROFILE_COLUMNS: dict[str, tuple[str, str, str]] = {
     "depth_mobile": ("P_USUR_TUBE", "m", "worn radial depth of the mobile in that direction"),
     "depth_obstacle": ("P_USUR_OBST", "m", "worn radial depth of the obstacle in that direction"),
 }
-#: printf format of every real in fretwear's text tables (CSV, Code_Aster): exact for float64.
-FLOAT_FORMAT = "%.17g"
+#: printf format of every real in fretwear's text tables (CSV, Code_Aster): exact for float64,
+#: and never integer-looking (Code_Aster's LIRE_TABLE would read ``1`` as an integer).
+FLOAT_FORMAT = "%.16E"
 _FROM_ASTER = {aster: native for native, (aster, _, _) in COLUMNS.items()}
 _TIME_TOL = 1e-9
 
