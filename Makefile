@@ -4,7 +4,7 @@ VENV   := .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 
-.PHONY: demo test bench lint clean
+.PHONY: demo test browser bench lint clean
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -15,8 +15,21 @@ $(STAMP): pyproject.toml
 demo: $(STAMP)
 	$(VENV)/bin/fretwear run examples/tube_bav.toml -o build/demo/wear_table.csv --plot build/demo
 
-test: $(STAMP)
+# The HTML report's test opens the page in a headless chromium: installed here when missing and
+# apt-get can (root, Debian's registry reachable, as in CI); otherwise that test is skipped.
+test: $(STAMP) browser
 	$(PY) -m pytest -n 2 -q
+
+browser:
+	@if command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1; \
+	then :; \
+	elif [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	  echo "make: installing chromium for the report's browser test"; \
+	  DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1 \
+	  || { apt-get update -q >/dev/null 2>&1 \
+	       && DEBIAN_FRONTEND=noninteractive apt-get install -y -q chromium >/dev/null 2>&1; } \
+	  || echo "make: chromium could not be installed; the report's browser test will skip"; \
+	else echo "make: no chromium and no root apt-get; the report's browser test will skip"; fi
 
 bench: $(STAMP)
 	$(PY) benchmarks/bench_power.py

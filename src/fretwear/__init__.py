@@ -87,6 +87,11 @@ _LAZY: dict[str, str] = {
     "Signal": "fretwear.dynamics",
     "iterate_case": "fretwear.workflows.loop",
     "IterationResult": "fretwear.workflows.loop",
+    "uncertainty": "fretwear.uncertainty",
+    "monte_carlo": "fretwear.uncertainty",
+    "calibrate": "fretwear.uncertainty",
+    "LogNormal": "fretwear.uncertainty",
+    "report": "fretwear.report",
 }
 
 

@@ -31,8 +31,8 @@ from fretwear.table import wear_table_from_case
 _LOCK = threading.Lock()
 #: Table attributes kept in a contact's record (JSON-ready; the power statistics are dropped).
 _ATTRS = ("contact_type", "dimensions", "law", "coefficients_mobile", "coefficients_obstacle",
-          "materials", "coefficient_sources", "sector_edges", "time_scale", "origin",
-          "tube_replacement", "wall_thickness", "depth_limit")
+          "materials", "coefficient_sources", "sector_edges", "sector_coefficients",
+          "time_scale", "origin", "tube_replacement", "wall_thickness", "depth_limit")
 
 
 def _plain(value: Any) -> Any:

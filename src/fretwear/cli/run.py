@@ -194,12 +194,18 @@ def _limit_lines(table) -> list[tuple[str, str | None]]:
               metavar="FRACTION",
               help="Depth limit as a fraction of the wall [-] (overrides [geometry] "
                    "depth_limit; default 0.4).")
+@click.option("--report", "report", type=click.Path(dir_okay=False, path_type=Path),
+              help="Also write one self-contained HTML report (uncertainty from the case's "
+                   "[uncertainty] section; see fretwear report).")
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
             aster_format: str, databases: tuple[Path, ...], wall_thickness: float | None,
-            depth_limit: float | None, quiet: bool) -> None:
+            depth_limit: float | None, report: Path | None, quiet: bool) -> None:
     if plot_dir is not None:  # before the computation, not after it
         require("matplotlib.pyplot", purpose="--plot")
+    if report is not None:
+        require("jinja2", purpose="--report")
+        require("matplotlib.pyplot", purpose="--report")
     case: Path | dict = case_file
     if databases:  # the command line's files come after the case's (later files win)
         case = load_case(case_file)
@@ -235,3 +241,8 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
                  for path in save_figure(fig, plot_dir, f"wear_{name}", close=True)]
         console.print(f"figures written to [bold]{plot_dir}[/]: "
                       + ", ".join(f.name for f in files))
+    if report is not None:
+        from fretwear.report import analyse_case, write_report  # jinja2: extra 'report'
+
+        written = write_report(analyse_case(case, result=result), report)
+        console.print(f"report written to [bold]{written}[/]")

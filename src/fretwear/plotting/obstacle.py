@@ -66,7 +66,7 @@ def _draw_depth(ax, result) -> None:
     ax.set_xlim(-180, 180)
     ax.set_xticks(np.arange(-180, 181, 60))
     ax.set_xlabel("angle [deg]")
-    ax.set_ylabel("worn depth [mm]")
+    ax.set_ylabel("obstacle-profile depth [mm]")
     ax.legend(fontsize=8)
 
 

@@ -16,7 +16,7 @@ from fretwear.timeunits import TIME_UNITS
 
 #: quantity -> (column prefix, scale from SI, axis label)
 _QUANTITIES = {"volume": ("volume", 1e9, "cumulated worn volume [mm³]"),
-               "depth": ("depth", 1e3, "worn depth [mm]")}
+               "depth": ("depth", 1e3, "global worn depth [mm]")}
 
 
 def _unit(table: pd.DataFrame) -> str:
@@ -57,6 +57,13 @@ def _draw_history(ax, table: pd.DataFrame, quantity: str) -> None:
         ax.axvline(float(origin), color="0.6", ls="-.", lw=1)
         ax.annotate("restart", (float(origin), 1.0), xycoords=("data", "axes fraction"),
                     xytext=(3, -24), textcoords="offset points", fontsize="small")
+    wall = table.attrs.get("wall_thickness")
+    if quantity == "depth" and wall:
+        limit = float(table.attrs.get("depth_limit", 0.4)) * float(wall)
+        ax.axhline(limit * scale, color="C3", ls="--", lw=1,
+                   label=f"limit {100 * limit / wall:g} % of the wall")
+        if np.nanmax(glob["depth_mobile"], initial=0.0) > wall:
+            ax.axhline(float(wall) * scale, color="k", lw=1.2, label="wall (through)")
     ax.grid(alpha=0.3)
     ax.set_ylabel(label)
     ax.set_xlabel(f"instant [{_unit(table)}]")
@@ -89,7 +96,7 @@ def plot_wear_history(table: pd.DataFrame, quantity: str = "depth", *, ax=None):
     ...                   "depth_obstacle": [0.0, 0.0]})
     >>> fig = plot_wear_history(t)
     >>> fig.axes[0].get_ylabel()
-    'worn depth [mm]'
+    'global worn depth [mm]'
     """
     table = from_aster_names(table)
     fig, (axis,), own = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(7, 4),
@@ -125,7 +132,7 @@ def plot_wear_table(table: pd.DataFrame, *, ax=None):
     ...                   "depth_obstacle": [0.0, 0.0]})
     >>> fig = plot_wear_table(t)
     >>> [a.get_ylabel() for a in fig.axes]
-    ['cumulated worn volume [mm³]', 'worn depth [mm]']
+    ['cumulated worn volume [mm³]', 'global worn depth [mm]']
     """
     table = from_aster_names(table)
 
@@ -190,7 +197,7 @@ def plot_sector_wear(table: pd.DataFrame, *, ax=None):
                 alpha=0.7, edgecolor="k", label="tube")
     axes[1].bar(start, last["depth_obstacle_sector"].fillna(0.0) * 1e3, width=width,
                 align="edge", alpha=0.4, edgecolor="k", label="obstacle")
-    axes[1].set_title(f"sector depth [mm] at instant {last['instant'].iloc[0]:g} {unit}")
+    axes[1].set_title(f"sector depths [mm] at instant {last['instant'].iloc[0]:g} {unit}")
     axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
     # radial labels where the bars are lowest, so that they do not hide the bars
     low = int(np.argmin(last["sector_power"].to_numpy()))

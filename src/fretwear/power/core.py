@@ -28,7 +28,13 @@ from typing import Any
 
 import numpy as np
 
-from fretwear.errors import HistoryError, InputError, KeywordError, StationarityWarning
+from fretwear.errors import (
+    ConfidenceWarning,
+    HistoryError,
+    InputError,
+    KeywordError,
+    StationarityWarning,
+)
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import iter_history_chunks, read_history
 from fretwear.power.confidence import PowerInterval, batch_means_interval
@@ -148,10 +154,24 @@ class PowerResult:
                                     name=f"{self.name or 'power'} sector {int(sector)}")
 
     def sector_confidence_intervals(self, level: float = 0.95) -> list[PowerInterval]:
-        """:meth:`confidence_interval` of every sector, in order (empty without sectors)."""
+        """:meth:`confidence_interval` of every sector, in order (empty without sectors).
+
+        The sectors' ConfidenceWarnings are issued once per kind, naming the sectors.
+        """
         if self.sectors is None:
             return []
-        return [self.confidence_interval(level, sector=j + 1) for j in range(len(self.sectors))]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", ConfidenceWarning)
+            out = [self.confidence_interval(level, sector=j + 1)
+                   for j in range(len(self.sectors))]
+        grouped: dict[str, list[str]] = {}
+        for w in caught:
+            name, _, rest = str(w.message).partition(": ")
+            grouped.setdefault(rest, []).append(name.rpartition(" sector ")[2])
+        for rest, sectors in grouped.items():
+            warnings.warn(f"{self.name or 'power'} sectors {', '.join(sectors)}: {rest}",
+                          ConfidenceWarning, stacklevel=2)
+        return out
 
 
 def _as_bound(value, keyword: str) -> float | None:

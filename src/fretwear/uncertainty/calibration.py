@@ -205,9 +205,6 @@ def _contact_models(item, name: str) -> dict[str, ContactModel]:
 def _predictions(predictions) -> dict[str, dict[str, ContactModel]]:
     if isinstance(predictions, Mapping):
         return {str(k): _contact_models(v, str(k)) for k, v in predictions.items()}
-    contacts = getattr(predictions, "contact_models", None)
-    if callable(contacts):  # a bundle's results
-        return {str(k): v for k, v in contacts().items()}
     return {"": _contact_models(predictions, "")}
 
 
@@ -424,7 +421,8 @@ def calibrate(predictions, inspections, *, prior: LogNormal = DEFAULT_PRIOR,
     ----------
     predictions : wear table, run_case result, ContactModel, (case, power), or a mapping of
         contact name to one of them
-        What predicts each contact's depth (a wear table must carry its metadata, attrs).
+        What predicts each contact's depth (a wear table must carry its metadata, attrs; a
+        bundle's: :func:`fretwear.report.predictions.bundle_predictions`).
     inspections : DataFrame or path-like
         Measured depths (:func:`read_inspections`): ``contact``, ``sector`` (optional),
         ``instant`` [user time unit], ``depth`` [m] (or ``depth_mm``), ``measurement_sigma``

@@ -128,7 +128,7 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
 }
 #: Sections owned by other commands (``fretwear obstacle``, ``fretwear iterate``), accepted and
 #: ignored by ``fretwear run``.
-FOREIGN_SECTIONS: tuple[str, ...] = ("obstacle", "dynamics", "iterate")
+FOREIGN_SECTIONS: tuple[str, ...] = ("obstacle", "dynamics", "iterate", "uncertainty")
 _DIMENSIONS = {"mobile_radius_m": "mobile_radius", "obstacle_radius_m": "obstacle_radius",
                "obstacle_width_m": "obstacle_width", "tilt_angle_deg": "tilt_angle",
                "isthmus_angle_deg": "isthmus_angle", "impact_angle_deg": "impact_angle"}

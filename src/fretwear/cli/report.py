@@ -1,0 +1,58 @@
+"""``fretwear report CASE.toml -o report.html``: one self-contained HTML report of a case."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+from rich.console import Console
+
+from fretwear._optional import require
+from fretwear.report import UNCERTAINTY_KEYS, analyse_case, write_report
+
+_KEYS = "\n".join(f"  {k}: {d}" for k, (_, d) in UNCERTAINTY_KEYS.items())
+
+_HELP = f"""Run CASE_FILE and write one self-contained HTML report: inputs, every coefficient with
+its source, the fretwear version, warnings, the wear table and its figures, the wear power's
+confidence interval, the Monte Carlo propagation of the wear coefficients' scatter (depth
+quantiles, probability of exceeding the limit, time to reach it, Sobol' indices) and, with
+inspections, the calibration. Options override the case's [uncertainty] section:
+
+\b
+{_KEYS}
+"""
+
+
+def report_options(function):
+    """The options shared by ``fretwear report`` and ``fretwear run --report``."""
+    for option in reversed((
+        click.option("--scatter", "coefficient_scatter", type=click.FloatRange(min=1,
+                     min_open=True), help="Scatter factor of the wear coefficients (95 %) [-]."),
+        click.option("--sigma-ln", "coefficient_sigma_ln", type=click.FloatRange(min=0,
+                     min_open=True), help="Standard deviation of ln K [-] instead."),
+        click.option("--samples", type=click.IntRange(min=2), help="Monte Carlo samples."),
+        click.option("--method", type=click.Choice(["sobol", "random"]),
+                     help="Sampling method."),
+        click.option("--seed", type=int, help="Seed of the sampling."),
+        click.option("--inspections", type=click.Path(exists=True, dir_okay=False,
+                                                      path_type=Path),
+                     help="Inspected depths (CSV) to calibrate on."),
+        click.option("--measurement-sigma", type=click.FloatRange(min=0, min_open=True),
+                     help="Standard deviation of ln(measured depth) [-]."),
+        click.option("--forecast", type=float, help="Instant of the posterior forecast."),
+    )):
+        function = option(function)
+    return function
+
+
+@click.command(help=_HELP, context_settings={"max_content_width": 100})
+@click.argument("case_file", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
+              required=True, help="The HTML file to write.")
+@report_options
+def command(case_file: Path, output: Path, inspections, **options) -> None:
+    require("jinja2", purpose="fretwear report")
+    require("matplotlib.pyplot", purpose="fretwear report")
+    analysis = analyse_case(case_file, inspections=inspections, **options)
+    written = write_report(analysis, output)
+    Console().print(f"report written to [bold]{written}[/]")

@@ -1,0 +1,115 @@
+"""``fretwear calibrate``: the same posterior as the library, on a case file and on a bundle's
+output directory (predictions rebuilt from its records), forecast written and figures drawn.
+
+Oracle for the case: the conjugate closed form of docs/uncertainty.md §4 (TUBE_TUBE without
+obstacle wear: d ∝ (f·K·P·t)^(2/5), so ln d is affine in ln f with slope 2/5).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fretwear.cli import main
+from fretwear.table import read_wear_table
+from fretwear.uncertainty import LogNormal, calibrate
+from fretwear.workflows.case_files import load_case, run_case
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+YEAR = 31536000.0
+
+
+@pytest.fixture
+def case_file(tmp_path):
+    """The tube_tube example without obstacle wear (so the map is a power law of f)."""
+    text = (EXAMPLES / "tube_tube.toml").read_text(encoding="utf-8")
+    text = text.replace('obstacle = { COEF_USURE = 1.0e-12 }', "")
+    path = tmp_path / "tt.toml"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def test_case_calibration_matches_the_closed_form(case_file, tmp_path, capsys):
+    insp = tmp_path / "insp.csv"
+    insp.write_text("instant,depth_mm\n0.5,0.6\n1.0,0.75\n")
+    out = tmp_path / "forecast.csv"
+    assert main(["calibrate", str(insp), "--case", str(case_file), "--prior-sigma-ln", "0.5",
+                 "--measurement-sigma", "0.2", "--forecast", "2", "-o", str(out),
+                 "--json"]) == 0
+    payload = json.loads(capsys.readouterr().out)
+    assert payload["method"] == "conjugate"
+    # closed form: ln d_i = a_i + (2/5)·λ, a_i = ln d_i(f = 1)
+    table = run_case(load_case(case_file)).table
+    d1 = dict(zip(table["instant"], table["depth_mobile"], strict=True))
+    prec, num = 1 / 0.5 ** 2, 0.0
+    for t, y in ((0.5, 0.6e-3), (1.0, 0.75e-3)):
+        prec += 0.4 ** 2 / 0.2 ** 2
+        num += 0.4 * (math.log(y) - math.log(d1[t])) / 0.2 ** 2
+    assert math.log(payload["posterior"]["median"]) == pytest.approx(num / prec, rel=1e-9)
+    assert payload["posterior"]["sigma_ln"] == pytest.approx(math.sqrt(1 / prec), rel=1e-9)
+    forecast = pd.read_csv(out)
+    f50 = math.exp(num / prec)
+    assert forecast["depth_q50"].iloc[0] == pytest.approx(d1[2.0] * f50 ** 0.4, rel=1e-9)
+
+
+def test_errors(case_file, tmp_path, capsys):
+    insp = tmp_path / "insp.csv"
+    insp.write_text("instant,depth_mm\n0.5,0.6\n")
+    assert main(["calibrate", str(insp)]) == 2
+    assert "exactly one of --case" in capsys.readouterr().err
+    insp.write_text("instant,depth_um\n0.5,600\n")
+    assert main(["calibrate", str(insp), "--case", str(case_file)]) == 2
+    assert "unknown column(s) ['depth_um']" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def bundle_output(tmp_path_factory):
+    from fretwear.bundle import run_bundle
+
+    out = tmp_path_factory.mktemp("bundle") / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = run_bundle(EXAMPLES / "bundle" / "manifest.csv",
+                            EXAMPLES / "bundle" / "bundle.toml", scheduler="serial",
+                            output=out)
+    return out, result
+
+
+def test_bundle_calibration(bundle_output, tmp_path, capsys):
+    out, result = bundle_output
+    table = result.table
+    at10 = table[table["instant"] == 10].drop_duplicates("contact")
+    deepest = at10.sort_values("depth_mobile", ascending=False).head(3)
+    contacts = deepest["contact"].tolist()
+    rows = [{"contact": c, "instant": 10, "depth": 1.5 * d}
+            for c, d in zip(contacts, deepest["depth_mobile"], strict=True)]
+    insp = tmp_path / "insp.csv"
+    pd.DataFrame(rows).to_csv(insp, index=False)
+    forecast = tmp_path / "fc.csv"
+    plots = tmp_path / "figs"
+    assert main(["calibrate", str(insp), "--bundle", str(out), "--forecast", "30",
+                 "--prior-sigma-ln", "0.5", "-o", str(forecast), "--plot", str(plots)]) == 0
+    text = capsys.readouterr().out
+    assert "posterior (" in text
+    fc = pd.read_csv(forecast)
+    assert {"tube_row", "tube_column", "support", "exceedance"} <= set(fc.columns)
+    assert set(fc["contact"]) == set(table["contact"])
+    assert np.all(np.diff(fc["exceedance"]) <= 0)  # ranked
+    assert {p.name for p in plots.iterdir()} == {"calibration.png", "calibration.svg",
+                                                 "exceedance_map.png", "exceedance_map.svg"}
+    # the same posterior as the library on the contacts' own tables (bundle rows + records)
+    from fretwear.report.predictions import bundle_predictions
+
+    tables, _ = bundle_predictions(out)
+    direct = calibrate(tables, insp, prior=LogNormal(1.0, sigma_ln=0.5))
+    assert f"median {direct.factor_median:.4g}" in text
+    # the rows of one contact equal the bundle's table
+    one = read_wear_table(out / "table.parquet") if (out / "table.parquet").exists() else None
+    if one is not None:
+        assert len(tables[contacts[0]]) == (one["contact"] == contacts[0]).sum()
