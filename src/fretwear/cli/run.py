@@ -23,6 +23,7 @@ from fretwear.errors import ConfidenceWarning
 from fretwear.io.aster import TABLE_FORMATS
 from fretwear.laws import WEAR_LAWS
 from fretwear.plotting import save_figure, wear_figures
+from fretwear.report import analyse_case, write_report
 from fretwear.table import COLUMNS, write_wear_table
 from fretwear.workflows.case_files import keys_help, load_case, run_case
 
@@ -242,7 +243,5 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         console.print(f"figures written to [bold]{plot_dir}[/]: "
                       + ", ".join(f.name for f in files))
     if report is not None:
-        from fretwear.report import analyse_case, write_report  # jinja2: extra 'report'
-
         written = write_report(analyse_case(case, result=result), report)
         console.print(f"report written to [bold]{written}[/]")
