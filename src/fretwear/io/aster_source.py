@@ -13,8 +13,7 @@ The readers behind ``read_history(..., format="aster")`` and ``format="aster-fun
   header, their legend, or by the user in order (``functions=``).
 
 Instants printed with too few digits (Code_Aster's default ``FORMAT_R='E12.5'``) repeat: the
-error says so and gives the FORMAT_R to print with (:func:`fretwear.io.aster.
-duplicated_instants_message`).
+error says so and gives the FORMAT_R to print with (:func:`duplicated_instants_message`).
 """
 
 from __future__ import annotations
@@ -29,9 +28,11 @@ import pandas as pd
 
 from fretwear.errors import FormatError, HistoryError, KeywordError
 from fretwear.io import aster as _aster
+from fretwear.io import aster_functions as _functions
 from fretwear.io.channels import Source, channel_of
 
-__all__ = ["open_aster", "open_functions", "select_rows", "select_node", "NODE_COLUMNS"]
+__all__ = ["open_aster", "open_functions", "select_rows", "select_node", "NODE_COLUMNS",
+           "duplicated_instants_message"]
 
 #: Column names that hold the shock point of a row (compared case-blind); also any column
 #: whose name starts with NOEUD or GROUP_NO.
@@ -149,7 +150,7 @@ def select_node(tables: Sequence[pd.DataFrame], node: str, label: str
         raise KeywordError(f"{label}: the shock point {wanted!r} (NOEUD/GROUP_NO) is not in "
                            f"this file: its node column holds {held[:10]}; give one of them, or "
                            "the file of that shock point")
-    if len(tables) > 1 and not all(_aster.is_function_table(t) or _time_first(t)
+    if len(tables) > 1 and not all(_functions.is_function_table(t) or _time_first(t)
                                    for t in tables):
         titles = "; ".join(f"{i}: {t.attrs.get('title', '') or '(no title)'}"
                            for i, t in enumerate(tables))
@@ -205,7 +206,7 @@ def _named(functions: list[tuple[str, str, np.ndarray, np.ndarray, str]], names:
 
 def _function_source(functions: list, label: str, names: Any, metadata: dict) -> Source:
     chosen = _named(functions, names, label)
-    columns, arrays = _aster.stack_functions(chosen)
+    columns, arrays = _functions.stack_functions(chosen)
     _check_instants(arrays[0], label, "time")
     hint = ("; the functions of an IMPR_FONCTION file are named from their columns or legends: "
             "name them in order with functions=[...] (e.g. functions=['fn', 'vt1', 'vt2'])")
@@ -214,8 +215,48 @@ def _function_source(functions: list, label: str, names: Any, metadata: dict) ->
                   hint=hint)
 
 
+def duplicated_instants_message(time: np.ndarray, label: str, column: str) -> str | None:
+    """Why a printed time column repeats an instant, and the fix; None when it does not.
+
+    Code_Aster prints reals with ``FORMAT_R='E12.5'`` (``%12.5E``: 6 significant digits) by
+    default in IMPR_TABLE and IMPR_FONCTION: at ``t`` the printed instants are ``10^(e-5)``
+    apart (``e = floor(log10 t)``), so an archive step smaller than that prints neighbouring
+    instants equal (5e-5 s from t = 10 s on). Sorting and dropping the duplicates would lose
+    samples; the fix is to print more digits with FORMAT_R.
+
+    Examples
+    --------
+    >>> t = np.array([19.9999, 19.99995, 20.0, 20.0, 20.0001])
+    >>> "FORMAT_R='E16.9'" in duplicated_instants_message(t, "f.tab", "INST")
+    True
+    >>> duplicated_instants_message(np.array([0.0, 1.0]), "f.tab", "INST") is None
+    True
+    """
+    t = np.asarray(time, dtype=float)
+    steps = np.diff(t)
+    same = np.flatnonzero(steps == 0)
+    if same.size == 0:
+        return None
+    i = int(same[0]) + 1
+    step = float((t[-1] - t[0]) / (t.size - 1))  # the mean step: printing does not bias it
+    top = float(np.max(np.abs(t[np.isfinite(t)]), initial=0.0))
+    at = abs(float(t[i]))
+    resolution = 10.0 ** (np.floor(np.log10(at)) - 5) if at > 0 else 0.0
+    decimals = 9
+    if step > 0 and top > 0:
+        decimals = max(9, int(np.ceil(np.floor(np.log10(top)) - np.log10(step) + 1)))
+    fix = f"E{decimals + 7}.{decimals}"
+    about = (f"; the archive step is about {step:.3g} s while %12.5E resolves only "
+             f"{resolution:.0e} s at t = {at:.6g} s" if step > 0 else "")
+    return (f"{label}: column {column!r} repeats the instant {float(t[i]):.5E} at rows {i - 1} "
+            f"and {i}: Code_Aster prints reals with FORMAT_R='E12.5' (%12.5E, 6 significant "
+            f"digits) by default{about}, so neighbouring instants were printed equal. Print "
+            f"with more digits: IMPR_TABLE(..., FORMAT_R='{fix}') or IMPR_FONCTION(..., "
+            f"FORMAT_R='{fix}'). Sorting and dropping the duplicates would lose samples")
+
+
 def _check_instants(time: np.ndarray, label: str, column: str) -> None:
-    message = _aster.duplicated_instants_message(time, label, column)
+    message = duplicated_instants_message(time, label, column)
     if message is not None:
         raise HistoryError(message)
 
@@ -223,7 +264,7 @@ def _check_instants(time: np.ndarray, label: str, column: str) -> None:
 def _functions_of(frame: pd.DataFrame, label: str) -> list:
     """(label, name, abscissa, values, legend) of every function of a table."""
     return [(f"{label} ({name})", name, x, y, legend)
-            for name, legend, x, y in _aster.function_columns(frame, label)]
+            for name, legend, x, y in _functions.function_columns(frame, label)]
 
 
 def open_aster(path: str | os.PathLike, *, index: int | None = None, title: str | None = None,
@@ -287,7 +328,7 @@ def open_aster(path: str | os.PathLike, *, index: int | None = None, title: str 
                 "title='<text>' (command line: --read-option index=<n>)")
         return _function_source(found, label, functions, metadata)
     frame = tables[0]
-    if _aster.is_function_table(frame) or functions is not None:
+    if _functions.is_function_table(frame) or functions is not None:
         return _function_source(_functions_of(frame, label), label, functions, metadata)
     names = [str(c) for c in frame.columns]
     check_one_shock(frame, names, label)
