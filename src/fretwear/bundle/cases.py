@@ -158,8 +158,12 @@ class ContactTask:
     power: float | None = None
 
     def wear_case(self):
-        """The :class:`fretwear.table.WearCase` (rebuilt once per process and task key)."""
-        return _wear_case(self.key, json.dumps(self.case, sort_keys=True))
+        """The :class:`fretwear.table.WearCase` (rebuilt once per process for equal cases)."""
+        built = self.__dict__.get("_built")
+        if built is None:
+            built = _wear_case(json.dumps(self.case, sort_keys=True))
+            self.__dict__["_built"] = built
+        return built
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description."""
@@ -178,7 +182,7 @@ class ContactTask:
 
 
 @functools.lru_cache(maxsize=64)
-def _wear_case(key: str, text: str):
+def _wear_case(text: str):
     return WearCase.from_dict(json.loads(text))
 
 
@@ -196,14 +200,68 @@ def read_options(case: Mapping[str, Any], ref: HistoryRef) -> dict[str, Any]:
 
 
 def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
-               chunk_size: int) -> ContactTask:
+               chunk_size: int, cache: dict | None = None) -> ContactTask:
     """The task of one manifest row (client side: validated once, here).
+
+    Parameters
+    ----------
+    base : mapping
+        The validated base case.
+    row : ContactRow
+        The manifest row.
+    source : str
+        The manifest, for messages.
+    chunk_size : int
+        Samples per chunk (part of the task's key).
+    cache : dict, optional
+        Shared by the rows of one manifest: rows with the same overrides share one validated
+        wear case (most rows of a bundle differ by their history only).
 
     Raises
     ------
     InputError, KeywordError
         The merged case is invalid, or the row has neither a history nor ``power.value_W``.
     """
+    signature = json.dumps([sorted((".".join(k), _jsonable(v)) for k, v in
+                                   row.overrides.items()), row.wall_thickness,
+                            row.history.kind == "none"], default=str)
+    cached = None if cache is None else cache.get(signature)
+    if cached is None:
+        cached = _wear_case_of(base, row, source)
+        if cache is not None:
+            cache[signature] = cached
+    case, wear, payload, ident_case = cached
+    given_power = "value_W" in case.get("power", {})
+    options = read_options(case, row.history)
+    stamp: Any = None
+    if row.history.kind in ("file", "store"):
+        stamp = path_stamp(row.history.path)
+    elif row.history.kind == "memory":
+        h = hashlib.blake2b(digest_size=16)
+        for name in sorted(row.history.arrays):
+            h.update(name.encode())
+            h.update(np.ascontiguousarray(row.history.arrays[name]).tobytes())
+        stamp = h.hexdigest()
+    power = float(case["power"]["value_W"]) if given_power else None
+    ident = {"case": ident_case,
+             "history": [row.history.kind, row.history.path, row.history.node,
+                         row.history.index, stamp],
+             "read": _jsonable(options), "chunk": chunk_size, "version": __version__,
+             "power": power}
+    key = hashlib.blake2b(json.dumps(ident, sort_keys=True, default=str).encode(),
+                          digest_size=16).hexdigest()
+    samples = None
+    if row.history.kind == "memory":
+        samples = int(len(next(iter(row.history.arrays.values()), [])))
+    unit = wear.time_unit
+    return ContactTask(contact=row.contact, history=row.history, case=payload,
+                       read_options=options,
+                       time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
+                       samples=samples, power=power)
+
+
+def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
+    """(merged case, WearCase, its to_dict, its JSON-ready form) of a row."""
     case = merge_case(base, row, source)
     where = f"{source}: contact {row.contact!r}"
     given_power = "value_W" in case.get("power", {})
@@ -220,29 +278,4 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     except InputError as exc:
         raise type(exc)(f"{where}: {exc}") from None
     payload = wear.to_dict()
-    options = read_options(case, row.history)
-    stamp: Any = None
-    if row.history.kind in ("file", "store"):
-        stamp = path_stamp(row.history.path)
-    elif row.history.kind == "memory":
-        h = hashlib.blake2b(digest_size=16)
-        for name in sorted(row.history.arrays):
-            h.update(name.encode())
-            h.update(np.ascontiguousarray(row.history.arrays[name]).tobytes())
-        stamp = h.hexdigest()
-    power = float(case["power"]["value_W"]) if given_power else None
-    ident = {"case": _jsonable(payload),
-             "history": [row.history.kind, row.history.path, row.history.node,
-                         row.history.index, stamp],
-             "read": _jsonable(options), "chunk": chunk_size, "version": __version__,
-             "power": power}
-    key = hashlib.blake2b(json.dumps(ident, sort_keys=True, default=str).encode(),
-                          digest_size=16).hexdigest()
-    samples = None
-    if row.history.kind == "memory":
-        samples = int(len(next(iter(row.history.arrays.values()), [])))
-    unit = wear.time_unit
-    return ContactTask(contact=row.contact, history=row.history, case=payload,
-                       read_options=options,
-                       time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
-                       samples=samples, power=power)
+    return case, wear, payload, _jsonable(payload)

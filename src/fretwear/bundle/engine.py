@@ -37,6 +37,7 @@ from fretwear.bundle.tasks import (
     needs_history,
     run_contact,
     time_bounds,
+    unpack,
 )
 from fretwear.errors import InputError, KeywordError
 from fretwear.history import DEFAULT_CHUNK_SIZE
@@ -109,14 +110,17 @@ class _Dask:
     """The engine on a dask.distributed cluster (local, or joined by its address)."""
 
     def __init__(self, scheduler, workers: int | None) -> None:
-        require("dask")
+        dask = require("dask")
         distributed = require("distributed")
         self._cluster = None
         if scheduler is None:
             n = workers or os.cpu_count() or 1
-            self._cluster = distributed.LocalCluster(
-                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                silence_logs=logging.ERROR)
+            # every task goes to a worker's queue at once (no scheduler-side queuing): a short
+            # task then starts without a round trip to the scheduler (docs/bundle.md)
+            with dask.config.set({"distributed.scheduler.worker-saturation": "inf"}):
+                self._cluster = distributed.LocalCluster(
+                    n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                    silence_logs=logging.ERROR)
             self.client = distributed.Client(self._cluster)
         elif isinstance(scheduler, distributed.Client):
             self.client = scheduler
@@ -138,12 +142,21 @@ class _Dask:
         return self.client.submit(fn, *args, key=key, pure=False, retries=retries)
 
     def results(self, handles):
-        for future in self._as_completed(handles):
-            try:
-                yield future, future.result()
-            except Exception as exc:  # noqa: BLE001 - a worker died too often, a lost task
-                yield future, exc
-            finally:
+        # the futures finished since the last look, their results fetched in one gather (one
+        # round trip per batch, not per contact); a task lost for good (its workers died too
+        # often) gives its exception as the result
+        for batch in self._as_completed(handles).batches():
+            finished = [f for f in batch if f.status == "finished"]
+            values = self.client.gather(finished) if finished else []
+            for future, value in zip(finished, values, strict=True):
+                yield future, value
+            for future in batch:
+                if future.status != "finished":
+                    try:
+                        error = future.exception()
+                    except Exception as exc:  # noqa: BLE001 - cancelled
+                        error = exc
+                    yield future, error
                 future.release()
 
     def close(self):
@@ -278,10 +291,11 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
     records: dict[str, dict[str, Any]] = {}
     pending: list[ContactTask] = []
     walls: dict[str, float | None] = {}
+    cases: dict = {}
     for row in man.rows:
         walls[row.contact] = row.wall_thickness
         try:
-            task = build_task(base, row, man.source, chunk_size=chunk_size)
+            task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
         except (InputError, OSError) as exc:
             records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
             continue
@@ -349,7 +363,7 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
     for c in order:
         rec = records[c]
         if rec.get("table") is not None:
-            rows[c] = rec["table"]
+            rows[c] = unpack(rec["table"])
     missing = [records[c] for c in order if c not in rows and records[c]["status"]
                in ("done", "skipped")]
     if missing and store is not None:

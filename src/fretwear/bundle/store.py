@@ -28,6 +28,7 @@ from typing import Any
 import pandas as pd
 
 from fretwear.bundle.datasets import require
+from fretwear.bundle.tasks import unpack
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
 
@@ -165,7 +166,6 @@ class OutputDirectory:
 
 def rows_of(record: Mapping[str, Any]) -> pd.DataFrame:
     """A contact's wear table with its id in front (what a part stores)."""
-    table = record["table"]
-    out = table.copy()
+    out = unpack(record["table"])
     out.insert(0, "contact", record["contact"])
     return out

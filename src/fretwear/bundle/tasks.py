@@ -20,6 +20,7 @@ import warnings
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.datasets import frame_of, require, store_arrays
@@ -73,10 +74,23 @@ def _warning_list(caught) -> list[list[str]]:
 
 def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None,
             samples: int = 0, seconds: float = 0.0, state=None) -> dict[str, Any]:
-    return {"contact": task.contact, "key": task.key, "status": status, "table": table,
+    return {"contact": task.contact, "key": task.key, "status": status,
+            "table": None if table is None else pack(table),
             "warnings": _warning_list(caught), "error": error, "samples": int(samples),
             "seconds": seconds, "attrs": None if table is None else _attrs(table, task),
             "state": state}
+
+
+def pack(table) -> dict[str, Any]:
+    """A wear table as ``{"columns": names, "arrays": numpy arrays}``: what a task returns
+    (cheaper to measure, send and store than a DataFrame carrying its metadata)."""
+    return {"columns": [str(c) for c in table.columns],
+            "arrays": [table[c].to_numpy() for c in table.columns]}
+
+
+def unpack(packed: dict[str, Any]) -> pd.DataFrame:
+    """The DataFrame of :func:`pack` (same columns, same values and dtypes)."""
+    return pd.DataFrame(dict(zip(packed["columns"], packed["arrays"], strict=True)))
 
 
 def _error(exc: BaseException) -> list[str]:
