@@ -1,0 +1,222 @@
+"""Throughput of a bundle on Dask against the serial loop over the single-contact API.
+
+A bundle of ``--contacts`` (default 500) contacts × ``--samples`` (default 10⁵) samples is
+generated as Parquet files in a temporary directory (the ``smooth`` signal of
+``benchmarks/_signals.py``: an oscillator impacting a gap, each contact its own stretch of the
+record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, Archard,
+8 sectors, 6 instants). Then:
+
+* **serial**: ``fretwear.table.wear_table(path, **keywords)`` for every contact in a loop (the
+  keywords built once from the base case): the single-contact API;
+* **bundle**: :func:`fretwear.bundle.run_bundle` on a LocalCluster of ``--workers`` worker
+  processes (one thread each), joined through its client (cluster start excluded; workers warmed
+  up by a small run first), without and with an output directory;
+* **per-contact overhead**: (workers × T_bundle − T_serial)/N, the worker time a contact costs
+  beyond the single-contact computation, measured on this bundle and on one of tiny contacts
+  (100 samples, where the computation is almost nothing);
+* **memory**: peak resident memory of each worker process (sampled every 5 ms with psutil),
+  idle, during this bundle, and during one contact of ``--long`` samples read in chunks of
+  ``--chunk`` samples (chunk tasks merged in a tree) against the same contact in one task: the
+  peak follows the chunk, not the bundle or the history.
+
+The bundle's tables are checked equal to the serial ones bit for bit. Prints contacts/s,
+samples/s, the speed-up (goal >= 1.7 on 2 cores), the overhead (goal < 20 ms) and the memory.
+
+Usage::
+
+    .venv/bin/python benchmarks/bench_bundle.py
+    .venv/bin/python benchmarks/bench_bundle.py --contacts 100 --samples 1e4 --long 1e6
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _signals import smooth  # noqa: E402
+
+from fretwear.bundle import run_bundle  # noqa: E402
+from fretwear.history import ContactHistory  # noqa: E402
+from fretwear.io import write_history  # noqa: E402
+from fretwear.table import wear_table  # noqa: E402
+from fretwear.workflows.case_files import case_arguments, load_case  # noqa: E402
+
+CASE = """\
+[law]
+mobile = { COEF_USURE = 1e-17 }
+[geometry]
+contact_type = "TUBE_BAV"
+mobile_radius_m = 9.525e-3
+obstacle_width_m = 12.7e-3
+[sectors]
+count = 8
+[time]
+instants = [1, 2, 5, 10, 20, 40]
+unit = "year"
+"""
+
+
+def make_bundle(directory: Path, contacts: int, samples: int, name: str) -> Path:
+    """``contacts`` Parquet histories and their manifest under ``directory/name``."""
+    folder = directory / name
+    folder.mkdir(parents=True)
+    rows = []
+    for k in range(contacts):
+        arrays = smooth(k * samples, samples)
+        arrays["time"] = arrays["time"] - arrays["time"][0]
+        arrays["normal_force"] = arrays["normal_force"] * (0.5 + (k % 17) / 16)
+        path = folder / f"c{k:05d}.parquet"
+        write_history(ContactHistory(**arrays), path)
+        rows.append({"contact": f"c{k:05d}", "history": path.name,
+                     "tube_row": k // 25 + 1, "tube_column": k % 25 + 1})
+    manifest = folder / "manifest.csv"
+    pd.DataFrame(rows).to_csv(manifest, index=False)
+    return manifest
+
+
+def serial(manifest: Path, case: Path) -> tuple[float, dict[str, pd.DataFrame]]:
+    """Seconds of the loop over fretwear.table.wear_table, and the tables."""
+    keywords = case_arguments(load_case(case), history_elsewhere=True)
+    frame = pd.read_csv(manifest)
+    tables = {}
+    t0 = time.perf_counter()
+    for row in frame.itertuples():
+        tables[row.contact] = wear_table(manifest.parent / row.history, **keywords)
+    return time.perf_counter() - t0, tables
+
+
+class PeakMemory:
+    """Samples the resident memory of the worker processes every 5 ms while in use [MB]."""
+
+    def __init__(self, client) -> None:
+        import psutil
+
+        self.processes = [psutil.Process(pid) for pid in client.run(os.getpid).values()]
+        self.peaks = [0.0] * len(self.processes)
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._sample, daemon=True)
+
+    def _sample(self) -> None:
+        while not self._stop.is_set():
+            for i, p in enumerate(self.processes):
+                try:
+                    self.peaks[i] = max(self.peaks[i], p.memory_info().rss / 2**20)
+                except Exception:  # noqa: BLE001 - a worker restarting
+                    pass
+            time.sleep(0.005)
+
+    def __enter__(self) -> PeakMemory:
+        self._thread.start()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self._stop.set()
+        self._thread.join()
+
+    def text(self) -> str:
+        return ", ".join(f"{p:.0f}" for p in sorted(self.peaks)) + " MB"
+
+
+def bundle_time(manifest: Path, case: Path, client, **options) -> tuple[float, object]:
+    t0 = time.perf_counter()
+    result = run_bundle(manifest, case, scheduler=client, **options)
+    return time.perf_counter() - t0, result
+
+
+def identical(result, tables: dict[str, pd.DataFrame]) -> bool:
+    from fretwear.bundle import IDENTITY
+
+    for contact, expected in tables.items():
+        got = result.table[result.table["contact"] == contact].drop(columns=list(IDENTITY))
+        for c in expected.columns:
+            if not np.array_equal(got[c].to_numpy(dtype=float), expected[c].to_numpy(dtype=float),
+                                  equal_nan=True):
+                return False
+    return True
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--contacts", type=int, default=500)
+    parser.add_argument("--samples", type=float, default=1e5)
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--long", type=float, default=4e6,
+                        help="samples of the long contact of the memory check (0: skip)")
+    parser.add_argument("--chunk", type=float, default=2.5e5,
+                        help="chunk of the long contact [samples]")
+    parser.add_argument("--keep", type=Path, help="generate the bundle here and keep it")
+    args = parser.parse_args(argv)
+    import distributed
+
+    n, samples = args.contacts, int(args.samples)
+    directory = args.keep or Path(tempfile.mkdtemp(prefix="bench_bundle_"))
+    directory.mkdir(parents=True, exist_ok=True)
+    try:
+        case = directory / "base.toml"
+        case.write_text(CASE)
+        t0 = time.perf_counter()
+        manifest = make_bundle(directory, n, samples, "bundle")
+        tiny = make_bundle(directory, n, 100, "tiny")
+        warm = make_bundle(directory, 2 * args.workers, samples, "warm")
+        print(f"generated {n} contacts x {samples:.0e} samples (+ {n} tiny) as Parquet in "
+              f"{time.perf_counter() - t0:.1f} s under {directory}")
+        serial(warm, case)  # compile / load the kernels in this process
+        t_serial, tables = serial(manifest, case)
+        t_tiny_serial, _ = serial(tiny, case)
+        print(f"serial loop over wear_table: {t_serial:.2f} s, {n / t_serial:.1f} contacts/s, "
+              f"{n * samples / t_serial:.3g} samples/s (tiny contacts: {t_tiny_serial:.2f} s)")
+        with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1,
+                                      processes=True, dashboard_address=":0") as cluster, \
+                distributed.Client(cluster) as client:
+            run_bundle(warm, case, scheduler=client)  # workers import fretwear, load kernels
+            with PeakMemory(client) as idle:
+                time.sleep(0.2)
+            with PeakMemory(client) as peaks:
+                t_bundle, result = bundle_time(manifest, case, client)
+            same = identical(result, tables)
+            t_out, _ = bundle_time(manifest, case, client, output=directory / "out")
+            t_tiny, _ = bundle_time(tiny, case, client)
+            speedup = t_serial / t_bundle
+            w = args.workers
+            print(f"bundle on {w} workers: {t_bundle:.2f} s, {n / t_bundle:.1f} contacts/s, "
+                  f"{n * samples / t_bundle:.3g} samples/s; speed-up {speedup:.2f}x "
+                  f"(goal >= 1.7x); tables bit-identical to the serial loop: {same}")
+            print(f"  with the output directory (parts, table, dataset, summary): {t_out:.2f} s, "
+                  f"{n / t_out:.1f} contacts/s")
+            over = (w * t_bundle - t_serial) / n * 1e3
+            over_tiny = (w * t_tiny - t_tiny_serial) / n * 1e3
+            print(f"per-contact overhead (workers x T_bundle - T_serial)/N: {over:.1f} ms on "
+                  f"this bundle, {over_tiny:.1f} ms on 100-sample contacts (goal < 20 ms); "
+                  f"tiny bundle {t_tiny:.2f} s vs serial {t_tiny_serial:.2f} s")
+            print(f"peak memory per worker during the {n}-contact bundle: {peaks.text()} "
+                  f"(idle warmed-up workers: {idle.text()})")
+        if args.long:  # fresh workers for each: ru_maxrss is the peak of a process's life
+            long_manifest = make_bundle(directory, 1, int(args.long), "long")
+            for label, chunk in (("chunks of", int(args.chunk)),
+                                 ("one task of", int(args.long) + 1)):
+                with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1,
+                                              processes=True, dashboard_address=":0") as cluster, \
+                        distributed.Client(cluster) as client:
+                    run_bundle(warm, case, scheduler=client)
+                    with PeakMemory(client) as peaks:
+                        t_long, r = bundle_time(long_manifest, case, client, chunk_size=chunk)
+                    print(f"one contact of {args.long:.0e} samples in {label} {chunk:.0e} "
+                          f"samples: {t_long:.2f} s, peak memory per worker {peaks.text()} "
+                          f"(errors: {len(r.errors)})")
+    finally:
+        if args.keep is None:
+            shutil.rmtree(directory, ignore_errors=True)
+
+
+if __name__ == "__main__":
+    main()
