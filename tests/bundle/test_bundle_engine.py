@@ -232,3 +232,14 @@ def test_summary_time_to_limit_against_archard_on_a_flat_bar(tmp_path):
         for name, p in zip("ab", powers, strict=False):
             exact = (4 * width / 3) * (0.4 * wall) ** 1.5 * math.sqrt(2 * R) / (K * p) / YEAR
             assert own.loc[name, "time_to_limit"] == pytest.approx(exact, rel=1e-9), name
+
+
+def test_without_dask_the_error_names_the_extra(tmp_path, monkeypatch):
+    import sys
+
+    from fretwear.errors import MissingDependencyError
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 1)
+    monkeypatch.setitem(sys.modules, "dask", None)  # as if not installed
+    with pytest.raises(MissingDependencyError, match=r"pip install 'fretwear\[bundle\]'"):
+        run_bundle(manifest, case)
