@@ -19,6 +19,7 @@ import pytest
 from scipy import stats
 
 from fretwear.errors import InputError, KeywordError, RangeWarning
+from fretwear.history import ContactHistory
 from fretwear.table import wear_table
 from fretwear.uncertainty import ContactModel, LogNormal, model_from_table, monte_carlo
 
@@ -207,8 +208,6 @@ def test_restart_and_edf_mz_continue_from_the_previous_volume():
 
 
 def test_sector_tables_give_sector_models():
-    from fretwear.history import ContactHistory
-
     t = np.linspace(0, 2, 2001)
     angle = np.radians(150 * np.sin(3 * t))
     h = ContactHistory(time=t, normal_force=np.full(t.size, 2.0), vt1=np.full(t.size, 0.1),
@@ -230,3 +229,24 @@ def test_sector_tables_give_sector_models():
                                                    rel=1e-13)
     r = monte_carlo(kw, h, factor=LogNormal(1.0, sigma_ln=0.2), sector=4, samples=64)
     assert isinstance(r.quantiles(), pd.DataFrame)
+
+
+def test_a_wear_case_and_a_history_give_the_same_as_the_keywords():
+    """WearCase (fretwear.table) and a KWU-EPRI history: the propagation is the same whether the
+    case comes as keywords or as the validated object."""
+    from fretwear.table import WearCase
+
+    t = np.linspace(0.0, 2.0, 4001)
+    h = ContactHistory(
+        time=t, normal_force=np.abs(np.sin(20 * t)) * 5, vt1=0.05 * np.cos(7 * t),
+        vt2=np.zeros(t.size))
+    kw = {"contact_type": "TUBE_BAV", "instants": [10.0], "time_scale": YEAR, "law": "KWU_EPRI",
+          "dimensions": {"mobile_radius": R, "obstacle_width": L_BAR},
+          "coefficients": {"reference_coefficient": 1e-14}, "blocks": 4}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        a = monte_carlo(kw, h, factor=LogNormal(1.0, sigma_ln=0.4), samples=128)
+        b = monte_carlo(WearCase.from_keywords(**kw), h, factor=LogNormal(1.0, sigma_ln=0.4),
+                        samples=128)
+    assert [v.label for v in a.variables] == ["wear-coefficient factor", "wear power"]
+    np.testing.assert_array_equal(a.depth, b.depth)

@@ -117,8 +117,12 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
         uncertainty = power if isinstance(power, PowerResult | PowerInterval) else None
         return PreparedCase(models, uncertainty, case, _durations(case))
     if hasattr(case, "to_dict") and type(case).__name__ == "WearCase":
-        source, uncertainty = _source(power, {})
-        table = fretwear_table.wear_table_from_case(case, source)
+        window = {"t_start": case.t_start, "t_end": case.t_end, "blocks": case.blocks,
+                  "sectors": case.sectors,
+                  "stationarity_threshold": case.stationarity_threshold}
+        source, uncertainty = _source(power, window)
+        table = fretwear_table.wear_table_from_case(case, source,
+                                                    history=window.get("history"))
         for key in WALL_KEYS:
             if options[key] is None:
                 options[key] = getattr(case, key, None)
