@@ -15,8 +15,8 @@ import pytest
 from click.testing import CliRunner
 
 from fretwear.dynamics.config import dynamics_from_config
-from fretwear.workflows.loop import iterate_case, load_iterate_case
 from fretwear.errors import KeywordError
+from fretwear.workflows.loop import DEPTHS_OF, iterate_case, load_iterate_case
 
 K_MOBILE, K_OBSTACLE = 2e-14, 1e-14  # [1/Pa], large so that one cycle opens the gap visibly
 YEAR = 31536000.0
@@ -293,3 +293,27 @@ def test_cycle_one_sees_the_clearance_figure_of_planes(tmp_path, monkeypatch):
     radial_gap = (rm + g) / np.abs(np.cos(theta)) - rm
     assert np.count_nonzero(oblique) > 0
     assert np.all(np.hypot(hit["dy"], hit["dz"])[oblique] < radial_gap[oblique] - 1e-3)
+
+
+def test_loop_stop_criterion_names_its_depth(tmp_path):
+    """One cycle gives the three depths; a threshold between the smallest and the largest
+    stops the loop under 'largest' but not under the smallest one's name."""
+    first = iterate_case(case(tmp_path, cycles=1), output=tmp_path / "a")
+    row = first.summary.iloc[0]
+    values = {name: max(row[c] for c in cols) for name, cols in DEPTHS_OF.items()}
+    assert values["largest"] == max(values["global"], values["sector"], values["profile"])
+    smallest = min(("global", "sector", "profile"), key=values.get)
+    assert values[smallest] < values["largest"]
+    threshold = 0.5 * (values[smallest] + values["largest"])
+    stop = iterate_case(case(tmp_path, cycles=2, max_depth_m=threshold),
+                        output=tmp_path / "b")
+    assert stop.stopped == "max_depth" and stop.max_depth_of == "largest"
+    assert len(stop.summary) == 1
+    go_on = iterate_case(case(tmp_path, cycles=2, max_depth_m=threshold,
+                              max_depth_of=smallest), output=tmp_path / "c")
+    assert len(go_on.summary) == 2  # cycle 1's depth of that name stayed below
+    last = go_on.summary.iloc[-1]
+    assert (go_on.stopped == "max_depth") == (
+        max(last[c] for c in DEPTHS_OF[smallest]) >= threshold)
+    with pytest.raises(KeywordError, match="max_depth_of = 'deepest'"):
+        iterate_case(case(tmp_path, max_depth_of="deepest"), output=tmp_path / "d")

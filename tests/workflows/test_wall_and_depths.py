@@ -1,8 +1,7 @@
-"""The wall and its limit through the case files, the CLI, the Code_Aster facade, and the loop's
-choice of depth (global, sector, obstacle profile) for its stop criterion.
+"""The wall and its limit through the case files, the CLI and the Code_Aster facade.
 
 Oracles: the TUBE_TUBE closed form d = (1/(2R))^(1/5)·(15θ·K·P·t/8)^(2/5) inverted for the limit
-instant; the loop's summary itself (the depth each criterion names must be the one compared).
+instant. The loop's choice of depth is tested in tests/dynamics/test_loop.py.
 """
 
 from __future__ import annotations
@@ -18,7 +17,6 @@ from fretwear.cli import main
 from fretwear.errors import KeywordError
 from fretwear.workflows.aster import _F, POST_USURE
 from fretwear.workflows.case_files import load_case, run_case
-from fretwear.workflows.loop import DEPTHS_OF, iterate_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 YEAR = 31536000.0
@@ -84,54 +82,3 @@ def test_post_usure_extras():
                        CONTACT="TUBE_TUBE", RAYON_MOBILE=R, RAYON_OBST=R, ANGL_INCLI=5.0,
                        INST=(0.1,), COEF_INST=YEAR)
     assert "INST_LIMITE" not in plain.columns
-
-
-def _loop_case(tmp_path, **iterate):
-    return {
-        "law": {"name": "ARCHARD", "mobile": {"COEF_USURE": 2e-14},
-                "obstacle": {"COEF_USURE": 1e-14}},
-        "geometry": {"contact_type": "TUBE_ALESAGE", "mobile_radius_m": 9.5e-3,
-                     "obstacle_radius_m": 9.7e-3, "obstacle_width_m": 0.02},
-        "sectors": {"count": 8},
-        "time": {"instants": [0.5, 1.0], "unit": "year"},
-        "obstacle": {"type": "circle", "gap_m": 2e-4, "wall_thickness_m": 1.1e-3},
-        "dynamics": {
-            "duration_s": 0.4, "time_step_s": 2e-5, "archive_step_s": 1e-4,
-            "modes": {"frequencies_Hz": [30.0, 30.0], "damping_ratios": 0.02,
-                      "masses_kg": 0.5, "shock_shapes": [[[1.0, 0.0], [0.0, 1.0]]],
-                      "forcing_shapes": [[[1.0, 0.0], [0.0, 1.0]]]},
-            "shocks": [{"name": "bore", "obstacle": "case", "normal_stiffness_N_per_m": 1e6,
-                        "normal_damping_N_s_per_m": 20.0, "friction": 0.3,
-                        "tangential_stiffness_N_per_m": 1e6}],
-            "forces": [{"point": 0, "direction": "y", "kind": "harmonic", "amplitude": 12.0,
-                        "frequency_Hz": 25.0},
-                       {"point": 0, "direction": "z", "kind": "harmonic", "amplitude": 6.0,
-                        "frequency_Hz": 25.0, "phase_deg": 90.0}],
-        },
-        "iterate": {"plot": False, **iterate},
-        "_directory": str(tmp_path),
-    }
-
-
-def test_loop_stop_criterion_names_its_depth(tmp_path):
-    """One cycle gives the three depths; a threshold between the smallest and the largest
-    stops the loop under 'largest' but not under the smallest one's name."""
-    first = iterate_case(_loop_case(tmp_path, cycles=1), output=tmp_path / "a")
-    row = first.summary.iloc[0]
-    values = {name: max(row[c] for c in cols) for name, cols in DEPTHS_OF.items()}
-    assert values["largest"] == max(values["global"], values["sector"], values["profile"])
-    smallest = min(("global", "sector", "profile"), key=values.get)
-    assert values[smallest] < values["largest"]
-    threshold = 0.5 * (values[smallest] + values["largest"])
-    stop = iterate_case(_loop_case(tmp_path, cycles=2, max_depth_m=threshold),
-                        output=tmp_path / "b")
-    assert stop.stopped == "max_depth" and stop.max_depth_of == "largest"
-    assert len(stop.summary) == 1
-    go_on = iterate_case(_loop_case(tmp_path, cycles=2, max_depth_m=threshold,
-                                    max_depth_of=smallest), output=tmp_path / "c")
-    assert len(go_on.summary) == 2  # cycle 1's depth of that name stayed below
-    last = go_on.summary.iloc[-1]
-    assert (go_on.stopped == "max_depth") == (
-        max(last[c] for c in DEPTHS_OF[smallest]) >= threshold)
-    with pytest.raises(KeywordError, match="max_depth_of = 'deepest'"):
-        iterate_case(_loop_case(tmp_path, max_depth_of="deepest"), output=tmp_path / "d")

@@ -499,6 +499,9 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
     if key not in prepared.models:
         raise InputError(f"the case has no {key}; it has {sorted(prepared.models)}")
     model = prepared.models[key]
+    if sector is None and model.geometry.contact_type is None:
+        raise InputError("the case has no contact type (sector depths only): its global depth "
+                         "is undefined; propagate a sector depth with sector=j")
     durations = prepared.durations if instants is None else np.asarray(instants, dtype=float)
     if durations is None or np.size(durations) == 0:
         raise InputError("give instants=[...] (durations after the origin, user time unit)")
