@@ -261,22 +261,9 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[
         if _missing(cid):
             raise InputError(f"{source}: row {i + 1} has no contact id; give every row one")
         cid = str(_identity_value(cid))
-        identity: dict[str, Any] = {}
-        overrides: dict[tuple[str, ...], Any] = {}
-        wall = None
-        for col, value in record.items():
-            key = meaning[str(col)]
-            if _missing(value) or key in ("contact", "history", "node"):
-                continue
-            if key == WALL_COLUMN:
-                wall = _wall(value, cid, source)
-            elif isinstance(key, str):
-                identity[key] = _identity_value(value)
-            else:
-                value = _plain(value)
-                if key in PATH_KEYS:
-                    value = _absolute(value, directory)
-                overrides[key] = value
+        identity, overrides, wall = _cells(
+            ((meaning[str(col)], value) for col, value in record.items()), cid, source,
+            directory)
         node = record.get("node")
         node = None if _missing(node) else str(_identity_value(node))
         hist = record.get("history")
@@ -288,6 +275,26 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[
         rows.append(ContactRow(cid, ref, identity, overrides, wall))
     _check_unique([r.contact for r in rows], source)
     return rows
+
+
+def _cells(cells, contact: str, source: str, directory: Path
+           ) -> tuple[dict[str, Any], dict[tuple[str, ...], Any], float | None]:
+    """(identity, overrides, wall thickness) of one row from its ``(meaning, value)`` cells
+    (meaning from :func:`column_key`); empty cells are skipped, paths made absolute."""
+    identity: dict[str, Any] = {}
+    overrides: dict[tuple[str, ...], Any] = {}
+    wall = None
+    for key, value in cells:
+        if _missing(value) or key in ("contact", "history", "node"):
+            continue
+        if key == WALL_COLUMN:
+            wall = _wall(value, contact, source)
+        elif isinstance(key, str):
+            identity[key] = _identity_value(value)
+        else:
+            value = _plain(value)
+            overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
+    return identity, overrides, wall
 
 
 def _wall(value: Any, contact: str, source: str) -> float:
@@ -468,20 +475,8 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
     directory = Path.cwd() if path is None else path.parent
     rows = []
     for i, cid in enumerate(ids):
-        identity: dict[str, Any] = {}
-        overrides: dict[tuple[str, ...], Any] = {}
-        wall = None
-        for key, values in columns.values():
-            value = values[i]
-            if _missing(value) or key in ("contact", "history"):
-                continue
-            if key == WALL_COLUMN:
-                wall = _wall(value, cid, label)
-            elif isinstance(key, str):
-                identity[key] = _identity_value(value)
-            else:
-                value = _plain(value)
-                overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
+        identity, overrides, wall = _cells(((key, values[i]) for key, values in columns.values()),
+                                           cid, label, directory)
         if path is None:
             arrays = {c: np.asarray(ds[c].isel({CONTACT_DIM: i}).values, dtype=float)
                       for c in channels}
@@ -490,7 +485,8 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
             ref = HistoryRef("memory", arrays=trim(arrays), units=units, time_dim=tdim)
         else:
             ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim)
-        identity.setdefault("node", None)
+        node = columns["node"][1][i] if "node" in columns else None
+        identity["node"] = None if _missing(node) else str(_identity_value(node))
         rows.append(ContactRow(cid, ref, identity, overrides, wall))
     _check_unique(ids, label)
     return rows
