@@ -220,3 +220,21 @@ def test_table_of_several_shock_points_needs_a_selection(tmp_path):
         read_history(path, select="NOEUD=N14")
     with pytest.raises(KeywordError, match="give 'COLUMN=VALUE'"):
         read_history(path, select="NOEUD")
+
+
+def test_infinite_reals_are_empty_cells(tmp_path):
+    """No infinity in a Code_Aster table: LIRE_TABLE's ASTER-format reals match [0-9.,+-eEdD]+
+    (code_aster MacroCommands/Utils/TableReader.FMT), so ±inf is written as an empty cell '-',
+    like NaN, in both formats."""
+    import numpy as np
+    import pandas as pd
+
+    from fretwear.io.aster import read_aster_table, write_aster_table
+
+    frame = pd.DataFrame({"INST": [1.0, 2.0, 3.0], "T_LIMITE": [np.inf, 5.0, -np.inf]})
+    for fmt in ("TABLEAU", "ASTER"):
+        path = write_aster_table(frame, tmp_path / f"t_{fmt}.tab", format=fmt)
+        assert "INF" not in path.read_text().upper()
+        back = read_aster_table(path)
+        assert np.isnan(back["T_LIMITE"].iloc[0]) and np.isnan(back["T_LIMITE"].iloc[2])
+        assert back["T_LIMITE"].iloc[1] == 5.0

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import gzip
 import io
+import math
 import os
 import re
 from pathlib import Path
@@ -356,7 +357,10 @@ def _format_cell(value, kind: str, float_format: str) -> str:
     if value is None or (not isinstance(value, str) and pd.isna(value)):
         return "-"
     if kind == "R":
-        return float_format % float(value)
+        value = float(value)
+        # no infinity in a Code_Aster table: LIRE_TABLE's ASTER-format reals match
+        # [0-9.,+-eEdD]+ only; an empty cell, like NaN
+        return float_format % value if math.isfinite(value) else "-"
     if kind == "I":
         return str(int(value))
     text = str(value)
@@ -372,7 +376,7 @@ def _format_column(series: pd.Series, kind: str, float_format: str) -> list[str]
     if kind == "R":
         values = series.to_numpy(dtype=float, na_value=np.nan)
         text = [float_format % v for v in values.tolist()]
-        for i in np.flatnonzero(np.isnan(values)).tolist():
+        for i in np.flatnonzero(~np.isfinite(values)).tolist():  # NaN and ±inf: empty cell
             text[i] = "-"
         return text
     return [_format_cell(v, kind, float_format) for v in series]
