@@ -6,8 +6,21 @@ import math
 from pathlib import Path
 
 import click
+from rich.console import Console
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    TextColumn,
+    TimeElapsedColumn,
+    TimeRemainingColumn,
+)
+from rich.table import Table
 
+from fretwear.bundle import run_bundle
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
+from fretwear.plotting import save_figure
+from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 
 #: Exit code when some contacts failed or left their relation's range (the others are written).
 EXIT_SOME_FAILED = 1
@@ -41,8 +54,6 @@ not start (bad manifest, case or option; the message says which).
 
 
 def _summary(result, console, top: int, limit: float | None) -> None:
-    from rich.table import Table
-
     summary = result.summary(limit)
     if not len(summary):
         return
@@ -97,18 +108,6 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
             output: Path | None, force: bool, chunk_size: int, table_format: str,
             dataset_format: str | None, limit: float | None, plot_dir: Path | None, top: int,
             quiet: bool) -> None:
-    from rich.console import Console
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-
-    from fretwear.bundle import run_bundle
-
     console = Console(quiet=quiet)
     if output is None:
         output = Path.cwd() / f"{manifest.name.split('.')[0]}_bundle"
@@ -133,13 +132,6 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
             console.print(f"  {r.contact}: {r.error}: {r.message}", markup=False,
                           highlight=False, style="yellow")
     if plot_dir is not None and len(result.table):
-        from fretwear.plotting._common import save_figure
-        from fretwear.plotting.bundle import (
-            plot_power_distribution,
-            plot_tube_sheet,
-            plot_worst_depths,
-        )
-
         figures = [(plot_power_distribution(result), "bundle_power"),
                    (plot_worst_depths(result, limit=limit), "bundle_worst_depths")]
         if result.contacts[["tube_row", "tube_column"]].notna().all(axis=None):
