@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import os
+import zipfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -401,8 +402,6 @@ def npz_headers(path: str | os.PathLike) -> dict[str, tuple[tuple[int, ...], np.
     >>> {k: (s, str(d)) for k, (s, d) in npz_headers(p).items()}
     {'INST': ((2,), 'float64'), 'N': ((1,), '<U1')}
     """
-    import zipfile
-
     out = {}
     with zipfile.ZipFile(path) as zf:
         for info in zf.infolist():

@@ -40,6 +40,7 @@ import contextlib
 import errno
 import json
 import os
+import signal
 import stat
 import struct
 import subprocess
@@ -49,6 +50,8 @@ import zlib
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
+
+import pandas as pd
 
 from fretwear.errors import FormatError, FretwearError, InputError
 
@@ -74,10 +77,6 @@ _LIBRARY: tuple[type[BaseException], ...] = (
 
 
 def _pandas_errors() -> tuple[type[BaseException], ...]:
-    try:
-        import pandas as pd
-    except ImportError:  # pragma: no cover - pandas is a core dependency
-        return ()
     return (pd.errors.EmptyDataError, pd.errors.ParserError)
 
 
@@ -345,8 +344,6 @@ def probe(path: str | os.PathLike, format: str) -> dict:
     except OSError:  # no interpreter to run the check: let the library open it
         return {}
     if done.returncode < 0:
-        import signal
-
         try:
             sig = signal.Signals(-done.returncode).name
         except ValueError:
