@@ -31,8 +31,8 @@ from fretwear.io import aster as _aster
 from fretwear.io import aster_functions as _functions
 from fretwear.io.channels import Source, channel_of
 
-__all__ = ["open_aster", "open_functions", "select_rows", "select_node", "NODE_COLUMNS",
-           "duplicated_instants_message"]
+__all__ = ["open_aster", "open_functions", "select_rows", "select_node", "shock_nodes",
+           "NODE_COLUMNS", "duplicated_instants_message"]
 
 #: Column names that hold the shock point of a row (compared case-blind); also any column
 #: whose name starts with NOEUD or GROUP_NO.
@@ -90,6 +90,35 @@ def _node_columns(frame: pd.DataFrame) -> list[int]:
 def _names(title: str, node: str) -> bool:
     return re.search(rf"(?<![A-Za-z0-9]){re.escape(node)}(?![A-Za-z0-9])", title,
                      re.IGNORECASE) is not None
+
+
+def shock_nodes(path: str | os.PathLike) -> list[str]:
+    """The shock points a Code_Aster table file names in its node columns, in file order.
+
+    Parameters
+    ----------
+    path : str or path-like
+        An IMPR_TABLE print (TABLEAU or ASTER layout).
+
+    Returns
+    -------
+    list of str
+        The distinct labels of its node columns (:data:`NODE_COLUMNS`); empty when it has none.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "choc.tab"
+    >>> _ = p.write_text("#\\n#TABLE_SDASTER\\nNOEUD INST VINT1\\nN12 0.0 1.0\\nN13 0.0 2.0\\n")
+    >>> shock_nodes(p)
+    ['N12', 'N13']
+    """
+    held: list[str] = []
+    for frame in _aster.read_aster_tables(path):
+        for j in _node_columns(frame):
+            cells = frame.iloc[:, j].dropna().astype(str).str.strip()
+            held += [v for v in cells.unique().tolist() if v and v not in held]
+    return held
 
 
 def select_node(tables: Sequence[pd.DataFrame], node: str, label: str
@@ -377,7 +406,8 @@ def check_one_shock(frame: pd.DataFrame, names: list[str], label: str) -> None:
             raise FormatError(
                 f"{label}: column {names[j]!r} holds several values {shown} and the instants "
                 f"of {names[times[0]]!r} restart: the table mixes several shock points; choose "
-                f"one with node='{shown[0]}' or select={{'{names[j]}': '{shown[0]}'}} (command "
+                f"one with node='{shown[0]}' (POST_USURE's NOEUD='{shown[0]}' or GROUP_NO, a "
+                f"case file's [history] node) or select={{'{names[j]}': '{shown[0]}'}} (command "
                 f"line: --read-option select={names[j]}={shown[0]}), or print one per table with "
                 f"IMPR_TABLE(..., FILTRE=_F(NOM_PARA='{names[j]}', VALE_K='{shown[0]}'))")
 

@@ -191,9 +191,17 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
     aster = "INST" in table.columns
     native = from_aster_names(table)
     attrs = dict(table.attrs)
-    state = initial_state(native, instant)  # checks the instant
-    at = state.origin
     inst = _column(native, ["instant"], "the instant (INST)", "(DataFrame)")
+    if instant is not None and len(inst) and not np.any(
+            np.abs(inst - float(instant)) <= _TIME_TOL * max(1.0, float(np.abs(inst).max()))):
+        raise InputError(f"TUBE_NEUF at INST = {float(instant):g}: not an instant of the wear "
+                         f"table (TABL_USURE), whose instants are {sorted(set(inst.tolist()))}; "
+                         "replace the tube at one of them (the new tube's volumes are the old "
+                         "ones minus their value there), or compute the table with "
+                         "tube_replacement= (case file [time] tube_replacement) for another "
+                         "instant")
+    state = initial_state(native, instant)
+    at = state.origin
     tol = _TIME_TOL * max(1.0, abs(at))
     on, after = np.abs(inst - at) <= tol, inst > at + tol
     law = WEAR_LAWS.get(str(attrs.get("law", "")).upper())

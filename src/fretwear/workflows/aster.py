@@ -343,7 +343,8 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         case = WearCase.from_keywords(
             contact_type=contact, dimensions=dimensions,
             instants=kw["INST"] if "INST" in kw else kw["LIST_INST"], law=law,
-            coefficients=mobile or None, obstacle_coefficients=obstacle or None,
+            coefficients=mobile if "MOBILE" in kw else None,  # _F(): the law's defaults
+            obstacle_coefficients=obstacle if "OBSTACLE" in kw else None,
             materials=materials, obstacle_wear="USURE_OBST" in kw and materials is not None,
             sectors=sectors, sector_coefficients=sector_coefficients,
             time_scale=kw.get("COEF_INST", 1.0), initial_state=etat.get("TABL_USURE"),
@@ -355,8 +356,8 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     except DatabaseError as exc:
         if materials is None or contact is None:
             raise
-        raise DatabaseError(f"{exc} MATER_USURE in Code_Aster's form for {contact}/{law}: "
-                            f"{_aster_pairs(contact, law)}") from None
+        raise DatabaseError(f"{str(exc).rstrip('. ')}. MATER_USURE in Code_Aster's form for "
+                            f"{contact}/{law}: {_aster_pairs(contact, law)}") from None
     table = wear_table_from_case(case, source)
     return to_aster_names(_obstacle_depths_that_exist(table))
 

@@ -23,9 +23,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import KeywordError
+from fretwear.errors import FormatError, FretwearError, KeywordError
 from fretwear.history import ContactHistory, contact_angle
 from fretwear.io import read_history
+from fretwear.io.aster_source import shock_nodes
 from fretwear.power import channel_statistics, contact_statistics, impacts, wear_power
 from fretwear.workflows.aster_catalogue import _F, EXCLUS, UN_PARMI, Catalogue, Fact, Simp
 
@@ -40,7 +41,8 @@ CATALOGUE_POST_DYNA_MODA_T = Catalogue(
     rules=(UN_PARMI("CHOC", "RELA_EFFO_DEPL"),),
     keywords={
         "RESU_GENE": Simp("history", "o", help="the shock points' histories: a ContactHistory, "
-                                               "a history file, or a mapping node -> either"),
+                                               "a history file (a table of several shock points: "
+                                               "every one), or a mapping node -> either"),
         "CHOC": Fact({
             "INST_INIT": Simp("R", default=-1.0, help="start of the window [s] (clipped to the "
                                                       "record)"),
@@ -90,7 +92,18 @@ def _shocks(value: Any) -> list[tuple[str, str, ContactHistory]]:
             h = read(item, str(node) if isinstance(item, str | os.PathLike) else None)
             out.append((h.name or str(node), str(node), h))
         return out
-    h = read(value, None)
+    try:
+        h = read(value, None)
+    except FormatError as exc:
+        # a table of several shock points (a NOEUD column): every one, named by its node, as
+        # Code_Aster does for a tran_gene holding several shocks
+        try:
+            nodes = shock_nodes(value) if isinstance(value, str | os.PathLike) else []
+        except FretwearError:
+            nodes = []
+        if len(nodes) < 2:
+            raise exc from None
+        return [(node, node, read(value, node)) for node in nodes]
     node = str(h.metadata.get("node") or h.name or "CHOC1")
     return [(h.name or node, node, h)]
 
@@ -180,10 +193,12 @@ def POST_DYNA_MODA_T(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aste
     Parameters
     ----------
     **keywords
-        ``RESU_GENE``: a :class:`~fretwear.history.ContactHistory`, a history file, or a mapping
-        node label -> either (every shock point of the computation). ``CHOC=_F(OPTION='USURE' or
-        'IMPACT', INST_INIT, INST_FIN [s], NB_BLOC, SEUIL_FORCE [N], DUREE_REPOS [s],
-        NB_CLASSE)``, possibly repeated. ``TITRE``, ``INFO``. (:data:`CATALOGUE_POST_DYNA_MODA_T`)
+        ``RESU_GENE``: a :class:`~fretwear.history.ContactHistory`, a history file (a Code_Aster
+        table holding several shock points in a NOEUD column gives every one of them), or a
+        mapping node label -> either (every shock point of the computation).
+        ``CHOC=_F(OPTION='USURE' or 'IMPACT', INST_INIT, INST_FIN [s], NB_BLOC, SEUIL_FORCE [N],
+        DUREE_REPOS [s], NB_CLASSE)``, possibly repeated. ``TITRE``, ``INFO``.
+        (:data:`CATALOGUE_POST_DYNA_MODA_T`)
 
     Returns
     -------
