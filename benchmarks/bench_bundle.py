@@ -9,8 +9,9 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
 * **serial**: ``fretwear.table.wear_table(path, **keywords)`` for every contact in a loop (the
   keywords built once from the base case): the single-contact API;
 * **bundle**: :func:`fretwear.bundle.run_bundle` on a LocalCluster of ``--workers`` worker
-  processes (one thread each), joined through its client (cluster start excluded; workers warmed
-  up by a small run first), without and with an output directory;
+  processes (one thread each, no scheduler-side queuing: the cluster ``run_bundle`` starts),
+  joined through its client (cluster start excluded; workers warmed up by a small run first),
+  without and with an output directory;
 * **per-contact overhead**: (workers × T_bundle − T_serial)/N, the worker time a contact costs
   beyond the single-contact computation, measured on this bundle and on one of tiny contacts
   (100 samples, where the computation is almost nothing);
@@ -145,6 +146,17 @@ def identical(result, tables: dict[str, pd.DataFrame]) -> bool:
     return True
 
 
+def local_cluster(workers: int):
+    """A LocalCluster as run_bundle starts one: single-threaded worker processes, every task
+    sent to a worker's queue at once (no scheduler-side queuing)."""
+    import dask
+    import distributed
+
+    with dask.config.set({"distributed.scheduler.worker-saturation": "inf"}):
+        return distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                                        dashboard_address=":0")
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--contacts", type=int, default=500)
@@ -175,9 +187,7 @@ def main(argv: list[str] | None = None) -> None:
         t_tiny_serial, _ = serial(tiny, case)
         print(f"serial loop over wear_table: {t_serial:.2f} s, {n / t_serial:.1f} contacts/s, "
               f"{n * samples / t_serial:.3g} samples/s (tiny contacts: {t_tiny_serial:.2f} s)")
-        with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1,
-                                      processes=True, dashboard_address=":0") as cluster, \
-                distributed.Client(cluster) as client:
+        with local_cluster(args.workers) as cluster, distributed.Client(cluster) as client:
             run_bundle(warm, case, scheduler=client)  # workers import fretwear, load kernels
             with PeakMemory(client) as idle:
                 time.sleep(0.2)
@@ -204,8 +214,7 @@ def main(argv: list[str] | None = None) -> None:
             long_manifest = make_bundle(directory, 1, int(args.long), "long")
             for label, chunk in (("chunks of", int(args.chunk)),
                                  ("one task of", int(args.long) + 1)):
-                with distributed.LocalCluster(n_workers=args.workers, threads_per_worker=1,
-                                              processes=True, dashboard_address=":0") as cluster, \
+                with local_cluster(args.workers) as cluster, \
                         distributed.Client(cluster) as client:
                     run_bundle(warm, case, scheduler=client)
                     with PeakMemory(client) as peaks:

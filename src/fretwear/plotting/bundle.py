@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import InputError
-from fretwear.plotting._common import figure_and_axes
+from fretwear.plotting._common import figure_and_axes, matplotlib_module
 
 
 def _summary(results: Any, limit: float | None = None) -> pd.DataFrame:
@@ -76,16 +76,20 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(1, 1, 1)],
                                         figsize=(7, 6), what="plot_tube_sheet")
     ok = worst[~worst["beyond"]]
-    art = axis.scatter(ok["column"], ok["row"], c=ok["value"], marker="s", s=60,
+    size = float(np.clip(2.0e4 / max(len(worst), 1), 4.0, 250.0))  # squares fill a small map
+    art = axis.scatter(ok["column"], ok["row"], c=ok["value"], marker="s", s=size,
                        cmap="viridis", edgecolors="0.3", linewidths=0.4)
     label = "depth / wall [%]" if quantity == "fraction" else "tube depth [mm]"
     fig.colorbar(art, ax=axis, label=f"worst contact: {label}")
     bad = worst[worst["beyond"]]
     if len(bad):
-        axis.scatter(bad["column"], bad["row"], c="black", marker="s", s=60)
-        axis.scatter(bad["column"], bad["row"], c="white", marker="x", s=25,
+        axis.scatter(bad["column"], bad["row"], c="black", marker="s", s=size)
+        axis.scatter(bad["column"], bad["row"], c="white", marker="x", s=size / 2,
                      label="beyond the relation's range")
         axis.legend(loc="upper right", fontsize="small")
+    ticker = matplotlib_module("ticker")
+    axis.xaxis.set_major_locator(ticker.MaxNLocator(integer=True))
+    axis.yaxis.set_major_locator(ticker.MaxNLocator(integer=True))
     axis.set_xlabel("tube column")
     axis.set_ylabel("tube row")
     axis.set_aspect("equal", adjustable="datalim")
