@@ -10,6 +10,8 @@
   point, as Code_Aster's does for a tran_gene; the second node (its force doubled) has twice the
   wear power and the same impacts with doubled peaks.
 * POST_USURE on such a file without NOEUD: the error says to give NOEUD.
+* OBSTACLE next to SECTEUR (the catalogue allows it; Code_Aster's usuvu2 uses only the sectors'
+  COEF_USUR_OBST): not used, with a warning. TITRE with TUBE_NEUF titles the table.
 
 The two-node file is ``tests/io/fixtures/impr_table_tableau.txt`` (hand-written IMPR_TABLE of
 N12) with its rows repeated for N13, VINT1 doubled.
@@ -24,7 +26,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from fretwear.errors import DatabaseError, FormatError, InputError
+from fretwear.errors import DatabaseError, FormatError, InputError, UnusedKeywordWarning
 from fretwear.workflows.aster import _F, POST_DYNA_MODA_T, POST_USURE
 
 TABLEAU = Path(__file__).parents[1] / "io" / "fixtures" / "impr_table_tableau.txt"
@@ -112,3 +114,23 @@ def test_post_usure_on_several_shock_points_asks_for_noeud(tmp_path):
         RESU_GENE=str(_two_nodes(tmp_path)), NOEUD="N13", LOI_USURE="ARCHARD",
         MOBILE=_F(COEF_USURE=1e-13), CONTACT="TUBE_BAV", RAYON_MOBILE=9.525e-3,
         LARGEUR_OBST=12.7e-3, INST=1.0)["V_USUR_TUBE"].iloc[0])
+
+
+def test_obstacle_with_secteur_is_not_used_and_says_so():
+    # Code_Aster's catalogue accepts OBSTACLE next to SECTEUR; its usuvu2 uses only the sectors'
+    # COEF_USUR_OBST: with none given the obstacle does not wear
+    secteur = (_F(COEF_USUR_MOBILE=1e-14, ANGL_INIT=-180.0, ANGL_FIN=0.0),
+               _F(COEF_USUR_MOBILE=1e-14, ANGL_FIN=180.0))
+    with pytest.warns(UnusedKeywordWarning, match="OBSTACLE is not used"):
+        t = POST_USURE(RESU_GENE=str(TABLEAU), NOEUD="N12", LOI_USURE="ARCHARD",
+                       RAYON_MOBILE=9.525e-3, RAYON_OBST=9.75e-3, LARGEUR_OBST=12.7e-3,
+                       OBSTACLE=_F(COEF_USURE=5e-15), SECTEUR=secteur, INST=(1.0,))
+    assert (t["V_USUR_OBST_CUMU"] == 0.0).all()
+
+
+def test_tube_neuf_keeps_titre():
+    tab = POST_USURE(PUIS_USURE=0.01, LOI_USURE="ARCHARD", MOBILE=_F(COEF_USURE=1e-13),
+                     CONTACT="TUBE_BAV", RAYON_MOBILE=9.525e-3, LARGEUR_OBST=12.7e-3,
+                     INST=(1.0, 2.0))
+    new = POST_USURE(reuse=tab, TUBE_NEUF="OUI", TABL_USURE=tab, INST=1.0, TITRE="tube neuf")
+    assert new.attrs["title"] == "tube neuf"

@@ -306,7 +306,10 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
         if len(instant) != 1:
             raise KeywordError(f"POST_USURE: under TUBE_NEUF, INST is one instant (of the "
                                f"replacement), got {instant}")
-        return to_aster_names(replace_tube(kw["TABL_USURE"], instant[0]))
+        table = to_aster_names(replace_tube(kw["TABL_USURE"], instant[0]))
+        if "TITRE" in kw:
+            table.attrs["title"] = kw["TITRE"]
+        return table
     law = kw["LOI_USURE"]
     if "PUIS_USURE" in kw:
         ignored = [k for k in ("INST_INIT", "INST_FIN", "NB_BLOC") if k in kw]
@@ -324,6 +327,10 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     dimensions = {DIMENSIONS[k]: v for k, v in kw.items() if k in DIMENSIONS}
     if "SECTEUR" in kw:
         sectors, sector_coefficients, contact = _secteurs(kw["SECTEUR"], contact)
+        if "OBSTACLE" in kw:
+            warnings.warn("POST_USURE: with SECTEUR the obstacle's coefficients are the sectors' "
+                          "COEF_USUR_OBST; OBSTACLE is not used (as in Code_Aster's usuvu2)",
+                          UnusedKeywordWarning, stacklevel=2)
         if "obstacle_width" not in dimensions:
             warnings.warn(f"POST_USURE: SECTEUR without LARGEUR_OBST: the sector depths use "
                           f"LARGEUR_OBST = {DEFAULT_SECTOR_WIDTH} m, Code_Aster's default "
