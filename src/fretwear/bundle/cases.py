@@ -234,7 +234,9 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     given_power = "value_W" in case.get("power", {})
     options = read_options(case, row.history)
     stamp: Any = None
-    if row.history.kind in ("file", "store"):
+    if row.history.kind == "store" and row.history.stamp:
+        stamp = list(row.history.stamp)
+    elif row.history.kind in ("file", "store"):
         stamp = path_stamp(row.history.path)
     elif row.history.kind == "memory":
         h = hashlib.blake2b(digest_size=16)

@@ -73,9 +73,11 @@ def _cached_store(path: str, stamp: tuple):
     return open_store(path)
 
 
-def cached_store(path: str):
-    """The store at ``path`` opened once per worker process (reopened when it changed)."""
-    return _cached_store(path, path_stamp(path))
+def cached_store(ref):
+    """The store of a :class:`~fretwear.bundle.manifest.HistoryRef`, opened once per process
+    (reopened when its stamp, taken once when the manifest was read, changed)."""
+    stamp = tuple(ref.stamp) if ref.stamp else path_stamp(ref.path)
+    return _cached_store(ref.path, stamp)
 
 
 def time_dim(ds, label: str) -> str:
@@ -115,7 +117,7 @@ def trim(arrays: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 def store_arrays(ref, start: int = 0, stop: int | None = None) -> dict[str, np.ndarray]:
     """``{variable: samples [start, stop)}`` of one contact of a store (only that part is read)."""
-    ds = cached_store(ref.path)
+    ds = cached_store(ref)
     tdim = ref.time_dim
     channels = channel_variables(ds, tdim)
     sel = {CONTACT_DIM: ref.index, tdim: slice(start, stop)}
@@ -131,7 +133,7 @@ def store_arrays(ref, start: int = 0, stop: int | None = None) -> dict[str, np.n
 
 def store_length(ref) -> int:
     """Number of samples of one contact of a store (its time axis without NaN padding)."""
-    ds = cached_store(ref.path)
+    ds = cached_store(ref)
     tdim = ref.time_dim
     if "time" in ds.variables and ds["time"].ndim == 2:
         t = np.asarray(ds["time"].isel({CONTACT_DIM: ref.index}).values, dtype=float)

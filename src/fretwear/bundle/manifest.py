@@ -30,7 +30,14 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from fretwear.bundle.datasets import CONTACT_DIM, channel_variables, open_store, time_dim, trim
+from fretwear.bundle.datasets import (
+    CONTACT_DIM,
+    channel_variables,
+    open_store,
+    path_stamp,
+    time_dim,
+    trim,
+)
 from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.io import guess_format
 from fretwear.io.aster import read_aster_tables
@@ -87,6 +94,10 @@ class HistoryRef:
         Position of the contact along the store's ``contact`` dimension.
     arrays : dict
         ``{variable: 1-D array}`` of an in-memory contact, ``units`` per variable in ``units``.
+    time_dim : str
+        The time dimension of a store.
+    stamp : tuple
+        A store's :func:`~fretwear.bundle.datasets.path_stamp`, taken once for all its contacts.
     """
 
     kind: str
@@ -96,6 +107,7 @@ class HistoryRef:
     arrays: Mapping[str, np.ndarray] = field(default_factory=dict)
     units: Mapping[str, str] = field(default_factory=dict)
     time_dim: str = "time"
+    stamp: tuple = ()
 
     def label(self) -> str:
         """Short description for tables and messages."""
@@ -473,6 +485,7 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
     else:
         shared_time = None
     directory = Path.cwd() if path is None else path.parent
+    stamp = () if path is None else path_stamp(path)  # once: a Zarr store may hold many files
     rows = []
     for i, cid in enumerate(ids):
         identity, overrides, wall = _cells(((key, values[i]) for key, values in columns.values()),
@@ -484,7 +497,8 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
                 arrays["time"] = shared_time
             ref = HistoryRef("memory", arrays=trim(arrays), units=units, time_dim=tdim)
         else:
-            ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim)
+            ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim,
+                             stamp=stamp)
         node = columns["node"][1][i] if "node" in columns else None
         identity["node"] = None if _missing(node) else str(_identity_value(node))
         rows.append(ContactRow(cid, ref, identity, overrides, wall))
