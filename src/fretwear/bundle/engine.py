@@ -25,6 +25,7 @@ from typing import Any
 
 import pandas as pd
 
+from fretwear._optional import optional
 from fretwear.bundle.cases import ContactTask, build_task
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
@@ -438,12 +439,7 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
     write_frame(result.warnings, store.path / "warnings.csv", "csv")
     write_frame(result.summary(), store.path / "summary.csv", "csv")
     if dataset_format is None:
-        try:
-            import zarr  # noqa: F401
-
-            dataset_format = "zarr"
-        except ImportError:
-            dataset_format = "netcdf"
+        dataset_format = "netcdf" if optional("zarr") is None else "zarr"
     if len(result.table):
         store.write_dataset(result.dataset, dataset_format)
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:

@@ -35,6 +35,7 @@ from fretwear.bundle.datasets import (
     channel_variables,
     open_store,
     path_stamp,
+    require,
     time_dim,
     trim,
 )
@@ -415,11 +416,8 @@ def read_manifest(source: Any) -> Manifest:
     if suffix == ".toml":
         frame = _read_toml(path)
     elif suffix in (".parquet", ".pq"):
-        try:
-            frame = pd.read_parquet(path)
-        except ImportError:
-            raise InputError("reading a Parquet manifest needs pyarrow: pip install "
-                             "'fretwear[formats]'") from None
+        require("pyarrow", purpose="reading a Parquet manifest")
+        frame = pd.read_parquet(path)
     elif suffix == ".csv":
         try:
             # only empty cells are missing: a contact may be called "NA" or "nan"

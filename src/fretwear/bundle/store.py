@@ -31,24 +31,21 @@ from fretwear.bundle.datasets import require
 from fretwear.bundle.tasks import unpack
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.table.schema import FLOAT_FORMAT
 
 TABLE_FORMATS = ("parquet", "csv")
 DATASET_FORMATS = ("zarr", "netcdf")
-#: Float format of CSV outputs: 17 significant digits round-trip every float64 exactly.
-CSV_FLOAT = "%.17g"
 
 
 def write_frame(frame: pd.DataFrame, path: Path, fmt: str) -> Path:
     """Write a table atomically as Parquet or CSV (floats round-trip exactly in both)."""
+    if fmt == "parquet":
+        require("pyarrow", purpose="writing Parquet (the csv table format does not need it)")
     with atomic_path(path) as tmp:
         if fmt == "parquet":
-            try:
-                frame.to_parquet(tmp, index=False)
-            except ImportError:
-                raise InputError("writing Parquet needs pyarrow: pip install 'fretwear[formats]'"
-                                 ", or choose the csv table format") from None
+            frame.to_parquet(tmp, index=False)
         else:
-            frame.to_csv(tmp, index=False, float_format=CSV_FLOAT)
+            frame.to_csv(tmp, index=False, float_format=FLOAT_FORMAT)
     return path
 
 
