@@ -312,8 +312,12 @@ def test_cli_filters_drop_constant_columns_and_explain_empty_results(tmp_path):
     # R7.20.01 §3: 48 ARCHARD boxes (5+5+5+13+6+2+10+2), 6 EDF_MZ (2 per GRAPPE type)
     assert "No KWU_EPRI coefficients" in text and "ARCHARD (48 material pairs)" in text
     assert "EDF_MZ (6 material pairs)" in text
+    # a law without any row: its required coefficients with a Code_Aster keyword (registry)
+    assert "no KWU_EPRI values at all: give reference_coefficient (COEF_USURE)" in text
     out = runner.invoke(command, ["--contact", "TUBE_BAV", "--law", "EDF_MZ"])
-    assert "TUBE_BAV has: ARCHARD (13 material pairs)" in " ".join(out.output.split())
+    text = " ".join(out.output.split())
+    assert "TUBE_BAV has: ARCHARD (13 material pairs)" in text
+    assert "at all" not in text  # EDF_MZ has rows (for other contact types)
     mine = write(tmp_path / "mine.csv", HEADER + "TUBE_TUBE,X12,I690,ARCHARD,mobile,coefficient,"
                  "1e-14,Pa⁻¹,bench\n")
     out = runner.invoke(command, ["--contact", "TUBE_TUBE", "--database", str(mine)])

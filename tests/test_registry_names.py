@@ -9,6 +9,8 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
+from fretwear.bundle.store import DATASET_FORMATS
+from fretwear.bundle.store import TABLE_FORMATS as BUNDLE_TABLE_FORMATS
 from fretwear.cli import cli
 from fretwear.geometry import CONTACT_TYPES
 from fretwear.history import CHANNELS
@@ -18,6 +20,8 @@ from fretwear.laws import WEAR_LAWS
 from fretwear.obstacle.depth import DEPTH_SHAPES
 from fretwear.obstacle.update import PROFILE_FORMATS
 from fretwear.timeunits import TIME_UNITS
+from fretwear.uncertainty.calibration import CALIBRATION_METHODS
+from fretwear.uncertainty.sampling import METHODS as SAMPLING_METHODS
 from fretwear.workflows.aster import SIMPLE_KEYWORDS
 from fretwear.workflows.case_files import KEYS, keys_help
 
@@ -88,6 +92,14 @@ def test_run_and_obstacle_choices_come_from_the_registries():
     obstacle = _help("obstacle")
     assert _choices(obstacle, "--format") == [f.lower() for f in PROFILE_FORMATS]
     assert _choices(obstacle, "--shape") == list(DEPTH_SHAPES)
+
+
+def test_bundle_report_and_calibrate_choices_come_from_the_registries():
+    bundle = _help("bundle")
+    assert _choices(bundle, "--table-format") == list(BUNDLE_TABLE_FORMATS)
+    assert _choices(bundle, "--dataset-format") == list(DATASET_FORMATS)
+    assert _choices(_help("report"), "--method") == list(SAMPLING_METHODS)
+    assert _choices(_help("calibrate"), "--method") == list(CALIBRATION_METHODS)
 
 
 # ------------------------------------------------------------------------------ docs tables

@@ -19,6 +19,7 @@ from rich.table import Table
 
 from fretwear.bundle import run_bundle
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
+from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 
@@ -92,9 +93,9 @@ def _summary(result, console, top: int, limit: float | None) -> None:
 @click.option("--force", is_flag=True, help="Recompute every contact, even unchanged ones.")
 @click.option("--chunk-size", type=click.IntRange(min=2), default=1_000_000, show_default=True,
               help="Samples per chunk of a long history (memory per task).")
-@click.option("--table-format", type=click.Choice(["parquet", "csv"]), default="parquet",
+@click.option("--table-format", type=click.Choice(TABLE_FORMATS), default=TABLE_FORMATS[0],
               show_default=True, help="Format of the table and of the parts.")
-@click.option("--dataset-format", type=click.Choice(["zarr", "netcdf"]),
+@click.option("--dataset-format", type=click.Choice(DATASET_FORMATS),
               help="Format of the dataset (default zarr).")
 @click.option("--limit", type=click.FloatRange(min=0, min_open=True),
               help="Depth limit, fraction of the wall, for the summary (default: each "

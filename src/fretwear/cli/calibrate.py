@@ -16,8 +16,9 @@ from fretwear.io.atomic import atomic_write
 from fretwear.plotting import save_figure
 from fretwear.plotting.uncertainty import plot_calibration, plot_exceedance_map
 from fretwear.report.predictions import bundle_predictions, case_predictions
+from fretwear.table.schema import FLOAT_FORMAT
 from fretwear.uncertainty import LogNormal, calibrate
-from fretwear.uncertainty.calibration import INSPECTION_COLUMNS
+from fretwear.uncertainty.calibration import CALIBRATION_METHODS, INSPECTION_COLUMNS
 
 
 def _columns_help() -> str:
@@ -57,7 +58,7 @@ Inspection columns:
 @click.option("--measurement-sigma", type=click.FloatRange(min=0, min_open=True), default=0.1,
               show_default=True,
               help="Standard deviation of ln(measured depth) [-], for rows without their own.")
-@click.option("--method", type=click.Choice(["auto", "conjugate", "grid"]), default="auto",
+@click.option("--method", type=click.Choice(CALIBRATION_METHODS), default="auto",
               show_default=True, help="Conjugate update (power-law depths) or grid quadrature.")
 @click.option("--forecast", type=float, default=None,
               help="Instant of the forecast (next outage) [the cases' time unit].")
@@ -93,7 +94,7 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
             frame = frame.sort_values("exceedance", ascending=False, kind="stable")
     if output is not None:
         with atomic_write(output, encoding="utf-8", newline="") as handle:
-            frame.to_csv(handle, index=False, float_format="%.17g")
+            frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
     if as_json:
         payload = result.to_dict()
         payload["predictive"] = None if result.predictive is None else json.loads(

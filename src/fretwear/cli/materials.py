@@ -66,11 +66,15 @@ def command(contact_type: str | None, law: str | None, databases: tuple[str, ...
         boxes_per_law = scope.drop_duplicates(
             ["contact_type", "mobile_material", "obstacle_material", "law"]).law.value_counts()
         have = ", ".join(f"{name} ({n} material pairs)" for name, n in boxes_per_law.items())
+        wear_law = WEAR_LAWS.get(lw)
+        given = [] if wear_law is None or (table.law == lw).any() else [
+            f"{p} ({wear_law.aster_keywords[p]})" for p in wear_law.required
+            if p in wear_law.aster_keywords]
         console.print(escape(
             f"No {lw or ''} coefficients{f' for {ct}' if ct else ''} in the database"
             + (f"; {ct or 'it'} has: {have}." if have else ".")
-            + (" The reference tables have no KWU_EPRI values: give k_r (COEF_USURE) "
-               "explicitly." if lw == "KWU_EPRI" else "")
+            + (f" The database has no {lw} values at all: give {', '.join(given)} "
+               "explicitly." if given else "")
             + " Add your own with --database your.csv."), highlight=False)
         return
     title = "Wear coefficients" + "".join(f" · {x}" for x in (ct, lw) if x)

@@ -9,6 +9,7 @@ from rich.console import Console
 
 from fretwear._optional import require
 from fretwear.report import UNCERTAINTY_KEYS, analyse_case, write_report
+from fretwear.uncertainty.sampling import METHODS
 
 _KEYS = "\n".join(f"  {k}: {d}" for k, (_, d) in UNCERTAINTY_KEYS.items())
 
@@ -31,7 +32,7 @@ def report_options(function):
         click.option("--sigma-ln", "coefficient_sigma_ln", type=click.FloatRange(min=0,
                      min_open=True), help="Standard deviation of ln K [-] instead."),
         click.option("--samples", type=click.IntRange(min=2), help="Monte Carlo samples."),
-        click.option("--method", type=click.Choice(["sobol", "random"]),
+        click.option("--method", type=click.Choice(METHODS),
                      help="Sampling method."),
         click.option("--seed", type=int, help="Seed of the sampling."),
         click.option("--inspections", type=click.Path(exists=True, dir_okay=False,

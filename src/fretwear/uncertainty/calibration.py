@@ -54,6 +54,10 @@ INSPECTION_COLUMNS: dict[str, tuple[str, str]] = {
 #: at 95 % (σ_ln = ln 3 / 1.96 = 0.56).
 DEFAULT_PRIOR = LogNormal(1.0, scatter=3.0)
 
+#: Calibration methods (``calibrate(method=...)``, ``fretwear calibrate --method``): the
+#: conjugate update where every prediction is a power law of the factor, grid quadrature.
+CALIBRATION_METHODS = ("auto", "conjugate", "grid")
+
 _GRID = 4001
 _LINEAR_TOL = 1e-9
 
@@ -460,8 +464,8 @@ def calibrate(predictions, inspections, *, prior: LogNormal = DEFAULT_PRIOR,
        *Bayesian Data Analysis*, 3rd ed., CRC Press (2013), §2.5 (normal model with known
        variance) and §3.
     """
-    if method not in ("auto", "conjugate", "grid"):
-        raise InputError(f"method must be 'auto', 'conjugate' or 'grid', got {method!r}")
+    if method not in CALIBRATION_METHODS:
+        raise InputError(f"method must be one of {CALIBRATION_METHODS}, got {method!r}")
     if not isinstance(prior, LogNormal) or prior.median is None:
         raise InputError("prior must be a LogNormal with a median, e.g. LogNormal(1.0, "
                          "sigma_ln=0.5)")
