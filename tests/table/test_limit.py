@@ -133,3 +133,20 @@ def test_time_to_depth_never_and_at_once():
         # NaN (beyond the range) counts as deeper than the target
         t = time_to_depth(lambda t: np.where(t > 5.0, np.nan, t * 1e-4), 4e-4)
     assert t == pytest.approx(4.0, rel=1e-12)
+
+
+def test_a_depth_beyond_the_relation_is_through_the_wall():
+    """A flat past the tube's axis (depth NaN, beyond the relation's range) is through the wall
+    too: named, with the instant it passes the wall from the closed form, and no numpy
+    warning (the wall fraction is all NaN)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        t = wear_table(0.01, instants=[2000.0], wall_thickness=WALL, **BAV)
+    assert np.isnan(t["depth_mobile"].iloc[0])
+    c = (1 / (2 * R)) ** (1 / 3) * (3 / (4 * W)) ** (2 / 3)
+    expected = (WALL / c) ** 1.5 / (9.2e-15 * 0.01) / YEAR
+    assert t.attrs["through_wall"]["global"] == pytest.approx(expected, rel=1e-12)
+    names = [w.category.__name__ for w in caught]
+    assert "PerforationWarning" in names and "RuntimeWarning" not in names, names
+    perforation = next(str(w.message) for w in caught if w.category is PerforationWarning)
+    assert "beyond the geometric relation's range" in perforation

@@ -93,6 +93,13 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
     return out if out.ndim else float(out)
 
 
+def _past_wall(fraction) -> np.ndarray:
+    """Rows whose depth is past the wall: fraction > 1, or NaN (a volume beyond the geometric
+    relation's range, deeper than any depth in it)."""
+    f = np.asarray(fraction, dtype=float)
+    return np.isnan(f) | (f > 1.0)
+
+
 def first_time(old: Callable, new: Callable | None, target: float, fresh: float | None,
                first_guess: float) -> float:
     """Seconds after the origin [s] at which the tube in place first reaches ``target`` [m].
@@ -152,7 +159,7 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
     out["limit_instant"] = limit_at
     info = {"limit_depth": limit, "limit_instant": limit_at, "through_wall": {}}
     through = []
-    if global_depth is not None and np.nanmax(out["wall_fraction"], initial=0.0) > 1.0:
+    if global_depth is not None and _past_wall(out["wall_fraction"]).any():
         t = instant(global_depth, wall)
         info["through_wall"]["global"] = t
         through.append(f"its global depth from instant {t:.6g}")
@@ -162,19 +169,22 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
         instants = np.array([instant(fns, limit) for fns in sector_depths])
         out["limit_instant_sector"] = instants[sector - 1]
         info["limit_instant_sector"] = instants.tolist()
-        deep = sorted(set(sector[out["wall_fraction_sector"].to_numpy() > 1.0].tolist()))
+        deep = sorted(set(sector[_past_wall(out["wall_fraction_sector"])].tolist()))
         for j in deep:
             t = instant(sector_depths[j - 1], wall)
             info["through_wall"][f"sector {j}"] = t
             through.append(f"sector {j}'s depth from instant {t:.6g}")
     if through:
-        deepest = np.nanmax(np.concatenate([
+        depths = np.concatenate([
             out["depth_mobile"].to_numpy(dtype=float),
-            out["depth_mobile_sector"].to_numpy(dtype=float) if sector_depths else []]))
+            out["depth_mobile_sector"].to_numpy(dtype=float) if sector_depths else []])
+        if np.isnan(depths).any():
+            deepest = "beyond the geometric relation's range (NaN)"
+        else:
+            top = float(depths.max())
+            deepest = f"{top * 1e3:.4g} mm ({top / wall:.0%} of the wall)"
         warnings.warn(f"the tube is worn through its wall ({wall * 1e3:.4g} mm): "
                       f"{'; '.join(through)} [{unit or 'user time unit'}]; deepest "
-                      f"{deepest * 1e3:.4g} mm "
-                      f"({deepest / wall:.0%} of the wall). Depths past the wall are "
-                      "extrapolations of the geometry", PerforationWarning,
-                      stacklevel=stacklevel)
+                      f"{deepest}. Depths past the wall are extrapolations of the geometry",
+                      PerforationWarning, stacklevel=stacklevel)
     return out, info
