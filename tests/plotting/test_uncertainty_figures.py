@@ -4,6 +4,8 @@ chart's bands are the result's quantiles."""
 
 from __future__ import annotations
 
+import warnings
+
 import matplotlib
 import numpy as np
 import pandas as pd
@@ -90,3 +92,32 @@ def test_bad_inputs():
         figures.plot_exceedance_map(pd.DataFrame({"exceedance": [0.1]}))
     with pytest.raises(InputError, match="'first'"):
         figures.plot_sensitivity(pd.DataFrame({"total": [0.1]}))
+
+
+def test_fan_chart_names_the_sector_depth_whatever_the_contact_name():
+    """The y label names the depth the result propagates (UncertaintyResult.depth_of), not a
+    guess from the contact's name: a sector propagation of a contact called "R4C2" says
+    "sector 2", a global one of a contact called "sector side" says "global"."""
+    from fretwear.history import ContactHistory
+    from fretwear.uncertainty import LogNormal, monte_carlo
+
+    t = np.linspace(0, 2, 2001)
+    angle = np.radians(150 * np.sin(3 * t))
+    h = ContactHistory(time=t, normal_force=np.full(t.size, 2.0), vt1=np.full(t.size, 0.1),
+                       vt2=np.zeros(t.size), dy=np.cos(angle), dz=np.sin(angle))
+    case = {"contact_type": "TUBE_BAV", "instants": [1.0, 10.0], "time_scale": 3.15e7,
+            "dimensions": {"mobile_radius": 9.525e-3, "obstacle_width": 12.7e-3},
+            "sectors": 4, "coefficients": {"coefficient": 9.2e-15}}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        sector = monte_carlo(case, h, factor=LogNormal(1.0, sigma_ln=0.3), sector=2,
+                             samples=32, name="R4C2")
+        whole = monte_carlo(case, h, factor=LogNormal(1.0, sigma_ln=0.3), samples=32,
+                            name="sector side")
+    assert sector.depth_of == "sector 2" and whole.depth_of == "global"
+    assert sector.to_dict()["depth_of"] == "sector 2"
+    assert sector.summary().attrs["depth_of"] == "sector 2"
+    label = figures.plot_fan_chart(sector, ax=Figure().add_subplot()).axes[0].get_ylabel()
+    assert label == "sector 2 depth of the tube [mm]"
+    label = figures.plot_fan_chart(whole, ax=Figure().add_subplot()).axes[0].get_ylabel()
+    assert label == "global depth of the tube [mm]"

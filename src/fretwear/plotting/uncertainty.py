@@ -78,8 +78,7 @@ def plot_fan_chart(result, *, bands=BANDS, limit: float | None = None, unit: str
     top = np.nanmax(np.where(np.isfinite(quant.to_numpy()), quant.to_numpy(), np.nan)) * 1e3
     if wall is not None and top > wall * 1e3:
         axis.axhline(wall * 1e3, color="k", lw=1.5, label="wall")
-    what = "sector" if getattr(result, "name", "").find("sector") >= 0 else "global"
-    axis.set_ylabel(f"{what} depth of the tube [mm]")
+    axis.set_ylabel(f"{getattr(result, 'depth_of', 'global')} depth of the tube [mm]")
     axis.set_xlabel(f"instant [{unit}]" if unit else "instant")
     axis.grid(alpha=0.3)
     axis.legend(fontsize="small", loc="upper left")

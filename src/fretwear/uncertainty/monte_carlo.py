@@ -147,6 +147,10 @@ class UncertaintyResult:
         Depth limit as a fraction of the wall [-].
     name : str
         Contact name.
+    depth_of : str
+        Which depth of the mobile the samples are: ``"global"`` (the wear table's
+        ``depth_mobile``, from the total volume) or ``"sector j"`` (``depth_mobile_sector`` of
+        sector j, its volume spread over its arc).
     """
 
     instants: np.ndarray
@@ -161,6 +165,7 @@ class UncertaintyResult:
     wall_thickness: float | None
     depth_limit: float
     name: str = ""
+    depth_of: str = "global"
     _propagation: _Propagation | None = field(default=None, repr=False)
     _second: np.ndarray | None = field(default=None, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
@@ -308,9 +313,12 @@ class UncertaintyResult:
         return int(hits[0])
 
     def summary(self, q: Sequence[float] = QUANTILES) -> pd.DataFrame:
-        """Per instant: nominal depth, depth quantiles [m], fraction of the wall of the median
-        and of the highest quantile [-], exceedance probability of the limit [-]."""
+        """Per instant: nominal depth ``depth_nominal`` and quantiles ``depth_q5`` ... [m] of
+        the depth named by :attr:`depth_of` (also in the frame's ``attrs``), with a wall: the
+        median's fraction of the wall ``wall_fraction_q50`` [-] and the probability of
+        exceeding the limit ``exceedance`` [-]."""
         frame = self.quantiles(q).rename(columns=lambda x: f"depth_q{100 * x:g}")
+        frame.attrs["depth_of"] = self.depth_of
         frame.insert(0, "depth_nominal", self.nominal_depth)
         if self.wall_thickness is not None:
             frame["wall_fraction_q50"] = np.quantile(self.depth, 0.5, axis=0) / self.wall_thickness
@@ -319,7 +327,8 @@ class UncertaintyResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (no samples): inputs, quantiles, exceedance, method."""
-        out = {"name": self.name, "method": self.method, "seed": self.seed,
+        out = {"name": self.name, "depth_of": self.depth_of, "method": self.method,
+               "seed": self.seed,
                "samples": self.samples, "instants": self.instants.tolist(),
                "time_scale": self.time_scale, "origin": self.origin,
                "wall_thickness": self.wall_thickness, "depth_limit": self.depth_limit,
@@ -541,6 +550,7 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
         instants=model.origin + durations, depth=depth, inputs=inputs,
         variables=tuple(variables), nominal_depth=nominal, method=method, seed=seed,
         time_scale=model.time_scale, origin=model.origin, wall_thickness=model.wall_thickness,
-        depth_limit=model.depth_limit, name=name or model.name, _propagation=prop,
+        depth_limit=model.depth_limit, name=name or model.name, depth_of=key,
+        _propagation=prop,
         _second=second)
 
