@@ -4,7 +4,10 @@ statistics computed in the same pass (theory §2-§3).
 Modules:
 
 - :mod:`fretwear.power.core`: :func:`wear_power`, :class:`PowerAccumulator` (the mergeable
-  streaming reduction), :class:`PowerResult`, :func:`contact_statistics`;
+  streaming reduction), :func:`contact_statistics`;
+- :mod:`fretwear.power.result`: :class:`PowerResult` (total, block and sector powers, statistics,
+  confidence intervals);
+- :mod:`fretwear.power.confidence`: confidence intervals of the power (batch means);
 - :mod:`fretwear.power.statistics`: :class:`ContactStatistics` and the impact bookkeeping;
 - :mod:`fretwear.power.impacts`: :func:`impacts` (every impact of a window, one row each) and
   :func:`channel_statistics` (mean, std, RMS, extrema of a channel), POST_DYNA_MODA_T-like;
@@ -13,13 +16,9 @@ Modules:
 """
 
 from fretwear.history import DEFAULT_CHUNK_SIZE
-from fretwear.power.core import (
-    PowerAccumulator,
-    PowerResult,
-    contact_statistics,
-    wear_power,
-)
+from fretwear.power.core import PowerAccumulator, contact_statistics, wear_power
 from fretwear.power.impacts import IMPACT_UNITS, channel_statistics, impacts
+from fretwear.power.result import PowerResult
 from fretwear.power.statistics import STATISTICS_UNITS, ContactStatistics
 
 __all__ = [

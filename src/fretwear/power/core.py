@@ -23,13 +23,11 @@ import math
 import os
 import warnings
 from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
 
 from fretwear.errors import (
-    ConfidenceWarning,
     HistoryError,
     InputError,
     KeywordError,
@@ -37,141 +35,12 @@ from fretwear.errors import (
 )
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import iter_history_chunks, read_history
-from fretwear.power.confidence import PowerInterval, batch_means_interval
 from fretwear.power.kernels import BLOCK_STATS, GROUP_FIELDS, fused
-from fretwear.power.statistics import (
-    ContactStatistics,
-    _jsonable,
-    finalize_statistics,
-    merge_groups,
-)
+from fretwear.power.result import PowerResult
+from fretwear.power.statistics import ContactStatistics, finalize_statistics, merge_groups
 from fretwear.sectors import sector_edges as _sector_edges
 
 _SAMPLE = ("time", "normal_force", "vt1", "vt2", "dy", "dz", "stick")
-
-
-@dataclass(frozen=True, eq=False)
-class PowerResult:
-    """Wear power of a window, its blocks and sectors, and the contact statistics.
-
-    Attributes
-    ----------
-    total : float
-        Wear power P over the window [W].
-    blocks : numpy.ndarray
-        Power of each block P_b [W] (their mean is ``total``).
-    block_edges : numpy.ndarray
-        B + 1 block edges [s].
-    sectors : numpy.ndarray or None
-        Power of each angular sector P_j [W] (they add up to ``total``), None without sectors.
-    sector_edges : numpy.ndarray or None
-        N + 1 sector edges [deg].
-    t_start, t_end, duration : float
-        Window bounds and length T [s].
-    spread : float
-        Relative spread of the block powers (max - min)/mean [-]; 0 for one block or no wear.
-    statistics : ContactStatistics
-        Contact statistics over the same window.
-    name : str
-        Name of the history.
-    block_sectors : numpy.ndarray or None
-        Power of each block in each sector [W], shape (B, N) (sector intervals), None without
-        sectors.
-
-    Examples
-    --------
-    >>> h = ContactHistory(time=[0.0, 1.0], normal_force=[2.0, 2.0], vt1=[0.5, 0.5],
-    ...                    vt2=[0.0, 0.0])
-    >>> wear_power(h).to_dict()["total"]
-    1.0
-    """
-
-    total: float
-    blocks: np.ndarray
-    block_edges: np.ndarray
-    sectors: np.ndarray | None
-    sector_edges: np.ndarray | None
-    t_start: float
-    t_end: float
-    duration: float
-    spread: float
-    statistics: ContactStatistics
-    name: str = ""
-    block_sectors: np.ndarray | None = None
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary; units: powers [W], times [s], angles [deg]."""
-        return {f.name: self.statistics.to_dict() if f.name == "statistics"
-                else [_jsonable(row) for row in self.block_sectors]
-                if f.name == "block_sectors" and self.block_sectors is not None
-                else _jsonable(getattr(self, f.name)) for f in fields(self)}
-
-    def confidence_interval(self, level: float = 0.95, *, sector: int | None = None
-                            ) -> PowerInterval:
-        """Confidence interval of the power (or of one sector's power) from the block powers.
-
-        Batch means with Student's t over the B blocks (:mod:`fretwear.power.confidence`);
-        ``str()`` of the result reads ``P = 0.184 ± 0.012 W (95 %)``.
-
-        Parameters
-        ----------
-        level : float
-            Confidence level in (0, 1) [-].
-        sector : int, optional
-            1-based sector (default: the total power).
-
-        Raises
-        ------
-        InputError
-            Fewer than 2 blocks, or no such sector.
-
-        Warns
-        -----
-        ConfidenceWarning
-            Fewer than 10 blocks, or block powers correlated at lag 1.
-
-        Examples
-        --------
-        Blocks alternating between 2.2 and 1.8 W: mean 2, s = 0.2108, t(9) = 2.262.
-
-        >>> t = np.linspace(0, 10, 10001)
-        >>> h = ContactHistory(time=t, normal_force=np.full(t.size, 2.0),
-        ...                    vt1=1 + 0.1 * np.cos(np.pi * np.floor(t)), vt2=np.zeros(t.size))
-        >>> r = wear_power(h, blocks=10, t_start=0, t_end=10, stationarity_threshold=0.5)
-        >>> str(r.confidence_interval())
-        'P = 2.00 ± 0.15 W (95 %)'
-        """
-        if sector is None:
-            return batch_means_interval(self.blocks, level, name=self.name or "total")
-        if self.sectors is None or self.block_sectors is None:
-            raise InputError("this power has no sectors; compute it with sectors=... for "
-                             "sector intervals")
-        count = len(self.sectors)
-        if isinstance(sector, bool) or not 1 <= int(sector) <= count:
-            raise InputError(f"sector must be a 1-based sector number in 1..{count}, got "
-                             f"{sector!r}")
-        return batch_means_interval(self.block_sectors[:, int(sector) - 1], level,
-                                    name=f"{self.name or 'power'} sector {int(sector)}")
-
-    def sector_confidence_intervals(self, level: float = 0.95) -> list[PowerInterval]:
-        """:meth:`confidence_interval` of every sector, in order (empty without sectors).
-
-        The sectors' ConfidenceWarnings are issued once per kind, naming the sectors.
-        """
-        if self.sectors is None:
-            return []
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", ConfidenceWarning)
-            out = [self.confidence_interval(level, sector=j + 1)
-                   for j in range(len(self.sectors))]
-        grouped: dict[str, list[str]] = {}
-        for w in caught:
-            name, _, rest = str(w.message).partition(": ")
-            grouped.setdefault(rest, []).append(name.rpartition(" sector ")[2])
-        for rest, sectors in grouped.items():
-            warnings.warn(f"{self.name or 'power'} sectors {', '.join(sectors)}: {rest}",
-                          ConfidenceWarning, stacklevel=2)
-        return out
 
 
 def _as_bound(value, keyword: str) -> float | None:
@@ -209,9 +78,9 @@ class PowerAccumulator:
     -----
     The partial state is: the [B, N] block × sector integrals of g, per-block statistics
     integrals, the largest force, the impacts in mergeable form
-    (:func:`fretwear.power.statistics.merge_groups`), and the first and last samples seen. ``update``
-    accepts consecutive chunks that share their boundary sample or not (the interval between the
-    last sample kept and the next chunk's first is then added). ``merge`` combines two
+    (:func:`fretwear.power.statistics.merge_groups`), and the first and last samples seen.
+    ``update`` accepts consecutive chunks that share their boundary sample or not (the interval
+    between the last sample kept and the next chunk's first is then added). ``merge`` combines two
     accumulators over adjacent stretches of time, in either order; it is associative.
 
     Examples
