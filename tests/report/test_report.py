@@ -56,6 +56,10 @@ def test_content(analysis, html):
     for warning in analysis.case.warnings:
         assert warning.split(":")[0] in html
     assert html.count("data:image/png;base64,") == 4  # table, sectors, fan chart, Sobol'
+    # the power's distribution in words (its unit), not a dataclass repr of 16 digits
+    power = next(v for v in analysis.uncertainty.variables if v.kind == "power")
+    assert f"wear power: {power.distribution}" in html and "TruncatedStudent(" not in html
+    assert "The tube's global depth at each instant" in html
 
 
 def test_self_contained(html):

@@ -155,7 +155,7 @@ def _uncertainty(analysis: Analysis, unit: str) -> dict[str, Any] | None:
         ex = mc.exceedance()
         frame["P(depth > limit)"] = ex["probability"].to_numpy()
         frame["± (1σ)"] = ex["standard_error"].to_numpy()
-    out = {"samples": mc.samples, "method": mc.method, "seed": mc.seed,
+    out = {"samples": mc.samples, "method": mc.method, "seed": mc.seed, "depth_of": mc.depth_of,
            "variables": [{"label": v.label, "distribution": v.describe()}
                          for v in mc.variables],
            "table": _table_html(frame),

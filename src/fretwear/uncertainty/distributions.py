@@ -186,4 +186,4 @@ def describe(distribution) -> str:
         args = ", ".join(f"{a:.4g}" for a in getattr(distribution, "args", ()))
         kwds = ", ".join(f"{k}={v:.4g}" for k, v in getattr(distribution, "kwds", {}).items())
         return f"{dist.name}({', '.join(p for p in (args, kwds) if p)})"
-    return repr(distribution)
+    return str(distribution)  # its own __str__ (e.g. TruncatedStudent with units), else repr
