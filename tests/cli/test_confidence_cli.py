@@ -49,4 +49,4 @@ def test_run_summary_prints_the_interval_and_its_warning(capsys):
     assert main(["run", str(EXAMPLES / "tube_bav.toml")]) == 0
     text = capsys.readouterr().out
     assert "P = 0.0020 ± 0.0011 W (95 %)  (batch means over 4 blocks)" in text
-    assert "only 4 blocks" in text
+    assert "ConfidenceWarning: oscillator_gap: only 4 blocks" in text  # named like the others

@@ -87,7 +87,7 @@ def _summary(result, console) -> None:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", ConfidenceWarning)
             interval = power.confidence_interval(0.95)
-        notes = [str(w.message) for w in caught]
+        notes = [f"{w.category.__name__}: {w.message}" for w in caught]
         console.print(f"{interval}  (batch means over {len(blocks)} blocks)", markup=False,
                       highlight=False)
     last = table[table["instant"] == table["instant"].iloc[-1]]
