@@ -43,6 +43,7 @@ def test_table_mode_writes_profile_discret_and_plot(tmp_path, capsys):
     out = capsys.readouterr().out
     assert code == 0, out
     assert "at instant 5" in out
+    assert "profile d tube [mm]" in out  # the obstacle-profile depth, named as such
     profile = read_profile_table(tmp_path / "profile.csv")
     assert len(profile) == 721
     np.testing.assert_allclose(profile["clearance_worn"], _expected_clearance(vm, vo),

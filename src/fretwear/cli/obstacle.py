@@ -40,14 +40,15 @@ def _summary(result, echo) -> None:
     when = "" if result.instant is None else f" at instant {result.instant:g}"
     echo(f"obstacle update{when}: {d.edges.size - 1} sectors, {d.shape} depth, "
          f"obstacle {type(result.obstacle).__name__}, R_m = {result.mobile.outer_radius:g} m")
-    d_label = "d" if d.shape == "uniform" else "max d"
+    # the obstacle-profile depth, not the wear table's global or sector depth
+    d_label = "profile d" if d.shape == "uniform" else "max profile d"
     echo(f"{'sector':>6} {'angles [deg]':>15} {'V tube [mm3]':>13} {'V obst [mm3]':>13} "
-         f"{d_label + ' tube [mm]':>16} {d_label + ' obst [mm]':>16}")
+         f"{d_label + ' tube [mm]':>24} {d_label + ' obst [mm]':>24}")
     for j in range(d.edges.size - 1):
         flag = "  PERFORATED" if j + 1 in result.perforated_sectors else ""
         echo(f"{j + 1:>6} {f'{d.edges[j]:g}..{d.edges[j + 1]:g}':>15} "
              f"{d.volume_mobile[j] * 1e9:>13.4g} {d.volume_obstacle[j] * 1e9:>13.4g} "
-             f"{d.sector_depth_mobile[j] * 1e3:>16.4g} {d.sector_depth_obstacle[j] * 1e3:>16.4g}"
+             f"{d.sector_depth_mobile[j] * 1e3:>24.4g} {d.sector_depth_obstacle[j] * 1e3:>24.4g}"
              f"{flag}")
     opening = result.clearance_worn - result.clearance_initial
     if np.isfinite(opening).any():
