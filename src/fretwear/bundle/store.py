@@ -52,6 +52,7 @@ def write_frame(frame: pd.DataFrame, path: Path, fmt: str) -> Path:
 def read_frame(path: Path) -> pd.DataFrame:
     """Read a table written by :func:`write_frame`."""
     if path.suffix == ".parquet":
+        require("pyarrow", purpose="reading a bundle's Parquet table")
         return pd.read_parquet(path)
     return pd.read_csv(path, dtype={"contact": str})
 

@@ -14,7 +14,7 @@ from typing import Any
 import pandas as pd
 
 from fretwear.bundle.manifest import IDENTITY
-from fretwear.bundle.store import OutputDirectory
+from fretwear.bundle.store import OutputDirectory, read_frame
 from fretwear.errors import InputError
 from fretwear.workflows.case_files import run_case
 
@@ -75,8 +75,7 @@ def bundle_predictions(results: Any) -> tuple[dict[str, pd.DataFrame], pd.DataFr
     for name in ("table.parquet", "table.csv"):
         final = directory / name
         if final.is_file():
-            frame = pd.read_parquet(final) if final.suffix == ".parquet" else pd.read_csv(
-                final, dtype={"contact": str})
+            frame = read_frame(final)
             cols = [c for c in IDENTITY if c in frame.columns]
             identity = frame[cols].drop_duplicates("contact").astype({"contact": str})
             break
