@@ -48,7 +48,7 @@ def test_given_axes_are_used(result):
     assert plot_tube_sheet(result, ax=axes[0]) is fig
     assert plot_power_distribution(result, ax=axes[1]) is fig
     assert plot_worst_depths(result, ax=axes[2]) is fig
-    assert axes[2].get_ylabel() == "tube depth [mm]"
+    assert axes[2].get_ylabel() == "global depth of the tube [mm]"  # which depth (issue 12)
     assert len(axes[2].get_lines()) >= 5  # one line per contact (+ the limit line)
 
 

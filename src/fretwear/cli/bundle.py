@@ -59,9 +59,9 @@ def _summary(result, console, top: int, limit: float | None) -> None:
     if not len(summary):
         return
     shown = "each case's depth_limit" if limit is None else f"{limit:.0%} of the wall"
-    table = Table(title=f"the {min(top, len(summary))} deepest contacts (last instant; limit: "
-                        f"{shown})")
-    for col in ("rank", "contact", "row", "col", "support", "P [W]", "depth [mm]",
+    table = Table(title=f"the {min(top, len(summary))} deepest contacts (global depth of the "
+                        f"tube at the last instant; limit: {shown})")
+    for col in ("rank", "contact", "row", "col", "support", "P [W]", "global depth [mm]",
                 "depth/wall", "time to limit"):
         table.add_column(col, justify="right")
 

@@ -35,7 +35,7 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
         The bundle's results, or their ``summary()`` (columns ``tube_row``, ``tube_column``,
         ``depth`` [m], ``depth_fraction``).
     quantity : str
-        ``"depth"`` (tube depth at the last instant [mm]), ``"fraction"`` (depth / wall
+        ``"depth"`` (global tube depth at the last instant [mm]), ``"fraction"`` (depth / wall
         thickness [%]), or ``"auto"`` (the fraction when every tube's wall is known).
     ax : Axes or Figure, optional
         Where to draw (one panel).
@@ -79,7 +79,8 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     size = float(np.clip(2.0e4 / max(len(worst), 1), 4.0, 250.0))  # squares fill a small map
     art = axis.scatter(ok["column"], ok["row"], c=ok["value"], marker="s", s=size,
                        cmap="viridis", edgecolors="0.3", linewidths=0.4)
-    label = "depth / wall [%]" if quantity == "fraction" else "tube depth [mm]"
+    label = ("global depth / wall [%]" if quantity == "fraction"
+             else "global depth of the tube [mm]")
     fig.colorbar(art, ax=axis, label=f"worst contact: {label}")
     bad = worst[worst["beyond"]]
     if len(bad):
@@ -190,7 +191,7 @@ def plot_worst_depths(results: Any, *, count: int = 10, limit: float | None = No
         units = results.contacts["time_unit"].dropna().unique()
         unit = f" [{units[0]}]" if len(units) == 1 else ""
     axis.set_xlabel(f"instant{unit}")
-    axis.set_ylabel("tube depth [mm]")
+    axis.set_ylabel("global depth of the tube [mm]")
     axis.set_title(f"the {len(summary)} deepest contacts" + (" (dotted: limit depth)"
                                                             if limits else ""))
     if len(summary):
