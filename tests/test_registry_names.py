@@ -77,6 +77,15 @@ def test_materials_help_lists_contact_types_and_laws():
     assert LAW.findall(_option(text, "--law")) == list(WEAR_LAWS)
 
 
+def test_materials_help_gives_each_laws_coefficients_from_the_registry():
+    text = " ".join(_help("materials").split())
+    for law in WEAR_LAWS.values():
+        user = [p for p in law.parameters if p in law.aster_keywords]
+        assert all(p in law.symbols for p in user), law.name  # every user coefficient
+        listed = ", ".join(f"{law.symbols[p]} [{law.units[p]}]" for p in user)
+        assert f"{law.name} {listed}" in text, law.name
+
+
 def test_power_help_lists_formats_and_channels():
     text = " ".join(_help("power").split())  # unwrapped
     formats = re.search(r"File format \(([^)]*)\)", text).group(1).split(", ")

@@ -475,9 +475,7 @@ def summary(database: pd.DataFrame | None = None, *, contact_type: str | None = 
         if lw not in WEAR_LAWS:
             raise DatabaseError(f"unknown law {law!r}; one of {list(WEAR_LAWS)}")
         table = table[table.law == lw]
-    symbols = {"coefficient": "K", "rate_coefficient": "A", "power_exponent": "b",
-               "decay_constant": "n", "asymptotic_rate": "S", "reference_coefficient": "k_r",
-               "reference_intensity": "w_r"}
+    symbols = {p: s for law_ in WEAR_LAWS.values() for p, s in law_.symbols.items()}
     order = {p: i for law_ in WEAR_LAWS.values() for i, p in enumerate(law_.accepted)}
     rows = []
     group_cols = ["contact_type", "mobile_material", "obstacle_material", "law"]

@@ -23,7 +23,24 @@ def _short_source(source: str, origin: str) -> str:
     return " ".join(dict.fromkeys(refs)) or source
 
 
-@click.command("materials")
+def _coefficients_help() -> str:
+    """Each law's user coefficients as symbol [SI unit], from the law registry."""
+    return "; ".join(
+        f"{law.name} " + ", ".join(f"{law.symbols.get(p, p)} [{law.units[p]}]"
+                                   for p in law.parameters if p in law.aster_keywords)
+        for law in WEAR_LAWS.values())
+
+
+_HELP = f"""The wear-coefficient database: coefficients per contact type, material pair and law.
+
+One row per (contact type, mobile material, obstacle material, law). Values are SI:
+{_coefficients_help()}. "-" in the obstacle column is an empty box of the reference tables (no
+obstacle coefficient). The built-in values are the coefficient tables of Code_Aster's POST_USURE
+reference manual (R7.20.01 §3); the material codes used are listed after the table.
+"""
+
+
+@click.command("materials", help=_HELP)
 @click.option("--contact", "contact_type", metavar="TYPE",
               help=f"Only this contact type ({', '.join(CONTACT_TYPES)}); any case.")
 @click.option("--law", metavar="LAW", help=f"Only this law ({', '.join(WEAR_LAWS)}); any case.")
@@ -36,14 +53,7 @@ def _short_source(source: str, origin: str) -> str:
                    "and the material codes) instead.")
 def command(contact_type: str | None, law: str | None, databases: tuple[str, ...],
             as_json: bool) -> None:
-    """The wear-coefficient database: coefficients per contact type, material pair and law.
-
-    One row per (contact type, mobile material, obstacle material, law). Values are SI: Archard
-    K [Pa⁻¹]; EDF_MZ A [m³/(s·W^b)], b [1], n [s⁻¹], S [m³/s]. "-" in the obstacle column is an
-    empty box of the reference tables (no obstacle coefficient). The built-in values are the
-    coefficient tables of Code_Aster's POST_USURE reference manual (R7.20.01 §3); the material
-    codes used are listed after the table.
-    """
+    """``fretwear materials``: the database as a table or JSON (help text: :data:`_HELP`)."""
     table = load_database(list(databases) or None)
     boxes = summary(table, contact_type=contact_type, law=law)
     used = set(boxes.mobile_material) | set(boxes.obstacle_material)

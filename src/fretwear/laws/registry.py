@@ -48,6 +48,9 @@ class WearLaw:
         V proportional to t (then the equivalent time is V / (dV/dt)).
     needs_history : bool
         The law needs class statistics of the contact history (:meth:`statistics`).
+    symbols : mapping
+        Coefficient -> its symbol in the equations (``coefficient -> "K"``), for tables and help
+        texts; a coefficient without a symbol is shown by its name.
 
     Notes
     -----
@@ -73,6 +76,7 @@ class WearLaw:
     linear_in_time: bool
     needs_history: bool
     history_parameters: tuple[str, ...] = ()
+    symbols: Mapping[str, str] = field(default_factory=dict)
     _volume: Callable[..., np.ndarray] = field(default=None, repr=False)
     _equivalent_time: Callable[..., np.ndarray] = field(default=None, repr=False)
 
@@ -80,6 +84,7 @@ class WearLaw:
         object.__setattr__(self, "defaults", MappingProxyType(dict(self.defaults)))
         object.__setattr__(self, "units", MappingProxyType(dict(self.units)))
         object.__setattr__(self, "aster_keywords", MappingProxyType(dict(self.aster_keywords)))
+        object.__setattr__(self, "symbols", MappingProxyType(dict(self.symbols)))
 
     @property
     def accepted(self) -> tuple[str, ...]:
@@ -236,6 +241,7 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
         defaults={},
         units={"coefficient": "Pa⁻¹"},
         aster_keywords={"coefficient": "COEF_USURE"},
+        symbols={"coefficient": "K"},
         linear_in_time=True,
         needs_history=False,
         _volume=models.archard,
@@ -256,6 +262,8 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
         aster_keywords={"reference_coefficient": "COEF_USURE", "impact_factor": "COEF_FNOR",
                         "sliding_factor": "COEF_VTAN", "k": "COEF_K", "c": "COEF_C",
                         "force_max": "FNOR_MAXI", "speed_max": "VTAN_MAXI"},
+        symbols={"reference_coefficient": "k_r", "intensity": "w", "reference_intensity": "w_r",
+                 "impact_factor": "k1", "sliding_factor": "k2"},
         linear_in_time=True,
         needs_history=True,
         _volume=models.kwu_epri,
@@ -270,6 +278,8 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
                "asymptotic_rate": "m³/s"},
         aster_keywords={"rate_coefficient": "COEF_USURE", "power_exponent": "COEF_B",
                         "decay_constant": "COEF_N", "asymptotic_rate": "COEF_S"},
+        symbols={"rate_coefficient": "A", "power_exponent": "b", "decay_constant": "n",
+                 "asymptotic_rate": "S"},
         linear_in_time=False,
         needs_history=False,
         _volume=models.edf_mz,
