@@ -111,6 +111,28 @@ def test_forecast_quantiles_and_exceedance_in_closed_form(predictions):
             1 - stats.norm.cdf(math.log(f_limit) / 0.6), abs=1e-9)
 
 
+def test_small_exceedance_probabilities_are_exact_not_rounded_to_zero(predictions):
+    """Far from the limit the probability is tiny but still ranks the contacts: it is the
+    normal survival function of the closed form (1 − cdf would round it to 0 below 1e-16), for
+    the conjugate posterior and the prior; the grid posterior holds no mass there."""
+    prior = LogNormal(1.0, sigma_ln=0.6)
+    mean, sd = _closed_form(1.0, 0.6)
+    limit = 0.4 * 1.09e-3
+    r = calibrate(predictions, INSPECTIONS, prior=prior, measurement_sigma=0.2, forecast=1.0)
+    grid = calibrate(predictions, INSPECTIONS, prior=prior, measurement_sigma=0.2,
+                     forecast=1.0, method="grid")
+    fc, fg = r.predictive.set_index("contact"), grid.predictive.set_index("contact")
+    for name, p in POWERS.items():
+        ln_f_limit = math.log((limit / C) ** 1.5 / (K0 * p * 1 * YEAR))
+        exact = stats.norm.sf((ln_f_limit - mean) / sd)
+        assert 0 < exact < 1e-16
+        assert fc.loc[name, "exceedance"] == pytest.approx(exact, rel=1e-8, abs=0)
+        assert fc.loc[name, "exceedance_prior"] == pytest.approx(
+            stats.norm.sf(ln_f_limit / 0.6), rel=1e-8, abs=0)
+        assert 0 <= fg.loc[name, "exceedance"] < 1e-12  # the grid holds the posterior's mass
+    assert fc.loc["R12C40", "exceedance"] > fc.loc["R30C7", "exceedance"]  # more power
+
+
 def test_tilted_contact_uses_the_grid_and_matches_quadrature():
     """TUBE_BAV tilted 1°, depths past l·θ: not a power law of f. The posterior mean of λ is
     checked against scipy.integrate.quad, the likelihood computed by wear_table with K·f."""

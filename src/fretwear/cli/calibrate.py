@@ -91,7 +91,9 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
     if identity is not None and result.predictive is not None:
         frame = identity.merge(frame, on="contact", how="right")
         if "exceedance" in frame.columns:
-            frame = frame.sort_values("exceedance", ascending=False, kind="stable")
+            # ties (probabilities below the float range) ranked by the posterior median depth
+            frame = frame.sort_values(["exceedance", "depth_q50"], ascending=False,
+                                      kind="stable")
     if output is not None:
         with atomic_write(output, encoding="utf-8", newline="") as handle:
             frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)

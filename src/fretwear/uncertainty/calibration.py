@@ -60,6 +60,8 @@ CALIBRATION_METHODS = ("auto", "conjugate", "grid")
 
 _GRID = 4001
 _LINEAR_TOL = 1e-9
+#: Largest λ = ln f searched for the factor that brings a depth to the limit (e^700 ≈ 1e304).
+_LAMBDA_MAX = 700.0
 
 
 # ---------------------------------------------------------------------- the posterior
@@ -89,6 +91,15 @@ class GridPosterior:
         with np.errstate(divide="ignore"):
             lam = np.log(np.asarray(f, dtype=float))
         return np.interp(lam, self.log_factor, self._cdf_table, left=0.0, right=1.0)
+
+    def sf(self, f) -> np.ndarray:
+        """P(factor > f), summed from the upper end of the grid (accurate in that tail)."""
+        lam, p = self.log_factor, self.density
+        segments = 0.5 * (p[1:] + p[:-1]) * np.diff(lam)
+        tail = np.concatenate([np.cumsum(segments[::-1])[::-1], [0.0]])
+        with np.errstate(divide="ignore"):
+            x = np.log(np.asarray(f, dtype=float))
+        return np.interp(x, lam, tail / tail[0], left=1.0, right=0.0)
 
     def ppf(self, u) -> np.ndarray:
         """Quantile function of the factor, u in (0, 1)."""
@@ -376,13 +387,15 @@ def _exceed(model, elapsed, limit, dist, lam_lo, lam_hi) -> float:
         return np.where(np.isnan(d), 2.0 * limit + 1.0, d)
 
     lo, hi = float(lam_lo), float(lam_hi)
-    if g(np.array([hi]))[0] <= limit:
-        return float(1.0 - dist.cdf(math.exp(hi)))  # beyond the grid: mass above hi
+    while g(np.array([hi]))[0] <= limit:  # f_L above the bracket: widen it upwards
+        if hi >= _LAMBDA_MAX:
+            return 0.0
+        lo, hi = hi, min(_LAMBDA_MAX, hi + 2.0 * (hi - lo))
     if g(np.array([lo]))[0] > limit:
-        return float(1.0 - dist.cdf(math.exp(lo)))
+        return float(dist.sf(math.exp(lo)))
     lam_l = float(solve_monotone(g, np.array([limit]), np.array([lo]), np.array([hi]),
                                  rtol=1e-12, atol=1e-14)[0])
-    return float(1.0 - dist.cdf(math.exp(lam_l)))
+    return float(dist.sf(math.exp(lam_l)))  # sf, not 1 − cdf: small probabilities still rank
 
 
 def _forecast_row(contact, model: ContactModel, instant, limit, q, prior, posterior) -> dict:

@@ -133,6 +133,16 @@ class LogNormal:
         with np.errstate(divide="ignore"):
             return stats.norm.cdf((np.log(x) - math.log(m)) / s)
 
+    def sf(self, x) -> np.ndarray:
+        """Survival function P(X > x), exact in the upper tail (not 1 − cdf, which rounds to 0
+        below 1e-16)."""
+        m, s = self._checked()
+        x = np.asarray(x, dtype=float)
+        if s == 0.0:
+            return (x < m).astype(float)
+        with np.errstate(divide="ignore"):
+            return stats.norm.sf((np.log(x) - math.log(m)) / s)
+
     def pdf(self, x) -> np.ndarray:
         """Probability density [1/unit of X]."""
         m, s = self._checked()
