@@ -45,6 +45,7 @@ from fretwear.table.coefficients import (
     resolve_coefficients,
     sector_parameter,
 )
+from fretwear.table.limit import check_wall
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _read_initial_state
 from fretwear.table.schema import _TIME_TOL
@@ -432,15 +433,8 @@ class WearCase:
         object.__setattr__(self, "stationarity_threshold", threshold)
 
     def _check_wall(self) -> None:
-        if self.wall_thickness is not None:
-            wall = _real(self.wall_thickness, "wall_thickness [m]")
-            if wall <= 0:
-                raise InputError(f"wall_thickness must be > 0 [m], got {wall:g}")
-            object.__setattr__(self, "wall_thickness", wall)
-        limit = _real(self.depth_limit, "depth_limit", none=False)
-        if not 0 < limit <= 1:
-            raise InputError(f"depth_limit is a fraction of the wall thickness, 0 < depth_limit "
-                             f"<= 1 [-], got {limit:g} (e.g. 0.4 for a plugging criterion)")
+        wall, limit = check_wall(self.wall_thickness, self.depth_limit)
+        object.__setattr__(self, "wall_thickness", wall)
         object.__setattr__(self, "depth_limit", limit)
 
     # ----------------------------------------------------------------------- derived values

@@ -15,6 +15,7 @@ A depth beyond the wall (fraction > 1) is named by a :class:`~fretwear.errors.Pe
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable
 
@@ -23,7 +24,46 @@ import numpy as np
 from fretwear.errors import InputError, PerforationWarning
 from fretwear.geometry._shapes import solve_monotone
 
-__all__ = ["add_wall_columns", "first_time", "time_to_depth"]
+__all__ = ["add_wall_columns", "check_wall", "first_time", "time_to_depth"]
+
+def _finite(value, name: str) -> float:
+    ok = not isinstance(value, bool | str | bytes) and value is not None
+    try:
+        out = float(value) if ok else math.nan
+    except (TypeError, ValueError):
+        out = math.nan
+    if not math.isfinite(out):
+        raise InputError(f"{name} must be a finite number, got {value!r}")
+    return out
+
+
+def check_wall(wall_thickness, depth_limit) -> tuple[float | None, float]:
+    """The validated wall thickness [m] (None: unknown) and depth limit [-], as floats.
+
+    The one check of the wall and its limit, for the wear case and the uncertainty models.
+
+    Raises
+    ------
+    InputError
+        A wall thickness that is not a finite number > 0 [m], or a depth limit that is not a
+        fraction of the wall, 0 < depth_limit <= 1 [-].
+
+    Examples
+    --------
+    >>> check_wall(1.09e-3, 0.4)
+    (0.00109, 0.4)
+    """
+    wall = None
+    if wall_thickness is not None:
+        wall = _finite(wall_thickness, "wall_thickness [m]")
+        if wall <= 0:
+            raise InputError(f"wall_thickness must be > 0 [m], got {wall:g}")
+    limit = _finite(depth_limit, "depth_limit")
+    if not 0 < limit <= 1:
+        raise InputError(f"depth_limit is a fraction of the wall thickness, 0 < depth_limit "
+                         f"<= 1 [-], got {limit:g} (e.g. 0.4 for a plugging criterion)")
+    return wall, limit
+
 
 #: Bracket growth per step and number of steps (16⁸⁰ ≈ 10⁹⁶ times the first guess).
 _GROWTH, _STEPS = 16.0, 80

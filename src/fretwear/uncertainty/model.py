@@ -34,7 +34,7 @@ from fretwear.geometry.base import ContactGeometry
 from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile, sector_geometry
 from fretwear.laws import get_law
 from fretwear.laws.registry import WearLaw
-from fretwear.table.limit import time_to_depth
+from fretwear.table.limit import check_wall, time_to_depth
 
 __all__ = ["ContactModel", "model_from_table", "models_from_table"]
 
@@ -117,13 +117,9 @@ class ContactModel:
                                f"{self.law.name}")
         if not (math.isfinite(self.time_scale) and self.time_scale > 0):
             raise InputError(f"time_scale must be > 0 [s per unit], got {self.time_scale!r}")
-        if self.wall_thickness is not None and not (
-                math.isfinite(self.wall_thickness) and self.wall_thickness > 0):
-            raise InputError(f"wall_thickness must be finite and > 0 [m], got "
-                             f"{self.wall_thickness!r}")
-        if not (math.isfinite(self.depth_limit) and 0 < self.depth_limit):
-            raise InputError(f"depth_limit must be a fraction of the wall > 0 [-], got "
-                             f"{self.depth_limit!r}")
+        wall, limit = check_wall(self.wall_thickness, self.depth_limit)
+        object.__setattr__(self, "wall_thickness", wall)
+        object.__setattr__(self, "depth_limit", limit)
 
     # ------------------------------------------------------------------ nominal values
     @property
