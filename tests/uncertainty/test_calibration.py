@@ -184,7 +184,12 @@ def test_sector_inspections_and_unknown_rows():
 def test_read_inspections_errors(tmp_path):
     path = tmp_path / "insp.csv"
     path.write_text("contact,instant,depth_mm\nA,10,0.3\nA,12,-1\n")
-    with pytest.raises(InputError, match="row 2: depth"):
+    # the user's column and value, not the converted metres' numpy repr
+    with pytest.raises(InputError, match=r"row 2: depth_mm must be a finite number > 0 \[mm\], "
+                                         r"got '-1(\.0)?'"):
+        read_inspections(path)
+    path.write_text("contact,instant,depth\nA,ten,3e-4\n")
+    with pytest.raises(InputError, match=r"row 1: instant must be a finite number, got 'ten'"):
         read_inspections(path)
     path.write_text("contact,instant,depth_um\nA,10,0.3\n")
     with pytest.raises(InputError, match="unknown column"):

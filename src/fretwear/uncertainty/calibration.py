@@ -173,8 +173,10 @@ def read_inspections(source) -> pd.DataFrame:
     if unknown:
         raise InputError(f"inspections: unknown column(s) {unknown}; the columns are "
                          f"{sorted(known)} (depth in m, or depth_mm in mm)")
+    given = {"instant": "instant", "depth": "depth"}  # the user's column of each value
     if "depth" not in frame and "depth_mm" in frame:
-        frame["depth"] = pd.to_numeric(frame.pop("depth_mm"), errors="coerce") * 1e-3
+        given["depth"] = "depth_mm"
+        frame["depth"] = pd.to_numeric(frame["depth_mm"], errors="coerce") * 1e-3
     for col in ("instant", "depth"):
         if col not in frame:
             raise InputError(f"inspections: the column {col!r} is missing "
@@ -195,9 +197,10 @@ def read_inspections(source) -> pd.DataFrame:
             bad |= out[col].to_numpy(dtype=float) <= 0
         if bad.any():
             row = int(np.flatnonzero(bad)[0])
-            raise InputError(f"inspections row {row + 1}: {col} must be a finite number"
-                             f"{' > 0 [m]' if col == 'depth' else ''}, got "
-                             f"{frame[col].iloc[row] if col in frame else 'nothing'!r}")
+            name = given[col]
+            unit = {"depth": " > 0 [m]", "depth_mm": " > 0 [mm]"}.get(name, "")
+            raise InputError(f"inspections row {row + 1}: {name} must be a finite number{unit}, "
+                             f"got {str(frame[name].iloc[row])!r}")
     return out
 
 
