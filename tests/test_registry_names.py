@@ -13,6 +13,7 @@ from fretwear.bundle.store import DATASET_FORMATS
 from fretwear.bundle.store import TABLE_FORMATS as BUNDLE_TABLE_FORMATS
 from fretwear.cli import cli
 from fretwear.geometry import CONTACT_TYPES
+from fretwear.geometry.base import ASTER_KEYWORDS, DIMENSION_UNITS
 from fretwear.history import CHANNELS
 from fretwear.io import FORMATS
 from fretwear.io.aster import TABLE_FORMATS
@@ -46,6 +47,15 @@ def test_case_file_key_help_lists_the_registries():
     text = keys_help()
     for name in (*CONTACT_TYPES, *WEAR_LAWS, *TIME_UNITS):
         assert re.search(rf"\b{re.escape(name)}\b", text), name
+
+
+def test_case_file_geometry_and_history_keys_come_from_the_registries():
+    dimensions = {k for k in KEYS["geometry"] if k.endswith(("_m", "_deg"))} - {"wall_thickness_m"}
+    assert dimensions == {f"{n}_{DIMENSION_UNITS[n]}" for n in ASTER_KEYWORDS}
+    for name, keyword in ASTER_KEYWORDS.items():
+        assert f"({keyword})" in KEYS["geometry"][f"{name}_{DIMENSION_UNITS[name]}"][1]
+    for key in ("file", "format"):
+        assert ", ".join(FORMATS) in KEYS["history"][key][1]
 
 
 def test_code_aster_facade_keyword_help_lists_the_registries():

@@ -65,7 +65,7 @@ DIMENSION_DESCRIPTIONS: dict[str, str] = {
     "mobile_radius": "outer radius of the mobile (tube or rod)",
     "obstacle_radius": "radius of the obstacle (bore radius, or the other tube's radius)",
     "obstacle_width": "width of the obstacle (worn height along the mobile's axis)",
-    "tilt_angle": "tilt of the mobile relative to the obstacle (crossing angle for TUBE_TUBE)",
+    "tilt_angle": "tilt of the mobile relative to the obstacle (the crossing angle of two tubes)",
     "isthmus_angle": "angle of the isthmus edge of a broached (trefoil/quatrefoil) hole",
     "impact_angle": "angle between the impact direction and the bar's normal",
 }

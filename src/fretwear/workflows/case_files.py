@@ -37,7 +37,8 @@ import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, KeywordError
 from fretwear.geometry import CONTACT_TYPES
-from fretwear.io import read_history
+from fretwear.geometry.base import ASTER_KEYWORDS, DIMENSION_DESCRIPTIONS, DIMENSION_UNITS
+from fretwear.io import FORMATS, read_history
 from fretwear.io.guard import readable_file, reading
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
 from fretwear.laws import WEAR_LAWS
@@ -51,9 +52,9 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
         "title": (str, "a title for the summary and the table metadata"),
     },
     "history": {
-        "file": (str, "contact history file (CSV, Parquet, HDF5, netCDF, NPZ, Code_Aster "
-                      "table), relative to the case file (RESU_GENE)"),
-        "format": (str, "file format when the suffix does not tell it"),
+        "file": (str, f"contact history file ({', '.join(FORMATS)}), relative to the case "
+                      "file (RESU_GENE)"),
+        "format": (str, f"file format when the suffix does not tell it: {', '.join(FORMATS)}"),
         "name": (str, "label of the shock point (NOEUD) for the summary"),
         "units": (dict, "units of the file's values, converted to SI, e.g. { length = \"mm\", "
                         "force = \"kN\" } or per channel { dy = \"mm\" }"),
@@ -90,12 +91,9 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
     },
     "geometry": {
         "contact_type": (str, f"{', '.join(CONTACT_TYPES)} (CONTACT)"),
-        "mobile_radius_m": ((int, float), "outer radius of the mobile [m] (RAYON_MOBILE)"),
-        "obstacle_radius_m": ((int, float), "radius of the obstacle [m] (RAYON_OBST)"),
-        "obstacle_width_m": ((int, float), "width of the obstacle [m] (LARGEUR_OBST)"),
-        "tilt_angle_deg": ((int, float), "tilt angle [deg] (ANGL_INCLI)"),
-        "isthmus_angle_deg": ((int, float), "isthmus angle [deg] (ANGL_ISTHME)"),
-        "impact_angle_deg": ((int, float), "impact angle [deg] (ANGL_IMPACT)"),
+        **{f"{name}_{DIMENSION_UNITS[name]}": (
+            (int, float), f"{DIMENSION_DESCRIPTIONS[name]} [{DIMENSION_UNITS[name]}] ({keyword})")
+           for name, keyword in ASTER_KEYWORDS.items()},
         "wall_thickness_m": ((int, float), "wall thickness of the mobile (tube) [m]: the table "
                                            "gains the depth over the wall and the instant of "
                                            "reaching the limit (fretwear extension)"),
@@ -129,9 +127,8 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
 #: Sections owned by other commands (``fretwear obstacle``, ``fretwear iterate``), accepted and
 #: ignored by ``fretwear run``.
 FOREIGN_SECTIONS: tuple[str, ...] = ("obstacle", "dynamics", "iterate", "uncertainty")
-_DIMENSIONS = {"mobile_radius_m": "mobile_radius", "obstacle_radius_m": "obstacle_radius",
-               "obstacle_width_m": "obstacle_width", "tilt_angle_deg": "tilt_angle",
-               "isthmus_angle_deg": "isthmus_angle", "impact_angle_deg": "impact_angle"}
+#: ``[geometry]`` key -> dimension (the geometry's names with their unit: ``mobile_radius_m``).
+_DIMENSIONS = {f"{name}_{DIMENSION_UNITS[name]}": name for name in ASTER_KEYWORDS}
 
 
 def keys_help() -> str:
