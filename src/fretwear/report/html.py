@@ -173,24 +173,29 @@ def _uncertainty(analysis: Analysis, unit: str) -> dict[str, Any] | None:
     return out
 
 
+def _in_mm(frame: pd.DataFrame, columns) -> pd.DataFrame:
+    """A copy with the depth ``columns`` [m] in mm and ``[mm]`` in their names, in place."""
+    out = frame.copy()
+    for col in columns:
+        out[col] = out[col] * 1e3
+    return out.rename(columns={c: f"{c} [mm]" for c in columns})
+
+
 def _calibration(analysis: Analysis) -> dict[str, Any] | None:
     cal = analysis.calibration
     if cal is None:
         return None
     low, high = cal.factor_interval(0.95)
-    obs = cal.observations.copy()
-    for col in ("depth", "prior_depth", "posterior_depth"):
-        obs[f"{col} [mm]"] = obs.pop(col) * 1e3
+    obs = _in_mm(cal.observations, ("depth", "prior_depth", "posterior_depth"))
     out = {"method": cal.method, "prior": str(cal.prior),
            "median": _num(cal.factor_median), "low": _num(low), "high": _num(high),
            "sigma": _num(cal.posterior.sigma_ln, ".3g"),
            "observations": _table_html(obs),
            "figure": figure_data_uri(plot_calibration(cal)), "predictive": None}
     if cal.predictive is not None:
-        pred = cal.predictive.copy()
-        for col in [c for c in pred.columns if c.startswith("depth") or c == "limit"]:
-            pred[f"{col} [mm]"] = pred.pop(col) * 1e3
-        out["predictive"] = _table_html(pred)
+        pred = cal.predictive
+        out["predictive"] = _table_html(_in_mm(pred, [c for c in pred.columns
+                                                      if c.startswith("depth") or c == "limit"]))
     return out
 
 
