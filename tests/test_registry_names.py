@@ -20,6 +20,7 @@ from fretwear.io.aster import TABLE_FORMATS
 from fretwear.laws import WEAR_LAWS
 from fretwear.obstacle.depth import DEPTH_SHAPES
 from fretwear.obstacle.update import PROFILE_FORMATS
+from fretwear.table.files import ASTER_SUFFIXES
 from fretwear.timeunits import TIME_UNITS
 from fretwear.uncertainty.calibration import CALIBRATION_METHODS
 from fretwear.uncertainty.sampling import METHODS as SAMPLING_METHODS
@@ -108,6 +109,7 @@ def test_run_and_obstacle_choices_come_from_the_registries():
     run = _help("run")
     assert _choices(run, "--aster-format") == [f.lower() for f in TABLE_FORMATS]  # any case
     assert contact_names(run) == list(CONTACT_TYPES)
+    assert "/".join(ASTER_SUFFIXES) in _option(run, "--output")  # table.files' suffixes
     obstacle = _help("obstacle")
     assert _choices(obstacle, "--format") == [f.lower() for f in PROFILE_FORMATS]
     assert _choices(obstacle, "--shape") == list(DEPTH_SHAPES)

@@ -25,6 +25,7 @@ from fretwear.laws import WEAR_LAWS
 from fretwear.plotting import save_figure, wear_figures
 from fretwear.report import analyse_case, write_report
 from fretwear.table import COLUMNS, write_wear_table
+from fretwear.table.files import ASTER_SUFFIXES
 from fretwear.workflows.case_files import keys_help, load_case, run_case
 
 
@@ -34,9 +35,10 @@ def columns_help() -> str:
                      for native, (aster, unit, meaning) in COLUMNS.items())
 
 
+_ASTER = "/".join(ASTER_SUFFIXES)
 _HELP = f"""Run a TOML case file: wear power, wear law, depths, service-life table.
 
-Writes the table to OUTPUT (.csv, .parquet, or .tab/.resu/.txt for a Code_Aster IMPR_TABLE
+Writes the table to OUTPUT (.csv, .parquet, or {_ASTER} for a Code_Aster IMPR_TABLE
 file that LIRE_TABLE reads) and prints a summary (power, block spread, sector powers, volumes
 and depths at the last instant, warnings). Units: SI (m, m³, W, s; angles in degrees).
 
@@ -175,14 +177,14 @@ def _limit_lines(table) -> list[tuple[str, str | None]]:
 @click.command(help=_HELP, context_settings={"max_content_width": 100})
 @click.argument("case_file", type=click.Path(exists=True, dir_okay=False, path_type=Path))
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
-              help="Write the table here: .csv, .parquet, or .tab/.resu (Code_Aster table).")
+              help=f"Write the table here: .csv, .parquet, or {_ASTER} (Code_Aster table).")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write PNG and SVG figures into this directory.")
 @click.option("--aster-names", is_flag=True,
               help="Code_Aster column names (INST, V_USUR_TUBE, ...) in CSV/Parquet output.")
 @click.option("--aster-format", type=click.Choice(TABLE_FORMATS, case_sensitive=False),
               default=TABLE_FORMATS[0], show_default=True,
-              help="IMPR_TABLE format of a .tab/.resu/.txt output (LIRE_TABLE's FORMAT).")
+              help=f"IMPR_TABLE format of a {_ASTER} output (LIRE_TABLE's FORMAT).")
 @click.option("--database", "databases", multiple=True, metavar="CSV",
               type=click.Path(exists=True, dir_okay=False, path_type=Path),
               help="A coefficient CSV of your own (format in docs/laws.md) for [law] materials, "

@@ -26,7 +26,8 @@ from fretwear.table.schema import FLOAT_FORMAT, PROFILE_COLUMNS, from_aster_name
 
 __all__ = ["read_profile_table", "read_wear_table", "write_profile_table", "write_wear_table"]
 
-_ASTER_SUFFIXES = (".tab", ".resu", ".txt")
+#: Suffixes of a wear table written as a Code_Aster text table (IMPR_TABLE, read by LIRE_TABLE).
+ASTER_SUFFIXES = (".tab", ".resu", ".txt")
 
 
 def read_wear_table(path: str | os.PathLike, *, index: int | None = None) -> pd.DataFrame:
@@ -179,7 +180,7 @@ def read_profile_table(path, *, index: int | None = None) -> pd.DataFrame:
 # --------------------------------------------------------------------------- one writer
 def _format_of(path: Path, aster_format: str) -> str:
     suffix = path.suffix.lower()
-    if suffix in _ASTER_SUFFIXES:
+    if suffix in ASTER_SUFFIXES:
         fmt = str(aster_format).upper()
         if fmt not in TABLE_FORMATS:
             raise InputError(f"aster_format must be {' or '.join(TABLE_FORMATS)}, got "
@@ -190,7 +191,7 @@ def _format_of(path: Path, aster_format: str) -> str:
     if suffix in (".parquet", ".pq"):
         return "PARQUET"
     raise InputError(f"output {str(path)!r}: unknown suffix {suffix!r}; use .csv, .parquet, "
-                     f"or {', '.join(_ASTER_SUFFIXES)} for a Code_Aster table")
+                     f"or {', '.join(ASTER_SUFFIXES)} for a Code_Aster table")
 
 
 def _write(frame: pd.DataFrame, aster: pd.DataFrame, path: Path, fmt: str, title: str,
