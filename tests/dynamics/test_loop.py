@@ -7,6 +7,7 @@ trapezoid with the stick rule, computed here), Archard's V = K·P·t chained thr
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -309,6 +310,11 @@ def test_loop_stop_criterion_names_its_depth(tmp_path):
                         output=tmp_path / "b")
     assert stop.stopped == "max_depth" and stop.max_depth_of == "largest"
     assert len(stop.summary) == 1
+    # the summary file says which depth the criterion compared, and against what
+    saved = json.loads((tmp_path / "b" / "summary.json").read_text(encoding="utf-8"))
+    assert saved["stopped"] == "max_depth" and saved["max_depth_of"] == "largest"
+    assert saved["max_depth_m"] == threshold
+    assert saved["max_depth_columns"] == list(DEPTHS_OF["largest"])
     go_on = iterate_case(case(tmp_path, cycles=2, max_depth_m=threshold,
                               max_depth_of=smallest), output=tmp_path / "c")
     assert len(go_on.summary) == 2  # cycle 1's depth of that name stayed below

@@ -335,7 +335,9 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                 stopped = "max_depth"
                 break
     summary = pd.DataFrame(rows)
-    _write_summary(out_dir, summary, stopped, do_plot, profiles)
+    _write_summary(out_dir, summary, stopped, do_plot, profiles,
+                   {"max_depth_m": max_depth, "max_depth_of": depth_of,
+                    "max_depth_columns": list(DEPTHS_OF[depth_of])})
     texts = []
     for w in caught:
         t = f"{w.category.__name__}: {w.message}"
@@ -420,12 +422,12 @@ def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figu
 
 
 def _write_summary(out_dir: Path, summary: pd.DataFrame, stopped: str, do_plot: bool,
-                   profiles) -> None:
+                   profiles, criterion: dict[str, Any]) -> None:
     with atomic_path(out_dir / "summary.csv") as tmp:
         summary.to_csv(tmp, index=False, float_format=FLOAT_FORMAT)
     with atomic_write(out_dir / "summary.json", "w", encoding="utf-8") as fh:
-        json.dump({"stopped": stopped, "cycles": summary.to_dict(orient="records")}, fh,
-                  indent=2)
+        json.dump({"stopped": stopped, **criterion,
+                   "cycles": summary.to_dict(orient="records")}, fh, indent=2)
     if do_plot and len(summary):
         fig = plot_iteration(summary, [(p.angle, p.clearance_worn) for p in profiles])
         save_figure(fig, out_dir, "iteration", dpi=110, close=True)
