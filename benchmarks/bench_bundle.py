@@ -15,7 +15,7 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
 * **per-contact overhead**: (workers × T_bundle − T_serial)/N, the worker time a contact costs
   beyond the single-contact computation, measured on this bundle and on one of tiny contacts
   (100 samples, where the computation is almost nothing);
-* **memory**: peak resident memory of each worker process (sampled every 5 ms with psutil),
+* **memory**: peak resident memory of each worker process (sampled every 20 ms with psutil),
   idle, during this bundle, and during one contact of ``--long`` samples read in chunks of
   ``--chunk`` samples (chunk tasks merged in a tree) against the same contact in one task: the
   peak follows the chunk, not the bundle or the history.
@@ -97,7 +97,7 @@ def serial(manifest: Path, case: Path) -> tuple[float, dict[str, pd.DataFrame]]:
 
 
 class PeakMemory:
-    """Samples the resident memory of the worker processes every 5 ms while in use [MB]."""
+    """Samples the resident memory of the worker processes every 20 ms while in use [MB]."""
 
     def __init__(self, client) -> None:
         import psutil
@@ -114,7 +114,7 @@ class PeakMemory:
                     self.peaks[i] = max(self.peaks[i], p.memory_info().rss / 2**20)
                 except Exception:  # noqa: BLE001 - a worker restarting
                     pass
-            time.sleep(0.005)
+            time.sleep(0.02)
 
     def __enter__(self) -> PeakMemory:
         self._thread.start()

@@ -89,19 +89,33 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
     return [(a, min(a + chunk_size, n)) for a in range(0, n - 1, chunk_size - 1)]
 
 
+class _Deferred:
+    """A call of the serial engine, run when its value is first asked for."""
+
+    def __init__(self, fn, args) -> None:
+        self._call: tuple | None = (fn, args)
+        self._value: Any = None
+
+    def value(self) -> Any:
+        if self._call is not None:
+            fn, args = self._call
+            self._value = fn(*[a.value() if isinstance(a, _Deferred) else a for a in args])
+            self._call = None
+        return self._value
+
+
 class _Serial:
-    """The engine without Dask: tasks run in this process, in order (``scheduler="serial"``)."""
+    """The engine without Dask: tasks run in this process, one contact after the other as the
+    results are asked for (so parts are written as contacts finish) (``scheduler="serial"``)."""
 
     workers = 1
 
-    def submit(self, fn, *args, **kwargs):
-        kwargs.pop("key", None)
-        kwargs.pop("retries", None)
-        return fn(*args)
+    def submit(self, fn, *args, key: str = "", retries: int = 0):
+        return _Deferred(fn, args)
 
     def results(self, handles):
         for h in handles:
-            yield h, h
+            yield h, h.value()
 
     def close(self):
         pass
@@ -341,8 +355,9 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
                 progress(done_count, total, rec)
         if store is not None:
             # this run's last records, and the failures of the client-side checks
+            queued = {id(b) for b in buffer}
             buffer += [r for r in records.values() if r["status"] == "failed"
-                       and "part" not in r and r not in buffer]
+                       and "part" not in r and id(r) not in queued]
             if buffer:
                 store.write_part(buffer)
         workers_used = engine.workers

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import threading
 import time
 import warnings
@@ -178,18 +179,34 @@ def _compute(task: ContactTask, chunk_size: int):
         history = _read_in_memory(store_arrays(ref), task)
     else:
         options = _file_options(task)
-        chunks = iter_history_chunks(ref.path, chunk_size, name=task.contact, **options)
-        try:
-            history = next(chunks)
-            longer = next(chunks, None) is not None
-        finally:
-            chunks.close()
-        if longer:
-            if needs_history(task):  # the law's classes need the history whole
-                history = read_history(ref.path, name=task.contact, **options)
-            else:  # streamed as fretwear.power.wear_power does: memory bounded by the chunk
+        if needs_history(task) or fits(ref.path, chunk_size, options):
+            # read whole, as wear_table(path) reads it (a law's classes need it whole)
+            history = read_history(ref.path, name=task.contact, **options)
+        else:
+            chunks = iter_history_chunks(ref.path, chunk_size, name=task.contact, **options)
+            try:
+                history = next(chunks)
+                longer = next(chunks, None) is not None
+            finally:
+                chunks.close()
+            if longer:  # streamed as fretwear.power.wear_power does: memory bounded by a chunk
                 return _streamed(task, chunk_size, options)
     return _wear_table(history, task), len(history)
+
+
+def fits(path: str, chunk_size: int, options: dict[str, Any]) -> bool:
+    """Whether a history file surely holds no more than ``chunk_size`` samples (then it is read
+    whole): a Parquet file by its footer's row count, another file when it has fewer bytes than
+    two per sample (a text row holds at least a digit and a line end; not for compressed or
+    unknown formats)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(4)
+        if head == b"PAR1" and options.get("format", "parquet") == "parquet":
+            return require("pyarrow.parquet").ParquetFile(path).metadata.num_rows <= chunk_size
+        return head[:2] != b"\x1f\x8b" and os.path.getsize(path) <= 2 * chunk_size
+    except Exception:  # noqa: BLE001 - unreadable: read_history names the problem
+        return True
 
 
 def _streamed(task: ContactTask, chunk_size: int, options: dict[str, Any]):
