@@ -37,14 +37,12 @@ import numpy as np
 import pandas as pd
 
 from fretwear.errors import DatabaseError, FormatError
+from fretwear.geometry import CONTACT_TYPES
 from fretwear.io.guard import readable_file, reading
 from fretwear.laws.registry import WEAR_LAWS
 
-#: The eight contact types of theory §6 (Code_Aster names), in the order of Code_Aster R7.20.01.
-CONTACT_TYPE_NAMES: tuple[str, ...] = (
-    "GRAPPE_ALESAGE", "GRAPPE_1_ENCO", "GRAPPE_2_ENCO", "TUBE_BAV", "TUBE_ALESAGE",
-    "TUBE_3_ENCO", "TUBE_4_ENCO", "TUBE_TUBE",
-)
+#: The eight contact types of theory §6 (Code_Aster names), from the geometry registry.
+CONTACT_TYPE_NAMES: tuple[str, ...] = tuple(CONTACT_TYPES)
 #: Columns of a coefficient table, in order.
 COLUMNS: tuple[str, ...] = ("contact_type", "mobile_material", "obstacle_material", "law", "body",
                             "parameter", "value", "unit", "source")
