@@ -19,7 +19,9 @@ def test_equal_sectors():
         ([-180, 0, 170], ["-180..180", "170"]),
         ([-180, 10, 10, 180], ["strictly increasing", "edge 2"]),
         ([-180], ["at least two"]),
-        (0, [">= 1"]),
+        (0, ["from 1 to 720"]),
+        (36000, ["from 1 to 720", "got 36000"]),  # a typo for 36: refused, not a 1 GB table
+        (np.linspace(-180, 180, 1000), ["999 sectors", "at most 720"]),
         ("abc", ["edge angles"]),
         ([-180, np.nan, 180], ["finite"]),
     ],

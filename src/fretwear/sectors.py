@@ -17,6 +17,11 @@ from fretwear.errors import InputError
 _TOL = 1e-9
 
 
+#: Most sectors accepted (0.5 deg each, the DISCRET grid's step): a sanity bound against a typo
+#: (36000 for 36); the table's cost grows with the count (TUBE_BAV, 360 sectors: 7 s).
+MAX_SECTORS = 720
+
+
 def sector_edges(sectors: int | Sequence[float] | np.ndarray) -> np.ndarray:
     """Validated sector edges [deg].
 
@@ -44,8 +49,9 @@ def sector_edges(sectors: int | Sequence[float] | np.ndarray) -> np.ndarray:
     [-180.0, 0.0, 180.0]
     """
     if isinstance(sectors, (int, np.integer)) and not isinstance(sectors, bool):
-        if sectors < 1:
-            raise InputError(f"the number of sectors must be >= 1, got {sectors}")
+        if not 1 <= sectors <= MAX_SECTORS:
+            raise InputError(f"the number of sectors must be from 1 to {MAX_SECTORS} (sectors "
+                             f"of {360 / MAX_SECTORS:g} deg), got {sectors}")
         return np.linspace(-180.0, 180.0, int(sectors) + 1)
     try:
         edges = np.array(sectors, dtype=float).ravel()
@@ -53,6 +59,9 @@ def sector_edges(sectors: int | Sequence[float] | np.ndarray) -> np.ndarray:
         raise InputError(
             f"sectors must be a count or a list of edge angles in degrees, got {sectors!r}"
         ) from None
+    if edges.size > MAX_SECTORS + 1:
+        raise InputError(f"{edges.size - 1} sectors between the edges: at most {MAX_SECTORS} "
+                         "sectors are accepted")
     if edges.size < 2:
         raise InputError(
             f"sector edges need at least two values (-180 and 180) [deg], got {edges.tolist()}")

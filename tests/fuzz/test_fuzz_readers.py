@@ -38,7 +38,7 @@ HISTORY_SEEDS = {
 }
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def history_seed(family: str) -> tuple[bytes, str]:
     name, options, _ = HISTORY_SEEDS[family]
     path = workdir() / f"seed_{family}_{name}"
@@ -114,7 +114,7 @@ def test_delimited_and_code_aster_text_grammar(header, rows, sep, eol, bom, aste
     only_fretwear(read_wear_table, path)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def wear_table_seeds() -> dict[str, bytes]:
     table = pd.DataFrame({"instant": [1.0, 1.0, 2.0, 2.0], "sector": [1, 2, 1, 2],
                           "angle_start": [-180.0, 0.0, -180.0, 0.0],
@@ -159,9 +159,9 @@ def test_discret_reader_on_damaged_files(data, rm, unit):
         assert np.isfinite(gaps).all()
 
 
-COEFFICIENTS = ("contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
-                "TUBE_BAV,I690TT,A405,ARCHARD,COEF_USURE,3e-15,1/Pa\n"
-                "TUBE_BAV,I690TT,A405,EDF_MZ,COEF_B,1.2,-\n").encode()
+COEFFICIENTS = (b"contact_type,mobile_material,obstacle_material,law,parameter,value,unit\n"
+                b"TUBE_BAV,I690TT,A405,ARCHARD,COEF_USURE,3e-15,1/Pa\n"
+                b"TUBE_BAV,I690TT,A405,EDF_MZ,COEF_B,1.2,-\n")
 
 
 @examples(40)

@@ -106,6 +106,11 @@ def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndar
     return mobile_array.astype(float, copy=True), obstacle_array.astype(float, copy=True)
 
 
+#: Lengths [m] a contact dimension may take: beyond them the formulas of theory §6 overflow or
+#: underflow (a width of 5e-324 m divided into a volume is inf) and no real contact is that size.
+LENGTH_RANGE = (1e-9, 1e3)
+
+
 @dataclasses.dataclass(frozen=True)
 class ContactGeometry:
     """Base of the eight contact geometries: volume ↔ depth relations of theory §6.
@@ -168,6 +173,11 @@ class ContactGeometry:
             elif number <= 0.0:
                 raise InputError(
                     f"{self.contact_type}: {_label(name)} must be > 0 [m], got {number:g}")
+            elif not LENGTH_RANGE[0] <= number <= LENGTH_RANGE[1]:
+                raise InputError(
+                    f"{self.contact_type}: {_label(name)} = {number:g} m is not a plausible "
+                    f"contact dimension (accepted {LENGTH_RANGE[0]:g} to {LENGTH_RANGE[1]:g} m); "
+                    "give it in metres (9.525 mm is 9.525e-3)")
             if type(value) is not float:  # ints, numpy scalars -> plain float (JSON-ready)
                 object.__setattr__(self, name, number)
 

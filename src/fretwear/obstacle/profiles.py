@@ -57,6 +57,9 @@ from fretwear.obstacle.dilation import dilated_radius
 #: Angular step [deg] and number of points of Code_Aster's DEFI_OBSTACLE 'DISCRET' table.
 DISCRET_STEP = 0.5
 DISCRET_POINTS = 721
+#: Finest output step [deg] accepted: the update's time grows as 1/step (0.5 deg: 0.4 s,
+#: 0.05 deg: 2.5 s, 0.01 deg: 13 s for a 6-sector update).
+MIN_STEP = 0.05
 #: Radial gap [m] of a new Code_Aster DISCRET obstacle.
 DISCRET_NEW_GAP = 0.5e-3
 
@@ -70,6 +73,11 @@ def discret_angles(step: float = DISCRET_STEP) -> np.ndarray:
     >>> a.size, float(a[0]), float(a[1]), float(a[-1])
     (721, 0.0, 0.5, 360.0)
     """
+    if isinstance(step, bool) or not isinstance(step, (int, float, np.number)) \
+            or not MIN_STEP <= step <= 120.0:
+        raise InputError(f"the angular step (step_deg) = {step!r}: give a number of degrees "
+                         f"from {MIN_STEP} to 120 that divides 360 (default {DISCRET_STEP}: "
+                         "Code_Aster's 721 points)")
     n = int(round(360.0 / step))
     if n < 3 or not math.isclose(n * step, 360.0, rel_tol=0, abs_tol=1e-9):
         raise InputError(f"the angular step must divide 360 deg into >= 3 parts, got {step} deg")
@@ -86,6 +94,9 @@ def _positive(name: str, value, unit: str = "m", allow_zero: bool = False) -> fl
     if not math.isfinite(v) or (v == 0 and not allow_zero):
         sign = ">= 0" if allow_zero else "> 0"
         raise InputError(f"{name} must be finite and {sign} [{unit}], got {value!r}")
+    if unit == "m" and v > 1e3:  # beyond, the clearance search overflows (r² of 1e154 m)
+        raise InputError(f"{name} = {v:g} m is not a plausible obstacle dimension (at most "
+                         "1e3 m); give it in metres (0.5 mm is 0.5e-3)")
     return v
 
 
