@@ -8,12 +8,13 @@ One call reduces one chunk of a contact history (consecutive samples) to its *pa
 * ``force_max``: the largest normal force in the window [N];
 * ``groups``: the impacts of the chunk in a mergeable form (see :data:`GROUP_FIELDS`).
 
-Two implementations compute the same sums: a compiled numba kernel (``cache=True``, ``nogil``)
-that reads every sample once and classifies contact angles into sectors *without an arctangent*,
-and a plain numpy version (:func:`fretwear.power.reference.fused_numpy`: the reference, and the
-fallback when numba is missing). The compiled kernel skips free-flight intervals (Fn = 0 at both
-ends) without computing the sliding speed, keeps the per-block sums in registers and reuses the
-previous sample's sector while the contact point stays inside it.
+Two implementations compute the same sums: a compiled numba kernel (``cache=True``, ``nogil``,
+:mod:`fretwear.power._compiled`) that classifies contact angles into sectors *without an
+arctangent*, and a plain numpy version (:func:`fretwear.power.reference.fused_numpy`: the
+reference, and the fallback when numba is missing). The compiled kernel's cost does not depend
+on the signal: it skips free flight by blocks of 16 intervals without reading anything but the
+normal force, reduces the long runs of contact with branch-free vectorised passes (sector
+classification and threshold crossings included) and the short ones with a scalar loop.
 
 Conventions (shared with :mod:`fretwear.history` and :mod:`fretwear.sectors`)
 ---------------------------------------------------------------------------------
@@ -27,18 +28,21 @@ Conventions (shared with :mod:`fretwear.history` and :mod:`fretwear.sectors`)
 Sector classification without arctangent
 ----------------------------------------
 The kernel maps (dy, dz) to the *diamond pseudo-angle* q ∈ (-2, 2], a strictly increasing
-function of θ computed with one division (:func:`pseudo_angle`), and compares it with the
-pseudo-angles of the edges through a 1024-bin lookup table. Points on an axis (dy = 0 or dz = 0)
-have an exact q and are compared exactly. Any other point closer than ``1e-11`` in q to an edge
-(about 1e-11 rad) — where float rounding could make ``arctan2`` land on the other side — is
-*ambiguous*: the kernel then stops and the chunk is recomputed with the reference
-classification (:mod:`fretwear.power.reference`), so that both paths always agree with
-``sector_index(contact_angle(dy, dz), edges)``.
+function of θ computed with one division (:func:`pseudo_angle`), and finds its sector through a
+table of equal bins of q (:func:`sector_table`: at least 1024, more when edges are close) in
+which each bin holds at most one edge: the sector is the bin's count of edges below it, plus one
+when q is above the bin's edge. Points on an axis (dy = 0 or dz = 0) have an exact q and are
+compared exactly with edges on an axis. Any other point closer than ``1e-11`` in q to an edge
+(about 1e-11 rad), where float rounding could make ``arctan2`` land on the other side, is
+*ambiguous*: the kernel defers it, and the few deferred samples are classified one by one with
+the reference rule (:func:`reference_sector_index`), so that both paths always agree with
+``sector_index(contact_angle(dy, dz), edges)``. Edges so close that no bin table separates them
+(closer than about 6e-5 rad) are classified with the reference rule for the whole chunk.
 """
 
 from __future__ import annotations
 
-import math
+import functools
 from typing import NamedTuple
 
 import numpy as np
@@ -54,13 +58,17 @@ from fretwear.power.reference import (  # noqa: F401 - re-exported
     fused_numpy,
     reference_sector_index,
 )
+from fretwear.power.statistics import merge_groups
 
 numba = optional("numba")  # extra "fast"; without it the numpy kernel runs
 HAVE_NUMBA = numba is not None
+if HAVE_NUMBA:
+    from fretwear.power import _compiled
 
 #: Half-width of the ambiguity band around an edge, in pseudo-angle units (≈ rad).
 AMBIGUITY = 1e-11
-_NBINS = 1024
+#: Bin counts tried for the sector table, smallest first.
+_BIN_COUNTS = (1024, 4096, 16384, 65536)
 
 
 def pseudo_angle(dy, dz) -> np.ndarray:
@@ -98,344 +106,67 @@ def pseudo_angle(dy, dz) -> np.ndarray:
     return np.where(s == 0, 0.0, q) + 0.0
 
 
-def _edge_pseudo_angles(edges: np.ndarray) -> np.ndarray:
-    """Pseudo-angles of the sector edges [deg]; exact on the axes."""
+def _edge_pseudo_angles(edges: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Pseudo-angles of the sector edges [deg] and whether each is exact (on an axis)."""
     exact = {-180.0: -2.0, -90.0: -1.0, 0.0: 0.0, 90.0: 1.0, 180.0: 2.0}
     rad = np.radians(edges)
     q = pseudo_angle(np.cos(rad), np.sin(rad))
+    on_axis = np.zeros(edges.size, dtype=bool)
     for k, e in enumerate(edges):
         if float(e) in exact:
             q[k] = exact[float(e)]
+            on_axis[k] = True
     q[0], q[-1] = -2.0, 2.0
-    return q
+    return q, on_axis
 
 
 class SectorTable(NamedTuple):
-    """Lookup structures of the arctangent-free classification."""
+    """Lookup structures of the arctangent-free classification (:func:`sector_table`)."""
 
     q_edges: np.ndarray  # [N+1] pseudo-angles of the edges
-    table: np.ndarray    # [1024] number of interior edges below each bin's lower bound
-    safe: bool           # False when edges are too close for the fast path (use the reference)
+    scale: float         # bins per unit of q: bin of q = floor((q + 2)·scale)
+    base: np.ndarray     # [bins] number of interior edges below the bin (its own edge excluded)
+    edge: np.ndarray     # [bins] the interior edge within or next to the bin, +inf if none
+    exact: np.ndarray    # [bins] 1 when that edge lies on an axis (exact pseudo-angle), else 0
+    safe: bool           # False when no table separates the edges (reference for the chunk)
+
+
+def _build_table(edges: tuple[float, ...]) -> SectorTable:
+    q, on_axis = _edge_pseudo_angles(np.asarray(edges, dtype=float))
+    interior, interior_exact = q[1:-1], on_axis[1:-1]
+    margin = AMBIGUITY + 1e-12  # an edge this close to a bin also belongs to it
+    for bins in _BIN_COUNTS:
+        lower = -2.0 + np.arange(bins) * (4.0 / bins)
+        first = np.searchsorted(interior, lower - margin, side="left")
+        last = np.searchsorted(interior, lower + 4.0 / bins + margin, side="right")
+        if np.any(last - first > 1):
+            continue  # two edges in one bin: finer bins
+        has = last > first
+        edge = np.full(bins, np.inf)
+        edge[has] = interior[first[has]]
+        exact = np.zeros(bins, dtype=np.int64)
+        exact[has] = interior_exact[first[has]]
+        return SectorTable(_ro(q), bins / 4.0, _ro(first.astype(np.int64), np.int64), _ro(edge),
+                           _ro(exact, np.int64), True)
+    one = _ro(np.zeros(1, dtype=np.int64), np.int64)
+    return SectorTable(_ro(q), 0.0, one, _ro(np.full(1, np.inf)), one, False)
+
+
+@functools.lru_cache(maxsize=64)
+def _cached_table(edges: tuple[float, ...]) -> SectorTable:
+    return _build_table(edges)
 
 
 def sector_table(edges: np.ndarray) -> SectorTable:
-    """Build the lookup table of :func:`pseudo_angle` values for sector ``edges`` [deg].
+    """The bin table of :func:`pseudo_angle` values for sector ``edges`` [deg] (cached).
 
     Examples
     --------
     >>> st = sector_table(np.array([-180.0, 0.0, 180.0]))
-    >>> st.q_edges.tolist(), bool(st.safe)
-    ([-2.0, 0.0, 2.0], True)
+    >>> st.q_edges.tolist(), bool(st.safe), int(st.base[0]), int(st.base[-1])
+    ([-2.0, 0.0, 2.0], True, 0, 1)
     """
-    q = _edge_pseudo_angles(np.asarray(edges, dtype=float))
-    interior = q[1:-1]
-    lower = -2.0 + np.arange(_NBINS) * (4.0 / _NBINS)
-    table = np.searchsorted(interior, lower, side="left").astype(np.int64)
-    gaps = np.diff(q)
-    axes = np.array([-1.0, 0.0, 1.0])
-    near_axis = [np.min(np.abs(axes - x)) for x in interior if x not in axes]
-    safe = bool(np.all(gaps > 10 * AMBIGUITY)
-                and all(d > 10 * AMBIGUITY for d in near_axis))
-    return SectorTable(q, table, safe)
-
-
-if HAVE_NUMBA:
-    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-    def _at(g0, g1, t0, t1, x):
-        if x == t0:
-            return g0
-        if x == t1:
-            return g1
-        return g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
-
-    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-    def _pseudo(y, z):  # pragma: no cover - compiled
-        """:func:`pseudo_angle` of one point."""
-        s = abs(y) + abs(z)
-        if s == 0.0:
-            return 0.0
-        if y >= 0.0:
-            return z / s
-        if z >= 0.0:
-            return 2.0 - z / s
-        return -2.0 - z / s
-
-    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-    def _sector_of(q, exact, qe, table, ns):  # pragma: no cover - compiled
-        """Sector of pseudo-angle q by lookup, and whether it is ambiguous (``exact``: the point
-        lies on an axis, its q is exact)."""
-        bi = int((q + 2.0) * (_NBINS / 4.0))
-        if bi > _NBINS - 1:
-            bi = _NBINS - 1
-        j = table[bi]
-        while j < ns - 1 and q > qe[j + 1]:
-            j += 1
-        amb = False
-        if not exact:
-            if j >= 1 and q - qe[j] <= AMBIGUITY:
-                amb = True
-            elif j <= ns - 2 and qe[j + 1] - q <= AMBIGUITY:
-                amb = True
-            elif q + 2.0 <= AMBIGUITY:
-                amb = True
-        return j, amb
-
-    @numba.njit(cache=True, nogil=True, error_model="numpy")
-    def _classify_numba(dy, dz, qe, table, out):  # pragma: no cover - compiled
-        ns = qe.shape[0] - 1
-        n_amb = 0
-        for i in range(dy.shape[0]):
-            y = dy[i]
-            z = dz[i]
-            j, amb = _sector_of(_pseudo(y, z), y == 0.0 or z == 0.0, qe, table, ns)
-            out[i] = -1 if amb else j
-            n_amb += amb
-        return n_amb
-
-    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-    def _flush(bstats, k, ct, fc, f2c, ft, f2t, sd):  # pragma: no cover - compiled
-        bstats[k, 0] += ct
-        bstats[k, 1] += fc
-        bstats[k, 2] += f2c
-        bstats[k, 3] += ft
-        bstats[k, 4] += f2t
-        bstats[k, 5] += sd
-
-    @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-    def _add_episode(g, start, end, peak, open_left, open_right,
-                     min_rest):  # pragma: no cover - compiled
-        """Append an episode to the group vector ``g`` (layout GROUP_FIELDS)."""
-        n = g[0]
-        if n > 0 and start - g[6] < min_rest:  # short rest: same impact as the last group
-            g[6] = end
-            g[7] = max(g[7], peak)
-            g[8] = 1.0 if open_right else 0.0
-            if n == 1:
-                g[2] = end
-                g[3] = g[7]
-            return
-        if n >= 2:  # the last group becomes a middle one
-            d = g[6] - g[5]
-            g[9] += 1.0
-            g[10] += d
-            g[11] = max(g[11], d)
-            g[12] += g[7]
-        g[5] = start
-        g[6] = end
-        g[7] = peak
-        g[8] = 1.0 if open_right else 0.0
-        if n == 0:
-            g[1] = start
-            g[2] = end
-            g[3] = peak
-            g[4] = 1.0 if open_left else 0.0
-        g[0] = n + 1
-
-    @numba.njit(cache=True, nogil=True, error_model="numpy")
-    def _fused_numba(t, fn, v1, v2, dy, dz, stick, has_stick, mode, sec_given,
-                     lo, hi, be, qe, table, threshold, min_rest,
-                     power, bstats, groups):  # pragma: no cover - compiled
-        """mode 0: one sector; 1: classify by pseudo-angle; 2: use sec_given."""
-        n = t.shape[0]
-        nb = be.shape[0] - 1
-        ns = qe.shape[0] - 1
-        third = 1.0 / 3.0
-        i0 = np.searchsorted(t, lo, side="right") - 1
-        if i0 < 0:
-            i0 = 0
-        i1 = np.searchsorted(t, hi, side="left")
-        if i1 > n - 1:
-            i1 = n - 1
-        fmax = -np.inf
-        if i1 <= i0:
-            return 0, fmax
-        L = max(t[i0], lo)
-        k = 0
-        while k < nb - 1 and L >= be[k + 1]:
-            k += 1
-        # per-block statistics of the current block k, flushed into bstats when k changes
-        CT = 0.0
-        FC = 0.0
-        F2C = 0.0
-        FT = 0.0
-        F2T = 0.0
-        SD = 0.0
-        # episode in progress (impact groups are kept in ``groups``)
-        in_ep = False
-        ep_start = 0.0
-        ep_peak = 0.0
-        ep_open = False
-        PW = 0.0  # power integral of the current (block, sector) cell (pk, pj)
-        pk = k
-        pj = 0
-        j_last = 0
-        q_lo = np.inf
-        q_hi = -np.inf
-        t1 = t[i0]
-        fn1 = fn[i0]
-        s1 = 0.0  # sliding speed of the right sample, computed only when needed (ok1)
-        ok1 = False
-        for i in range(i0, i1):
-            t0 = t1
-            fn0 = fn1
-            s0 = s1
-            ok0 = ok1
-            t1 = t[i + 1]
-            fn1 = fn[i + 1]
-            if fn0 == 0.0 and fn1 == 0.0:
-                # free flight: Fn = 0 on the whole interval, nothing to integrate
-                if fmax < 0.0:
-                    fmax = 0.0
-                ok1 = False
-                continue
-            if not ok0:
-                s0 = math.sqrt(v1[i] * v1[i] + v2[i] * v2[i])
-            s1 = math.sqrt(v1[i + 1] * v1[i + 1] + v2[i + 1] * v2[i + 1])
-            ok1 = True
-            a = t0
-            b = t1
-            full = True
-            if t0 < lo:
-                a = lo
-                full = False
-            if t1 > hi:
-                b = hi
-                full = False
-            if b <= a:
-                continue
-            while k < nb - 1 and a >= be[k + 1]:
-                _flush(bstats, k, CT, FC, F2C, FT, F2T, SD)
-                CT = FC = F2C = FT = F2T = SD = 0.0
-                k += 1
-            slide = (not has_stick) or stick[i] == 0.0
-            g0 = fn0 * s0
-            g1 = fn1 * s1
-            # sector of the left sample, only when the interval can produce wear
-            j = 0
-            wear = slide and (g0 != 0.0 or g1 != 0.0)
-            if wear:
-                if mode == 2:
-                    j = sec_given[i]
-                elif mode == 1:
-                    y = dy[i]
-                    z = dz[i]
-                    q = _pseudo(y, z)
-                    if q > q_lo and q < q_hi:  # same sector as the last one, clear of its edges
-                        j = j_last
-                    else:
-                        j, amb = _sector_of(q, y == 0.0 or z == 0.0, qe, table, ns)
-                        if amb:
-                            return 1, fmax
-                        j_last = j
-                        q_lo = qe[j] + AMBIGUITY
-                        q_hi = qe[j + 1] - AMBIGUITY if j < ns - 1 else np.inf
-            above0 = fn0 > threshold
-            above1 = fn1 > threshold
-            if full and above0 == above1 and (k == nb - 1 or t1 <= be[k + 1]):
-                # fast path: a whole interval inside one block, no threshold crossing
-                dt = t1 - t0
-                if wear:
-                    if j != pj or k != pk:
-                        power[pk, pj] += PW
-                        PW = 0.0
-                        pk = k
-                        pj = j
-                    PW += 0.5 * dt * (g0 + g1)
-                i1f = 0.5 * dt * (fn0 + fn1)
-                i2f = dt * (fn0 * fn0 + fn0 * fn1 + fn1 * fn1) * third
-                FT += i1f
-                F2T += i2f
-                if fn0 > fmax:
-                    fmax = fn0
-                if fn1 > fmax:
-                    fmax = fn1
-                if above0:
-                    CT += dt
-                    FC += i1f
-                    F2C += i2f
-                    if slide:
-                        SD += 0.5 * dt * (s0 + s1)
-                    if not in_ep:
-                        in_ep = True
-                        ep_start = t0
-                        ep_peak = fn0
-                        ep_open = t0 == L
-                    if fn0 > ep_peak:
-                        ep_peak = fn0
-                    if fn1 > ep_peak:
-                        ep_peak = fn1
-                continue
-            # general path: window bound, block edge or threshold crossing inside the interval
-            ua = t0
-            ub = t0
-            if above0 and above1:
-                ub = t1
-            elif above0:
-                ub = t0 + (fn0 - threshold) / (fn0 - fn1) * (t1 - t0)
-            elif above1:
-                ua = t0 + (threshold - fn0) / (fn1 - fn0) * (t1 - t0)
-                ub = t1
-            fa_w = _at(fn0, fn1, t0, t1, a)
-            fb_w = _at(fn0, fn1, t0, t1, b)
-            if fa_w > fmax:
-                fmax = fa_w
-            if fb_w > fmax:
-                fmax = fb_w
-            pa = a
-            while True:
-                pb = b
-                if k < nb - 1 and be[k + 1] < b:
-                    pb = be[k + 1]
-                if pb > pa:
-                    w = pb - pa
-                    fa = _at(fn0, fn1, t0, t1, pa)
-                    fb = _at(fn0, fn1, t0, t1, pb)
-                    if slide:
-                        power[k, j] += 0.5 * w * (_at(g0, g1, t0, t1, pa)
-                                                  + _at(g0, g1, t0, t1, pb))
-                    FT += 0.5 * w * (fa + fb)
-                    F2T += w * (fa * fa + fa * fb + fb * fb) * third
-                    ca = pa if pa > ua else ua
-                    cb = pb if pb < ub else ub
-                    if cb > ca:
-                        cw = cb - ca
-                        fca = _at(fn0, fn1, t0, t1, ca)
-                        fcb = _at(fn0, fn1, t0, t1, cb)
-                        CT += cw
-                        FC += 0.5 * cw * (fca + fcb)
-                        F2C += cw * (fca * fca + fca * fcb + fcb * fcb) * third
-                        if slide:
-                            SD += 0.5 * cw * (_at(s0, s1, t0, t1, ca) + _at(s0, s1, t0, t1, cb))
-                if pb >= b:
-                    break
-                _flush(bstats, k, CT, FC, F2C, FT, F2T, SD)
-                CT = FC = F2C = FT = F2T = SD = 0.0
-                pa = pb
-                k += 1
-            # episodes of the whole (window-clipped) interval
-            ca = a if a > ua else ua
-            cb = b if b < ub else ub
-            if cb > ca:
-                fca = _at(fn0, fn1, t0, t1, ca)
-                fcb = _at(fn0, fn1, t0, t1, cb)
-                if not in_ep:
-                    in_ep = True
-                    ep_start = ca
-                    ep_peak = fca
-                    ep_open = ca == L and fca > threshold
-                if fca > ep_peak:
-                    ep_peak = fca
-                if fcb > ep_peak:
-                    ep_peak = fcb
-                if not fb_w > threshold:  # episode closed at cb
-                    in_ep = False
-                    _add_episode(groups, ep_start, cb, ep_peak, ep_open, False, min_rest)
-        _flush(bstats, k, CT, FC, F2C, FT, F2T, SD)
-        power[pk, pj] += PW
-        if in_ep:  # open on the right: still above the threshold at the chunk's end
-            _add_episode(groups, ep_start, t[i1] if t[i1] <= hi else hi, ep_peak, ep_open,
-                         True, min_rest)
-        return 0, fmax
+    return _cached_table(tuple(float(e) for e in np.asarray(edges, dtype=float)))
 
 
 def _ro(a, dtype=float) -> np.ndarray:
@@ -445,16 +176,21 @@ def _ro(a, dtype=float) -> np.ndarray:
     return v
 
 
-_EMPTY_F = _ro(np.zeros(1))
-_EMPTY_I = _ro(np.zeros(1, dtype=np.int64), np.int64)
+#: Deferral buffer: at least this many entries, else 1/64 of the chunk.
+_MIN_DEFERRALS = _compiled.RUNMAX + 16 if HAVE_NUMBA else 0
+
+
+def _opt(a, dtype=float):
+    return None if a is None else _ro(a, dtype)
 
 
 def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
                 threshold, min_rest) -> ChunkSums:
     """Partial sums of one chunk with the compiled kernel (same contract as :func:`fused_numpy`).
 
-    Falls back to the reference sector classification for the chunk when a contact point lies
-    within the ambiguity band of an edge (see the module docstring).
+    The samples whose contact angle lies within the ambiguity band of an edge (see the module
+    docstring) are deferred by the kernel and classified here with the reference rule, one by
+    one; the rest of the chunk is never recomputed.
 
     Examples
     --------
@@ -471,36 +207,54 @@ def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     nb = block_edges.size - 1
     ns = edges.size - 1
     st = sector_table(edges)
-    mode = 0 if ns == 1 else (1 if st.safe else 2)
-    has_stick = stick is not None
     t, fn, vt1, vt2 = _ro(t), _ro(fn), _ro(vt1), _ro(vt2)
-    dyv = _EMPTY_F if dy is None else _ro(dy)
-    dzv = _EMPTY_F if dz is None else _ro(dz)
-    stv = _EMPTY_F if stick is None else _ro(stick)
+    stick = _opt(stick)
+    sec = None
+    if ns > 1 and not st.safe:  # edges closer than any bin table separates
+        sec = _ro(reference_sector_index(dy, dz, edges), np.int64)
+    yv = _opt(dy) if ns > 1 and st.safe else None
+    zv = _opt(dz) if ns > 1 and st.safe else None
     block_edges = _ro(block_edges)
-    sec = _EMPTY_I
-    for _attempt in range(2):
-        if mode == 2:
-            sec = _ro(reference_sector_index(dyv, dzv, edges), np.int64)
-        power = np.zeros((nb, ns))
-        bstats = np.zeros((nb, _NSTAT))
-        groups = np.zeros(_NGROUP)
-        status, fmax = _fused_numba(t, fn, vt1, vt2, dyv, dzv, stv, has_stick, mode, sec,
-                                    float(lo), float(hi), block_edges, _ro(st.q_edges),
-                                    _ro(st.table, np.int64),
-                                    float(threshold), float(min_rest), power, bstats, groups)
+    cap = max(_MIN_DEFERRALS, t.size >> 6)
+    dfi = np.empty(cap, dtype=np.int64)
+    dfk = np.empty(cap, dtype=np.int64)
+    dfw = np.empty(cap)
+    out = np.empty(3)
+    power = np.zeros((nb, ns))
+    bstats = np.zeros((nb, _NSTAT))
+    groups = np.zeros(_NGROUP)
+    force_max = -np.inf
+    start = 0
+    while True:  # once, unless the deferral buffer fills up (then resumed where it stopped)
+        p = np.zeros((nb, ns))
+        bs = np.zeros((nb, _NSTAT))
+        g = np.zeros(_NGROUP)
+        status = _compiled._fused(
+            t[start:], fn[start:], vt1[start:], vt2[start:],
+            None if yv is None else yv[start:], None if zv is None else zv[start:],
+            None if stick is None else stick[start:], None if sec is None else sec[start:],
+            float(lo), float(hi), block_edges, st.scale, st.base, st.edge, st.exact, st.q_edges,
+            float(threshold), float(min_rest), p, bs, g, dfi, dfk, dfw, out)
+        nd = int(out[1])
+        if nd:  # the ambiguous samples, by the reference rule
+            rows = dfi[:nd] + start
+            j = reference_sector_index(np.asarray(dy)[rows], np.asarray(dz)[rows], edges)
+            np.add.at(p, (dfk[:nd], j), dfw[:nd])
+        power += p
+        bstats += bs
+        force_max = max(force_max, float(out[0]))
+        groups = merge_groups(groups, g, min_rest) if start else g
         if status == 0:
-            return ChunkSums(power, bstats, float(fmax), groups)
-        mode = 2
-    raise AssertionError("unreachable: the reference classification cannot be ambiguous")
+            return ChunkSums(power, bstats, force_max, groups)
+        start += int(out[2])
 
 
 def fast_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
     """Sector of each sample like :func:`reference_sector_index`, without arctangent.
 
-    Uses the compiled pseudo-angle classifier of the fused kernel; ambiguous samples (within the
-    band of an edge, see the module docstring) are classified by the reference. Without numba,
-    the reference itself.
+    Uses the compiled classifier of the fused kernel; ambiguous samples (within the band of an
+    edge, see the module docstring) are classified by the reference. Without numba, the
+    reference itself.
 
     Parameters
     ----------
@@ -521,7 +275,7 @@ def fast_sector_index(dy, dz, edges: np.ndarray) -> np.ndarray:
     if not HAVE_NUMBA or not st.safe or edges.size == 2:
         return reference_sector_index(y, z, edges)
     out = np.empty(y.size, dtype=np.int64)
-    if _classify_numba(_ro(y), _ro(z), _ro(st.q_edges), _ro(st.table, np.int64), out):
+    if _compiled._classify_points(_ro(y), _ro(z), st.scale, st.base, st.edge, st.exact, out):
         amb = out < 0
         out[amb] = reference_sector_index(y[amb], z[amb], edges)
     return out

@@ -26,7 +26,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from fretwear.power.kernels import GROUP_FIELDS
+from fretwear.power.reference import GROUP_FIELDS
 
 _G = {name: k for k, name in enumerate(GROUP_FIELDS)}
 

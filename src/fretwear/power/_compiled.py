@@ -1,0 +1,710 @@
+"""The compiled (numba) one-pass kernel of the wear power and contact statistics (theory §2-§3).
+
+Private to :mod:`fretwear.power.kernels`, which imports it only when numba is installed and
+documents the contract (partial sums of one chunk, conventions, sector classification). This
+module holds the machine code's structure:
+
+* :func:`_fused` walks the chunk. The intervals that a window bound or a block edge cuts go one
+  by one through the general (splitting) code; the intervals between them, inside one block,
+  are scanned by blocks of ``BLOCK`` intervals, and a block whose ``BLOCK + 1`` forces are all
+  zero (free flight: nothing to integrate) is skipped without reading its other channels.
+* A run of busy blocks of at least ``LONG`` intervals is reduced in two passes over the run:
+  :func:`_map` computes, without a branch, every integral of the interval (power, ∫Fn, ∫Fn²,
+  contact time and its force integrals with the threshold crossings located by linear
+  interpolation, sliding distance) and the pseudo-angle of its left sample; it is written so
+  that LLVM vectorises it. :func:`_scan_dense` (many crossings, white-noise-like signals: no
+  branch on the data) or :func:`_scan_sparse` (few crossings: predictable branches and a
+  same-sector shortcut) then classifies the pseudo-angles into sectors through the bin table,
+  adds each interval's power to its sector, and follows the episodes (contact runs).
+* A shorter run, and the tail of a long one, goes through :func:`_short`, a scalar loop that
+  skips free-flight intervals one by one.
+* A sample whose pseudo-angle lies within ``AMBIGUITY`` of a sector edge (where rounding could
+  put ``arctan2`` on the other side) is *deferred*: its interval's power and block go to the
+  ``dfi``/``dfk``/``dfw`` buffers, and the caller classifies those few samples with the numpy
+  reference and adds them. When the buffers fill up the kernel stops at a block boundary
+  (status 1) after closing its sums as if the chunk ended there; the caller resumes from there
+  (the partial sums merge exactly, as consecutive chunks do).
+
+``dy``, ``dz``, ``stick`` and ``sec`` are ``None`` when absent (no sectors, no stick flags,
+sectors not precomputed): numba compiles a version per combination with the dead branches
+removed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from fretwear._numba import njit
+
+#: Half-width of the ambiguity band around a sector edge, in pseudo-angle units (≈ rad).
+AMBIGUITY = 1e-11
+#: Free-flight skipping granularity [intervals].
+BLOCK = 16
+#: Longest run reduced by one call of the vectorised passes [intervals] (buffer size).
+RUNMAX = 4096
+#: Runs of at least this many intervals take the vectorised passes, in multiples of ``VEC``.
+LONG = 64
+VEC = 32
+#: A run with fewer than one threshold crossing per ``SPARSE`` intervals takes _scan_sparse.
+SPARSE = 16
+#: fast-math flags of the vectorised pass: reassociation (vector reductions), FMA, no signed
+#: zeros; never no-NaN / no-inf (window bounds may be infinite).
+_FM = {"reassoc", "nsz", "contract"}
+#: Layout of ``sums``: the six BLOCK_STATS integrals of the current block, then the largest
+#: force, and the episode in progress (start [s], peak [N], open on the left 0/1).
+_FMAX, _EP_START, _EP_PEAK, _EP_OPEN = 6, 7, 8, 9
+_NSUMS = 10
+
+
+@njit(nogil=True, inline="always")
+def _mx(a, b):
+    return a if a > b else b
+
+
+@njit(nogil=True, inline="always")
+def _mn(a, b):
+    return a if a < b else b
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _at(g0, g1, t0, t1, x):  # pragma: no cover - compiled
+    """Linear interpolant between (t0, g0) and (t1, g1) at x, exact at the ends."""
+    if x == t0:
+        return g0
+    if x == t1:
+        return g1
+    return g0 + (g1 - g0) * ((x - t0) / (t1 - t0))
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _pseudo(y, z):  # pragma: no cover - compiled
+    """Diamond pseudo-angle of one point (see :func:`fretwear.power.kernels.pseudo_angle`)."""
+    s = abs(y) + abs(z)
+    r = z / (s if s != 0.0 else 1.0)
+    alt = (2.0 if z >= 0.0 else -2.0) - r
+    q = r if y >= 0.0 else alt
+    return 0.0 if s == 0.0 else q
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _classify(y, z, scale, base, edge, exact):  # pragma: no cover - compiled
+    """(sector, ambiguous) of one point through the bin table."""
+    q = _pseudo(y, z)
+    b = _mn(math.floor((q + 2.0) * scale), base.shape[0] - 1)
+    e = edge[b]
+    j = base[b] + (1 if q > e else 0)
+    on_axis = y == 0.0 or z == 0.0
+    amb = q + 2.0 <= AMBIGUITY or (abs(q - e) <= AMBIGUITY and not (on_axis and exact[b] != 0))
+    return j, amb
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _classify_points(dy, dz, scale, base, edge, exact, out):  # pragma: no cover - compiled
+    """Sector of each point into ``out`` (-1 where ambiguous); returns the number ambiguous."""
+    n_amb = 0
+    for i in range(dy.shape[0]):
+        j, amb = _classify(dy[i], dz[i], scale, base, edge, exact)
+        out[i] = -1 if amb else j
+        n_amb += amb
+    return n_amb
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _add_episode(g, start, end, peak, open_left, open_right,
+                 min_rest):  # pragma: no cover - compiled
+    """Append an episode to the group vector ``g`` (layout GROUP_FIELDS)."""
+    n = g[0]
+    if n > 0 and start - g[6] < min_rest:  # short rest: same impact as the last group
+        g[6] = end
+        g[7] = _mx(g[7], peak)
+        g[8] = 1.0 if open_right else 0.0
+        if n == 1:
+            g[2] = end
+            g[3] = g[7]
+        return
+    if n >= 2:  # the last group becomes a middle one
+        d = g[6] - g[5]
+        g[9] += 1.0
+        g[10] += d
+        g[11] = _mx(g[11], d)
+        g[12] += g[7]
+    g[5] = start
+    g[6] = end
+    g[7] = peak
+    g[8] = 1.0 if open_right else 0.0
+    if n == 0:
+        g[1] = start
+        g[2] = end
+        g[3] = peak
+        g[4] = 1.0 if open_left else 0.0
+    g[0] = n + 1
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _episodes(groups, eps, ne, min_rest):  # pragma: no cover - compiled
+    """Fold the ``ne`` closed episodes of ``eps`` (start, end, peak, open_left) into groups."""
+    for e in range(ne):
+        _add_episode(groups, eps[e, 0], eps[e, 1], eps[e, 2], eps[e, 3] != 0.0, False, min_rest)
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _free(fn, a, b):  # pragma: no cover - compiled
+    """Whether fn[a..b] (both included) are all zero."""
+    z = False
+    for m in range(a, b + 1):
+        z |= fn[m] != 0.0
+    return not z
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _free_block(fn, a):  # pragma: no cover - compiled
+    """Whether fn[a..a+BLOCK] (both included) are all zero."""
+    z = fn[a + BLOCK] != 0.0
+    for m in range(BLOCK):
+        z |= fn[a + m] != 0.0
+    return not z
+
+
+@njit(cache=True, nogil=True, error_model="numpy", fastmath=_FM)
+def _map(t, fn, v1, v2, dy, dz, stick, i, te, threshold, scale, nbm1, sums, wb, qb, cb, fb,
+         bb):  # pragma: no cover - compiled
+    """Branch-free (vectorised) integrals of the intervals [i, te) of one block.
+
+    Adds the six block integrals to ``sums[:6]``; writes per interval the power integral
+    (``wb``, zero when the left sample sticks), the pseudo-angle and bin of the left sample
+    (``qb``, ``bb``) and the threshold crossing's time and force (``cb``, ``fb``, meaningful
+    where exactly one end is above the threshold). Returns the number of crossings.
+    """
+    n = te - i
+    third = 1.0 / 3.0
+    tt = t[i:te + 1]
+    ff = fn[i:te + 1]
+    w1 = v1[i:te + 1]
+    w2 = v2[i:te + 1]
+    ct = 0.0
+    fc_ = 0.0
+    f2c = 0.0
+    ft = 0.0
+    f2t = 0.0
+    sd = 0.0
+    ncross = 0
+    if stick is not None:
+        sk = stick[i:te]
+    if dy is not None:
+        yy = dy[i:te]
+        zz = dz[i:te]
+    for m in range(n):
+        t0 = tt[m]
+        t1 = tt[m + 1]
+        f0 = ff[m]
+        f1 = ff[m + 1]
+        s0 = math.sqrt(w1[m] * w1[m] + w2[m] * w2[m])
+        s1 = math.sqrt(w1[m + 1] * w1[m + 1] + w2[m + 1] * w2[m + 1])
+        dt = t1 - t0
+        slide = 1.0
+        if stick is not None:
+            slide = 1.0 - sk[m]
+        wb[m] = 0.5 * dt * (f0 * s0 + f1 * s1) * slide
+        if dy is not None:
+            y = yy[m]
+            z = zz[m]
+            s = abs(y) + abs(z)
+            r = z / (1.0 if s == 0.0 else s)
+            alt = (2.0 if z >= 0.0 else -2.0) - r
+            q = r if y >= 0.0 else alt
+            q = 0.0 if s == 0.0 else q
+            qb[m] = q
+            bb[m] = _mn(math.floor((q + 2.0) * scale), nbm1)
+        ft += 0.5 * dt * (f0 + f1)
+        f2t += dt * (f0 * f0 + f0 * f1 + f1 * f1) * third
+        a0 = f0 > threshold
+        a1 = f1 > threshold
+        den = f0 - f1
+        frac = (f0 - threshold) / (1.0 if den == 0.0 else den)
+        cross = t0 + frac * dt
+        fc = f0 + (f1 - f0) * frac
+        sc = s0 + (s1 - s0) * frac
+        cb[m] = cross
+        fb[m] = fc
+        # the contact part [ca, cb] of the interval, its forces and speeds at both ends
+        ca_ = t0 if a0 else cross
+        cb_ = t1 if a1 else cross
+        fca = f0 if a0 else fc
+        fcb = f1 if a1 else fc
+        sca = s0 if a0 else sc
+        scb = s1 if a1 else sc
+        cw = cb_ - ca_
+        cw = cw if (a0 or a1) else 0.0
+        ncross += 1 if a0 != a1 else 0
+        ct += cw
+        fc_ += 0.5 * cw * (fca + fcb)
+        f2c += cw * (fca * fca + fca * fcb + fcb * fcb) * third
+        sd += 0.5 * cw * (sca + scb) * slide
+    sums[0] += ct
+    sums[1] += fc_
+    sums[2] += f2c
+    sums[3] += ft
+    sums[4] += f2t
+    sums[5] += sd
+    return ncross
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _scan_dense(fn, dy, dz, sec, i, te, threshold, base, edge, exact, acc, sums, eps, dfi, dfw,
+                nd, wb, qb, cb, fb, bb):  # pragma: no cover - compiled
+    """Sectors, deferrals, largest force and episodes of [i, te) after :func:`_map`, without
+    a branch on the data (many crossings). Returns (closed episodes in ``eps``, deferrals)."""
+    n = te - i
+    ns = acc.shape[0] // 4
+    ff = fn[i:te + 1]
+    fmax = sums[_FMAX]
+    ep_start = sums[_EP_START]
+    ep_peak = sums[_EP_PEAK]
+    ep_open = sums[_EP_OPEN]
+    ne = 0
+    if dy is not None:
+        yy = dy[i:te]
+        zz = dz[i:te]
+    for m in range(n):
+        f0 = ff[m]
+        f1 = ff[m + 1]
+        w = wb[m]
+        j = 0
+        if dy is not None:
+            q = qb[m]
+            b = bb[m]
+            e = edge[b]
+            j = base[b] + (1 if q > e else 0)
+            if (abs(q - e) <= AMBIGUITY or q + 2.0 <= AMBIGUITY) and w != 0.0:
+                on_axis = yy[m] == 0.0 or zz[m] == 0.0
+                if q + 2.0 <= AMBIGUITY or not (on_axis and exact[b] != 0):
+                    dfi[nd] = i + m
+                    dfw[nd] = w
+                    nd += 1
+                    w = 0.0
+        if sec is not None:
+            j = sec[i + m]
+        acc[(m & 3) * ns + j] += w  # four banks: no store-to-load chain on one sector
+        fmax = _mx(fmax, f1)
+        a0 = f0 > threshold
+        a1 = f1 > threshold
+        cross = cb[m]
+        fc = fb[m]
+        up = a1 and not a0
+        ep_start = cross if up else ep_start
+        ep_peak = fc if up else ep_peak
+        ep_open = 0.0 if up else ep_open
+        ep_peak = _mx(ep_peak, f1 if a1 else fc)
+        eps[ne, 0] = ep_start  # written every time, kept when the episode closes here
+        eps[ne, 1] = cross
+        eps[ne, 2] = ep_peak
+        eps[ne, 3] = ep_open
+        ne += 1 if (a0 and not a1) else 0
+    sums[_FMAX] = fmax
+    sums[_EP_START] = ep_start
+    sums[_EP_PEAK] = ep_peak
+    sums[_EP_OPEN] = ep_open
+    return ne, nd
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _scan_sparse(fn, dy, dz, sec, i, te, threshold, base, edge, exact, qe, acc, sums, eps, dfi,
+                 dfw, nd, wb, qb, cb, fb, bb):  # pragma: no cover - compiled
+    """As :func:`_scan_dense` with branches that a smooth signal makes predictable: episodes
+    handled where they start and end, the previous sample's sector reused while the contact
+    point stays clear of its edges, the power summed in a register while the sector stays."""
+    n = te - i
+    ff = fn[i:te + 1]
+    fmax = sums[_FMAX]
+    ep_start = sums[_EP_START]
+    ep_peak = sums[_EP_PEAK]
+    ep_open = sums[_EP_OPEN]
+    ne = 0
+    j_last = 0
+    q_lo = np.inf
+    q_hi = -np.inf
+    pj = 0
+    pw = 0.0
+    if dy is not None:
+        yy = dy[i:te]
+        zz = dz[i:te]
+    for m in range(n):
+        f0 = ff[m]
+        f1 = ff[m + 1]
+        w = wb[m]
+        j = 0
+        if dy is not None:
+            q = qb[m]
+            if q > q_lo and q < q_hi:
+                j = j_last
+            else:
+                b = bb[m]
+                e = edge[b]
+                j = base[b] + (1 if q > e else 0)
+                j_last = j
+                q_lo = qe[j] + AMBIGUITY
+                q_hi = qe[j + 1] - AMBIGUITY
+                if (abs(q - e) <= AMBIGUITY or q + 2.0 <= AMBIGUITY) and w != 0.0:
+                    on_axis = yy[m] == 0.0 or zz[m] == 0.0
+                    if q + 2.0 <= AMBIGUITY or not (on_axis and exact[b] != 0):
+                        dfi[nd] = i + m
+                        dfw[nd] = w
+                        nd += 1
+                        w = 0.0
+        if sec is not None:
+            j = sec[i + m]
+        if j != pj:
+            acc[pj] += pw
+            pw = 0.0
+            pj = j
+        pw += w
+        fmax = _mx(fmax, f1)
+        a0 = f0 > threshold
+        a1 = f1 > threshold
+        if a1:
+            if not a0:
+                ep_start = cb[m]
+                ep_peak = fb[m]
+                ep_open = 0.0
+            ep_peak = _mx(ep_peak, f1)
+        elif a0:
+            eps[ne, 0] = ep_start
+            eps[ne, 1] = cb[m]
+            eps[ne, 2] = _mx(ep_peak, fb[m])
+            eps[ne, 3] = ep_open
+            ne += 1
+    acc[pj] += pw
+    sums[_FMAX] = fmax
+    sums[_EP_START] = ep_start
+    sums[_EP_PEAK] = ep_peak
+    sums[_EP_OPEN] = ep_open
+    return ne, nd
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge, exact, qe,
+           acc, sums, groups, min_rest, dfi, dfw, nd):  # pragma: no cover - compiled
+    """Scalar reduction of [i, r) inside one block, skipping free flight interval by interval
+    (short runs and the tails of long ones). Returns the number of deferrals."""
+    ns = acc.shape[0] // 4
+    third = 1.0 / 3.0
+    ct = 0.0
+    fc_ = 0.0
+    f2c = 0.0
+    ft = 0.0
+    f2t = 0.0
+    sd = 0.0
+    fmax = sums[_FMAX]
+    ep_start = sums[_EP_START]
+    ep_peak = sums[_EP_PEAK]
+    ep_open = sums[_EP_OPEN] != 0.0
+    j_last = 0
+    q_lo = np.inf
+    q_hi = -np.inf
+    ok1 = False
+    s1 = 0.0
+    t1 = t[i]
+    f1 = fn[i]
+    for ii in range(i, r):
+        t0 = t1
+        f0 = f1
+        s0 = s1
+        ok0 = ok1
+        t1 = t[ii + 1]
+        f1 = fn[ii + 1]
+        if f0 == 0.0 and f1 == 0.0:  # free flight: nothing to integrate
+            ok1 = False
+            continue
+        if not ok0:
+            s0 = math.sqrt(v1[ii] * v1[ii] + v2[ii] * v2[ii])
+        s1 = math.sqrt(v1[ii + 1] * v1[ii + 1] + v2[ii + 1] * v2[ii + 1])
+        ok1 = True
+        dt = t1 - t0
+        slide = True
+        if stick is not None:
+            slide = stick[ii] == 0.0
+        if slide:
+            w = 0.5 * dt * (f0 * s0 + f1 * s1)
+            if w != 0.0:
+                j = 0
+                if dy is not None:
+                    y = dy[ii]
+                    z = dz[ii]
+                    q = _pseudo(y, z)
+                    if q > q_lo and q < q_hi:
+                        j = j_last
+                    else:
+                        j, amb = _classify(y, z, scale, base, edge, exact)
+                        if amb:
+                            dfi[nd] = ii
+                            dfw[nd] = w
+                            nd += 1
+                            j = -1
+                        else:
+                            j_last = j
+                            q_lo = qe[j] + AMBIGUITY
+                            q_hi = qe[j + 1] - AMBIGUITY
+                if sec is not None:
+                    j = sec[ii]
+                if j >= 0:
+                    acc[(ii & 3) * ns + j] += w
+        i1f = 0.5 * dt * (f0 + f1)
+        i2f = dt * (f0 * f0 + f0 * f1 + f1 * f1) * third
+        ft += i1f
+        f2t += i2f
+        fmax = _mx(fmax, f1)
+        a0 = f0 > threshold
+        a1 = f1 > threshold
+        if a0 and a1:
+            ct += dt
+            fc_ += i1f
+            f2c += i2f
+            if slide:
+                sd += 0.5 * dt * (s0 + s1)
+            ep_peak = _mx(ep_peak, f1)
+        elif a0 or a1:  # a threshold crossing inside the interval
+            frac = (f0 - threshold) / (f0 - f1)
+            cross = t0 + frac * dt
+            fc = f0 + (f1 - f0) * frac
+            sc = s0 + (s1 - s0) * frac
+            if a0:
+                cw = cross - t0
+                fca, fcb, sca, scb = f0, fc, s0, sc
+            else:
+                cw = t1 - cross
+                fca, fcb, sca, scb = fc, f1, sc, s1
+            ct += cw
+            fc_ += 0.5 * cw * (fca + fcb)
+            f2c += cw * (fca * fca + fca * fcb + fcb * fcb) * third
+            if slide:
+                sd += 0.5 * cw * (sca + scb)
+            if a1:
+                ep_start = cross
+                ep_peak = _mx(fc, f1)
+                ep_open = False
+            else:
+                _add_episode(groups, ep_start, cross, _mx(ep_peak, fc), ep_open, False, min_rest)
+    sums[0] += ct
+    sums[1] += fc_
+    sums[2] += f2c
+    sums[3] += ft
+    sums[4] += f2t
+    sums[5] += sd
+    sums[_FMAX] = fmax
+    sums[_EP_START] = ep_start
+    sums[_EP_PEAK] = ep_peak
+    sums[_EP_OPEN] = 1.0 if ep_open else 0.0
+    return nd
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _fused(t, fn, v1, v2, dy, dz, stick, sec, lo, hi, be, scale, base, edge, exact, qe,
+           threshold, min_rest, power, bstats, groups, dfi, dfk, dfw,
+           out):  # pragma: no cover - compiled
+    """Add the partial sums of the chunk's intervals inside [lo, hi] to power, bstats, groups.
+
+    Returns 0 when done, 1 when the deferral buffers filled up: the sums then stop at sample
+    ``out[2]`` (the chunk's end for the episodes in progress). ``out[0]`` is the largest force,
+    ``out[1]`` the number of deferrals (interval ``dfi``, block ``dfk``, power ``dfw``).
+    """
+    n = t.shape[0]
+    nb = be.shape[0] - 1
+    ns = power.shape[1]
+    nbm1 = base.shape[0] - 1
+    third = 1.0 / 3.0
+    cap = dfi.shape[0]
+    i0 = np.searchsorted(t, lo, side="right") - 1
+    if i0 < 0:
+        i0 = 0
+    i1 = np.searchsorted(t, hi, side="left")
+    if i1 > n - 1:
+        i1 = n - 1
+    fmax = -np.inf
+    nd = 0
+    out[0] = fmax
+    out[1] = 0.0
+    out[2] = -1.0
+    if i1 <= i0:
+        return 0
+    L = _mx(t[i0], lo)
+    in_ep = False
+    ep_start = 0.0
+    ep_peak = 0.0
+    ep_open = False
+    acc = np.zeros(4 * ns)
+    sums = np.zeros(_NSUMS)
+    eps = np.empty((RUNMAX + 1, 4))
+    wb = np.empty(RUNMAX)
+    qb = np.empty(RUNMAX)
+    cb = np.empty(RUNMAX)
+    fb = np.empty(RUNMAX)
+    bb = np.zeros(RUNMAX, np.int64)
+    i = i0
+    k = 0
+    status = 0
+    stop = i1
+    while i < stop:
+        while k < nb - 1 and _mx(t[i], lo) >= be[k + 1]:
+            k += 1
+        upper = be[k + 1] if k < nb - 1 else hi
+        upper = _mn(upper, hi)
+        fast_end = _mn(np.searchsorted(t, upper, side="right") - 1, stop)
+        if i == i0 or t[i] < lo or fast_end <= i:
+            # ---- one interval cut by a window bound or a block edge (or the first one)
+            if nd + nb + 2 > cap:
+                status = 1
+                stop = i
+                break
+            t0 = t[i]
+            t1 = t[i + 1]
+            fn0 = fn[i]
+            fn1 = fn[i + 1]
+            s0 = math.sqrt(v1[i] * v1[i] + v2[i] * v2[i])
+            s1 = math.sqrt(v1[i + 1] * v1[i + 1] + v2[i + 1] * v2[i + 1])
+            a = _mx(t0, lo)
+            bnd = _mn(t1, hi)
+            i += 1
+            if bnd <= a:
+                continue
+            slide = True
+            if stick is not None:
+                slide = stick[i - 1] == 0.0
+            g0 = fn0 * s0
+            g1 = fn1 * s1
+            j = 0
+            amb = False
+            if sec is not None:
+                j = sec[i - 1]
+            if dy is not None:
+                j, amb = _classify(dy[i - 1], dz[i - 1], scale, base, edge, exact)
+            above0 = fn0 > threshold
+            above1 = fn1 > threshold
+            ua = t0
+            ub = t0
+            if above0 and above1:
+                ub = t1
+            elif above0:
+                ub = t0 + (fn0 - threshold) / (fn0 - fn1) * (t1 - t0)
+            elif above1:
+                ua = t0 + (threshold - fn0) / (fn1 - fn0) * (t1 - t0)
+                ub = t1
+            fa_w = _at(fn0, fn1, t0, t1, a)
+            fb_w = _at(fn0, fn1, t0, t1, bnd)
+            fmax = _mx(fmax, _mx(fa_w, fb_w))
+            pa = a
+            kk = 0
+            while kk < nb - 1 and pa >= be[kk + 1]:
+                kk += 1
+            while True:
+                pb = bnd
+                if kk < nb - 1 and be[kk + 1] < bnd:
+                    pb = be[kk + 1]
+                if pb > pa:
+                    w = pb - pa
+                    fa = _at(fn0, fn1, t0, t1, pa)
+                    fbv = _at(fn0, fn1, t0, t1, pb)
+                    if slide:
+                        pw = 0.5 * w * (_at(g0, g1, t0, t1, pa) + _at(g0, g1, t0, t1, pb))
+                        if amb and pw != 0.0:
+                            dfi[nd] = i - 1
+                            dfk[nd] = kk
+                            dfw[nd] = pw
+                            nd += 1
+                        else:
+                            power[kk, j] += pw
+                    bstats[kk, 3] += 0.5 * w * (fa + fbv)
+                    bstats[kk, 4] += w * (fa * fa + fa * fbv + fbv * fbv) * third
+                    ca = _mx(pa, ua)
+                    cbv = _mn(pb, ub)
+                    if cbv > ca:
+                        cw = cbv - ca
+                        fca = _at(fn0, fn1, t0, t1, ca)
+                        fcb = _at(fn0, fn1, t0, t1, cbv)
+                        bstats[kk, 0] += cw
+                        bstats[kk, 1] += 0.5 * cw * (fca + fcb)
+                        bstats[kk, 2] += cw * (fca * fca + fca * fcb + fcb * fcb) * third
+                        if slide:
+                            bstats[kk, 5] += 0.5 * cw * (_at(s0, s1, t0, t1, ca)
+                                                         + _at(s0, s1, t0, t1, cbv))
+                if pb >= bnd:
+                    break
+                pa = pb
+                kk += 1
+            ca = _mx(a, ua)
+            cbv = _mn(bnd, ub)
+            if cbv > ca:  # the episodes of the (window-clipped) interval
+                fca = _at(fn0, fn1, t0, t1, ca)
+                fcb = _at(fn0, fn1, t0, t1, cbv)
+                if not in_ep:
+                    in_ep = True
+                    ep_start = ca
+                    ep_peak = fca
+                    ep_open = ca == L and fca > threshold
+                ep_peak = _mx(ep_peak, _mx(fca, fcb))
+                if not fb_w > threshold:
+                    in_ep = False
+                    _add_episode(groups, ep_start, cbv, ep_peak, ep_open, False, min_rest)
+            continue
+        # ---- the intervals [i, fast_end), inside block k and the window
+        sums[:6] = 0.0
+        sums[_FMAX] = _mx(fmax, fn[i])
+        sums[_EP_START] = ep_start
+        sums[_EP_PEAK] = ep_peak
+        sums[_EP_OPEN] = 1.0 if ep_open else 0.0
+        while i < fast_end:
+            while i + BLOCK <= fast_end and _free_block(fn, i):  # free flight: skipped
+                i += BLOCK
+                sums[_FMAX] = _mx(sums[_FMAX], 0.0)
+            if i >= fast_end:
+                break
+            r = _mn(i + BLOCK, fast_end)
+            while r < fast_end and r - i < RUNMAX:
+                if r + BLOCK <= fast_end:
+                    if _free_block(fn, r):
+                        break
+                elif _free(fn, r, fast_end):
+                    break
+                r = _mn(r + BLOCK, fast_end)
+            if nd + (r - i) + 2 > cap:
+                status = 1
+                stop = i
+                break
+            nd0 = nd
+            rv = i + ((r - i) // VEC) * VEC if r - i >= LONG else i
+            if rv > i:
+                ncross = _map(t, fn, v1, v2, dy, dz, stick, i, rv, threshold, scale, nbm1, sums,
+                              wb, qb, cb, fb, bb)
+                if SPARSE * ncross < rv - i:
+                    ne, nd = _scan_sparse(fn, dy, dz, sec, i, rv, threshold, base, edge, exact,
+                                          qe, acc, sums, eps, dfi, dfw, nd, wb, qb, cb, fb, bb)
+                else:
+                    ne, nd = _scan_dense(fn, dy, dz, sec, i, rv, threshold, base, edge, exact,
+                                         acc, sums, eps, dfi, dfw, nd, wb, qb, cb, fb, bb)
+                if ne:
+                    _episodes(groups, eps, ne, min_rest)
+            if rv < r:
+                nd = _short(t, fn, v1, v2, dy, dz, stick, sec, rv, r, threshold, scale, base,
+                            edge, exact, qe, acc, sums, groups, min_rest, dfi, dfw, nd)
+            for d in range(nd0, nd):
+                dfk[d] = k
+            i = r
+        fmax = sums[_FMAX]
+        ep_start = sums[_EP_START]
+        ep_peak = sums[_EP_PEAK]
+        ep_open = sums[_EP_OPEN] != 0.0
+        in_ep = fn[i] > threshold
+        for c in range(6):
+            bstats[k, c] += sums[c]
+        for jj in range(ns):
+            power[k, jj] += acc[jj] + acc[ns + jj] + acc[2 * ns + jj] + acc[3 * ns + jj]
+        acc[:] = 0.0
+        if status == 1:
+            break
+    if in_ep:  # open on the right: still above the threshold at the chunk's end
+        _add_episode(groups, ep_start, _mn(t[stop], hi), ep_peak, ep_open, True, min_rest)
+    out[0] = fmax
+    out[1] = nd
+    out[2] = stop
+    return status
