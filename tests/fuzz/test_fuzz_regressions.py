@@ -56,6 +56,13 @@ def test_obstacle_gap_that_overflowed():
             _update(gap_m=1.3407807929942597e+154)
 
 
+def test_obstacle_width_that_underflowed():
+    """width_m = 5e-324 m: an infinite depth profile, then scipy's ValueError."""
+    with pytest.raises(InputError, match=r"= 4.94066e-324 m is not a plausible obstacle "
+                                         r"dimension \(1e-9 to 1e3 m\)"):
+        _update(width_m=5e-324)
+
+
 def test_post_usure_width_that_overflowed():
     """LARGEUR_OBST = 5e-324 m: 'overflow encountered in divide' and infinite depths."""
     with warnings.catch_warnings():

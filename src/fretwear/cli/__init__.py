@@ -7,12 +7,16 @@ Each subcommand lives in its own module ``fretwear.cli.<name>`` exposing a click
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 
 import click
 
 from fretwear import __version__
 from fretwear.errors import FretwearError
+
+#: Exit code of an unexpected exception (a bug), told apart from a user error (2).
+INTERNAL_ERROR = 3
 
 SUBCOMMANDS: dict[str, str] = {
     "power": "Wear power, block and sector powers and contact statistics of a history.",
@@ -66,7 +70,17 @@ def main(argv: list[str] | None = None) -> int:
         if isinstance(exc, FretwearError | FileNotFoundError | ValueError):
             click.echo(f"fretwear: error: {exc}", err=True)
             return 2
-        raise
+        if isinstance(exc, MemoryError):
+            click.echo("fretwear: error: out of memory; reduce the input (a chunk size, a "
+                       "number of sectors, an angular resolution) or use a larger machine",
+                       err=True)
+            return 2
+        if os.environ.get("FRETWEAR_DEBUG"):
+            raise
+        click.echo(f"fretwear: internal error (a bug of fretwear, please report it with the "
+                   f"command): {type(exc).__name__}: {exc}; set FRETWEAR_DEBUG=1 to see where",
+                   err=True)
+        return INTERNAL_ERROR
     return code if isinstance(code, int) else 0
 
 

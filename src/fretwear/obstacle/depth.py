@@ -221,6 +221,9 @@ def worn_depth_profiles(edges, volume_mobile, volume_obstacle=None, *, width: fl
     l_ = float(width)
     if not np.isfinite(l_) or l_ <= 0:
         raise InputError(f"the obstacle width must be > 0 [m], got {width!r}")
+    if not 1e-9 <= l_ <= 1e3:  # a volume over 5e-324 m is infinite
+        raise InputError(f"the obstacle width = {l_:g} m is not a plausible obstacle dimension "
+                         "(1e-9 to 1e3 m); give it in metres (20 mm is 20e-3)")
     rm = float(mobile_radius)
     dtheta = np.radians(np.diff(e))
     area_m, area_o = vm / l_, vo / l_

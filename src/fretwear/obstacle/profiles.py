@@ -94,8 +94,9 @@ def _positive(name: str, value, unit: str = "m", allow_zero: bool = False) -> fl
     if not math.isfinite(v) or (v == 0 and not allow_zero):
         sign = ">= 0" if allow_zero else "> 0"
         raise InputError(f"{name} must be finite and {sign} [{unit}], got {value!r}")
-    if unit == "m" and v > 1e3:  # beyond, the clearance search overflows (r² of 1e154 m)
-        raise InputError(f"{name} = {v:g} m is not a plausible obstacle dimension (at most "
+    if unit == "m" and (v > 1e3 or (not allow_zero and v < 1e-9)):
+        # beyond, the clearance search overflows (r² of 1e154 m, a volume / 5e-324 m)
+        raise InputError(f"{name} = {v:g} m is not a plausible obstacle dimension (1e-9 to "
                          "1e3 m); give it in metres (0.5 mm is 0.5e-3)")
     return v
 

@@ -1,0 +1,140 @@
+"""Fuzz the command line's argv (issue 15): every input ends in exit code 0, 1 or 2, never a
+traceback.
+
+argv = a subcommand, then tokens drawn from that command's options and from values that are
+good (a small history, case, wear table), damaged, missing, directories, or odd (nan, -1, 1e308,
+'', text). ``fretwear.cli.main`` runs inside click's CliRunner isolation; an exception escaping
+it, a 'Traceback' on stderr, an unexpected exit code or an example over 20 s fails the test.
+"""
+
+from __future__ import annotations
+
+import functools
+import itertools
+
+import click
+from click.testing import CliRunner
+from fuzzhelpers import examples, no_hang, small_history, workdir
+from hypothesis import given
+from hypothesis import strategies as st
+
+from fretwear.cli import cli, main
+from fretwear.errors import FretwearError
+from fretwear.io import write_history
+
+_COUNTER = itertools.count()
+
+
+@functools.lru_cache(maxsize=1)
+def files() -> dict[str, str]:
+    d = workdir() / "cli"
+    d.mkdir(exist_ok=True)
+    history = write_history(small_history(n=60), d / "h.csv")
+    damaged = d / "damaged.csv.gz"
+    damaged.write_bytes(b"\x1f\x8b\x08\x00garbage")
+    case = d / "case.toml"
+    case.write_text(f"""[history]
+file = "{history}"
+[law]
+name = "ARCHARD"
+mobile = {{ COEF_USURE = 30e-15 }}
+[geometry]
+contact_type = "GRAPPE_1_ENCO"
+mobile_radius_m = 4.85e-3
+obstacle_radius_m = 5.25e-3
+obstacle_width_m = 20e-3
+[sectors]
+count = 4
+[time]
+instants = [1000, 5000]
+unit = "h"
+[obstacle]
+type = "circle"
+wall_thickness_m = 0.47e-3
+step_deg = 5.0
+resolution_deg = 1.0
+""")
+    broken = d / "broken.toml"
+    broken.write_text("[law\nname = 'ARCHARD'\n")
+    table = d / "wear.csv"
+    main(["run", str(case), "-q", "-o", str(table)])
+    return {"history": str(history), "damaged": str(damaged), "case": str(case),
+            "broken": str(broken), "table": str(table), "dir": str(d),
+            "missing": str(d / "missing.csv")}
+
+
+def _out(suffix: str) -> str:
+    return str(workdir() / "cli" / f"out{next(_COUNTER)}{suffix}")
+
+
+FILES = ["history", "damaged", "case", "broken", "table", "dir", "missing"]
+ODD_VALUES = ["nan", "inf", "-1", "0", "1e308", "", "abc", "-", "1,2", "10", "0.5", "mm",
+              "length=mm", "fn=x", "=", "time=ms,force=kN", "select=NOEUD=N1"]
+OPTIONS = {
+    "power": ["--sectors", "--blocks", "--t-start", "--t-end", "--threshold", "--force-threshold",
+              "--rest-time", "--format", "--units", "--column", "--read-option", "--chunk-size",
+              "--json", "--level"],
+    "run": ["-o", "--aster-names", "--aster-format", "--database", "-q", "--wall-thickness",
+            "--depth-limit"],
+    "obstacle": ["--table", "--instant", "--mobile-radius", "--wall-thickness", "--width",
+                 "--gap", "--bore-radius", "--plane-gap", "--orientation", "--shape",
+                 "--perforation", "--resolution", "--step", "-o", "--format", "-q"],
+    "materials": ["--contact", "--law", "--database", "--json"],
+    "iterate": ["-o", "-n", "--no-plot", "-q"],
+}
+FIRST = {"power": ["history", "damaged", "missing", "dir"], "run": ["case", "broken", "missing"],
+         "obstacle": ["case", "broken", "missing", None], "materials": [None],
+         "iterate": ["broken", "missing", "dir"]}
+
+
+@st.composite
+def argv(draw):
+    command = draw(st.sampled_from(sorted(OPTIONS)))
+    out = [command]
+    first = draw(st.sampled_from(FIRST[command]))
+    if first is not None:
+        out.append(f"@{first}")
+    for _ in range(draw(st.integers(0, 5))):
+        option = draw(st.sampled_from(OPTIONS[command] + ["--bogus", "-x"]))
+        out.append(option)
+        kind = draw(st.sampled_from(["odd", "file", "out", "none"]))
+        if kind == "odd":
+            out.append(draw(st.sampled_from(ODD_VALUES)))
+        elif kind == "file":
+            out.append("@" + draw(st.sampled_from(FILES)))
+        elif kind == "out":
+            out.append("@out" + draw(st.sampled_from([".csv", ".tab", ".parquet", ".xyz", ""])))
+    return out
+
+
+def _resolve(token: str) -> str:
+    """A placeholder ``@name`` -> the file's path (``@out.csv`` -> a fresh output path)."""
+    if not token.startswith("@"):
+        return token
+    if token.startswith("@out"):
+        return _out(token[4:])
+    return files()[token[1:]]
+
+
+@examples(80)
+@given(args=argv())
+def test_command_line_never_shows_a_traceback(args):
+    runner = CliRunner()
+    resolved = [_resolve(a) for a in args]
+    with runner.isolation() as streams, no_hang():
+        try:
+            code = main(resolved)
+        except SystemExit as exc:  # click's own exits
+            code = exc.code
+    stderr = streams[1].getvalue().decode(errors="replace")
+    assert "Traceback" not in stderr, stderr
+    assert code in (0, 1, 2), (code, stderr)
+    if code == 2 and stderr.startswith("fretwear: error:"):
+        # main() also turns a bare ValueError into exit 2: the library must raise fretwear
+        # errors, so the same argv run without main's net raises one (or a click error)
+        with runner.isolation(), no_hang():
+            try:
+                cli.main(args=resolved, prog_name="fretwear", standalone_mode=False)
+            except (FretwearError, click.ClickException, click.exceptions.Exit,
+                    click.exceptions.Abort):
+                pass
