@@ -48,8 +48,9 @@ from fretwear.workflows.case_files import load_case, validate_case
 #: Contacts per part file (a part is also written every PART_SECONDS).
 PART_SIZE = 100
 PART_SECONDS = 10.0
-#: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting.
-_BYTES_PER_SAMPLE = 4
+#: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
+#: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
+_BYTES_PER_SAMPLE = 6
 
 
 def _base_case(case) -> dict[str, Any]:
@@ -113,6 +114,9 @@ class _Serial:
     def submit(self, fn, *args, key: str = "", retries: int = 0):
         return _Deferred(fn, args)
 
+    def map(self, fn, items, *args, keys, retries: int = 0):
+        return [_Deferred(fn, (item, *args)) for item in items]
+
     def results(self, handles):
         for h in handles:
             yield h, h.value()
@@ -155,6 +159,13 @@ class _Dask:
 
     def submit(self, fn, *args, key: str, retries: int = 2):
         return self.client.submit(fn, *args, key=key, pure=False, retries=retries)
+
+    def map(self, fn, items, *args, keys, retries: int = 2):
+        # one graph for many contacts: one message to the scheduler, not one per contact
+        if not items:
+            return []
+        return self.client.map(fn, items, *[[a] * len(items) for a in args], key=keys,
+                               pure=False, retries=retries)
 
     def results(self, handles):
         # the futures finished since the last look, their results fetched in one gather (one
@@ -332,13 +343,21 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
     try:
         tag = uuid.uuid4().hex[:8]
         handles = {}
+        whole = []
         for task in pending:
             try:
                 chunks = plan_chunks(task, chunk_size)
             except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
                 del exc
                 chunks = None
+            if chunks is None:
+                whole.append(task)
+                continue
             handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
+            handles[id(handle)] = (handle, task)
+        mapped = engine.map(run_contact, whole, chunk_size,
+                            keys=[f"contact-{t.contact}-{tag}" for t in whole], retries=retries)
+        for handle, task in zip(mapped, whole, strict=True):
             handles[id(handle)] = (handle, task)
         for handle, value in engine.results([h for h, _ in handles.values()]):
             task = handles[id(handle)][1]
