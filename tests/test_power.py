@@ -222,7 +222,7 @@ H = ContactHistory(time=[0.0, 1.0, 2.0], normal_force=[1.0, 1.0, 1.0], vt1=[1.0]
         (dict(blocks=True), ["blocks", "integer"]),
         (dict(sectors=[-180, 0, 170]), ["sectors", "-180..180"]),
         (dict(sectors=[-180, 10, 10, 180]), ["sectors", "strictly increasing"]),
-        (dict(sectors=0), ["sectors", ">= 1"]),
+        (dict(sectors=0), ["sectors", "from 1 to 720"]),
         (dict(stationarity_threshold=-0.1), ["stationarity_threshold"]),
         (dict(force_threshold=-1.0), ["force_threshold", ">= 0"]),
         (dict(minimum_rest_time=math.inf), ["minimum_rest_time"]),

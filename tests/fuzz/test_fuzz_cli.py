@@ -9,8 +9,10 @@ it, a 'Traceback' on stderr, an unexpected exit code or an example over 20 s fai
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import itertools
+import os
 
 import click
 from click.testing import CliRunner
@@ -107,6 +109,17 @@ def argv(draw):
     return out
 
 
+@contextlib.contextmanager
+def _inside(folder):
+    """Run in ``folder``: an odd value taken as a relative output path lands there."""
+    here = os.getcwd()
+    os.chdir(folder)
+    try:
+        yield
+    finally:
+        os.chdir(here)
+
+
 def _resolve(token: str) -> str:
     """A placeholder ``@name`` -> the file's path (``@out.csv`` -> a fresh output path)."""
     if not token.startswith("@"):
@@ -121,7 +134,7 @@ def _resolve(token: str) -> str:
 def test_command_line_never_shows_a_traceback(args):
     runner = CliRunner()
     resolved = [_resolve(a) for a in args]
-    with runner.isolation() as streams, no_hang():
+    with runner.isolation() as streams, no_hang(), _inside(workdir()):
         try:
             code = main(resolved)
         except SystemExit as exc:  # click's own exits
@@ -132,7 +145,7 @@ def test_command_line_never_shows_a_traceback(args):
     if code == 2 and stderr.startswith("fretwear: error:"):
         # main() also turns a bare ValueError into exit 2: the library must raise fretwear
         # errors, so the same argv run without main's net raises one (or a click error)
-        with runner.isolation(), no_hang():
+        with runner.isolation(), no_hang(), _inside(workdir()):
             try:
                 cli.main(args=resolved, prog_name="fretwear", standalone_mode=False)
             except (FretwearError, click.ClickException, click.exceptions.Exit,

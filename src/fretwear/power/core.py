@@ -36,11 +36,13 @@ from fretwear.errors import (
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import iter_history_chunks, read_history
 from fretwear.power.kernels import BLOCK_STATS, GROUP_FIELDS, fused
+from fretwear.power.ranges import check_finite_sums, out_of_range, speed_scale
 from fretwear.power.result import PowerResult
 from fretwear.power.statistics import ContactStatistics, finalize_statistics, merge_groups
 from fretwear.sectors import sector_edges as _sector_edges
 
 _SAMPLE = ("time", "normal_force", "vt1", "vt2", "dy", "dz", "stick")
+_SLIDING = BLOCK_STATS.index("sliding_distance")  # the statistics linear in the speed
 
 
 def _as_bound(value, keyword: str) -> float | None:
@@ -168,6 +170,16 @@ class PowerAccumulator:
                 "the local displacements (DYLOC/DZLOC, or VINT5/VINT6); give them or drop sectors")
         s = self._kernel(t, fn, vt1, vt2, dy, dz, stick, self._lo, self._hi, self._block_edges,
                          self._edges, self.force_threshold, self.minimum_rest_time)
+        if out_of_range(s):  # √(Vt1²+Vt2²) may have over/underflowed: again, scaled exactly
+            scale = speed_scale(vt1, vt2)
+            if scale != 1.0:
+                s = self._kernel(t, fn, vt1 * scale, vt2 * scale, dy, dz, stick, self._lo,
+                                 self._hi, self._block_edges, self._edges,
+                                 self.force_threshold, self.minimum_rest_time)
+                with np.errstate(over="ignore"):  # an overflow is reported just below
+                    s.power[...] /= scale
+                    s.block_stats[:, _SLIDING] /= scale
+            check_finite_sums(s, t, fn, vt1, vt2, self.name)
         self.power += s.power
         self.block_stats += s.block_stats
         self.force_max = max(self.force_max, s.force_max)
