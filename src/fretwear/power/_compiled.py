@@ -45,7 +45,7 @@ BLOCK = 16
 #: Longest run reduced by one call of the vectorised passes [intervals] (buffer size).
 RUNMAX = 4096
 #: Runs of at least this many intervals take the vectorised passes, in multiples of ``VEC``.
-LONG = 64
+LONG = 256
 VEC = 32
 #: A run with fewer than one threshold crossing per ``SPARSE`` intervals takes _scan_sparse.
 SPARSE = 16
@@ -292,7 +292,7 @@ def _scan_dense(fn, dy, dz, sec, i, te, threshold, base, edge, exact, acc, sums,
         a1 = f1 > threshold
         cross = cb[m]
         fc = fb[m]
-        up = a1 and not a0
+        up = a1 & ~a0  # bitwise on booleans: no branch
         ep_start = cross if up else ep_start
         ep_peak = fc if up else ep_peak
         ep_open = 0.0 if up else ep_open
@@ -301,7 +301,7 @@ def _scan_dense(fn, dy, dz, sec, i, te, threshold, base, edge, exact, acc, sums,
         eps[ne, 1] = cross
         eps[ne, 2] = ep_peak
         eps[ne, 3] = ep_open
-        ne += 1 if (a0 and not a1) else 0
+        ne += 1 if a0 & ~a1 else 0
     sums[_FMAX] = fmax
     sums[_EP_START] = ep_start
     sums[_EP_PEAK] = ep_peak
@@ -403,24 +403,21 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
     j_last = 0
     q_lo = np.inf
     q_hi = -np.inf
-    ok1 = False
     s1 = 0.0
-    t1 = t[i]
-    f1 = fn[i]
-    for ii in range(i, r):
-        t0 = t1
-        f0 = f1
-        s0 = s1
-        ok0 = ok1
+    ii = i
+    prev = -1  # the last interval reduced (its right speed is this one's left speed)
+    while ii < r:
+        while ii < r and fn[ii] == 0.0 and fn[ii + 1] == 0.0:  # free flight
+            ii += 1
+        if ii >= r:
+            break
+        t0 = t[ii]
         t1 = t[ii + 1]
+        f0 = fn[ii]
         f1 = fn[ii + 1]
-        if f0 == 0.0 and f1 == 0.0:  # free flight: nothing to integrate
-            ok1 = False
-            continue
-        if not ok0:
-            s0 = math.sqrt(v1[ii] * v1[ii] + v2[ii] * v2[ii])
+        s0 = s1 if prev == ii - 1 else math.sqrt(v1[ii] * v1[ii] + v2[ii] * v2[ii])
         s1 = math.sqrt(v1[ii + 1] * v1[ii + 1] + v2[ii + 1] * v2[ii + 1])
-        ok1 = True
+        prev = ii
         dt = t1 - t0
         slide = True
         if stick is not None:
@@ -486,6 +483,7 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
                 ep_open = False
             else:
                 _add_episode(groups, ep_start, cross, _mx(ep_peak, fc), ep_open, False, min_rest)
+        ii += 1
     sums[0] += ct
     sums[1] += fc_
     sums[2] += f2c
