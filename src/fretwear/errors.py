@@ -64,5 +64,15 @@ class ConfidenceWarning(FretwearWarning):
     """A confidence interval rests on too few samples or on correlated ones (too narrow)."""
 
 
+class UnitsWarning(FretwearWarning):
+    """A history's values are implausible in SI units (a file exported in mm, ms, mN or kN);
+    the message names the channel, the value, the likely unit and the ``units`` option."""
+
+
+class WholeReadWarning(FretwearWarning):
+    """A large file is read whole while streaming was asked: its format cannot be streamed
+    (NPZ, Code_Aster text); the message says how to convert it."""
+
+
 class PerforationWarning(FretwearWarning):
     """The mobile's worn depth passed the perforation criterion (PERCEMENT × wall thickness)."""

@@ -39,7 +39,8 @@ def test_table_mode_writes_profile_discret_and_plot(tmp_path, capsys):
     code = main(["obstacle", "--table", str(table), "--mobile-radius", str(RM),
                  "--wall-thickness", str(WALL), "--gap", str(GAP), "--width", str(WIDTH),
                  "--resolution", "0.25", "-o", str(tmp_path / "profile.csv"),
-                 "--discret", str(tmp_path / "worn.txt"), "--plot", str(tmp_path / "fig")])
+                 "--write-discret", str(tmp_path / "worn.txt"), "--plot",
+                 str(tmp_path / "fig")])
     out = capsys.readouterr().out
     assert code == 0, out
     assert "at instant 5" in out

@@ -42,7 +42,8 @@ def test_json_blocks_window_and_warning(capsys, ramp_file):
     assert any("block powers spread" in w for w in out["warnings"])
     # a looser threshold: no warning
     out = _json(capsys, ramp_file, "--blocks", "3", "--threshold", "10")
-    assert out["warnings"] == []
+    # (the ramp is not a physical contact: its 1 m displacements and 1 s steps get UnitsWarnings)
+    assert [w for w in out["warnings"] if "plausibility limit" not in w] == []
 
 
 def test_sectors_and_small_chunks_match(capsys, ramp_file):

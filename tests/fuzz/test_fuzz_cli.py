@@ -77,10 +77,11 @@ OPTIONS = {
               "--rest-time", "--format", "--units", "--column", "--read-option", "--chunk-size",
               "--json", "--level"],
     "run": ["-o", "--aster-names", "--aster-format", "--database", "-q", "--wall-thickness",
-            "--depth-limit"],
+            "--depth-limit", "--units", "--force"],
     "obstacle": ["--table", "--instant", "--mobile-radius", "--wall-thickness", "--width",
                  "--gap", "--bore-radius", "--plane-gap", "--orientation", "--shape",
-                 "--perforation", "--resolution", "--step", "-o", "--format", "-q"],
+                 "--perforation", "--resolution", "--step", "-o", "--format", "-q",
+                 "--obstacle-table", "--write-discret", "--discrete", "--discret", "--units"],
     "materials": ["--contact", "--law", "--database", "--json"],
     "iterate": ["-o", "-n", "--no-plot", "-q"],
 }

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import gzip
 import os
+import warnings
 import zipfile
 from pathlib import Path
 
@@ -252,3 +253,24 @@ def test_permission_error_while_reading_names_the_file(tmp_path, monkeypatch):
     with pytest.raises(InputError, match=r"history file '.*h\.csv' cannot be read \(permission "
                                          r"denied\)"):
         read_history(path)
+
+
+# --------------------------------------------------------------------------- memory
+@pytest.mark.parametrize("suffix", [".npz", ".resu"])
+def test_streaming_a_format_read_whole_warns_above_a_size(tmp_path, monkeypatch, suffix):
+    from fretwear.errors import WholeReadWarning
+
+    path = write_history(analytic_history(n=200), tmp_path / f"h{suffix}")
+    monkeypatch.setattr(guard, "WHOLE_READ_WARNING_BYTES", path.stat().st_size - 1)
+    with pytest.warns(WholeReadWarning, match=rf"h\{suffix}: 0 MiB of .* data are read whole "
+                                              r".*convert it once to Parquet"):
+        list(iter_history_chunks(path, chunk_size=50))
+    monkeypatch.setattr(guard, "WHOLE_READ_WARNING_BYTES", path.stat().st_size)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", WholeReadWarning)
+        list(iter_history_chunks(path, chunk_size=50))
+    csv = write_history(analytic_history(n=200), tmp_path / "h.csv")  # streamed: no warning
+    monkeypatch.setattr(guard, "WHOLE_READ_WARNING_BYTES", 1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", WholeReadWarning)
+        list(iter_history_chunks(csv, chunk_size=50))

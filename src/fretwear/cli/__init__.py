@@ -53,8 +53,28 @@ def cli() -> None:
     """fretwear: fretting-wear analysis of impact-sliding contacts (SI units inside)."""
 
 
+#: Line width of the printed tables when the output is a file or a pipe (rich would wrap them at
+#: 80 columns): as wide as their content.
+WIDE_COLUMNS = 10_000
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Console-script entry point; returns the exit code."""
+    """Console-script entry point; returns the exit code.
+
+    When standard output is not a terminal (a file, a pipe) and ``COLUMNS`` is not set, tables
+    are printed at their full width instead of being wrapped at 80 columns.
+    """
+    wide = "COLUMNS" not in os.environ and not sys.stdout.isatty()
+    if wide:
+        os.environ["COLUMNS"] = str(WIDE_COLUMNS)
+    try:
+        return _main(argv)
+    finally:
+        if wide:
+            os.environ.pop("COLUMNS", None)
+
+
+def _main(argv: list[str] | None) -> int:
     try:
         # without standalone mode, click returns the code of a command's ctx.exit(code)
         code = cli.main(args=argv, prog_name="fretwear", standalone_mode=False)

@@ -9,13 +9,16 @@ import click
 import numpy as np
 
 from fretwear._optional import require
+from fretwear.cli._units import parse_units, units_line, units_option, with_history_units
 from fretwear.errors import FretwearWarning, KeywordError
+from fretwear.io.atomic import check_outputs
 from fretwear.obstacle import obstacle_from_config
 from fretwear.obstacle.config import MODEL_KEYS
 from fretwear.obstacle.depth import DEPTH_SHAPES
 from fretwear.obstacle.update import PROFILE_FORMATS
 from fretwear.plotting import plot_obstacle, save_figure
 from fretwear.workflows.case_files import load_case, run_case
+from fretwear.workflows.inputs import case_inputs
 
 _HELP = """Update the obstacle's clearance figure from a wear table (MODI_OBSTACLE).
 
@@ -24,15 +27,28 @@ or the case is run), or --table WEAR_TABLE with the geometry given as options. T
 sector volumes at --instant (default the last) give the worn depth profiles of the mobile and
 the obstacle; the worn clearance in each direction is the exact translation of the worn mobile
 inside the worn obstacle. Writes the profile table (-o: .csv, or a Code_Aster TABLEAU), the
-worn clearance figure as a DISCRET obstacle file (--discret) for the next dynamic computation,
+worn clearance figure as a DISCRET obstacle file (--write-discret) for the next dynamic
+computation,
 and a polar plot (--plot DIR). SI units (m, m³); angles in degrees.
 
 \b
 Examples:
   fretwear obstacle case.toml -o build/profile.csv --plot build
   fretwear obstacle --table wear.tab --mobile-radius 9.5e-3 --wall-thickness 1.09e-3 \\
-      --gap 0.5e-3 --width 20e-3 --instant 10 -o profile.tab --discret worn_discret.txt
+      --gap 0.5e-3 --width 20e-3 --instant 10 -o profile.tab --write-discret worn_discret.txt
 """
+
+
+def _renamed(new: str, does: str):
+    """The callback of a retired option: refused with the new name (the old --discrete and
+    --discret differed by one letter, and taking one for the other double-counts the wear)."""
+    def refuse(ctx: click.Context, param: click.Parameter, value) -> None:
+        if value is not None:
+            raise click.UsageError(
+                f"{param.opts[0]} was renamed {new} (it {does} a DISCRET obstacle table; the "
+                "old names --discrete and --discret differed by one letter): use "
+                f"{new} {value}")
+    return refuse
 
 
 def _summary(result, echo) -> None:
@@ -83,9 +99,11 @@ def _summary(result, echo) -> None:
 @click.option("--closing-radius", type=float,
               help="Two planes: radius of the far circle closing the figure [m] (default "
                    "100 × (R_m + gap)).")
-@click.option("--discrete", "discrete_file", type=click.Path(exists=True, dir_okay=False,
-                                                              path_type=Path),
-              help="NEW obstacle as a DISCRET table (THETA [deg], JEU [m]).")
+@click.option("--obstacle-table", "discrete_file", type=click.Path(exists=True, dir_okay=False,
+                                                                    path_type=Path),
+              help="Input: the NEW obstacle as a DISCRET table (THETA [deg], JEU [m]).")
+@click.option("--discrete", hidden=True, expose_value=False, is_eager=True,
+              callback=_renamed("--obstacle-table", "reads"))
 @click.option("--shape", type=click.Choice(list(DEPTH_SHAPES)),
               help="Depth shape within a sector (default uniform).")
 @click.option("--perforation", type=float,
@@ -98,22 +116,26 @@ def _summary(result, echo) -> None:
               help="Profile table: .csv, or a Code_Aster TABLEAU for any other suffix.")
 @click.option("--format", "fmt", type=click.Choice(PROFILE_FORMATS, case_sensitive=False),
               help="Force the profile table format.")
-@click.option("--discret", "discret_path", type=click.Path(dir_okay=False, path_type=Path),
-              help="Write the worn clearance figure as a DISCRET obstacle file.")
+@click.option("--write-discret", "discret_path", type=click.Path(dir_okay=False,
+                                                                  path_type=Path),
+              help="Output: write the worn clearance figure as a DISCRET obstacle file.")
+@click.option("--discret", hidden=True, expose_value=False, is_eager=True,
+              callback=_renamed("--write-discret", "writes"))
+@units_option
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write obstacle_polar.png and .svg into this directory.")
 @click.option("-q", "--quiet", is_flag=True, help="No summary.")
 def command(case_file, table_path, instant, mobile_radius, wall_thickness, width, gap,
             bore_radius, plane_gap, plane_gap_opposite, orientation, closing_radius,
             discrete_file, shape, perforation, resolution, step, output, fmt, discret_path,
-            plot_dir, quiet) -> None:
+            units, plot_dir, quiet) -> None:
     echo = (lambda *a, **k: None) if quiet else click.echo
     section: dict = {}
     geometry: dict = {}
     directory = None
     case = None
     if case_file is not None:
-        case = load_case(case_file)
+        case = with_history_units(load_case(case_file), parse_units(units))
         section = dict(case.get("obstacle", {}))
         geometry = dict(case.get("geometry", {}))
         directory = case.get("_directory")
@@ -122,6 +144,9 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
                                "docs/obstacle.md) or use --table with options")
     elif table_path is None:
         raise click.UsageError("give a case file CASE.toml or --table WEAR_TABLE")
+    elif units:
+        raise click.UsageError("--units gives the units of the history a case file reads; "
+                               "a --table wear table is in SI (volumes m³)")
     overrides = {"mobile_radius_m": mobile_radius, "wall_thickness_m": wall_thickness,
                  "width_m": width, "shape": shape, "perforation": perforation,
                  "instant": instant, "resolution_deg": resolution, "step_deg": step}
@@ -131,7 +156,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
     given = {k: v for k, v in models.items() if v is not None}
     if len(given) > 1:
         raise click.UsageError("give one obstacle: --gap, --bore-radius, --plane-gap or "
-                               "--discrete")
+                               "--obstacle-table")
     if plane_gap is None:
         stray = [opt for opt, v in (("--plane-gap-opposite", plane_gap_opposite),
                                     ("--orientation", orientation),
@@ -158,17 +183,26 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
                                         ("--wall-thickness", "wall_thickness_m"))
                    if key not in section]
         if not given:
-            missing.append("an obstacle (--gap, --bore-radius, --plane-gap or --discrete)")
+            missing.append("an obstacle (--gap, --bore-radius, --plane-gap or "
+                           "--obstacle-table)")
         if missing:
             raise click.UsageError(f"with --table, give {', '.join(missing)}")
     setup = obstacle_from_config(section, geometry=geometry, directory=directory)
+    inputs = case_inputs(case or {}, case_file)
+    inputs.update({"wear table (--table)": table_path, "obstacle table": discrete_file,
+                   "obstacle's wear table": setup.table})
+    check_outputs({"-o": output if output is not None else setup.output,
+                   "--write-discret": discret_path if discret_path is not None
+                   else setup.discret}, inputs)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         if setup.table is not None:
             result = setup.update()
         else:
             echo("running the case for its wear table ...", err=True)
-            result = setup.update(run_case(case).table)  # the case read above
+            run = run_case(case)  # the case read above
+            echo(units_line(None if run.history is None else run.history.metadata.get("units")))
+            result = setup.update(run.table)
     _summary(result, echo)
     for w in caught:
         if issubclass(w.category, FretwearWarning):

@@ -15,9 +15,10 @@ import click
 from rich.console import Console
 from rich.table import Table
 
+from fretwear.cli._units import pairs, parse_units, units_line, units_option
 from fretwear.errors import ConfidenceWarning
 from fretwear.history import CHANNELS, DEFAULT_CHUNK_SIZE
-from fretwear.io import FORMATS
+from fretwear.io import FORMATS, units_read
 from fretwear.power import wear_power
 from fretwear.power.statistics import STATISTICS_UNITS
 
@@ -35,27 +36,6 @@ def _parse_sectors(value: str | None):
         raise click.BadParameter(
             f"{value!r}: give a number of sectors (e.g. 10) or comma-separated edges in degrees "
             "from -180 to 180 (e.g. -180,-90,0,90,180)", param_hint="--sectors") from None
-
-
-def _pairs(values: tuple[str, ...], option: str, what: str, split: bool = True
-           ) -> dict[str, str]:
-    """``("length=mm,force=kN", "dy=mm")`` -> ``{"length": "mm", "force": "kN", "dy": "mm"}``.
-
-    Examples
-    --------
-    >>> _pairs(("length=mm,force=kN", "dy=mm"), "--units", "KEY=UNIT")
-    {'length': 'mm', 'force': 'kN', 'dy': 'mm'}
-    """
-    out: dict[str, str] = {}
-    for value in values:
-        for item in (value.split(",") if split else [value]):
-            if not item.strip():
-                continue
-            key, sep, val = item.partition("=")
-            if not sep or not key.strip() or (split and not val.strip()):
-                raise click.BadParameter(f"{item!r}: give {what}", param_hint=option)
-            out[key.strip()] = val.strip()
-    return out
 
 
 def _option_value(text: str):
@@ -171,10 +151,7 @@ def _print_table(result, caught: list[str], interval=None, sector_intervals=()) 
               help="Minimum rest [s] below the force threshold between two impacts.")
 @click.option("--format", "format_", default=None,
               help=f"File format ({', '.join(FORMATS)}); default: guessed from the content.")
-@click.option("--units", "units", multiple=True, metavar="KEY=UNIT[,...]",
-              help="Units of the file's values, converted to SI: per quantity (length=mm, "
-                   "force=kN, time=ms, velocity=mm/s) or per channel (dy=mm). Repeatable. "
-                   "Default: the units the file declares, else SI.")
+@units_option
 @click.option("--column", "columns", multiple=True, metavar="COLUMN=CHANNEL",
               help=f"Map a column to a channel ({', '.join(CHANNELS)}), or COLUMN=none to "
                    "ignore it; columns of a file without header "
@@ -204,16 +181,16 @@ def command(history, sectors, blocks, t_start, t_end, threshold, force_threshold
     confidence interval of the power, P = 0.184 ± 0.012 W (95 %), by batch means.
     """
     source = _history_argument(history)
-    options = dict((k, _option_value(v)) for k, v in _pairs(
+    options = dict((k, _option_value(v)) for k, v in pairs(
         read_options, "--read-option", "KEY=VALUE (e.g. group=/shock/N12)", split=False).items())
     if format_ is not None:
         options["format"] = format_
     if units:
-        options["units"] = _pairs(units, "--units", "KEY=UNIT (e.g. length=mm)")
+        options["units"] = parse_units(units)
     if columns:
         options["columns"] = {
             k: (None if v.lower() in ("none", "") else v)
-            for k, v in _pairs(columns, "--column", "COLUMN=CHANNEL (e.g. FN_N12=fn)").items()}
+            for k, v in pairs(columns, "--column", "COLUMN=CHANNEL (e.g. FN_N12=fn)").items()}
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = wear_power(source, t_start=t_start, t_end=t_end, blocks=blocks,
@@ -221,6 +198,7 @@ def command(history, sectors, blocks, t_start, t_end, threshold, force_threshold
                             force_threshold=force_threshold, minimum_rest_time=rest_time,
                             chunk_size=chunk_size, **options)
     messages = [str(w.message) for w in caught]
+    read_in = units_read(source, **options)
     with warnings.catch_warnings():  # their notes travel with the intervals
         warnings.simplefilter("ignore", ConfidenceWarning)
         interval, sector_intervals = _intervals(result, level)
@@ -229,9 +207,11 @@ def command(history, sectors, blocks, t_start, t_end, threshold, force_threshold
         payload["confidence_interval"] = None if interval is None else interval.to_dict()
         payload["sector_confidence_intervals"] = [iv.to_dict() for iv in sector_intervals]
         payload["warnings"] = messages
+        payload["units_read"] = read_in
         payload["units"] = {"total": "W", "blocks": "W", "sectors": "W", "block_edges": "s",
                             "sector_edges": "deg", "t_start": "s", "t_end": "s",
                             "duration": "s", "spread": "1", "statistics": STATISTICS_UNITS}
         click.echo(json.dumps(payload, indent=2))
     else:
         _print_table(result, messages, interval, sector_intervals)
+        click.echo(units_line(read_in))

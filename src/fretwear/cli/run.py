@@ -16,17 +16,21 @@ from rich.progress import (
     TextColumn,
     TimeElapsedColumn,
 )
+from rich.rule import Rule
 from rich.table import Table
 
 from fretwear._optional import require
+from fretwear.cli._units import parse_units, units_line, units_option, with_history_units
 from fretwear.errors import ConfidenceWarning
 from fretwear.io.aster import TABLE_FORMATS
+from fretwear.io.atomic import check_outputs
 from fretwear.laws import WEAR_LAWS
 from fretwear.plotting import save_figure, wear_figures
 from fretwear.report import analyse_case, write_report
 from fretwear.table import COLUMNS, write_wear_table
 from fretwear.table.files import ASTER_SUFFIXES
 from fretwear.workflows.case_files import keys_help, load_case, run_case
+from fretwear.workflows.inputs import RESTART_TABLE, case_inputs
 
 
 def columns_help() -> str:
@@ -56,12 +60,16 @@ def _summary(result, console) -> None:
     table = result.table
     attrs = table.attrs
     title = attrs.get("title") or "fretwear run"
-    console.rule(f"[bold]{title}")
+    # a rule as wide as the terminal, or 100 columns in a file (its width is then unbounded)
+    console.print(Rule(f"[bold]{title}"), width=console.width if console.is_terminal else 100)
     power = result.power
     unit = attrs.get("time_unit") or f"{attrs.get('time_scale')} s"
     console.print(f"contact [bold]{attrs.get('contact_type')}[/], law [bold]{attrs.get('law')}"
                   f"[/], time unit = {unit}")
     console.print(f"wear power P = [bold]{result.total_power:.6g} W[/]")
+    history = getattr(result, "history", None)
+    console.print(units_line(None if history is None else history.metadata.get("units")),
+                  markup=False, highlight=False)
     origin = attrs.get("origin") or 0.0
     if origin:
         previous = result.case.get("restart", {}).get("table", "the initial table")
@@ -200,10 +208,15 @@ def _limit_lines(table) -> list[tuple[str, str | None]]:
 @click.option("--report", "report", type=click.Path(dir_okay=False, path_type=Path),
               help="Also write one self-contained HTML report (uncertainty from the case's "
                    "[uncertainty] section; see fretwear report).")
+@units_option
+@click.option("--force", is_flag=True,
+              help="Let -o replace the case's restart table ([restart] table, ETAT_INIT) with "
+                   "the continued one (refused otherwise; other inputs are never replaced).")
 @click.option("-q", "--quiet", is_flag=True, help="No summary on the terminal.")
 def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_names: bool,
             aster_format: str, databases: tuple[Path, ...], wall_thickness: float | None,
-            depth_limit: float | None, report: Path | None, quiet: bool) -> None:
+            depth_limit: float | None, report: Path | None, units: tuple[str, ...],
+            force: bool, quiet: bool) -> None:
     if plot_dir is not None:  # before the computation, not after it
         require("matplotlib.pyplot", purpose="--plot")
     if report is not None:
@@ -224,6 +237,12 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
             if value is not None:
                 geometry[key] = value
         case["geometry"] = geometry
+    case = with_history_units(case, parse_units(units))
+    case = case if isinstance(case, dict) else load_case(case_file)
+    inputs = case_inputs(case, case_file)
+    inputs.update({f"--database {p}": p for p in databases})
+    check_outputs({"-o": output, "--report": report}, inputs, force=force,
+                  overwritable=(RESTART_TABLE,))
     console = Console(stderr=False, quiet=quiet)
     columns = (SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
                TaskProgressColumn(), TimeElapsedColumn())

@@ -37,10 +37,11 @@ from fretwear.io.channels import (
     resolve_columns,
     resolve_units,
 )
-from fretwear.io.guard import HDF5_MAGIC, probe, readable_file, reading
+from fretwear.io.guard import HDF5_MAGIC, probe, readable_file, reading, warn_whole_read
+from fretwear.io.plausibility import check_plausibility
 
 __all__ = ["FORMATS", "ALIASES", "FileFormat", "read_history", "write_history",
-           "iter_history_chunks", "guess_format", "open_source"]
+           "iter_history_chunks", "guess_format", "open_source", "units_read"]
 
 #: Code_Aster parameter names used when a history is written as a Code_Aster table.
 ASTER_NAMES: Mapping[str, str] = MappingProxyType({
@@ -382,15 +383,43 @@ def read_history(path: Any, format: str | None = None, *, units: Mapping[str, st
     source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
                                                          options)
     arrays = source.read(list(mapping.values()))
-    return build_history(dict(zip(mapping, arrays, strict=True)), columns=source.columns,
-                         mapping=mapping, factors=factors, label=source.label, name=label,
-                         metadata=metadata)
+    history = build_history(dict(zip(mapping, arrays, strict=True)), columns=source.columns,
+                            mapping=mapping, factors=factors, label=source.label, name=label,
+                            metadata=metadata)
+    check_plausibility(history)  # UnitsWarning for values implausible in SI (mm, ms ...)
+    return history
 
 
 def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
     n = min((a.size for a in arrays), default=0)
     for start in range(0, n, size):
         yield [a[start:start + size] for a in arrays]
+
+
+def _files(path: Any) -> list:
+    if _is_path(path):
+        return [path]
+    if isinstance(path, Mapping):
+        return list(path.values())
+    return list(path) if isinstance(path, (list, tuple)) else []
+
+
+def units_read(path: Any, format: str | None = None, *, units: Mapping[str, str] | None = None,
+               columns: Mapping[Any, str | None] | None = None, **options: Any
+               ) -> dict[str, str]:
+    """The unit each channel of a history file is read in (``{channel: unit}``), without
+    reading its values; arguments as :func:`read_history`. Printed by the command line's
+    summaries.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> p = pathlib.Path(tempfile.mkdtemp()) / "h.csv"
+    >>> _ = p.write_text("t [ms],Fn [kN],vt1,vt2\\n0,1,0,0\\n1,1,0,0\\n")
+    >>> units_read(p, units={"length": "mm"})
+    {'time': 'ms', 'normal_force': 'kN', 'vt1': 'mm/s', 'vt2': 'mm/s'}
+    """
+    return dict(_prepare(path, format, units, columns, None, options)[4]["units"])
 
 
 def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
@@ -441,6 +470,7 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     if source.iter_blocks is not None:
         blocks = source.iter_blocks(positions, size)
     else:
+        warn_whole_read(_files(path), source.label, source.format)
         whole = source.read(positions)
         check_lengths([a.size for a in whole], [source.columns[p] for p in positions],
                       source.label)
@@ -454,8 +484,13 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     def emit(parts: list[list[np.ndarray]], k: int, first_row: int) -> ContactHistory:
         arrays = {ch: np.concatenate([p[j] for p in parts]) for j, ch in enumerate(channels)}
         meta = dict(metadata, chunk=k, first_row=first_row)
-        return build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
-                             label=source.label, name=label, metadata=meta, first_row=first_row)
+        chunk = build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
+                              label=source.label, name=label, metadata=meta,
+                              first_row=first_row)
+        check_plausibility(chunk, skip=reported)  # each check warns once per file
+        return chunk
+
+    reported: set[str] = set()
 
     k = 0
     for block in blocks:

@@ -10,6 +10,8 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
+from fretwear.errors import FretwearError, InputError
+
 
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
@@ -29,8 +31,14 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     'ok'
     """
     target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    if target.is_dir():
+        raise InputError(f"output {str(target)!r} is a directory; give a file name")
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
+                                        dir=target.parent)
+    except OSError as exc:
+        raise _cannot_write(target, exc) from exc
     os.close(fd)
     tmp = Path(tmp_name)
     try:
@@ -39,10 +47,23 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         os.chmod(tmp, _output_mode(target))
         yield tmp
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
+        if isinstance(exc, OSError):  # the user's path in the message, never the temporary one
+            raise _cannot_write(target, exc, tmp) from exc
+        if isinstance(exc, FretwearError) and str(tmp) in str(exc):
+            raise type(exc)(str(exc).replace(str(tmp), str(target))) from exc
         raise
+
+
+def _cannot_write(target: Path, exc: OSError, tmp: Path | None = None) -> InputError:
+    """An :class:`InputError` naming the user's output path (not the temporary file)."""
+    reason = exc.strerror or str(exc)
+    if tmp is not None:
+        reason = reason.replace(str(tmp), str(target)).replace(tmp.name, target.name)
+    return InputError(f"cannot write the output {str(target)!r}: {reason}; check that its "
+                      "folder exists and is writable and that the disk is not full")
 
 
 def _output_mode(target: Path) -> int:
@@ -59,3 +80,56 @@ def atomic_write(path: str | os.PathLike, mode: str = "w", **open_kwargs) -> Ite
     """Open a temporary file for writing; it replaces ``path`` atomically when closed cleanly."""
     with atomic_path(path) as tmp, open(tmp, mode, **open_kwargs) as handle:
         yield handle
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        if a.exists() and b.exists():
+            return os.path.samefile(a, b)  # hard links and symbolic links too
+    except OSError:
+        pass
+    return os.path.normcase(os.path.abspath(a)) == os.path.normcase(os.path.abspath(b))
+
+
+def check_outputs(outputs, inputs, *, force: bool = False, overwritable=()) -> None:
+    """Refuse an output that would overwrite one of the inputs (nothing the user gave is lost).
+
+    Parameters
+    ----------
+    outputs : mapping
+        ``{what: path or None}`` of the files about to be written (``"-o"``, ``"--report"``).
+    inputs : mapping
+        ``{what: path or None}`` of the files read (history, restart table, database, obstacle
+        table, case file).
+    force : bool
+        Allow overwriting the inputs named in ``overwritable`` (``--force``).
+    overwritable : collection of str
+        Inputs that ``force`` lets an output replace (a restart table continued in place).
+
+    Raises
+    ------
+    InputError
+        Naming the output, the input it would replace, and the fix.
+
+    Examples
+    --------
+    >>> check_outputs({"-o": "a.csv"}, {"history file": "b.csv"})
+    >>> try:
+    ...     check_outputs({"-o": "./a.csv"}, {"history file": "a.csv"})
+    ... except InputError as exc:
+    ...     print(str(exc)[:60])
+    output -o './a.csv' is the history file 'a.csv': writing it
+    """
+    for what, out in outputs.items():
+        if out is None:
+            continue
+        for source, given in inputs.items():
+            if given is None or not _same_file(Path(out), Path(given)):
+                continue
+            if force and source in overwritable:
+                continue
+            hint = (" (add --force to replace it with the continued table)"
+                    if source in overwritable else "")
+            raise InputError(f"output {what} {str(out)!r} is the {source} {str(given)!r}: "
+                             f"writing it would destroy an input; choose another output "
+                             f"path{hint}")

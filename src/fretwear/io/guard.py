@@ -45,6 +45,7 @@ import stat
 import struct
 import subprocess
 import sys
+import warnings
 import zipfile
 import zlib
 from collections.abc import Iterator
@@ -53,9 +54,10 @@ from typing import Any
 
 import pandas as pd
 
-from fretwear.errors import FormatError, FretwearError, InputError
+from fretwear.errors import FormatError, FretwearError, InputError, WholeReadWarning
 
-__all__ = ["readable_file", "reading", "probe", "PROBE_TIMEOUT", "BINARY_FORMATS"]
+__all__ = ["readable_file", "reading", "probe", "warn_whole_read", "PROBE_TIMEOUT",
+           "BINARY_FORMATS", "WHOLE_READ_WARNING_BYTES"]
 
 #: Seconds the child process may take to walk an HDF5/NetCDF file's structure before the file
 #: is declared unreadable (a corrupt file can make the C library loop forever).
@@ -198,6 +200,26 @@ def _describe(exc: BaseException) -> str:
     text = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
     text = text[:300]
     return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+# --------------------------------------------------------------------------- memory
+#: Size [bytes] above which streaming a format that is read whole (NPZ, Code_Aster text, a set
+#: of IMPR_FONCTION files) warns: its memory grows with the file, not with ``chunk_size``.
+WHOLE_READ_WARNING_BYTES = 256 * 2**20
+
+
+def warn_whole_read(files: list, label: str, format: str) -> None:
+    """Warn (:class:`WholeReadWarning`) when ``files``, about to be read whole although
+    streaming was asked, exceed :data:`WHOLE_READ_WARNING_BYTES` together."""
+    size = sum(os.path.getsize(f) for f in files
+               if isinstance(f, (str, os.PathLike)) and os.path.isfile(f))
+    if size > WHOLE_READ_WARNING_BYTES:
+        warnings.warn(
+            f"{label}: {size / 2**20:.0f} MiB of {format} data are read whole (this format "
+            "cannot be streamed; memory grows with the file, not with chunk_size); convert it "
+            "once to Parquet, HDF5 or CSV to stream it with bounded memory: "
+            "fretwear.io.write_history(read_history(path), 'history.parquet')",
+            WholeReadWarning, stacklevel=4)
 
 
 # --------------------------------------------------------------------------- HDF5 / NetCDF

@@ -1,0 +1,163 @@
+"""Plausibility of a contact history in SI units: a file exported in other units is caught.
+
+fretwear computes in SI (s, N, m, m/s). A history exported in millimetres (displacements and
+velocities × 1000) gives 1000 times the wear power, and one in milliseconds gives impacts lasting
+seconds; nothing in the numbers themselves is wrong, so the reader checks them against what an
+impact-sliding contact of flow-induced vibration can do (the thresholds of :data:`THRESHOLDS`,
+documented in docs/formats.md, section "Plausibility checks"). A check that fails gives a
+:class:`~fretwear.errors.UnitsWarning` naming the channel, the value, the unit it was read in,
+the likely unit and the ``units = {...}`` option that fixes it. The checks never change a value.
+
+Examples
+--------
+>>> import warnings
+>>> from fretwear.history import ContactHistory
+>>> h = ContactHistory(time=[0.0, 1e-4, 2e-4], normal_force=[0.0, 20.0, 0.0],
+...                    vt1=[0.0, 50.0, 0.0], vt2=[0.0, 0.0, 0.0], name="N12")
+>>> with warnings.catch_warnings(record=True) as caught:
+...     warnings.simplefilter("always")
+...     found = check_plausibility(h)
+>>> print(found[0][:91])
+history 'N12': channel 'vt1': largest sliding speed ‖Vt‖ 50 m/s (read in 'SI') is above the
+>>> caught[0].category.__name__
+'UnitsWarning'
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Mapping
+from types import MappingProxyType
+from typing import NamedTuple
+
+import numpy as np
+
+from fretwear.errors import UnitsWarning
+from fretwear.history import ContactHistory
+
+
+class Check(NamedTuple):
+    """One plausibility check: ``quantity [unit]`` compared with ``limit``."""
+
+    quantity: str
+    unit: str
+    limit: float
+    above: bool      # True: implausible above the limit; False: below it (and > 0)
+    likely: str      # the unit a file failing the check was probably written in
+    fix: str         # the ``units`` entry that fixes it
+
+
+#: The checks and their thresholds (SI), documented in docs/formats.md "Plausibility checks".
+THRESHOLDS: Mapping[str, Check] = MappingProxyType({
+    "sliding_speed_max": Check("largest sliding speed ‖Vt‖", "m/s", 10.0, True, "mm/s",
+                               "velocity = 'mm/s'"),
+    "displacement_max": Check("largest radial displacement √(dy²+dz²)", "m", 0.05, True, "mm",
+                              "length = 'mm'"),
+    "force_max": Check("largest normal force", "N", 1e5, True, "mN", "force = 'mN'"),
+    "force_min": Check("largest normal force", "N", 1e-2, False, "kN", "force = 'kN'"),
+    "time_step": Check("median sampling step", "s", 5e-3, True, "ms", "time = 'ms'"),
+    "impact_duration": Check("mean impact duration (3 impacts or more)", "s", 0.5, True, "ms",
+                             "time = 'ms'"),
+})
+
+_WHERE = ("case file: [history] units = {{ {fix} }}; command line: --units {cli}; Python: "
+          "read_history(..., units={{{py}}})")
+
+
+def _fix(entry: str) -> str:
+    key, _, value = entry.partition(" = ")
+    return _WHERE.format(fix=entry, cli=f"{key}={value.strip(chr(39))}",
+                         py=f"'{key}': {value}")
+
+
+def _unit(history: ContactHistory, channel: str) -> str:
+    units = history.metadata.get("units") or {}
+    return str(units.get(channel, "SI"))
+
+
+def impact_durations(time: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """Durations [s] of the complete contact episodes (Fn > 0 runs, open ends dropped).
+
+    Examples
+    --------
+    >>> impact_durations(np.arange(8.0), np.array([0, 1, 1, 0, 0, 2, 0, 3.0])).tolist()
+    [2.0, 1.0]
+    """
+    on = force > 0
+    change = np.flatnonzero(np.diff(on.astype(np.int8)))
+    starts = change[~on[change]] + 1  # off -> on at the next sample
+    ends = change[on[change]] + 1     # on -> off at the next sample
+    if starts.size == 0 or ends.size == 0:
+        return np.empty(0)
+    ends = ends[ends > starts[0]]
+    n = min(starts.size, ends.size)
+    return time[ends[:n]] - time[starts[:n]]
+
+
+def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None) -> list[str]:
+    """Warn (:class:`UnitsWarning`) for every value of ``history`` implausible in SI units.
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history (SI units), with ``metadata['units']`` when read from a file.
+    skip : set of str, optional
+        Keys of :data:`THRESHOLDS` already reported (chunked reading warns once per check);
+        the keys of the checks that fail are added to it.
+
+    Returns
+    -------
+    list of str
+        The messages warned.
+
+    Notes
+    -----
+    Thresholds: :data:`THRESHOLDS`. Sliding speeds of flow-induced vibration are below 1 m/s,
+    radial displacements below the support clearance (≤ 1 mm), contact forces 0.1 to 1000 N,
+    impacts last 0.1 to 10 ms and are sampled every 1e-6 to 1e-4 s [1]_; the limits leave a
+    margin of one to two decades.
+
+    References
+    ----------
+    .. [1] M. J. Pettigrew, C. E. Taylor, "Vibration analysis of steam generators and heat
+       exchangers: an overview", J. Fluids Struct. 18 (2003) 469-483.
+    """
+    skip = set() if skip is None else skip
+    name = history.name or history.metadata.get("source", "")
+    found: list[str] = []
+
+    def warn(key: str, channel: str, value: float, unit_read: str) -> None:
+        if key in skip:
+            return
+        skip.add(key)
+        c = THRESHOLDS[key]
+        message = (f"history {name!r}: channel {channel!r}: {c.quantity} {value:.4g} {c.unit} "
+                   f"(read in {unit_read!r}) is {'above' if c.above else 'below'} the "
+                   f"plausibility limit {c.limit:g} {c.unit}; a file in {c.likely!r} gives "
+                   f"this: if so, give the units: {_fix(c.fix)}")
+        found.append(message)
+        warnings.warn(message, UnitsWarning, stacklevel=3)
+
+    speed = history.sliding_speed
+    top = float(speed.max())
+    if top > THRESHOLDS["sliding_speed_max"].limit:
+        channel = "vt1" if np.abs(history.vt1).max() >= np.abs(history.vt2).max() else "vt2"
+        warn("sliding_speed_max", channel, top, _unit(history, channel))
+    if history.dy is not None:
+        radial = float(np.hypot(history.dy, history.dz).max())
+        if radial > THRESHOLDS["displacement_max"].limit:
+            warn("displacement_max", "dy", radial, _unit(history, "dy"))
+    fmax = float(history.normal_force.max())
+    if fmax > THRESHOLDS["force_max"].limit:
+        warn("force_max", "normal_force", fmax, _unit(history, "normal_force"))
+    elif 0.0 < fmax < THRESHOLDS["force_min"].limit:
+        warn("force_min", "normal_force", fmax, _unit(history, "normal_force"))
+    step = float(np.median(np.diff(history.time)))
+    if step > THRESHOLDS["time_step"].limit:
+        warn("time_step", "time", step, _unit(history, "time"))
+    durations = impact_durations(history.time, history.normal_force)
+    if durations.size >= 3 and math.isfinite(mean := float(durations.mean())) \
+            and mean > THRESHOLDS["impact_duration"].limit:
+        warn("impact_duration", "time", mean, _unit(history, "time"))
+    return found
