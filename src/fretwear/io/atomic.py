@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import contextlib
+import glob
 import os
+import shutil
 import stat
 import tempfile
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
@@ -47,6 +50,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         os.chmod(tmp, _output_mode(target))
         yield tmp
         os.replace(tmp, target)
+        _remove_stale(target, ".tmp")
     except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
@@ -64,6 +68,28 @@ def _cannot_write(target: Path, exc: OSError, tmp: Path | None = None) -> InputE
         reason = reason.replace(str(tmp), str(target)).replace(tmp.name, target.name)
     return InputError(f"cannot write the output {str(target)!r}: {reason}; check that its "
                       "folder exists and is writable and that the disk is not full")
+
+
+#: Age [s] after which a temporary file or folder of an output, left by a killed run, is removed
+#: by the next successful write of that output.
+STALE_SECONDS = 60.0
+
+
+def _remove_stale(target: Path, *suffixes: str) -> None:
+    """Remove the temporary files/folders of ``target`` that killed runs left behind
+    (``.<name>.<random><suffix>``, untouched for :data:`STALE_SECONDS`)."""
+    limit = time.time() - STALE_SECONDS
+    for suffix in suffixes:
+        for leftover in target.parent.glob(f".{glob.escape(target.name)}.*{suffix}"):
+            try:
+                if leftover.lstat().st_mtime >= limit:
+                    continue
+                if leftover.is_dir() and not leftover.is_symlink():
+                    shutil.rmtree(leftover, ignore_errors=True)
+                else:
+                    leftover.unlink()
+            except OSError:
+                continue
 
 
 def _output_mode(target: Path) -> int:
@@ -133,3 +159,63 @@ def check_outputs(outputs, inputs, *, force: bool = False, overwritable=()) -> N
             raise InputError(f"output {what} {str(out)!r} is the {source} {str(given)!r}: "
                              f"writing it would destroy an input; choose another output "
                              f"path{hint}")
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap two paths atomically (Linux renameat2 RENAME_EXCHANGE); False when unavailable."""
+    try:
+        import ctypes
+        import ctypes.util
+
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or None, use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError):
+        return False
+    at_fdcwd, rename_exchange = -100, 2
+    done = renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange)
+    return done == 0
+
+
+@contextlib.contextmanager
+def atomic_folder(path: str | os.PathLike) -> Iterator[Path]:
+    """Yield a temporary folder beside ``path``; on success it replaces ``path`` as a whole.
+
+    A reader (or a run killed at any instant) sees the old folder or the complete new one,
+    never a mix: the new folder is written under a hidden temporary name, then exchanged with
+    the old one in one step (Linux ``renameat2(RENAME_EXCHANGE)``; elsewhere the old folder is
+    moved aside first, a window of two renames) and the old one is deleted. On error the
+    temporary folder is deleted and ``path`` is left as it was.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> with atomic_folder(d / "cycle_01") as tmp:
+    ...     _ = (tmp / "table.csv").write_text("new")
+    >>> sorted(p.name for p in d.iterdir()), (d / "cycle_01" / "table.csv").read_text()
+    (['cycle_01'], 'new')
+    """
+    target = Path(path)
+    if target.exists() and not target.is_dir():
+        raise InputError(f"output folder {str(target)!r} is a file; give a folder name")
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent))
+    except OSError as exc:
+        raise _cannot_write(target, exc) from exc
+    try:
+        yield tmp
+        if not target.exists():
+            os.rename(tmp, target)
+        elif _exchange(tmp, target):  # tmp now holds the old folder
+            shutil.rmtree(tmp, ignore_errors=True)
+        else:
+            old = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".old",
+                                        dir=target.parent))
+            os.rename(target, old / target.name)
+            os.rename(tmp, target)
+            shutil.rmtree(old, ignore_errors=True)
+        _remove_stale(target, ".tmp", ".old")
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise

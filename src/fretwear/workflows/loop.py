@@ -31,7 +31,7 @@ from fretwear.dynamics.integrate import simulate
 from fretwear.errors import FretwearWarning, KeywordError
 from fretwear.history import CHANNELS, ContactHistory
 from fretwear.io import iter_history_chunks
-from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.io.atomic import atomic_folder, atomic_path, atomic_write
 from fretwear.keys import check_keys
 from fretwear.obstacle.config import obstacle_from_config
 from fretwear.plotting import (
@@ -286,29 +286,34 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         for k in range(1, n_cycles + 1):
-            cdir = out_dir / f"cycle_{k:02d}"
-            say(f"cycle {k}/{n_cycles}: dynamics")
-            profiles_k = {i: new_profile for i, c in enumerate(setup.case_obstacle) if c}
-            if k > 1:
-                profiles_k[iw] = profile
-            shocks = setup.shocks_with(profiles_k)
-            result = simulate(setup.model, shocks, setup.excitations,
-                              output_dir=cdir / "histories", **setup.options)
-            say(f"cycle {k}/{n_cycles}: wear power")
-            power, history, contact = _cycle_power(result, iw, args)
-            say(f"cycle {k}/{n_cycles}: wear table")
-            table = wear_table_from_case(wear, power)
-            say(f"cycle {k}/{n_cycles}: obstacle update")
-            update = obstacle.update(table)
-            wear = wear.with_initial_state(table)  # the next cycle continues this table
-            profile = (np.asarray(update.angle, float), np.asarray(update.clearance_worn, float))
-            seen = shocks[iw]
-            figures = {"clearance (new)": (update.angle, update.clearance_initial),
-                       "clearance seen by the dynamics": (seen.profile_angles, seen.profile_gaps)
-                       if seen.obstacle == "profile" else None,
-                       "clearance after the update": (update.angle, update.clearance_worn)}
-            _write_cycle(cdir, table, update, result, history, do_plot,
-                         {k: v for k, v in figures.items() if v is not None})
+            final = out_dir / f"cycle_{k:02d}"
+            # written in a hidden folder, then put in place whole: a run killed at any
+            # instant leaves the old cycle folder or the complete new one, never a mix
+            with atomic_folder(final) as cdir:
+                say(f"cycle {k}/{n_cycles}: dynamics")
+                profiles_k = {i: new_profile for i, c in enumerate(setup.case_obstacle) if c}
+                if k > 1:
+                    profiles_k[iw] = profile
+                shocks = setup.shocks_with(profiles_k)
+                result = simulate(setup.model, shocks, setup.excitations,
+                                  output_dir=cdir / "histories", **setup.options)
+                say(f"cycle {k}/{n_cycles}: wear power")
+                power, history, contact = _cycle_power(result, iw, args)
+                say(f"cycle {k}/{n_cycles}: wear table")
+                table = wear_table_from_case(wear, power)
+                say(f"cycle {k}/{n_cycles}: obstacle update")
+                update = obstacle.update(table)
+                wear = wear.with_initial_state(table)  # the next cycle continues this table
+                profile = (np.asarray(update.angle, float),
+                           np.asarray(update.clearance_worn, float))
+                seen = shocks[iw]
+                figures = {"clearance (new)": (update.angle, update.clearance_initial),
+                           "clearance seen by the dynamics":
+                               (seen.profile_angles, seen.profile_gaps)
+                               if seen.obstacle == "profile" else None,
+                           "clearance after the update": (update.angle, update.clearance_worn)}
+                _write_cycle(cdir, table, update, result, history, do_plot,
+                             {k: v for k, v in figures.items() if v is not None}, final)
             tables.append(table)
             profiles.append(update)
             instant = float(np.max(table["instant"]))
@@ -396,7 +401,9 @@ def _cycle_power(result, iw: int, args: Mapping[str, Any]):
     return power, light, in_contact / n
 
 
-def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures) -> None:
+def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures,
+                 final: Path) -> None:
+    """Write a cycle's files into ``cdir``, the temporary folder that becomes ``final``."""
     write_wear_table(table, cdir / "wear_table.csv")
     update.write(cdir / "obstacle_profile.csv")
     if np.all(np.isfinite(update.clearance_worn)):
@@ -405,8 +412,11 @@ def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figu
         warnings.warn(f"{cdir.name}: the worn clearance has NaN values (depth beyond the "
                       "geometry's range): obstacle_discret.txt not written", FretwearWarning,
                       stacklevel=2)
+    summary = result.summary()
+    summary["files"] = {k: str(final / Path(v).relative_to(cdir))  # paths once in place
+                        for k, v in summary.get("files", {}).items()}
     with atomic_write(cdir / "dynamics.json", "w", encoding="utf-8") as fh:
-        json.dump(result.summary(), fh, indent=2)
+        json.dump(summary, fh, indent=2)
     if do_plot:
         save_figure(plot_contact_history(history, profiles=figures), cdir, "contact_history",
                     dpi=110, close=True)
