@@ -172,3 +172,12 @@ def test_tables_are_not_wrapped_in_a_file(tmp_path):
     table = [ln for ln in lines if ln.startswith("│")]
     assert table and max(len(ln) for ln in table) > 80
     assert all(ln.endswith("│") for ln in table)  # one line per row: nothing wrapped
+
+
+def test_report_refuses_to_overwrite_an_input(tmp_path, history, capsys):
+    pytest.importorskip("jinja2")
+    case = _case(tmp_path, history)
+    before = _bytes(history)
+    assert main(["report", str(case), "-o", str(history)]) == 2
+    assert "is the history file" in capsys.readouterr().err
+    assert _bytes(history) == before

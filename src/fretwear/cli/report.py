@@ -8,8 +8,12 @@ import click
 from rich.console import Console
 
 from fretwear._optional import require
+from fretwear.cli._units import parse_units, units_option, with_history_units
+from fretwear.io.atomic import check_outputs
 from fretwear.report import UNCERTAINTY_KEYS, analyse_case, write_report
 from fretwear.uncertainty.sampling import METHODS
+from fretwear.workflows.case_files import load_case
+from fretwear.workflows.inputs import case_inputs
 
 _KEYS = "\n".join(f"  {k}: {d}" for k, (_, d) in UNCERTAINTY_KEYS.items())
 
@@ -51,9 +55,12 @@ def report_options(function):
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
               required=True, help="The HTML file to write.")
 @report_options
-def command(case_file: Path, output: Path, inspections, **options) -> None:
+@units_option
+def command(case_file: Path, output: Path, inspections, units, **options) -> None:
     require("jinja2", purpose="fretwear report")
     require("matplotlib.pyplot", purpose="fretwear report")
-    analysis = analyse_case(case_file, inspections=inspections, **options)
+    case = with_history_units(load_case(case_file), parse_units(units))
+    check_outputs({"-o": output}, {**case_inputs(case, case_file), "inspections": inspections})
+    analysis = analyse_case(case, inspections=inspections, **options)
     written = write_report(analysis, output)
     Console().print(f"report written to [bold]{written}[/]")
