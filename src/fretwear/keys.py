@@ -50,6 +50,9 @@ def check_keys(items: Mapping[str, Any], spec: Mapping[str, tuple[Any, str]], so
     ...     print(exc)
     [iterate]: unknown key cycle (did you mean 'cycles'?); valid keys: cycles
     """
+    if not isinstance(items, Mapping):
+        raise KeywordError(f"{source}: expected a table of keys ({{ key = value, ... }}), got "
+                           f"{type(items).__name__} {items!r}; valid keys: {', '.join(spec)}")
     for key, value in items.items():
         if key not in spec:
             raise KeywordError(f"{source}: unknown key {key_prefix}{key}{keyword_hint(key, spec)}; "

@@ -166,3 +166,41 @@ def test_post_usure_keywords_with_wrong_values(changes):
         values = table[depths].to_numpy(dtype=float)
         odd = np.isnan(values).any() or (values < 0).any()
         assert not odd or warned or table.attrs.get("global_depth"), depths
+
+
+def dynamics_base() -> dict:
+    """The [dynamics] section of a small coupled-loop case (tests/dynamics/test_loop.py)."""
+    return {
+        "duration_s": 0.2, "time_step_s": 2e-5, "archive_step_s": 1e-4,
+        "modes": {"frequencies_Hz": [30.0, 30.0], "damping_ratios": 0.02, "masses_kg": 0.5,
+                  "shock_shapes": [[[1.0, 0.0], [0.0, 1.0]]],
+                  "forcing_shapes": [[[1.0, 0.0], [0.0, 1.0]]]},
+        "shocks": [{"name": "bore", "obstacle": "case", "normal_stiffness_N_per_m": 1e6,
+                    "normal_damping_N_s_per_m": 20.0, "friction": 0.3,
+                    "tangential_stiffness_N_per_m": 1e6}],
+        "forces": [{"point": 0, "direction": "y", "kind": "harmonic", "amplitude": 12.0,
+                    "frequency_Hz": 25.0}],
+    }
+
+
+@st.composite
+def mutated_dynamics(draw):
+    section = copy.deepcopy(dynamics_base())
+    where = draw(st.sampled_from(["top", "modes", "shocks", "forces"]))
+    target = (section if where == "top" else section["modes"] if where == "modes"
+              else section[where][0])
+    key = draw(st.sampled_from(sorted(target) + ["unknown"]))
+    if draw(st.booleans()) and key in target:
+        del target[key]
+    else:
+        target[key] = draw(ODD)
+    return section
+
+
+@examples(60)
+@given(section=mutated_dynamics())
+def test_dynamics_section_with_wrong_types(section):
+    """The [dynamics] section is validated (no simulation is run here)."""
+    from fretwear.dynamics.config import dynamics_from_config
+
+    only_fretwear(dynamics_from_config, section, directory=str(workdir()))

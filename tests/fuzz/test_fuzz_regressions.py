@@ -13,7 +13,7 @@ import pytest
 from fuzzhelpers import small_history
 from test_fuzz_cases import base_cases, obstacle_base
 
-from fretwear.errors import FormatError, InputError
+from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.io import read_history
 from fretwear.obstacle import obstacle_from_config
 from fretwear.obstacle.clearance import polar_polygon
@@ -93,3 +93,37 @@ def test_code_aster_time_column_with_a_control_character(tmp_path):
     with pytest.raises(FormatError, match=r"h\.tab: column 'INST' is not numeric \(type K\d+; "
                                           r"row 0 holds '\\x01.0000000000000000E\+00'\)"):
         read_history(path)
+
+
+def _dynamics(**changes):
+    from test_fuzz_cases import dynamics_base
+
+    from fretwear.dynamics.config import dynamics_from_config
+
+    section = dynamics_base()
+    for path, value in changes.items():
+        where = section
+        *parents, key = path.split(".")
+        for p in parents:
+            where = where[p][0] if isinstance(where[p], list) else where[p]
+        where[key] = value
+    return dynamics_from_config(section)
+
+
+@pytest.mark.parametrize("changes, error, match", [
+    # AttributeError 'str' object has no attribute 'items'
+    ({"modes": ""}, KeywordError, r"\[dynamics.modes\]: expected a table of keys"),
+    # ValueError from numpy: could not convert string to float
+    ({"modes.damping_ratios": ["=", 0.01]}, InputError,
+     r"'damping_ratios' must hold numbers .* got \['=', 0.01\]"),
+    ({"modes.forcing_shapes": [4.3e16, "", 1.0]}, InputError, r"'forcing_shapes' must hold"),
+    # TypeError 'int' object is not iterable
+    ({"shocks": 177}, KeywordError, r"\[dynamics\] shocks = 177: give an array of tables"),
+    ({"forces": "y"}, KeywordError, r"\[dynamics\] forces = 'y': give an array of tables"),
+    # OverflowError: cannot convert float infinity to integer
+    ({"archive_step_s": 5e-324}, InputError, r"archive_step_s = 5e-324 s: give a step > 0 "
+                                             r"that archives at most 1e\+09 samples"),
+])
+def test_dynamics_section_values_that_leaked_python_errors(changes, error, match):
+    with pytest.raises(error, match=match):
+        _dynamics(**changes)

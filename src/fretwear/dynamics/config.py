@@ -201,6 +201,22 @@ class DynamicsSetup:
         return out
 
 
+#: Most samples a [dynamics] section may archive per shock (beyond, memory and time explode:
+#: 1e9 samples of 11 channels are 88 GB).
+MAX_ARCHIVED = 1e9
+
+
+def _tables(sub: Mapping[str, Any], name: str) -> list:
+    """The ``[[dynamics.<name>]]`` array of tables, or a :class:`KeywordError`."""
+    value = sub.get(name, [])
+    if isinstance(value, Mapping):
+        value = [value]
+    if not isinstance(value, (list, tuple)) or not all(isinstance(v, Mapping) for v in value):
+        raise KeywordError(f"[dynamics] {name} = {value!r}: give an array of tables, "
+                           f"[[dynamics.{name}]] blocks (docs/dynamics.md)")
+    return list(value)
+
+
 def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> DynamicsSetup:
     """Build the modal model, shocks and excitations of a ``[dynamics]`` section.
 
@@ -238,11 +254,11 @@ def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> Dynam
     if ("beam" in sub) == ("modes" in sub):
         raise KeywordError("[dynamics] needs exactly one of [dynamics.beam] (a uniform beam) and "
                            "[dynamics.modes] (modes given by the user)")
-    shocks_cfg = list(sub.get("shocks", []))
+    shocks_cfg = _tables(sub, "shocks")
     if not shocks_cfg:
         raise KeywordError("[dynamics] needs at least one [[dynamics.shocks]] table")
-    forces_cfg = list(sub.get("forces", []))
-    base_cfg = list(sub.get("base", []))
+    forces_cfg = _tables(sub, "forces")
+    base_cfg = _tables(sub, "base")
     for i, item in enumerate(shocks_cfg):
         _check("dynamics.shocks", item, f"[[dynamics.shocks]] #{i + 1}")
     for i, item in enumerate(forces_cfg):
@@ -312,7 +328,11 @@ def dynamics_from_config(section: Mapping[str, Any], *, directory=None) -> Dynam
         case_obstacle.append(is_case)
     archive = float(top.get("archive_step_s", max(1e-4, float(top.get("time_step_s", 0.0)))))
     # random records cover the simulated span, a whole number of archive steps (simulate)
-    span = max(duration, round(duration / archive) * archive) if archive > 0 else duration
+    if not (np.isfinite(archive) and archive > 0) or duration / archive > MAX_ARCHIVED:
+        raise InputError(f"[dynamics] archive_step_s = {archive!r} s: give a step > 0 that "
+                         f"archives at most {MAX_ARCHIVED:.0e} samples over duration_s = "
+                         f"{duration!r} s")
+    span = max(duration, round(duration / archive) * archive)
     excitations: list = []
     for i, item in enumerate(forces_cfg):
         where = f"[[dynamics.forces]] #{i + 1}"

@@ -27,9 +27,18 @@ END_CONDITIONS: tuple[str, ...] = ("pinned", "clamped", "free")
 DIRECTIONS: dict[str, int] = {"y": 0, "z": 1, "x": 2}
 
 
+def _numbers(name: str, value) -> np.ndarray:
+    """``value`` as a float array (a copy), or an :class:`InputError` naming the quantity."""
+    try:
+        return np.array(value, dtype=float, copy=True)
+    except (TypeError, ValueError) as exc:
+        raise InputError(f"modal model: {name!r} must hold numbers (a number, a list, or nested "
+                         f"lists of one shape), got {value!r} ({exc})") from None
+
+
 def _as_1d(name: str, value, n: int | None = None, positive: bool = False,
            nonnegative: bool = False) -> np.ndarray:
-    arr = np.array(value, dtype=float, copy=True).reshape(-1)
+    arr = _numbers(name, value).reshape(-1)
     if n is not None and arr.size == 1 and n > 1:
         arr = np.full(n, float(arr[0]))
     if n is not None and arr.size != n:
@@ -137,7 +146,7 @@ class ModalModel:
 
     @staticmethod
     def _shapes(name: str, value, n: int) -> np.ndarray:
-        arr = np.array(value, dtype=float, copy=True)
+        arr = _numbers(name, value)
         if arr.ndim != 3 or arr.shape[2] != n or arr.shape[1] not in (2, 3):
             raise InputError(
                 f"modal model: {name!r} must have shape (points, 2 or 3, {n}) - for each point the "
