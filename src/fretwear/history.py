@@ -205,6 +205,28 @@ class ContactHistory:
         object.__setattr__(self, "metadata", MappingProxyType(dict(self.metadata)))
         object.__setattr__(self, "force_tolerance", float(tol))
 
+    @classmethod
+    def _checked_elsewhere(cls, arrays: Mapping[str, np.ndarray], *, name: str,
+                           metadata: Mapping[str, Any], force_tolerance: float
+                           ) -> ContactHistory:
+        """A history of arrays that already pass every rule of the validation, *not copied*.
+
+        For readers that check a chunk without copying it
+        (:func:`fretwear.io.channels.fast_history`); the arrays are made read-only views.
+        ``force_tolerance`` [N] is the one the validation would have set.
+        """
+        self = object.__new__(cls)
+        for ch in CHANNELS:
+            value = arrays.get(ch)
+            if value is not None:
+                value = value.view()
+                value.flags.writeable = False
+            object.__setattr__(self, ch, value)
+        object.__setattr__(self, "name", name)
+        object.__setattr__(self, "metadata", MappingProxyType(dict(metadata)))
+        object.__setattr__(self, "force_tolerance", float(force_tolerance))
+        return self
+
     # ------------------------------------------------------------------ properties
     def __len__(self) -> int:
         return int(self.time.size)

@@ -100,9 +100,32 @@ def open_parquet(path: str | os.PathLike) -> Source:
         finally:
             handle.close()
 
+    def ends(position: int) -> tuple[float, float]:
+        # the row groups' statistics (min of the first, max of the last: the ends of an
+        # increasing column), else the values at both ends of those two row groups
+        handle = pq.ParquetFile(path)
+        try:
+            meta = handle.metadata
+            if meta.num_rows == 0:
+                raise FormatError(f"{path}: no data rows")
+            first_rg, last_rg = 0, meta.num_row_groups - 1
+            while meta.row_group(first_rg).num_rows == 0:
+                first_rg += 1
+            while meta.row_group(last_rg).num_rows == 0:
+                last_rg -= 1
+            stats = [meta.row_group(k).column(position).statistics for k in (first_rg, last_rg)]
+            if all(st is not None and st.has_min_max for st in stats):
+                return float(stats[0].min), float(stats[1].max)
+            column = [names[position]]
+            head = handle.read_row_group(first_rg, columns=column).column(0)
+            tail = handle.read_row_group(last_rg, columns=column).column(0)
+            return float(head[0].as_py()), float(tail[len(tail) - 1].as_py())
+        finally:
+            handle.close()
+
     return Source(label=str(path), format="parquet", columns=names, read=read, units=units,
                   name=stored.get("name"), metadata=stored.get("metadata", {}),
-                  iter_blocks=iter_blocks)
+                  iter_blocks=iter_blocks, ends=ends)
 
 
 def write_parquet(history: ContactHistory, path: str | os.PathLike, *,
@@ -219,8 +242,15 @@ def open_hdf5(path: str | os.PathLike, *, group: str | None = None) -> Source:
             for start in range(0, n, size):
                 yield [np.asarray(d[start:start + size], dtype=float) for d in datasets]
 
+    def ends(position: int) -> tuple[float, float]:
+        with h5.File(path, "r") as f:
+            d = f[gname][names[position]]
+            if d.shape[0] == 0:
+                raise FormatError(f"{path}: no data rows")
+            return float(d[0]), float(d[d.shape[0] - 1])
+
     return Source(label=str(path), format="hdf5", columns=names, read=read, units=units,
-                  name=name, metadata=meta, iter_blocks=iter_blocks)
+                  name=name, metadata=meta, iter_blocks=iter_blocks, ends=ends)
 
 
 def write_hdf5(history: ContactHistory, path: str | os.PathLike, *,
@@ -313,8 +343,17 @@ def open_netcdf(path: str | os.PathLike) -> Source:
                 yield [_values(f.variables[names[p]], slice(start, start + size))
                        for p in positions]
 
+    def ends(position: int) -> tuple[float, float]:
+        with nc.Dataset(path, "r") as f:
+            n = len(f.dimensions[dim])
+            if n == 0:
+                raise FormatError(f"{path}: no data rows")
+            var = f.variables[names[position]]
+            return (float(_values(var, slice(0, 1))[0]),
+                    float(_values(var, slice(n - 1, n))[0]))
+
     return Source(label=str(path), format="netcdf", columns=names, read=read, units=units,
-                  name=name, metadata=meta, iter_blocks=iter_blocks)
+                  name=name, metadata=meta, iter_blocks=iter_blocks, ends=ends)
 
 
 def write_netcdf(history: ContactHistory, path: str | os.PathLike) -> Path:

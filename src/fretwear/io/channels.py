@@ -192,6 +192,10 @@ class Source:
         sliced from a whole read).
     hint : str
         Extra advice appended to column errors (e.g. for a file without header).
+    ends : callable or None
+        ``ends(position) -> (first, last)``: the first and last values of a column read from the
+        file's metadata or its two ends, without a pass over it (the time range of a streamed
+        history); None when the format cannot.
     """
 
     label: str
@@ -202,6 +206,7 @@ class Source:
     name: str | None = None
     metadata: dict[str, Any] = field(default_factory=dict)
     iter_blocks: Callable[[list[int], int], Iterator[list[np.ndarray]]] | None = None
+    ends: Callable[[int], tuple[float, float]] | None = None
     hint: str = ""
 
 
@@ -416,6 +421,50 @@ def build_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
         if first_row:
             msg += f" (row numbers within the chunk starting at data row {first_row})"
         raise HistoryError(f"{label}: {msg} [columns used: {used}]") from None
+
+
+def fast_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
+                 mapping: Mapping[str, int], factors: Mapping[str, float], label: str,
+                 name: str, metadata: Mapping[str, Any], first_row: int = 0) -> ContactHistory:
+    """:func:`build_history` without copying the arrays when they pass every check.
+
+    The checks of :class:`~fretwear.history.ContactHistory` run as whole-array reductions
+    (finite values, strictly increasing time, Fn >= 0, stick flags 0/1, equal lengths, dy with
+    dz); the arrays then go into the history as read-only views (converted to SI first when a
+    unit factor is not 1). Anything else, including small negative forces that the validation
+    sets to 0 in its own copy, goes through :func:`build_history`, which raises the same errors
+    or returns the same history.
+
+    Examples
+    --------
+    >>> raw = {"time": np.array([0.0, 1.0]), "normal_force": np.array([2.0, 3.0]),
+    ...        "vt1": np.zeros(2), "vt2": np.zeros(2)}
+    >>> h = fast_history(raw, columns=["t", "fn", "v1", "v2"], mapping={"time": 0,
+    ...                  "normal_force": 1, "vt1": 2, "vt2": 3}, factors={}, label="x",
+    ...                  name="x", metadata={})
+    >>> np.shares_memory(h.time, raw["time"]), h.force_tolerance
+    (True, 3e-09)
+    """
+    data: dict[str, np.ndarray] = {}
+    for channel, raw in arrays.items():
+        arr = np.asarray(raw, dtype=float)
+        factor = factors.get(channel, 1.0)
+        data[channel] = arr * factor if factor != 1.0 else arr
+    sizes = {a.shape for a in data.values()}
+    t = data["time"]
+    fn = data["normal_force"]
+    ok = (len(sizes) == 1 and t.ndim == 1 and t.size >= 2 and ("dy" in data) == ("dz" in data)
+          and all(bool(np.isfinite(a).all()) for a in data.values())
+          and bool((t[1:] > t[:-1]).all()) and float(fn.min()) >= 0.0)
+    if ok and "stick" in data:
+        s = data["stick"]
+        ok = bool(((s == 0.0) | (s == 1.0)).all())
+    if not ok:
+        return build_history(arrays, columns=columns, mapping=mapping, factors=factors,
+                             label=label, name=name, metadata=metadata, first_row=first_row)
+    tolerance = max(1e-12, 1e-9 * float(fn.max()))
+    return ContactHistory._checked_elsewhere(data, name=name, metadata=metadata,
+                                             force_tolerance=tolerance)
 
 
 def describe_aliases() -> str:

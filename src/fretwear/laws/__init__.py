@@ -22,6 +22,7 @@ from fretwear.laws.kwu_statistics import (
     kwu_epri_statistics_from_chunks,
     speed_classes,
 )
+from fretwear.laws.kwu_stream import KwuEpriMaxima
 from fretwear.laws.models import (
     EDF_MZ_DEFAULTS,
     archard,
@@ -35,7 +36,7 @@ from fretwear.laws.registry import WEAR_LAWS, WearLaw, get_law
 
 __all__ = [
     "EDF_MZ_DEFAULTS", "IMPACT_MASK", "N_CLASSES", "SLIDING_MASK", "WEAR_LAWS",
-    "KwuEpriAccumulator", "KwuEpriStatistics", "WearLaw", "archard", "edf_mz",
+    "KwuEpriAccumulator", "KwuEpriMaxima", "KwuEpriStatistics", "WearLaw", "archard", "edf_mz",
     "edf_mz_equivalent_time", "edf_mz_rate", "force_classes", "get_law", "kwu_epri",
     "kwu_epri_statistics", "kwu_epri_statistics_from_chunks", "linear_equivalent_time",
     "speed_classes",

@@ -32,6 +32,7 @@ import pandas as pd
 from fretwear.errors import HistoryError, InputError, LawWarning
 from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.io import iter_history_chunks
+from fretwear.laws.kwu_stream import KwuEpriMaxima, class_pass  # noqa: F401 - re-exported
 
 #: Number of classes per axis.
 N_CLASSES = 5
@@ -207,6 +208,38 @@ class KwuEpriAccumulator:
         self.class_time += counts.reshape(N_CLASSES, N_CLASSES)
         above = (f_left[contact] > self.force_max) | (v_left[contact] > self.speed_max)
         self.time_above_max += float(w[above].sum())
+
+    def update_velocities(self, time, normal_force, vt1, vt2) -> None:
+        """Add a chunk given by its velocity components: the same counts as :meth:`update`
+        with ``sliding_speed = numpy.hypot(vt1, vt2)``, in one compiled pass without computing
+        every speed's hypot (:func:`fretwear.laws.kwu_stream.class_pass`). The chunk's channels
+        must be finite and its time increasing (a validated history's are).
+
+        Examples
+        --------
+        >>> acc = KwuEpriAccumulator(force_max=10.0, speed_max=1.0)
+        >>> acc.update_velocities([0.0, 1.0, 2.0], [10.0, 0.0, 5.0], [0.0, 0.0, 0.6],
+        ...                       [0.0, 0.0, 0.8])
+        >>> acc.contact_time, acc.window_time
+        (1.0, 2.0)
+        """
+        last = None
+        if self._last is not None:
+            last = (*self._last[:3], 0.0)  # a speed is its own hypot with 0
+        out = class_pass(self.class_time, last, time, normal_force, vt1, vt2, self.t_start,
+                         self.t_end, self.force_max, self.speed_max)
+        if out[0]:
+            raise HistoryError(
+                f"KWU-EPRI statistics: chunk starts at t = {out[1]!r} s, before the end of the "
+                "previous chunk or time is not increasing; give chunks in time order")
+        if out[4] == 0:
+            return
+        if self._last is None and self.first_time is None:
+            self.first_time = float(out[5])
+        self.samples += int(out[4])
+        self.window_time += float(out[2])
+        self.time_above_max += float(out[3])
+        self._last = (float(out[6]), float(out[7]), float(np.hypot(out[8], out[9])))
 
     def merge(self, other: KwuEpriAccumulator) -> KwuEpriAccumulator:
         """A new accumulator holding the counts of both (same maxima and window required)."""

@@ -19,10 +19,12 @@ than memory is streamed from a file and the same code can run on parallel worker
 
 from __future__ import annotations
 
+import copy
 import math
 import os
 import warnings
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -34,7 +36,8 @@ from fretwear.errors import (
     StationarityWarning,
 )
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
-from fretwear.io import iter_history_chunks, read_history
+from fretwear.io import history_time_range, iter_history_blocks, read_history
+from fretwear.laws import KwuEpriAccumulator, KwuEpriMaxima
 from fretwear.power.kernels import BLOCK_STATS, GROUP_FIELDS, fused
 from fretwear.power.ranges import check_finite_sums, out_of_range, speed_scale
 from fretwear.power.result import PowerResult
@@ -75,6 +78,12 @@ class PowerAccumulator:
         Minimum rest [s] below the threshold separating two impacts, >= 0.
     backend : str
         ``"auto"`` (numba when installed), ``"numba"`` or ``"numpy"``.
+    kwu : tuple, optional
+        ``(force_max, speed_max)``, each [N], [m/s] or None (Code_Aster FNOR_MAXI, VTAN_MAXI):
+        also reduce, in the same pass, the KWU-EPRI class statistics over the window's samples
+        (:class:`fretwear.laws.KwuEpriAccumulator`) when both are given, else the window's
+        maxima (:class:`fretwear.laws.KwuEpriMaxima`: the counts then take a second pass, see
+        :mod:`fretwear.laws.kwu_stream`). The result's ``kwu`` holds it.
 
     Notes
     -----
@@ -98,7 +107,8 @@ class PowerAccumulator:
     def __init__(self, *, t_start: float | None = None, t_end: float | None = None,
                  blocks: int = 1, sectors: int | Sequence[float] | None = None,
                  force_threshold: float = 0.0, minimum_rest_time: float = 0.0,
-                 backend: str = "auto") -> None:
+                 backend: str = "auto",
+                 kwu: tuple[float | None, float | None] | None = None) -> None:
         if isinstance(blocks, bool) or not isinstance(blocks, int | np.integer):
             raise InputError(f"blocks must be an integer number of blocks >= 1, got {blocks!r}")
         if blocks < 1:
@@ -150,6 +160,13 @@ class PowerAccumulator:
         self.last: np.ndarray | None = None
         self.samples = 0
         self.name = ""
+        self.kwu: KwuEpriAccumulator | KwuEpriMaxima | None = None
+        if kwu is not None:
+            force_max, speed_max = kwu
+            self.kwu = (KwuEpriMaxima(t_start=self.t_start, t_end=self.t_end)
+                        if force_max is None or speed_max is None else
+                        KwuEpriAccumulator(force_max, speed_max, t_start=self.t_start,
+                                           t_end=self.t_end))
 
     # ------------------------------------------------------------------ reduction
     def _empty_like(self) -> PowerAccumulator:
@@ -161,6 +178,7 @@ class PowerAccumulator:
         new.groups = np.zeros(len(GROUP_FIELDS))
         new.first = new.last = None
         new.samples = 0
+        new.kwu = None
         return new
 
     def _reduce(self, t, fn, vt1, vt2, dy, dz, stick) -> None:
@@ -229,6 +247,10 @@ class PowerAccumulator:
             if t[0] > t_prev:
                 self._bridge(self.last, self._sample(arrays, 0))
         self._reduce(*(arrays[c] for c in _SAMPLE))
+        if isinstance(self.kwu, KwuEpriAccumulator):
+            self.kwu.update_velocities(t, chunk.normal_force, chunk.vt1, chunk.vt2)
+        elif self.kwu is not None:
+            self.kwu.update(t, chunk.normal_force, chunk.vt1, chunk.vt2)
         if self.first is None:
             self.first = self._sample(arrays, 0)
         self.last = self._sample(arrays, len(chunk) - 1)
@@ -275,6 +297,7 @@ class PowerAccumulator:
         groups = merge_groups(groups, right.groups, self.minimum_rest_time)
         fmax = max(left.force_max, right.force_max, bridge.force_max if bridge else -math.inf)
         shared = 1 if right.first[0] == left.last[0] else 0
+        self.kwu = _merge_kwu(left, right)
         self.samples = left.samples + right.samples - shared
         self.first, self.last = left.first.copy(), right.last.copy()
         self.power, self.block_stats, self.groups, self.force_max = power, bstats, groups, fmax
@@ -334,13 +357,28 @@ class PowerAccumulator:
                            t_start=t_start, t_end=t_end, duration=T, spread=spread,
                            statistics=stats, name=self.name,
                            block_sectors=None if self.sector_edges is None
-                           else self.power / (T / nb))
+                           else self.power / (T / nb), kwu=copy.deepcopy(self.kwu))
+
+
+def _merge_kwu(left: PowerAccumulator, right: PowerAccumulator):
+    """The KWU-EPRI part of two adjacent accumulators, the samples between them counted."""
+    if left.kwu is None or right.kwu is None:
+        return None if left.kwu is None and right.kwu is None else (left.kwu or right.kwu)
+    if isinstance(left.kwu, KwuEpriMaxima):
+        return copy.deepcopy(left.kwu).merge(right.kwu)
+    bridge = copy.deepcopy(left.kwu)  # its counts restart from zero, its last sample is kept
+    bridge.class_time = np.zeros_like(bridge.class_time)
+    bridge.window_time = bridge.time_above_max = 0.0
+    bridge.samples = 0
+    first = right.first
+    bridge.update_velocities(first[:1], first[1:2], first[2:3], first[3:4])
+    return left.kwu.merge(bridge).merge(right.kwu)
 
 
 def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float]:
     """First and last instant [s] of a history file (one streaming pass)."""
     first = last = None
-    for chunk in iter_history_chunks(path, chunk_size, **read_options):
+    for chunk in iter_history_blocks(path, chunk_size, **read_options):
         if first is None:
             first = float(chunk.time[0])
         last = float(chunk.time[-1])
@@ -364,14 +402,16 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
                sectors: int | Sequence[float] | None = None,
                stationarity_threshold: float = 0.1, force_threshold: float = 0.0,
                minimum_rest_time: float = 0.0, chunk_size: int = DEFAULT_CHUNK_SIZE,
-               backend: str = "auto", **read_options: Any) -> PowerResult:
+               backend: str = "auto", kwu: tuple[float | None, float | None] | None = None,
+               progress: Callable[[int], Any] | None = None,
+               **read_options: Any) -> PowerResult:
     """Wear power of a contact history over a window, per block and per angular sector.
 
     Parameters
     ----------
     history : ContactHistory, path, file set, table, or iterable of ContactHistory
-        The history; a file path is streamed chunk by chunk with
-        :func:`fretwear.io.iter_history_chunks` (memory bounded by ``chunk_size``); a set of
+        The history; a file path is streamed block by block with
+        :func:`fretwear.io.iter_history_blocks` (memory bounded by ``chunk_size``); a set of
         Code_Aster IMPR_FONCTION files (``{channel: file}`` or a list of files), a DataFrame or
         a mapping of arrays is read whole with :func:`fretwear.io.read_history`; an iterable of
         consecutive chunks is folded in as it comes.
@@ -392,6 +432,14 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         Samples per chunk when streaming a file.
     backend : str
         ``"auto"``, ``"numba"`` or ``"numpy"``.
+    kwu : tuple, optional
+        ``(force_max [N] or None, speed_max [m/s] or None)`` (FNOR_MAXI, VTAN_MAXI): also the
+        KWU-EPRI class counts of the window (the result's ``kwu``, a
+        :class:`fretwear.laws.KwuEpriAccumulator`): in the same pass when both maxima are
+        given, else the pass gives the window's maxima and a second pass the counts (a
+        ContactHistory or a file; an iterable of chunks gets the maxima only).
+    progress : callable, optional
+        Called with the number of samples read so far after each block of a file.
     **read_options
         Passed to the reader of a file or file set: ``format``, ``units`` (e.g.
         ``{"length": "mm", "force": "kN"}``), ``columns``, ``name`` and the format's own options
@@ -420,8 +468,9 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
     intervals whose left sample's angle θ = atan2(dz, dy) lies in sector j, Σ P_j = P. A window
     bound or block edge inside an interval [t_i, t_i+1] splits it; each part [a, b] contributes
     (b - a)(g(a) + g(b))/2 with g linearly interpolated, so the split is exact for the
-    piecewise-linear integrand. For a file with ``blocks > 1`` and a missing bound, a first
-    streaming pass reads the time range (give t_start and t_end to save it).
+    piecewise-linear integrand. For a file with ``blocks > 1`` and a missing bound, the time
+    range comes from the file's metadata (Parquet statistics, HDF5/NetCDF ends), or for text
+    formats from a first streaming pass (give t_start and t_end to save it).
 
     References
     ----------
@@ -457,6 +506,7 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         # read whole (text functions cannot be streamed), aliases and units applied
         history = read_history(history, **read_options)
         read_options = {}
+    opts["kwu"] = kwu
     if isinstance(history, ContactHistory):
         if read_options:
             raise KeywordError(
@@ -467,27 +517,56 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
             opts["t_end"] = float(history.time[-1])
         acc = PowerAccumulator(**opts)
         acc.update(history)
+        chunks = lambda: (history,)  # noqa: E731 - the second pass of the KWU counts
     elif isinstance(history, str | os.PathLike):
         needs_range = (isinstance(blocks, int | np.integer) and not isinstance(blocks, bool)
                        and blocks > 1)
         if needs_range and (t_start is None or t_end is None):
-            lo, hi = _time_range(history, chunk_size, read_options)
+            ends = history_time_range(history, **read_options)  # the file's metadata
+            lo, hi = ends if ends is not None else _time_range(history, chunk_size,
+                                                               read_options)
             opts["t_start"] = lo if t_start is None else t_start
             opts["t_end"] = hi if t_end is None else t_end
         acc = PowerAccumulator(**opts)
-        for chunk in iter_history_chunks(history, chunk_size, **read_options):
+        read = 0
+        for chunk in iter_history_blocks(history, chunk_size, **read_options):
             acc.update(chunk)
+            if progress is not None:
+                read += len(chunk)
+                progress(read)
+        path = history
+        chunks = lambda: iter_history_blocks(path, chunk_size, **read_options)  # noqa: E731
     elif isinstance(history, Iterable):
         if read_options:
             raise KeywordError(f"unknown keyword(s) {sorted(read_options)} for chunks")
         acc = PowerAccumulator(**opts)
         for chunk in history:
             acc.update(chunk)
+        chunks = None
     else:
         raise InputError(
             f"history must be a ContactHistory, a file path or an iterable of chunks, got "
             f"{type(history).__name__}")
-    return acc.result(stationarity_threshold=float(stationarity_threshold))
+    result = acc.result(stationarity_threshold=float(stationarity_threshold))
+    if isinstance(acc.kwu, KwuEpriMaxima) and chunks is not None:
+        result = replace(result, kwu=_kwu_counts(acc, kwu, chunks))
+    return result
+
+
+def _kwu_counts(acc: PowerAccumulator, kwu, chunks: Callable[[], Iterable[ContactHistory]]
+                ) -> KwuEpriAccumulator:
+    """The KWU-EPRI class counts of a second pass over ``chunks()``, the maxima not given taken
+    from the first pass (``acc.kwu``)."""
+    force_max = acc.kwu.force_max if kwu[0] is None else kwu[0]
+    speed_max = acc.kwu.speed_max if kwu[1] is None else kwu[1]
+    # F_max = 0 only when no sample of the window has a force: no contact, no class counted
+    counts = KwuEpriAccumulator(force_max if force_max > 0 else 1.0, speed_max,
+                                t_start=acc.t_start, t_end=acc.t_end)
+    for chunk in chunks():
+        counts.update_velocities(chunk.time, chunk.normal_force, chunk.vt1, chunk.vt2)
+    if force_max == 0:
+        counts.force_max = 0.0
+    return counts
 
 
 def contact_statistics(history, *, t_start: float | None = None, t_end: float | None = None,

@@ -9,7 +9,7 @@ them, with the confidence interval of the power from its blocks (batch means,
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import numpy as np
@@ -48,6 +48,10 @@ class PowerResult:
     block_sectors : numpy.ndarray or None
         Power of each block in each sector [W], shape (B, N) (sector intervals), None without
         sectors.
+    kwu : KwuEpriAccumulator or KwuEpriMaxima or None
+        The KWU-EPRI class counts (or the window's maxima) reduced in the same pass, when asked
+        for (``PowerAccumulator(kwu=...)``, ``wear_power(..., kwu=...)``); not in
+        :meth:`to_dict`.
 
     Examples
     --------
@@ -71,13 +75,14 @@ class PowerResult:
     statistics: ContactStatistics
     name: str = ""
     block_sectors: np.ndarray | None = None
+    kwu: Any = field(default=None, repr=False)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary; units: powers [W], times [s], angles [deg]."""
         return {f.name: self.statistics.to_dict() if f.name == "statistics"
                 else [_jsonable(row) for row in self.block_sectors]
                 if f.name == "block_sectors" and self.block_sectors is not None
-                else _jsonable(getattr(self, f.name)) for f in fields(self)}
+                else _jsonable(getattr(self, f.name)) for f in fields(self) if f.name != "kwu"}
 
     def confidence_interval(self, level: float = 0.95, *, sector: int | None = None
                             ) -> PowerInterval:

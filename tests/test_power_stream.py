@@ -1,0 +1,182 @@
+"""Streaming a history file for the wear power (issue 13): blocks without copies, the time range
+from the file's metadata, and the KWU-EPRI class counts in the same pass."""
+
+import warnings
+
+import numpy as np
+import pytest
+
+import fretwear.io as fio
+import fretwear.power.core as core
+from fretwear.errors import HistoryError
+from fretwear.history import ContactHistory
+from fretwear.io import history_time_range, iter_history_blocks, write_history
+from fretwear.laws import KwuEpriAccumulator, kwu_epri_statistics
+from fretwear.power import wear_power
+
+
+def _history(n=20_000, seed=3):
+    rng = np.random.default_rng(seed)
+    t = 0.25 + np.cumsum(rng.uniform(0.5, 1.5, n)) * 2e-5
+    phase = 2 * np.pi * 80 * t
+    fn = np.maximum(0.0, 40 * np.sin(phase) - 10 + rng.normal(0, 2, n))
+    ang = 1.5 * np.sin(2 * np.pi * 3 * t)
+    return ContactHistory(time=t, normal_force=fn, vt1=0.03 * np.cos(phase),
+                          vt2=0.02 * np.sin(phase), dy=1e-4 * np.cos(ang),
+                          dz=1e-4 * np.sin(ang), stick=(rng.uniform(size=n) < 0.05) * 1.0,
+                          name="h")
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    h = _history()
+    d = tmp_path_factory.mktemp("stream")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        out = {fmt: write_history(h, d / f"h.{fmt}") for fmt in ("parquet", "h5", "nc", "csv")}
+        out["parquet_small_groups"] = write_history(h, d / "g.parquet", row_group_size=3000)
+    return h, out
+
+
+@pytest.mark.parametrize("fmt", ["parquet", "parquet_small_groups", "h5", "nc", "csv"])
+def test_blocks_are_the_file_without_overlap(files, fmt):
+    h, paths = files
+    blocks = list(iter_history_blocks(paths[fmt], chunk_size=4096))
+    assert len(blocks) > 3
+    for ch in h.channels:
+        np.testing.assert_array_equal(np.concatenate([getattr(b, ch) for b in blocks]),
+                                      getattr(h, ch))
+    assert [b.metadata["first_row"] for b in blocks] == list(
+        np.cumsum([0] + [len(b) for b in blocks[:-1]]))
+    assert not blocks[0].time.flags.writeable
+
+
+def test_blocks_are_checked_like_chunks(tmp_path):
+    # the same errors as the validated chunks: a repeated instant across two blocks, a force
+    # below the tolerance in a later block, a NaN
+    h = _history(5000)
+    t = h.time.copy()
+    t[3000] = t[2999]  # the repeated instant sits on a block boundary (blocks of 1000)
+    fn = h.normal_force.copy()
+    fn[4321] = -1.0
+    for change, words in (({"time": t}, ["not strictly increasing", "row"]),
+                          ({"normal_force": fn}, ["negative", "row 321", "data row 4000"])):
+        path = tmp_path / f"bad{len(words)}{list(change)[0]}.csv"
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            frame = h.to_frame()
+            for k, v in change.items():
+                frame[k] = v
+            frame.to_csv(path, index=False)
+        with pytest.raises(HistoryError) as err:
+            list(iter_history_blocks(path, chunk_size=1000))
+        assert all(w in str(err.value) for w in words), str(err.value)
+
+
+def test_small_negative_forces_are_zeroed_in_a_copy_like_the_validation(tmp_path):
+    h = _history(3000)
+    frame = h.to_frame()
+    frame.loc[1000, "normal_force"] = -1e-12  # solver noise, within the tolerance
+    path = tmp_path / "noise.csv"
+    frame.to_csv(path, index=False)
+    got = np.concatenate([b.normal_force for b in iter_history_blocks(path, chunk_size=700)])
+    assert got[1000] == 0.0 and (got >= 0).all()
+
+
+@pytest.mark.parametrize("fmt", ["parquet", "parquet_small_groups", "h5", "nc"])
+def test_time_range_from_metadata(files, fmt):
+    h, paths = files
+    assert history_time_range(paths[fmt]) == (float(h.time[0]), float(h.time[-1]))
+    lo, hi = history_time_range(paths[fmt], units={"time": "ms"})
+    assert (lo, hi) == (float(h.time[0]) * 1e-3, float(h.time[-1]) * 1e-3)
+
+
+def test_time_range_without_parquet_statistics(tmp_path):
+    pq = pytest.importorskip("pyarrow.parquet")
+    h = _history(5000)
+    table = pq.read_table(write_history(h, tmp_path / "a.parquet"))
+    path = tmp_path / "nostats.parquet"
+    pq.write_table(table, path, write_statistics=False, row_group_size=1500)
+    assert history_time_range(path) == (float(h.time[0]), float(h.time[-1]))
+
+
+def test_text_formats_have_no_time_range_without_a_pass(files):
+    assert history_time_range(files[1]["csv"]) is None
+
+
+def _count_passes(monkeypatch):
+    calls = []
+    real = core.iter_history_blocks
+
+    def counting(*args, **kwargs):
+        calls.append(args[0])
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(core, "iter_history_blocks", counting)
+    return calls
+
+
+@pytest.mark.parametrize("fmt, passes", [("parquet", 1), ("h5", 1), ("nc", 1), ("csv", 2)])
+def test_blocks_without_bounds_read_the_file_once(files, fmt, passes, monkeypatch):
+    h, paths = files
+    calls = _count_passes(monkeypatch)
+    got = wear_power(paths[fmt], blocks=4, sectors=6, chunk_size=3000)
+    assert len(calls) == passes  # a text file still needs a pass for its time range
+    ref = wear_power(h, blocks=4, sectors=6)
+    assert got.total == pytest.approx(ref.total, rel=1e-12)
+    np.testing.assert_allclose(got.block_sectors, ref.block_sectors, rtol=1e-12, atol=1e-15)
+    assert (got.t_start, got.t_end) == (ref.t_start, ref.t_end)
+    assert got.statistics.impact_count == ref.statistics.impact_count
+
+
+@pytest.mark.parametrize("maxima, passes", [((None, None), 2), ((35.0, None), 2),
+                                            ((35.0, 0.02), 1)])
+@pytest.mark.parametrize("window", [(None, None), (0.3, 0.5)])
+def test_kwu_counts_in_the_power_pass(files, maxima, passes, window, monkeypatch):
+    # the KWU-EPRI statistics of wear_power(kwu=...) equal kwu_epri_statistics of the whole
+    # history; one pass over the file when both maxima are given, else two
+    h, paths = files
+    calls = _count_passes(monkeypatch)
+    t0, t1 = window
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # samples above the given maxima: a LawWarning
+        got = wear_power(paths["parquet"], t_start=t0, t_end=t1, kwu=maxima, chunk_size=3000)
+        ref = kwu_epri_statistics(h, t_start=t0, t_end=t1, force_max=maxima[0],
+                                  speed_max=maxima[1])
+        stats = got.kwu.result()
+    assert len(calls) == passes
+    assert isinstance(got.kwu, KwuEpriAccumulator)
+    np.testing.assert_array_equal(stats.class_time, ref.class_time)
+    assert stats.intensity == pytest.approx(ref.intensity, rel=1e-12)
+    assert (stats.force_max, stats.speed_max) == (ref.force_max, ref.speed_max)
+    assert stats.window_time == pytest.approx(ref.window_time, rel=1e-12)
+    assert stats.time_above_max == pytest.approx(ref.time_above_max, rel=1e-12, abs=1e-15)
+
+
+def test_kwu_of_an_in_memory_history(files):
+    h, _ = files
+    got = wear_power(h, kwu=(None, None)).kwu.result()
+    np.testing.assert_array_equal(got.class_time, kwu_epri_statistics(h).class_time)
+
+
+def test_merged_accumulators_count_the_interval_between_them():
+    from fretwear.power import PowerAccumulator
+
+    h = _history(6000)
+    kw = dict(t_start=float(h.time[0]), t_end=float(h.time[-1]), kwu=(40.0, 0.05))
+    parts = [PowerAccumulator(**kw).update(h.window(h.time[a], h.time[b - 1]))
+             for a, b in ((0, 2000), (2000, 4100), (4100, 6000))]  # no shared sample
+    merged = parts[1].merge(parts[0]).merge(parts[2])  # before, then after
+    one = PowerAccumulator(**kw).update(h)
+    np.testing.assert_array_equal(merged.kwu.class_time, one.kwu.class_time)
+    assert merged.kwu.window_time == pytest.approx(one.kwu.window_time, rel=1e-12)
+
+
+def test_plausibility_checked_on_the_first_block(tmp_path):
+    h = _history(5000)
+    frame = h.to_frame()
+    frame["normal_force"] *= 1e4  # a file in mN read as N: a force implausible in SI
+    path = tmp_path / "mN.csv"
+    frame.to_csv(path, index=False)
+    with pytest.warns(fio.plausibility.UnitsWarning):
+        list(iter_history_blocks(path, chunk_size=1000))
