@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import warnings
 
+import numpy as np
 import pytest
 from fuzzhelpers import small_history
 from test_fuzz_cases import base_cases, obstacle_base
@@ -127,3 +128,13 @@ def _dynamics(**changes):
 def test_dynamics_section_values_that_leaked_python_errors(changes, error, match):
     with pytest.raises(error, match=match):
         _dynamics(**changes)
+
+
+def test_discret_table_too_long_to_update(tmp_path):
+    """A DISCRET table of 72001 points ran the update for 150 s (quadratic in the count)."""
+    path = tmp_path / "fine.txt"
+    theta = np.linspace(0.0, 360.0, 72001)
+    path.write_text("# mobile_radius = 4.85e-3\nTHETA JEU\n"
+                    + "".join(f"{t:.6f} 5.0e-4\n" for t in theta))
+    with pytest.raises(InputError, match=r"72001 points; at most 10001 are accepted .*resample"):
+        _update(type="discrete", file=str(path))

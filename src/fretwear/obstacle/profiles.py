@@ -60,6 +60,8 @@ DISCRET_POINTS = 721
 #: Finest output step [deg] accepted: the update's time grows as 1/step (0.5 deg: 0.4 s,
 #: 0.05 deg: 2.5 s, 0.01 deg: 13 s for a 6-sector update).
 MIN_STEP = 0.05
+#: Most points of a discrete obstacle (a DISCRET table): 0.036 deg apart over a turn.
+MAX_DISCRETE_POINTS = 10_001
 #: Radial gap [m] of a new Code_Aster DISCRET obstacle.
 DISCRET_NEW_GAP = 0.5e-3
 
@@ -340,6 +342,11 @@ class DiscreteObstacle(_Obstacle):
             raise InputError(f"discrete obstacle: {a.size} angles but {g.size} gaps")
         if a.size < 3:
             raise InputError(f"discrete obstacle needs >= 3 points, got {a.size}")
+        if a.size > MAX_DISCRETE_POINTS:
+            raise InputError(
+                f"discrete obstacle: {a.size} points; at most {MAX_DISCRETE_POINTS} are accepted "
+                "(the update's time grows as the square of the count: 7201 points 2 s, 72001 "
+                "points 150 s); resample the table, e.g. every 0.5 deg (Code_Aster's 721)")
         if not (np.isfinite(a).all() and np.isfinite(g).all()):
             row = int(np.flatnonzero(~(np.isfinite(a) & np.isfinite(g)))[0])
             raise InputError(f"discrete obstacle: row {row} has a non-finite angle or gap")
