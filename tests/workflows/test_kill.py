@@ -7,8 +7,8 @@ be the old one (same bytes) or the complete new one (the same content as an unin
 of B), and an `iterate` cycle folder must be entirely old or entirely new. Temporary files left
 by a kill are hidden (``.name.*.tmp``) and removed by the next write (tested apart).
 
-Budget: ``FRETWEAR_KILLS`` kills per command (default 6 for run and obstacle, 4 for iterate),
-about 25 s on two cores; set FRETWEAR_KILLS=40 for a deep run.
+Budget: ``FRETWEAR_KILLS`` kills per command (default 4 for run and obstacle, 3 for iterate),
+about 20 s on two idle cores; FRETWEAR_KILLS=20 for a deep run (60 kills passed, 2 min).
 """
 
 from __future__ import annotations
@@ -148,7 +148,7 @@ def test_kill_run_output(tmp_path, history):
     old = {rel: p.read_bytes() for rel, p in _files(out).items()}
     new = {rel: _content(p) for rel, p in _files(ref).items()}
     _kill_many(["run", str(b), "-q", "-o", str(out / "table.csv")], tmp_path, out, old, new,
-               seconds, _budget(6))
+               seconds, _budget(4))
 
 
 def test_kill_obstacle_outputs(tmp_path, history):
@@ -169,7 +169,7 @@ def test_kill_obstacle_outputs(tmp_path, history):
     seconds = _complete(argv(ref, "0.3e-3"), tmp_path)
     old = {rel: p.read_bytes() for rel, p in _files(out).items()}
     new = {rel: _content(p) for rel, p in _files(ref).items()}
-    _kill_many(argv(out, "0.3e-3"), tmp_path, out, old, new, seconds, _budget(6))
+    _kill_many(argv(out, "0.3e-3"), tmp_path, out, old, new, seconds, _budget(4))
 
 
 ITERATE = """[law]
@@ -237,7 +237,7 @@ def test_kill_iterate_cycle_folders(tmp_path):
     new = {rel: _content(p) for rel, p in _files(ref).items()}
     assert any(rel.startswith("cycle_02/histories/") for rel in old)
     _kill_many(["iterate", str(b), "-o", str(out), "-q"], tmp_path, out, old, new, seconds,
-               _budget(4), folders=True)
+               _budget(3), folders=True)
 
 
 def test_leftovers_of_a_killed_run_are_removed_by_the_next_write(tmp_path):
