@@ -30,7 +30,8 @@ def _adversarial(rng, n, fmax=50.0, vmax=0.4):
 def _split(n, rng, shared):
     cuts = np.sort(rng.choice(np.arange(2, n - 2), 6, replace=False))
     bounds = [0, *cuts, n]
-    return [(a - (1 if shared and a else 0), b) for a, b in zip(bounds[:-1], bounds[1:])]
+    return [(a - (1 if shared and a else 0), b) for a, b in zip(bounds[:-1], bounds[1:],
+                                                                    strict=True)]
 
 
 @pytest.mark.parametrize("shared", [True, False])

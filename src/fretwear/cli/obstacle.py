@@ -201,7 +201,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
         else:
             echo("running the case for its wear table ...", err=True)
             run = run_case(case)  # the case read above
-            echo(units_line(None if run.history is None else run.history.metadata.get("units")))
+            echo(units_line(run.units))
             result = setup.update(run.table)
     _summary(result, echo)
     for w in caught:

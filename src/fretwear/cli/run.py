@@ -67,9 +67,7 @@ def _summary(result, console) -> None:
     console.print(f"contact [bold]{attrs.get('contact_type')}[/], law [bold]{attrs.get('law')}"
                   f"[/], time unit = {unit}")
     console.print(f"wear power P = [bold]{result.total_power:.6g} W[/]")
-    history = getattr(result, "history", None)
-    console.print(units_line(None if history is None else history.metadata.get("units")),
-                  markup=False, highlight=False)
+    console.print(units_line(getattr(result, "units", None)), markup=False, highlight=False)
     origin = attrs.get("origin") or 0.0
     if origin:
         previous = result.case.get("restart", {}).get("table", "the initial table")

@@ -562,8 +562,9 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     checked by :func:`fretwear.io.channels.fast_history`: its arrays go into the history
     without a copy when they pass (the same errors otherwise, row numbers of the file). The
     instants must also increase across blocks. A block of one row is joined to the next (the
-    last one comes with the previous block's last sample). The plausibility of the values in SI (:func:`fretwear.io.plausibility.check_plausibility`)
-    is checked on the first block: a wrong unit shows there.
+    last one comes with the previous block's last sample). The plausibility of the values in
+    SI (:func:`fretwear.io.plausibility.check_plausibility`) is checked on the first block: a
+    wrong unit shows there.
 
     Parameters
     ----------

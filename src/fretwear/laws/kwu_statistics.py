@@ -146,6 +146,9 @@ class KwuEpriAccumulator:
         self.samples = 0
         self.first_time: float | None = None
         self._last: tuple[float, float, float] | None = None
+        #: (force_max, speed_max) as the user gave them (None: the window's maximum), when the
+        #: counts come from a power pass (fretwear.power.wear_power(kwu=...)); None otherwise.
+        self.given: tuple[float | None, float | None] | None = None
 
     @property
     def contact_time(self) -> float:
@@ -257,6 +260,7 @@ class KwuEpriAccumulator:
         out.first_time = min(firsts) if firsts else None
         lasts = [x._last for x in (self, other) if x._last is not None]
         out._last = max(lasts) if lasts else None
+        out.given = self.given if self.given == other.given else None
         return out
 
     def result(self, *, impact_factor: float = 1.0, sliding_factor: float = 1.0, k: float = 5.0,

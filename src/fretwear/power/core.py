@@ -38,6 +38,7 @@ from fretwear.errors import (
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io import history_time_range, iter_history_blocks, read_history
 from fretwear.laws import KwuEpriAccumulator, KwuEpriMaxima
+from fretwear.power._kwu import kwu_counts, merge_kwu
 from fretwear.power.kernels import BLOCK_STATS, GROUP_FIELDS, fused
 from fretwear.power.ranges import check_finite_sums, out_of_range, speed_scale
 from fretwear.power.result import PowerResult
@@ -163,10 +164,12 @@ class PowerAccumulator:
         self.kwu: KwuEpriAccumulator | KwuEpriMaxima | None = None
         if kwu is not None:
             force_max, speed_max = kwu
-            self.kwu = (KwuEpriMaxima(t_start=self.t_start, t_end=self.t_end)
-                        if force_max is None or speed_max is None else
-                        KwuEpriAccumulator(force_max, speed_max, t_start=self.t_start,
-                                           t_end=self.t_end))
+            if force_max is None or speed_max is None:
+                self.kwu = KwuEpriMaxima(t_start=self.t_start, t_end=self.t_end)
+            else:
+                self.kwu = KwuEpriAccumulator(force_max, speed_max, t_start=self.t_start,
+                                              t_end=self.t_end)
+                self.kwu.given = (force_max, speed_max)
 
     # ------------------------------------------------------------------ reduction
     def _empty_like(self) -> PowerAccumulator:
@@ -297,7 +300,7 @@ class PowerAccumulator:
         groups = merge_groups(groups, right.groups, self.minimum_rest_time)
         fmax = max(left.force_max, right.force_max, bridge.force_max if bridge else -math.inf)
         shared = 1 if right.first[0] == left.last[0] else 0
-        self.kwu = _merge_kwu(left, right)
+        self.kwu = merge_kwu(left, right)
         self.samples = left.samples + right.samples - shared
         self.first, self.last = left.first.copy(), right.last.copy()
         self.power, self.block_stats, self.groups, self.force_max = power, bstats, groups, fmax
@@ -358,21 +361,6 @@ class PowerAccumulator:
                            statistics=stats, name=self.name,
                            block_sectors=None if self.sector_edges is None
                            else self.power / (T / nb), kwu=copy.deepcopy(self.kwu))
-
-
-def _merge_kwu(left: PowerAccumulator, right: PowerAccumulator):
-    """The KWU-EPRI part of two adjacent accumulators, the samples between them counted."""
-    if left.kwu is None or right.kwu is None:
-        return None if left.kwu is None and right.kwu is None else (left.kwu or right.kwu)
-    if isinstance(left.kwu, KwuEpriMaxima):
-        return copy.deepcopy(left.kwu).merge(right.kwu)
-    bridge = copy.deepcopy(left.kwu)  # its counts restart from zero, its last sample is kept
-    bridge.class_time = np.zeros_like(bridge.class_time)
-    bridge.window_time = bridge.time_above_max = 0.0
-    bridge.samples = 0
-    first = right.first
-    bridge.update_velocities(first[:1], first[1:2], first[2:3], first[3:4])
-    return left.kwu.merge(bridge).merge(right.kwu)
 
 
 def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float]:
@@ -549,24 +537,8 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
             f"{type(history).__name__}")
     result = acc.result(stationarity_threshold=float(stationarity_threshold))
     if isinstance(acc.kwu, KwuEpriMaxima) and chunks is not None:
-        result = replace(result, kwu=_kwu_counts(acc, kwu, chunks))
+        result = replace(result, kwu=kwu_counts(acc, kwu, chunks))
     return result
-
-
-def _kwu_counts(acc: PowerAccumulator, kwu, chunks: Callable[[], Iterable[ContactHistory]]
-                ) -> KwuEpriAccumulator:
-    """The KWU-EPRI class counts of a second pass over ``chunks()``, the maxima not given taken
-    from the first pass (``acc.kwu``)."""
-    force_max = acc.kwu.force_max if kwu[0] is None else kwu[0]
-    speed_max = acc.kwu.speed_max if kwu[1] is None else kwu[1]
-    # F_max = 0 only when no sample of the window has a force: no contact, no class counted
-    counts = KwuEpriAccumulator(force_max if force_max > 0 else 1.0, speed_max,
-                                t_start=acc.t_start, t_end=acc.t_end)
-    for chunk in chunks():
-        counts.update_velocities(chunk.time, chunk.normal_force, chunk.vt1, chunk.vt2)
-    if force_max == 0:
-        counts.force_max = 0.0
-    return counts
 
 
 def contact_statistics(history, *, t_start: float | None = None, t_end: float | None = None,

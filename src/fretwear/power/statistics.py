@@ -172,8 +172,8 @@ def merge_groups(left: np.ndarray, right: np.ndarray, minimum_rest_time: float) 
     Parameters
     ----------
     left, right : numpy.ndarray
-        Group vectors (layout :data:`fretwear.power.kernels.GROUP_FIELDS`) of two stretches, ``left``
-        ending no later than ``right`` starts.
+        Group vectors (layout :data:`fretwear.power.reference.GROUP_FIELDS`) of two stretches,
+        ``left`` ending no later than ``right`` starts.
     minimum_rest_time : float
         τ [s]: the last impact of ``left`` and the first of ``right`` fuse when the rest between
         them is shorter than τ, or when both are open at the shared boundary (one episode cut in

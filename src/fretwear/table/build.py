@@ -39,7 +39,6 @@ import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.geometry.sectors import sector_depth_mobile, sector_depth_obstacle
 from fretwear.history import ContactHistory
-from fretwear.io import read_history
 from fretwear.power import wear_power
 from fretwear.table.case import WearCase
 from fretwear.table.limit import add_wall_columns
@@ -110,7 +109,7 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
                          f"{type(case).__name__}")
     result, history, power = _power_of(case, source, history)
     case = _with_run_sectors(case, result)
-    mobile, obstacle, sources = _body_coefficients(case, history)
+    mobile, obstacle, sources = _body_coefficients(case, history, result)
     geometry = case.geometry
     clock = _Clock(case)
     head = {"instant": case.origin + clock.durations, "duration": clock.durations,
@@ -141,7 +140,13 @@ def _power_of(case: WearCase, source, history):
         raise InputError("history is the ContactHistory a PowerResult source was computed from "
                          "(for the KWU_EPRI classes); give it with a PowerResult source only")
     if isinstance(source, str | os.PathLike):
-        source = read_history(source)
+        # streamed in one pass (two for KWU_EPRI without FNOR_MAXI/VTAN_MAXI): the law's class
+        # counts come with the power (result.kwu), the history is never held whole
+        kwu = (case.force_max, case.speed_max) if case.wear_law.needs_history else None
+        result = wear_power(source, t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,
+                            sectors=case.sectors,
+                            stationarity_threshold=case.stationarity_threshold, kwu=kwu)
+        return result, None, float(result.total)
     if isinstance(source, ContactHistory):
         result = wear_power(source, t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,
                             sectors=case.sectors,
@@ -179,7 +184,25 @@ def _with_run_sectors(case: WearCase, result) -> WearCase:
 
 
 # --------------------------------------------------------------------------- 2. coefficients
-def _body_coefficients(case: WearCase, history):
+def _pass_counts(result, case: WearCase, coefs: dict):
+    """The KWU-EPRI class counts of the power's pass (``result.kwu``) when they are those of
+    ``coefs``'s maxima over the case's window, else None."""
+    counts = getattr(result, "kwu", None)
+    given = getattr(counts, "given", None)
+    if given is None or given != (coefs.get("force_max"), coefs.get("speed_max")):
+        return None
+    # the case's window; a missing bound is the record's end (the power's window), which
+    # selects the same samples as no bound at all
+    for bound, power_bound, counted, open_end in (
+            (case.t_start, result.t_start, counts.t_start, -np.inf),
+            (case.t_end, result.t_end, counts.t_end, np.inf)):
+        if counted != (power_bound if bound is None else bound) and not (
+                bound is None and counted == open_end):
+            return None
+    return counts
+
+
+def _body_coefficients(case: WearCase, history, result=None):
     """(mobile, obstacle or None, sources) coefficient dicts by native name; a law that needs
     the history's statistics gets each body's intensity from them (unless given)."""
     law = case.wear_law
@@ -187,13 +210,26 @@ def _body_coefficients(case: WearCase, history):
     obstacle = case.coefficient_values("obstacle")
     sources = case.coefficient_sources
     if law.needs_history:
-        if history is None:
+        if history is None and getattr(result, "kwu", None) is None:
             raise KeywordError(f"the {law.name} law needs the contact history's force/speed "
                                "classes: give a history (RESU_GENE), or history= with a "
                                "PowerResult, not a power alone (PUIS_USURE)")
         for body, coefs in (("mobile", mobile), ("obstacle", obstacle)):
             if coefs is not None and coefs.get("intensity") is None:
-                stats = law.statistics(history, t_start=case.t_start, t_end=case.t_end, **coefs)
+                counts = _pass_counts(result, case, coefs) if history is None else None
+                if counts is not None:
+                    factors = law.resolve(**coefs)
+                    stats = counts.result(**{k: factors[k] for k in
+                                             ("impact_factor", "sliding_factor", "k", "c")})
+                elif history is None:
+                    raise KeywordError(
+                        f"the PowerResult's KWU-EPRI class counts were made with the maxima "
+                        f"{getattr(result.kwu, 'given', None)}, the {body}'s are "
+                        f"{(coefs.get('force_max'), coefs.get('speed_max'))} (force_max, "
+                        "speed_max): give the history too (history=)")
+                else:
+                    stats = law.statistics(history, t_start=case.t_start, t_end=case.t_end,
+                                           **coefs)
                 coefs["intensity"] = float(stats.intensity)
                 sources[f"{body}.intensity"] = HISTORY
     return mobile, obstacle, sources

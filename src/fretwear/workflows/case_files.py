@@ -38,7 +38,7 @@ import pandas as pd
 from fretwear.errors import FretwearWarning, InputError, KeywordError
 from fretwear.geometry import CONTACT_TYPES
 from fretwear.geometry.base import ASTER_KEYWORDS, DIMENSION_DESCRIPTIONS, DIMENSION_UNITS
-from fretwear.io import FORMATS, read_history
+from fretwear.io import FORMATS, units_read
 from fretwear.io.guard import readable_file, reading
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
 from fretwear.laws import WEAR_LAWS
@@ -244,9 +244,12 @@ class CaseResult:
     case : dict
         The validated case.
     history : ContactHistory or None
-        The contact history read, if any.
+        The contact history, when the caller read it whole (``run_case`` streams the history
+        file and leaves None).
     wear_case : WearCase or None
         The validated wear case the table was built from.
+    units : dict or None
+        The unit each channel of the history file was read in (``{channel: unit}``).
     """
 
     table: pd.DataFrame
@@ -255,6 +258,7 @@ class CaseResult:
     case: dict[str, Any] = field(default_factory=dict)
     history: Any = None
     wear_case: WearCase | None = None
+    units: dict[str, str] | None = None
 
     @property
     def total_power(self) -> float:
@@ -450,24 +454,30 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
         warnings.simplefilter("always")
         args = case_arguments(case)
         wear = WearCase.from_keywords(**args)  # every rule checked before the history is read
-        history = None
+        units = None
         if "file" in history_spec:
-            step("reading the history")
-            history = read_history(_path(case, history_spec["file"]),
-                                   **history_options(history_spec))
+            path = _path(case, history_spec["file"])
+            options = history_options(history_spec)
+            units = units_read(path, **options)
             if "name" in history_spec:
-                history = history.replace(name=history_spec["name"])
-            power = chunked_power(history, args, step)
+                options["name"] = history_spec["name"]
+            step("computing the wear power")
+            # streamed in one pass (the history is never held whole); KWU_EPRI's class counts
+            # come in the same pass when FNOR_MAXI and VTAN_MAXI are given, else in a second one
+            power = wear_power(
+                path, t_start=wear.t_start, t_end=wear.t_end, blocks=wear.blocks,
+                sectors=wear.sectors, stationarity_threshold=wear.stationarity_threshold,
+                kwu=(wear.force_max, wear.speed_max) if wear.wear_law.needs_history else None,
+                progress=lambda done: step("computing the wear power", done, None), **options)
         else:
             power = float(case["power"]["value_W"])
         step("building the wear table")
-        # The power is computed once, above; the history only gives KWU_EPRI its classes.
-        table = wear_table_from_case(wear, power, history=history)
+        table = wear_table_from_case(wear, power)
     seen = list(dict.fromkeys(  # keep order, drop repeats
         f"{w.category.__name__}: {w.message}" for w in caught
         if issubclass(w.category, FretwearWarning | UserWarning)))
-    return CaseResult(table=table, power=power, warnings=seen, case=case, history=history,
-                      wear_case=wear)
+    return CaseResult(table=table, power=power, warnings=seen, case=case, wear_case=wear,
+                      units=units)
 
 
 #: Histories longer than this many samples get their power computed chunk by chunk (progress).
