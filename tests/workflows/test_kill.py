@@ -78,7 +78,8 @@ def _generation(path: Path, old: dict[str, bytes], new: dict[str, object], rel: 
     try:
         content = _content(path)
     except Exception as exc:  # noqa: BLE001 - a half-written file fails to parse
-        raise AssertionError(f"{rel}: neither the old file nor a readable new one ({exc})")
+        raise AssertionError(f"{rel}: neither the old file nor a readable new one ({exc})"
+                             ) from exc
     assert rel in new and _same(content, new[rel]), f"{rel}: neither the old nor the new one"
     return "new"
 
