@@ -27,30 +27,12 @@ from fretwear.table.files import write_wear_table
 EXAMPLES = Path(__file__).parents[2] / "examples"
 
 
-def _case(tmp_path, history, extra=""):
-    path = tmp_path / "case.toml"
-    path.write_text(f"""[history]
-file = "{history}"
-[law]
-name = "ARCHARD"
-mobile = {{ COEF_USURE = 30e-15 }}
-[geometry]
-contact_type = "GRAPPE_1_ENCO"
-mobile_radius_m = 4.85e-3
-obstacle_radius_m = 5.25e-3
-obstacle_width_m = 20e-3
-[sectors]
-count = 4
-[time]
-instants = [1000, 5000]
-unit = "h"
-[obstacle]
-type = "circle"
-wall_thickness_m = 0.47e-3
-step_deg = 5.0
-resolution_deg = 1.0
-{extra}""")
-    return path
+@pytest.fixture
+def make_case(tmp_path, grappe_case):
+    """``make_case(history, extra="")``: the small case with its [obstacle] section."""
+    def make(history, extra=""):
+        return grappe_case(tmp_path / "case.toml", history, obstacle=True, extra=extra)
+    return make
 
 
 @pytest.fixture
@@ -63,8 +45,8 @@ def _bytes(path):
     return Path(path).read_bytes()
 
 
-def test_run_refuses_an_output_equal_to_an_input(tmp_path, history, capsys):
-    case = _case(tmp_path, history)
+def test_run_refuses_an_output_equal_to_an_input(tmp_path, history, capsys, make_case):
+    case = make_case(history)
     before = _bytes(history)
     assert main(["run", str(case), "-q", "-o", str(history)]) == 2
     err = capsys.readouterr().err
@@ -81,10 +63,10 @@ def test_run_refuses_an_output_equal_to_an_input(tmp_path, history, capsys):
     assert "is the coefficient database" in capsys.readouterr().err
 
 
-def test_restart_table_is_replaced_only_with_force(tmp_path, history, capsys):
+def test_restart_table_is_replaced_only_with_force(tmp_path, history, capsys, make_case):
     first = tmp_path / "first.csv"
-    assert main(["run", str(_case(tmp_path, history)), "-q", "-o", str(first)]) == 0
-    case = _case(tmp_path, history, extra=f'[restart]\ntable = "{first}"\n')
+    assert main(["run", str(make_case(history)), "-q", "-o", str(first)]) == 0
+    case = make_case(history, extra=f'[restart]\ntable = "{first}"\n')
     before = _bytes(first)
     assert main(["run", str(case), "-q", "-o", str(first)]) == 2
     err = capsys.readouterr().err
@@ -94,9 +76,9 @@ def test_restart_table_is_replaced_only_with_force(tmp_path, history, capsys):
     assert _bytes(first) != before  # the continued table (rows at 6000 and 10000 h)
 
 
-def test_obstacle_refuses_outputs_equal_to_inputs(tmp_path, history, capsys):
+def test_obstacle_refuses_outputs_equal_to_inputs(tmp_path, history, capsys, make_case):
     table = tmp_path / "wear.csv"
-    assert main(["run", str(_case(tmp_path, history)), "-q", "-o", str(table)]) == 0
+    assert main(["run", str(make_case(history)), "-q", "-o", str(table)]) == 0
     before = _bytes(table)
     common = ["obstacle", "--table", str(table), "--mobile-radius", "4.85e-3",
               "--wall-thickness", "0.47e-3", "--width", "20e-3", "--step", "5",
@@ -123,7 +105,7 @@ def test_obstacle_old_option_names_are_refused_with_the_new_ones(tmp_path, capsy
     assert not target.exists()
 
 
-def test_units_are_printed_and_units_option_fixes_a_mm_file(tmp_path, capsys):
+def test_units_are_printed_and_units_option_fixes_a_mm_file(tmp_path, capsys, make_case):
     si = read_history(EXAMPLES / "data" / "oscillator_gap.csv")
     mm = write_history(si.replace(dy=si.dy * 1e3, dz=si.dz * 1e3, vt1=si.vt1 * 1e3,
                                   vt2=si.vt2 * 1e3), tmp_path / "mm.csv")
@@ -134,7 +116,7 @@ def test_units_are_printed_and_units_option_fixes_a_mm_file(tmp_path, capsys):
     assert main(["power", str(mm), "--units", "length=mm,velocity=mm/s"]) == 0
     out = capsys.readouterr().out
     assert "plausibility limit" not in out and "vt1 [mm/s]" in out and "dy [mm]" in out
-    case = _case(tmp_path, mm)
+    case = make_case(mm)
     assert main(["run", str(case)]) == 0
     out = capsys.readouterr().out
     assert "units read: time [s]" in out and "plausibility limit" in out
@@ -174,9 +156,9 @@ def test_tables_are_not_wrapped_in_a_file(tmp_path):
     assert all(ln.endswith("│") for ln in table)  # one line per row: nothing wrapped
 
 
-def test_report_refuses_to_overwrite_an_input(tmp_path, history, capsys):
+def test_report_refuses_to_overwrite_an_input(tmp_path, history, capsys, make_case):
     pytest.importorskip("jinja2")
-    case = _case(tmp_path, history)
+    case = make_case(history)
     before = _bytes(history)
     assert main(["report", str(case), "-o", str(history)]) == 2
     assert "is the history file" in capsys.readouterr().err

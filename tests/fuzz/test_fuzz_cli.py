@@ -28,34 +28,14 @@ _COUNTER = itertools.count()
 
 
 @functools.lru_cache(maxsize=1)
-def files() -> dict[str, str]:
+def files(write_case) -> dict[str, str]:
+    """The files the argv refer to; ``write_case``: the grappe_case fixture (tests/conftest)."""
     d = workdir() / "cli"
     d.mkdir(exist_ok=True)
     history = write_history(small_history(n=60), d / "h.csv")
     damaged = d / "damaged.csv.gz"
     damaged.write_bytes(b"\x1f\x8b\x08\x00garbage")
-    case = d / "case.toml"
-    case.write_text(f"""[history]
-file = "{history}"
-[law]
-name = "ARCHARD"
-mobile = {{ COEF_USURE = 30e-15 }}
-[geometry]
-contact_type = "GRAPPE_1_ENCO"
-mobile_radius_m = 4.85e-3
-obstacle_radius_m = 5.25e-3
-obstacle_width_m = 20e-3
-[sectors]
-count = 4
-[time]
-instants = [1000, 5000]
-unit = "h"
-[obstacle]
-type = "circle"
-wall_thickness_m = 0.47e-3
-step_deg = 5.0
-resolution_deg = 1.0
-""")
+    case = write_case(d / "case.toml", history, obstacle=True)
     broken = d / "broken.toml"
     broken.write_text("[law\nname = 'ARCHARD'\n")
     table = d / "wear.csv"
@@ -121,20 +101,20 @@ def _inside(folder):
         os.chdir(here)
 
 
-def _resolve(token: str) -> str:
+def _resolve(token: str, write_case) -> str:
     """A placeholder ``@name`` -> the file's path (``@out.csv`` -> a fresh output path)."""
     if not token.startswith("@"):
         return token
     if token.startswith("@out"):
         return _out(token[4:])
-    return files()[token[1:]]
+    return files(write_case)[token[1:]]
 
 
 @examples(80)
 @given(args=argv())
-def test_command_line_never_shows_a_traceback(args):
+def test_command_line_never_shows_a_traceback(args, grappe_case):
     runner = CliRunner()
-    resolved = [_resolve(a) for a in args]
+    resolved = [_resolve(a, grappe_case) for a in args]
     with runner.isolation() as streams, no_hang(), _inside(workdir()):
         try:
             code = main(resolved)

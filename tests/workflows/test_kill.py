@@ -116,30 +116,9 @@ def history(tmp_path_factory):
     return write_history(read_history(EXAMPLES / "data" / "oscillator_gap.csv"), d / "h.csv")
 
 
-def _case(path: Path, history: Path, instants: str) -> Path:
-    path.write_text(f"""[history]
-file = "{history}"
-[law]
-name = "ARCHARD"
-mobile = {{ COEF_USURE = 30e-15 }}
-obstacle = {{ COEF_USURE = 17e-15 }}
-[geometry]
-contact_type = "GRAPPE_1_ENCO"
-mobile_radius_m = 4.85e-3
-obstacle_radius_m = 5.25e-3
-obstacle_width_m = 20e-3
-[sectors]
-count = 6
-[time]
-instants = {instants}
-unit = "h"
-""")
-    return path
-
-
-def test_kill_run_output(tmp_path, history):
-    a = _case(tmp_path / "a.toml", history, "[1000, 5000]")
-    b = _case(tmp_path / "b.toml", history, "[1000, 5000, 20000]")
+def test_kill_run_output(tmp_path, history, grappe_case):
+    a = grappe_case(tmp_path / "a.toml", history, sectors=6)
+    b = grappe_case(tmp_path / "b.toml", history, instants="[1000, 5000, 20000]", sectors=6)
     out = tmp_path / "out"
     out.mkdir()
     ref = tmp_path / "ref"
@@ -152,9 +131,9 @@ def test_kill_run_output(tmp_path, history):
                seconds, _budget(4))
 
 
-def test_kill_obstacle_outputs(tmp_path, history):
+def test_kill_obstacle_outputs(tmp_path, history, grappe_case):
     table = tmp_path / "wear.csv"
-    _complete(["run", str(_case(tmp_path / "a.toml", history, "[1000, 5000]")), "-q", "-o",
+    _complete(["run", str(grappe_case(tmp_path / "a.toml", history, sectors=6)), "-q", "-o",
                str(table)], tmp_path)
     common = ["obstacle", "--table", str(table), "--mobile-radius", "4.85e-3",
               "--wall-thickness", "0.47e-3", "--width", "20e-3", "-q"]
