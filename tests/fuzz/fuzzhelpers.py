@@ -20,12 +20,16 @@ import numpy as np
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
+import fretwear.io.guard as guard
 from fretwear.errors import FretwearError, FretwearWarning
 from fretwear.history import ContactHistory
 
 SCALE = float(os.environ.get("FRETWEAR_FUZZ_SCALE", "1"))
 #: seconds one example may take before the test fails as a hang
 HANG_SECONDS = 20.0
+# a damaged HDF5/NetCDF file can make its C library loop forever: the reader's probe gives up
+# after PROBE_TIMEOUT seconds (an error), which must come before the fuzz calls it a hang
+guard.PROBE_TIMEOUT = 5.0
 
 
 def examples(n: int) -> settings:

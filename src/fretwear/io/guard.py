@@ -15,9 +15,10 @@ case files, obstacle tables):
   :class:`~fretwear.errors.InputError`.
 * :func:`probe` checks an HDF5 or NetCDF file before the C library opens it in this process:
   the signature and the size it declares (a truncated file is refused), then its structure is
-  walked by a child process (``sys.executable``) with a time limit, so a file that makes the C
-  library crash (segmentation fault) or loop forever ends in a :class:`FormatError`, not in a
-  dead or hung interpreter. The result is remembered per file (path, size, modification time).
+  walked by a child process (``sys.executable``) with a time limit (:data:`PROBE_TIMEOUT`), so
+  a file that makes the C library crash (segmentation fault) or loop forever ends in a
+  :class:`FormatError`, not in a dead or hung interpreter. The result is remembered per file
+  (path, size, modification time).
 
 Examples
 --------
@@ -61,7 +62,7 @@ __all__ = ["readable_file", "reading", "probe", "warn_whole_read", "PROBE_TIMEOU
 
 #: Seconds the child process may take to walk an HDF5/NetCDF file's structure before the file
 #: is declared unreadable (a corrupt file can make the C library loop forever).
-PROBE_TIMEOUT = 30.0
+PROBE_TIMEOUT = 20.0
 #: Formats parsed by C libraries (pyarrow, h5py, netCDF4, numpy's zip reader): any exception
 #: they raise while reading is the file's fault.
 BINARY_FORMATS = frozenset({"parquet", "hdf5", "netcdf", "npz"})
