@@ -25,6 +25,7 @@ exists. User files extend the built-in rows and override a row with the same
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import os
 from collections.abc import Iterable, Mapping
@@ -367,6 +368,14 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
     >>> lookup("TUBE_BAV", "I600", "A405", "ARCHARD").mobile
     {'coefficient': 6.2e-14}
     """
+    if database is None:  # the same question of the same files: answered once
+        key = _lookup_key(contact_type, mobile_material, obstacle_material, law, obstacle, extra)
+        if key is not None:
+            found = _cached_lookup(*key)
+            return dataclasses.replace(
+                found, mobile=dict(found.mobile),
+                obstacle=None if found.obstacle is None else dict(found.obstacle),
+                units=dict(found.units), sources=dict(found.sources))
     table = load_database(extra) if database is None else (
         database if extra is None else pd.concat([database, load_database(extra, builtin=False)],
                                                  ignore_index=True)
@@ -430,6 +439,29 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
         mobile=as_dict(mob), obstacle=as_dict(obs) if len(obs) else None,
         units={r.parameter: r.unit for r in used.itertuples()},
         sources={f"{r.body}.{r.parameter}": f"{r.source} ({r.origin})" for r in used.itertuples()})
+
+
+def _lookup_key(contact_type, mobile_material, obstacle_material, law, obstacle, extra):
+    """The cache key of a lookup: its arguments and each extra file's (path, mtime, size); None
+    when a file cannot be stat'ed (the lookup then reports it)."""
+    if extra is None:
+        files = ()
+    else:
+        items = [extra] if isinstance(extra, str | os.PathLike) else list(extra)
+        try:
+            files = tuple((os.fspath(f), os.stat(f).st_mtime_ns, os.stat(f).st_size)
+                          for f in items)
+        except (OSError, TypeError):
+            return None
+    return (str(contact_type), str(mobile_material), str(obstacle_material), str(law),
+            bool(obstacle), files)
+
+
+@functools.lru_cache(maxsize=256)
+def _cached_lookup(contact_type, mobile_material, obstacle_material, law, obstacle, files):
+    extra = [f[0] for f in files] or None
+    return lookup(contact_type, mobile_material, obstacle_material, law, obstacle=obstacle,
+                  extra=extra, database=load_database(extra))
 
 
 def summary(database: pd.DataFrame | None = None, *, contact_type: str | None = None,

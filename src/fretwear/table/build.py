@@ -395,52 +395,123 @@ def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> pd.D
 # --------------------------------------------------------------------------- 5. the wall
 def _wall(case, frame, power, result, mobile, obstacle, clock, geometry):
     """The wall columns (:func:`fretwear.table.limit.add_wall_columns`): the depth over the
-    wall and the instant of reaching the limit, from depth(t) through the law and geometry."""
+    wall and the instant of reaching the limit, from depth(t) through the law and geometry.
+
+    A law linear in time gives every term (the body, or each sector) V = V0 + r·t with its
+    rate r = V(P, 1 s) computed once: depth(t) then costs a few array operations (the
+    geometry's relation directly: the volumes are valid by construction), and each sector's
+    instant is the closed-form inverse (:class:`_SectorDepths`).
+    """
     law, state = case.wear_law, case.initial_state
     fresh = clock.fresh
-
-    def functions(terms, depth_of):
-        def old(t):  # the tube in place at the origin, t seconds after it
-            vm = sum(_cumulated(law, p, km, t, pm, None, "mobile") for p, km, _, pm, _ in terms)
-            vo = sum(_cumulated(law, p, ko, t, po, None, "obstacle")
-                     for p, _, ko, _, po in terms)
-            return depth_of(np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))
-
-        def new(tau):  # a new tube, tau seconds after its replacement
-            vm = sum(_cumulated(law, p, km, tau, 0.0, None, "mobile")
-                     for p, km, _, _, _ in terms)
-            vo = sum(_cumulated(law, p, ko, fresh + tau, po, None, "obstacle")
-                     for p, _, ko, _, po in terms)
-            return depth_of(np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))
-
-        return old, new
-
-    def global_depth(vm, vo):
-        return _depths(geometry, vm, vo)[0]
-
-    sectors = None
-    if case.sectors is None:
+    if case.sectors is None and not law.linear_in_time:
         terms = [(power, mobile, obstacle, 0.0 if state is None else state.volume_mobile,
                   0.0 if state is None else state.volume_obstacle)]
+        return add_wall_columns(
+            frame, wall=case.wall_thickness, depth_limit=case.depth_limit,
+            origin=case.origin, time_scale=case.time_scale, fresh=fresh, unit=case.time_unit,
+            stacklevel=4, global_depth=None if case.contact_type is None
+            else _law_depths(law, terms, fresh, geometry))
+    if case.sectors is None:
+        powers = np.array([power], dtype=float)
+        rate_m = np.array([_rate(law, power, mobile)])
+        rate_o = np.array([_rate(law, power, obstacle)])
+        v0_m = np.array([0.0 if state is None else state.volume_mobile], dtype=float)
+        v0_o = np.array([0.0 if state is None else state.volume_obstacle], dtype=float)
     else:
         key = law.parameters[0]
-        edges = np.asarray(result.sector_edges, dtype=float)
         powers = np.asarray(result.sectors, dtype=float)
         k_m, k_o = _sector_coefficients(case, powers.size, mobile, obstacle)
-        terms = [(powers[j], {key: k_m[j]}, None if k_o is None else {key: k_o[j]},
-                  0.0 if state is None else float(state.sector_volume_mobile[j]),
-                  0.0 if state is None else float(state.sector_volume_obstacle[j]))
-                 for j in range(powers.size)]
-        sectors = []
-        for j, term in enumerate(terms):
-            arc = edges[j + 1] - edges[j]
-            sectors.append(functions([term], lambda vm, vo, arc=arc: sector_depth_mobile(
-                vm, geometry.mobile_radius, geometry.obstacle_width, arc)))
+        rate_m = np.asarray(law.volume(powers, 1.0, **{key: k_m}), dtype=float)  # [m³/s]
+        rate_o = (np.zeros(powers.size) if k_o is None
+                  else np.asarray(law.volume(powers, 1.0, **{key: k_o}), dtype=float))
+        zeros = np.zeros(powers.size)
+        v0_m = zeros if state is None else np.asarray(state.sector_volume_mobile, dtype=float)
+        v0_o = zeros if state is None else np.asarray(state.sector_volume_obstacle, dtype=float)
+    zeros = np.zeros(powers.size)
+
+    def total(t, v0, rate):  # Σ of the terms' volumes at one time t [s], in the terms' order
+        return np.cumsum(_linear_volume(t, v0, rate))[-1]
+
+    def global_old(t):
+        t = float(t)
+        return geometry._depth_from_volume(np.asarray(total(t, v0_m, rate_m)),
+                                           np.asarray(total(t, v0_o, rate_o)))[0]
+
+    def global_new(tau):  # a new tube, tau seconds after its replacement
+        tau = float(tau)
+        return geometry._depth_from_volume(np.asarray(total(tau, zeros, rate_m)),
+                                           np.asarray(total(tau + (fresh or 0.0), v0_o,
+                                                            rate_o)))[0]
+
+    sectors = None
+    if case.sectors is not None:
+        arcs = np.diff(np.asarray(result.sector_edges, dtype=float))
+        sectors = (_SectorDepths(v0_m, rate_m, geometry, arcs),
+                   _SectorDepths(zeros, rate_m, geometry, arcs))
     return add_wall_columns(
         frame, wall=case.wall_thickness, depth_limit=case.depth_limit, origin=case.origin,
         time_scale=case.time_scale, fresh=fresh, sector_depths=sectors, unit=case.time_unit,
         stacklevel=4,
-        global_depth=None if case.contact_type is None else functions(terms, global_depth))
+        global_depth=None if case.contact_type is None else (global_old, global_new))
+
+
+def _rate(law, power: float, coefficients) -> float:
+    """Volume per second [m³/s] of a body under a law linear in time (0 when it does not
+    wear)."""
+    if coefficients is None:
+        return 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the table's own volumes already warned
+        return float(np.asarray(law.volume(power, 1.0, **coefficients), dtype=float))
+
+
+def _linear_volume(t, v0, rate):
+    """V0 + r·t [m³] (exactly r·t where V0 = 0)."""
+    v = rate * t
+    return np.where(v0 == 0.0, v, v0 + v)
+
+
+def _law_depths(law, terms, fresh, geometry):
+    """(old, new) global depth functions of time through the law itself (a law not linear in
+    time: each call continues the volumes from their equivalent times)."""
+
+    def old(t):  # the tube in place at the origin, t seconds after it
+        vm = sum(_cumulated(law, p, km, t, pm, None, "mobile") for p, km, _, pm, _ in terms)
+        vo = sum(_cumulated(law, p, ko, t, po, None, "obstacle") for p, _, ko, _, po in terms)
+        return _depths(geometry, np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))[0]
+
+    def new(tau):  # a new tube, tau seconds after its replacement
+        vm = sum(_cumulated(law, p, km, tau, 0.0, None, "mobile") for p, km, _, _, _ in terms)
+        vo = sum(_cumulated(law, p, ko, fresh + tau, po, None, "obstacle")
+                 for p, _, ko, _, po in terms)
+        return _depths(geometry, np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))[0]
+
+    return old, new
+
+
+class _SectorDepths:
+    """The mobile depth of every sector at the times t (one per sector) [m], for a law linear
+    in time, V_j(t) = V0_j + r_j·t; :meth:`time_to` inverts it in closed form through
+    V = l·Δθ·d·(2R − d)/2 (:func:`~fretwear.geometry.sector_depth_mobile`), theory §3."""
+
+    def __init__(self, v0, rate, geometry, arcs_deg):
+        self.v0, self.rate = v0, rate
+        self.radius, self.width = geometry.mobile_radius, geometry.obstacle_width
+        self.arcs = arcs_deg
+
+    def __call__(self, t):
+        return sector_depth_mobile(_linear_volume(t, self.v0, self.rate), self.radius,
+                                   self.width, self.arcs)
+
+    def time_to(self, targets) -> np.ndarray:
+        """Seconds [s] at which each sector's depth reaches ``targets`` [m]: 0 when already
+        there, inf when it does not wear."""
+        d = np.minimum(np.asarray(targets, dtype=float), self.radius)
+        volume = self.width * np.radians(self.arcs) * d * (2.0 * self.radius - d) / 2.0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (volume - self.v0) / self.rate
+        return np.where(self.v0 >= volume, 0.0, np.where(self.rate > 0, t, np.inf))
 
 
 # --------------------------------------------------------------------------- 6. metadata

@@ -24,7 +24,7 @@ import numpy as np
 from fretwear.errors import InputError, PerforationWarning
 from fretwear.geometry._shapes import solve_monotone
 
-__all__ = ["add_wall_columns", "check_wall", "first_time", "time_to_depth"]
+__all__ = ["add_wall_columns", "check_wall", "first_time", "first_times", "time_to_depth"]
 
 def _finite(value, name: str) -> float:
     ok = not isinstance(value, bool | str | bytes) and value is not None
@@ -153,6 +153,31 @@ def first_time(old: Callable, new: Callable | None, target: float, fresh: float 
     return fresh + float(time_to_depth(new, target, first_guess=first_guess))
 
 
+def first_times(old: Callable, new: Callable | None, targets, fresh: float | None,
+                first_guess: float) -> np.ndarray:
+    """:func:`first_time` of several depth functions at once, element-wise [s].
+
+    ``old(t)`` and ``new(τ)`` map an array of times (one per element) to the array of depths of
+    the elements (e.g. the sectors of a table) [m]; ``targets`` the depths to reach [m]. Each
+    element goes through the same steps as a call of :func:`first_time` of its own. A function
+    with a ``time_to(targets)`` method (its inverse, e.g. a law linear in time through a
+    closed-form geometry) is inverted by it instead of the bracketed solver.
+    """
+    goal = np.asarray(targets, dtype=float)
+
+    def solve(depth_of_time):  # in closed form when the function knows its inverse
+        if hasattr(depth_of_time, "time_to"):
+            return np.asarray(depth_of_time.time_to(goal), dtype=float)
+        return np.asarray(time_to_depth(depth_of_time, goal, first_guess=first_guess),
+                          dtype=float)
+
+    t = solve(old)
+    if fresh is None or new is None or not (t >= fresh).any():
+        return t
+    later = t >= fresh
+    return np.where(later, fresh + solve(new), t)
+
+
 def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
                      time_scale: float, fresh: float | None, global_depth, sector_depths=None,
                      unit: str | None = None, stacklevel: int = 3):
@@ -174,8 +199,9 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
         Seconds after the origin of a tube replacement (None: none) [s].
     global_depth : (callable, callable) or None
         ``(old, new)`` depth functions of the global depth (None: no global depth).
-    sector_depths : list of (callable, callable), optional
-        The same per sector (sector mode).
+    sector_depths : list of (callable, callable), or (callable, callable), optional
+        The same per sector (sector mode): a pair per sector, or one pair of functions of all
+        the sectors at once (:func:`first_times`: arrays of one time, one depth per sector).
     unit : str, optional
         Name of the user time unit, for the warning.
 
@@ -194,6 +220,13 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
         t = first_time(fns[0], fns[1], target, fresh, time_scale)
         return origin + t / time_scale
 
+    def sector_instants(targets):
+        if sector_depths and callable(sector_depths[0]):  # vectorised over the sectors
+            t = first_times(sector_depths[0], sector_depths[1], targets, fresh, time_scale)
+            return origin + t / time_scale
+        return np.array([instant(fns, target)
+                         for fns, target in zip(sector_depths, targets, strict=True)])
+
     out["wall_fraction"] = out["depth_mobile"].to_numpy(dtype=float) / wall
     limit_at = instant(global_depth, limit)
     out["limit_instant"] = limit_at
@@ -206,12 +239,13 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
     if sector_depths is not None:
         sector = out["sector"].to_numpy(dtype=int)
         out["wall_fraction_sector"] = out["depth_mobile_sector"].to_numpy(dtype=float) / wall
-        instants = np.array([instant(fns, limit) for fns in sector_depths])
+        instants = sector_instants(np.full(sector.max(initial=0), limit))
         out["limit_instant_sector"] = instants[sector - 1]
         info["limit_instant_sector"] = instants.tolist()
         deep = sorted(set(sector[_past_wall(out["wall_fraction_sector"])].tolist()))
+        walls = sector_instants(np.full(instants.size, wall)) if deep else None
         for j in deep:
-            t = instant(sector_depths[j - 1], wall)
+            t = walls[j - 1]
             info["through_wall"][f"sector {j}"] = t
             through.append(f"sector {j}'s depth from instant {t:.6g}")
     if through:

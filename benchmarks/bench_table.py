@@ -1,0 +1,90 @@
+"""Per-contact cost of the wear table, for every contact type: the cost a bundle pays per contact.
+
+For each shipped example (one per contact type, ``examples/*.toml``) the wear table of a given
+power is built many times from the example's keywords: ``wear_table(power, **keywords)``
+(validation of the keywords into a WearCase included) and ``wear_table_from_case(case, power)``
+(the case built once, as the bundle's workers do). The power is a PowerResult of a short
+history (sectors of the example when it has them); KWU_EPRI's examples get their law's
+intensity from it (class counts of the same pass). Printed: median milliseconds per table over
+``--repeat`` timings of ``--number`` tables each (and the min-max of those medians' inputs).
+
+Usage::
+
+    .venv/bin/python benchmarks/bench_table.py
+    .venv/bin/python benchmarks/bench_table.py --number 50 --repeat 5
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from fretwear.history import ContactHistory
+from fretwear.power import wear_power
+from fretwear.table import WearCase, wear_table, wear_table_from_case
+from fretwear.workflows.case_files import case_arguments, load_case
+
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ("tube_bav", "tube_alesage", "tube_tube", "grappe_alesage", "tube_3_enco",
+            "tube_4_enco", "grappe_1_enco", "grappe_2_enco")
+
+
+def _history() -> ContactHistory:
+    t = np.linspace(0.0, 1.0, 2001)
+    phase = 2 * np.pi * 20 * t
+    return ContactHistory(time=t, normal_force=np.maximum(0.0, 30 * np.sin(phase)),
+                          vt1=0.02 * np.cos(phase), vt2=0.01 * np.sin(phase),
+                          dy=1e-4 * np.cos(phase / 3), dz=1e-4 * np.sin(phase / 3))
+
+
+def _keywords(name: str) -> dict:
+    args = case_arguments(load_case(ROOT / "examples" / f"{name}.toml"), history_elsewhere=True)
+    return {k: v for k, v in args.items() if v is not None}
+
+
+def _time(fn, number: int, repeat: int) -> list[float]:
+    out = []
+    for _ in range(repeat):
+        start = time.perf_counter()
+        for _ in range(number):
+            fn()
+        out.append((time.perf_counter() - start) / number)
+    return out
+
+
+def main(argv=None) -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--number", type=int, default=200, help="tables per timing")
+    p.add_argument("--repeat", type=int, default=7, help="timings; the median is printed")
+    args = p.parse_args(argv)
+    history = _history()
+    print(f"per-contact wear table [ms], median of {args.repeat} x {args.number} tables "
+          "(min-max)")
+    print(f"{'contact type':>15} {'law':>9} {'inst.':>5} {'sect.':>5} "
+          f"{'wear_table':>17} {'from_case':>17}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for name in EXAMPLES:
+            kw = _keywords(name)
+            case = WearCase.from_keywords(**kw)
+            power = wear_power(history, sectors=kw.get("sectors"), blocks=kw.get("blocks", 1),
+                               kwu=(kw.get("force_max"), kw.get("speed_max"))
+                               if case.wear_law.needs_history else None)
+            wear_table(power, **kw)  # first call: imports, caches
+            a = _time(lambda kw=kw, power=power: wear_table(power, **kw), args.number,
+                      args.repeat)
+            b = _time(lambda case=case, power=power: wear_table_from_case(case, power),
+                      args.number, args.repeat)
+            sectors = "-" if power.sectors is None else str(power.sectors.size)
+            print(f"{str(kw['contact_type']):>15} {kw['law']:>9} {len(kw['instants']):>5} "
+                  f"{sectors:>5} {1e3 * np.median(a):>6.3f} ({1e3 * min(a):.2f}-"
+                  f"{1e3 * max(a):.2f}) {1e3 * np.median(b):>6.3f} ({1e3 * min(b):.2f}-"
+                  f"{1e3 * max(b):.2f})", flush=True)
+
+
+if __name__ == "__main__":
+    main()
