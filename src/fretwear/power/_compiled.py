@@ -36,12 +36,23 @@ import math
 
 import numpy as np
 
-from fretwear._numba import njit
+from fretwear._numba import HAVE_NUMBA, njit
+
+if HAVE_NUMBA:  # pragma: no branch - the kernels use this module only with numba
+    from llvmlite import ir as llvm_ir
+    from numba.core import cgutils, types
+    from numba.extending import intrinsic
+else:  # pragma: no cover - importable without numba (plain Python, a prefetch does nothing)
+
+    def intrinsic(func):
+        return lambda array, index: None
 
 #: Half-width of the ambiguity band around a sector edge, in pseudo-angle units (≈ rad).
 AMBIGUITY = 1e-11
 #: Free-flight skipping granularity [intervals].
 BLOCK = 16
+#: Samples of a run whose lines are prefetched before it is reduced.
+PREFETCH = 256
 #: Longest run reduced by one call of the vectorised passes [intervals] (buffer size).
 RUNMAX = 4096
 #: Runs of at least this many intervals take the vectorised passes, in multiples of ``VEC``.
@@ -165,6 +176,51 @@ def _free_block(fn, a):  # pragma: no cover - compiled
     for m in range(BLOCK):
         z |= fn[a + m] != 0.0
     return not z
+
+
+@intrinsic
+def _prefetch(typingctx, array, index):  # pragma: no cover - compiled
+    """Hint the CPU to load ``array[index]``'s cache line (LLVM's prefetch: read, keep in all
+    cache levels); no bounds check: ``index`` must lie in the array."""
+    sig = types.void(array, index)
+
+    def codegen(context, builder, signature, args):
+        ary = context.make_array(signature.args[0])(context, builder, args[0])
+        ptr = cgutils.get_item_pointer(context, builder, signature.args[0], ary, [args[1]],
+                                       wraparound=False)
+        i8p = llvm_ir.IntType(8).as_pointer()
+        i32 = llvm_ir.IntType(32)
+        fn = cgutils.get_or_insert_function(
+            builder.module, llvm_ir.FunctionType(llvm_ir.VoidType(), [i8p, i32, i32, i32]),
+            "llvm.prefetch.p0")
+        builder.call(fn, [builder.bitcast(ptr, i8p), i32(0), i32(3), i32(1)])
+        return context.get_dummy_value()
+
+    return sig, codegen
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _prefetch_run(t, v1, v2, dy, dz, stick, a, b):  # pragma: no cover - compiled
+    """Prefetch the channels other than Fn of the samples [a, b) (a line per 8 samples)."""
+    for m in range(a, b + 7, 8):
+        k = _mn(m, b - 1)
+        _prefetch(t, k)
+        _prefetch(v1, k)
+        _prefetch(v2, k)
+        if dy is not None:
+            _prefetch(dy, k)
+            _prefetch(dz, k)
+        if stick is not None:
+            _prefetch(stick, k)
+
+
+@njit(nogil=True, error_model="numpy", inline="always")
+def _skip_free(fn, i, end, sums):  # pragma: no cover - compiled
+    """The first block from ``i`` (by blocks of BLOCK intervals) that is not free flight."""
+    while i + BLOCK <= end and _free_block(fn, i):
+        i += BLOCK
+        sums[_FMAX] = _mx(sums[_FMAX], 0.0)
+    return i
 
 
 @njit(cache=True, nogil=True, error_model="numpy", fastmath=_FM)
@@ -389,6 +445,7 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
     """Scalar reduction of [i, r) inside one block, skipping free flight interval by interval
     (short runs and the tails of long ones). Returns the number of deferrals."""
     ns = acc.shape[0] // 4
+    nbm1 = base.shape[0] - 1
     third = 1.0 / 3.0
     ct = 0.0
     fc_ = 0.0
@@ -419,34 +476,36 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
         s1 = math.sqrt(v1[ii + 1] * v1[ii + 1] + v2[ii + 1] * v2[ii + 1])
         prev = ii
         dt = t1 - t0
-        slide = True
+        slide = 1.0  # a factor, not a branch: sticking comes and goes within an impact
         if stick is not None:
-            slide = stick[ii] == 0.0
-        if slide:
-            w = 0.5 * dt * (f0 * s0 + f1 * s1)
-            if w != 0.0:
-                j = 0
-                if dy is not None:
-                    y = dy[ii]
-                    z = dz[ii]
-                    q = _pseudo(y, z)
-                    if q > q_lo and q < q_hi:
-                        j = j_last
-                    else:
-                        j, amb = _classify(y, z, scale, base, edge, exact)
-                        if amb:
-                            dfi[nd] = ii
-                            dfw[nd] = w
-                            nd += 1
-                            j = -1
-                        else:
-                            j_last = j
-                            q_lo = qe[j] + AMBIGUITY
-                            q_hi = qe[j + 1] - AMBIGUITY
-                if sec is not None:
-                    j = sec[ii]
-                if j >= 0:
-                    acc[(ii & 3) * ns + j] += w
+            slide = 1.0 - stick[ii]
+        w = 0.5 * dt * (f0 * s0 + f1 * s1) * slide
+        j = 0
+        if dy is not None:
+            y = dy[ii]
+            z = dz[ii]
+            q = _pseudo(y, z)
+            if q > q_lo and q < q_hi:
+                j = j_last
+            else:  # _classify written out: no reference counting of the tables
+                b = _mn(math.floor((q + 2.0) * scale), nbm1)
+                e = edge[b]
+                j = base[b] + (1 if q > e else 0)
+                amb = q + 2.0 <= AMBIGUITY or (
+                    abs(q - e) <= AMBIGUITY
+                    and not ((y == 0.0 or z == 0.0) and exact[b] != 0))
+                if not amb:
+                    j_last = j
+                    q_lo = qe[j] + AMBIGUITY
+                    q_hi = qe[j + 1] - AMBIGUITY
+                elif w != 0.0:
+                    dfi[nd] = ii
+                    dfw[nd] = w
+                    nd += 1
+                    w = 0.0
+        if sec is not None:
+            j = sec[ii]
+        acc[(ii & 3) * ns + j] += w
         i1f = 0.5 * dt * (f0 + f1)
         i2f = dt * (f0 * f0 + f0 * f1 + f1 * f1) * third
         ft += i1f
@@ -458,8 +517,7 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
             ct += dt
             fc_ += i1f
             f2c += i2f
-            if slide:
-                sd += 0.5 * dt * (s0 + s1)
+            sd += 0.5 * dt * (s0 + s1) * slide
             ep_peak = _mx(ep_peak, f1)
         elif a0 or a1:  # a threshold crossing inside the interval
             frac = (f0 - threshold) / (f0 - f1)
@@ -475,8 +533,7 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
             ct += cw
             fc_ += 0.5 * cw * (fca + fcb)
             f2c += cw * (fca * fca + fca * fcb + fcb * fcb) * third
-            if slide:
-                sd += 0.5 * cw * (sca + scb)
+            sd += 0.5 * cw * (sca + scb) * slide
             if a1:
                 ep_start = cross
                 ep_peak = _mx(fc, f1)
@@ -651,10 +708,9 @@ def _fused(t, fn, v1, v2, dy, dz, stick, sec, lo, hi, be, scale, base, edge, exa
         sums[_EP_START] = ep_start
         sums[_EP_PEAK] = ep_peak
         sums[_EP_OPEN] = 1.0 if ep_open else 0.0
+        nxt = _skip_free(fn, i, fast_end, sums)
         while i < fast_end:
-            while i + BLOCK <= fast_end and _free_block(fn, i):  # free flight: skipped
-                i += BLOCK
-                sums[_FMAX] = _mx(sums[_FMAX], 0.0)
+            i = nxt  # the first busy block (free flight skipped)
             if i >= fast_end:
                 break
             r = _mn(i + BLOCK, fast_end)
@@ -665,6 +721,12 @@ def _fused(t, fn, v1, v2, dy, dz, stick, sec, lo, hi, be, scale, base, edge, exa
                 elif _free(fn, r, fast_end):
                     break
                 r = _mn(r + BLOCK, fast_end)
+            # the next run found now, and its first lines and this run's fetched while this run
+            # is reduced: a short run would otherwise wait for memory at each cache line
+            nxt = _skip_free(fn, r, fast_end, sums)
+            _prefetch_run(t, v1, v2, dy, dz, stick, i, _mn(r, i + PREFETCH) + 1)
+            if nxt < fast_end:
+                _prefetch_run(t, v1, v2, dy, dz, stick, nxt, _mn(fast_end, nxt + BLOCK) + 1)
             if nd + (r - i) + 2 > cap:
                 status = 1
                 stop = i
