@@ -423,6 +423,28 @@ def units_read(path: Any, format: str | None = None, *, units: Mapping[str, str]
     return dict(_prepare(path, format, units, columns, None, options)[4]["units"])
 
 
+def _reader_blocks(path, chunk_size, format, units, columns, name, options):
+    """The checked chunk size, the opened source and its column mapping, and the reader's
+    own blocks of at most ``chunk_size`` rows (a format read whole is sliced, with a warning
+    above the size limit): what both chunk iterators start from."""
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) \
+            or chunk_size < 2:
+        raise KeywordError(f"chunk_size={chunk_size!r}: give an integer >= 2 (samples per chunk)")
+    size = int(chunk_size)
+    source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
+                                                         options)
+    positions = list(mapping.values())
+    if source.iter_blocks is not None:
+        blocks = source.iter_blocks(positions, size)
+    else:
+        warn_whole_read(_files(path), source.label, source.format)
+        whole = source.read(positions)
+        check_lengths([a.size for a in whole], [source.columns[p] for p in positions],
+                      source.label)
+        blocks = _slices(whole, size)
+    return size, source, mapping, factors, label, metadata, blocks
+
+
 def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
                         format: str | None = None, *, units: Mapping[str, str] | None = None,
                         columns: Mapping[Any, str | None] | None = None, name: str | None = None,
@@ -461,21 +483,8 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     >>> [c.time.tolist() for c in iter_history_chunks(p, chunk_size=3)]
     [[0.0, 1.0, 2.0], [2.0, 3.0, 4.0], [4.0, 5.0, 6.0]]
     """
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) \
-            or chunk_size < 2:
-        raise KeywordError(f"chunk_size={chunk_size!r}: give an integer >= 2 (samples per chunk)")
-    size = int(chunk_size)
-    source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
-                                                         options)
-    positions = list(mapping.values())
-    if source.iter_blocks is not None:
-        blocks = source.iter_blocks(positions, size)
-    else:
-        warn_whole_read(_files(path), source.label, source.format)
-        whole = source.read(positions)
-        check_lengths([a.size for a in whole], [source.columns[p] for p in positions],
-                      source.label)
-        blocks = _slices(whole, size)
+    size, source, mapping, factors, label, metadata, blocks = _reader_blocks(
+        path, chunk_size, format, units, columns, name, options)
     channels = list(mapping)
     pending: list[list[np.ndarray]] = []
     pending_rows = 0
@@ -586,21 +595,8 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     >>> [(1e3 * c.time).tolist() for c in iter_history_blocks(p, chunk_size=3)]
     [[0.0, 1.0, 2.0], [3.0, 4.0, 5.0], [5.0, 6.0]]
     """
-    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) \
-            or chunk_size < 2:
-        raise KeywordError(f"chunk_size={chunk_size!r}: give an integer >= 2 (samples per chunk)")
-    size = int(chunk_size)
-    source, mapping, factors, label, metadata = _prepare(path, format, units, columns, name,
-                                                         options)
-    positions = list(mapping.values())
-    if source.iter_blocks is not None:
-        blocks = source.iter_blocks(positions, size)
-    else:
-        warn_whole_read(_files(path), source.label, source.format)
-        whole = source.read(positions)
-        check_lengths([a.size for a in whole], [source.columns[p] for p in positions],
-                      source.label)
-        blocks = _slices(whole, size)
+    size, source, mapping, factors, label, metadata, blocks = _reader_blocks(
+        path, chunk_size, format, units, columns, name, options)
     channels = list(mapping)
     row = 0
     k = 0
