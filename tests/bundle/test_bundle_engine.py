@@ -274,3 +274,48 @@ def test_a_long_text_history_is_streamed_in_one_task(tmp_path):
     got = rows_of(result, "csv")
     for c in expected.columns:
         np.testing.assert_allclose(got[c], expected[c], rtol=1e-13, atol=0, err_msg=c)
+
+
+KWU_CASE = """\
+title = "bundle test KWU-EPRI"
+[law]
+name = "KWU_EPRI"
+mobile = {{ COEF_USURE = 5.2e-14, reference_intensity = 1.0e-7 }}
+{maxima}
+[geometry]
+contact_type = "TUBE_ALESAGE"
+mobile_radius_m = 9.525e-3
+obstacle_radius_m = 9.725e-3
+obstacle_width_m = 20e-3
+[time]
+instants = [10, 100]
+unit = "hour"
+"""
+
+
+@pytest.mark.parametrize("maxima, split", [
+    ("force_max_N = 400.0\nspeed_max_m_per_s = 0.5", True),  # counts merge with the power
+    ("", False),  # class bounds from the window's maxima: one task, two passes
+])
+def test_kwu_epri_contact_is_split_only_with_both_maxima(tmp_path, monkeypatch, maxima, split):
+    """KWU_EPRI's class counts of a split contact merge with its power state when FNOR_MAXI and
+    VTAN_MAXI are given (fretwear.laws.kwu_stream); otherwise the contact is one task. Either
+    way the table equals the single-contact wear_table of the history read whole (to rounding
+    when split, theory §2)."""
+    h = oscillator()
+    path = tmp_path / "long.parquet"
+    write_history(h, path, row_group_size=400)
+    (tmp_path / "base.toml").write_text(KWU_CASE.format(maxima=maxima))
+    frame = pd.DataFrame({"contact": ["kwu"], "history": [str(path)]})
+    states = []
+    real = engine_module.chunk_state
+    monkeypatch.setattr(engine_module, "chunk_state",
+                        lambda *a: states.append(a[1:3]) or real(*a))
+    result = run_bundle(frame, tmp_path / "base.toml", scheduler="serial", chunk_size=500)
+    assert result.errors.empty, result.errors
+    assert (len(states) == 7) is split and (len(states) == 0) is not split
+    expected = reference(path, tmp_path / "base.toml")
+    got = rows_of(result, "kwu")
+    assert np.all(expected["volume_mobile"] > 0)
+    for c in expected.columns:
+        np.testing.assert_allclose(got[c], expected[c], rtol=1e-13, atol=0, err_msg=c)

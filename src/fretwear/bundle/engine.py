@@ -35,7 +35,7 @@ from fretwear.bundle.tasks import (
     chunk_state,
     finish_contact,
     merge_states,
-    needs_history,
+    needs_whole_history,
     run_contact,
     time_bounds,
     unpack,
@@ -71,7 +71,8 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
     :func:`fretwear.io.iter_history_chunks`), or None to compute it in one task.
 
     Only histories readable by row range are split (Parquet files, Zarr/NetCDF stores), and not
-    for a law that needs the whole history (KWU-EPRI's classes).
+    for a law that needs the whole history (KWU-EPRI's classes without both FNOR_MAXI and
+    VTAN_MAXI; with both, the class counts merge with the power's state).
     """
     ref = task.history
     n = None
@@ -84,7 +85,7 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
             if handle.read(4) != b"PAR1":
                 return None
         n = require("pyarrow.parquet").ParquetFile(ref.path).metadata.num_rows
-    if n is None or n <= chunk_size or needs_history(task):
+    if n is None or n <= chunk_size or needs_whole_history(task):
         return None
     task.samples = n
     return [(a, min(a + chunk_size, n)) for a in range(0, n - 1, chunk_size - 1)]

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import contextlib
 import math
-import os
 import threading
 import time
 import warnings
@@ -25,9 +24,9 @@ import pandas as pd
 
 from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.datasets import frame_of, require, store_arrays
-from fretwear.io import iter_history_chunks, open_source, read_history
+from fretwear.io import open_source, read_history
 from fretwear.io.channels import build_history, resolve_columns, resolve_units
-from fretwear.power import PowerAccumulator
+from fretwear.power import PowerAccumulator, wear_power
 from fretwear.table import wear_table_from_case
 
 _LOCK = threading.Lock()
@@ -164,8 +163,19 @@ def _threshold(task: ContactTask) -> float:
     return task.wear_case().stationarity_threshold
 
 
-def needs_history(task: ContactTask) -> bool:
-    return bool(task.wear_case().wear_law.needs_history)
+def kwu_maxima(task: ContactTask) -> tuple[float | None, float | None] | None:
+    """``(FNOR_MAXI [N], VTAN_MAXI [m/s])`` of a law that counts KWU-EPRI classes (either may be
+    None: the window's maxima), None for another law."""
+    case = task.wear_case()
+    return (case.force_max, case.speed_max) if case.wear_law.needs_history else None
+
+
+def needs_whole_history(task: ContactTask) -> bool:
+    """Whether a contact cannot be split in time chunks: KWU_EPRI without both FNOR_MAXI and
+    VTAN_MAXI (its class bounds depend on the window's maxima, known only at the end: a second
+    pass over the history; :mod:`fretwear.laws.kwu_stream`)."""
+    maxima = kwu_maxima(task)
+    return maxima is not None and (maxima[0] is None or maxima[1] is None)
 
 
 def _compute(task: ContactTask, chunk_size: int):
@@ -178,53 +188,27 @@ def _compute(task: ContactTask, chunk_size: int):
     elif ref.kind == "store":
         history = _read_in_memory(store_arrays(ref), task)
     else:
-        options = _file_options(task)
-        if needs_history(task) or fits(ref.path, chunk_size, options):
-            # read whole, as wear_table(path) reads it (a law's classes need it whole)
-            history = read_history(ref.path, name=task.contact, **options)
-        else:
-            chunks = iter_history_chunks(ref.path, chunk_size, name=task.contact, **options)
-            try:
-                history = next(chunks)
-                longer = next(chunks, None) is not None
-            finally:
-                chunks.close()
-            if longer:  # streamed as fretwear.power.wear_power does: memory bounded by a chunk
-                return _streamed(task, chunk_size, options)
+        return _file_table(task, chunk_size)
     return _wear_table(history, task), len(history)
 
 
-def fits(path: str, chunk_size: int, options: dict[str, Any]) -> bool:
-    """Whether a history file surely holds no more than ``chunk_size`` samples (then it is read
-    whole): a Parquet file by its footer's row count, another file when it has fewer bytes than
-    two per sample (a text row holds at least a digit and a line end; not for compressed or
-    unknown formats)."""
-    try:
-        with open(path, "rb") as handle:
-            head = handle.read(4)
-        if head == b"PAR1" and options.get("format", "parquet") == "parquet":
-            return require("pyarrow.parquet").ParquetFile(path).metadata.num_rows <= chunk_size
-        return head[:2] != b"\x1f\x8b" and os.path.getsize(path) <= 2 * chunk_size
-    except Exception:  # noqa: BLE001 - unreadable: read_history names the problem
-        return True
+def _file_table(task: ContactTask, chunk_size: int):
+    """(table, samples) of a history file, streamed by :func:`fretwear.power.wear_power` as
+    ``wear_table(path)`` streams it: the reader's own blocks of at most ``chunk_size`` samples
+    (memory bounded by a block), the time range of the blocks from the file's metadata (Parquet
+    statistics, HDF5/NetCDF ends; a first pass for text only), the KWU_EPRI class counts in the
+    same pass when FNOR_MAXI and VTAN_MAXI are given (one more pass otherwise)."""
+    case = task.wear_case()
+    kwu = kwu_maxima(task)
+    read = [0]
 
+    def progress(samples: int) -> None:
+        read[0] = samples
 
-def _streamed(task: ContactTask, chunk_size: int, options: dict[str, Any]):
-    """(table, samples) of a history file longer than a chunk, read chunk by chunk."""
-    opts = _power_options(task)
-    if opts["blocks"] > 1 and (opts["t_start"] is None or opts["t_end"] is None):
-        first = last = None  # the block edges need the time range first (one more pass)
-        for chunk in iter_history_chunks(task.history.path, chunk_size, **options):
-            first = float(chunk.time[0]) if first is None else first
-            last = float(chunk.time[-1])
-        opts["t_start"] = first if opts["t_start"] is None else opts["t_start"]
-        opts["t_end"] = last if opts["t_end"] is None else opts["t_end"]
-    acc = PowerAccumulator(**opts)
-    for chunk in iter_history_chunks(task.history.path, chunk_size, name=task.contact,
-                                     **options):
-        acc.update(chunk)
-    power = acc.result(stationarity_threshold=_threshold(task))
-    return _wear_table(power, task), acc.samples
+    power = wear_power(task.history.path, **_power_options(task), chunk_size=chunk_size,
+                       stationarity_threshold=case.stationarity_threshold, kwu=kwu,
+                       progress=progress, name=task.contact, **_file_options(task))
+    return _wear_table(power, task), read[0]
 
 
 def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any]:
@@ -261,6 +245,7 @@ def chunk_state(task: ContactTask, start: int, stop: int, bounds: tuple[float, f
     opts = _power_options(task)
     opts["t_start"] = bounds[0] if opts["t_start"] is None else opts["t_start"]
     opts["t_end"] = bounds[1] if opts["t_end"] is None else opts["t_end"]
+    opts["kwu"] = kwu_maxima(task)  # both maxima given (else the contact is not split)
     with captured() as caught:
         try:
             acc = PowerAccumulator(**opts).update(read_part(task, start, stop))

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy import stats
+from scipy import special
 
 from fretwear.errors import ConfidenceWarning, InputError
 
@@ -92,6 +92,8 @@ class TruncatedStudent:
     scale: float
 
     def _base(self):
+        from scipy import stats  # scipy.stats costs 0.6-0.9 s to import: only when used
+
         return stats.t(self.df, loc=self.loc, scale=self.scale)
 
     def _floor(self) -> float:
@@ -248,7 +250,9 @@ def _student(values, level: float, method: str, name: str, unit_name: str,
                          "--blocks), ideally >= 10")
     mean = float(x.mean())
     se = float(x.std(ddof=1)) / math.sqrt(n)
-    half = float(stats.t.ppf(0.5 * (1.0 + p), n - 1)) * se
+    # scipy.special's stdtrit and ndtri are what scipy.stats.t.ppf and norm.ppf evaluate, without
+    # scipy.stats' 0.6-0.9 s import
+    half = float(special.stdtrit(n - 1, 0.5 * (1.0 + p))) * se
     notes = []
     if n < MINIMUM_BLOCKS:
         unchecked = (f" and the independence of the {unit_name}s cannot be checked"
@@ -257,7 +261,7 @@ def _student(values, level: float, method: str, name: str, unit_name: str,
                      f"degrees of freedom){unchecked}; use >= {MINIMUM_BLOCKS}")
     r1 = lag1_autocorrelation(x) if check_correlation else math.nan
     if check_correlation and n >= 3 and math.isfinite(r1):
-        threshold = float(stats.norm.ppf(0.95)) / math.sqrt(n)
+        threshold = float(special.ndtri(0.95)) / math.sqrt(n)
         if r1 > threshold:
             notes.append(f"{name}: the block powers are correlated (lag-1 autocorrelation "
                          f"{r1:.2f} > {threshold:.2f}, its 5 % threshold under independence): "
