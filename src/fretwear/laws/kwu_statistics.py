@@ -31,7 +31,7 @@ import pandas as pd
 
 from fretwear.errors import HistoryError, InputError, LawWarning
 from fretwear.history import DEFAULT_CHUNK_SIZE
-from fretwear.io import iter_history_chunks
+from fretwear.io import iter_history_blocks
 from fretwear.laws.kwu_stream import KwuEpriMaxima, class_pass  # noqa: F401 - re-exported
 
 #: Number of classes per axis.
@@ -464,7 +464,7 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
     ----------
     history : ContactHistory, path, or sequence of chunks
         The shock point's history (or a mapping with ``time``, ``normal_force``, ``vt1``, ``vt2``);
-        or a history file, streamed chunk by chunk with :func:`fretwear.io.iter_history_chunks`
+        or a history file, streamed block by block with :func:`fretwear.io.iter_history_blocks`
         (memory bounded by ``chunk_size``; two passes when a maximum is not given); or a list of
         consecutive chunks (ContactHistory or mappings, in time order). A one-shot iterator of
         chunks is accepted only with both ``force_max`` and ``speed_max`` given.
@@ -539,7 +539,7 @@ def kwu_epri_statistics(history, *, t_start: float | None = None, t_end: float |
                    impact_factor=impact_factor, sliding_factor=sliding_factor, k=k, c=c)
     if isinstance(history, str | os.PathLike):
         return _from_chunks(
-            lambda: iter_history_chunks(history, chunk_size, **read_options), options)
+            lambda: iter_history_blocks(history, chunk_size, **read_options), options)
     if read_options:
         raise InputError(f"unknown keyword(s) {sorted(read_options)}: reader options go with a "
                          "history file path only")
