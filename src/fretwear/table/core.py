@@ -17,10 +17,14 @@ and the tube replacement are in :mod:`fretwear.table`.
 
 from __future__ import annotations
 
+import numbers
+import warnings
 from collections.abc import Mapping
 
+import numpy as np
 import pandas as pd
 
+from fretwear.errors import UnusedKeywordWarning
 from fretwear.history import ContactHistory
 from fretwear.table.build import wear_table_from_case
 from fretwear.table.case import WearCase, law_coefficients  # noqa: F401 - re-exported
@@ -88,9 +92,13 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         Instant [user time unit] at which the tube is replaced by a new one (TUBE_NEUF): from it
         on the tube's volumes restart from zero, the obstacle's continue.
     t_start, t_end : float, optional
-        Window of the history [s] (INST_INIT/INST_FIN of RESU_GENE).
+        Window of the history [s] (INST_INIT/INST_FIN of RESU_GENE). With a plain power
+        ``source`` (a number: nothing to window) they are ignored with an
+        :class:`~fretwear.errors.UnusedKeywordWarning`, as POST_USURE ignores them with
+        PUIS_USURE.
     blocks : int
-        Number of blocks of the power computation (NB_BLOC).
+        Number of blocks of the power computation (NB_BLOC); ignored, warned, with a plain
+        power, as ``t_start`` and ``t_end``.
     stationarity_threshold : float
         Relative block spread above which a StationarityWarning is raised [-].
     force_max, speed_max : float, optional
@@ -163,4 +171,14 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         stationarity_threshold=stationarity_threshold, force_max=force_max, speed_max=speed_max,
         coefficient_files=coefficient_files, wall_thickness=wall_thickness,
         depth_limit=depth_limit, time_unit=time_unit, name=name)
+    if history is None and isinstance(source, numbers.Real | np.ndarray) and np.ndim(source) == 0:
+        ignored = [key for key, value, default in (("t_start", t_start, None),
+                                                   ("t_end", t_end, None), ("blocks", blocks, 1))
+                   if value != default]
+        if ignored:
+            warnings.warn(f"wear_table: {', '.join(ignored)} window the history the power is "
+                          f"computed from; with a wear power given as a number ({source!r} W) "
+                          "they are ignored (as POST_USURE ignores INST_INIT, INST_FIN and "
+                          "NB_BLOC with PUIS_USURE): give the history or its PowerResult instead",
+                          UnusedKeywordWarning, stacklevel=2)
     return wear_table_from_case(case, source, history=history)
