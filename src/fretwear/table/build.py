@@ -29,6 +29,7 @@ Conventions of the table (one row per instant, or per instant and sector):
 
 from __future__ import annotations
 
+import functools
 import os
 import warnings
 from dataclasses import dataclass
@@ -41,7 +42,7 @@ from fretwear.geometry.sectors import sector_depth_mobile, sector_depth_obstacle
 from fretwear.history import ContactHistory
 from fretwear.power import wear_power
 from fretwear.table.case import WearCase
-from fretwear.table.limit import add_wall_columns
+from fretwear.table.limit import time_to_depth, wall_columns
 from fretwear.table.schema import GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 __all__ = ["wear_table_from_case"]
@@ -115,16 +116,24 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
     head = {"instant": case.origin + clock.durations, "duration": clock.durations,
             "origin": np.full(clock.n, case.origin), "power": np.full(clock.n, power)}
     if case.sectors is None:
-        frame = _global_frame(case, head, power, mobile, obstacle, clock, geometry)
+        columns = _global_frame(case, head, power, mobile, obstacle, clock, geometry)
     else:
-        frame = _sector_frame(case, head, result, mobile, obstacle, clock, geometry)
+        columns = _sector_frame(case, head, result, mobile, obstacle, clock, geometry)
     state = case.initial_state
+    frame = None
     if state is not None and len(state.rows):
-        frame = pd.concat([state.rows.reindex(columns=frame.columns), frame],
+        frame = pd.concat([state.rows.reindex(columns=list(columns)), _frame(columns)],
                           ignore_index=True)
     limit = None
     if case.wall_thickness is not None:
-        frame, limit = _wall(case, frame, power, result, mobile, obstacle, clock, geometry)
+        wall, limit = _wall(case, columns if frame is None else frame, power, result, mobile,
+                            obstacle, clock, geometry)
+        if frame is None:
+            columns.update(wall)
+        else:
+            frame = frame.assign(**wall)
+    if frame is None:
+        frame = _frame(columns)
     frame.attrs = _attrs(case, geometry, mobile, obstacle, sources, result)
     if limit is not None:
         frame.attrs.update(limit)
@@ -319,8 +328,8 @@ def _global_frame(case, head, power, mobile, obstacle, clock, geometry) -> pd.Da
     vm = _cumulated(law, power, mobile, clock.elapsed, prev_m, clock.fresh, "mobile")
     vo = _cumulated(law, power, obstacle, clock.elapsed, prev_o, None, "obstacle")
     dm, do = _depths(geometry, vm, vo)
-    return pd.DataFrame({**head, "volume_mobile": vm, "volume_obstacle": vo,
-                         "depth_mobile": dm, "depth_obstacle": do})
+    return {**head, "volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
+            "depth_obstacle": do}
 
 
 def _sector_coefficients(case: WearCase, m: int, mobile, obstacle):
@@ -389,29 +398,56 @@ def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> pd.D
     data = {k: np.repeat(np.asarray(v), m) for k, v in {**head, **glob}.items()}
     for c, parts in cols.items():  # instant-major order: row = i*m + j
         data[c] = np.column_stack(parts).ravel()
-    return pd.DataFrame({c: data[c] for c in SECTOR_COLUMNS})
+    return {c: data[c] for c in SECTOR_COLUMNS}
+
+
+@functools.lru_cache(maxsize=64)
+def _index(names: tuple[str, ...]) -> pd.Index:
+    """The columns' index of a table (immutable: shared by the tables of those columns)."""
+    return pd.Index(list(names))
+
+
+def _frame(columns: dict) -> pd.DataFrame:
+    """The DataFrame of ``columns`` (name -> 1-d array, one length), as
+    ``pd.DataFrame(columns)`` gives it, built from one float block: the float columns
+    stacked once, the others (the sector numbers) inserted at their place."""
+    names = tuple(columns)
+    floats = tuple(c for c in names if np.asarray(columns[c]).dtype == np.float64)
+    block = np.stack([columns[c] for c in floats]) if floats else np.empty((0, 0))
+    frame = pd.DataFrame(block.T, columns=_index(floats), copy=False)
+    for at, name in enumerate(names):
+        if name not in floats:
+            frame.insert(at, name, columns[name])
+    return frame
 
 
 # --------------------------------------------------------------------------- 5. the wall
-def _wall(case, frame, power, result, mobile, obstacle, clock, geometry):
-    """The wall columns (:func:`fretwear.table.limit.add_wall_columns`): the depth over the
-    wall and the instant of reaching the limit, from depth(t) through the law and geometry.
+def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
+    """The wall columns (:func:`fretwear.table.limit.wall_columns`) of ``table`` (the columns,
+    or the frame of a restart): the depth over the wall and the instant of reaching the limit,
+    from depth(t) through the law and geometry.
 
     A law linear in time gives every term (the body, or each sector) V = V0 + r·t with its
     rate r = V(P, 1 s) computed once: depth(t) then costs a few array operations (the
-    geometry's relation directly: the volumes are valid by construction), and each sector's
-    instant is the closed-form inverse (:class:`_SectorDepths`).
+    geometry's relation directly: the volumes are valid by construction), each sector's
+    instant is the closed-form inverse (:class:`_SectorDepths`), and so is the global one
+    when the obstacle's volume stays 0 (:class:`_GlobalDepth`); otherwise the global limit
+    and through-wall instants are solved together.
     """
     law, state = case.wear_law, case.initial_state
     fresh = clock.fresh
+    sectored = case.sectors is not None
+    depths = (np.asarray(table["depth_mobile"], dtype=float),
+              np.asarray(table["sector"], dtype=int) if sectored else None,
+              np.asarray(table["depth_mobile_sector"], dtype=float) if sectored else None)
+    options = {"wall": case.wall_thickness, "depth_limit": case.depth_limit,
+               "origin": case.origin, "time_scale": case.time_scale, "fresh": fresh,
+               "unit": case.time_unit, "stacklevel": 4}
     if case.sectors is None and not law.linear_in_time:
         terms = [(power, mobile, obstacle, 0.0 if state is None else state.volume_mobile,
                   0.0 if state is None else state.volume_obstacle)]
-        return add_wall_columns(
-            frame, wall=case.wall_thickness, depth_limit=case.depth_limit,
-            origin=case.origin, time_scale=case.time_scale, fresh=fresh, unit=case.time_unit,
-            stacklevel=4, global_depth=None if case.contact_type is None
-            else _law_depths(law, terms, fresh, geometry))
+        return wall_columns(*depths, **options, global_depth=None if case.contact_type is None
+                            else _law_depths(law, terms, fresh, geometry))
     if case.sectors is None:
         powers = np.array([power], dtype=float)
         rate_m = np.array([_rate(law, power, mobile)])
@@ -430,30 +466,21 @@ def _wall(case, frame, power, result, mobile, obstacle, clock, geometry):
         v0_o = zeros if state is None else np.asarray(state.sector_volume_obstacle, dtype=float)
     zeros = np.zeros(powers.size)
 
-    def total(t, v0, rate):  # Σ of the terms' volumes at one time t [s], in the terms' order
-        return np.cumsum(_linear_volume(t, v0, rate))[-1]
-
-    def global_old(t):
-        t = float(t)
-        return geometry._depth_from_volume(np.asarray(total(t, v0_m, rate_m)),
-                                           np.asarray(total(t, v0_o, rate_o)))[0]
-
-    def global_new(tau):  # a new tube, tau seconds after its replacement
-        tau = float(tau)
-        return geometry._depth_from_volume(np.asarray(total(tau, zeros, rate_m)),
-                                           np.asarray(total(tau + (fresh or 0.0), v0_o,
-                                                            rate_o)))[0]
-
     sectors = None
     if case.sectors is not None:
         arcs = np.diff(np.asarray(result.sector_edges, dtype=float))
         sectors = (_SectorDepths(v0_m, rate_m, geometry, arcs),
                    _SectorDepths(zeros, rate_m, geometry, arcs))
-    return add_wall_columns(
-        frame, wall=case.wall_thickness, depth_limit=case.depth_limit, origin=case.origin,
-        time_scale=case.time_scale, fresh=fresh, sector_depths=sectors, unit=case.time_unit,
-        stacklevel=4,
-        global_depth=None if case.contact_type is None else (global_old, global_new))
+    glob = None
+    if case.contact_type is not None:
+        # the obstacle's volume stays 0 (old and new tube): the inverse is closed-form
+        still = not (rate_o.any() or v0_o.any())
+        glob = (_GlobalDepth(geometry, v0_m, rate_m, v0_o, rate_o, 0.0, still,
+                             case.time_scale),
+                _GlobalDepth(geometry, zeros, rate_m, v0_o, rate_o, fresh or 0.0, still,
+                             case.time_scale))
+    return wall_columns(*depths, **options, sector_depths=sectors, global_depth=glob,
+                        vectorised=True)
 
 
 def _rate(law, power: float, coefficients) -> float:
@@ -488,6 +515,47 @@ def _law_depths(law, terms, fresh, geometry):
         return _depths(geometry, np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))[0]
 
     return old, new
+
+
+class _GlobalDepth:
+    """The global mobile depth at the times t (an array, one depth per time) [m] of the terms
+    V_j(t) = V0_j + r_j·t of a law linear in time, summed in the terms' order, for the mobile
+    and the obstacle (the obstacle's clock ``shift`` seconds ahead: a new tube's).
+
+    With ``still`` (the obstacle's volume is 0 at all times), :meth:`time_to` inverts it in
+    closed form: the mobile volume of the target depth from the geometry's volume_from_depth
+    relation, then t = (V − ΣV0)/Σr (the bracketed solver where that volume is out of range).
+    """
+
+    def __init__(self, geometry, v0_m, rate_m, v0_o, rate_o, shift: float, still: bool,
+                 first_guess: float = 1.0):
+        self.geometry, self.shift, self.first_guess = geometry, shift, first_guess
+        self.v0_m, self.rate_m, self.v0_o, self.rate_o = v0_m, rate_m, v0_o, rate_o
+        if still:
+            self.time_to = self._time_to
+
+    @staticmethod
+    def _total(t, v0, rate):  # Σ_j V_j(t) at each time t, summed in the terms' order
+        return np.cumsum(_linear_volume(t[..., None], v0, rate), axis=-1)[..., -1]
+
+    def __call__(self, t):
+        t = np.asarray(t, dtype=float)
+        return self.geometry._depth_from_volume(
+            self._total(t, self.v0_m, self.rate_m),
+            self._total(t + self.shift, self.v0_o, self.rate_o))[0]
+
+    def _time_to(self, targets) -> np.ndarray:
+        """Seconds [s] at which the depth reaches ``targets`` [m] (obstacle volume 0): 0 when
+        already there, inf when the mobile does not wear."""
+        goal = np.asarray(targets, dtype=float)
+        volume = np.asarray(self.geometry._volume_from_depth(goal, np.zeros_like(goal))[0],
+                            dtype=float)
+        if not np.isfinite(volume).all():  # a target beyond the relation's range
+            return np.asarray(time_to_depth(self, goal, first_guess=self.first_guess), dtype=float)
+        v0, rate = np.cumsum(self.v0_m)[-1], np.cumsum(self.rate_m)[-1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (volume - v0) / rate
+        return np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
 
 
 class _SectorDepths:

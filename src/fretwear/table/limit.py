@@ -7,8 +7,10 @@ global depth and for every sector depth (docs/uncertainty.md §1):
 * ``wall_fraction`` (``wall_fraction_sector``): the depth of the mobile over the wall [-];
 * ``limit_instant`` (``limit_instant_sector``): the instant [user time unit] at which that depth
   reaches ``depth_limit × wall_thickness``, found by inverting the monotone depth(t) through the
-  law and the geometry with a bracketed solver (not by interpolating the table's rows); ``inf``
-  when the law never gets there (no wear), the origin when it is already reached there.
+  law and the geometry (not by interpolating the table's rows): with a bracketed solver, or in
+  closed form when the depth function knows its inverse (``time_to``: a law linear in time,
+  through the geometry's volume_from_depth); ``inf`` when the law never gets there (no wear),
+  the origin when it is already reached there.
 
 A depth beyond the wall (fraction > 1) is named by a :class:`~fretwear.errors.PerforationWarning`.
 """
@@ -24,7 +26,8 @@ import numpy as np
 from fretwear.errors import InputError, PerforationWarning
 from fretwear.geometry._shapes import solve_monotone
 
-__all__ = ["add_wall_columns", "check_wall", "first_time", "first_times", "time_to_depth"]
+__all__ = ["add_wall_columns", "check_wall", "first_time", "first_times", "time_to_depth",
+           "wall_columns"]
 
 def _finite(value, name: str) -> float:
     ok = not isinstance(value, bool | str | bytes) and value is not None
@@ -187,6 +190,42 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
     ----------
     frame : DataFrame
         The wear table (native columns).
+    wall, depth_limit, origin, time_scale, fresh, global_depth, sector_depths, unit
+        As in :func:`wall_columns`.
+
+    Returns
+    -------
+    (DataFrame, dict)
+        The table with ``wall_fraction``, ``limit_instant`` (and ``wall_fraction_sector``,
+        ``limit_instant_sector``), and ``{"limit_depth", "limit_instant", "through_wall"}``.
+    """
+    sectored = sector_depths is not None
+    columns, info = wall_columns(
+        frame["depth_mobile"].to_numpy(dtype=float),
+        frame["sector"].to_numpy(dtype=int) if sectored else None,
+        frame["depth_mobile_sector"].to_numpy(dtype=float) if sectored else None,
+        wall=wall, depth_limit=depth_limit, origin=origin, time_scale=time_scale, fresh=fresh,
+        global_depth=global_depth, sector_depths=sector_depths, unit=unit,
+        stacklevel=stacklevel + 1)
+    out = frame.copy()
+    for name, values in columns.items():
+        out[name] = values
+    return out, info
+
+
+def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
+                 depth_mobile_sector: np.ndarray | None, *, wall: float, depth_limit: float,
+                 origin: float, time_scale: float, fresh: float | None, global_depth,
+                 sector_depths=None, unit: str | None = None, vectorised: bool = False,
+                 stacklevel: int = 3) -> tuple[dict, dict]:
+    """The wall columns of a wear table from its depth columns, and the limit's metadata.
+
+    Parameters
+    ----------
+    depth_mobile : numpy.ndarray
+        The table's ``depth_mobile`` [m].
+    sector, depth_mobile_sector : numpy.ndarray or None
+        The table's ``sector`` numbers (1-based) and ``depth_mobile_sector`` [m] (sector mode).
     wall : float
         Wall thickness of the mobile [m].
     depth_limit : float
@@ -204,15 +243,21 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
         the sectors at once (:func:`first_times`: arrays of one time, one depth per sector).
     unit : str, optional
         Name of the user time unit, for the warning.
+    vectorised : bool
+        The global functions take an array of times (one per target) and return the depths
+        element-wise: the limit and the through-wall instants are then found in one solve
+        (:func:`first_times`, each element as by :func:`first_time`), or by the functions'
+        ``time_to`` inverse when they have one.
 
     Returns
     -------
-    (DataFrame, dict)
-        The table with ``wall_fraction``, ``limit_instant`` (and ``wall_fraction_sector``,
-        ``limit_instant_sector``), and ``{"limit_depth", "limit_instant", "through_wall"}``.
+    (dict, dict)
+        ``{"wall_fraction", "limit_instant"[, "wall_fraction_sector", "limit_instant_sector"]}``
+        as arrays of the table's length, and ``{"limit_depth", "limit_instant",
+        "through_wall"[, "limit_instant_sector"]}``.
     """
-    out = frame.copy()
     limit = depth_limit * wall
+    depth_mobile = np.asarray(depth_mobile, dtype=float)
 
     def instant(fns, target):
         if fns is None:
@@ -227,22 +272,30 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
         return np.array([instant(fns, target)
                          for fns, target in zip(sector_depths, targets, strict=True)])
 
-    out["wall_fraction"] = out["depth_mobile"].to_numpy(dtype=float) / wall
-    limit_at = instant(global_depth, limit)
-    out["limit_instant"] = limit_at
+    fraction = depth_mobile / wall
+    past = global_depth is not None and _past_wall(fraction).any()
+    if vectorised and global_depth is not None:  # the limit and the wall in one solve
+        targets = np.array([limit, wall] if past else [limit])
+        found = first_times(global_depth[0], global_depth[1], targets, fresh, time_scale)
+        found = (origin + found / time_scale).tolist()
+        limit_at, wall_at = found[0], found[-1]
+    else:
+        limit_at = instant(global_depth, limit)
+        wall_at = instant(global_depth, wall) if past else None
+    columns = {"wall_fraction": fraction, "limit_instant": np.full(fraction.shape, limit_at)}
     info = {"limit_depth": limit, "limit_instant": limit_at, "through_wall": {}}
     through = []
-    if global_depth is not None and _past_wall(out["wall_fraction"]).any():
-        t = instant(global_depth, wall)
-        info["through_wall"]["global"] = t
-        through.append(f"its global depth from instant {t:.6g}")
+    if past:
+        info["through_wall"]["global"] = wall_at
+        through.append(f"its global depth from instant {wall_at:.6g}")
     if sector_depths is not None:
-        sector = out["sector"].to_numpy(dtype=int)
-        out["wall_fraction_sector"] = out["depth_mobile_sector"].to_numpy(dtype=float) / wall
+        sector = np.asarray(sector, dtype=int)
+        fraction_sector = np.asarray(depth_mobile_sector, dtype=float) / wall
+        columns["wall_fraction_sector"] = fraction_sector
         instants = sector_instants(np.full(sector.max(initial=0), limit))
-        out["limit_instant_sector"] = instants[sector - 1]
+        columns["limit_instant_sector"] = instants[sector - 1]
         info["limit_instant_sector"] = instants.tolist()
-        deep = sorted(set(sector[_past_wall(out["wall_fraction_sector"])].tolist()))
+        deep = sorted(set(sector[_past_wall(fraction_sector)].tolist()))
         walls = sector_instants(np.full(instants.size, wall)) if deep else None
         for j in deep:
             t = walls[j - 1]
@@ -250,8 +303,8 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
             through.append(f"sector {j}'s depth from instant {t:.6g}")
     if through:
         depths = np.concatenate([
-            out["depth_mobile"].to_numpy(dtype=float),
-            out["depth_mobile_sector"].to_numpy(dtype=float) if sector_depths else []])
+            depth_mobile,
+            np.asarray(depth_mobile_sector, dtype=float) if sector_depths else []])
         if np.isnan(depths).any():
             deepest = "beyond the geometric relation's range (NaN)"
         else:
@@ -261,4 +314,4 @@ def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
                       f"{'; '.join(through)} [{unit or 'user time unit'}]; deepest "
                       f"{deepest}. Depths past the wall are extrapolations of the geometry",
                       PerforationWarning, stacklevel=stacklevel)
-    return out, info
+    return columns, info

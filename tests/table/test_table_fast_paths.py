@@ -1,0 +1,112 @@
+"""The wear table's fast paths (issue 13) against independent computations.
+
+* the table's frame, built from one float block (fretwear.table.build._frame), against pandas'
+  own ``pd.DataFrame(columns)``;
+* the global limit instant of a law linear in time with an unworn obstacle, inverted in closed
+  form (build._GlobalDepth.time_to), against the bracketed solver on depth(t)
+  (fretwear.table.limit.time_to_depth) and against the geometry's forward relation: the depth
+  of the volume K·P·t at the found t is the target;
+* the limit and through-wall instants solved together (obstacle worn: TUBE_TUBE) against the
+  closed form d = (1/(2R))^(1/5)·(15θV/8)^(2/5) of docs/theory.md §6 inverted by hand.
+"""
+
+import math
+import warnings
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fretwear.errors import PerforationWarning
+from fretwear.geometry import contact_geometry
+from fretwear.table import wear_table
+from fretwear.table.build import _frame, _GlobalDepth
+from fretwear.table.limit import first_time, time_to_depth
+from fretwear.table.schema import GLOBAL_COLUMNS, SECTOR_COLUMNS
+
+YEAR = 3.1536e7
+R, WALL = 9.525e-3, 1.09e-3
+
+
+@pytest.mark.parametrize("names", [GLOBAL_COLUMNS, SECTOR_COLUMNS])
+def test_frame_is_pandas_own_frame(names):
+    rng = np.random.default_rng(3)
+    columns = {c: rng.random(12) for c in names}
+    if "sector" in columns:
+        columns["sector"] = np.tile(np.arange(1, 5), 3)
+    columns["wall_fraction"] = rng.random(12)
+    expected = pd.DataFrame(columns)
+    got = _frame(columns)
+    pd.testing.assert_frame_equal(got, expected, check_exact=True)
+    assert list(got.dtypes) == list(expected.dtypes)
+    got["instant"] = 0.0  # a table is the caller's own: the shared column index is not touched
+    assert list(_frame(columns).columns) == list(expected.columns)
+
+
+GEOMETRIES = [
+    ("TUBE_BAV", {"mobile_radius": R, "obstacle_width": 12.7e-3, "tilt_angle": 0.3}),
+    ("TUBE_ALESAGE", {"mobile_radius": R, "obstacle_radius": 9.75e-3,
+                      "obstacle_width": 20e-3}),
+    ("TUBE_3_ENCO", {"mobile_radius": R, "obstacle_radius": 9.725e-3, "obstacle_width": 30e-3,
+                     "tilt_angle": 0.05, "isthmus_angle": 20.0}),
+    ("GRAPPE_ALESAGE", {"mobile_radius": 4.84e-3, "obstacle_radius": 5.5e-3,
+                        "obstacle_width": 10e-3}),
+]
+
+
+@pytest.mark.parametrize(("kind", "dims"), GEOMETRIES)
+def test_global_closed_form_matches_the_solver_and_the_forward_relation(kind, dims):
+    g = contact_geometry(kind, **dims)
+    rates = np.array([3e-13, 1e-13, 2e-13])  # three terms (sectors) [m³/s]
+    for v0 in (np.zeros(3), np.array([1e-13, 0.0, 5e-14])):
+        depth = _GlobalDepth(g, v0, rates, np.zeros(3), np.zeros(3), 0.0, True, YEAR)
+        assert hasattr(depth, "time_to")
+        targets = np.array([1e-5, 1e-4, 2e-4])
+        closed = depth.time_to(targets)
+        assert (closed > 0).all()
+        solved = time_to_depth(depth, targets, first_guess=YEAR)
+        assert closed == pytest.approx(solved, rel=1e-11)
+        # forward: the geometry's depth of the total volume at t is the target
+        volume = v0.sum() + rates.sum() * closed
+        dm, _ = g.depth_from_volume(volume)
+        assert np.asarray(dm) == pytest.approx(targets, rel=1e-12)
+    # already there at the origin, never there without wear
+    deep = _GlobalDepth(g, np.array([1e-7]), np.array([1e-13]), np.zeros(1), np.zeros(1),
+                        0.0, True, YEAR)
+    assert deep.time_to(np.array([1e-6])).tolist() == [0.0]
+    idle = _GlobalDepth(g, np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1), 0.0, True, YEAR)
+    assert idle.time_to(np.array([1e-6])).tolist() == [math.inf]
+
+
+def test_global_closed_form_beyond_the_range_uses_the_solver():
+    g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=12.7e-3)
+    depth = _GlobalDepth(g, np.zeros(1), np.array([1e-12]), np.zeros(1), np.zeros(1), 0.0,
+                         True, YEAR)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t = depth.time_to(np.array([2 * R]))  # deeper than the relation's range
+        expected = time_to_depth(depth, np.array([2 * R]), first_guess=YEAR)
+    assert t.tolist() == np.asarray(expected).tolist()
+
+
+def test_worn_obstacle_has_no_closed_form_and_solves_both_targets_at_once():
+    g = contact_geometry("TUBE_TUBE", mobile_radius=R, obstacle_radius=R, tilt_angle=5.0)
+    rate = np.array([1e-15])
+    depth = _GlobalDepth(g, np.zeros(1), rate, np.zeros(1), rate, 0.0, False, YEAR)
+    assert not hasattr(depth, "time_to")
+    kw = {"contact_type": "TUBE_TUBE", "time_scale": YEAR, "instants": [0.1, 2.0],
+          "dimensions": {"mobile_radius": R, "obstacle_radius": R, "tilt_angle": 5.0},
+          "coefficients": {"coefficient": 1e-12}, "obstacle_coefficients": {"coefficient": 1e-12}}
+    with pytest.warns(PerforationWarning):
+        t = wear_table(1e-3, wall_thickness=WALL, **kw)
+    theta = math.radians(5.0)
+
+    def reach(d):  # d = (1/(2R))^(1/5)·(15θ·K·P·t/8)^(2/5), inverted [year]
+        return (d * (2 * R) ** 0.2) ** 2.5 * 8 / (15 * theta * 1e-12 * 1e-3) / YEAR
+
+    assert t["limit_instant"].iloc[0] == pytest.approx(reach(0.4 * WALL), rel=1e-12)
+    assert t.attrs["through_wall"]["global"] == pytest.approx(reach(WALL), rel=1e-12)
+    # each element as the one-target solver finds it
+    one = [first_time(depth, None, target, None, YEAR) for target in (0.4 * WALL, WALL)]
+    assert t["limit_instant"].iloc[0] * YEAR == pytest.approx(one[0], rel=1e-14)
+    assert t.attrs["through_wall"]["global"] * YEAR == pytest.approx(one[1], rel=1e-14)
