@@ -268,6 +268,10 @@ def test_user_arrays_not_modified():
         np.testing.assert_array_equal(getattr(h, c), v)
 
 
+# _random_history draws displacements of order 1 m sampled every ~15 ms: a file of it is flagged
+# as a likely mm / ms export (UnitsWarning, tested in tests/io/test_plausibility.py); this test
+# is about chunked streaming, so that warning is expected here
+@pytest.mark.filterwarnings("ignore::fretwear.errors.UnitsWarning")
 @pytest.mark.parametrize("suffix", ["parquet", "csv"])
 def test_file_is_streamed_in_chunks(tmp_path, suffix):
     # Independent computation: the in-memory one-shot result of the same history; the file is

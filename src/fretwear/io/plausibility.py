@@ -106,7 +106,8 @@ def _largest_norm(a: np.ndarray, b: np.ndarray) -> float:
     ...     np.array([3e200]), np.array([4e200]))
     (5.0, 5e+200)
     """
-    top = math.sqrt(float((a * a + b * b).max()))
+    with np.errstate(over="ignore"):  # overflowing squares: numpy.hypot just below
+        top = math.sqrt(float((a * a + b * b).max()))
     return top if math.isfinite(top) else float(np.hypot(a, b).max())
 
 

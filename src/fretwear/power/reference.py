@@ -90,6 +90,11 @@ def _groups_from_episodes(start, end, peak, open_left, open_right, min_rest) -> 
     return out
 
 
+# Values near the float range (Fn or Vt ~ 1e154 and above) overflow to inf or give inf·0 = nan
+# here: the caller (fretwear.power.core) then rescales the speeds exactly or raises the
+# HistoryError of fretwear.power.ranges.check_finite_sums naming the instant and values, so numpy's
+# raw RuntimeWarnings would only duplicate that report. errstate changes no computed value.
+@np.errstate(over="ignore", invalid="ignore")
 def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
                 threshold, min_rest) -> ChunkSums:
     """Partial sums of one chunk, plain vectorised numpy (reference implementation).
@@ -116,6 +121,8 @@ def fused_numpy(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     Returns
     -------
     ChunkSums
+        Sums that may be inf or nan when products leave the float range (no numpy warning:
+        :func:`fretwear.power.ranges.out_of_range` and ``check_finite_sums`` deal with them).
 
     Examples
     --------
