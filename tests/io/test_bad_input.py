@@ -81,6 +81,8 @@ def test_ambiguous_aliases_name_both_columns(tmp_path):
         read_history(path)
 
 
+# the last read (units given) has samples 1 s apart: flagged (likely ms), irrelevant here
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_unknown_units_list_the_known_ones(tmp_path):
     path = csv(tmp_path, GOOD)
     with pytest.raises(KeywordError, match=r"unknown force unit 'tonnes' for channel "
@@ -167,6 +169,8 @@ def test_missing_optional_dependency_names_the_extra(tmp_path, monkeypatch):
     assert not (tmp_path / "h.h5").exists()
 
 
+# the arrays' samples are 1 s apart: the coarse step is flagged (likely ms), irrelevant here
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_user_inputs_are_not_modified(tmp_path):
     arrays = {"t": np.array([0.0, 1.0]), "fn": np.array([-1e-20, 2.0]), "vt1": np.ones(2),
               "vt2": np.zeros(2)}

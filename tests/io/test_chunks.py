@@ -32,6 +32,11 @@ def stitched(chunks, channel):
     return np.concatenate([parts[0]] + [p[1:] for p in parts[1:]])
 
 
+# Chunks of 2 or 7 samples: the first chunk's largest force is the analytic history's rounding
+# zero (6e-15 N), below the 0.01 N floor of the 'force_min' check, which runs on each chunk, not
+# on the file (whose largest force is ordinary): a false positive of per-chunk checking that is
+# expected here (this test is about the chunk contents); reported, not fixed in this change.
+@pytest.mark.filterwarnings("ignore:.*normal force .* is below:fretwear.errors.UnitsWarning")
 @pytest.mark.parametrize("fmt", sorted(SUFFIX))
 @pytest.mark.parametrize("size", [2, 7, 64, 201, 500])
 def test_chunks_equal_the_full_read(tmp_path, fmt, size):
@@ -77,6 +82,8 @@ def test_chunks_of_a_code_aster_table():
     assert_same_history(full.window(2e-3, 4e-3), chunks[1])
 
 
+# samples 1 s apart: the coarse step is flagged (likely ms), irrelevant to the row in the error
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_error_in_a_later_chunk_names_the_file_row(tmp_path):
     path = tmp_path / "bad.csv"
     times = [0, 1, 2, 3, 4, 5, 5, 7]  # repeated instant at data row 6

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fretwear.errors import FormatError, KeywordError
+from fretwear.errors import FormatError, KeywordError, UnitsWarning
 from fretwear.io import read_history
 from fretwear.io.channels import ALIASES, channel_of, resolve_columns, unit_factor
 
@@ -43,6 +43,9 @@ def test_every_channel_accepts_its_own_name():
         assert all(channel_of(n.upper()) == channel for n in names)
 
 
+# literal displacements of 1-2.5 m sampled every 0.1 s: flagged as a likely mm / ms export
+# (the check is tested in test_plausibility.py); this test is about the column names
+@pytest.mark.filterwarnings("ignore::fretwear.errors.UnitsWarning")
 def test_vint_columns_give_the_right_channels(tmp_path):
     """A RECU_FONCTION export of the internal variables, as users do since 2016 (theory §1)."""
     path = tmp_path / "vint.csv"
@@ -60,6 +63,8 @@ def test_vint_columns_give_the_right_channels(tmp_path):
     assert h.stick.tolist() == [0.0, 1.0]
 
 
+# two samples 1 s apart: the coarse step is flagged (likely ms), irrelevant to the overrides
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_overrides_win_and_none_ignores(tmp_path):
     path = tmp_path / "o.csv"
     path.write_text("time,FN,load,u,w,stick\n0,1,10,1,0,7\n1,2,20,1,0,7\n")
@@ -72,6 +77,8 @@ def test_overrides_win_and_none_ignores(tmp_path):
     assert sorted(h.metadata["ignored_columns"]) == ["FN", "stick"]
 
 
+# samples 0.1 s apart: the coarse step is flagged (likely ms), irrelevant to the positions
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_resolve_columns_by_position_for_headerless_files(tmp_path):
     path = tmp_path / "nohead.dat"
     path.write_text("0.0 1.0 0.5 0.0\n0.1 2.0 0.5 0.0\n0.2 0.0 0.5 0.0\n")
@@ -93,20 +100,33 @@ def test_unit_factors(unit, quantity, factor):
     assert unit_factor(unit, quantity) == pytest.approx(factor, rel=1e-15)
 
 
+def _flagged(seen) -> list[str]:
+    """The channels named by the UnitsWarnings recorded in ``seen``, sorted."""
+    return sorted(str(w.message).split("channel '")[1].split("'")[0] for w in seen)
+
+
 def test_units_option_per_quantity_per_channel_and_derived_velocity(tmp_path):
     path = tmp_path / "mm.csv"
     path.write_text("t,fn,vt1,vt2,dy,dz\n0,1.5,10,0,0.2,0\n2,0.5,20,5,0.1,-0.1\n")
-    h = read_history(path, units={"length": "mm", "force": "kN", "time": "ms"})
+    # the plausibility check sees the converted values and names the unit read (UnitsWarning)
+    with pytest.warns(UnitsWarning, match=r"'vt1': largest sliding speed ‖Vt‖ 20.62 m/s "
+                                          r"\(read in 'mm/ms'\)") as seen:
+        h = read_history(path, units={"length": "mm", "force": "kN", "time": "ms"})
+    assert _flagged(seen) == ["vt1"]
     np.testing.assert_allclose(h.time, [0.0, 2e-3], rtol=1e-15)
     np.testing.assert_allclose(h.normal_force, [1500.0, 500.0], rtol=1e-15)
     np.testing.assert_allclose(h.dy, [2e-4, 1e-4], rtol=1e-15)
     # velocity unit defaults to <length>/<time> = mm/ms = m/s
     np.testing.assert_array_equal(h.vt1, [10.0, 20.0])
     assert h.metadata["units"]["vt1"] == "mm/ms"
-    h = read_history(path, units={"length": "mm", "vt2": "mm/s", "force": "N"})
+    with pytest.warns(UnitsWarning) as seen:  # 2 s between the samples
+        h = read_history(path, units={"length": "mm", "vt2": "mm/s", "force": "N"})
+    assert _flagged(seen) == ["time"]
     np.testing.assert_allclose(h.vt1, [1e-2, 2e-2], rtol=1e-15)  # mm/s derived
     np.testing.assert_allclose(h.vt2, [0.0, 5e-3], rtol=1e-15)
-    h = read_history(path, units={"FN": "daN", "velocity": "m/s"})  # alias as a key
+    with pytest.warns(UnitsWarning) as seen:  # lengths in m: 0.2 m is flagged too
+        h = read_history(path, units={"FN": "daN", "velocity": "m/s"})  # alias as a key
+    assert _flagged(seen) == ["dy", "time", "vt1"]
     np.testing.assert_array_equal(h.normal_force, [15.0, 5.0])
     np.testing.assert_array_equal(h.vt1, [10.0, 20.0])
 
@@ -131,6 +151,8 @@ def test_units_in_the_header_and_user_precedence(tmp_path):
     "t, fn, vt1, vt2\n0.0, 1.5, 0.25, 0\n# a comment in the data\n0.5, 2.5, 0.75, 0\n",
     '"t","fn","vt1","vt2"\n0.0,1.5,0.25,0\n0.5,2.5,0.75,0\n',   # quoted header
 ])
+# two samples 0.5 s apart: the coarse step is flagged (likely ms), irrelevant to the dialects
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_csv_dialects(tmp_path, text):
     path = tmp_path / "d.txt"
     path.write_text(text)
@@ -139,6 +161,8 @@ def test_csv_dialects(tmp_path, text):
     assert h.normal_force.tolist() == [1.5, 2.5] and h.vt1.tolist() == [0.25, 0.75]
 
 
+# two samples 1 s apart: the coarse step is flagged (likely ms), irrelevant to the options
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_explicit_csv_options(tmp_path):
     path = tmp_path / "x.csv"
     path.write_text("% exported\nt:fn:vt1:vt2\n0:1:0:0\n1:2:0:0\n")

@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 from iohelpers import FIXTURES, analytic_history, assert_same_history
 
-from fretwear.errors import FormatError, KeywordError
+from fretwear.errors import FormatError, KeywordError, UnitsWarning
 from fretwear.history import UNITS, ContactHistory
 from fretwear.io import FORMATS, guess_format, read_history, write_history
 from fretwear.io.aster import read_aster_table
@@ -39,8 +39,8 @@ def test_round_trip_every_writer_and_reader(tmp_path, history, fmt):
 
 
 def test_round_trip_required_channels_only(tmp_path):
-    h = ContactHistory(time=[0.0, 0.5, 1.0], normal_force=[0.0, 1.0, 0.0], vt1=[1.0, 2.0, 3.0],
-                       vt2=[0.0, 0.0, 0.0])
+    h = ContactHistory(time=[0.0, 5e-4, 1e-3], normal_force=[0.0, 1.0, 0.0], vt1=[1.0, 2.0, 3.0],
+                       vt2=[0.0, 0.0, 0.0])  # a plausible 0.5 ms step (no UnitsWarning)
     for fmt, fname in NATIVE.items():
         back = read_history(write_history(h, tmp_path / fname))
         assert back.channels == ("time", "normal_force", "vt1", "vt2"), fmt
@@ -120,7 +120,9 @@ def test_units_declared_by_binary_files_are_converted(tmp_path):
             var = ds.createVariable(name, "f8", ("time",))
             var.units = unit
             var[:] = values
-    h = read_history(tmp_path / "cf.nc")
+    # CF "seconds since ...": read in s, so the 1 s step is flagged under its declared unit
+    with pytest.warns(UnitsWarning, match=r".*median sampling step 1 s \(read in 'seconds'\)"):
+        h = read_history(tmp_path / "cf.nc")
     np.testing.assert_array_equal(h.time, t)
     np.testing.assert_allclose(h.normal_force, [0.0, 20.0, 40.0], rtol=1e-15)
 
@@ -159,6 +161,8 @@ def test_tableau_with_a_user_title_and_a_node_column_is_recognised(tmp_path, suf
     assert read_history(path, format="csv").normal_force.tolist() == h.normal_force.tolist()
 
 
+# samples 1 s apart: the coarse step is flagged (likely ms), irrelevant to the format guess
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_numeric_text_with_a_comment_block_stays_delimited_text(tmp_path):
     # numpy.savetxt(..., fmt="%.5E", header="t fn vt1 vt2"): the names are in the comment, the
     # line after it is data, so it is not a Code_Aster table.
@@ -170,6 +174,8 @@ def test_numeric_text_with_a_comment_block_stays_delimited_text(tmp_path):
     assert h.time.tolist() == [0.0, 1.0, 2.0]
 
 
+# the first frame's samples are 1 s apart: the coarse step is flagged (likely ms), irrelevant
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_in_memory_tables_use_aliases_and_units_without_modifying_them():
     frame = pd.DataFrame({"INST": [0.0, 1.0], "FN": [1.0, 2.0], "VT1": [3.0, 4.0],
                           "VT2": [0.0, 0.0]})

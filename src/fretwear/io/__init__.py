@@ -479,8 +479,8 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     --------
     >>> import tempfile, pathlib
     >>> p = pathlib.Path(tempfile.mkdtemp()) / "h.csv"
-    >>> _ = p.write_text("t,fn,vt1,vt2\\n" + "".join(f"{i},1,1,0\\n" for i in range(7)))
-    >>> [c.time.tolist() for c in iter_history_chunks(p, chunk_size=3)]
+    >>> _ = p.write_text("t [ms],fn,vt1,vt2\\n" + "".join(f"{i},1,1,0\\n" for i in range(7)))
+    >>> [(1e3 * c.time).tolist() for c in iter_history_chunks(p, chunk_size=3)]
     [[0.0, 1.0, 2.0], [2.0, 3.0, 4.0], [4.0, 5.0, 6.0]]
     """
     size, source, mapping, factors, label, metadata, blocks = _reader_blocks(
@@ -668,7 +668,8 @@ def write_history(history: ContactHistory, path: str | os.PathLike, format: str 
     Examples
     --------
     >>> import tempfile, pathlib
-    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0], name="n1")
+    >>> h = ContactHistory(time=[0, 1e-4], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0],
+    ...                    name="n1")
     >>> out = write_history(h, pathlib.Path(tempfile.mkdtemp()) / "n1.h5")
     >>> read_history(out).normal_force.tolist()
     [2.0, 3.0]
