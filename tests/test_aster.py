@@ -347,6 +347,8 @@ def test_kwu_epri_keywords_reach_the_class_statistics():
         call(LOI_USURE="KWU_EPRI")
 
 
+# history() is sampled every 1 s: as a file its step is flagged (likely ms), irrelevant here
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_resu_gene_as_a_file(tmp_path):
     """A history file gives the same table as the history itself (P = 1 W, theory §2)."""
     from fretwear.io import write_history

@@ -161,6 +161,8 @@ unit = "h"
     np.testing.assert_allclose(r.table["volume_mobile"], 1e-14 * 0.5 * 3600.0, rtol=1e-12)
 
 
+# h.csv is sampled every 0.1 s: the coarse step is flagged (likely ms), irrelevant here
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_kwu_epri_case_computes_the_power_once(tmp_path, monkeypatch):
     """KWU_EPRI needs the history's classes, not a second power computation: the table equals
     wear_table on the history itself (independent path, theory §2/§4)."""

@@ -261,6 +261,9 @@ def test_default_maxima_are_the_window_maxima_free_flight_included():
 
 
 # ------------------------------------------------------------ streaming from a file or chunks
+# the designed record is sampled every 1 s (hand-computed shares): written to a file, its step
+# is flagged as a likely ms export (UnitsWarning), irrelevant to the class counts
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_file_path_is_streamed_and_equals_the_designed_values(tmp_path):
     """A history file read in chunks of 3 samples (consecutive chunks share one sample) gives the
     hand-computed shares and w of the designed record (independent of the in-memory path)."""

@@ -125,6 +125,8 @@ def test_binary_formats_name_the_formats_extra(suffix, module, tmp_path, monkeyp
     assert not (tmp_path / f"new{suffix}").exists()
 
 
+# _history() is sampled every 20 ms: as a file its step is flagged (likely ms), irrelevant here
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_csv_without_pyarrow_uses_pandas(tmp_path, monkeypatch):
     _hide(monkeypatch, "pyarrow", "pyarrow.csv")
     back = read_history(write_history(_history(), tmp_path / "h.csv"))

@@ -294,6 +294,8 @@ def test_tube_neuf_before_the_last_instant_keeps_the_later_rows():
         POST_USURE(TUBE_NEUF="OUI", TABL_USURE=tab, INST=(1.0, 2.0))
 
 
+# choc.tab is sampled every 1 s: the coarse step is flagged (likely ms), irrelevant to NOEUD
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_noeud_selects_in_a_file_and_is_checked(tmp_path):
     """RESU_GENE a Code_Aster table of two shock points (N12 and N13 with the force doubled):
     NOEUD picks one; a NOEUD the file does not hold is an error."""
