@@ -59,6 +59,33 @@ def test_cluster_rows_are_the_single_contact_tables_and_failures_are_rows(tmp_pa
                          reference(tmp_path / f"histories/t{k}.parquet", case))
 
 
+def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, address,
+                                                                     monkeypatch):
+    """Contacts grouped several per Dask task (engine.contacts_per_task, here 3 per task by
+    asking one task per worker) give each contact's single-contact table bit for bit, and a bad
+    contact fails alone inside its group."""
+    from fretwear.bundle import engine
+
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 6)
+    frame = pd.read_csv(manifest)
+    frame.loc[4, "history"] = "histories/missing.parquet"
+    frame.to_csv(manifest, index=False)
+    monkeypatch.setattr(engine, "TASKS_PER_WORKER", 1)
+    assert engine.contacts_per_task(6, 2) == 3
+    submitted = []
+    real_map = engine._Dask.map
+    monkeypatch.setattr(engine._Dask, "map", lambda self, fn, items, *a, **k: submitted.append(
+        (fn.__name__, [len(i) for i in items])) or real_map(self, fn, items, *a, **k))
+    result = run_bundle(manifest, case, scheduler=address)
+    assert submitted == [("run_contacts", [3, 3])]
+    assert result.errors["contact"].tolist() == ["R3C1-AVB"]
+    for k in (0, 1, 2, 3, 5):
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.parquet", case))
+
+
 def test_chunked_contact_same_bits_on_the_cluster_as_in_one_process(tmp_path, address):
     h = oscillator()
     manifest, case = write_bundle(tmp_path, h, 2)

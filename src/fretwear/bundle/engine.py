@@ -37,6 +37,7 @@ from fretwear.bundle.tasks import (
     merge_states,
     needs_whole_history,
     run_contact,
+    run_contacts,
     time_bounds,
     unpack,
 )
@@ -48,6 +49,8 @@ from fretwear.workflows.case_files import load_case, validate_case
 #: Contacts per part file (a part is also written every PART_SECONDS).
 PART_SIZE = 100
 PART_SECONDS = 10.0
+#: Tasks per worker when contacts are grouped (:func:`contacts_per_task`).
+TASKS_PER_WORKER = 16
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
@@ -228,6 +231,20 @@ def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int
     return engine.submit(finish_contact, task, level[0], key=f"finish-{name}", retries=retries)
 
 
+def contacts_per_task(contacts: int, workers: int) -> int:
+    """Contacts computed by one Dask task: enough that the scheduler's cost per task (about a
+    millisecond of its CPU, shared with the workers on a small machine) is spread over several
+    contacts, few enough that every worker gets :data:`TASKS_PER_WORKER` tasks (the last ones
+    balance the load). Each contact keeps its own record, warnings and failure.
+
+    Examples
+    --------
+    >>> contacts_per_task(12, 2), contacts_per_task(500, 2), contacts_per_task(50_000, 256)
+    (1, 15, 12)
+    """
+    return max(1, contacts // (TASKS_PER_WORKER * max(1, workers)))
+
+
 def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
     return {"contact": task.contact, "key": task.key, "status": "failed", "table": None,
             "warnings": [], "error": [type(exc).__name__, str(exc)], "samples": 0,
@@ -355,24 +372,36 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
                 whole.append(task)
                 continue
             handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
-            handles[id(handle)] = (handle, task)
-        mapped = engine.map(run_contact, whole, chunk_size,
-                            keys=[f"contact-{t.contact}-{tag}" for t in whole], retries=retries)
-        for handle, task in zip(mapped, whole, strict=True):
-            handles[id(handle)] = (handle, task)
+            handles[id(handle)] = (handle, [task])
+        size = contacts_per_task(len(whole), engine.workers) if isinstance(engine, _Dask) \
+            else 1
+        if size == 1:
+            groups = [[t] for t in whole]
+            mapped = engine.map(run_contact, whole, chunk_size,
+                                keys=[f"contact-{t.contact}-{tag}" for t in whole],
+                                retries=retries)
+        else:
+            groups = [whole[i:i + size] for i in range(0, len(whole), size)]
+            mapped = engine.map(run_contacts, groups, chunk_size,
+                                keys=[f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups],
+                                retries=retries)
+        for handle, group in zip(mapped, groups, strict=True):
+            handles[id(handle)] = (handle, group)
         for handle, value in engine.results([h for h, _ in handles.values()]):
-            task = handles[id(handle)][1]
-            rec = value if isinstance(value, dict) else _failed(task, value)
-            records[task.contact] = rec
-            done_count += 1
-            if store is not None:
-                buffer.append(rec)
-                now = time.perf_counter()
-                if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
-                    store.write_part(buffer)
-                    buffer, last_flush = [], now
-            if progress is not None:
-                progress(done_count, total, rec)
+            group = handles[id(handle)][1]
+            values = value if isinstance(value, list) else [value] * len(group)
+            for task, one in zip(group, values, strict=True):
+                rec = one if isinstance(one, dict) else _failed(task, one)
+                records[task.contact] = rec
+                done_count += 1
+                if store is not None:
+                    buffer.append(rec)
+                    now = time.perf_counter()
+                    if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
+                        store.write_part(buffer)
+                        buffer, last_flush = [], now
+                if progress is not None:
+                    progress(done_count, total, rec)
         if store is not None:
             # this run's last records, and the failures of the client-side checks
             queued = {id(b) for b in buffer}

@@ -243,6 +243,13 @@ def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any
                    seconds=time.perf_counter() - start)
 
 
+def run_contacts(tasks: list[ContactTask], chunk_size: int = 1_000_000) -> list[dict[str, Any]]:
+    """:func:`run_contact` of several contacts in one task (one record each, in order): the
+    scheduler's cost per task spread over them (:func:`fretwear.bundle.engine.contacts_per_task`).
+    """
+    return [run_contact(task, chunk_size) for task in tasks]
+
+
 def chunk_state(task: ContactTask, start: int, stop: int, bounds: tuple[float, float]
                 ) -> dict[str, Any]:
     """The partial power state of samples ``[start, stop)`` of a long contact."""
