@@ -1,11 +1,13 @@
 """The wear table's fast paths (issue 13) against independent computations.
 
-* the table's frame, built from one float block (fretwear.table.build._frame), against pandas'
+* the table's frame, built from one float block (fretwear.table._columns._frame), against pandas'
   own ``pd.DataFrame(columns)``;
 * the global limit instant of a law linear in time with an unworn obstacle, inverted in closed
-  form (build._GlobalDepth.time_to), against the bracketed solver on depth(t)
+  form (table._wall._GlobalDepth.time_to), against the bracketed solver on depth(t)
   (fretwear.table.limit.time_to_depth) and against the geometry's forward relation: the depth
   of the volume K·P·t at the found t is the target;
+* the sector columns of every sector at once (_columns._sector_columns) against the
+  sector-by-sector loop they replace (bit for bit, restarts and replacements included);
 * the limit and through-wall instants solved together (obstacle worn: TUBE_TUBE) against the
   closed form d = (1/(2R))^(1/5)·(15θV/8)^(2/5) of docs/theory.md §6 inverted by hand.
 """
@@ -17,10 +19,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from fretwear.errors import PerforationWarning
+from fretwear.errors import PerforationWarning, RangeWarning
 from fretwear.geometry import contact_geometry
-from fretwear.table import wear_table
-from fretwear.table.build import _frame, _GlobalDepth
+from fretwear.history import ContactHistory
+from fretwear.table import _columns, wear_table
+from fretwear.table._columns import _frame
+from fretwear.table._wall import _GlobalDepth
 from fretwear.table.limit import first_time, time_to_depth
 from fretwear.table.schema import GLOBAL_COLUMNS, SECTOR_COLUMNS
 
@@ -110,3 +114,69 @@ def test_worn_obstacle_has_no_closed_form_and_solves_both_targets_at_once():
     one = [first_time(depth, None, target, None, YEAR) for target in (0.4 * WALL, WALL)]
     assert t["limit_instant"].iloc[0] * YEAR == pytest.approx(one[0], rel=1e-14)
     assert t.attrs["through_wall"]["global"] * YEAR == pytest.approx(one[1], rel=1e-14)
+
+
+def _sector_history():
+    time = np.linspace(0.0, 2.0, 4001)
+    angle = np.radians(170.0 * np.sin(2.1 * time))
+    return ContactHistory(time=time, normal_force=np.full(time.size, 3.0),
+                          vt1=np.full(time.size, 0.05), vt2=np.zeros(time.size),
+                          dy=np.cos(angle), dz=np.sin(angle))
+
+
+SECTOR_CASES = {
+    "bav": {"contact_type": "TUBE_BAV", "sectors": 8,
+            "dimensions": {"mobile_radius": R, "obstacle_width": 12.7e-3},
+            "coefficients": {"coefficient": 9.2e-15}},
+    "obstacle worn, replaced": {
+        "contact_type": "TUBE_ALESAGE", "sectors": 6, "tube_replacement": 1.5,
+        "dimensions": {"mobile_radius": R, "obstacle_radius": 9.75e-3,
+                       "obstacle_width": 20e-3},
+        "coefficients": {"coefficient": 2e-14}, "obstacle_coefficients": {"coefficient": 1e-14}},
+    "sector coefficients": {
+        "contact_type": "TUBE_ALESAGE", "sectors": 4,
+        "dimensions": {"mobile_radius": R, "obstacle_radius": 9.75e-3,
+                       "obstacle_width": 20e-3},
+        "coefficients": {"coefficient": 9.2e-15},
+        "sector_coefficients": [(1e-14, None), (2e-14, 1e-15), (5e-15, None), (0.0, 3e-15)]},
+}
+
+
+@pytest.mark.parametrize("name", sorted(SECTOR_CASES))
+def test_every_sector_at_once_is_the_sector_loop_bit_for_bit(name, monkeypatch):
+    """The vectorised sector columns against the sector-by-sector loop (the code before it),
+    first run and restart from the first run's table."""
+    kw = {"instants": [0.5, 1.0, 3.0], "time_scale": YEAR, "wall_thickness": WALL,
+          **SECTOR_CASES[name]}
+    history = _sector_history()
+    made = []
+
+    def spy(*args, **kwargs):  # the vectorised path is the one taken
+        made.append(fast_path(*args, **kwargs))
+        return made[-1]
+
+    fast_path = _columns._sector_columns
+    monkeypatch.setattr(_columns, "_sector_columns", spy)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fast = wear_table(history, **kw)
+        again = wear_table(history, initial_state=fast, **{**kw, "tube_replacement": None})
+        assert len(made) == 2 and all(m is not None for m in made)
+        monkeypatch.setattr(_columns, "_sector_columns", lambda *a, **k: None)
+        loop = wear_table(history, **kw)
+        loop_again = wear_table(history, initial_state=loop, **{**kw, "tube_replacement": None})
+    for a, b in ((fast, loop), (again, loop_again)):
+        pd.testing.assert_frame_equal(a, b, check_exact=True)
+        for column in a.columns:
+            assert np.array_equal(a[column].to_numpy(), b[column].to_numpy(), equal_nan=True)
+
+
+def test_sector_loop_keeps_its_warning_naming_the_sectors():
+    """An obstacle that wears without a radius: the loop's warning, naming the sectors."""
+    kw = {"contact_type": "TUBE_BAV", "sectors": 4, "instants": [1.0],
+          "dimensions": {"mobile_radius": R, "obstacle_width": 12.7e-3},
+          "coefficients": {"coefficient": 9.2e-15},
+          "sector_coefficients": [(1e-14, None), (2e-14, 1e-15), (5e-15, None), (1e-14, None)]}
+    with pytest.warns(RangeWarning, match=r"sectors \[2\]: the obstacle wears"):
+        t = wear_table(_sector_history(), **kw)
+    assert np.isnan(t["depth_obstacle_sector"].iloc[1])

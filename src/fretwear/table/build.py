@@ -9,10 +9,12 @@ replaced on the way. The steps, one function each:
 2. :func:`_body_coefficients`: each body's coefficients, the history's KWU-EPRI intensity added
    for a law whose registry entry says it ``needs_history``;
 3. :class:`_Clock`: the elapsed seconds of each instant and the replacement;
-4. :func:`_global_frame` or :func:`_sector_frame`: cumulated volumes (:func:`_cumulated`) and
-   depths from them (:func:`_depths`; per sector :func:`~fretwear.geometry.sector_depth_mobile`);
+4. :func:`_global_frame` or :func:`_sector_frame` (:mod:`fretwear.table._columns`): cumulated
+   volumes (:func:`_cumulated`) and depths from them (:func:`_depths`; per sector
+   :func:`~fretwear.geometry.sector_depth_mobile`), as columns made a DataFrame once;
 5. the initial table's rows in front; with a wall thickness, the depth as a fraction of the wall
-   and the instant of reaching the limit (:func:`_wall`, :mod:`fretwear.table.limit`);
+   and the instant of reaching the limit (:func:`_wall`, :mod:`fretwear.table._wall`,
+   :mod:`fretwear.table.limit`);
 6. the metadata in ``attrs`` (:func:`_attrs`).
 
 Conventions of the table (one row per instant, or per instant and sector):
@@ -29,21 +31,18 @@ Conventions of the table (one row per instant, or per instant and sector):
 
 from __future__ import annotations
 
-import functools
 import os
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
-from fretwear.errors import InputError, KeywordError, RangeWarning
-from fretwear.geometry.sectors import sector_depth_mobile, sector_depth_obstacle
+from fretwear.errors import InputError, KeywordError
 from fretwear.history import ContactHistory
 from fretwear.power import wear_power
+from fretwear.table._columns import _frame, _global_frame, _sector_frame
+from fretwear.table._wall import _wall
 from fretwear.table.case import WearCase
-from fretwear.table.limit import time_to_depth, wall_columns
-from fretwear.table.schema import GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 __all__ = ["wear_table_from_case"]
 
@@ -275,311 +274,6 @@ class _Clock:
         """Instants at which the tube in place is the new one."""
         fresh = self.fresh
         return np.zeros(self.n, bool) if fresh is None else self.elapsed >= fresh
-
-
-# --------------------------------------------------------------------------- 4. volumes, depths
-def _cumulated(law, power: float, coefficients, elapsed_s: np.ndarray, previous: float,
-               fresh_from_s: float | None, body: str) -> np.ndarray:
-    """Cumulated volume of one body at ``elapsed_s`` seconds after the origin [m³].
-
-    ``previous`` is the body's volume at the origin; a linear law adds ``V(P, Δt)``, another
-    law continues from its equivalent time (theory §7). ``fresh_from_s`` (a replacement, seconds
-    after the origin) restarts the body from zero there. The law's warnings name the body.
-    """
-    if coefficients is None:  # this body does not wear
-        out = np.full(elapsed_s.shape, float(previous))
-        if fresh_from_s is not None:
-            out[elapsed_s >= fresh_from_s] = 0.0
-        return out
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        if previous == 0.0:
-            out = np.asarray(law.volume(power, elapsed_s, **coefficients), dtype=float)
-        else:  # linear: V0 + V(Δt); otherwise from the equivalent time of V0 (theory §7)
-            out = np.asarray(law.cumulated_volume(previous, power, elapsed_s, **coefficients),
-                             dtype=float)
-        out = np.broadcast_to(out, elapsed_s.shape).copy()
-        if fresh_from_s is not None:
-            new = elapsed_s >= fresh_from_s
-            out[new] = np.asarray(law.volume(power, elapsed_s[new] - fresh_from_s,
-                                             **coefficients), dtype=float)
-    for w in caught:
-        warnings.warn(f"{body}: {w.message}", w.category, stacklevel=4)
-    return out
-
-
-def _depths(geometry, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
-    """(mobile, obstacle) depths [m] from the cumulated volumes [m³] (theory §6).
-
-    An obstacle without volume has no depth: exactly 0 where the mobile's depth is defined
-    (the split d_o = D − D·V_m/V of a shared trace leaves a rounding residue otherwise).
-    """
-    dm, do = geometry.depth_from_volume(volume_mobile, volume_obstacle)
-    dm = np.broadcast_to(dm, volume_mobile.shape).astype(float)
-    do = np.broadcast_to(do, volume_mobile.shape).astype(float)
-    return dm, np.where((volume_obstacle == 0) & np.isfinite(dm), 0.0, do)
-
-
-def _global_frame(case, head, power, mobile, obstacle, clock, geometry) -> pd.DataFrame:
-    """The table without sectors: one row per instant."""
-    law, state = case.wear_law, case.initial_state
-    prev_m = 0.0 if state is None else state.volume_mobile
-    prev_o = 0.0 if state is None else state.volume_obstacle
-    vm = _cumulated(law, power, mobile, clock.elapsed, prev_m, clock.fresh, "mobile")
-    vo = _cumulated(law, power, obstacle, clock.elapsed, prev_o, None, "obstacle")
-    dm, do = _depths(geometry, vm, vo)
-    return {**head, "volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
-            "depth_obstacle": do}
-
-
-def _sector_coefficients(case: WearCase, m: int, mobile, obstacle):
-    """(mobile [m], obstacle [m] or None) Archard coefficients [1/Pa] of the ``m`` sectors:
-    the case's sector coefficients (a missing obstacle one is 0 when others wear), else the
-    law's coefficient in every sector."""
-    key = case.wear_law.parameters[0]
-    if case.sector_coefficients is None:
-        k_o = None if obstacle is None else obstacle.get(key)
-        return np.full(m, mobile[key]), (None if k_o is None else np.full(m, k_o))
-    km = np.array([p[0] for p in case.sector_coefficients])
-    ko = np.array([np.nan if p[1] is None else p[1] for p in case.sector_coefficients])
-    if np.isnan(ko).all():
-        return km, None
-    return km, np.nan_to_num(ko, nan=0.0)
-
-
-def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> pd.DataFrame:
-    """The sector table: one row per instant and sector (instant-major)."""
-    law, state = case.wear_law, case.initial_state
-    key = law.parameters[0]
-    edges = np.asarray(result.sector_edges, dtype=float)
-    powers = np.asarray(result.sectors, dtype=float)
-    m, n = powers.size, clock.n
-    k_m, k_o = _sector_coefficients(case, m, mobile, obstacle)
-    r_m, r_o = geometry.mobile_radius, getattr(geometry, "obstacle_radius", None)
-    width = geometry.obstacle_width
-    elapsed, fresh, replaced = clock.elapsed, clock.fresh, clock.replaced
-    cols = {c: [] for c in SECTOR_COLUMNS if c not in GLOBAL_COLUMNS}
-    cum_m = np.zeros((n, m))
-    cum_o = np.zeros((n, m))
-    unradiused: list[int] = []
-    for j in range(m):
-        pm = 0.0 if state is None else float(state.sector_volume_mobile[j])
-        po = 0.0 if state is None else float(state.sector_volume_obstacle[j])
-        vm = _cumulated(law, powers[j], {key: k_m[j]}, elapsed, pm, fresh, "mobile")
-        vo = _cumulated(law, powers[j], None if k_o is None else {key: k_o[j]}, elapsed, po,
-                        None, "obstacle")
-        cum_m[:, j], cum_o[:, j] = vm, vo
-        arc = edges[j + 1] - edges[j]
-        was_m = np.where(replaced, 0.0, pm)  # a replaced tube starts from zero
-        cols["sector"].append(np.full(n, j + 1))
-        cols["angle_start"].append(np.full(n, edges[j]))
-        cols["angle_end"].append(np.full(n, edges[j + 1]))
-        cols["sector_power"].append(np.full(n, powers[j]))
-        cols["volume_mobile_sector"].append(vm - was_m)
-        cols["volume_obstacle_sector"].append(vo - po)
-        cols["depth_mobile_sector"].append(sector_depth_mobile(vm, r_m, width, arc))
-        if r_o is None:
-            if (vo > 0).any():
-                unradiused.append(j + 1)
-            cols["depth_obstacle_sector"].append(np.where(vo == 0, 0.0, np.nan))
-        else:
-            cols["depth_obstacle_sector"].append(sector_depth_obstacle(vo, r_o, width, arc))
-        cols["volume_mobile_cumulated"].append(vm)
-        cols["volume_obstacle_cumulated"].append(vo)
-    if unradiused:
-        warnings.warn(f"sectors {unradiused}: the obstacle wears but "
-                      f"{geometry.contact_type or 'the sector geometry'} has no obstacle_radius "
-                      "(RAYON_OBST): their obstacle sector depth is NaN", RangeWarning,
-                      stacklevel=3)
-    total_m, total_o = cum_m.sum(axis=1), cum_o.sum(axis=1)
-    dm, do = _depths(geometry, total_m, total_o)
-    glob = {"volume_mobile": total_m, "volume_obstacle": total_o,
-            "depth_mobile": dm, "depth_obstacle": do}
-    data = {k: np.repeat(np.asarray(v), m) for k, v in {**head, **glob}.items()}
-    for c, parts in cols.items():  # instant-major order: row = i*m + j
-        data[c] = np.column_stack(parts).ravel()
-    return {c: data[c] for c in SECTOR_COLUMNS}
-
-
-@functools.lru_cache(maxsize=64)
-def _index(names: tuple[str, ...]) -> pd.Index:
-    """The columns' index of a table (immutable: shared by the tables of those columns)."""
-    return pd.Index(list(names))
-
-
-def _frame(columns: dict) -> pd.DataFrame:
-    """The DataFrame of ``columns`` (name -> 1-d array, one length), as
-    ``pd.DataFrame(columns)`` gives it, built from one float block: the float columns
-    stacked once, the others (the sector numbers) inserted at their place."""
-    names = tuple(columns)
-    floats = tuple(c for c in names if np.asarray(columns[c]).dtype == np.float64)
-    block = np.stack([columns[c] for c in floats]) if floats else np.empty((0, 0))
-    frame = pd.DataFrame(block.T, columns=_index(floats), copy=False)
-    for at, name in enumerate(names):
-        if name not in floats:
-            frame.insert(at, name, columns[name])
-    return frame
-
-
-# --------------------------------------------------------------------------- 5. the wall
-def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
-    """The wall columns (:func:`fretwear.table.limit.wall_columns`) of ``table`` (the columns,
-    or the frame of a restart): the depth over the wall and the instant of reaching the limit,
-    from depth(t) through the law and geometry.
-
-    A law linear in time gives every term (the body, or each sector) V = V0 + r·t with its
-    rate r = V(P, 1 s) computed once: depth(t) then costs a few array operations (the
-    geometry's relation directly: the volumes are valid by construction), each sector's
-    instant is the closed-form inverse (:class:`_SectorDepths`), and so is the global one
-    when the obstacle's volume stays 0 (:class:`_GlobalDepth`); otherwise the global limit
-    and through-wall instants are solved together.
-    """
-    law, state = case.wear_law, case.initial_state
-    fresh = clock.fresh
-    sectored = case.sectors is not None
-    depths = (np.asarray(table["depth_mobile"], dtype=float),
-              np.asarray(table["sector"], dtype=int) if sectored else None,
-              np.asarray(table["depth_mobile_sector"], dtype=float) if sectored else None)
-    options = {"wall": case.wall_thickness, "depth_limit": case.depth_limit,
-               "origin": case.origin, "time_scale": case.time_scale, "fresh": fresh,
-               "unit": case.time_unit, "stacklevel": 4}
-    if case.sectors is None and not law.linear_in_time:
-        terms = [(power, mobile, obstacle, 0.0 if state is None else state.volume_mobile,
-                  0.0 if state is None else state.volume_obstacle)]
-        return wall_columns(*depths, **options, global_depth=None if case.contact_type is None
-                            else _law_depths(law, terms, fresh, geometry))
-    if case.sectors is None:
-        powers = np.array([power], dtype=float)
-        rate_m = np.array([_rate(law, power, mobile)])
-        rate_o = np.array([_rate(law, power, obstacle)])
-        v0_m = np.array([0.0 if state is None else state.volume_mobile], dtype=float)
-        v0_o = np.array([0.0 if state is None else state.volume_obstacle], dtype=float)
-    else:
-        key = law.parameters[0]
-        powers = np.asarray(result.sectors, dtype=float)
-        k_m, k_o = _sector_coefficients(case, powers.size, mobile, obstacle)
-        rate_m = np.asarray(law.volume(powers, 1.0, **{key: k_m}), dtype=float)  # [m³/s]
-        rate_o = (np.zeros(powers.size) if k_o is None
-                  else np.asarray(law.volume(powers, 1.0, **{key: k_o}), dtype=float))
-        zeros = np.zeros(powers.size)
-        v0_m = zeros if state is None else np.asarray(state.sector_volume_mobile, dtype=float)
-        v0_o = zeros if state is None else np.asarray(state.sector_volume_obstacle, dtype=float)
-    zeros = np.zeros(powers.size)
-
-    sectors = None
-    if case.sectors is not None:
-        arcs = np.diff(np.asarray(result.sector_edges, dtype=float))
-        sectors = (_SectorDepths(v0_m, rate_m, geometry, arcs),
-                   _SectorDepths(zeros, rate_m, geometry, arcs))
-    glob = None
-    if case.contact_type is not None:
-        # the obstacle's volume stays 0 (old and new tube): the inverse is closed-form
-        still = not (rate_o.any() or v0_o.any())
-        glob = (_GlobalDepth(geometry, v0_m, rate_m, v0_o, rate_o, 0.0, still,
-                             case.time_scale),
-                _GlobalDepth(geometry, zeros, rate_m, v0_o, rate_o, fresh or 0.0, still,
-                             case.time_scale))
-    return wall_columns(*depths, **options, sector_depths=sectors, global_depth=glob,
-                        vectorised=True)
-
-
-def _rate(law, power: float, coefficients) -> float:
-    """Volume per second [m³/s] of a body under a law linear in time (0 when it does not
-    wear)."""
-    if coefficients is None:
-        return 0.0
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # the table's own volumes already warned
-        return float(np.asarray(law.volume(power, 1.0, **coefficients), dtype=float))
-
-
-def _linear_volume(t, v0, rate):
-    """V0 + r·t [m³] (exactly r·t where V0 = 0)."""
-    v = rate * t
-    return np.where(v0 == 0.0, v, v0 + v)
-
-
-def _law_depths(law, terms, fresh, geometry):
-    """(old, new) global depth functions of time through the law itself (a law not linear in
-    time: each call continues the volumes from their equivalent times)."""
-
-    def old(t):  # the tube in place at the origin, t seconds after it
-        vm = sum(_cumulated(law, p, km, t, pm, None, "mobile") for p, km, _, pm, _ in terms)
-        vo = sum(_cumulated(law, p, ko, t, po, None, "obstacle") for p, _, ko, _, po in terms)
-        return _depths(geometry, np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))[0]
-
-    def new(tau):  # a new tube, tau seconds after its replacement
-        vm = sum(_cumulated(law, p, km, tau, 0.0, None, "mobile") for p, km, _, _, _ in terms)
-        vo = sum(_cumulated(law, p, ko, fresh + tau, po, None, "obstacle")
-                 for p, _, ko, _, po in terms)
-        return _depths(geometry, np.asarray(vm, dtype=float), np.asarray(vo, dtype=float))[0]
-
-    return old, new
-
-
-class _GlobalDepth:
-    """The global mobile depth at the times t (an array, one depth per time) [m] of the terms
-    V_j(t) = V0_j + r_j·t of a law linear in time, summed in the terms' order, for the mobile
-    and the obstacle (the obstacle's clock ``shift`` seconds ahead: a new tube's).
-
-    With ``still`` (the obstacle's volume is 0 at all times), :meth:`time_to` inverts it in
-    closed form: the mobile volume of the target depth from the geometry's volume_from_depth
-    relation, then t = (V − ΣV0)/Σr (the bracketed solver where that volume is out of range).
-    """
-
-    def __init__(self, geometry, v0_m, rate_m, v0_o, rate_o, shift: float, still: bool,
-                 first_guess: float = 1.0):
-        self.geometry, self.shift, self.first_guess = geometry, shift, first_guess
-        self.v0_m, self.rate_m, self.v0_o, self.rate_o = v0_m, rate_m, v0_o, rate_o
-        if still:
-            self.time_to = self._time_to
-
-    @staticmethod
-    def _total(t, v0, rate):  # Σ_j V_j(t) at each time t, summed in the terms' order
-        return np.cumsum(_linear_volume(t[..., None], v0, rate), axis=-1)[..., -1]
-
-    def __call__(self, t):
-        t = np.asarray(t, dtype=float)
-        return self.geometry._depth_from_volume(
-            self._total(t, self.v0_m, self.rate_m),
-            self._total(t + self.shift, self.v0_o, self.rate_o))[0]
-
-    def _time_to(self, targets) -> np.ndarray:
-        """Seconds [s] at which the depth reaches ``targets`` [m] (obstacle volume 0): 0 when
-        already there, inf when the mobile does not wear."""
-        goal = np.asarray(targets, dtype=float)
-        volume = np.asarray(self.geometry._volume_from_depth(goal, np.zeros_like(goal))[0],
-                            dtype=float)
-        if not np.isfinite(volume).all():  # a target beyond the relation's range
-            return np.asarray(time_to_depth(self, goal, first_guess=self.first_guess), dtype=float)
-        v0, rate = np.cumsum(self.v0_m)[-1], np.cumsum(self.rate_m)[-1]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (volume - v0) / rate
-        return np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
-
-
-class _SectorDepths:
-    """The mobile depth of every sector at the times t (one per sector) [m], for a law linear
-    in time, V_j(t) = V0_j + r_j·t; :meth:`time_to` inverts it in closed form through
-    V = l·Δθ·d·(2R − d)/2 (:func:`~fretwear.geometry.sector_depth_mobile`), theory §3."""
-
-    def __init__(self, v0, rate, geometry, arcs_deg):
-        self.v0, self.rate = v0, rate
-        self.radius, self.width = geometry.mobile_radius, geometry.obstacle_width
-        self.arcs = arcs_deg
-
-    def __call__(self, t):
-        return sector_depth_mobile(_linear_volume(t, self.v0, self.rate), self.radius,
-                                   self.width, self.arcs)
-
-    def time_to(self, targets) -> np.ndarray:
-        """Seconds [s] at which each sector's depth reaches ``targets`` [m]: 0 when already
-        there, inf when it does not wear."""
-        d = np.minimum(np.asarray(targets, dtype=float), self.radius)
-        volume = self.width * np.radians(self.arcs) * d * (2.0 * self.radius - d) / 2.0
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (volume - self.v0) / self.rate
-        return np.where(self.v0 >= volume, 0.0, np.where(self.rate > 0, t, np.inf))
 
 
 # --------------------------------------------------------------------------- 6. metadata
