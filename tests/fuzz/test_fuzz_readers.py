@@ -170,6 +170,10 @@ def test_coefficient_reader_on_damaged_files(data):
     only_fretwear(read_coefficients, _fresh("c.csv", data))
 
 
+# the seeds are small_history(n=40): 40 samples over 0.2 s, a 5.13 ms step just above the 5 ms
+# plausibility limit (flagged as likely ms); the seeds are kept as they are, since the fuzz
+# mutates their bytes, and the step is irrelevant to the read-back
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
 def test_code_aster_writer_round_trip_survives_the_seeds():
     """The seeds themselves read back (the fuzz starts from valid files)."""
     for family in HISTORY_SEEDS:

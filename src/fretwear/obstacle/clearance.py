@@ -47,6 +47,27 @@ RESOLUTION = 0.05
 MIN_RESOLUTION = 0.005
 
 
+def resolution_steps(resolution: float = RESOLUTION) -> int:
+    """Number of grid steps of ``resolution`` [deg] over a turn (360°), checked: an
+    :class:`~fretwear.errors.InputError` unless it is a number from :data:`MIN_RESOLUTION` to
+    90° that divides 360° into at least 4 steps.
+
+    Examples
+    --------
+    >>> resolution_steps(0.05), resolution_steps(90)
+    (7200, 4)
+    """
+    if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.number)) \
+            or not MIN_RESOLUTION <= resolution <= 90.0:
+        raise InputError(f"resolution (resolution_deg) = {resolution!r}: give a number of "
+                         f"degrees from {MIN_RESOLUTION} to 90 that divides 360 (default "
+                         f"{RESOLUTION})")
+    n = int(round(360.0 / resolution))
+    if n < 4 or abs(n * resolution - 360.0) > 1e-9:
+        raise InputError(f"resolution must divide 360 deg into >= 4 steps, got {resolution} deg")
+    return n
+
+
 def polar_polygon(radius, breaks=(), resolution: float = RESOLUTION):
     """Closed polygon of a star-shaped polar profile.
 
@@ -71,14 +92,7 @@ def polar_polygon(radius, breaks=(), resolution: float = RESOLUTION):
     >>> np.round(x, 12).tolist(), np.round(y, 12).tolist()
     ([-2.0, -0.0, 2.0, 0.0], [-0.0, -2.0, 0.0, 2.0])
     """
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, float, np.number)) \
-            or not MIN_RESOLUTION <= resolution <= 90.0:
-        raise InputError(f"resolution (resolution_deg) = {resolution!r}: give a number of "
-                         f"degrees from {MIN_RESOLUTION} to 90 that divides 360 (default "
-                         f"{RESOLUTION})")
-    n = int(round(360.0 / resolution))
-    if n < 4 or abs(n * resolution - 360.0) > 1e-9:
-        raise InputError(f"resolution must divide 360 deg into >= 4 steps, got {resolution} deg")
+    n = resolution_steps(resolution)
     grid = -180.0 + np.arange(n) * (360.0 / n)
     br = np.unique(np.mod(np.asarray(breaks, dtype=float) + 180.0, 360.0) - 180.0)
     if br.size:

@@ -18,7 +18,12 @@ import pandas as pd
 
 from fretwear.errors import FretwearWarning, InputError, PerforationWarning
 from fretwear.io.aster import TABLE_FORMATS
-from fretwear.obstacle.clearance import RESOLUTION, clearance_figure, polar_polygon
+from fretwear.obstacle.clearance import (
+    RESOLUTION,
+    clearance_figure,
+    polar_polygon,
+    resolution_steps,
+)
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, sector_of, worn_depth_profiles
 from fretwear.obstacle.profiles import (
     DISCRET_STEP,
@@ -382,10 +387,13 @@ def update_obstacle(obstacle, mobile: Mobile, edges, volume_mobile, volume_obsta
                          f"got {perforation!r}")
     if shape not in DEPTH_SHAPES:
         raise InputError(f"unknown depth shape {shape!r}; choose one of {sorted(DEPTH_SHAPES)}")
+    # the output grid and the polygon resolution are checked before the wear is: a wrong
+    # option is an error before any PerforationWarning of an update that cannot finish
+    angle = discret_angles(step)
+    resolution_steps(resolution)
     depth = worn_depth_profiles(edges, volume_mobile, volume_obstacle, width=width,
                                 mobile_radius=rm, obstacle=obstacle, shape=shape)
     perforated = _check_perforation(depth, mobile, frac)
-    angle = discret_angles(step)
     breaks = depth.edges[:-1] if shape == "uniform" else ()
     nodes = getattr(obstacle, "angles", ())
 
