@@ -8,8 +8,9 @@
   of the volume K·P·t at the found t is the target;
 * the sector columns of every sector at once (_columns._sector_columns) against the
   sector-by-sector loop they replace (bit for bit, restarts and replacements included);
-* the limit and through-wall instants solved together (obstacle worn: TUBE_TUBE) against the
-  closed form d = (1/(2R))^(1/5)·(15θV/8)^(2/5) of docs/theory.md §6 inverted by hand.
+* the limit and through-wall instants solved together (obstacle worn, trace shared: TUBE_BAV)
+  against the closed form of docs/theory.md §6 inverted by hand; the geometries'
+  ``mobile_depth_alone`` against their relations.
 """
 
 import math
@@ -20,7 +21,7 @@ import pandas as pd
 import pytest
 
 from fretwear.errors import PerforationWarning, RangeWarning
-from fretwear.geometry import contact_geometry
+from fretwear.geometry import CONTACT_TYPES, contact_geometry
 from fretwear.history import ContactHistory
 from fretwear.table import _columns, wear_table
 from fretwear.table._columns import _frame
@@ -93,27 +94,64 @@ def test_global_closed_form_beyond_the_range_uses_the_solver():
     assert t.tolist() == np.asarray(expected).tolist()
 
 
-def test_worn_obstacle_has_no_closed_form_and_solves_both_targets_at_once():
-    g = contact_geometry("TUBE_TUBE", mobile_radius=R, obstacle_radius=R, tilt_angle=5.0)
+def test_worn_obstacle_sharing_the_trace_solves_both_targets_at_once():
+    """TUBE_BAV with the bar worn as fast as the tube: d_m = D·V_m/(V_m + V_o) = D/2 with
+    D = (1/(2R))^(1/3)·(3V/(4l))^(2/3) (docs/theory.md §6), so the tube reaches d at
+    V = 2·K·P·t = (2d/c)^(3/2)."""
+    g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=12.7e-3)
+    assert not g.mobile_depth_alone
     rate = np.array([1e-15])
     depth = _GlobalDepth(g, np.zeros(1), rate, np.zeros(1), rate, 0.0, False, YEAR)
     assert not hasattr(depth, "time_to")
-    kw = {"contact_type": "TUBE_TUBE", "time_scale": YEAR, "instants": [0.1, 2.0],
-          "dimensions": {"mobile_radius": R, "obstacle_radius": R, "tilt_angle": 5.0},
-          "coefficients": {"coefficient": 1e-12}, "obstacle_coefficients": {"coefficient": 1e-12}}
+    width, k, power = 12.7e-3, 1e-12, 1e-3
+    kw = {"contact_type": "TUBE_BAV", "time_scale": YEAR, "instants": [0.1, 10.0],
+          "dimensions": {"mobile_radius": R, "obstacle_width": width},
+          "coefficients": {"coefficient": k}, "obstacle_coefficients": {"coefficient": k}}
     with pytest.warns(PerforationWarning):
-        t = wear_table(1e-3, wall_thickness=WALL, **kw)
-    theta = math.radians(5.0)
+        t = wear_table(power, wall_thickness=WALL, **kw)
+    c = (1 / (2 * R)) ** (1 / 3) * (3 / (4 * width)) ** (2 / 3)
 
-    def reach(d):  # d = (1/(2R))^(1/5)·(15θ·K·P·t/8)^(2/5), inverted [year]
-        return (d * (2 * R) ** 0.2) ** 2.5 * 8 / (15 * theta * 1e-12 * 1e-3) / YEAR
+    def reach(d):  # [year]
+        return (2 * d / c) ** 1.5 / (2 * k * power) / YEAR
 
     assert t["limit_instant"].iloc[0] == pytest.approx(reach(0.4 * WALL), rel=1e-12)
     assert t.attrs["through_wall"]["global"] == pytest.approx(reach(WALL), rel=1e-12)
     # each element as the one-target solver finds it
+    rate = np.array([k * power])
+    depth = _GlobalDepth(g, np.zeros(1), rate, np.zeros(1), rate, 0.0, False, YEAR)
     one = [first_time(depth, None, target, None, YEAR) for target in (0.4 * WALL, WALL)]
     assert t["limit_instant"].iloc[0] * YEAR == pytest.approx(one[0], rel=1e-14)
     assert t.attrs["through_wall"]["global"] * YEAR == pytest.approx(one[1], rel=1e-14)
+
+
+@pytest.mark.parametrize("kind", sorted(CONTACT_TYPES))
+def test_mobile_depth_alone_is_what_the_relation_does(kind):
+    """A geometry that says its mobile's depth ignores the obstacle's volume: d_m(V_m, V_o) is
+    d_m(V_m, 0) bit for bit; one that does not: some V_o changes it."""
+    cls = CONTACT_TYPES[kind]
+    g = cls(**cls.example)
+    vm = np.array([1e-12, 1e-11, 1e-10, 1e-9])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        alone = np.asarray(g.depth_from_volume(vm, 0.0)[0])
+        worn = np.asarray(g.depth_from_volume(vm, 0.3 * vm)[0])
+    assert np.isfinite(alone).all()
+    if cls.mobile_depth_alone:
+        assert np.array_equal(alone, worn)
+    else:
+        assert not np.array_equal(alone, worn, equal_nan=True)
+
+
+def test_tube_tube_both_worn_limit_in_closed_form():
+    """TUBE_TUBE: each tube's flat from its own volume, d = (1/(2R))^(1/5)·(15θV/8)^(2/5)
+    (docs/theory.md §6), however fast the other tube wears."""
+    g = contact_geometry("TUBE_TUBE", mobile_radius=R, obstacle_radius=R, tilt_angle=5.0)
+    rate_m, rate_o = np.array([1e-15]), np.array([3e-15])
+    depth = _GlobalDepth(g, np.zeros(1), rate_m, np.zeros(1), rate_o, 0.0, True, YEAR)
+    theta = math.radians(5.0)
+    targets = np.array([0.4 * WALL, WALL])
+    expected = (targets * (2 * R) ** 0.2) ** 2.5 * 8 / (15 * theta) / rate_m[0]
+    assert depth.time_to(targets) == pytest.approx(expected, rel=1e-13)
 
 
 def _sector_history():

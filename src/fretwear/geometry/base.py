@@ -138,6 +138,10 @@ class ContactGeometry:
     required: ClassVar[tuple[str, ...]] = ()
     optional: ClassVar[tuple[str, ...]] = ()
     example: ClassVar[dict[str, float]] = {}
+    #: The mobile's depth depends on the mobile's volume alone, d_m(V_m, V_o) = d_m(V_m, 0)
+    #: (each body wears a trace of its own): a depth of the mobile then inverts to one mobile
+    #: volume whatever the obstacle's wear (the wear table's closed-form limit instants).
+    mobile_depth_alone: ClassVar[bool] = False
 
     # ------------------------------------------------------------------ validation
     def __post_init__(self) -> None:

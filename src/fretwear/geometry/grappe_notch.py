@@ -245,6 +245,7 @@ class _GuideCardNotch(ContactGeometry):
 
     required: ClassVar[tuple[str, ...]] = ("obstacle_width",)
     optional: ClassVar[tuple[str, ...]] = ("mobile_radius", "obstacle_radius")
+    mobile_depth_alone: ClassVar[bool] = True  # the rod's notch from its own volume
     example: ClassVar[dict[str, float]] = {
         "obstacle_width": 20e-3, "mobile_radius": CALIBRATION_MOBILE_RADIUS,
         "obstacle_radius": CALIBRATION_OBSTACLE_RADIUS}

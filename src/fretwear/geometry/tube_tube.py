@@ -64,6 +64,7 @@ class TubeTube(ContactGeometry):
     contact_type: ClassVar[str] = "TUBE_TUBE"
     required: ClassVar[tuple[str, ...]] = ("mobile_radius", "tilt_angle")
     optional: ClassVar[tuple[str, ...]] = ("obstacle_radius",)
+    mobile_depth_alone: ClassVar[bool] = True  # each tube's flat from its own volume
     example: ClassVar[dict[str, float]] = {
         "mobile_radius": 9.525e-3, "obstacle_radius": 9.525e-3, "tilt_angle": 5.0}
 

@@ -28,8 +28,9 @@ def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
     rate r = V(P, 1 s) computed once: depth(t) then costs a few array operations (the
     geometry's relation directly: the volumes are valid by construction), each sector's
     instant is the closed-form inverse (:class:`_SectorDepths`), and so is the global one
-    when the obstacle's volume stays 0 (:class:`_GlobalDepth`); otherwise the global limit
-    and through-wall instants are solved together.
+    when the obstacle's volume stays 0 or does not enter the mobile's depth
+    (:class:`_GlobalDepth`); otherwise the global limit and through-wall instants are solved
+    together.
     """
     law, state = case.wear_law, case.initial_state
     fresh = clock.fresh
@@ -70,11 +71,12 @@ def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
                    _SectorDepths(zeros, rate_m, geometry, arcs))
     glob = None
     if case.contact_type is not None:
-        # the obstacle's volume stays 0 (old and new tube): the inverse is closed-form
-        still = not (rate_o.any() or v0_o.any())
-        glob = (_GlobalDepth(geometry, v0_m, rate_m, v0_o, rate_o, 0.0, still,
+        # the obstacle's volume stays 0 (old and new tube), or does not enter the mobile's
+        # depth: the inverse is closed-form
+        closed = geometry.mobile_depth_alone or not (rate_o.any() or v0_o.any())
+        glob = (_GlobalDepth(geometry, v0_m, rate_m, v0_o, rate_o, 0.0, closed,
                              case.time_scale),
-                _GlobalDepth(geometry, zeros, rate_m, v0_o, rate_o, fresh or 0.0, still,
+                _GlobalDepth(geometry, zeros, rate_m, v0_o, rate_o, fresh or 0.0, closed,
                              case.time_scale))
     return wall_columns(*depths, **options, sector_depths=sectors, global_depth=glob,
                         vectorised=True)
@@ -119,16 +121,18 @@ class _GlobalDepth:
     V_j(t) = V0_j + r_j·t of a law linear in time, summed in the terms' order, for the mobile
     and the obstacle (the obstacle's clock ``shift`` seconds ahead: a new tube's).
 
-    With ``still`` (the obstacle's volume is 0 at all times), :meth:`time_to` inverts it in
-    closed form: the mobile volume of the target depth from the geometry's volume_from_depth
-    relation, then t = (V − ΣV0)/Σr (the bracketed solver where that volume is out of range).
+    With ``closed`` (the obstacle's volume is 0 at all times, or the geometry's
+    ``mobile_depth_alone``: the obstacle's volume does not enter the mobile's depth),
+    :meth:`time_to` inverts it in closed form: the mobile volume of the target depth from the
+    geometry's volume_from_depth relation (obstacle depth 0), then t = (V − ΣV0)/Σr (the
+    bracketed solver where that volume is out of range).
     """
 
-    def __init__(self, geometry, v0_m, rate_m, v0_o, rate_o, shift: float, still: bool,
+    def __init__(self, geometry, v0_m, rate_m, v0_o, rate_o, shift: float, closed: bool,
                  first_guess: float = 1.0):
         self.geometry, self.shift, self.first_guess = geometry, shift, first_guess
         self.v0_m, self.rate_m, self.v0_o, self.rate_o = v0_m, rate_m, v0_o, rate_o
-        if still:
+        if closed:
             self.time_to = self._time_to
 
     @staticmethod
@@ -142,8 +146,8 @@ class _GlobalDepth:
             self._total(t + self.shift, self.v0_o, self.rate_o))[0]
 
     def _time_to(self, targets) -> np.ndarray:
-        """Seconds [s] at which the depth reaches ``targets`` [m] (obstacle volume 0): 0 when
-        already there, inf when the mobile does not wear."""
+        """Seconds [s] at which the depth reaches ``targets`` [m] (the mobile's volume alone
+        decides it): 0 when already there, inf when the mobile does not wear."""
         goal = np.asarray(targets, dtype=float)
         volume = np.asarray(self.geometry._volume_from_depth(goal, np.zeros_like(goal))[0],
                             dtype=float)
