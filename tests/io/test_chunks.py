@@ -33,10 +33,9 @@ def stitched(chunks, channel):
 
 
 # Chunks of 2 or 7 samples: the first chunk's largest force is the analytic history's rounding
-# zero (6e-15 N), below the 0.01 N floor of the 'force_min' check, which runs on each chunk, not
-# on the file (whose largest force is ordinary): a false positive of per-chunk checking that is
-# expected here (this test is about the chunk contents); reported, not fixed in this change.
-@pytest.mark.filterwarnings("ignore:.*normal force .* is below:fretwear.errors.UnitsWarning")
+# zero (6e-15 N), below the 0.01 N floor of the 'force_min' check; that check is made on the
+# whole file's largest force (io.plausibility.StreamPlausibility), so no chunk size warns.
+@pytest.mark.filterwarnings("error::fretwear.errors.UnitsWarning")
 @pytest.mark.parametrize("fmt", sorted(SUFFIX))
 @pytest.mark.parametrize("size", [2, 7, 64, 201, 500])
 def test_chunks_equal_the_full_read(tmp_path, fmt, size):

@@ -111,3 +111,30 @@ def test_impact_durations_of_complete_episodes():
     t = np.arange(10.0) * 1e-3
     fn = np.array([5, 0, 1, 1, 0, 0, 2, 2, 2, 0.0])  # open first episode dropped
     np.testing.assert_allclose(impact_durations(t, fn), [2e-3, 3e-3])
+
+
+def test_force_floor_is_checked_on_the_whole_stream(tmp_path):
+    """A file in kN (largest force 0.005 'N') warns once, after the last chunk or block, with
+    the file's largest force; a file whose first block is free flight with a rounding residue
+    (1e-15 N) and whose later impacts reach 40 N does not warn (StreamPlausibility)."""
+    import warnings as _warnings
+
+    import numpy as _np
+
+    from fretwear.errors import UnitsWarning
+    from fretwear.history import ContactHistory
+    from fretwear.io import iter_history_blocks, iter_history_chunks, write_history
+
+    t = _np.arange(4000) * 1e-4
+    fn = _np.where(t > 0.2, 40.0 * _np.maximum(_np.sin(2 * _np.pi * 50 * t), 0.0), 1e-15)
+    h = ContactHistory(time=t, normal_force=fn, vt1=0.01 * _np.cos(t), vt2=0.0 * t)
+    quiet = write_history(h, tmp_path / "quiet.parquet", row_group_size=500)
+    kilo = write_history(h.replace(normal_force=fn / 8000.0), tmp_path / "kilo.parquet",
+                         row_group_size=500)
+    for iterate in (iter_history_chunks, iter_history_blocks):
+        with _warnings.catch_warnings():
+            _warnings.simplefilter("error", UnitsWarning)
+            assert sum(len(c) for c in iterate(quiet, 500)) >= len(t)
+        with pytest.warns(UnitsWarning, match=r"largest normal force 0\.005 N") as caught:
+            list(iterate(kilo, 500))
+        assert len([w for w in caught if "largest normal force" in str(w.message)]) == 1

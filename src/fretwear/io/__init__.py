@@ -39,7 +39,7 @@ from fretwear.io.channels import (
     resolve_units,
 )
 from fretwear.io.guard import HDF5_MAGIC, probe, readable_file, reading, warn_whole_read
-from fretwear.io.plausibility import check_plausibility
+from fretwear.io.plausibility import StreamPlausibility, check_plausibility
 
 __all__ = ["FORMATS", "ALIASES", "FileFormat", "read_history", "write_history",
            "iter_history_chunks", "guess_format", "open_source", "units_read"]
@@ -497,10 +497,10 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
         chunk = build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
                               label=source.label, name=label, metadata=meta,
                               first_row=first_row)
-        check_plausibility(chunk, skip=reported)  # each check warns once per file
+        plausibility.update(chunk, check=True)  # each check warns once per file
         return chunk
 
-    reported: set[str] = set()
+    plausibility = StreamPlausibility()
 
     k = 0
     for block in blocks:
@@ -529,6 +529,7 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
             raise FormatError(f"{source.label}: no data rows (a header only?); a history "
                               "needs at least two instants")
         yield emit(parts, k, row - (0 if carry is None else 1))
+    plausibility.finish()  # the file's largest force (a chunk's says nothing of the file)
 
 
 def history_time_range(path: Any, format: str | None = None, *,
@@ -573,7 +574,8 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     instants must also increase across blocks. A block of one row is joined to the next (the
     last one comes with the previous block's last sample). The plausibility of the values in
     SI (:func:`fretwear.io.plausibility.check_plausibility`) is checked on the first block: a
-    wrong unit shows there.
+    wrong unit shows there; the smallest plausible largest force, on the whole file's largest
+    force after the last block (:class:`fretwear.io.plausibility.StreamPlausibility`).
 
     Parameters
     ----------
@@ -602,7 +604,7 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     k = 0
     last: list[np.ndarray] | None = None  # the previous block's last sample
     pending: list[np.ndarray] | None = None  # a single-row block waiting for the next one
-    reported: set[str] = set()
+    plausibility = StreamPlausibility()
     build = dict(columns=source.columns, mapping=mapping, factors=factors, label=source.label,
                  name=label)
     for block in blocks:
@@ -623,8 +625,7 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
         chunk = fast_history(dict(zip(channels, block, strict=True)),
                              metadata=dict(metadata, chunk=k, first_row=row), first_row=row,
                              **build)
-        if k == 0:
-            check_plausibility(chunk, skip=reported)
+        plausibility.update(chunk, check=k == 0)
         yield chunk
         last = [a[-1:] for a in block]
         row += block[0].size
@@ -632,13 +633,16 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     if pending is not None:
         if last is None:  # the whole file is one row
             build_history(dict(zip(channels, pending, strict=True)), metadata=metadata, **build)
-        yield build_history({ch: np.concatenate((last[j], pending[j]))
-                             for j, ch in enumerate(channels)},
-                            metadata=dict(metadata, chunk=k, first_row=row - 1),
-                            first_row=row - 1, **build)
+        chunk = build_history({ch: np.concatenate((last[j], pending[j]))
+                               for j, ch in enumerate(channels)},
+                              metadata=dict(metadata, chunk=k, first_row=row - 1),
+                              first_row=row - 1, **build)
+        plausibility.update(chunk, check=False)
+        yield chunk
     elif k == 0:
         raise FormatError(f"{source.label}: no data rows (a header only?); a history "
                           "needs at least two instants")
+    plausibility.finish()  # the file's largest force (a block's says nothing of the file)
 
 
 def write_history(history: ContactHistory, path: str | os.PathLike, format: str | None = None,

@@ -111,6 +111,74 @@ def _largest_norm(a: np.ndarray, b: np.ndarray) -> float:
     return top if math.isfinite(top) else float(np.hypot(a, b).max())
 
 
+def _name(history: ContactHistory) -> str:
+    return history.name or history.metadata.get("source", "")
+
+
+def _warn(key: str, name: str, channel: str, value: float, unit_read: str, skip: set[str],
+          found: list[str]) -> None:
+    if key in skip:
+        return
+    skip.add(key)
+    c = THRESHOLDS[key]
+    message = (f"history {name!r}: channel {channel!r}: {c.quantity} {value:.4g} {c.unit} "
+               f"(read in {unit_read!r}) is {'above' if c.above else 'below'} the "
+               f"plausibility limit {c.limit:g} {c.unit}; a file in {c.likely!r} gives "
+               f"this: if so, give the units: {_fix(c.fix)}")
+    found.append(message)
+    warnings.warn(message, UnitsWarning, stacklevel=4)
+
+
+class StreamPlausibility:
+    """The plausibility checks of a history read in chunks or blocks, each warning once.
+
+    Every check but one holds for any part of the file: a value above a limit in a chunk is
+    above it in the file, and a unit error shows in the first block. The exception is the
+    smallest plausible *largest* force (``force_min``: a file in kN): a chunk of free flight
+    whose largest force is a rounding residue (1e-15 N) says nothing of the file. That check is
+    therefore made once, in :meth:`finish`, on the largest force of every chunk seen
+    (:meth:`update`, one ``max`` per chunk).
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from fretwear.history import ContactHistory
+    >>> t = [0.0, 1e-4, 2e-4]
+    >>> quiet = ContactHistory(time=t, normal_force=[0.0, 6e-15, 0.0], vt1=[0.0] * 3,
+    ...                        vt2=[0.0] * 3, name="N12")
+    >>> loud = quiet.replace(normal_force=[0.0, 50.0, 0.0])
+    >>> stream = StreamPlausibility()
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("error")   # no warning: the file's largest force is 50 N
+    ...     for chunk in (quiet, loud):
+    ...         stream.update(chunk, check=True)
+    ...     stream.finish()
+    []
+    """
+
+    def __init__(self) -> None:
+        self.reported: set[str] = set()
+        self.force_max = -math.inf
+        self._last: ContactHistory | None = None
+
+    def update(self, chunk: ContactHistory, *, check: bool) -> None:
+        """Take a chunk's largest force; ``check``: also run the other checks on it."""
+        if check:
+            skip = self.reported | {"force_min"}
+            check_plausibility(chunk, skip=skip)
+            self.reported |= skip - {"force_min"}
+        self.force_max = max(self.force_max, float(chunk.normal_force.max()))
+        self._last = chunk
+
+    def finish(self) -> list[str]:
+        """The ``force_min`` check on the largest force of all the chunks (the messages)."""
+        found: list[str] = []
+        if self._last is not None and 0.0 < self.force_max < THRESHOLDS["force_min"].limit:
+            _warn("force_min", _name(self._last), "normal_force", self.force_max,
+                  _unit(self._last, "normal_force"), self.reported, found)
+        return found
+
+
 def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None) -> list[str]:
     """Warn (:class:`UnitsWarning`) for every value of ``history`` implausible in SI units.
 
@@ -140,20 +208,11 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
        exchangers: an overview", J. Fluids Struct. 18 (2003) 469-483.
     """
     skip = set() if skip is None else skip
-    name = history.name or history.metadata.get("source", "")
+    name = _name(history)
     found: list[str] = []
 
     def warn(key: str, channel: str, value: float, unit_read: str) -> None:
-        if key in skip:
-            return
-        skip.add(key)
-        c = THRESHOLDS[key]
-        message = (f"history {name!r}: channel {channel!r}: {c.quantity} {value:.4g} {c.unit} "
-                   f"(read in {unit_read!r}) is {'above' if c.above else 'below'} the "
-                   f"plausibility limit {c.limit:g} {c.unit}; a file in {c.likely!r} gives "
-                   f"this: if so, give the units: {_fix(c.fix)}")
-        found.append(message)
-        warnings.warn(message, UnitsWarning, stacklevel=3)
+        _warn(key, name, channel, value, unit_read, skip, found)
 
     top = _largest_norm(history.vt1, history.vt2)
     if top > THRESHOLDS["sliding_speed_max"].limit:
