@@ -13,6 +13,8 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
   processes (one thread each, no scheduler-side queuing: the cluster ``run_bundle`` starts),
   joined through its client (cluster start excluded; workers warmed up by a small run first),
   without and with an output directory;
+* **grouping**: the same bundle with one contact per Dask task instead of
+  ``engine.contacts_per_task`` contacts per task;
 * **per-contact overhead**: (workers × T_bundle − T_serial)/N, the worker time a contact costs
   beyond the single-contact computation, measured on this bundle and on one of tiny contacts
   (100 samples, where the computation is almost nothing);
@@ -47,6 +49,7 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _signals import smooth  # noqa: E402
 
+from fretwear.bundle import engine as engine_module  # noqa: E402
 from fretwear.bundle import run_bundle  # noqa: E402
 from fretwear.history import ContactHistory  # noqa: E402
 from fretwear.io import write_history  # noqa: E402
@@ -216,6 +219,15 @@ def main(argv: list[str] | None = None) -> None:
                   f"tables bit-identical to the serial loop: {same}")
             print(f"  with the output directory (parts, table, dataset, summary): {t_out:.2f} s, "
                   f"{n / t_out:.1f} contacts/s")
+            saved = engine_module.TASKS_PER_WORKER
+            engine_module.TASKS_PER_WORKER = n + 1  # one contact per task
+            try:
+                t_single, _ = bundle_time(manifest, case, client)
+            finally:
+                engine_module.TASKS_PER_WORKER = saved
+            print(f"  one contact per task instead of "
+                  f"{engine_module.contacts_per_task(n, w)}: {t_single:.2f} s (grouping gains "
+                  f"{t_single / t_bundle:.2f}x)")
             over = (w * t_bundle - t_serial) / n * 1e3
             over_tiny = (w * t_tiny - t_tiny_serial) / n * 1e3
             print(f"per-contact overhead (workers x T_bundle - T_serial)/N: {over:.1f} ms on "
