@@ -191,3 +191,16 @@ def test_lunule_round_trip_and_limits():
     assert lunule_mobile_depth(RM, RO, 1e-4, 1.0) == 1e-4
     beyond = lunule_depths(RM, RO, 1.01 * lens_area(RM, RO, limit), 0.0)
     assert np.isnan(beyond[0]) and np.isnan(beyond[1])
+
+
+def test_stacked_lens_area_is_lens_area_bit_for_bit():
+    """The solvers' lens area (both segments in one call) against the public lens_area."""
+    from fretwear.geometry._shapes import lens_area, lens_depth_limit, stacked_lens_area
+    rng = np.random.default_rng(5)
+    for rm, ro in ((9.525e-3, 9.75e-3), (4.84e-3, 5.5e-3), (3.0, 5.0)):
+        limit = float(lens_depth_limit(rm, ro))
+        area = stacked_lens_area(rm, ro)
+        for d in (rng.random(11) * limit, np.geomspace(1e-14, limit, 300),
+                  np.array([0.0, limit, limit * (1 + 1e-13), 1.5 * limit, -1.0, np.nan])):
+            with np.errstate(invalid="ignore"):
+                assert np.array_equal(area(d), lens_area(rm, ro, d), equal_nan=True)

@@ -138,3 +138,21 @@ def test_range(tilted):
         warnings.simplefilter("error")
         assert tilted.depth_from_volume(tilted.max_volume)[0] == pytest.approx(
             tilted.max_depth, rel=1e-9)
+
+
+def test_lunule_split_solved_only_where_shared_is_the_whole_solve():
+    """lunule_mobile_depth solves d_m only where the share is strictly between 0 and 1: the
+    same bits as solving every element (the solver is element-wise), NaN shares included."""
+    from fretwear.geometry._lunule import lunule_mobile_depth
+    depth = np.array([1e-5, 2e-5, 5e-5, 1e-4, 2e-4, 3e-4])
+    for shares in ([0.0, 1.0, 0.5, 0.2, np.nan, 1.5], [0.3, 0.1, 0.9, 0.5, 0.7, 0.01]):
+        shares = np.array(shares)
+        got = lunule_mobile_depth(9.525e-3, 9.75e-3, depth, shares)
+        # one element at a time: the whole-array solve of each
+        one = [float(lunule_mobile_depth(9.525e-3, 9.75e-3, d, s))
+               for d, s in zip(depth, shares, strict=True)]
+        assert np.array_equal(got, one, equal_nan=True)
+        inner = (shares > 0) & (shares < 1)
+        assert np.isnan(got[np.isnan(shares)]).all()
+        assert (got[shares >= 1] == depth[shares >= 1]).all() and (got[shares <= 0] == 0).all()
+        assert (got[inner] > 0).all() and (got[inner] < depth[inner]).all()

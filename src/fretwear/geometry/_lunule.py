@@ -19,6 +19,7 @@ from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the
     sagitta,
     segment_area,
     solve_monotone,
+    stacked_lens_area,
 )
 
 __all__ = ["lunule_areas", "lunule_depths", "lunule_mobile_depth"]
@@ -153,7 +154,17 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
         # share returns d_m = 0 rather than NaN.
         target = np.clip(np.clip(share, 0.0, 1.0) * whole, mobile_area(np.zeros_like(depth)),
                          whole)
-        dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
+        # a share of 0 or 1 is answered below: the solver (element-wise) runs on the others
+        split = ~((share >= 1.0) | (share <= 0.0))
+        if depth.ndim == 0 or split.all():
+            dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
+        else:
+            dm = np.zeros(depth.shape)
+            if split.any():
+                xs, ss, segs = x[split], s_m[split], seg_m[split]
+                dm[split] = solve_monotone(
+                    lambda d: np.maximum(segs - _interface_segment(xs, ss - d), 0.0),
+                    target[split], np.zeros(xs.size), depth[split])
     dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
     dm = np.where(np.isnan(whole), np.nan, dm)
     return _out(dm)
@@ -197,7 +208,8 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
     total = am + ao
     limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
     with np.errstate(invalid="ignore", divide="ignore"):
-        depth = solve_monotone(lambda d: lens_area(mobile_radius, obstacle_radius, d), total,
+        lens = stacked_lens_area(mobile_radius, obstacle_radius)  # lens_area, bit for bit
+        depth = solve_monotone(lambda d: lens(d.ravel()).reshape(d.shape), total,
                                np.zeros_like(total), np.full_like(total, limit))
         share = np.where(total > 0.0, am / total, 1.0)
     dm = lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share)

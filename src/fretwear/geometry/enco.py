@@ -33,9 +33,8 @@ from fretwear.geometry._shapes import (
     frustum_volume,
     lens_area,
     lens_depth_limit,
-    lens_half_chord,
-    segment_area,
     solve_monotone,
+    stacked_lens_area,
 )
 from fretwear.geometry.base import ContactGeometry
 
@@ -217,32 +216,22 @@ def _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, t
     """:func:`enco_volume` of these dimensions as a function of the depth [m] -> [m³], bit for
     bit, with the solver's trial depths stacked: the two frustum sections S'(D)/2 and
     S'(D − lθ)/2 in one lens computation, the four circular segments (R_m and R_o of each) in one
-    :func:`~fretwear.geometry._shapes.segment_area` call, the dimensions' constants once.
+    :func:`~fretwear.geometry._shapes.segment_area` call
+    (:func:`~fretwear.geometry._shapes.stacked_lens_area`), the dimensions' constants once.
 
     The same element-wise operations in the same order as :func:`enco_volume` (through
     :func:`~fretwear.geometry._shapes.frustum_volume`, :func:`isthmus_section_area`,
     :func:`~fretwear.geometry._shapes.lens_area`), on arrays four times longer: the solver
     (:func:`enco_depth`) calls it some twenty times per table.
     """
-    rm = np.asarray(mobile_radius, dtype=float)
-    ro = np.asarray(obstacle_radius, dtype=float)
+    lens = stacked_lens_area(mobile_radius, obstacle_radius)
     l = np.asarray(width, dtype=float)
     theta = np.asarray(math.radians(tilt_angle), dtype=float)
     reach = l * theta
-    limit = lens_depth_limit(rm, ro)
-    within = limit + 1e-12 * np.maximum(limit, 0.0)  # lens_area's range and tolerance
     slope = math.tan(math.radians(isthmus_angle))
-    radii = {}
 
     def sections(d):  # S'(d)/2 (isthmus_section_area / 2) of a 1-d array of depths
-        x = lens_half_chord(rm, ro, d)
-        with np.errstate(invalid="ignore"):
-            x = np.where(d <= within, np.minimum(x, rm), np.nan)
-        n = d.size
-        if n not in radii:
-            radii[n] = np.concatenate([np.full(n, float(rm)), np.full(n, float(ro))])
-        segments = np.asarray(segment_area(radii[n], np.concatenate([x, x])), dtype=float)
-        return 0.5 * (segments[:n] - segments[n:] + slope * d * d)
+        return 0.5 * (lens(d) + slope * d * d)
 
     def volume(depth):
         d = np.asarray(depth, dtype=float)
