@@ -18,7 +18,7 @@ from fretwear.io.aster import read_aster_table, write_aster_table
 from fretwear.table import from_aster_names, read_wear_table, wear_table
 from fretwear.workflows.aster import _F, POST_USURE
 
-FIXTURES = Path(__file__).parent / "fixtures" / "aster_tables"
+FIXTURES = Path(__file__).parents[1] / "fixtures" / "aster_tables"
 YEAR = 31_536_000.0
 BASE = dict(LOI_USURE="ARCHARD", CONTACT="TUBE_BAV", RAYON_MOBILE=0.0111, LARGEUR_OBST=0.0127,
             COEF_INST=YEAR)
