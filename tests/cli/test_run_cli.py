@@ -11,10 +11,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from fretwear.workflows.case_files import run_case
 from fretwear.cli import main
 from fretwear.io.aster import read_aster_table
 from fretwear.table import read_wear_table
+from fretwear.workflows.case_files import run_case
 
 # the example cases of `fretwear run` (those with an [iterate] section belong to `fretwear iterate`)
 EXAMPLES = [p for p in sorted((Path(__file__).parents[2] / "examples").glob("*.toml"))
@@ -56,10 +56,10 @@ def test_demo_outputs_plots_and_aster_table(tmp_path, capsys):
 
 
 def test_help_documents_every_key(capsys):
-    """Every key of fretwear.workflows.case_files.KEYS and every output column of fretwear.table.COLUMNS
-    (with its Code_Aster name and unit) is in `fretwear run --help`."""
-    from fretwear.workflows.case_files import KEYS
+    """Every key of fretwear.workflows.case_files.KEYS and every output column of
+    fretwear.table.COLUMNS (with its Code_Aster name and unit) is in `fretwear run --help`."""
     from fretwear.table import COLUMNS
+    from fretwear.workflows.case_files import KEYS
 
     assert main(["run", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())  # undo click's line wrapping

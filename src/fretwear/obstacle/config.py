@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from fretwear.keys import check_keys, keyword_hint
 from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.keys import check_keys, keyword_hint
 from fretwear.obstacle.clearance import RESOLUTION
 from fretwear.obstacle.depth import DEPTH_SHAPES
 from fretwear.obstacle.profiles import (
