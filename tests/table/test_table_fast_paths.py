@@ -218,3 +218,29 @@ def test_sector_loop_keeps_its_warning_naming_the_sectors():
     with pytest.warns(RangeWarning, match=r"sectors \[2\]: the obstacle wears"):
         t = wear_table(_sector_history(), **kw)
     assert np.isnan(t["depth_obstacle_sector"].iloc[1])
+
+
+def test_case_dict_made_once_and_handed_out_as_copies():
+    """WearCase.to_dict is made once per (immutable) case: every call gets its own copy, a
+    table's attrs["case"] changed by its user changes neither the case nor the next table, and
+    pickles do not carry the made dict."""
+    import pickle
+
+    from fretwear.table import WearCase, wear_table_from_case
+    kw = {"contact_type": "TUBE_BAV", "instants": [1.0, 2.0], "time_scale": YEAR,
+          "dimensions": {"mobile_radius": R, "obstacle_width": 12.7e-3},
+          "coefficients": {"coefficient": 9.2e-15}, "sectors": 4}
+    case = WearCase.from_keywords(**kw)
+    first = case.to_dict()
+    first["instants"].append(99.0)
+    first["coefficients"]["coefficient"]["value"] = 1.0
+    again = case.to_dict()
+    assert again == WearCase.from_keywords(**kw).to_dict()  # a case never asked before
+    assert again["instants"] == [1.0, 2.0] and again is not first
+    plain = WearCase.from_keywords(**{k: v for k, v in kw.items() if k != "sectors"})
+    t = wear_table_from_case(plain, 0.01)
+    t.attrs["case"]["law"] = "changed"
+    assert wear_table_from_case(plain, 0.01).attrs["case"]["law"] == "ARCHARD"
+    assert plain.to_dict()["law"] == "ARCHARD"
+    copy = pickle.loads(pickle.dumps(case))
+    assert "_as_dict" not in vars(copy) and copy == case and copy.to_dict() == again

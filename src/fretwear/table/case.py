@@ -132,6 +132,15 @@ def _restart_state(table, initial_instant) -> tuple[InitialState | None, str | N
     return _read_initial_state(table, initial_instant), label
 
 
+def _copied(value: Any) -> Any:
+    """A copy of a JSON-ready value (its dicts and lists new, the numbers and strings shared)."""
+    if type(value) is dict:
+        return {k: _copied(v) for k, v in value.items()}
+    if type(value) is list:
+        return [_copied(v) for v in value]
+    return value
+
+
 # --------------------------------------------------------------------------- the wear case
 @dataclass(frozen=True, eq=False, kw_only=True)
 class WearCase:
@@ -499,6 +508,13 @@ class WearCase:
         >>> case.to_dict()["coefficients"]
         {'coefficient': {'value': 1e-14, 'source': 'user'}}
         """
+        made = self.__dict__.get("_as_dict")  # the case is immutable: made once
+        if made is None:
+            made = self._make_dict()
+            object.__setattr__(self, "_as_dict", made)
+        return _copied(made)
+
+    def _make_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"format": FORMAT}
         for f in dataclasses.fields(self):
             value = getattr(self, f.name)
@@ -509,6 +525,11 @@ class WearCase:
                 value = None if value is None else state_to_dict(value)
             out[f.name] = jsonable(value)
         return out
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)  # pickled without the dict of to_dict (made again)
+        state.pop("_as_dict", None)
+        return state
 
     @classmethod
     def from_dict(cls, data: Mapping[str, Any]) -> WearCase:
