@@ -50,12 +50,18 @@ def _u_minus_sin(u: np.ndarray) -> np.ndarray:
     """u − sin(u) with full relative precision for small u (u ≥ 0)."""
     u = np.asarray(u, dtype=float)
     small = np.abs(u) < _SERIES_LIMIT
+    every = bool(small.all())
+    if not every and not small.any():  # the direct form only (the series would be dropped)
+        with np.errstate(invalid="ignore"):
+            return np.asarray(u - np.sin(u))
     u2 = u * u
     series = np.zeros_like(u)
     power = u * u2
     for coefficient in _SERIES:
         series = series + coefficient * power
         power = power * u2
+    if every:  # the series only (the direct form would be dropped)
+        return np.asarray(series)
     with np.errstate(invalid="ignore"):
         direct = u - np.sin(u)
     return np.where(small, series, direct)
@@ -380,6 +386,9 @@ def frustum_volume(area: Callable, depth, width, tilt):
     return _out(volume)
 
 
+_FOUR_TINY = 4.0 * np.finfo(float).tiny  # the solver's tolerance floor
+
+
 def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
                    atol: float = 0.0, max_iter: int = 400):
     """Solve func(x) = target for x in [lower, upper], func increasing; vectorised.
@@ -439,7 +448,9 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
 
     def evaluate(x_full: np.ndarray) -> np.ndarray:
         values = np.asarray(func(x_full.reshape(shape)), dtype=float)
-        return np.broadcast_to(values, shape).ravel()
+        if values.shape != shape:
+            values = np.broadcast_to(values, shape)
+        return values.ravel()
 
     with np.errstate(all="ignore"):
         f_lo = evaluate(lo) - target
@@ -472,7 +483,7 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
             best_is_1 = np.abs(f1) < np.abs(f2)
             xm = np.where(best_is_1, x1, x2)
             fm = np.where(best_is_1, f1, f2)
-            tol = 2.0 * (rtol * np.abs(xm) + atol) + 4.0 * np.finfo(float).tiny
+            tol = 2.0 * (rtol * np.abs(xm) + atol) + _FOUR_TINY
             span = np.abs(x2 - x1)
             tl = tol / np.where(span > 0.0, span, 1.0)
             done = (tl > 0.5) | (fm == 0.0) | (span == 0.0) | ~np.isfinite(ft)
