@@ -204,3 +204,25 @@ def test_stacked_lens_area_is_lens_area_bit_for_bit():
                   np.array([0.0, limit, limit * (1 + 1e-13), 1.5 * limit, -1.0, np.nan])):
             with np.errstate(invalid="ignore"):
                 assert np.array_equal(area(d), lens_area(rm, ro, d), equal_nan=True)
+
+
+def test_solver_given_its_bound_values_is_the_solver():
+    """solve_monotone(..., bound_values=(f(lower), f(upper))) skips two evaluations and gives
+    the same bits; the values kept per radii are lens_area's at 0 and D_max."""
+    from fretwear.geometry._shapes import lens_area, lens_area_on_range, solve_monotone
+    rm, ro = 9.525e-3, 9.75e-3
+    area, at_zero, at_limit, limit = lens_area_on_range(rm, ro)
+    assert (at_zero, at_limit) == (float(lens_area(rm, ro, 0.0)), float(lens_area(rm, ro, limit)))
+    assert lens_area_on_range(rm, ro)[0] is area  # made once
+    calls = []
+
+    def f(d):
+        calls.append(d.size)
+        return lens_area(rm, ro, d)
+
+    targets = np.array([1e-12, 1e-9, 3e-8, at_limit, 2 * at_limit, np.nan])
+    plain = solve_monotone(f, targets, 0.0, limit)
+    n_plain = len(calls)
+    given = solve_monotone(f, targets, 0.0, limit, bound_values=(at_zero, at_limit))
+    assert np.array_equal(plain, given, equal_nan=True)
+    assert len(calls) - n_plain == n_plain - 2

@@ -14,12 +14,12 @@ import numpy as np
 from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the doctests
     _out,
     lens_area,
+    lens_area_on_range,
     lens_depth_limit,
     lens_half_chord,
     sagitta,
     segment_area,
     solve_monotone,
-    stacked_lens_area,
 )
 
 __all__ = ["lunule_areas", "lunule_depths", "lunule_mobile_depth"]
@@ -206,11 +206,12 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
     ao = np.asarray(area_obstacle, dtype=float)
     am, ao = np.broadcast_arrays(am, ao)
     total = am + ao
-    limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
+    # lens_area bit for bit, and its values at 0 and D_max, kept for the radii
+    lens, at_zero, at_limit, limit = lens_area_on_range(mobile_radius, obstacle_radius)
     with np.errstate(invalid="ignore", divide="ignore"):
-        lens = stacked_lens_area(mobile_radius, obstacle_radius)  # lens_area, bit for bit
         depth = solve_monotone(lambda d: lens(d.ravel()).reshape(d.shape), total,
-                               np.zeros_like(total), np.full_like(total, limit))
+                               np.zeros_like(total), np.full_like(total, limit),
+                               bound_values=(at_zero, at_limit))
         share = np.where(total > 0.0, am / total, 1.0)
     dm = lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share)
     dm = np.asarray(dm, dtype=float)

@@ -19,6 +19,7 @@ and the lens half-chord uses the factorised (Heron-like) form derived in ``docs/
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 
 import numpy as np
@@ -298,6 +299,22 @@ def lens_area(mobile_radius, obstacle_radius, depth):
     return _out(area)
 
 
+def lens_area_on_range(mobile_radius: float, obstacle_radius: float):
+    """(:func:`stacked_lens_area` of the radii, its values at depth 0 and at
+    :func:`lens_depth_limit`, the limit) [m², m], made once per pair of radii (kept for the
+    last 256 pairs): a solver on [0, D_max] starts from them."""
+    return _lens_area_on_range(float(mobile_radius), float(obstacle_radius))
+
+
+@functools.lru_cache(maxsize=256)
+def _lens_area_on_range(mobile_radius: float, obstacle_radius: float):
+    area = stacked_lens_area(mobile_radius, obstacle_radius)
+    limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
+    with np.errstate(invalid="ignore"):
+        at_zero, at_limit = area(np.array([0.0, limit]))
+    return area, float(at_zero), float(at_limit), limit
+
+
 def stacked_lens_area(mobile_radius, obstacle_radius) -> Callable:
     """:func:`lens_area` of these radii as a function of a 1-d array of depths [m] -> [m²], bit
     for bit, for a solver that calls it many times: the two circular segments (R_m and R_o) in
@@ -390,7 +407,7 @@ _FOUR_TINY = 4.0 * np.finfo(float).tiny  # the solver's tolerance floor
 
 
 def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
-                   atol: float = 0.0, max_iter: int = 400):
+                   atol: float = 0.0, max_iter: int = 400, *, bound_values=None):
     """Solve func(x) = target for x in [lower, upper], func increasing; vectorised.
 
     Chandrupatla's method (inverse quadratic interpolation safeguarded by bisection), run on
@@ -412,6 +429,9 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
         Absolute tolerance on x (default 0).
     max_iter : int
         Iteration cap (the bracket then still holds the root; its best end is returned).
+    bound_values : (array_like, array_like), optional
+        ``(func(lower), func(upper))`` when known (e.g. kept for a geometry's dimensions): the
+        solver then does not evaluate them.
 
     Returns
     -------
@@ -453,8 +473,12 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
         return values.ravel()
 
     with np.errstate(all="ignore"):
-        f_lo = evaluate(lo) - target
-        f_hi = evaluate(hi) - target
+        if bound_values is None:
+            f_lo = evaluate(lo) - target
+            f_hi = evaluate(hi) - target
+        else:
+            f_lo, f_hi = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
+                          for v in bound_values)
         root = np.full(target.size, np.nan)
         root = np.where(f_lo == 0.0, lo, root)
         root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)

@@ -23,6 +23,7 @@ trefoil, 1.88 quatrefoil).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from typing import ClassVar
 
@@ -202,13 +203,27 @@ def enco_depth(volume, mobile_radius, obstacle_radius, width, isthmus_angle, til
     True
     """
     v = np.asarray(volume, dtype=float)
-    limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
-    depth = solve_monotone(
-        _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, tilt_angle,
-                             edges),
-        v, np.zeros_like(v), np.full_like(v, limit), rtol=rtol)
+    func, at_zero, at_limit, limit = _enco_volume_on_range(
+        float(mobile_radius), float(obstacle_radius), float(width), float(isthmus_angle),
+        float(tilt_angle), int(edges))
+    depth = solve_monotone(func, v, np.zeros_like(v), np.full_like(v, limit), rtol=rtol,
+                           bound_values=(at_zero, at_limit))
     depth = np.where(v == 0.0, 0.0, np.asarray(depth, dtype=float))
     return _out(depth)
+
+
+@functools.lru_cache(maxsize=256)
+def _enco_volume_on_range(mobile_radius: float, obstacle_radius: float, width: float,
+                          isthmus_angle: float, tilt_angle: float, edges: int):
+    """(:func:`_stacked_enco_volume` of the dimensions, its values at depth 0 and at the lens
+    limit D_max, D_max) [m³, m], made once per dimensions (the last 256 kept): enco_depth's
+    solver on [0, D_max] starts from them."""
+    func = _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle,
+                                tilt_angle, edges)
+    limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
+    with np.errstate(invalid="ignore"):
+        at_zero, at_limit = func(np.array([0.0, limit]))
+    return func, float(at_zero), float(at_limit), limit
 
 
 def _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, tilt_angle=0.0,
