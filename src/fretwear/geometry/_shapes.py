@@ -24,6 +24,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from fretwear.geometry._solve import _out, solve_monotone  # noqa: F401 - re-exported
+
 __all__ = [
     "frustum_volume",
     "lens_area",
@@ -39,12 +41,6 @@ __all__ = [
 # truncation after u¹⁵ leaves a relative error below 1e-17).
 _SERIES_LIMIT = 0.5
 _SERIES = [(-1.0) ** k / float(np.prod(np.arange(1, 2 * k + 4))) for k in range(7)]
-
-
-def _out(array):
-    """A float array, or a float scalar for a 0-d result (scalars in, scalar out)."""
-    array = np.asarray(array, dtype=float)
-    return array[()] if array.ndim == 0 else array
 
 
 def _u_minus_sin(u: np.ndarray) -> np.ndarray:
@@ -401,131 +397,3 @@ def frustum_volume(area: Callable, depth, width, tilt):
         frustum = l / 3.0 * (a1 + np.sqrt(a1 * a2) + a2)
     volume = np.where(short, wedge, frustum)
     return _out(volume)
-
-
-_FOUR_TINY = 4.0 * np.finfo(float).tiny  # the solver's tolerance floor
-
-
-def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
-                   atol: float = 0.0, max_iter: int = 400, *, bound_values=None):
-    """Solve func(x) = target for x in [lower, upper], func increasing; vectorised.
-
-    Chandrupatla's method (inverse quadratic interpolation safeguarded by bisection), run on
-    every element at once: ``func`` is called with an array of the broadcast shape of
-    ``target``, ``lower`` and ``upper`` (converged elements keep their value), so it may use
-    element-wise parameters of that same shape.
-
-    Parameters
-    ----------
-    func : callable
-        Vectorised, non-decreasing function of x.
-    target : float or array_like
-        Values to reach.
-    lower, upper : float or array_like
-        Bracket ends (broadcastable to ``target``), lower ≤ upper.
-    rtol : float
-        Relative tolerance on x (default 1e-12).
-    atol : float
-        Absolute tolerance on x (default 0).
-    max_iter : int
-        Iteration cap (the bracket then still holds the root; its best end is returned).
-    bound_values : (array_like, array_like), optional
-        ``(func(lower), func(upper))`` when known (e.g. kept for a geometry's dimensions): the
-        solver then does not evaluate them.
-
-    Returns
-    -------
-    numpy.ndarray or float
-        The root x; NaN where ``target`` is NaN or lies outside [func(lower), func(upper)].
-
-    Notes
-    -----
-    Each step keeps a bracket [x1, x2] with a sign change of f = func − target; the trial point
-    is x1 + t·(x2 − x1), t from inverse quadratic interpolation when the three last points allow
-    it, else t = 1/2; t is clipped so that each step shrinks the bracket by at least the
-    tolerance. Stops when the bracket is shorter than 2·(rtol·|x| + atol) or f = 0.
-
-    References
-    ----------
-    .. [1] Chandrupatla, T. R. (1997). A new hybrid quadratic/bisection algorithm for finding the
-           zero of a nonlinear function without using derivatives. *Advances in Engineering
-           Software* 28(3), 145-149.
-
-    Examples
-    --------
-    >>> import numpy as np
-    >>> x = solve_monotone(lambda x: x**3, np.array([8.0, 27.0, 100.0]), 0.0, 4.0)
-    >>> np.round(x, 12).tolist()
-    [2.0, 3.0, nan]
-    """
-    target = np.asarray(target, dtype=float)
-    lo = np.asarray(lower, dtype=float)
-    hi = np.asarray(upper, dtype=float)
-    shape = np.broadcast_shapes(target.shape, lo.shape, hi.shape)
-    target = np.broadcast_to(target, shape).astype(float).ravel()
-    lo = np.broadcast_to(lo, shape).astype(float).ravel()
-    hi = np.broadcast_to(hi, shape).astype(float).ravel()
-
-    def evaluate(x_full: np.ndarray) -> np.ndarray:
-        values = np.asarray(func(x_full.reshape(shape)), dtype=float)
-        if values.shape != shape:
-            values = np.broadcast_to(values, shape)
-        return values.ravel()
-
-    with np.errstate(all="ignore"):
-        if bound_values is None:
-            f_lo = evaluate(lo) - target
-            f_hi = evaluate(hi) - target
-        else:
-            f_lo, f_hi = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
-                          for v in bound_values)
-        root = np.full(target.size, np.nan)
-        root = np.where(f_lo == 0.0, lo, root)
-        root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)
-        index = np.flatnonzero((f_lo < 0.0) & (f_hi > 0.0))
-        # The state is kept for the unconverged elements only; ``func`` is always called on a
-        # full-shape array (converged elements hold their root, or the lower bound).
-        x_eval = np.where(np.isnan(root), lo, root)
-        # Chandrupatla's state: x1 (newest), x2 (other end of the bracket), x3 (dropped point).
-        x1, f1 = hi[index], f_hi[index]
-        x2, f2 = lo[index], f_lo[index]
-        x3, f3 = x2.copy(), f2.copy()
-        goal = target[index]
-        t = np.full(index.size, 0.5)
-        for _ in range(max_iter):
-            if index.size == 0:
-                break
-            xt = x1 + t * (x2 - x1)
-            x_eval[index] = xt
-            ft = evaluate(x_eval)[index] - goal
-            same = np.sign(ft) == np.sign(f1)
-            x3 = np.where(same, x1, x2)
-            f3 = np.where(same, f1, f2)
-            x2 = np.where(same, x2, x1)
-            f2 = np.where(same, f2, f1)
-            x1, f1 = xt, ft
-            best_is_1 = np.abs(f1) < np.abs(f2)
-            xm = np.where(best_is_1, x1, x2)
-            fm = np.where(best_is_1, f1, f2)
-            tol = 2.0 * (rtol * np.abs(xm) + atol) + _FOUR_TINY
-            span = np.abs(x2 - x1)
-            tl = tol / np.where(span > 0.0, span, 1.0)
-            done = (tl > 0.5) | (fm == 0.0) | (span == 0.0) | ~np.isfinite(ft)
-            if done.any():
-                root[index[done]] = xm[done]
-                x_eval[index[done]] = xm[done]
-                keep = ~done
-                index, goal = index[keep], goal[keep]
-                x1, f1, x2, f2, x3, f3 = (a[keep] for a in (x1, f1, x2, f2, x3, f3))
-                tl = tl[keep]
-            xi = (x1 - x2) / (x3 - x2)
-            phi = (f1 - f2) / (f3 - f2)
-            iqi = (phi * phi < xi) & ((1.0 - phi) ** 2 < 1.0 - xi)
-            t_iqi = (f1 / (f2 - f1) * f3 / (f2 - f3)
-                     + (x3 - x1) / (x2 - x1) * f1 / (f3 - f1) * f2 / (f3 - f2))
-            t = np.where(iqi & np.isfinite(t_iqi), t_iqi, 0.5)
-            t = np.clip(t, np.minimum(tl, 0.5), np.maximum(1.0 - tl, 0.5))
-        if index.size:
-            root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
-    root = root.reshape(shape)
-    return _out(root)

@@ -1,0 +1,258 @@
+"""The vectorised bracketed solver of the geometry relations: :func:`solve_monotone`.
+
+Chandrupatla's method on every element at once (theory §6: the depths of the relations without
+a closed form). Each step's arithmetic is element-wise: with numba (the ``fast`` extra) one
+compiled kernel makes the step of every element (:func:`_chandrupatla_step`), otherwise numpy
+array operations do (:func:`_numpy_steps`); the two make the same operations in the same order,
+so the roots are the same to the bit. SI units are the caller's.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+__all__ = ["solve_monotone"]
+
+
+def _out(array):
+    """A float array, or a float scalar for a 0-d result (scalars in, scalar out)."""
+    array = np.asarray(array, dtype=float)
+    return array[()] if array.ndim == 0 else array
+
+
+_FOUR_TINY = 4.0 * np.finfo(float).tiny  # the solver's tolerance floor
+
+
+def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
+                   atol: float = 0.0, max_iter: int = 400, *, bound_values=None,
+                   compiled: bool = True):
+    """Solve func(x) = target for x in [lower, upper], func increasing; vectorised.
+
+    Chandrupatla's method (inverse quadratic interpolation safeguarded by bisection), run on
+    every element at once: ``func`` is called with an array of the broadcast shape of
+    ``target``, ``lower`` and ``upper`` (converged elements keep their value), so it may use
+    element-wise parameters of that same shape.
+
+    Parameters
+    ----------
+    func : callable
+        Vectorised, non-decreasing function of x.
+    target : float or array_like
+        Values to reach.
+    lower, upper : float or array_like
+        Bracket ends (broadcastable to ``target``), lower ≤ upper.
+    rtol : float
+        Relative tolerance on x (default 1e-12).
+    atol : float
+        Absolute tolerance on x (default 0).
+    max_iter : int
+        Iteration cap (the bracket then still holds the root; its best end is returned).
+    bound_values : (array_like, array_like), optional
+        ``(func(lower), func(upper))`` when known (e.g. kept for a geometry's dimensions): the
+        solver then does not evaluate them.
+    compiled : bool
+        Make each step with the compiled kernel when numba is installed (default); False: with
+        numpy array operations. The roots are the same to the bit.
+
+    Returns
+    -------
+    numpy.ndarray or float
+        The root x; NaN where ``target`` is NaN or lies outside [func(lower), func(upper)].
+
+    Notes
+    -----
+    Each step keeps a bracket [x1, x2] with a sign change of f = func − target; the trial point
+    is x1 + t·(x2 − x1), t from inverse quadratic interpolation when the three last points allow
+    it, else t = 1/2; t is clipped so that each step shrinks the bracket by at least the
+    tolerance. Stops when the bracket is shorter than 2·(rtol·|x| + atol) or f = 0.
+
+    References
+    ----------
+    .. [1] Chandrupatla, T. R. (1997). A new hybrid quadratic/bisection algorithm for finding the
+           zero of a nonlinear function without using derivatives. *Advances in Engineering
+           Software* 28(3), 145-149.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> x = solve_monotone(lambda x: x**3, np.array([8.0, 27.0, 100.0]), 0.0, 4.0)
+    >>> np.round(x, 12).tolist()
+    [2.0, 3.0, nan]
+    """
+    target = np.asarray(target, dtype=float)
+    lo = np.asarray(lower, dtype=float)
+    hi = np.asarray(upper, dtype=float)
+    shape = np.broadcast_shapes(target.shape, lo.shape, hi.shape)
+    target = np.broadcast_to(target, shape).astype(float).ravel()
+    lo = np.broadcast_to(lo, shape).astype(float).ravel()
+    hi = np.broadcast_to(hi, shape).astype(float).ravel()
+
+    def evaluate(x_full: np.ndarray) -> np.ndarray:
+        values = np.asarray(func(x_full.reshape(shape)), dtype=float)
+        if values.shape != shape:
+            values = np.broadcast_to(values, shape)
+        return values.ravel()
+
+    with np.errstate(all="ignore"):
+        if bound_values is None:
+            f_lo = evaluate(lo) - target
+            f_hi = evaluate(hi) - target
+        else:
+            f_lo, f_hi = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
+                          for v in bound_values)
+        root = np.full(target.size, np.nan)
+        root = np.where(f_lo == 0.0, lo, root)
+        root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)
+        index = np.flatnonzero((f_lo < 0.0) & (f_hi > 0.0))
+        # The state is kept for the unconverged elements only; ``func`` is always called on a
+        # full-shape array (converged elements hold their root, or the lower bound).
+        x_eval = np.where(np.isnan(root), lo, root)
+        step = _compiled_step() if compiled else None
+        if step is None:
+            _numpy_steps(evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, target[index], rtol,
+                         atol, max_iter)
+        else:
+            _compiled_steps(step, evaluate, x_eval, root, index, lo, hi, f_lo, f_hi,
+                            target[index], rtol, atol, max_iter)
+    root = root.reshape(shape)
+    return _out(root)
+
+
+def _numpy_steps(evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goal, rtol, atol,
+                 max_iter):
+    """Chandrupatla's steps with numpy array operations: ``root`` and ``x_eval`` filled in
+    place (the elements of ``index`` are bracketed: f_lo < 0 < f_hi)."""
+    # Chandrupatla's state: x1 (newest), x2 (other end of the bracket), x3 (dropped point).
+    x1, f1 = hi[index], f_hi[index]
+    x2, f2 = lo[index], f_lo[index]
+    x3, f3 = x2.copy(), f2.copy()
+    t = np.full(index.size, 0.5)
+    for _ in range(max_iter):
+        if index.size == 0:
+            break
+        xt = x1 + t * (x2 - x1)
+        x_eval[index] = xt
+        ft = evaluate(x_eval)[index] - goal
+        same = np.sign(ft) == np.sign(f1)
+        x3 = np.where(same, x1, x2)
+        f3 = np.where(same, f1, f2)
+        x2 = np.where(same, x2, x1)
+        f2 = np.where(same, f2, f1)
+        x1, f1 = xt, ft
+        best_is_1 = np.abs(f1) < np.abs(f2)
+        xm = np.where(best_is_1, x1, x2)
+        fm = np.where(best_is_1, f1, f2)
+        tol = 2.0 * (rtol * np.abs(xm) + atol) + _FOUR_TINY
+        span = np.abs(x2 - x1)
+        tl = tol / np.where(span > 0.0, span, 1.0)
+        done = (tl > 0.5) | (fm == 0.0) | (span == 0.0) | ~np.isfinite(ft)
+        if done.any():
+            root[index[done]] = xm[done]
+            x_eval[index[done]] = xm[done]
+            keep = ~done
+            index, goal = index[keep], goal[keep]
+            x1, f1, x2, f2, x3, f3 = (a[keep] for a in (x1, f1, x2, f2, x3, f3))
+            tl = tl[keep]
+        xi = (x1 - x2) / (x3 - x2)
+        phi = (f1 - f2) / (f3 - f2)
+        iqi = (phi * phi < xi) & ((1.0 - phi) ** 2 < 1.0 - xi)
+        t_iqi = (f1 / (f2 - f1) * f3 / (f2 - f3)
+                 + (x3 - x1) / (x2 - x1) * f1 / (f3 - f1) * f2 / (f3 - f2))
+        t = np.where(iqi & np.isfinite(t_iqi), t_iqi, 0.5)
+        t = np.clip(t, np.minimum(tl, 0.5), np.maximum(1.0 - tl, 0.5))
+    if index.size:
+        root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
+
+
+def _compiled_steps(step, evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goal, rtol, atol,
+                    max_iter):
+    """:func:`_numpy_steps` with each step made by :func:`_chandrupatla_step` (compiled): the
+    same operations element by element, without numpy's per-call cost on small arrays."""
+    x1, f1 = hi[index], f_hi[index]
+    x2, f2 = lo[index], f_lo[index]
+    x3, f3 = x2.copy(), f2.copy()
+    t = np.full(index.size, 0.5)
+    xt = x1 + t * (x2 - x1)
+    xm = np.empty(index.size)
+    done = np.zeros(index.size, dtype=np.bool_)
+    for _ in range(max_iter):
+        if index.size == 0:
+            break
+        x_eval[index] = xt
+        ft = evaluate(x_eval)[index] - goal
+        if step(x1, f1, x2, f2, x3, f3, t, xt, ft, float(rtol), float(atol), xm, done):
+            root[index[done]] = xm[done]
+            x_eval[index[done]] = xm[done]
+            keep = ~done
+            index, goal = index[keep], goal[keep]
+            x1, f1, x2, f2, x3, f3, t, xt, xm, done = (
+                a[keep] for a in (x1, f1, x2, f2, x3, f3, t, xt, xm, done))
+    if index.size:
+        root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
+
+
+def _compiled_step():
+    """:func:`_chandrupatla_step` compiled by numba (the first call compiles it, or loads it
+    from numba's cache), None without numba; numba is imported only when a solve asks."""
+    global _COMPILED
+    if _COMPILED is None:
+        from fretwear._numba import HAVE_NUMBA, njit
+
+        _COMPILED = (njit(cache=True, error_model="numpy")(_chandrupatla_step) if HAVE_NUMBA
+                     else False)
+    return _COMPILED or None
+
+
+_COMPILED = None
+
+
+def _chandrupatla_step(x1, f1, x2, f2, x3, f3, t, xt, ft, rtol, atol, xm, done):
+    """One step of every element, in place: the state (x1, f1, x2, f2, x3, f3) takes the trial
+    point (xt, ft); ``xm`` gets the best point, ``done`` whether the element has converged;
+    the others get their next ``t`` and trial point ``xt``. Returns the count done.
+
+    The operations and their order are those of :func:`_numpy_steps` (np.clip, np.minimum,
+    np.maximum as NumPy makes them, NaN included), element by element."""
+    count = 0
+    for i in range(x1.size):
+        a, b = ft[i], f1[i]  # np.sign(a) == np.sign(b) (a NaN equals nothing)
+        if (a > 0.0 and b > 0.0) or (a < 0.0 and b < 0.0) or (a == 0.0 and b == 0.0):
+            x3[i], f3[i] = x1[i], f1[i]
+        else:
+            x3[i], f3[i] = x2[i], f2[i]
+            x2[i], f2[i] = x1[i], f1[i]
+        x1[i], f1[i] = xt[i], ft[i]
+        if abs(f1[i]) < abs(f2[i]):
+            m, fm = x1[i], f1[i]
+        else:
+            m, fm = x2[i], f2[i]
+        xm[i] = m
+        tol = 2.0 * (rtol * abs(m) + atol) + _FOUR_TINY
+        span = abs(x2[i] - x1[i])
+        tl = tol / (span if span > 0.0 else 1.0)
+        finished = (tl > 0.5) or (fm == 0.0) or (span == 0.0) or not math.isfinite(ft[i])
+        done[i] = finished
+        if finished:
+            count += 1
+            continue
+        a1, b1, a2, b2, a3, b3 = x1[i], f1[i], x2[i], f2[i], x3[i], f3[i]
+        xi = (a1 - a2) / (a3 - a2)
+        phi = (b1 - b2) / (b3 - b2)
+        rest = 1.0 - phi
+        iqi = (phi * phi < xi) and (rest * rest < 1.0 - xi)
+        t_iqi = (b1 / (b2 - b1) * b3 / (b2 - b3)
+                 + (a3 - a1) / (a2 - a1) * b1 / (b3 - b1) * b2 / (b3 - b2))
+        step = t_iqi if (iqi and math.isfinite(t_iqi)) else 0.5
+        low = tl if (tl != tl or tl < 0.5) else 0.5  # np.minimum(tl, 0.5)
+        high = 1.0 - tl
+        high = high if (high != high or high > 0.5) else 0.5  # np.maximum(1 - tl, 0.5)
+        # np.clip(step, low, high) = MIN(MAX(step, low), high), MAX(a, b) = a if a is NaN or
+        # a > b else b (a NaN bound gives NaN, as in NumPy)
+        step = step if (step != step or step > low) else low
+        step = step if (step != step or step < high) else high
+        t[i] = step
+        xt[i] = a1 + step * (a2 - a1)
+    return count

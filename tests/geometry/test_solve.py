@@ -1,0 +1,69 @@
+"""The geometry relations' solver (fretwear.geometry._solve.solve_monotone): its compiled
+steps against its numpy steps, bit for bit, and both against roots known in closed form.
+
+Sources: x³ = y, √x = y, eˣ − 1 = y inverted by hand; the cases without a root (target outside
+[f(lower), f(upper)]: NaN), a NaN target, a function NaN beyond a point, flat steps, an
+unbounded bracket and an iteration cap exercise the branches of Chandrupatla's method
+(Chandrupatla 1997, Adv. Eng. Software 28(3)).
+"""
+
+import warnings
+
+import numpy as np
+import pytest
+
+from fretwear._numba import HAVE_NUMBA
+from fretwear.geometry._shapes import lens_area
+from fretwear.geometry._solve import solve_monotone
+
+FUNCTIONS = {
+    "cube": lambda x: x**3,
+    "root": np.sqrt,
+    "exp": lambda x: np.exp(x) - 1.0,
+    "steps": lambda x: np.floor(x * 10) / 10,
+    "nan beyond": lambda x: np.where(x > 0.3, np.nan, x),
+    "flat": lambda x: x * 0 + 0.5,
+    "odd root": lambda x: np.sign(x - 0.5) * np.abs(x - 0.5) ** 0.2,
+    "-inf below": lambda x: np.where(x < 0.2, -np.inf, x),
+    "tan": lambda x: np.tan(x * 1.5),
+    "lens": lambda x: lens_area(9.525e-3, 9.75e-3, x),
+}
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="the compiled steps need numba (extra 'fast')")
+@pytest.mark.parametrize("name", sorted(FUNCTIONS))
+def test_compiled_steps_are_the_numpy_steps_bit_for_bit(name):
+    func = FUNCTIONS[name]
+    rng = np.random.default_rng(sorted(FUNCTIONS).index(name))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(60):
+            k = int(rng.integers(0, 9))
+            target = rng.random(k) * rng.choice([1.0, 1e-8, 2.0])
+            if k and rng.random() < 0.3:
+                target[rng.integers(0, k)] = np.nan
+            lower = np.where(rng.random(k) < 0.2, 0.0, rng.random(k) * 0.1)
+            upper = lower + rng.random(k) * rng.choice([1.0, 1e-3, np.inf])
+            if rng.random() < 0.2:
+                target, lower, upper = np.array(rng.random()), np.array(0.0), np.array(1.0)
+            for rtol, max_iter in ((1e-12, 400), (1e-13, 400), (1e-3, 400), (1e-14, 3),
+                                   (0.0, 400)):
+                a = solve_monotone(func, target, lower, upper, rtol=rtol, max_iter=max_iter,
+                                   compiled=False)
+                b = solve_monotone(func, target, lower, upper, rtol=rtol, max_iter=max_iter)
+                assert type(a) is type(b) and np.shape(a) == np.shape(b)
+                assert np.array_equal(a, b, equal_nan=True)
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_roots_known_in_closed_form(compiled):
+    y = np.array([1e-9, 0.008, 0.5, 0.999])
+    assert solve_monotone(lambda x: x**3, y, 0.0, 1.0, compiled=compiled) == pytest.approx(
+        np.cbrt(y), rel=1e-12)
+    assert solve_monotone(np.sqrt, y, 0.0, 1.0, compiled=compiled) == pytest.approx(
+        y**2, rel=1e-12)
+    assert solve_monotone(lambda x: np.exp(x) - 1, y, 0.0, 1.0, rtol=1e-14,
+                          compiled=compiled) == pytest.approx(np.log1p(y), rel=1e-13)
+    out = solve_monotone(lambda x: x, np.array([2.0, np.nan, 0.0, 1.0]), 0.0, 1.0,
+                         compiled=compiled)
+    assert np.isnan(out[:2]).all() and out[2:].tolist() == [0.0, 1.0]
