@@ -67,3 +67,75 @@ def test_roots_known_in_closed_form(compiled):
     out = solve_monotone(lambda x: x, np.array([2.0, np.nan, 0.0, 1.0]), 0.0, 1.0,
                          compiled=compiled)
     assert np.isnan(out[:2]).all() and out[2:].tolist() == [0.0, 1.0]
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_stacked_lens_area_compiled_or_not_is_lens_area(compiled, monkeypatch):
+    """The solvers' lens area, its arithmetic compiled (numba) or numpy's, against the public
+    lens_area bit for bit: small and large angles (series and direct u − sin u), the range's
+    end and beyond, NaN, signed zero."""
+    from fretwear.geometry import _shapes
+    if compiled and not HAVE_NUMBA:
+        pytest.skip("the compiled lens needs numba (extra 'fast')")
+    if not compiled:
+        monkeypatch.setattr(_shapes, "_KERNELS", False)
+    rng = np.random.default_rng(5)
+    for rm, ro in ((9.525e-3, 9.75e-3), (4.84e-3, 5.5e-3), (3.0, 5.0)):
+        limit = float(_shapes.lens_depth_limit(rm, ro))
+        area = _shapes.stacked_lens_area(rm, ro)
+        assert (area.__name__ == "compiled_area") is compiled
+        for d in (rng.random(11) * limit, np.geomspace(1e-14, limit, 500),
+                  rng.random(500) * limit * 1.1,
+                  np.array([0.0, -0.0, limit, limit * (1 + 1e-13), 1.5 * limit, -1.0, np.nan])):
+            with np.errstate(invalid="ignore"):
+                assert np.array_equal(area(d), _shapes.lens_area(rm, ro, d), equal_nan=True)
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="the compiled lunule needs numba (extra 'fast')")
+def test_lunule_compiled_is_the_numpy_lunule_bit_for_bit(monkeypatch):
+    """The lunule's mobile area (the split solver's function) and the depths of
+    lunule_depths / lunule_mobile_depth, compiled (numba) against numpy, bit for bit: any d_m
+    in and beyond [0, D] (a common arc past the bore's), NaN, 0-d and 2-d inputs."""
+    from fretwear.geometry import _lunule, _shapes
+    rng = np.random.default_rng(9)
+    cases = []
+    for rm, ro in ((9.525e-3, 9.75e-3), (4.84e-3, 5.5e-3), (3.0, 5.0)):
+        limit = float(_shapes.lens_depth_limit(rm, ro))
+        depth = np.concatenate([rng.random(40) * limit, [0.0, limit, np.nan]])
+        x = np.minimum(_shapes.lens_half_chord(rm, ro, depth), rm)
+        seg_m = _shapes.segment_area(rm, x)
+        s_m = _shapes.sagitta(rm, x)
+        dm = np.concatenate([rng.random(40) * limit * 1.2, [0.0, -1e-9, np.nan]])
+        area = np.asarray(_shapes.lens_area(rm, ro, depth))
+        cases.append((rm, ro, x, s_m, seg_m, dm, depth, area))
+
+    def run():
+        out = []
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            for rm, ro, x, s_m, seg_m, dm, depth, area in cases:
+                out.append(_lunule._mobile_area(x, s_m, seg_m)(dm))
+                share = rng.random(depth.size)
+                share[:5] = [0.0, 1.0, np.nan, 1e-12, 1.0 - 1e-12]
+                out.append(_lunule.lunule_mobile_depth(rm, ro, depth, share))
+                out.append(_lunule.lunule_mobile_depth(rm, ro, depth[3], share[9]))
+                out.extend(_lunule.lunule_depths(rm, ro, area * share,
+                                                 area * (1 - share)))
+                out.extend(_lunule.lunule_depths(rm, ro, (area * share)[:40].reshape(5, 8),
+                                                 (area * (1 - share))[:40].reshape(5, 8)))
+        return out
+
+    state = rng.bit_generator.state
+    assert _lunule._mobile_area(*cases[0][2:5]).__name__ == "compiled_area"
+    compiled = run()
+    rng.bit_generator.state = state
+    monkeypatch.setattr(_lunule, "_KERNELS", False)
+    monkeypatch.setattr(_shapes, "_KERNELS", False)
+    monkeypatch.setattr(_shapes, "_lens_area_on_range", _shapes._lens_area_on_range.__wrapped__)
+    assert _lunule._mobile_area(*cases[0][2:5]).__name__ == "area"
+    assert _shapes.lens_area_on_range(1.0, 2.0)[0].__name__ == "area"
+    plain = run()
+    assert len(compiled) == len(plain)
+    for a, b in zip(compiled, plain, strict=True):
+        assert type(a) is type(b) and np.shape(a) == np.shape(b)
+        assert np.array_equal(a, b, equal_nan=True)

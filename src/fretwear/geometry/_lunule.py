@@ -9,9 +9,13 @@ derivation in ``docs/geometry.md``.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the doctests
+    _SERIES_LIMIT,
+    _SERIES_TUPLE,
     _out,
     lens_area,
     lens_area_on_range,
@@ -33,6 +37,93 @@ def _interface_segment(half_chord, interface_sagitta):
         radius = (s * s + x * x) / (2.0 * s)
         area = segment_area(radius, np.minimum(x, radius))
     return np.where(x == 0.0, 0.0, area)
+
+
+def _mobile_area(x, s_m, seg_m):
+    """The mobile's area of a lunule of half-chord ``x`` as a function of d_m [m] -> [m²],
+    max(seg(R_m, x) − seg(r, x), 0) with r the common arc of sagitta s(R_m, x) − d_m
+    (``s_m``, ``seg_m`` of the mobile given), for :func:`lunule_mobile_depth`'s solver: with
+    numba its arithmetic compiled around NumPy's own arcsin and sin, the same bits."""
+
+    def area(dm):
+        return np.maximum(seg_m - _interface_segment(x, s_m - dm), 0.0)
+
+    kernels = _kernels()
+    if kernels is None:
+        return area
+    ratios_of, areas_of = kernels
+    shape = np.shape(x)
+    xs, sms, segs = (np.ascontiguousarray(np.broadcast_to(a, shape), dtype=float).ravel()
+                     for a in (x, s_m, seg_m))
+
+    def compiled_area(dm):
+        d = np.ascontiguousarray(np.broadcast_to(dm, shape), dtype=float).ravel()
+        radius = np.empty(d.size)
+        ratio = np.empty(d.size)
+        ratios_of(xs, sms, d, radius, ratio)
+        with np.errstate(invalid="ignore"):
+            u = 2.0 * np.arcsin(ratio)
+            small = np.abs(u) < _SERIES_LIMIT
+            sine = u if small.all() else np.sin(u)  # u - sin(u) only where not small
+        out = np.empty(d.size)
+        areas_of(u, sine, small, radius, xs, segs, out)
+        return out.reshape(shape)
+
+    return compiled_area
+
+
+def _interface_ratios(x, s_m, dm, radius, ratio):
+    """The common arc's radius r = (s² + x²)/(2s), s = s_m − d_m, and min(x, r)/r (NaN outside
+    [0, 1]), as :func:`_interface_segment` and :func:`segment_area` make them."""
+    for i in range(x.size):
+        xi = x[i]
+        s = s_m[i] - dm[i]
+        r = (s * s + xi * xi) / (2.0 * s)
+        radius[i] = r
+        if xi != xi:  # np.minimum(x, r), NaN kept
+            chord = xi
+        else:
+            chord = xi if xi < r else r
+        q = chord / r
+        ratio[i] = q if (q >= 0.0 and q <= 1.0) else math.nan
+
+
+def _mobile_areas(u, sine, small, radius, x, seg_m, out):
+    """max(seg_m − seg(r, x), 0) from u = 2φ of the common arc's segment, as
+    :func:`segment_area`, :func:`_u_minus_sin`, :func:`_interface_segment` and np.maximum
+    make them (``sine``: sin u where not small)."""
+    for i in range(out.size):
+        ui = u[i]
+        if small[i]:
+            u2 = ui * ui
+            series = 0.0
+            power = ui * u2
+            for coefficient in _SERIES_TUPLE:
+                series = series + coefficient * power
+                power = power * u2
+            value = series
+        else:
+            value = ui - sine[i]
+        rho = radius[i]
+        segment = 0.0 if x[i] == 0.0 else 0.5 * rho * rho * value
+        a = seg_m[i] - segment
+        out[i] = a if (a != a or a > 0.0) else 0.0  # np.maximum(a, 0.0)
+
+
+_KERNELS = None
+
+
+def _kernels():
+    """(:func:`_interface_ratios`, :func:`_mobile_areas`) compiled by numba at the first call
+    (cached), None without numba."""
+    global _KERNELS
+    if _KERNELS is None:
+        from fretwear._numba import HAVE_NUMBA, njit
+
+        _KERNELS = ((njit(cache=True, error_model="numpy")(_interface_ratios),
+                     njit(cache=True, error_model="numpy")(_mobile_areas))
+                    if HAVE_NUMBA else False)
+    return _KERNELS or None
 
 
 def lunule_areas(mobile_radius, obstacle_radius, depth_mobile, depth_obstacle):
@@ -145,8 +236,7 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
     seg_m = segment_area(mobile_radius, x)
     s_m = sagitta(mobile_radius, x)
 
-    def mobile_area(dm):
-        return np.maximum(seg_m - _interface_segment(x, s_m - dm), 0.0)
+    mobile_area = _mobile_area(x, s_m, seg_m)
 
     with np.errstate(invalid="ignore"):
         whole = mobile_area(depth)
@@ -161,10 +251,9 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
         else:
             dm = np.zeros(depth.shape)
             if split.any():
-                xs, ss, segs = x[split], s_m[split], seg_m[split]
                 dm[split] = solve_monotone(
-                    lambda d: np.maximum(segs - _interface_segment(xs, ss - d), 0.0),
-                    target[split], np.zeros(xs.size), depth[split])
+                    _mobile_area(x[split], s_m[split], seg_m[split]), target[split],
+                    np.zeros(int(split.sum())), depth[split])
     dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
     dm = np.where(np.isnan(whole), np.nan, dm)
     return _out(dm)

@@ -20,6 +20,7 @@ and the lens half-chord uses the factorised (Heron-like) form derived in ``docs/
 from __future__ import annotations
 
 import functools
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -316,7 +317,8 @@ def stacked_lens_area(mobile_radius, obstacle_radius) -> Callable:
     for bit, for a solver that calls it many times: the two circular segments (R_m and R_o) in
     one :func:`segment_area` call on the stacked chords, the radii's constants once.
 
-    The same element-wise operations in the same order as :func:`lens_area`.
+    The same element-wise operations in the same order as :func:`lens_area`; with numba the
+    arithmetic is compiled (:func:`_lens_kernels`) around NumPy's own arcsin and sin.
 
     Examples
     --------
@@ -340,7 +342,96 @@ def stacked_lens_area(mobile_radius, obstacle_radius) -> Callable:
         segments = np.asarray(segment_area(radii[n], np.concatenate([x, x])), dtype=float)
         return segments[:n] - segments[n:]
 
-    return area
+    kernels = _lens_kernels()
+    if kernels is None:
+        return area
+    ratios_of, lens_of = kernels
+    r_m, r_o, top = float(rm), float(ro), float(within)
+
+    def compiled_area(d: np.ndarray) -> np.ndarray:
+        # the operations of ``area`` in their order: the arithmetic compiled, NumPy's own
+        # arcsin and sin (their results differ from the C library's in the last bit)
+        d = np.ascontiguousarray(d, dtype=float)
+        ratio = np.empty(2 * d.size)
+        ratios_of(d, r_m, r_o, top, ratio)
+        with np.errstate(invalid="ignore"):
+            u = 2.0 * np.arcsin(ratio)
+            small = np.abs(u) < _SERIES_LIMIT
+            sine = u if small.all() else np.sin(u)  # u - sin(u) only where not small
+        out = np.empty(d.size)
+        lens_of(u, sine, small, r_m, r_o, out)
+        return out
+
+    return compiled_area
+
+
+def _lens_ratios(d, rm, ro, within, ratio):
+    """x/R_m, then x/R_o (NaN outside [0, 1]) of the lens half-chord x of each depth, as
+    :func:`lens_half_chord`, the range of :func:`lens_area` and :func:`segment_area` make
+    them (compiled with numba: :func:`_lens_kernels`)."""
+    n = d.size
+    gap = ro - rm
+    for i in range(n):
+        di = d[i]
+        c = gap + di
+        product = di * (2.0 * ro + di) * (2.0 * rm - di) * (2.0 * gap + di)
+        if di >= 0.0 and product >= 0.0:
+            x = math.sqrt(product) / (2.0 * c)
+        else:
+            x = math.nan
+        if di == 0.0:
+            x = 0.0
+        if di <= within:
+            x = x if (x != x or x < rm) else rm  # np.minimum(x, R_m)
+        else:
+            x = math.nan
+        for j, rho in ((i, rm), (n + i, ro)):
+            r = x / rho
+            ratio[j] = r if (r >= 0.0 and r <= 1.0) else math.nan
+
+
+def _lens_of_angles(u, sine, small, rm, ro, out):
+    """seg(R_m) − seg(R_o) of each depth from u = 2φ of both segments (first the R_m ones), as
+    :func:`segment_area` and :func:`_u_minus_sin` make them (``sine``: sin u where not small)."""
+    n = out.size
+    for i in range(n):
+        seg_m = 0.0
+        seg_o = 0.0
+        for j, rho in ((i, rm), (n + i, ro)):
+            uj = u[j]
+            if small[j]:
+                u2 = uj * uj
+                series = 0.0
+                power = uj * u2
+                for coefficient in _SERIES_TUPLE:
+                    series = series + coefficient * power
+                    power = power * u2
+                value = series
+            else:
+                value = uj - sine[j]
+            segment = 0.5 * rho * rho * value
+            if j == i:
+                seg_m = segment
+            else:
+                seg_o = segment
+        out[i] = seg_m - seg_o
+
+
+_SERIES_TUPLE = tuple(_SERIES)
+_KERNELS = None
+
+
+def _lens_kernels():
+    """(:func:`_lens_ratios`, :func:`_lens_of_angles`) compiled by numba at the first call
+    (cached), None without numba."""
+    global _KERNELS
+    if _KERNELS is None:
+        from fretwear._numba import HAVE_NUMBA, njit
+
+        _KERNELS = ((njit(cache=True, error_model="numpy")(_lens_ratios),
+                     njit(cache=True, error_model="numpy")(_lens_of_angles))
+                    if HAVE_NUMBA else False)
+    return _KERNELS or None
 
 
 def frustum_volume(area: Callable, depth, width, tilt):
