@@ -461,17 +461,14 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
     q_lo = np.inf
     q_hi = -np.inf
     s1 = 0.0
-    ii = i
     prev = -1  # the last interval reduced (its right speed is this one's left speed)
-    while ii < r:
-        while ii < r and fn[ii] == 0.0 and fn[ii + 1] == 0.0:  # free flight
-            ii += 1
-        if ii >= r:
-            break
-        t0 = t[ii]
-        t1 = t[ii + 1]
+    for ii in range(i, r):  # a counted loop: fewer instructions than a while with a skip loop
         f0 = fn[ii]
         f1 = fn[ii + 1]
+        if f0 == 0.0 and f1 == 0.0:  # free flight
+            continue
+        t0 = t[ii]
+        t1 = t[ii + 1]
         s0 = s1 if prev == ii - 1 else math.sqrt(v1[ii] * v1[ii] + v2[ii] * v2[ii])
         s1 = math.sqrt(v1[ii + 1] * v1[ii + 1] + v2[ii + 1] * v2[ii + 1])
         prev = ii
@@ -540,7 +537,6 @@ def _short(t, fn, v1, v2, dy, dz, stick, sec, i, r, threshold, scale, base, edge
                 ep_open = False
             else:
                 _add_episode(groups, ep_start, cross, _mx(ep_peak, fc), ep_open, False, min_rest)
-        ii += 1
     sums[0] += ct
     sums[1] += fc_
     sums[2] += f2c
