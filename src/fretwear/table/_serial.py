@@ -59,8 +59,16 @@ class FrozenMap(Mapping):
 
 
 
+_PLAIN = frozenset({str, int, bool, type(None)})
+
+
 def jsonable(value: Any) -> Any:
     """Nested tuples/mappings/numpy values as JSON-ready lists/dicts/numbers; NaN -> None."""
+    kind = type(value)
+    if kind in _PLAIN:  # the common leaves first (the Mapping check below is slow)
+        return value
+    if kind is float:
+        return None if math.isnan(value) else value
     if isinstance(value, Mapping):
         return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, list | tuple | np.ndarray):
