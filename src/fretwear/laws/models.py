@@ -62,15 +62,47 @@ def _psi2(x: np.ndarray) -> np.ndarray:
     out = np.empty_like(x)
     small = x < _SERIES_LIMIT
     xs = x[small]
-    term = xs / 2.0
-    total = term.copy()
-    for k in range(2, _SERIES_TERMS + 1):
-        term = -term * xs / (k + 1)
-        total += term
+    series = _psi2_series_kernel()
+    if series is None:
+        term = xs / 2.0
+        total = term.copy()
+        for k in range(2, _SERIES_TERMS + 1):
+            term = -term * xs / (k + 1)
+            total += term
+    else:
+        total = np.empty_like(xs)
+        series(np.ascontiguousarray(xs), _SERIES_TERMS, total)
     out[small] = total
     xb = x[~small]
     out[~small] = 1.0 + np.expm1(-xb) / xb
     return out
+
+
+def _psi2_series(xs, terms, total):
+    """The Taylor series of :func:`_psi2` for each x, term by term as the numpy loop makes it
+    (the same operations in the same order), compiled by :func:`_psi2_series_kernel`."""
+    for i in range(xs.size):
+        x = xs[i]
+        term = x / 2.0
+        value = term
+        for k in range(2, terms + 1):
+            term = -term * x / (k + 1)
+            value += term
+        total[i] = value
+
+
+_PSI2_SERIES = None
+
+
+def _psi2_series_kernel():
+    """:func:`_psi2_series` compiled by numba at the first call (cached), None without numba."""
+    global _PSI2_SERIES
+    if _PSI2_SERIES is None:
+        from fretwear._numba import HAVE_NUMBA, njit
+
+        _PSI2_SERIES = (njit(cache=True, error_model="numpy")(_psi2_series) if HAVE_NUMBA
+                        else False)
+    return _PSI2_SERIES or None
 
 
 def archard(power, duration, coefficient) -> np.ndarray:
