@@ -44,8 +44,10 @@ def test_frame_is_pandas_own_frame(names):
     got = _frame(columns)
     pd.testing.assert_frame_equal(got, expected, check_exact=True)
     assert list(got.dtypes) == list(expected.dtypes)
-    got["instant"] = 0.0  # a table is the caller's own: the shared column index is not touched
-    assert list(_frame(columns).columns) == list(expected.columns)
+    got["instant"] = 0.0  # a table is the caller's own: the cached column index is not touched
+    got.columns.name = "mine"
+    again = _frame(columns)
+    assert list(again.columns) == list(expected.columns) and again.columns.name is None
 
 
 GEOMETRIES = [

@@ -229,7 +229,8 @@ def _sector_arrays(law, state, head, result, case, mobile, obstacle, clock, geom
 
 @functools.lru_cache(maxsize=64)
 def _index(names: tuple[str, ...]) -> pd.Index:
-    """The columns' index of a table (immutable: shared by the tables of those columns)."""
+    """The columns' index of a table's columns (each table gets a copy: a name set on one
+    table's columns stays with it)."""
     return pd.Index(list(names))
 
 
@@ -240,7 +241,8 @@ def _frame(columns: dict) -> pd.DataFrame:
     names = tuple(columns)
     floats = tuple(c for c in names if np.asarray(columns[c]).dtype == np.float64)
     block = np.stack([columns[c] for c in floats]) if floats else np.empty((0, 0))
-    frame = pd.DataFrame(block.T, columns=_index(floats), copy=False)
+    # a copy of the cached index per table: its data shared (immutable), its name its own
+    frame = pd.DataFrame(block.T, columns=_index(floats).copy(), copy=False)
     for at, name in enumerate(names):
         if name not in floats:
             frame.insert(at, name, columns[name])
