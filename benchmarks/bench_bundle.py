@@ -14,7 +14,10 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
   joined through its client (cluster start excluded; workers warmed up by a small run first),
   without and with an output directory;
 * **grouping**: the same bundle with one contact per Dask task instead of
-  ``engine.contacts_per_task`` contacts per task;
+  the tasks of ``engine.task_sizes``;
+* **the machine's scaling**: the serial loop split over ``--workers`` plain processes
+  (multiprocessing, no Dask): what the cores, caches and memory bandwidth allow this workload,
+  the ceiling of the bundle's speed-up;
 * **per-contact overhead**: (workers × T_bundle − T_serial)/N, the worker time a contact costs
   beyond the single-contact computation, measured on this bundle and on one of tiny contacts
   (100 samples, where the computation is almost nothing);
@@ -100,6 +103,32 @@ def serial(manifest: Path, case: Path) -> tuple[float, dict[str, pd.DataFrame]]:
     return time.perf_counter() - t0, tables
 
 
+def _loop_part(manifest: Path, case: Path, part: int, parts: int) -> float:
+    """Seconds of the serial loop over every ``parts``-th contact from ``part`` on (run in a
+    pool process, after one warm-up contact)."""
+    import warnings
+
+    warnings.simplefilter("ignore")
+    keywords = case_arguments(load_case(case), history_elsewhere=True)
+    rows = list(pd.read_csv(manifest).itertuples())[part::parts]
+    wear_table(manifest.parent / rows[0].history, **keywords)
+    t0 = time.perf_counter()
+    for row in rows:
+        wear_table(manifest.parent / row.history, **keywords)
+    return time.perf_counter() - t0
+
+
+def machine_scaling(manifest: Path, case: Path, workers: int) -> float:
+    """What the machine itself gives: the serial loop split over ``workers`` plain processes
+    (multiprocessing, no Dask), T(one process) / max T(each of them) [-]."""
+    import multiprocessing
+
+    with multiprocessing.get_context("spawn").Pool(workers) as pool:
+        one = pool.apply(_loop_part, (manifest, case, 0, 1))
+        many = pool.starmap(_loop_part, [(manifest, case, k, workers) for k in range(workers)])
+    return one / max(many)
+
+
 class PeakMemory:
     """Samples the resident memory of the worker processes every 20 ms while in use [MB]."""
 
@@ -152,11 +181,14 @@ def identical(result, tables: dict[str, pd.DataFrame]) -> bool:
 
 def local_cluster(workers: int):
     """A LocalCluster as run_bundle starts one: single-threaded worker processes, every task
-    sent to a worker's queue at once (no scheduler-side queuing)."""
+    sent to a worker's queue at once, the workers' malloc as in a plain process
+    (fretwear.bundle.engine.LOCAL_CLUSTER_CONFIG)."""
     import dask
     import distributed
 
-    with dask.config.set({"distributed.scheduler.worker-saturation": "inf"}):
+    from fretwear.bundle.engine import LOCAL_CLUSTER_CONFIG
+
+    with dask.config.set(LOCAL_CLUSTER_CONFIG):
         return distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                         dashboard_address=":0")
 
@@ -202,6 +234,9 @@ def main(argv: list[str] | None = None) -> None:
         pyarrow.set_cpu_count(threads)
         print(f"serial loop, Parquet decoded on one thread: {t_one:.2f} s, "
               f"{n / t_one:.1f} contacts/s")
+        scaling = machine_scaling(manifest, case, args.workers)
+        print(f"the machine's own scaling of the loop on {args.workers} plain processes "
+              f"(multiprocessing, no Dask): {scaling:.2f}x")
         with local_cluster(args.workers) as cluster, distributed.Client(cluster) as client:
             run_bundle(warm, case, scheduler=client)  # workers import fretwear, load kernels
             with PeakMemory(client) as idle:
@@ -225,9 +260,8 @@ def main(argv: list[str] | None = None) -> None:
                 t_single, _ = bundle_time(manifest, case, client)
             finally:
                 engine_module.TASKS_PER_WORKER = saved
-            print(f"  one contact per task instead of "
-                  f"{engine_module.contacts_per_task(n, w)}: {t_single:.2f} s (grouping gains "
-                  f"{t_single / t_bundle:.2f}x)")
+            print(f"  one contact per task instead of {len(engine_module.task_sizes(n, w))} "
+                  f"tasks: {t_single:.2f} s (grouping gains {t_single / t_bundle:.2f}x)")
             over = (w * t_bundle - t_serial) / n * 1e3
             over_tiny = (w * t_tiny - t_tiny_serial) / n * 1e3
             print(f"per-contact overhead (workers x T_bundle - T_serial)/N: {over:.1f} ms on "

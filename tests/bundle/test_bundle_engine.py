@@ -319,3 +319,26 @@ def test_kwu_epri_contact_is_split_only_with_both_maxima(tmp_path, monkeypatch, 
     assert np.all(expected["volume_mobile"] > 0)
     for c in expected.columns:
         np.testing.assert_allclose(got[c], expected[c], rtol=1e-13, atol=0, err_msg=c)
+
+
+def test_concat_packed_equals_pandas_concat_of_the_tables(tmp_path):
+    """The bundle's table is assembled column by column from the packed tables; it equals
+    pandas.concat of the contacts' DataFrames with the contact inserted (values, dtypes, column
+    order), and tables of different columns are left to pandas (None)."""
+    from fretwear.bundle.tasks import concat_packed, pack
+
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 3)
+    tables = [reference(tmp_path / f"histories/t{k}.parquet", case) for k in range(3)]
+    names = ["a", "b", "c"]
+    expected = []
+    for name, t in zip(names, tables, strict=True):
+        f = t.copy()
+        f.insert(0, "contact", name)
+        expected.append(f)
+    expected = pd.concat(expected, ignore_index=True)
+    got = concat_packed(names, [pack(t) for t in tables])
+    pd.testing.assert_frame_equal(got, expected, check_exact=True)
+    assert "sector" in got.columns and got["sector"].dtype == expected["sector"].dtype
+    other = pack(tables[0].drop(columns=["sector"]))
+    assert concat_packed(names[:2], [pack(tables[1]), other]) is None

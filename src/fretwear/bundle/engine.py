@@ -23,6 +23,7 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from fretwear._optional import optional
@@ -33,9 +34,11 @@ from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS, OutputDirectory, write_frame
 from fretwear.bundle.tasks import (
     chunk_state,
+    concat_packed,
     finish_contact,
     merge_states,
     needs_whole_history,
+    pack,
     run_contact,
     run_contacts,
     time_bounds,
@@ -49,7 +52,11 @@ from fretwear.workflows.case_files import load_case, validate_case
 #: Contacts per part file (a part is also written every PART_SECONDS).
 PART_SIZE = 100
 PART_SECONDS = 10.0
-#: Tasks per worker when contacts are grouped (:func:`contacts_per_task`).
+#: Dask settings of the local cluster: tasks sent to the workers' queues at once; the workers'
+#: malloc left to glibc's defaults (Dask sets MALLOC_TRIM_THRESHOLD_ before spawning them).
+LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": "inf",
+                        "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+#: Tasks per worker when contacts are grouped (:func:`task_sizes`).
 TASKS_PER_WORKER = 16
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
@@ -139,11 +146,22 @@ class _Dask:
         if scheduler is None:
             n = workers or os.cpu_count() or 1
             # every task goes to a worker's queue at once (no scheduler-side queuing): a short
-            # task then starts without a round trip to the scheduler (docs/bundle.md)
-            with dask.config.set({"distributed.scheduler.worker-saturation": "inf"}):
-                self._cluster = distributed.LocalCluster(
-                    n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                    silence_logs=logging.ERROR)
+            # task then starts without a round trip to the scheduler; and glibc's malloc keeps
+            # its own mmap threshold: Dask's MALLOC_TRIM_THRESHOLD_ fixes it, so that every
+            # block array is a fresh mmap whose pages fault in (a 1e5-sample contact took
+            # 11 ms in a worker against 8.5 ms without it, 7 ms in a plain process;
+            # docs/bundle.md)
+            # (an earlier Dask nanny of this process put MALLOC_TRIM_THRESHOLD_ in os.environ,
+            # which the workers would inherit: left out while they are spawned)
+            trim = os.environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+            try:
+                with dask.config.set(LOCAL_CLUSTER_CONFIG):
+                    self._cluster = distributed.LocalCluster(
+                        n_workers=n, threads_per_worker=1, processes=True,
+                        dashboard_address=":0", silence_logs=logging.ERROR)
+            finally:
+                if trim is not None:
+                    os.environ["MALLOC_TRIM_THRESHOLD_"] = trim
             self.client = distributed.Client(self._cluster)
         elif isinstance(scheduler, distributed.Client):
             self.client = scheduler
@@ -231,18 +249,30 @@ def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int
     return engine.submit(finish_contact, task, level[0], key=f"finish-{name}", retries=retries)
 
 
-def contacts_per_task(contacts: int, workers: int) -> int:
-    """Contacts computed by one Dask task: enough that the scheduler's cost per task (about a
-    millisecond of its CPU, shared with the workers on a small machine) is spread over several
-    contacts, few enough that every worker gets :data:`TASKS_PER_WORKER` tasks (the last ones
-    balance the load). Each contact keeps its own record, warnings and failure.
+def task_sizes(contacts: int, workers: int) -> list[int]:
+    """How many contacts each Dask task computes, in submission order.
+
+    One contact per task for a bundle of fewer than :data:`TASKS_PER_WORKER` contacts per
+    worker. Otherwise groups of ``contacts // (TASKS_PER_WORKER × workers)`` contacts (the last
+    one holds the rest): the scheduler's cost per task (about a millisecond of its CPU, shared
+    with the workers on a small machine) is spread over the group, and every worker still gets
+    about :data:`TASKS_PER_WORKER` tasks to balance the load. Each contact keeps its own record,
+    warnings and failure. (Guided sizes, large tasks first and single contacts last, were
+    measured slower: the scheduler deals the tasks out by count before their durations are
+    known, so one worker got the larger half.)
 
     Examples
     --------
-    >>> contacts_per_task(12, 2), contacts_per_task(500, 2), contacts_per_task(50_000, 256)
-    (1, 15, 12)
+    >>> task_sizes(5, 2)
+    [1, 1, 1, 1, 1]
+    >>> sizes = task_sizes(500, 2)
+    >>> len(sizes), sizes[0], sizes[-1], sum(sizes)
+    (34, 15, 5, 500)
     """
-    return max(1, contacts // (TASKS_PER_WORKER * max(1, workers)))
+    w = max(1, workers)
+    size = max(1, contacts // (TASKS_PER_WORKER * w))
+    sizes = [size] * (contacts // size)
+    return sizes + ([contacts % size] if contacts % size else [])
 
 
 def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
@@ -373,15 +403,16 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
                 continue
             handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
             handles[id(handle)] = (handle, [task])
-        size = contacts_per_task(len(whole), engine.workers) if isinstance(engine, _Dask) \
-            else 1
-        if size == 1:
+        sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, _Dask) \
+            else [1] * len(whole)
+        if all(size == 1 for size in sizes):
             groups = [[t] for t in whole]
             mapped = engine.map(run_contact, whole, chunk_size,
                                 keys=[f"contact-{t.contact}-{tag}" for t in whole],
                                 retries=retries)
         else:
-            groups = [whole[i:i + size] for i in range(0, len(whole), size)]
+            starts = np.cumsum([0, *sizes])
+            groups = [whole[a:b] for a, b in zip(starts[:-1], starts[1:], strict=True)]
             mapped = engine.map(run_contacts, groups, chunk_size,
                                 keys=[f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups],
                                 retries=retries)
@@ -424,22 +455,22 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
     order = [r.contact for r in man.rows]
     identity = man.identity_frame()
     identity["contact"] = identity["contact"].astype(str)
-    rows: dict[str, pd.DataFrame] = {}
-    for c in order:
-        rec = records[c]
-        if rec.get("table") is not None:
-            rows[c] = unpack(rec["table"])
-    missing = [records[c] for c in order if c not in rows and records[c]["status"]
+    packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
+                                         if records[c].get("table") is not None}
+    missing = [records[c] for c in order if c not in packed and records[c]["status"]
                in ("done", "skipped")]
-    if missing and store is not None:
-        rows.update(store.rows(missing))
-    frames = []
-    for c in order:
-        if c in rows:
-            f = rows[c].copy()
+    if missing and store is not None:  # a restart: the rows of skipped contacts from the parts
+        packed.update({c: pack(f) for c, f in store.rows(missing).items()})
+    kept = [c for c in order if c in packed]
+    table = concat_packed(kept, [packed[c] for c in kept])
+    if table is None:  # tables of different columns (with and without sectors): aligned
+        frames = []
+        for c in kept:
+            f = unpack(packed[c])
             f.insert(0, "contact", c)
             frames.append(f)
-    table = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=["contact"])
+        table = (pd.concat(frames, ignore_index=True) if frames
+                 else pd.DataFrame(columns=["contact"]))
     if "sector" in table.columns and table["sector"].isna().any():
         table["sector"] = table["sector"].astype("Int64")
     table = identity.merge(table, on="contact", how="right")

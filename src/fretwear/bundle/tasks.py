@@ -98,6 +98,33 @@ def unpack(packed: dict[str, Any]) -> pd.DataFrame:
     return pd.DataFrame(dict(zip(packed["columns"], packed["arrays"], strict=True)))
 
 
+def concat_packed(contacts: list[str], packed: list[dict[str, Any]]) -> pd.DataFrame | None:
+    """The tables of :func:`pack` one under the other with a ``contact`` column in front, as
+    ``pandas.concat`` of their :func:`unpack` with the contact inserted would give them, built
+    column by column from the arrays (no DataFrame per contact); None when the tables do not
+    all have the same columns and dtypes (then ``pandas.concat`` aligns them).
+
+    Examples
+    --------
+    >>> a = {"columns": ["x"], "arrays": [np.array([1.0, 2.0])]}
+    >>> b = {"columns": ["x"], "arrays": [np.array([3.0])]}
+    >>> concat_packed(["A", "B"], [a, b]).to_dict("list")
+    {'contact': ['A', 'A', 'B'], 'x': [1.0, 2.0, 3.0]}
+    """
+    if not packed:
+        return None
+    columns = packed[0]["columns"]
+    dtypes = [a.dtype for a in packed[0]["arrays"]]
+    if any(p["columns"] != columns or [a.dtype for a in p["arrays"]] != dtypes
+           for p in packed[1:]):
+        return None
+    lengths = [len(p["arrays"][0]) if p["arrays"] else 0 for p in packed]
+    data = {"contact": np.repeat(np.array(contacts, dtype=object), lengths)}
+    for j, name in enumerate(columns):
+        data[name] = np.concatenate([p["arrays"][j] for p in packed])
+    return pd.DataFrame(data)
+
+
 def _error(exc: BaseException) -> list[str]:
     return [type(exc).__name__, str(exc)]
 
@@ -245,7 +272,7 @@ def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any
 
 def run_contacts(tasks: list[ContactTask], chunk_size: int = 1_000_000) -> list[dict[str, Any]]:
     """:func:`run_contact` of several contacts in one task (one record each, in order): the
-    scheduler's cost per task spread over them (:func:`fretwear.bundle.engine.contacts_per_task`).
+    scheduler's cost per task spread over them (:func:`fretwear.bundle.engine.task_sizes`).
     """
     return [run_contact(task, chunk_size) for task in tasks]
 
