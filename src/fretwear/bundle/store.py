@@ -28,7 +28,7 @@ from typing import Any
 import pandas as pd
 
 from fretwear.bundle.datasets import require
-from fretwear.bundle.tasks import unpack
+from fretwear.bundle.tasks import concat_packed, unpack
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.table.schema import FLOAT_FORMAT
@@ -98,12 +98,14 @@ class OutputDirectory:
         """Write one part (rows, then records); returns its stem."""
         stem = f"part-{self._run}-{self._seq:06d}"
         self._seq += 1
-        frames = [rows_of(r) for r in records if r.get("table") is not None]
+        kept = [r for r in records if r.get("table") is not None]
         rows_file = None
-        if frames:
+        if kept:
             rows_file = f"{stem}.{self.table_format}"
-            write_frame(pd.concat(frames, ignore_index=True), self.parts / rows_file,
-                        self.table_format)
+            frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
+            if frame is None:  # tables of different columns: aligned by pandas
+                frame = pd.concat([rows_of(r) for r in kept], ignore_index=True)
+            write_frame(frame, self.parts / rows_file, self.table_format)
         meta = {"part": stem, "rows_file": rows_file,
                 "contacts": [{k: v for k, v in r.items() if k not in ("table", "state")}
                              for r in records]}
