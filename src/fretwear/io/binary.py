@@ -31,6 +31,7 @@ from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.io.channels import Source, check_lengths
 from fretwear.io.guard import probe
+from fretwear.io.readahead import read_ahead
 
 _NPZ_META = "__fretwear__"
 
@@ -92,6 +93,13 @@ def open_parquet(path: str | os.PathLike) -> Source:
         # no pre-buffering: pyarrow would otherwise cache every row group it is asked for
         # (measured: the whole 320 MB file); a 1 MiB read buffer keeps memory at O(chunk)
         handle = pq.ParquetFile(path, pre_buffer=False, buffer_size=1 << 20)
+        if handle.metadata.num_rows <= size:  # one block: nothing to overlap
+            return batches(handle, positions, size)
+        # the next batch is decoded in a thread while the caller reduces this one (pyarrow
+        # releases the GIL): decoding and reduction overlap; memory stays O(chunk)
+        return read_ahead(batches(handle, positions, size))
+
+    def batches(handle, positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         try:
             wanted = [names[p] for p in positions]
             for batch in handle.iter_batches(batch_size=size, columns=wanted):
