@@ -26,7 +26,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy import special
 
 from fretwear.errors import ConfidenceWarning, InputError
 
@@ -251,7 +250,9 @@ def _student(values, level: float, method: str, name: str, unit_name: str,
     mean = float(x.mean())
     se = float(x.std(ddof=1)) / math.sqrt(n)
     # scipy.special's stdtrit and ndtri are what scipy.stats.t.ppf and norm.ppf evaluate, without
-    # scipy.stats' 0.6-0.9 s import
+    # scipy.stats' 0.6-0.9 s import (and scipy.special's 0.15 s only when an interval is asked)
+    from scipy import special
+
     half = float(special.stdtrit(n - 1, 0.5 * (1.0 + p))) * se
     notes = []
     if n < MINIMUM_BLOCKS:
