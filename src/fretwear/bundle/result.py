@@ -172,7 +172,11 @@ def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
 
 def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
-    """The ranking of :meth:`BundleResult.summary`."""
+    """The ranking of :meth:`BundleResult.summary`.
+
+    The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
+    :func:`time_to_depth` is called only for the contacts whose depth reaches the limit.
+    """
     if limit is not None and not (0 < limit and math.isfinite(limit)):
         raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
@@ -182,55 +186,47 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     given = "limit_instant" in table.columns and limit is None and limit_m is None \
         and wall_thickness is None
     rows = []
-    for contact, group in table.groupby("contact", sort=False):
-        glob = _global_rows(group)
-        last = glob.iloc[-1]
-        depth = float(last["depth_mobile"])
-        sector_max = (float(group.loc[group["instant"] == last["instant"],
-                                      "depth_mobile_sector"].max())
-                      if "depth_mobile_sector" in group.columns else math.nan)
-        wall = math.nan
-        if "wall_thickness" in info.columns and contact in info.index:
-            given_wall = info.at[contact, "wall_thickness"]
-            wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
+    per = _Contacts(table, given)
+    walls = _lookup(contacts, info, "wall_thickness", per.names)
+    owns = _lookup(contacts, info, "depth_limit", per.names) if limit is None else None
+    replacements = _lookup(contacts, info, "tube_replacement", per.names)
+    targets, replaced_at = [], []
+    for k, contact in enumerate(per.names):
+        given_wall = walls[k]
+        wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
         if not math.isfinite(wall) and wall_thickness is not None:
             wall = float(wall_thickness)
         fraction = limit
         if fraction is None:
-            own = info.at[contact, "depth_limit"] if "depth_limit" in info.columns \
-                and contact in info.index else None
+            own = owns[k]
             fraction = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
         target = (fraction * wall if math.isfinite(wall) and limit_m is None
                   else (limit_m if limit_m is not None else math.nan))
-        note = ""
-        finite = np.isfinite(glob["depth_mobile"].to_numpy(dtype=float))
-        if not finite.all():
-            first_nan = float(glob["instant"].to_numpy()[~finite][0])
-            note = f"depth beyond the relation's range from instant {first_nan:g}"
-        replaced = (info.at[contact, "tube_replacement"]
-                    if "tube_replacement" in info.columns and contact in info.index else None)
+        replaced = replacements[k]
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
-        if given and glob["limit_instant"].notna().any():
-            t_lim = float(glob["limit_instant"].dropna().iloc[-1])
+        targets.append(target)
+        replaced_at.append(replaced)
+        rows.append({"contact": contact, "instant": per.instant[k], "power": per.power[k],
+                     "depth": per.depth[k], "depth_sector_max": per.sector_max[k],
+                     "wall_thickness": wall,
+                     "depth_fraction": per.depth[k] / wall if wall > 0 else math.nan,
+                     "limit_depth": target})
+    reached = per.reaches(targets, replaced_at)
+    for k, row in enumerate(rows):
+        target = targets[k]
+        if given and per.has_limit[k]:
+            t_lim = per.limit_instant[k]
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            sel = glob
-            if replaced is not None:
-                sel = glob[glob["instant"] >= replaced]
-            origin = float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel) else 0
-            t_lim = time_to_depth(sel["instant"].to_numpy(dtype=float),
-                                  sel["depth_mobile"].to_numpy(dtype=float), target,
-                                  from_zero=origin == 0)
+            t_lim = per.time_to(k, target, replaced_at[k]) if reached[k] else math.nan
             method = INTERPOLATED
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
-        row = {"contact": contact, "instant": float(last["instant"]),
-               "power": float(last["power"]), "depth": depth, "depth_sector_max": sector_max,
-               "wall_thickness": wall, "depth_fraction": depth / wall if wall > 0 else math.nan,
-               "limit_depth": target, "time_to_limit": t_lim, "time_to_limit_method": method,
-               "note": note}
-        rows.append(row)
+        first_nan = per.first_nan[k]
+        row.update(time_to_limit=t_lim, time_to_limit_method=method,
+                   note="" if first_nan is None
+                   else f"depth beyond the relation's range from instant {first_nan:g}")
     out = pd.DataFrame(rows, columns=["contact", "instant", "power", "depth", "depth_sector_max",
                                       "wall_thickness", "depth_fraction", "limit_depth",
                                       "time_to_limit", "time_to_limit_method", "note"])
@@ -250,6 +246,135 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     out.attrs["limit"] = limit
     out.attrs["limit_m"] = limit_m
     return out
+
+
+def _lookup(contacts: pd.DataFrame, info: pd.DataFrame, column: str, names: list) -> list:
+    """``info.at[name, column]`` for each contact name (None where the contact or the column is
+    missing)."""
+    if column not in info.columns:
+        return [None] * len(names)
+    if contacts["contact"].is_unique:
+        values = dict(zip(contacts["contact"], info[column], strict=True))
+        return [values.get(name) for name in names]
+    return [info.at[name, column] if name in info.index else None for name in names]
+
+
+class _Contacts:
+    """Each contact's quantities for :func:`summarize`, taken over the whole table at once.
+
+    A contact's global rows are its rows in table order, only the first row of each instant
+    when it has sectors, sorted by instant (as by :func:`_global_rows`); the arrays below are
+    in the order the contacts first appear in the table (``names``, as ``groupby(sort=False)``).
+
+    Attributes
+    ----------
+    names : list
+        The contacts.
+    instant, power, depth : list of float
+        The last global row's instant [table unit], power [W] and ``depth_mobile`` [m].
+    sector_max : list of float
+        The largest ``depth_mobile_sector`` of the rows at that instant [m] (NaN without it).
+    first_nan : list
+        The instant of the first global row whose depth is not finite (None: none is).
+    has_limit, limit_instant : list
+        Whether a global row has a ``limit_instant``, and the last one [table unit] (when
+        ``given``).
+    """
+
+    def __init__(self, table: pd.DataFrame, given: bool):
+        codes, uniques = pd.factorize(table["contact"], sort=False)  # -1: no contact, dropped
+        self.names = list(uniques)
+        n = len(self.names)
+        self.table, self.codes = table, codes
+        self.instant, self.power, self.depth, self.sector_max = [], [], [], []
+        self.first_nan, self.has_limit, self.limit_instant = [], [], []
+        if n == 0:
+            return
+        valid = codes >= 0
+        instant = table["instant"].to_numpy(dtype=float)
+        rows = valid.copy()
+        if "sector" in table.columns:
+            has = np.zeros(n, dtype=bool)
+            has[codes[valid & table["sector"].notna().to_numpy()]] = True
+            repeated = pd.DataFrame({"c": codes, "t": table["instant"]}).duplicated().to_numpy()
+            rows &= ~(has[codes] & repeated)
+        pos = np.flatnonzero(rows)
+        pos = pos[np.lexsort((instant[pos], codes[pos]))]  # stable: NaN instants last
+        gcode, t = codes[pos], instant[pos]
+        self.start = np.searchsorted(gcode, np.arange(n))
+        self.end = np.searchsorted(gcode, np.arange(n), side="right")
+        tied = np.flatnonzero((gcode[1:] == gcode[:-1]) & (t[1:] == t[:-1]))
+        if tied.size:  # equal instants: their order is pandas' sort's (not a stable one)
+            for c in np.unique(gcode[tied]):
+                mine = np.sort(pos[self.start[c]:self.end[c]])
+                group = table.iloc[mine].reset_index(drop=True)
+                pos[self.start[c]:self.end[c]] = mine[_global_rows(group).index.to_numpy()]
+            t = instant[pos]
+        self.pos, self.t = pos, t
+        self.d = table["depth_mobile"].to_numpy(dtype=float)[pos]
+        last = pos[self.end - 1]
+        self.instant = instant[last].tolist()
+        self.power = table["power"].to_numpy(dtype=float)[last].tolist()
+        self.depth = self.d[self.end - 1].tolist()
+        self.sector_max = (self._sector_max(instant[last]) if "depth_mobile_sector"
+                           in table.columns else [math.nan] * n)
+        bad = np.flatnonzero(~np.isfinite(self.d))
+        first = [None] * n
+        for c, i in zip(*np.unique(gcode[bad], return_index=True), strict=True):
+            first[c] = float(t[bad[i]])
+        self.first_nan = first
+        self.has_limit = [False] * n
+        self.limit_instant = [math.nan] * n
+        if given:
+            lim = table["limit_instant"].to_numpy(dtype=float)[pos]
+            have = np.flatnonzero(~np.isnan(lim))[::-1]  # the last one of each contact first
+            for c, i in zip(*np.unique(gcode[have], return_index=True), strict=True):
+                self.has_limit[c] = True
+                self.limit_instant[c] = float(lim[have[i]])
+        self.origin = (table["origin"].to_numpy(dtype=float)[pos]
+                       if "origin" in table.columns else None)
+
+    def _sector_max(self, last: np.ndarray) -> list:
+        """The largest sector depth of each contact's rows at its last instant [m]."""
+        valid = self.codes >= 0
+        codes = np.where(valid, self.codes, 0)
+        at = np.flatnonzero(valid & (self.table["instant"].to_numpy(dtype=float) == last[codes]))
+        values = self.table["depth_mobile_sector"].to_numpy(dtype=float)[at]
+        out = np.full(len(self.names), -np.inf)
+        np.maximum.at(out, codes[at], np.where(np.isnan(values), -np.inf, values))
+        counted = np.bincount(codes[at][~np.isnan(values)], minlength=len(self.names))
+        out[counted == 0] = np.nan
+        # -0.0 and 0.0 tie: the one pandas' max keeps
+        signed = np.unique(codes[at][(values == 0) & np.signbit(values)])
+        for c in signed[out[signed] == 0]:
+            out[c] = float(self.table["depth_mobile_sector"].iloc[at[codes[at] == c]].max())
+        return out.tolist()
+
+    def reaches(self, targets: list, replaced: list) -> np.ndarray:
+        """Whether :func:`time_to_depth` can find a time for each contact's target depth [m]
+        (False where it would return NaN: its last finite depth is below a positive target)."""
+        n = len(self.names)
+        if n == 0:
+            return np.zeros(0, dtype=bool)
+        target = np.array(targets, dtype=float)
+        since = np.array([-np.inf if r is None else r for r in replaced], dtype=float)
+        gcode = self.codes[self.pos]
+        usable = np.isfinite(self.d) & np.isfinite(self.t) & (self.t >= since[gcode])
+        deepest = np.full(n, np.nan)
+        np.fmax.at(deepest, gcode[usable], self.d[usable])
+        return np.isfinite(target) & ~((target > 0) & ~(deepest >= target))
+
+    def time_to(self, k: int, target: float, replaced: float | None) -> float:
+        """:func:`time_to_depth` on contact ``k``'s global rows (since ``replaced``)."""
+        s = slice(self.start[k], self.end[k])
+        t, d = self.t[s], self.d[s]
+        origin = None if self.origin is None else self.origin[s]
+        if replaced is not None:
+            keep = t >= replaced
+            t, d = t[keep], d[keep]
+            origin = None if origin is None else origin[keep]
+        origin = float(origin[0]) if origin is not None and len(origin) else 0
+        return time_to_depth(t, d, target, from_zero=origin == 0)
 
 
 # ----------------------------------------------------------------------------- dataset

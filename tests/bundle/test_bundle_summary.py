@@ -1,0 +1,323 @@
+"""fretwear.bundle.result.summarize, which takes each contact's quantities over the whole
+table at once, against the per-contact loop it replaced (kept below, unchanged, as the
+reference): the same DataFrame bit for bit (rows, order, columns, dtypes, values, notes,
+methods), the same attrs and the same errors, on the bundle tests' tables (tests/bundle/
+bundle_helpers.py: the shipped oscillator history scaled per contact) with and without
+sectors, walls, limits, a tube replacement, depths beyond the relation's range, and on the
+same tables reshuffled, renamed, with equal instants or signed zeros."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from bundle_helpers import BASE_CASE, oscillator, write_bundle
+
+from fretwear.bundle import run_bundle
+from fretwear.bundle.manifest import IDENTITY
+from fretwear.bundle.result import (
+    DEFAULT_LIMIT,
+    FROM_TABLE,
+    INTERPOLATED,
+    summarize,
+    time_to_depth,
+)
+from fretwear.errors import InputError
+
+
+# ------------------------------------------------------------------ the reference (old loop)
+def _reference_global_rows(rows: pd.DataFrame) -> pd.DataFrame:
+    """One row per instant (sector tables repeat the global columns on every sector row)."""
+    if "sector" in rows.columns and rows["sector"].notna().any():
+        rows = rows.drop_duplicates("instant", keep="first")
+    return rows.sort_values("instant")
+
+
+def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
+              limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
+    """summarize as it was up to commit bb56e91 (a loop over the contacts), unchanged."""
+    if limit is not None and not (0 < limit and math.isfinite(limit)):
+        raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
+    if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
+        raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
+    info = contacts.set_index("contact") if len(contacts) else contacts
+    # the wear table's own limit instant (law and geometry inverted), for the case's limit
+    given = "limit_instant" in table.columns and limit is None and limit_m is None \
+        and wall_thickness is None
+    rows = []
+    for contact, group in table.groupby("contact", sort=False):
+        glob = _reference_global_rows(group)
+        last = glob.iloc[-1]
+        depth = float(last["depth_mobile"])
+        sector_max = (float(group.loc[group["instant"] == last["instant"],
+                                      "depth_mobile_sector"].max())
+                      if "depth_mobile_sector" in group.columns else math.nan)
+        wall = math.nan
+        if "wall_thickness" in info.columns and contact in info.index:
+            given_wall = info.at[contact, "wall_thickness"]
+            wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
+        if not math.isfinite(wall) and wall_thickness is not None:
+            wall = float(wall_thickness)
+        fraction = limit
+        if fraction is None:
+            own = info.at[contact, "depth_limit"] if "depth_limit" in info.columns \
+                and contact in info.index else None
+            fraction = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        target = (fraction * wall if math.isfinite(wall) and limit_m is None
+                  else (limit_m if limit_m is not None else math.nan))
+        note = ""
+        finite = np.isfinite(glob["depth_mobile"].to_numpy(dtype=float))
+        if not finite.all():
+            first_nan = float(glob["instant"].to_numpy()[~finite][0])
+            note = f"depth beyond the relation's range from instant {first_nan:g}"
+        replaced = (info.at[contact, "tube_replacement"]
+                    if "tube_replacement" in info.columns and contact in info.index else None)
+        replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
+        if given and glob["limit_instant"].notna().any():
+            t_lim = float(glob["limit_instant"].dropna().iloc[-1])
+            t_lim = math.nan if math.isinf(t_lim) else t_lim
+            method = FROM_TABLE
+        elif math.isfinite(target):
+            sel = glob
+            if replaced is not None:
+                sel = glob[glob["instant"] >= replaced]
+            origin = float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel) else 0
+            t_lim = time_to_depth(sel["instant"].to_numpy(dtype=float),
+                                  sel["depth_mobile"].to_numpy(dtype=float), target,
+                                  from_zero=origin == 0)
+            method = INTERPOLATED
+        else:
+            t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
+        row = {"contact": contact, "instant": float(last["instant"]),
+               "power": float(last["power"]), "depth": depth, "depth_sector_max": sector_max,
+               "wall_thickness": wall, "depth_fraction": depth / wall if wall > 0 else math.nan,
+               "limit_depth": target, "time_to_limit": t_lim, "time_to_limit_method": method,
+               "note": note}
+        rows.append(row)
+    out = pd.DataFrame(rows, columns=["contact", "instant", "power", "depth", "depth_sector_max",
+                                      "wall_thickness", "depth_fraction", "limit_depth",
+                                      "time_to_limit", "time_to_limit_method", "note"])
+    ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
+    if len(out):
+        out = out.merge(contacts[["contact", *ident]], on="contact", how="left")
+    beyond = out["depth"].isna()
+    out = (out.assign(_beyond=beyond).sort_values(["_beyond", "depth"],
+                                                  ascending=[False, False], kind="stable")
+           .drop(columns="_beyond").reset_index(drop=True))
+    out.insert(0, "rank", np.arange(1, len(out) + 1))
+    front = ["rank", "contact", *ident]
+    out = out[front + [c for c in out.columns if c not in front]]
+    methods = [m for m in out["time_to_limit_method"].unique() if m in (INTERPOLATED,
+                                                                         FROM_TABLE)]
+    out.attrs["time_to_limit"] = "; ".join(methods) if methods else "no limit"
+    out.attrs["limit"] = limit
+    out.attrs["limit_m"] = limit_m
+    return out
+
+
+# ------------------------------------------------------------------ the bundles
+NO_SECTORS = BASE_CASE.replace("[sectors]\ncount = 4\n", "")
+#: Limits asked of summary(): none (the table's limit_instant or the case's), fractions of the
+#: wall reached between instants or not at all, depths in metres (reached by every contact, by
+#: some, by none; an int), a wall for every tube, and combinations.
+LIMITS = [{}, {"limit": 0.4}, {"limit": 0.03}, {"limit": 2}, {"limit_m": 3e-5},
+          {"limit_m": 1e-9}, {"limit_m": 7e-5}, {"limit_m": 1}, {"wall_thickness": 2e-4},
+          {"wall_thickness": 2e-4, "limit": 0.25}, {"wall_thickness": 1e-3, "limit_m": 5e-5}]
+
+
+def _run(directory, case_text, count=4, extra=None, more=None):
+    """run_bundle (serial) on ``count`` contacts of bundle_helpers.write_bundle, the base case
+    replaced by ``case_text``; ``more``: manifest rows appended."""
+    manifest, case = write_bundle(directory, oscillator(), count, extra=extra)
+    case.write_text(case_text)
+    frame = pd.read_csv(manifest)
+    if more is not None:
+        frame = pd.concat([frame, pd.DataFrame(more)], ignore_index=True)
+    frame["history"] = [str(directory / h) for h in frame["history"]]
+    return run_bundle(frame, case, scheduler="serial")
+
+
+@pytest.fixture(scope="module")
+def bundles(tmp_path_factory):
+    """name -> (table, contacts) of bundles run once for the module."""
+    made = {}
+
+    def run(name, *args, **kwargs):
+        result = _run(tmp_path_factory.mktemp(name), *args, **kwargs)
+        assert result.stats["failed"] == 0, result.errors
+        made[name] = (result.table, result.contacts)
+
+    run("sectors", BASE_CASE)
+    run("no_sectors", NO_SECTORS)
+    # a wall per contact (the tables get limit_instant; NaN where no wall), a case limit and a
+    # tube replaced at 1.5 and 1 year (the depth restarts from zero)
+    run("walls", BASE_CASE, extra={"wall_thickness_m": [1.1e-3, None, 1e-6, 6e-5],
+                                   "tube_replacement": [None, 1.5, None, 1.0],
+                                   "depth_limit": [None, 0.3, 0.5, None]})
+    run("replaced_no_sectors", NO_SECTORS, extra={"tube_replacement": [None, 1.5, 0.5, 1.0],
+                                                  "wall_thickness_m": [None, 2e-4, None, 1e-4]})
+    # "deep": a bore worn past its relation's range (NaN depths from some instant on), as in
+    # test_bundle_engine.test_bad_contacts_land_in_errors_and_the_others_complete
+    deep = {"contact": ["deep"], "history": ["histories/t0.parquet"],
+            "contact_type": ["TUBE_ALESAGE"], "obstacle_radius_m": [9.725e-3],
+            "law.mobile.COEF_USURE": [1e-10], "sectors.count": [1]}
+    run("deep", BASE_CASE, 3, more=deep)
+    run("deep_no_sectors", NO_SECTORS, 2, more={**deep, "sectors.count": [None]})
+    # some contacts with sectors, some without (sector Int64 with <NA>)
+    run("mixed", NO_SECTORS, 4, extra={"sectors.count": [4, None, 2, None]})
+    return made
+
+
+# ------------------------------------------------------------------ the comparison
+def _bits(values: pd.Series) -> np.ndarray:
+    return values.to_numpy(dtype=float).view(np.int64)
+
+
+def assert_same(table: pd.DataFrame, contacts: pd.DataFrame, limits=LIMITS, *,
+                fails: bool = False) -> list:
+    """summarize == reference_summarize for every limit: frames equal exactly, float columns
+    equal bit for bit (signed zeros, NaN payloads), attrs equal; or, where ``fails``, the same
+    error (class and message). Returns the summaries."""
+    out = []
+    for kw in limits:
+        args = {"limit": None, "limit_m": None, "wall_thickness": None, **kw}
+        if fails:
+            with pytest.raises(Exception) as expected:  # noqa: B017, PT011 - any: the same
+                reference_summarize(table, contacts, **args)
+            with pytest.raises(expected.type) as raised:
+                summarize(table, contacts, **args)
+            assert str(raised.value) == str(expected.value)
+            continue
+        old = reference_summarize(table, contacts, **args)
+        new = summarize(table, contacts, **args)
+        pd.testing.assert_frame_equal(new, old, check_exact=True)
+        assert new.attrs == old.attrs, kw
+        for column in new.columns:
+            if new[column].dtype == np.float64:
+                assert np.array_equal(_bits(new[column]), _bits(old[column])), (kw, column)
+        out.append(new)
+    return out
+
+
+def _interpolated(summaries) -> int:
+    """How many times to the limit were interpolated strictly between two instants (PCHIP and
+    brentq, not a table instant)."""
+    count = 0
+    for s in summaries:
+        t = s.loc[s["time_to_limit_method"] == INTERPOLATED, "time_to_limit"].dropna()
+        count += int((t % 0.5 != 0).sum())
+    return count
+
+
+@pytest.mark.parametrize("name", ["sectors", "no_sectors", "walls", "replaced_no_sectors",
+                                  "deep", "deep_no_sectors", "mixed"])
+def test_summary_equals_the_per_contact_loop(bundles, name):
+    table, contacts = bundles[name]
+    summaries = assert_same(table, contacts)
+    assert len(summaries) == len(LIMITS)
+    # depths of the table as limits: reached exactly at an instant (the deepest contact's last
+    # one, another's earlier one), and a negative wall (a limit reached at once)
+    depth = table["depth_mobile"][table["depth_mobile"] > 0]
+    exact = [{"limit_m": float(depth.max())}, {"limit_m": float(depth.iloc[len(depth) // 2])},
+             {"wall_thickness": -1e-3}]
+    reached = assert_same(table, contacts, exact)
+    assert (reached[0]["time_to_limit"] == reached[0]["instant"]).any()
+    assert _interpolated(summaries) > 0  # the PCHIP inversion was exercised
+    if name.startswith("deep"):
+        assert summaries[0]["contact"].iloc[0] == "deep"
+        assert summaries[0]["note"].iloc[0].startswith("depth beyond the relation's range")
+    if name == "walls":  # the table's own limit instant, the case's limit and the replacement
+        s = summaries[0].set_index("contact")
+        assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
+        assert s.loc["R1C2-AVB", "time_to_limit_method"].startswith("no limit")
+        assert s.loc["R2C1-AVB", "limit_depth"] == 0.5 * 1e-6
+        assert summaries[1].attrs["time_to_limit"] == INTERPOLATED
+
+
+def test_summary_of_reshaped_tables(bundles):
+    """The same tables with their rows shuffled (contacts interleaved, instants unsorted), three
+    copies under other names, contacts missing from ``contacts``, a contact with no identity
+    row, and limit_instant edited (inf: never, NaN on some rows)."""
+    rng = np.random.default_rng(20240607)
+    for name in ("walls", "mixed", "deep", "replaced_no_sectors"):
+        table, contacts = bundles[name]
+        shuffled = table.iloc[rng.permutation(len(table))].reset_index(drop=True)
+        assert_same(shuffled, contacts)
+        copies, infos = [], []
+        for k in range(3):
+            copies.append(table.assign(contact=table["contact"] + f"/{k}"))
+            infos.append(contacts.assign(contact=contacts["contact"] + f"/{k}"))
+        many = pd.concat(copies, ignore_index=True)
+        assert_same(many.iloc[rng.permutation(len(many))], pd.concat(infos, ignore_index=True))
+        assert_same(table, contacts.iloc[1:].reset_index(drop=True))
+        assert_same(table, contacts.iloc[:0])
+        assert_same(table, contacts[["contact"]])
+        if "limit_instant" in table.columns:
+            edited = table.copy()
+            lim = edited["limit_instant"].to_numpy(dtype=float).copy()
+            lim += edited["instant"].to_numpy(dtype=float)  # the last one counts
+            lim[::3] = np.nan
+            lim[edited["contact"].to_numpy() == edited["contact"].iloc[0]] = np.inf
+            edited["limit_instant"] = lim
+            summaries = assert_same(edited, contacts, [{}])
+            first = summaries[0].set_index("contact").loc[table["contact"].iloc[0]]
+            assert first["time_to_limit_method"] == FROM_TABLE
+            assert math.isnan(first["time_to_limit"])
+
+
+def test_summary_with_equal_instants_signed_zeros_and_no_rows(bundles):
+    """Rows repeating an instant (their order is the sort's), sector depths of -0.0 and 0.0 at
+    the last instant, NaN instants, an empty table, and a table whose contacts are all NaN."""
+    table, contacts = bundles["mixed"]
+    rng = np.random.default_rng(7)
+    plain = table[table["sector"].isna()]
+    # five rows per instant (pandas' sort is not stable on them: the order is its own)
+    repeated = pd.concat([plain.assign(depth_mobile=plain["depth_mobile"] * (1 + k / 4),
+                                       power=plain["power"] + k) for k in range(5)])
+    for _ in range(4):
+        shuffled = repeated.iloc[rng.permutation(len(repeated))]
+        assert_same(shuffled, contacts, [{}, {"limit_m": 1}])
+        # PCHIP refuses the repeated instants: the same ValueError
+        assert_same(shuffled, contacts, [{"limit_m": 6e-5}], fails=True)
+    # 9 sector rows at the last instant (the 4 sectors twice and sector 1 again), depths 0.0
+    # and -0.0: which zero the max keeps is numpy's reduction's (here unlike a running max)
+    sectors, info = bundles["sectors"]
+    final = sectors["instant"] == sectors["instant"].max()
+    nine = pd.concat([sectors, sectors, sectors[final & (sectors["sector"] == 1)]],
+                     ignore_index=True)
+    depth = nine["depth_mobile_sector"].to_numpy(dtype=float).copy()
+    last = nine["instant"].to_numpy() == nine["instant"].max()
+    assert last.sum() == 9 * len(info)
+    for _ in range(8):
+        depth[last] = np.where(rng.random(last.sum()) < 0.5, -0.0, 0.0)
+        summaries = assert_same(nine.assign(depth_mobile_sector=depth), info, [{}])
+        assert (summaries[0]["depth_sector_max"] == 0).all()
+    nan_instant = table.copy()
+    instants = nan_instant["instant"].to_numpy(dtype=float).copy()
+    instants[::7] = np.nan
+    nan_instant["instant"] = instants
+    assert_same(nan_instant, contacts)
+    # no rows: both fail alike where contacts has identity columns (a KeyError selecting them)
+    assert_same(table.iloc[:0], contacts, fails=True)
+    assert_same(table.iloc[:0], contacts.iloc[:0], fails=True)
+    assert_same(table.iloc[:0], contacts[["contact"]])
+    assert_same(table.assign(contact=pd.Series([None] * len(table), dtype=object)),
+                contacts[["contact"]])
+
+
+def test_summary_errors_are_the_same(bundles):
+    table, contacts = bundles["sectors"]
+    bad = [{"limit": 0}, {"limit": -0.4}, {"limit": math.nan}, {"limit": math.inf},
+           {"limit_m": 0.0}, {"limit_m": -1e-4}, {"limit_m": math.nan}, {"limit_m": math.inf}]
+    for kw in bad:
+        args = {"limit": None, "limit_m": None, "wall_thickness": None, **kw}
+        with pytest.raises(InputError) as expected:
+            reference_summarize(table, contacts, **args)
+        with pytest.raises(InputError) as raised:
+            summarize(table, contacts, **args)
+        assert str(raised.value) == str(expected.value)
+    # a contact listed twice in ``contacts``: the same failure as the loop's
+    twice = pd.concat([contacts, contacts.iloc[:1]], ignore_index=True)
+    assert_same(table, twice, [{}, {"limit_m": 1e-5}], fails=True)
