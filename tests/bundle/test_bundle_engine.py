@@ -342,3 +342,18 @@ def test_concat_packed_equals_pandas_concat_of_the_tables(tmp_path):
     assert "sector" in got.columns and got["sector"].dtype == expected["sector"].dtype
     other = pack(tables[0].drop(columns=["sector"]))
     assert concat_packed(names[:2], [pack(tables[1]), other]) is None
+
+
+def test_a_bundle_whose_every_contact_failed_still_writes_its_outputs(tmp_path):
+    """Every history missing: the run ends, errors.csv names them, summary.csv is an empty
+    ranking (it used to raise a KeyError while writing it)."""
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    frame = pd.read_csv(manifest)
+    frame["history"] = ["histories/none0.parquet", "histories/none1.parquet"]
+    frame.to_csv(manifest, index=False)
+    out = tmp_path / "out"
+    result = run_bundle(manifest, case, scheduler="serial", output=out)
+    assert result.stats["failed"] == 2 and result.table.empty
+    assert pd.read_csv(out / "errors.csv")["error"].tolist() == ["InputError", "InputError"]
+    summary = pd.read_csv(out / "summary.csv")
+    assert summary.empty and "time_to_limit" in summary.columns

@@ -299,9 +299,17 @@ def test_summary_with_equal_instants_signed_zeros_and_no_rows(bundles):
     instants[::7] = np.nan
     nan_instant["instant"] = instants
     assert_same(nan_instant, contacts)
-    # no rows: both fail alike where contacts has identity columns (a KeyError selecting them)
-    assert_same(table.iloc[:0], contacts, fails=True)
-    assert_same(table.iloc[:0], contacts.iloc[:0], fails=True)
+    # no rows (every contact failed): the old code raised a KeyError selecting the identity
+    # columns (and run_bundle(output=...) crashed writing summary.csv); now an empty ranking
+    # with every column
+    for info in (contacts, contacts.iloc[:0]):
+        with pytest.raises(KeyError):
+            reference_summarize(table.iloc[:0], info, limit=None, limit_m=None,
+                                wall_thickness=None)
+        empty = summarize(table.iloc[:0], info, limit=None, limit_m=None, wall_thickness=None)
+        assert len(empty) == 0
+        assert list(empty.columns[:2]) == ["rank", "contact"]
+        assert {"tube_row", "time_to_limit", "depth_fraction"} <= set(empty.columns)
     assert_same(table.iloc[:0], contacts[["contact"]])
     assert_same(table.assign(contact=pd.Series([None] * len(table), dtype=object)),
                 contacts[["contact"]])

@@ -233,6 +233,8 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
     if len(out):
         out = out.merge(contacts[["contact", *ident]], on="contact", how="left")
+    else:  # every contact failed: an empty ranking with every column
+        out = out.assign(**{c: pd.Series(dtype=contacts[c].dtype) for c in ident})
     beyond = out["depth"].isna()
     out = (out.assign(_beyond=beyond).sort_values(["_beyond", "depth"],
                                                   ascending=[False, False], kind="stable")
