@@ -57,7 +57,10 @@ def _mobile_area(x, s_m, seg_m):
                      for a in (x, s_m, seg_m))
 
     def compiled_area(dm):
-        d = np.ascontiguousarray(np.broadcast_to(dm, shape), dtype=float).ravel()
+        d = np.asarray(dm, dtype=float)
+        if d.shape != shape:  # (broadcast_to costs more than the rest of a small call)
+            d = np.broadcast_to(d, shape)
+        d = np.ascontiguousarray(d).ravel()
         radius = np.empty(d.size)
         ratio = np.empty(d.size)
         ratios_of(xs, sms, d, radius, ratio)

@@ -86,9 +86,9 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
     lo = np.asarray(lower, dtype=float)
     hi = np.asarray(upper, dtype=float)
     shape = np.broadcast_shapes(target.shape, lo.shape, hi.shape)
-    target = np.broadcast_to(target, shape).astype(float).ravel()
-    lo = np.broadcast_to(lo, shape).astype(float).ravel()
-    hi = np.broadcast_to(hi, shape).astype(float).ravel()
+    # copies of the full shape (broadcast only when needed: it costs more than a small copy)
+    target, lo, hi = ((a if a.shape == shape else np.broadcast_to(a, shape)).astype(float).ravel()
+                      for a in (target, lo, hi))
 
     def evaluate(x_full: np.ndarray) -> np.ndarray:
         values = np.asarray(func(x_full.reshape(shape)), dtype=float)

@@ -143,8 +143,10 @@ class ContactStatistics:
 
 
 def _jsonable(value):
-    if isinstance(value, np.ndarray):
-        return [_jsonable(float(v)) for v in value]
+    if isinstance(value, np.ndarray):  # a list of floats, NaN as None (v != v: NaN)
+        if value.ndim > 1:
+            return [_jsonable(row) for row in value]
+        return [None if v != v else v for v in np.asarray(value, dtype=float).tolist()]
     if isinstance(value, float | np.floating):
         v = float(value)
         return None if math.isnan(v) else v
