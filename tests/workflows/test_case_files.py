@@ -108,7 +108,7 @@ table = "first.csv"
 
 def test_every_key_is_documented():
     text = keys_help()
-    doc = (Path(__file__).parents[1] / "docs" / "case_files.md").read_text(encoding="utf-8")
+    doc = (Path(__file__).parents[2] / "docs" / "case_files.md").read_text(encoding="utf-8")
     for section, keys in KEYS.items():
         for key in keys:
             assert key in text
@@ -208,7 +208,7 @@ unit = "h"
 def test_restart_from_a_multi_table_code_aster_file(tmp_path):
     """Two tables in one IMPR_TABLE file (the hand-written fixture, then a copy with the volumes
     doubled): [restart] table_index picks one; V = V_file(INST=2) + K·P·Δt (theory §7, §4)."""
-    fixture = Path(__file__).parent / "fixtures" / "aster_tables" / "post_usure_tableau.txt"
+    fixture = Path(__file__).parents[1] / "fixtures" / "aster_tables" / "post_usure_tableau.txt"
     text = fixture.read_text(encoding="utf-8")
     doubled = text.replace("4.54118E-08", "9.08236E-08").replace("9.08237E-08", "1.81647E-07")
     (tmp_path / "two.tab").write_text(text + doubled, encoding="utf-8")
