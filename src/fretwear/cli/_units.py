@@ -70,6 +70,20 @@ def with_history_units(case: Path | dict[str, Any], units: Mapping[str, str] | N
     return case
 
 
+def with_bundle_units(case: Path | None, units: Mapping[str, str] | None
+                      ) -> Path | dict[str, Any] | None:
+    """The bundle's base case (file, or none) with ``--units`` added to its ``[history] units``
+    (the command line's entries win): the units of every contact's history file (a manifest
+    row's ``history.units`` column still overrides them for its contact)."""
+    if not units:
+        return case
+    base = load_case(case) if case is not None else {}
+    history = dict(base.get("history", {}))
+    history["units"] = {**dict(history.get("units", {})), **units}
+    base["history"] = history
+    return base
+
+
 def units_line(units: Mapping[str, str] | None) -> str:
     """``units read: time [s], normal_force [N], ...`` (channels in canonical order).
 

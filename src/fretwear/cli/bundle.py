@@ -20,6 +20,7 @@ from rich.table import Table
 from fretwear.bundle import run_bundle
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
+from fretwear.cli._units import parse_units, units_option, with_bundle_units
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 
@@ -104,12 +105,14 @@ def _summary(result, console, top: int, limit: float | None) -> None:
               help="Write the figures (tube-sheet map, power distribution, worst depths).")
 @click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
               help="Contacts shown in the terminal summary.")
+@units_option
 @click.option("-q", "--quiet", is_flag=True, help="No progress bar and no summary.")
 def command(manifest: Path, case_file: Path | None, scheduler: str | None, workers: int | None,
             output: Path | None, force: bool, chunk_size: int, table_format: str,
             dataset_format: str | None, limit: float | None, plot_dir: Path | None, top: int,
-            quiet: bool) -> None:
+            units: tuple[str, ...], quiet: bool) -> None:
     console = Console(quiet=quiet)
+    base = with_bundle_units(case_file, parse_units(units))
     if output is None:
         output = Path.cwd() / f"{manifest.name.split('.')[0]}_bundle"
     columns = (TextColumn("contacts"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
@@ -120,7 +123,7 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         def step(done: int, total: int, record: dict) -> None:
             bar.update(task, completed=done, total=total)
 
-        result = run_bundle(manifest, case_file, scheduler=scheduler, workers=workers,
+        result = run_bundle(manifest, base, scheduler=scheduler, workers=workers,
                             output=output, force=force, chunk_size=chunk_size,
                             table_format=table_format, dataset_format=dataset_format,
                             progress=step)

@@ -12,6 +12,7 @@ from rich.console import Console
 from rich.table import Table
 
 from fretwear._optional import require
+from fretwear.cli._units import parse_units, units_option, with_history_units
 from fretwear.io.atomic import atomic_write
 from fretwear.plotting import save_figure
 from fretwear.plotting.uncertainty import plot_calibration, plot_exceedance_map
@@ -69,10 +70,16 @@ Inspection columns:
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (PNG, SVG) into this directory.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of tables.")
+@units_option
 def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, prior_sigma_ln,
-            measurement_sigma, method, forecast, limit_mm, output, plot_dir, as_json) -> None:
+            measurement_sigma, method, forecast, limit_mm, output, plot_dir, as_json,
+            units) -> None:
     if (case_file is None) == (bundle_dir is None):
         raise click.UsageError("give exactly one of --case CASE.toml and --bundle RESULTS")
+    if units and bundle_dir is not None:
+        raise click.UsageError("--units gives the units of the case's history file; a bundle's "
+                               "results (--bundle) are read in SI as written (give --units to "
+                               "`fretwear bundle`)")
     if prior_scatter is not None and prior_sigma_ln is not None:
         raise click.UsageError("give --prior-scatter or --prior-sigma-ln, not both")
     if plot_dir is not None:
@@ -83,7 +90,7 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
     if bundle_dir is not None:
         predictions, identity = bundle_predictions(bundle_dir)
     else:
-        predictions = case_predictions(case_file)
+        predictions = case_predictions(with_history_units(case_file, parse_units(units)))
     result = calibrate(predictions, inspections, prior=prior,
                        measurement_sigma=measurement_sigma, method=method, forecast=forecast,
                        limit=None if limit_mm is None else limit_mm * 1e-3)
