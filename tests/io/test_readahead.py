@@ -75,3 +75,70 @@ def test_parquet_blocks_equal_the_whole_read(tmp_path):
             np.testing.assert_array_equal(getattr(c, channel),
                                           getattr(whole, channel)[a:a + len(c)])
     assert covered.all()
+
+
+def _read_ahead_threads() -> int:
+    return sum(t.name == "fretwear-read-ahead" for t in threading.enumerate())
+
+
+def test_collected_in_its_own_producer_thread(monkeypatch):
+    """The generator collected by the cyclic GC while it runs in the producer thread (any thread
+    that allocates may run the GC): its clean-up must not try to join the thread it runs in.
+    Oracle: no exception reaches sys.unraisablehook (before the fix: RuntimeError 'cannot join
+    current thread'), the producer stops and closes the wrapped iterator."""
+    import gc
+
+    unraisable = []
+    monkeypatch.setattr("sys.unraisablehook", unraisable.append)
+    consumed, closed = threading.Event(), threading.Event()
+
+    def blocks():
+        try:
+            yield 1
+            consumed.wait(5.0)
+            gc.collect()  # in the producer thread: collects the consumer's generator below
+            yield 2
+        finally:
+            closed.set()
+
+    gen = read_ahead(blocks())
+    cycle: list = [gen]
+    cycle.append(cycle)  # reachable only through a reference cycle: the GC's to collect
+    assert next(gen) == 1
+    del gen, cycle
+    consumed.set()
+    assert closed.wait(5.0)
+    deadline = time.monotonic() + 5.0
+    while _read_ahead_threads() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert _read_ahead_threads() == 0
+    assert [str(u.exc_value) for u in unraisable] == []
+
+
+@pytest.mark.parametrize("reader", ["blocks", "chunks"])
+def test_an_error_in_a_later_block_stops_the_thread(tmp_path, reader):
+    """A history error found in a later block of a Parquet file read ahead (instants not
+    increasing at row 5500): the read-ahead thread is stopped and the file closed when the error
+    leaves the iterator, not when its traceback (which holds the iterator's frame) is freed.
+    Oracle: no 'fretwear-read-ahead' thread alive while the exception is still referenced."""
+    from fretwear.errors import HistoryError
+    from fretwear.io import iter_history_chunks
+
+    n = 10_000
+    t = np.arange(n) * 1e-4
+    t[5500] = t[5499]
+    h = ContactHistory(time=np.arange(n) * 1e-4, normal_force=np.full(n, 10.0),
+                       vt1=np.full(n, 0.01), vt2=np.zeros(n))
+    path = write_history(h, tmp_path / "h.parquet", row_group_size=1000)
+    import pyarrow.parquet as pq
+
+    table = pq.read_table(path)
+    table = table.set_column(0, "time", [t])
+    pq.write_table(table, path, row_group_size=1000)
+    iterate = iter_history_blocks if reader == "blocks" else iter_history_chunks
+    with pytest.raises(HistoryError, match="not strictly increasing") as caught:
+        for _ in iterate(path, 1000):
+            pass
+    assert caught.value.__traceback__ is not None  # the frames are still referenced
+    time.sleep(0.1)
+    assert _read_ahead_threads() == 0

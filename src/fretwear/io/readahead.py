@@ -10,7 +10,9 @@ reduced, ``depth`` waiting, one being decoded), whatever the length of the file.
 The blocks and their order are those of the wrapped iterator: the values the caller computes
 from them are unchanged. An exception raised while decoding is raised by the consumer at the
 block where it happened; a consumer that stops early (an error in its own code, ``close()``, a
-``break``) stops the thread and closes the wrapped iterator.
+``break``) stops the thread and closes the wrapped iterator when it closes this generator or
+drops it (a generator kept alive, e.g. by a traceback holding the frame that iterates it, keeps
+its thread waiting: close it, as :mod:`fretwear.io.streaming` does in a ``finally``).
 
 Examples
 --------
@@ -101,7 +103,10 @@ def read_ahead(blocks: Iterator[T], depth: int = DEPTH) -> Iterator[T]:
             yield block
     finally:
         stop.set()
-        while thread.is_alive():  # unblock a producer waiting on a full queue, then join it
+        # unblock a producer waiting on a full queue, then join it; unless the cyclic GC
+        # collected this generator in the producer thread itself, which cannot join itself: it
+        # sees ``stop`` at its next put and closes the wrapped iterator
+        while thread.is_alive() and threading.current_thread() is not thread:
             try:
                 waiting.get_nowait()
             except queue.Empty:

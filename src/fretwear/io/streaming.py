@@ -27,6 +27,13 @@ def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
 
 
 
+def _close(blocks) -> None:
+    """Close a reader's block iterator (a generator: its file, its read-ahead thread)."""
+    close = getattr(blocks, "close", None)
+    if close is not None:
+        close()
+
+
 def _reader_blocks(path, chunk_size, format, units, columns, name, options):
     """The checked chunk size, the opened source and its column mapping, and the reader's
     own blocks of at most ``chunk_size`` rows (a format read whole is sliced, with a warning
@@ -89,51 +96,56 @@ def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     """
     size, source, mapping, factors, label, metadata, blocks = _reader_blocks(
         path, chunk_size, format, units, columns, name, options)
-    channels = list(mapping)
-    pending: list[list[np.ndarray]] = []
-    pending_rows = 0
-    carry: list[np.ndarray] | None = None
-    row = 0  # file row of the next sample not yet in a chunk
+    try:
+        channels = list(mapping)
+        pending: list[list[np.ndarray]] = []
+        pending_rows = 0
+        carry: list[np.ndarray] | None = None
+        row = 0  # file row of the next sample not yet in a chunk
 
-    def emit(parts: list[list[np.ndarray]], k: int, first_row: int) -> ContactHistory:
-        arrays = {ch: np.concatenate([p[j] for p in parts]) for j, ch in enumerate(channels)}
-        meta = dict(metadata, chunk=k, first_row=first_row)
-        chunk = build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
-                              label=source.label, name=label, metadata=meta,
-                              first_row=first_row)
-        plausibility.update(chunk, check=True)  # each check warns once per file
-        return chunk
+        def emit(parts: list[list[np.ndarray]], k: int, first_row: int) -> ContactHistory:
+            arrays = {ch: np.concatenate([p[j] for p in parts]) for j, ch in enumerate(channels)}
+            meta = dict(metadata, chunk=k, first_row=first_row)
+            chunk = build_history(arrays, columns=source.columns, mapping=mapping, factors=factors,
+                                  label=source.label, name=label, metadata=meta,
+                                  first_row=first_row)
+            plausibility.update(chunk, check=True)  # each check warns once per file
+            return chunk
 
-    plausibility = StreamPlausibility()
+        plausibility = StreamPlausibility()
 
-    k = 0
-    for block in blocks:
-        if not block or block[0].size == 0:
-            continue
-        pending.append(block)
-        pending_rows += block[0].size
-        need = size - (0 if carry is None else 1)
-        while pending_rows >= need:
-            merged = (pending[0] if len(pending) == 1 else
-                      [np.concatenate([p[j] for p in pending]) for j in range(len(channels))])
-            take = [a[:need] for a in merged]
-            rest = [a[need:] for a in merged]
-            parts = [take] if carry is None else [carry, take]
-            first = row - (0 if carry is None else 1)
-            yield emit(parts, k, first)
-            k += 1
-            row += need
-            carry = [a[-1:] for a in take]
-            pending = [rest] if rest[0].size else []
-            pending_rows = rest[0].size
-            need = size - 1
-    if pending_rows or k == 0:
-        parts = ([] if carry is None else [carry]) + pending
-        if not parts:
-            raise FormatError(f"{source.label}: no data rows (a header only?); a history "
-                              "needs at least two instants")
-        yield emit(parts, k, row - (0 if carry is None else 1))
-    plausibility.finish()  # the file's largest force (a chunk's says nothing of the file)
+        k = 0
+        for block in blocks:
+            if not block or block[0].size == 0:
+                continue
+            pending.append(block)
+            pending_rows += block[0].size
+            need = size - (0 if carry is None else 1)
+            while pending_rows >= need:
+                merged = (pending[0] if len(pending) == 1 else
+                          [np.concatenate([p[j] for p in pending]) for j in range(len(channels))])
+                take = [a[:need] for a in merged]
+                rest = [a[need:] for a in merged]
+                parts = [take] if carry is None else [carry, take]
+                first = row - (0 if carry is None else 1)
+                yield emit(parts, k, first)
+                k += 1
+                row += need
+                carry = [a[-1:] for a in take]
+                pending = [rest] if rest[0].size else []
+                pending_rows = rest[0].size
+                need = size - 1
+        if pending_rows or k == 0:
+            parts = ([] if carry is None else [carry]) + pending
+            if not parts:
+                raise FormatError(f"{source.label}: no data rows (a header only?); a history "
+                                  "needs at least two instants")
+            yield emit(parts, k, row - (0 if carry is None else 1))
+        plausibility.finish()  # the file's largest force (a chunk's says nothing of the file)
+    finally:
+        # closed here, not when the generator is collected: a traceback holding this
+        # frame would keep a read-ahead thread and the file open (io.readahead)
+        _close(blocks)
 
 
 def history_time_range(path: Any, format: str | None = None, *,
@@ -204,48 +216,53 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     """
     size, source, mapping, factors, label, metadata, blocks = _reader_blocks(
         path, chunk_size, format, units, columns, name, options)
-    channels = list(mapping)
-    row = 0
-    k = 0
-    last: list[np.ndarray] | None = None  # the previous block's last sample
-    pending: list[np.ndarray] | None = None  # a single-row block waiting for the next one
-    plausibility = StreamPlausibility()
-    build = dict(columns=source.columns, mapping=mapping, factors=factors, label=source.label,
-                 name=label)
-    for block in blocks:
-        if not block or block[0].size == 0:
-            continue
-        if pending is not None:
-            block = [np.concatenate((a, b)) for a, b in zip(pending, block, strict=True)]
-            pending = None
-        if block[0].size < 2:
-            pending = block
-            continue
-        if last is not None and not float(block[0][0]) > float(last[0][0]):
-            # the instants do not increase across the blocks: the history of the two samples
-            # raises the error with their rows
-            build_history({ch: np.concatenate((last[j], block[j][:1]))
-                           for j, ch in enumerate(channels)}, metadata=metadata,
-                          first_row=row - 1, **build)
-        chunk = fast_history(dict(zip(channels, block, strict=True)),
-                             metadata=dict(metadata, chunk=k, first_row=row), first_row=row,
-                             **build)
-        plausibility.update(chunk, check=k == 0)
-        yield chunk
-        last = [a[-1:] for a in block]
-        row += block[0].size
-        k += 1
-    if pending is not None:
-        if last is None:  # the whole file is one row
-            build_history(dict(zip(channels, pending, strict=True)), metadata=metadata, **build)
-        chunk = build_history({ch: np.concatenate((last[j], pending[j]))
-                               for j, ch in enumerate(channels)},
-                              metadata=dict(metadata, chunk=k, first_row=row - 1),
+    try:
+        channels = list(mapping)
+        row = 0
+        k = 0
+        last: list[np.ndarray] | None = None  # the previous block's last sample
+        pending: list[np.ndarray] | None = None  # a single-row block waiting for the next one
+        plausibility = StreamPlausibility()
+        build = dict(columns=source.columns, mapping=mapping, factors=factors, label=source.label,
+                     name=label)
+        for block in blocks:
+            if not block or block[0].size == 0:
+                continue
+            if pending is not None:
+                block = [np.concatenate((a, b)) for a, b in zip(pending, block, strict=True)]
+                pending = None
+            if block[0].size < 2:
+                pending = block
+                continue
+            if last is not None and not float(block[0][0]) > float(last[0][0]):
+                # the instants do not increase across the blocks: the history of the two samples
+                # raises the error with their rows
+                build_history({ch: np.concatenate((last[j], block[j][:1]))
+                               for j, ch in enumerate(channels)}, metadata=metadata,
                               first_row=row - 1, **build)
-        plausibility.update(chunk, check=False)
-        yield chunk
-    elif k == 0:
-        raise FormatError(f"{source.label}: no data rows (a header only?); a history "
-                          "needs at least two instants")
-    plausibility.finish()  # the file's largest force (a block's says nothing of the file)
+            chunk = fast_history(dict(zip(channels, block, strict=True)),
+                                 metadata=dict(metadata, chunk=k, first_row=row), first_row=row,
+                                 **build)
+            plausibility.update(chunk, check=k == 0)
+            yield chunk
+            last = [a[-1:] for a in block]
+            row += block[0].size
+            k += 1
+        if pending is not None:
+            if last is None:  # the whole file is one row
+                build_history(dict(zip(channels, pending, strict=True)), metadata=metadata, **build)
+            chunk = build_history({ch: np.concatenate((last[j], pending[j]))
+                                   for j, ch in enumerate(channels)},
+                                  metadata=dict(metadata, chunk=k, first_row=row - 1),
+                                  first_row=row - 1, **build)
+            plausibility.update(chunk, check=False)
+            yield chunk
+        elif k == 0:
+            raise FormatError(f"{source.label}: no data rows (a header only?); a history "
+                              "needs at least two instants")
+        plausibility.finish()  # the file's largest force (a block's says nothing of the file)
+    finally:
+        # closed here, not when the generator is collected: a traceback holding this
+        # frame would keep a read-ahead thread and the file open (io.readahead)
+        _close(blocks)
 
