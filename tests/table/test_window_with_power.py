@@ -48,3 +48,26 @@ def test_case_file_refuses_a_window_with_a_power(tmp_path):
         'obstacle_width_m = 0.02\n[time]\ninstants = [1, 2]\nunit = "hour"\n')
     with pytest.raises(KeywordError, match=r"\[power\] t_start_s apply to a history"):
         case_arguments(load_case(tmp_path / "c.toml"))
+
+
+def test_window_other_than_a_power_results_own_is_named():
+    """A PowerResult source carries its own window: t_start/t_end/blocks that differ from it
+    were silently ignored (the table used the result's [0, 1] s and 1 block while the caller
+    asked for [0.5, 1] s in 2 blocks). Oracle: the table's power is the result's total (the
+    keywords are ignored) and an UnusedKeywordWarning names them; the same window as the
+    result's, or none, warns nothing."""
+    import numpy as np
+
+    from fretwear.power import wear_power
+
+    t = np.linspace(0.0, 1.0, 2001)
+    h = ContactHistory(time=t, normal_force=np.where(t > 0.5, 10.0, 1.0),
+                       vt1=0.2 * np.sin(2 * np.pi * 5 * t), vt2=np.zeros_like(t))
+    result = wear_power(h)
+    with pytest.warns(UnusedKeywordWarning, match=r"wear_table: t_start, blocks .* PowerResult"):
+        table = wear_table(result, t_start=0.5, blocks=2, **KEYWORDS)
+    assert table.attrs["power"]["total"] == result.total
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        wear_table(result, **KEYWORDS)
+        wear_table(result, t_start=0.0, t_end=1.0, blocks=1, **KEYWORDS)

@@ -26,6 +26,7 @@ import pandas as pd
 
 from fretwear.errors import UnusedKeywordWarning
 from fretwear.history import ContactHistory
+from fretwear.power.result import PowerResult
 from fretwear.table.build import wear_table_from_case
 from fretwear.table.case import WearCase, law_coefficients  # noqa: F401 - re-exported
 from fretwear.table.schema import (  # noqa: F401 - re-exported
@@ -98,7 +99,8 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         PUIS_USURE.
     blocks : int
         Number of blocks of the power computation (NB_BLOC); ignored, warned, with a plain
-        power, as ``t_start`` and ``t_end``.
+        power, as ``t_start`` and ``t_end``. With a PowerResult ``source``, the three are those
+        of the result: other values are ignored with an UnusedKeywordWarning.
     stationarity_threshold : float
         Relative block spread above which a StationarityWarning is raised [-].
     force_max, speed_max : float, optional
@@ -181,4 +183,16 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                           "they are ignored (as POST_USURE ignores INST_INIT, INST_FIN and "
                           "NB_BLOC with PUIS_USURE): give the history or its PowerResult instead",
                           UnusedKeywordWarning, stacklevel=2)
+    elif isinstance(source, PowerResult):
+        own = {"t_start": source.t_start, "t_end": source.t_end, "blocks": len(source.blocks)}
+        ignored = [key for key, value, default in (("t_start", t_start, None),
+                                                   ("t_end", t_end, None), ("blocks", blocks, 1))
+                   if value != default and value != own[key]]
+        if ignored:
+            warnings.warn(f"wear_table: {', '.join(ignored)} window the history the power is "
+                          f"computed from; the PowerResult source was computed over "
+                          f"[{source.t_start:g}, {source.t_end:g}] s in {own['blocks']} "
+                          f"block(s), which the table uses: they are ignored; compute the power "
+                          f"with them (wear_power(history, t_start=..., t_end=..., blocks=...)) "
+                          f"or give the history", UnusedKeywordWarning, stacklevel=2)
     return wear_table_from_case(case, source, history=history)
