@@ -1,7 +1,8 @@
 """``fretwear power``: table and JSON output, streaming options, errors with exit codes.
 
-Expected values come from the analytic cases of tests/power/test_wear_power.py: a ramp force Fn = a + b·t at
-constant sliding speed V gives block powers V·(a + b·t_mid) exactly (closed-form integral).
+Expected values come from the analytic cases of tests/power/test_wear_power.py: a ramp force
+Fn = a + b·t at constant sliding speed V gives block powers V·(a + b·t_mid) exactly (closed-form
+integral).
 """
 
 import json

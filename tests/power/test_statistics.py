@@ -12,9 +12,8 @@ import numpy as np
 import pytest
 
 from fretwear.history import ContactHistory
+from fretwear.power import PowerAccumulator, contact_statistics, wear_power
 from fretwear.power.kernels import HAVE_NUMBA, fused_numpy
-from fretwear.power import PowerAccumulator, wear_power
-from fretwear.power import contact_statistics
 from fretwear.power.statistics import merge_groups
 
 BACKENDS = ["numpy", "numba"] if HAVE_NUMBA else ["numpy"]

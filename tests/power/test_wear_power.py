@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 
 from fretwear.errors import HistoryError, InputError, StationarityWarning
 from fretwear.history import ContactHistory
-from fretwear.power.kernels import HAVE_NUMBA
 from fretwear.power import PowerAccumulator, PowerResult, wear_power
+from fretwear.power.kernels import HAVE_NUMBA
 
 BACKENDS = ["numpy", "numba"] if HAVE_NUMBA else ["numpy"]
 

@@ -15,8 +15,14 @@ import pytest
 from fretwear import ContactHistory
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import contact_geometry
-from fretwear.table import COLUMNS, from_aster_names, to_aster_names, wear_table
-from fretwear.table import initial_state, replace_tube
+from fretwear.table import (
+    COLUMNS,
+    from_aster_names,
+    initial_state,
+    replace_tube,
+    to_aster_names,
+    wear_table,
+)
 
 YEAR = 31_536_000.0
 BAV = {"mobile_radius": 0.0111, "obstacle_width": 0.0127}

@@ -13,8 +13,15 @@ import numpy as np
 import pytest
 
 from fretwear import ContactHistory
-from fretwear.workflows.case_files import KEYS, chunked_power, keys_help, load_case, run_case, validate_case
 from fretwear.errors import InputError, KeywordError
+from fretwear.workflows.case_files import (
+    KEYS,
+    chunked_power,
+    keys_help,
+    load_case,
+    run_case,
+    validate_case,
+)
 
 POWER_CASE = {
     "power": {"value_W": 0.01},

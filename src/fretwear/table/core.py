@@ -179,9 +179,10 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                    if value != default]
         if ignored:
             warnings.warn(f"wear_table: {', '.join(ignored)} window the history the power is "
-                          f"computed from; with a wear power given as a number ({source!r} W) "
-                          "they are ignored (as POST_USURE ignores INST_INIT, INST_FIN and "
-                          "NB_BLOC with PUIS_USURE): give the history or its PowerResult instead",
+                          f"computed from; with a wear power given as a number "
+                          f"({float(source):g} W) they are ignored (as POST_USURE ignores "
+                          "INST_INIT, INST_FIN and NB_BLOC with PUIS_USURE): give the history or "
+                          "its PowerResult instead",
                           UnusedKeywordWarning, stacklevel=2)
     elif isinstance(source, PowerResult):
         own = {"t_start": source.t_start, "t_end": source.t_end, "blocks": len(source.blocks)}
