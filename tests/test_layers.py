@@ -41,6 +41,7 @@ LAYERS = ("foundation", "physics", "plotting", "workflows", "api", "cli")
 LAYER_OF = {
     "errors": "foundation", "keys": "foundation", "timeunits": "foundation",
     "_optional": "foundation", "_numba": "foundation", "_version": "foundation",
+    "_lazy": "foundation",
     "conftest": "foundation",
     "history": "physics", "sectors": "physics", "io": "physics", "power": "physics",
     "laws": "physics", "database": "physics", "geometry": "physics", "table": "physics",

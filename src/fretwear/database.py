@@ -35,8 +35,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import DatabaseError, FormatError
 from fretwear.geometry import CONTACT_TYPES
 from fretwear.io.guard import readable_file, reading

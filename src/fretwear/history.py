@@ -24,8 +24,8 @@ from types import MappingProxyType
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import HistoryError
 
 #: Every channel, in canonical order.

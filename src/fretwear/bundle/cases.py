@@ -26,8 +26,8 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import path_stamp
 from fretwear.bundle.manifest import ContactRow, HistoryRef

@@ -17,8 +17,8 @@ import warnings
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear._optional import require as _require
 from fretwear.errors import FormatError
 

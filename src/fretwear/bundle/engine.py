@@ -24,8 +24,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.bundle.cases import ContactTask, build_task
 from fretwear.bundle.datasets import require, store_length

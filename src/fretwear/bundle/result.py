@@ -8,10 +8,10 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import pandas as pd
 from scipy.interpolate import PchipInterpolator
 from scipy.optimize import brentq
 
+from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY

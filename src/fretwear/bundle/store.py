@@ -25,8 +25,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
-import pandas as pd
-
+from fretwear._lazy import pandas as pd
 from fretwear.bundle.datasets import require
 from fretwear.bundle.tasks import concat_packed, unpack
 from fretwear.errors import InputError

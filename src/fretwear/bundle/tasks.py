@@ -20,8 +20,8 @@ import warnings
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.datasets import frame_of, require, store_arrays
 from fretwear.io import open_source, read_history

@@ -18,8 +18,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear.dynamics import _kernel as K
 from fretwear.dynamics.excitation import BaseAcceleration, NodalForce

@@ -24,8 +24,8 @@ import re
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import FormatError, InputError
 from fretwear.io.atomic import atomic_write
 from fretwear.io.guard import readable_file, reading

@@ -15,8 +15,8 @@ import re
 from collections.abc import Sequence
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import FormatError
 
 __all__ = ["function_pairs", "curve_legends", "is_function_table", "function_columns",

@@ -24,8 +24,8 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import FormatError, HistoryError, KeywordError
 from fretwear.io import aster as _aster
 from fretwear.io import aster_functions as _functions

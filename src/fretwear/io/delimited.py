@@ -15,8 +15,8 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.errors import FormatError, InputError
 from fretwear.history import DESCRIPTIONS, UNITS, ContactHistory

@@ -53,8 +53,6 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import pandas as pd
-
 from fretwear.errors import FormatError, FretwearError, InputError, WholeReadWarning
 
 __all__ = ["readable_file", "reading", "probe", "warn_whole_read", "PROBE_TIMEOUT",
@@ -80,7 +78,10 @@ _LIBRARY: tuple[type[BaseException], ...] = (
 
 
 def _pandas_errors() -> tuple[type[BaseException], ...]:
-    return (pd.errors.EmptyDataError, pd.errors.ParserError)
+    pandas = sys.modules.get("pandas")  # not imported: no pandas code ran, none of its errors
+    if pandas is None:
+        return ()
+    return (pandas.errors.EmptyDataError, pandas.errors.ParserError)
 
 
 def _os_problem(exc: OSError) -> str | None:
@@ -174,7 +175,6 @@ def reading(path: Any, format: str, what: str = "file") -> Iterator[None]:
         What the file is, for operating-system errors.
     """
     label = os.fspath(path) if isinstance(path, os.PathLike) else str(path)
-    damaged = _DAMAGED + _pandas_errors() + (_LIBRARY if format in BINARY_FORMATS else ())
     try:
         yield
     except FretwearError:
@@ -188,7 +188,11 @@ def reading(path: Any, format: str, what: str = "file") -> Iterator[None]:
             raise InputError(f"{what} {name!r} {reason}") from exc
         raise FormatError(f"{label}: damaged or truncated {format} file ({_describe(exc)}); "
                           "write it again or check the transfer") from exc
-    except damaged as exc:
+    except Exception as exc:
+        # the errors of a damaged file (pandas' once pandas is imported: taken at the error)
+        if not isinstance(exc, _DAMAGED + _pandas_errors()
+                          + (_LIBRARY if format in BINARY_FORMATS else ())):
+            raise
         if isinstance(exc, UnicodeError):
             raise FormatError(f"{label}: not {format} text in the expected encoding "
                               f"({_describe(exc)}); save it as UTF-8, or give its encoding "

@@ -27,8 +27,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import HistoryError, InputError, LawWarning
 from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.io import iter_history_blocks

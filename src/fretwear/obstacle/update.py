@@ -14,8 +14,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import FretwearWarning, InputError, PerforationWarning
 from fretwear.io.aster import TABLE_FORMATS
 from fretwear.obstacle.clearance import (

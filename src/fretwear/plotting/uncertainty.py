@@ -16,8 +16,8 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.plotting._common import figure_and_axes, matplotlib_module
 

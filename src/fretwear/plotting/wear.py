@@ -7,8 +7,8 @@ written (the CLI and the loop save them with :func:`fretwear.plotting.save_figur
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.plotting._common import figure_and_axes
 from fretwear.table import from_aster_names

@@ -19,8 +19,8 @@ x and x² on each linear piece).
 from __future__ import annotations
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.history import ContactHistory
 

@@ -11,8 +11,7 @@ import os
 from pathlib import Path
 from typing import Any
 
-import pandas as pd
-
+from fretwear._lazy import pandas as pd
 from fretwear.bundle.manifest import IDENTITY
 from fretwear.bundle.store import OutputDirectory, read_frame
 from fretwear.errors import InputError

@@ -14,8 +14,8 @@ import functools
 import warnings
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import RangeWarning
 from fretwear.geometry.sectors import sector_depth_mobile, sector_depth_obstacle
 from fretwear.table.case import WearCase

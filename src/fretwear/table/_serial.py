@@ -14,8 +14,8 @@ from collections.abc import Iterator, Mapping
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.table.restart import InitialState
 
 __all__ = ["FrozenMap", "jsonable", "state_from_dict", "state_to_dict"]

@@ -35,8 +35,8 @@ import os
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.history import ContactHistory
 from fretwear.power import wear_power

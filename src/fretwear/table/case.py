@@ -26,8 +26,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry

@@ -22,8 +22,8 @@ import warnings
 from collections.abc import Mapping
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import UnusedKeywordWarning
 from fretwear.history import ContactHistory
 from fretwear.power.result import PowerResult

@@ -14,8 +14,7 @@ import json
 import os
 from pathlib import Path
 
-import pandas as pd
-
+from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear.errors import FormatError, InputError
 from fretwear.io.aster import TABLE_FORMATS, read_aster_table, write_aster_table

@@ -14,8 +14,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile

@@ -14,7 +14,7 @@ update, the coupled loop and the Code_Aster facade.
 
 from __future__ import annotations
 
-import pandas as pd
+from fretwear._lazy import pandas as pd
 
 #: Native column -> (Code_Aster name, unit, description).
 COLUMNS: dict[str, tuple[str, str, str]] = {

@@ -30,8 +30,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry._shapes import solve_monotone
 from fretwear.uncertainty.cases import prepare_case

@@ -18,9 +18,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-import pandas as pd
-
 from fretwear import table as fretwear_table
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.history import ContactHistory
 from fretwear.io import read_history

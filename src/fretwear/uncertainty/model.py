@@ -26,8 +26,8 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.base import ContactGeometry

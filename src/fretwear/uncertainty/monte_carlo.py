@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.power import PowerResult
 from fretwear.power.confidence import PowerInterval

@@ -30,8 +30,8 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.database import load_database
 from fretwear.errors import DatabaseError, FretwearWarning, KeywordError, UnusedKeywordWarning
 from fretwear.geometry import CONTACT_TYPES

@@ -21,8 +21,8 @@ from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import FormatError, FretwearError, KeywordError
 from fretwear.history import ContactHistory, contact_angle
 from fretwear.io import read_history

@@ -33,8 +33,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import FretwearWarning, InputError, KeywordError
 from fretwear.geometry import CONTACT_TYPES
 from fretwear.geometry.base import ASTER_KEYWORDS, DIMENSION_DESCRIPTIONS, DIMENSION_UNITS

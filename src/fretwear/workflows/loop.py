@@ -23,8 +23,8 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
+from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear.dynamics.config import DynamicsSetup, dynamics_from_config
 from fretwear.dynamics.integrate import simulate
