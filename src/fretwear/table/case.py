@@ -508,9 +508,13 @@ class WearCase:
         >>> case.to_dict()["coefficients"]
         {'coefficient': {'value': 1e-14, 'source': 'user'}}
         """
-        made = self.__dict__.get("_as_dict")  # the case is immutable: made once
+        made = self.__dict__.get("_as_dict")  # the case is immutable: made once it is reused
         if made is None:
-            made = self._make_dict()
+            fresh = self._make_dict()
+            if not self.__dict__.get("_dict_made"):  # a case asked once (wear_table(**kw)):
+                object.__setattr__(self, "_dict_made", True)  # its dict, nothing kept
+                return fresh
+            made = fresh
             object.__setattr__(self, "_as_dict", made)
         return _copied(made)
 
@@ -529,6 +533,7 @@ class WearCase:
     def __getstate__(self) -> dict[str, Any]:
         state = dict(self.__dict__)  # pickled without the dict of to_dict (made again)
         state.pop("_as_dict", None)
+        state.pop("_dict_made", None)
         return state
 
     @classmethod
