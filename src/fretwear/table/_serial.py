@@ -69,6 +69,10 @@ def jsonable(value: Any) -> Any:
         return value
     if kind is float:
         return None if math.isnan(value) else value
+    if kind is dict or kind is FrozenMap:  # (before the slow abstract Mapping check)
+        return {str(k): jsonable(v) for k, v in value.items()}
+    if kind is tuple or kind is list:
+        return [jsonable(v) for v in value]
     if isinstance(value, Mapping):
         return {str(k): jsonable(v) for k, v in value.items()}
     if isinstance(value, list | tuple | np.ndarray):
