@@ -51,3 +51,15 @@ def test_the_stand_in_behaves_as_pandas():
     assert isinstance(frame, pandas.DataFrame) and pd.DataFrame is pandas.DataFrame
     assert pd.concat([frame, frame], ignore_index=True)["a"].tolist() == [1.0, 2.0, 1.0, 2.0]
     assert "DataFrame" in vars(pd)  # cached after the first use
+
+
+def test_geometry_imports_numba_only_when_a_kernel_is_asked():
+    """fretwear._lazy.compiled_when_used: the geometry's kernels compile (and numba loads) at
+    the first solve, not at import."""
+    assert "False" == subprocess.run(
+        [sys.executable, "-c", "import sys, fretwear.geometry; print('numba' in sys.modules)"],
+        capture_output=True, text=True, check=True).stdout.strip()
+    assert "True" == subprocess.run(
+        [sys.executable, "-c", "import sys\nfrom fretwear.geometry._shapes import _lens_kernels\n"
+         "_lens_kernels()\nprint('numba' in sys.modules)"],
+        capture_output=True, text=True, check=True).stdout.strip()

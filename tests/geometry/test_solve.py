@@ -78,7 +78,7 @@ def test_stacked_lens_area_compiled_or_not_is_lens_area(compiled, monkeypatch):
     if compiled and not HAVE_NUMBA:
         pytest.skip("the compiled lens needs numba (extra 'fast')")
     if not compiled:
-        monkeypatch.setattr(_shapes, "_KERNELS", False)
+        monkeypatch.setattr(_shapes, "_lens_kernels", lambda: None)
     rng = np.random.default_rng(5)
     for rm, ro in ((9.525e-3, 9.75e-3), (4.84e-3, 5.5e-3), (3.0, 5.0)):
         limit = float(_shapes.lens_depth_limit(rm, ro))
@@ -129,8 +129,8 @@ def test_lunule_compiled_is_the_numpy_lunule_bit_for_bit(monkeypatch):
     assert _lunule._mobile_area(*cases[0][2:5]).__name__ == "compiled_area"
     compiled = run()
     rng.bit_generator.state = state
-    monkeypatch.setattr(_lunule, "_KERNELS", False)
-    monkeypatch.setattr(_shapes, "_KERNELS", False)
+    monkeypatch.setattr(_lunule, "_kernels", lambda: None)
+    monkeypatch.setattr(_shapes, "_lens_kernels", lambda: None)
     monkeypatch.setattr(_shapes, "_lens_area_on_range", _shapes._lens_area_on_range.__wrapped__)
     assert _lunule._mobile_area(*cases[0][2:5]).__name__ == "area"
     assert _shapes.lens_area_on_range(1.0, 2.0)[0].__name__ == "area"

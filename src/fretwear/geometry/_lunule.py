@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from fretwear._lazy import compiled_when_used
 from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the doctests
     _SERIES_LIMIT,
     _SERIES_TUPLE,
@@ -113,20 +114,9 @@ def _mobile_areas(u, sine, small, radius, x, seg_m, out):
         out[i] = a if (a != a or a > 0.0) else 0.0  # np.maximum(a, 0.0)
 
 
-_KERNELS = None
-
-
-def _kernels():
-    """(:func:`_interface_ratios`, :func:`_mobile_areas`) compiled by numba at the first call
-    (cached), None without numba."""
-    global _KERNELS
-    if _KERNELS is None:
-        from fretwear._numba import HAVE_NUMBA, njit
-
-        _KERNELS = ((njit(cache=True, error_model="numpy")(_interface_ratios),
-                     njit(cache=True, error_model="numpy")(_mobile_areas))
-                    if HAVE_NUMBA else False)
-    return _KERNELS or None
+#: (:func:`_interface_ratios`, :func:`_mobile_areas`) compiled at the first call, None without
+#: numba.
+_kernels = compiled_when_used(_interface_ratios, _mobile_areas)
 
 
 def lunule_areas(mobile_radius, obstacle_radius, depth_mobile, depth_obstacle):

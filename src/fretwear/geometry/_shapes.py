@@ -25,6 +25,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from fretwear._lazy import compiled_when_used
 from fretwear.geometry._solve import _out, solve_monotone  # noqa: F401 - re-exported
 
 __all__ = [
@@ -418,20 +419,9 @@ def _lens_of_angles(u, sine, small, rm, ro, out):
 
 
 _SERIES_TUPLE = tuple(_SERIES)
-_KERNELS = None
-
-
-def _lens_kernels():
-    """(:func:`_lens_ratios`, :func:`_lens_of_angles`) compiled by numba at the first call
-    (cached), None without numba."""
-    global _KERNELS
-    if _KERNELS is None:
-        from fretwear._numba import HAVE_NUMBA, njit
-
-        _KERNELS = ((njit(cache=True, error_model="numpy")(_lens_ratios),
-                     njit(cache=True, error_model="numpy")(_lens_of_angles))
-                    if HAVE_NUMBA else False)
-    return _KERNELS or None
+#: (:func:`_lens_ratios`, :func:`_lens_of_angles`) compiled at the first call, None without
+#: numba.
+_lens_kernels = compiled_when_used(_lens_ratios, _lens_of_angles)
 
 
 def frustum_volume(area: Callable, depth, width, tilt):

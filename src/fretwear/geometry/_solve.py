@@ -14,6 +14,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from fretwear._lazy import compiled_when_used
+
 __all__ = ["solve_monotone"]
 
 
@@ -110,7 +112,8 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
         # The state is kept for the unconverged elements only; ``func`` is always called on a
         # full-shape array (converged elements hold their root, or the lower bound).
         x_eval = np.where(np.isnan(root), lo, root)
-        step = _compiled_step() if compiled else None
+        kernel = _step_kernel() if compiled else None
+        step = None if kernel is None else kernel[0]
         if step is None:
             _numpy_steps(evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, target[index], rtol,
                          atol, max_iter)
@@ -194,21 +197,6 @@ def _compiled_steps(step, evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goa
         root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
 
 
-def _compiled_step():
-    """:func:`_chandrupatla_step` compiled by numba (the first call compiles it, or loads it
-    from numba's cache), None without numba; numba is imported only when a solve asks."""
-    global _COMPILED
-    if _COMPILED is None:
-        from fretwear._numba import HAVE_NUMBA, njit
-
-        _COMPILED = (njit(cache=True, error_model="numpy")(_chandrupatla_step) if HAVE_NUMBA
-                     else False)
-    return _COMPILED or None
-
-
-_COMPILED = None
-
-
 def _chandrupatla_step(x1, f1, x2, f2, x3, f3, t, xt, ft, rtol, atol, xm, done):
     """One step of every element, in place: the state (x1, f1, x2, f2, x3, f3) takes the trial
     point (xt, ft); ``xm`` gets the best point, ``done`` whether the element has converged;
@@ -256,3 +244,7 @@ def _chandrupatla_step(x1, f1, x2, f2, x3, f3, t, xt, ft, rtol, atol, xm, done):
         t[i] = step
         xt[i] = a1 + step * (a2 - a1)
     return count
+
+
+#: (:func:`_chandrupatla_step`,) compiled when a solve first asks, None without numba.
+_step_kernel = compiled_when_used(_chandrupatla_step)

@@ -11,6 +11,7 @@ import warnings
 
 import numpy as np
 
+from fretwear._lazy import compiled_when_used
 from fretwear.errors import InputError, LawWarning
 
 #: Default EDF_MZ coefficients (theory §4; Code_Aster's COEF_USURE, COEF_B, COEF_N, COEF_S).
@@ -62,8 +63,8 @@ def _psi2(x: np.ndarray) -> np.ndarray:
     out = np.empty_like(x)
     small = x < _SERIES_LIMIT
     xs = x[small]
-    series = _psi2_series_kernel()
-    if series is None:
+    kernel = _psi2_series_kernel()
+    if kernel is None:
         term = xs / 2.0
         total = term.copy()
         for k in range(2, _SERIES_TERMS + 1):
@@ -71,7 +72,7 @@ def _psi2(x: np.ndarray) -> np.ndarray:
             total += term
     else:
         total = np.empty_like(xs)
-        series(np.ascontiguousarray(xs), _SERIES_TERMS, total)
+        kernel[0](np.ascontiguousarray(xs), _SERIES_TERMS, total)
     out[small] = total
     xb = x[~small]
     out[~small] = 1.0 + np.expm1(-xb) / xb
@@ -91,18 +92,8 @@ def _psi2_series(xs, terms, total):
         total[i] = value
 
 
-_PSI2_SERIES = None
-
-
-def _psi2_series_kernel():
-    """:func:`_psi2_series` compiled by numba at the first call (cached), None without numba."""
-    global _PSI2_SERIES
-    if _PSI2_SERIES is None:
-        from fretwear._numba import HAVE_NUMBA, njit
-
-        _PSI2_SERIES = (njit(cache=True, error_model="numpy")(_psi2_series) if HAVE_NUMBA
-                        else False)
-    return _PSI2_SERIES or None
+#: (:func:`_psi2_series`,) compiled at the first call, None without numba.
+_psi2_series_kernel = compiled_when_used(_psi2_series)
 
 
 def archard(power, duration, coefficient) -> np.ndarray:
