@@ -186,27 +186,22 @@ def _wear_table(source, task: ContactTask, history=None):
 
 
 def _power_options(task: ContactTask) -> dict[str, Any]:
-    case = task.wear_case()
-    return dict(t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,
-                sectors=case.sectors)
+    """The keywords of the contact's :class:`~fretwear.power.PowerAccumulator` (its window,
+    blocks, sectors and, when the law counts KWU-EPRI classes, their maxima)."""
+    options = task.wear_case().power_options
+    del options["stationarity_threshold"]  # the result's, not the accumulator's
+    return options
 
 
 def _threshold(task: ContactTask) -> float:
     return task.wear_case().stationarity_threshold
 
 
-def kwu_maxima(task: ContactTask) -> tuple[float | None, float | None] | None:
-    """``(FNOR_MAXI [N], VTAN_MAXI [m/s])`` of a law that counts KWU-EPRI classes (either may be
-    None: the window's maxima), None for another law."""
-    case = task.wear_case()
-    return (case.force_max, case.speed_max) if case.wear_law.needs_history else None
-
-
 def needs_whole_history(task: ContactTask) -> bool:
     """Whether a contact cannot be split in time chunks: KWU_EPRI without both FNOR_MAXI and
     VTAN_MAXI (its class bounds depend on the window's maxima, known only at the end: a second
     pass over the history; :mod:`fretwear.laws.kwu_stream`)."""
-    maxima = kwu_maxima(task)
+    maxima = task.wear_case().power_options["kwu"]
     return maxima is not None and (maxima[0] is None or maxima[1] is None)
 
 
@@ -230,16 +225,14 @@ def _file_table(task: ContactTask, chunk_size: int):
     (memory bounded by a block), the time range of the blocks from the file's metadata (Parquet
     statistics, HDF5/NetCDF ends; a first pass for text only), the KWU_EPRI class counts in the
     same pass when FNOR_MAXI and VTAN_MAXI are given (one more pass otherwise)."""
-    case = task.wear_case()
-    kwu = kwu_maxima(task)
     read = [0]
 
     def progress(samples: int) -> None:
         read[0] = samples
 
-    power = wear_power(task.history.path, **_power_options(task), chunk_size=chunk_size,
-                       stationarity_threshold=case.stationarity_threshold, kwu=kwu,
-                       progress=progress, name=task.contact, **_file_options(task))
+    power = wear_power(task.history.path, **task.wear_case().power_options,
+                       chunk_size=chunk_size, progress=progress, name=task.contact,
+                       **_file_options(task))
     return _wear_table(power, task), read[0]
 
 
@@ -284,7 +277,6 @@ def chunk_state(task: ContactTask, start: int, stop: int, bounds: tuple[float, f
     opts = _power_options(task)
     opts["t_start"] = bounds[0] if opts["t_start"] is None else opts["t_start"]
     opts["t_end"] = bounds[1] if opts["t_end"] is None else opts["t_end"]
-    opts["kwu"] = kwu_maxima(task)  # both maxima given (else the contact is not split)
     with captured() as caught:
         try:
             acc = PowerAccumulator(**opts).update(read_part(task, start, stop))

@@ -150,10 +150,7 @@ def _power_of(case: WearCase, source, history):
     if isinstance(source, str | os.PathLike):
         # streamed in one pass (two for KWU_EPRI without FNOR_MAXI/VTAN_MAXI): the law's class
         # counts come with the power (result.kwu), the history is never held whole
-        kwu = (case.force_max, case.speed_max) if case.wear_law.needs_history else None
-        result = wear_power(source, t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,
-                            sectors=case.sectors,
-                            stationarity_threshold=case.stationarity_threshold, kwu=kwu)
+        result = wear_power(source, **case.power_options)
         return result, None, float(result.total)
     if isinstance(source, ContactHistory):
         result = wear_power(source, t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,

@@ -462,6 +462,26 @@ class WearCase:
         return contact_geometry(self.contact_type, **self.dimensions)
 
     @property
+    def power_options(self) -> dict[str, Any]:
+        """The keywords of :func:`fretwear.power.wear_power` this case asks for: the window
+        ``t_start``, ``t_end`` [s], ``blocks``, ``sectors``, ``stationarity_threshold``, and
+        ``kwu`` = (FNOR_MAXI [N], VTAN_MAXI [m/s]) for a law that counts KWU-EPRI classes
+        (either may be None: the window's maxima), None for another law.
+
+        Examples
+        --------
+        >>> case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0], blocks=4,
+        ...     dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02},
+        ...     coefficients={"COEF_USURE": 1e-14})
+        >>> case.power_options["blocks"], case.power_options["kwu"]
+        (4, None)
+        """
+        return dict(t_start=self.t_start, t_end=self.t_end, blocks=self.blocks,
+                    sectors=self.sectors, stationarity_threshold=self.stationarity_threshold,
+                    kwu=(self.force_max, self.speed_max) if self.wear_law.needs_history
+                    else None)
+
+    @property
     def origin(self) -> float:
         """ORIG_INST of the new rows [user time unit]: 0, or the restart state's origin."""
         return 0.0 if self.initial_state is None else float(self.initial_state.origin)

@@ -465,9 +465,7 @@ def run_case(case: str | os.PathLike | Mapping[str, Any], *, progress=None) -> C
             # streamed in one pass (the history is never held whole); KWU_EPRI's class counts
             # come in the same pass when FNOR_MAXI and VTAN_MAXI are given, else in a second one
             power = wear_power(
-                path, t_start=wear.t_start, t_end=wear.t_end, blocks=wear.blocks,
-                sectors=wear.sectors, stationarity_threshold=wear.stationarity_threshold,
-                kwu=(wear.force_max, wear.speed_max) if wear.wear_law.needs_history else None,
+                path, **wear.power_options,
                 progress=lambda done: step("computing the wear power", done, None), **options)
         else:
             power = float(case["power"]["value_W"])
