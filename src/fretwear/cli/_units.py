@@ -54,6 +54,14 @@ def parse_units(values: tuple[str, ...]) -> dict[str, str] | None:
     return pairs(values, "--units", "KEY=UNIT (e.g. length=mm)") or None
 
 
+def _with_units(case: dict[str, Any], units: Mapping[str, str]) -> dict[str, Any]:
+    """``case`` with ``units`` added to its ``[history] units`` (the given entries win)."""
+    history = dict(case.get("history", {}))
+    history["units"] = {**dict(history.get("units", {})), **units}
+    case["history"] = history
+    return case
+
+
 def with_history_units(case: Path | dict[str, Any], units: Mapping[str, str] | None
                        ) -> Path | dict[str, Any]:
     """The case (file or loaded dict) with ``--units`` added to its ``[history] units``
@@ -61,13 +69,10 @@ def with_history_units(case: Path | dict[str, Any], units: Mapping[str, str] | N
     if not units:
         return case
     case = load_case(case) if not isinstance(case, dict) else case
-    history = dict(case.get("history", {}))
-    if "file" not in history:
+    if "file" not in case.get("history", {}):
         raise click.UsageError("--units gives the units of a history file, but the case has no "
                                "[history] file (it gives the power)")
-    history["units"] = {**dict(history.get("units", {})), **units}
-    case["history"] = history
-    return case
+    return _with_units(case, units)
 
 
 def with_bundle_units(case: Path | None, units: Mapping[str, str] | None
@@ -77,11 +82,7 @@ def with_bundle_units(case: Path | None, units: Mapping[str, str] | None
     row's ``history.units`` column still overrides them for its contact)."""
     if not units:
         return case
-    base = load_case(case) if case is not None else {}
-    history = dict(base.get("history", {}))
-    history["units"] = {**dict(history.get("units", {})), **units}
-    base["history"] = history
-    return base
+    return _with_units(load_case(case) if case is not None else {}, units)
 
 
 def units_line(units: Mapping[str, str] | None) -> str:

@@ -173,10 +173,11 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
         stationarity_threshold=stationarity_threshold, force_max=force_max, speed_max=speed_max,
         coefficient_files=coefficient_files, wall_thickness=wall_thickness,
         depth_limit=depth_limit, time_unit=time_unit, name=name)
+    window = {key: value for key, value, default in (("t_start", t_start, None),
+                                                     ("t_end", t_end, None), ("blocks", blocks, 1))
+              if value != default}  # the window keywords given
     if history is None and isinstance(source, numbers.Real | np.ndarray) and np.ndim(source) == 0:
-        ignored = [key for key, value, default in (("t_start", t_start, None),
-                                                   ("t_end", t_end, None), ("blocks", blocks, 1))
-                   if value != default]
+        ignored = list(window)
         if ignored:
             warnings.warn(f"wear_table: {', '.join(ignored)} window the history the power is "
                           f"computed from; with a wear power given as a number "
@@ -186,9 +187,7 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                           UnusedKeywordWarning, stacklevel=2)
     elif isinstance(source, PowerResult):
         own = {"t_start": source.t_start, "t_end": source.t_end, "blocks": len(source.blocks)}
-        ignored = [key for key, value, default in (("t_start", t_start, None),
-                                                   ("t_end", t_end, None), ("blocks", blocks, 1))
-                   if value != default and value != own[key]]
+        ignored = [key for key, value in window.items() if value != own[key]]
         if ignored:
             warnings.warn(f"wear_table: {', '.join(ignored)} window the history the power is "
                           f"computed from; the PowerResult source was computed over "
