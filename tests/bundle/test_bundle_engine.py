@@ -324,7 +324,7 @@ def test_kwu_epri_contact_is_split_only_with_both_maxima(tmp_path, monkeypatch, 
 def test_concat_packed_equals_pandas_concat_of_the_tables(tmp_path):
     """The bundle's table is assembled column by column from the packed tables; it equals
     pandas.concat of the contacts' DataFrames with the contact inserted (values, dtypes, column
-    order), and tables of different columns are left to pandas (None)."""
+    order); tables of different columns are aligned by pandas.concat itself."""
     from fretwear.bundle.tasks import concat_packed, pack
 
     h = oscillator()
@@ -340,8 +340,12 @@ def test_concat_packed_equals_pandas_concat_of_the_tables(tmp_path):
     got = concat_packed(names, [pack(t) for t in tables])
     pd.testing.assert_frame_equal(got, expected, check_exact=True)
     assert "sector" in got.columns and got["sector"].dtype == expected["sector"].dtype
-    other = pack(tables[0].drop(columns=["sector"]))
-    assert concat_packed(names[:2], [pack(tables[1]), other]) is None
+    other = tables[0].drop(columns=["sector"])
+    aligned = pd.concat([expected[expected["contact"] == "b"],
+                         other.assign(contact="a")[["contact", *other.columns]]],
+                        ignore_index=True)
+    pd.testing.assert_frame_equal(concat_packed(["b", "a"], [pack(tables[1]), pack(other)]),
+                                  aligned, check_exact=True)
 
 
 def test_a_bundle_whose_every_contact_failed_still_writes_its_outputs(tmp_path):

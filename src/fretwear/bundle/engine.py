@@ -42,7 +42,6 @@ from fretwear.bundle.tasks import (
     run_contact,
     run_contacts,
     time_bounds,
-    unpack,
 )
 from fretwear.errors import InputError, KeywordError
 from fretwear.history import DEFAULT_CHUNK_SIZE
@@ -463,14 +462,6 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
         packed.update({c: pack(f) for c, f in store.rows(missing).items()})
     kept = [c for c in order if c in packed]
     table = concat_packed(kept, [packed[c] for c in kept])
-    if table is None:  # tables of different columns (with and without sectors): aligned
-        frames = []
-        for c in kept:
-            f = unpack(packed[c])
-            f.insert(0, "contact", c)
-            frames.append(f)
-        table = (pd.concat(frames, ignore_index=True) if frames
-                 else pd.DataFrame(columns=["contact"]))
     if "sector" in table.columns and table["sector"].isna().any():
         table["sector"] = table["sector"].astype("Int64")
     table = identity.merge(table, on="contact", how="right")

@@ -27,7 +27,7 @@ from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.datasets import require
-from fretwear.bundle.tasks import concat_packed, unpack
+from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.table.schema import FLOAT_FORMAT
@@ -102,8 +102,6 @@ class OutputDirectory:
         if kept:
             rows_file = f"{stem}.{self.table_format}"
             frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
-            if frame is None:  # tables of different columns: aligned by pandas
-                frame = pd.concat([rows_of(r) for r in kept], ignore_index=True)
             write_frame(frame, self.parts / rows_file, self.table_format)
         meta = {"part": stem, "rows_file": rows_file,
                 "contacts": [{k: v for k, v in r.items() if k not in ("table", "state")}
@@ -161,10 +159,3 @@ class OutputDirectory:
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
         return target
-
-
-def rows_of(record: Mapping[str, Any]) -> pd.DataFrame:
-    """A contact's wear table with its id in front (what a part stores)."""
-    out = unpack(record["table"])
-    out.insert(0, "contact", record["contact"])
-    return out

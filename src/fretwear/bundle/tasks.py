@@ -98,11 +98,12 @@ def unpack(packed: dict[str, Any]) -> pd.DataFrame:
     return pd.DataFrame(dict(zip(packed["columns"], packed["arrays"], strict=True)))
 
 
-def concat_packed(contacts: list[str], packed: list[dict[str, Any]]) -> pd.DataFrame | None:
+def concat_packed(contacts: list[str], packed: list[dict[str, Any]]) -> pd.DataFrame:
     """The tables of :func:`pack` one under the other with a ``contact`` column in front, as
-    ``pandas.concat`` of their :func:`unpack` with the contact inserted would give them, built
-    column by column from the arrays (no DataFrame per contact); None when the tables do not
-    all have the same columns and dtypes (then ``pandas.concat`` aligns them).
+    ``pandas.concat`` of their :func:`unpack` with the contact inserted gives them: built column
+    by column from the arrays (no DataFrame per contact) when the tables all have the same
+    columns and dtypes, aligned by ``pandas.concat`` otherwise (tables with and without
+    sectors); no tables: an empty frame with the ``contact`` column.
 
     Examples
     --------
@@ -112,12 +113,17 @@ def concat_packed(contacts: list[str], packed: list[dict[str, Any]]) -> pd.DataF
     {'contact': ['A', 'A', 'B'], 'x': [1.0, 2.0, 3.0]}
     """
     if not packed:
-        return None
+        return pd.DataFrame(columns=["contact"])
     columns = packed[0]["columns"]
     dtypes = [a.dtype for a in packed[0]["arrays"]]
     if any(p["columns"] != columns or [a.dtype for a in p["arrays"]] != dtypes
            for p in packed[1:]):
-        return None
+        frames = []
+        for contact, table in zip(contacts, packed, strict=True):
+            frame = unpack(table)
+            frame.insert(0, "contact", contact)
+            frames.append(frame)
+        return pd.concat(frames, ignore_index=True)
     lengths = [len(p["arrays"][0]) if p["arrays"] else 0 for p in packed]
     data = {"contact": np.repeat(np.array(contacts, dtype=object), lengths)}
     for j, name in enumerate(columns):
