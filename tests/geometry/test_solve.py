@@ -7,6 +7,7 @@ unbounded bracket and an iteration cap exercise the branches of Chandrupatla's m
 (Chandrupatla 1997, Adv. Eng. Software 28(3)).
 """
 
+import math
 import warnings
 
 import numpy as np
@@ -139,3 +140,52 @@ def test_lunule_compiled_is_the_numpy_lunule_bit_for_bit(monkeypatch):
     for a, b in zip(compiled, plain, strict=True):
         assert type(a) is type(b) and np.shape(a) == np.shape(b)
         assert np.array_equal(a, b, equal_nan=True)
+
+
+@pytest.mark.skipif(not HAVE_NUMBA, reason="the compiled enco volume needs numba (extra 'fast')")
+def test_enco_compiled_is_the_numpy_enco_bit_for_bit(monkeypatch):
+    """TUBE_3/4_ENCO's solver function (the stacked enco volume) and enco_depth, compiled
+    (numba arithmetic around NumPy's arcsin and sin) against the numpy operations, bit for bit:
+    no tilt and tilts whose wedge/frustum switch falls inside the range, one and two edges,
+    depths beyond the lens limit, negative, NaN; the public enco_volume as third witness."""
+    from fretwear.geometry import _shapes, enco
+    rng = np.random.default_rng(13)
+    dims = [(9.525e-3, 9.75e-3, 0.03, 30.0, 0.0, 1), (9.525e-3, 9.75e-3, 0.03, 30.0, 0.1, 2),
+            (4.84e-3, 5.5e-3, 0.02, 45.0, 1.0, 1), (3.0, 5.0, 1.0, 10.0, 20.0, 2)]
+
+    def run():
+        out = []
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            for rm, ro, l, alpha, tilt, edges in dims:
+                limit = float(_shapes.lens_depth_limit(rm, ro))
+                d = np.concatenate([rng.random(60) * limit * 1.1, np.geomspace(1e-13, limit, 40),
+                                    [0.0, -0.0, limit, -1e-9, np.nan, l * math.radians(tilt)]])
+                func = enco._stacked_enco_volume(rm, ro, l, alpha, tilt, edges)
+                out.append((func.__name__, func(d), func(d[:12].reshape(3, 4)), func(d[5])))
+                v = np.asarray(enco.enco_volume(rng.random(30) * limit, rm, ro, l, alpha,
+                                                tilt_angle=tilt, edges=edges))
+                out.append(enco.enco_depth(np.append(v, [0.0, np.nan, 10 * v.max()]), rm, ro, l,
+                                           alpha, tilt_angle=tilt, edges=edges))
+                out.append(np.asarray(enco.enco_volume(d, rm, ro, l, alpha, tilt_angle=tilt,
+                                                       edges=edges)))
+        return out
+
+    state = rng.bit_generator.state
+    compiled = run()
+    rng.bit_generator.state = state
+    monkeypatch.setattr(enco, "_enco_kernels", lambda: None)
+    monkeypatch.setattr(enco, "_enco_volume_on_range", enco._enco_volume_on_range.__wrapped__)
+    plain = run()
+    for a, b in zip(compiled, plain, strict=True):
+        if isinstance(a, tuple):
+            assert (a[0], b[0]) == ("compiled_volume", "volume")
+            a, b = a[1:], b[1:]
+        else:
+            a, b = (a,), (b,)
+        for x, y in zip(a, b, strict=True):
+            assert type(x) is type(y) and np.shape(x) == np.shape(y)
+            assert np.array_equal(x, y, equal_nan=True)
+    # the public closed-form volume is the solver's function, compiled or not
+    for c, p in zip(compiled[::3], compiled[2::3], strict=True):
+        assert np.array_equal(c[1], p, equal_nan=True)

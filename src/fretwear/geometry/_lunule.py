@@ -65,12 +65,10 @@ def _mobile_area(x, s_m, seg_m):
         radius = np.empty(d.size)
         ratio = np.empty(d.size)
         ratios_of(xs, sms, d, radius, ratio)
-        with np.errstate(invalid="ignore"):
-            u = 2.0 * np.arcsin(ratio)
-            small = np.abs(u) < _SERIES_LIMIT
-            sine = u if small.all() else np.sin(u)  # u - sin(u) only where not small
+        # the ratios are in [0, 1] or NaN: NumPy's arcsin and sin raise nothing on them
+        u = 2.0 * np.arcsin(ratio)
         out = np.empty(d.size)
-        areas_of(u, sine, small, radius, xs, segs, out)
+        areas_of(u, np.sin(u), radius, xs, segs, out)
         return out.reshape(shape)
 
     return compiled_area
@@ -92,13 +90,13 @@ def _interface_ratios(x, s_m, dm, radius, ratio):
         ratio[i] = q if (q >= 0.0 and q <= 1.0) else math.nan
 
 
-def _mobile_areas(u, sine, small, radius, x, seg_m, out):
+def _mobile_areas(u, sine, radius, x, seg_m, out):
     """max(seg_m − seg(r, x), 0) from u = 2φ of the common arc's segment, as
     :func:`segment_area`, :func:`_u_minus_sin`, :func:`_interface_segment` and np.maximum
-    make them (``sine``: sin u where not small)."""
+    make them (``sine``: sin u, used where |u| is not below the series limit)."""
     for i in range(out.size):
         ui = u[i]
-        if small[i]:
+        if abs(ui) < _SERIES_LIMIT:
             u2 = ui * ui
             series = 0.0
             power = ui * u2

@@ -313,6 +313,13 @@ def _lens_area_on_range(mobile_radius: float, obstacle_radius: float):
     return area, float(at_zero), float(at_limit), limit
 
 
+def lens_range(mobile_radius, obstacle_radius) -> float:
+    """The largest depth :func:`lens_area` accepts [m]: :func:`lens_depth_limit` and its
+    tolerance of 1e-12 relative."""
+    limit = lens_depth_limit(mobile_radius, obstacle_radius)
+    return limit + 1e-12 * np.maximum(limit, 0.0)
+
+
 def stacked_lens_area(mobile_radius, obstacle_radius) -> Callable:
     """:func:`lens_area` of these radii as a function of a 1-d array of depths [m] -> [m²], bit
     for bit, for a solver that calls it many times: the two circular segments (R_m and R_o) in
@@ -329,8 +336,7 @@ def stacked_lens_area(mobile_radius, obstacle_radius) -> Callable:
     """
     rm = np.asarray(mobile_radius, dtype=float)
     ro = np.asarray(obstacle_radius, dtype=float)
-    limit = lens_depth_limit(rm, ro)
-    within = limit + 1e-12 * np.maximum(limit, 0.0)  # lens_area's range and tolerance
+    within = lens_range(rm, ro)
     radii: dict[int, np.ndarray] = {}
 
     def area(d: np.ndarray) -> np.ndarray:
@@ -355,12 +361,10 @@ def stacked_lens_area(mobile_radius, obstacle_radius) -> Callable:
         d = np.ascontiguousarray(d, dtype=float)
         ratio = np.empty(2 * d.size)
         ratios_of(d, r_m, r_o, top, ratio)
-        with np.errstate(invalid="ignore"):
-            u = 2.0 * np.arcsin(ratio)
-            small = np.abs(u) < _SERIES_LIMIT
-            sine = u if small.all() else np.sin(u)  # u - sin(u) only where not small
+        # the ratios are in [0, 1] or NaN: NumPy's arcsin and sin raise nothing on them
+        u = 2.0 * np.arcsin(ratio)
         out = np.empty(d.size)
-        lens_of(u, sine, small, r_m, r_o, out)
+        lens_of(u, np.sin(u), r_m, r_o, out)
         return out
 
     return compiled_area
@@ -391,16 +395,17 @@ def _lens_ratios(d, rm, ro, within, ratio):
             ratio[j] = r if (r >= 0.0 and r <= 1.0) else math.nan
 
 
-def _lens_of_angles(u, sine, small, rm, ro, out):
+def _lens_of_angles(u, sine, rm, ro, out):
     """seg(R_m) − seg(R_o) of each depth from u = 2φ of both segments (first the R_m ones), as
-    :func:`segment_area` and :func:`_u_minus_sin` make them (``sine``: sin u where not small)."""
+    :func:`segment_area` and :func:`_u_minus_sin` make them (``sine``: sin u, used where |u|
+    is not below the series limit)."""
     n = out.size
     for i in range(n):
         seg_m = 0.0
         seg_o = 0.0
         for j, rho in ((i, rm), (n + i, ro)):
             uj = u[j]
-            if small[j]:
+            if abs(uj) < _SERIES_LIMIT:
                 u2 = uj * uj
                 series = 0.0
                 power = uj * u2

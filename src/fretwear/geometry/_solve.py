@@ -2,7 +2,7 @@
 
 Chandrupatla's method on every element at once (theory §6: the depths of the relations without
 a closed form). Each step's arithmetic is element-wise: with numba (the ``fast`` extra) one
-compiled kernel makes the step of every element (:func:`_chandrupatla_step`), otherwise numpy
+compiled kernel makes the step of every element (:func:`_chandrupatla_advance`), otherwise numpy
 array operations do (:func:`_numpy_steps`); the two make the same operations in the same order,
 so the roots are the same to the bit. SI units are the caller's.
 """
@@ -172,61 +172,65 @@ def _numpy_steps(evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goal, rtol, 
 
 def _compiled_steps(step, evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goal, rtol, atol,
                     max_iter):
-    """:func:`_numpy_steps` with each step made by :func:`_chandrupatla_step` (compiled): the
-    same operations element by element, without numpy's per-call cost on small arrays."""
+    """:func:`_numpy_steps` with each step made by :func:`_chandrupatla_advance` (compiled):
+    the same operations element by element, without numpy's per-call cost on small arrays.
+    The bracketed elements keep their place in the state arrays (``active`` marks those not
+    converged), so a step costs one compiled call and the evaluation."""
     x1, f1 = hi[index], f_hi[index]
     x2, f2 = lo[index], f_lo[index]
     x3, f3 = x2.copy(), f2.copy()
     t = np.full(index.size, 0.5)
     xt = x1 + t * (x2 - x1)
-    xm = np.empty(index.size)
-    done = np.zeros(index.size, dtype=np.bool_)
+    active = np.ones(index.size, dtype=np.bool_)
+    x_eval[index] = xt
+    remaining = index.size
     for _ in range(max_iter):
-        if index.size == 0:
+        if remaining == 0:
             break
-        x_eval[index] = xt
-        ft = evaluate(x_eval)[index] - goal
-        if step(x1, f1, x2, f2, x3, f3, t, xt, ft, float(rtol), float(atol), xm, done):
-            root[index[done]] = xm[done]
-            x_eval[index[done]] = xm[done]
-            keep = ~done
-            index, goal = index[keep], goal[keep]
-            x1, f1, x2, f2, x3, f3, t, xt, xm, done = (
-                a[keep] for a in (x1, f1, x2, f2, x3, f3, t, xt, xm, done))
-    if index.size:
-        root[index] = np.where(np.abs(f1) < np.abs(f2), x1, x2)
+        remaining = step(index, active, x1, f1, x2, f2, x3, f3, t, xt, evaluate(x_eval), goal,
+                         float(rtol), float(atol), root, x_eval)
+    if remaining:
+        rest = index[active]
+        root[rest] = np.where(np.abs(f1) < np.abs(f2), x1, x2)[active]
 
 
-def _chandrupatla_step(x1, f1, x2, f2, x3, f3, t, xt, ft, rtol, atol, xm, done):
-    """One step of every element, in place: the state (x1, f1, x2, f2, x3, f3) takes the trial
-    point (xt, ft); ``xm`` gets the best point, ``done`` whether the element has converged;
-    the others get their next ``t`` and trial point ``xt``. Returns the count done.
+def _chandrupatla_advance(index, active, x1, f1, x2, f2, x3, f3, t, xt, values, goal, rtol,
+                          atol, root, x_eval):
+    """One step of every active element k (element ``index[k]`` of the full arrays), in place:
+    the state (x1, f1, x2, f2, x3, f3) takes the trial point (xt, ft = values − goal); a
+    converged element gets its best point in ``root`` and ``x_eval`` and leaves ``active``; the
+    others get their next ``t`` and trial point ``xt`` (also put in ``x_eval``). Returns the
+    count still active.
 
     The operations and their order are those of :func:`_numpy_steps` (np.clip, np.minimum,
     np.maximum as NumPy makes them, NaN included), element by element."""
-    count = 0
-    for i in range(x1.size):
-        a, b = ft[i], f1[i]  # np.sign(a) == np.sign(b) (a NaN equals nothing)
-        if (a > 0.0 and b > 0.0) or (a < 0.0 and b < 0.0) or (a == 0.0 and b == 0.0):
-            x3[i], f3[i] = x1[i], f1[i]
-        else:
-            x3[i], f3[i] = x2[i], f2[i]
-            x2[i], f2[i] = x1[i], f1[i]
-        x1[i], f1[i] = xt[i], ft[i]
-        if abs(f1[i]) < abs(f2[i]):
-            m, fm = x1[i], f1[i]
-        else:
-            m, fm = x2[i], f2[i]
-        xm[i] = m
-        tol = 2.0 * (rtol * abs(m) + atol) + _FOUR_TINY
-        span = abs(x2[i] - x1[i])
-        tl = tol / (span if span > 0.0 else 1.0)
-        finished = (tl > 0.5) or (fm == 0.0) or (span == 0.0) or not math.isfinite(ft[i])
-        done[i] = finished
-        if finished:
-            count += 1
+    remaining = 0
+    for k in range(index.size):
+        if not active[k]:
             continue
-        a1, b1, a2, b2, a3, b3 = x1[i], f1[i], x2[i], f2[i], x3[i], f3[i]
+        i = index[k]
+        a = values[i] - goal[k]
+        b = f1[k]  # np.sign(a) == np.sign(b) (a NaN equals nothing)
+        if (a > 0.0 and b > 0.0) or (a < 0.0 and b < 0.0) or (a == 0.0 and b == 0.0):
+            x3[k], f3[k] = x1[k], f1[k]
+        else:
+            x3[k], f3[k] = x2[k], f2[k]
+            x2[k], f2[k] = x1[k], f1[k]
+        x1[k], f1[k] = xt[k], a
+        if abs(f1[k]) < abs(f2[k]):
+            m, fm = x1[k], f1[k]
+        else:
+            m, fm = x2[k], f2[k]
+        tol = 2.0 * (rtol * abs(m) + atol) + _FOUR_TINY
+        span = abs(x2[k] - x1[k])
+        tl = tol / (span if span > 0.0 else 1.0)
+        if (tl > 0.5) or (fm == 0.0) or (span == 0.0) or not math.isfinite(a):
+            active[k] = False
+            root[i] = m
+            x_eval[i] = m
+            continue
+        remaining += 1
+        a1, b1, a2, b2, a3, b3 = x1[k], f1[k], x2[k], f2[k], x3[k], f3[k]
         xi = (a1 - a2) / (a3 - a2)
         phi = (b1 - b2) / (b3 - b2)
         rest = 1.0 - phi
@@ -241,10 +245,11 @@ def _chandrupatla_step(x1, f1, x2, f2, x3, f3, t, xt, ft, rtol, atol, xm, done):
         # a > b else b (a NaN bound gives NaN, as in NumPy)
         step = step if (step != step or step > low) else low
         step = step if (step != step or step < high) else high
-        t[i] = step
-        xt[i] = a1 + step * (a2 - a1)
-    return count
+        t[k] = step
+        xt[k] = a1 + step * (a2 - a1)
+        x_eval[i] = xt[k]
+    return remaining
 
 
-#: (:func:`_chandrupatla_step`,) compiled when a solve first asks, None without numba.
-_step_kernel = compiled_when_used(_chandrupatla_step)
+#: (:func:`_chandrupatla_advance`,) compiled when a solve first asks, None without numba.
+_step_kernel = compiled_when_used(_chandrupatla_advance)

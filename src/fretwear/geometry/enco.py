@@ -29,11 +29,16 @@ from typing import ClassVar
 
 import numpy as np
 
+from fretwear._lazy import compiled_when_used
 from fretwear.geometry._shapes import (
+    _SERIES_LIMIT,
+    _SERIES_TUPLE,
+    _lens_kernels,
     _out,
     frustum_volume,
     lens_area,
     lens_depth_limit,
+    lens_range,
     solve_monotone,
     stacked_lens_area,
 )
@@ -261,7 +266,94 @@ def _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, t
             frustum = l / 3.0 * (a1 + np.sqrt(a1 * a2) + a2)
         return _out((edges * np.where(short, wedge, frustum)).reshape(shape))
 
-    return volume
+    kernels, lens_kernels = _enco_kernels(), _lens_kernels()
+    if kernels is None or lens_kernels is None:
+        return volume
+    stack_of, volumes_of = kernels
+    ratios_of = lens_kernels[0]
+    r_m, r_o = float(mobile_radius), float(obstacle_radius)
+    top = float(lens_range(np.asarray(r_m), np.asarray(r_o)))
+    constants = (r_m, r_o, slope, float(l), float(theta), float(reach), float(edges))
+
+    def compiled_volume(depth):
+        # the operations of ``volume`` in their order: the arithmetic compiled, NumPy's own
+        # arcsin and sin (their results differ from the C library's in the last bit)
+        d = np.asarray(depth, dtype=float)
+        shape = d.shape
+        d = np.ascontiguousarray(d).ravel()
+        stacked = np.empty(2 * d.size)
+        stack_of(d, float(reach), stacked)
+        ratio = np.empty(2 * stacked.size)
+        ratios_of(stacked, r_m, r_o, top, ratio)
+        # the ratios are in [0, 1] or NaN: NumPy's arcsin and sin raise nothing on them
+        u = 2.0 * np.arcsin(ratio)
+        out = np.empty(d.size)
+        volumes_of(stacked, u, np.sin(u), *constants, out)
+        return _out(out.reshape(shape))
+
+    return compiled_volume
+
+
+def _enco_stack(d, reach, stacked):
+    """The depths of both frustum sections, [D, then max(D − lθ, 0) or 0 where D < lθ], as
+    ``_stacked_enco_volume``'s ``volume`` stacks them (np.maximum keeps a NaN)."""
+    n = d.size
+    for i in range(n):
+        di = d[i]
+        stacked[i] = di
+        if di < reach:
+            stacked[n + i] = 0.0
+        else:
+            e = di - reach
+            stacked[n + i] = e if (e != e or e > 0.0) else 0.0
+
+
+def _enco_volumes(stacked, u, sine, rm, ro, slope, l, theta, reach, edges, out):
+    """n·(wedge or frustum) of each depth from u = 2φ of the four segments of its two sections
+    (R_m ones first, then R_o ones, as :func:`~fretwear.geometry._shapes._lens_ratios` orders
+    them), with the operations of ``_stacked_enco_volume``'s ``volume`` in their order
+    (``sine``: sin u, used where |u| is not below the series limit)."""
+    n = out.size
+    count = stacked.size
+    third = l / 3.0
+    for i in range(n):
+        a1 = 0.0
+        a2 = 0.0
+        for k in (i, n + i):
+            lens = 0.0
+            for j, rho in ((k, rm), (count + k, ro)):
+                uj = u[j]
+                if abs(uj) < _SERIES_LIMIT:
+                    u2 = uj * uj
+                    series = 0.0
+                    power = uj * u2
+                    for coefficient in _SERIES_TUPLE:
+                        series = series + coefficient * power
+                        power = power * u2
+                    value = series
+                else:
+                    value = uj - sine[j]
+                segment = 0.5 * rho * rho * value
+                if j == k:
+                    lens = segment
+                else:
+                    lens = lens - segment
+            x = stacked[k]
+            section = 0.5 * (lens + slope * x * x)
+            if k == i:
+                a1 = section
+            else:
+                a2 = section
+        d = stacked[i]
+        if d < reach:
+            value = d / theta * a1 / 3.0
+        else:
+            value = third * (a1 + math.sqrt(a1 * a2) + a2)
+        out[i] = edges * value
+
+
+#: (:func:`_enco_stack`, :func:`_enco_volumes`) compiled at the first call, None without numba.
+_enco_kernels = compiled_when_used(_enco_stack, _enco_volumes)
 
 
 def enco_obstacle_volume(depth_obstacle, obstacle_radius, width, kappa):
