@@ -87,9 +87,12 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
     target = np.asarray(target, dtype=float)
     lo = np.asarray(lower, dtype=float)
     hi = np.asarray(upper, dtype=float)
-    shape = np.broadcast_shapes(target.shape, lo.shape, hi.shape)
-    # copies of the full shape (broadcast only when needed: it costs more than a small copy)
-    target, lo, hi = ((a if a.shape == shape else np.broadcast_to(a, shape)).astype(float).ravel()
+    shape = target.shape
+    if lo.shape != shape or hi.shape != shape:
+        shape = np.broadcast_shapes(shape, lo.shape, hi.shape)
+    # flat, of the full shape (broadcast only when needed: it costs more than a small call);
+    # the solver never writes into them, so a view of the caller's array is enough
+    target, lo, hi = (a.ravel() if a.shape == shape else np.broadcast_to(a, shape).ravel()
                       for a in (target, lo, hi))
 
     def evaluate(x_full: np.ndarray) -> np.ndarray:
@@ -103,7 +106,8 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
             f_lo = evaluate(lo) - target
             f_hi = evaluate(hi) - target
         else:
-            f_lo, f_hi = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
+            f_lo, f_hi = (np.asarray(v, dtype=float) - target if np.ndim(v) == 0 else
+                          np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
                           for v in bound_values)
         root = np.full(target.size, np.nan)
         root = np.where(f_lo == 0.0, lo, root)
