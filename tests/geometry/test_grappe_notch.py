@@ -176,3 +176,30 @@ def test_vectorised_and_inputs_untouched():
     np.testing.assert_array_equal(vm, keep)
     np.testing.assert_allclose(dm.ravel(), [g.depth_from_volume(v)[0] for v in vm.ravel()],
                                rtol=1e-15)
+
+
+@pytest.mark.parametrize("name", SEED)
+@pytest.mark.parametrize("rtol", [1e-13, 1e-6])
+def test_few_areas_element_by_element_are_the_vectorised_iterations_bit_for_bit(name, rtol):
+    """notch_depth of a few areas (element by element in Python floats) against the same areas
+    among many (the vectorised iterations): the same bits, zero, the maximum, tiny areas and
+    the out-of-range ones included; both against numpy.roots' rising root."""
+    from fretwear.geometry import grappe_notch
+
+    p = manual_polynomial(name)
+    d_max = notch_depth_limit(name) * 1e3
+    rng = np.random.default_rng(11)
+    depths = np.concatenate([[0.0, 1e-300, 1e-12, 1e-6, d_max, d_max * (1 - 1e-12)],
+                             rng.uniform(0.0, d_max, 40)])
+    areas = np.concatenate([p(depths) * 1e-6, [np.nan, np.inf, -1e-9, 2 * p(d_max) * 1e-6]])
+    many = notch_depth(areas, name, rtol=rtol)  # the vectorised iterations
+    assert areas.size > grappe_notch._SCALAR_AREAS
+    chunk = 5  # a table's instants: element by element
+    assert chunk <= grappe_notch._SCALAR_AREAS
+    few = np.concatenate([notch_depth(areas[i:i + chunk], name, rtol=rtol)
+                          for i in range(0, areas.size, chunk)])
+    assert np.array_equal(few, many, equal_nan=True)
+    assert [notch_depth(x, name, rtol=rtol).shape for x in (areas[0], areas[:3])] == [(), (3,)]
+    assert np.isnan(many[-4:]).all() and many[0] == 0.0
+    expected = [rising_root(name, y) for y in p(depths[6:])]
+    np.testing.assert_allclose(many[6:-4] * 1e3, expected, rtol=max(rtol, 1e-11) * 10)

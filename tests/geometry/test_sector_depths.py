@@ -11,6 +11,7 @@ depths, which must not be reproduced.
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -77,3 +78,42 @@ def test_beyond_the_sector_and_bad_input():
         sector_depth_obstacle(-1e-10, R, L, 10.0)
     with pytest.raises(InputError, match="mobile_radius"):
         sector_depth_mobile(1e-10, -R, L, 10.0)
+
+
+def test_beyond_the_sector_exactly_where_twice_the_density_exceeds_r_squared():
+    """The volumes beyond the whole sector are those with 2V/(l·Δθ) > R² (the definition,
+    evaluated here as written), counted in the warning; NaN volumes pass without a warning."""
+    arcs = np.array([30.0, 45.0, 90.0, 195.0])
+    whole = L * np.radians(arcs) * R**2 / 2
+    near = np.stack([np.nextafter(whole, 0.0), whole, np.nextafter(whole, np.inf),
+                     1.5 * whole, 0.5 * whole])
+    density = near / (L * np.radians(arcs))
+    expected = 2.0 * density > R * R
+    assert 0 < expected.sum() < expected.size
+    with pytest.warns(RangeWarning, match=f"{int(expected.sum())} volume"):
+        depth = sector_depth_mobile(near, R, L, arcs)
+    assert np.array_equal(np.isnan(depth), expected)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert np.isnan(sector_depth_mobile(np.array([np.nan, 0.0]), R, L, arcs[:2])).tolist() \
+            == [True, False]
+
+
+@pytest.mark.parametrize("arc", [np.nan, np.inf, -np.inf, -10.0, 360.5])
+def test_arcs_outside_the_range_are_refused(arc):
+    for depth in (sector_depth_mobile, sector_depth_obstacle):
+        with pytest.raises(InputError, match="arc_deg"):
+            depth(1e-10, R, L, np.array([10.0, arc]))
+
+
+def test_radius_width_and_shapes_are_checked():
+    for bad in (np.nan, np.inf, 0.0, np.array([R, -R])):
+        with pytest.raises(InputError, match="mobile_radius"):
+            sector_depth_mobile(np.array([1e-10, 1e-10]), bad, L, 10.0)
+        with pytest.raises(InputError, match="width"):
+            sector_depth_obstacle(np.array([1e-10, 1e-10]), R, bad, 10.0)
+    with pytest.raises(InputError, match="do not broadcast"):
+        sector_depth_mobile(np.zeros((2, 3)), R, L, np.full(4, 10.0))
+    with pytest.raises(InputError, match="do not broadcast"):
+        sector_depth_mobile(np.zeros(3), np.full(2, R), L, 10.0)
+    assert sector_depth_mobile(np.zeros(3), R, L, np.full((2, 3), 10.0)).shape == (2, 3)

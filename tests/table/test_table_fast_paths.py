@@ -44,10 +44,38 @@ def test_frame_is_pandas_own_frame(names):
     got = _frame(columns)
     pd.testing.assert_frame_equal(got, expected, check_exact=True)
     assert list(got.dtypes) == list(expected.dtypes)
+    assert _blocks(got) == _blocks(expected)  # the same blocks: one per dtype
     got["instant"] = 0.0  # a table is the caller's own: the cached column index is not touched
     got.columns.name = "mine"
     again = _frame(columns)
     assert list(again.columns) == list(expected.columns) and again.columns.name is None
+    assert again["instant"].tolist() == columns["instant"].tolist()  # the columns were copied
+    pd.testing.assert_frame_equal(_columns._frame_inserted(columns), expected, check_exact=True)
+
+
+def _blocks(frame):
+    """The frame's blocks: (dtype, the places of its columns), sorted."""
+    return sorted((str(b.dtype), b.mgr_locs.as_array.tolist()) for b in frame._mgr.blocks)
+
+
+@pytest.mark.parametrize("kind", ["dtypes", "not arrays"])
+def test_frame_of_other_columns_is_pandas_own_frame(kind):
+    """Several integer and boolean columns (one block per dtype, as pandas makes them), and
+    columns that are not one-length numpy arrays (pandas' constructor itself)."""
+    rng = np.random.default_rng(5)
+    columns = {"a": rng.integers(0, 9, 5), "x": rng.random(5), "b": rng.random(5) > 0.5,
+               "c": np.arange(5, dtype=np.int32), "d": rng.integers(0, 9, 5), "y": rng.random(5)}
+    if kind == "not arrays":
+        columns["z"] = [1.5, 2.5, None, 4.0, 5.0]
+    expected = pd.DataFrame(columns)
+    got = _frame(columns)
+    pd.testing.assert_frame_equal(got, expected, check_exact=True)
+    assert list(got.dtypes) == list(expected.dtypes)
+    if kind == "dtypes":
+        assert _blocks(got) == _blocks(expected)
+        first = int(columns["a"][0])
+        got.iloc[0, 0] = first + 1  # the table's own data: the columns given are not changed
+        assert columns["a"][0] == first
 
 
 GEOMETRIES = [

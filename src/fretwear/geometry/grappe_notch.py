@@ -163,7 +163,10 @@ def notch_depth(area, contact_type: str, rtol: float = 1e-13) -> np.ndarray:
     -----
     P(d) = A·d³ + B·d² + C·d is increasing on [0, d_max] (P' > 0 there), so the root is unique and
     bracketed: safeguarded Newton iterations (a Newton step that leaves the current bracket is
-    replaced by bisection), vectorised over all areas.
+    replaced by bisection), vectorised over all areas; a few areas (up to
+    :data:`_SCALAR_AREAS`, a table's instants) take the same iterations element by element in
+    Python floats (:func:`_notch_roots`: the same IEEE operations in the same order, the same
+    bits, without numpy's cost per call).
 
     Examples
     --------
@@ -179,6 +182,9 @@ def notch_depth(area, contact_type: str, rtol: float = 1e-13) -> np.ndarray:
     out[flat == 0.0] = 0.0  # the root at zero: no iteration (bisection would leave it)
     ok = np.isfinite(flat) & (flat > 0.0) & (flat <= p_max)
     target = flat[ok]
+    if target.size <= _SCALAR_AREAS:
+        out[ok] = _notch_roots(target.tolist(), (a, b, c), d_max, rtol)
+        return out.reshape(np.shape(y)) * _MM
     lo = np.zeros_like(target)
     hi = np.full_like(target, d_max)
     x = np.minimum(target / c, d_max)  # start from the linear (small-depth) guess
@@ -201,6 +207,39 @@ def notch_depth(area, contact_type: str, rtol: float = 1e-13) -> np.ndarray:
     out[ok] = x
     out = out.reshape(np.shape(y))
     return out * _MM
+
+
+#: Number of areas up to which :func:`notch_depth` iterates element by element.
+_SCALAR_AREAS = 16
+
+
+def _notch_roots(targets: list[float], coefficients, d_max: float, rtol: float) -> list[float]:
+    """The rising-branch roots [mm] of P(d) = targets [mm²] (each in (0, P(d_max)]), one by one:
+    :func:`notch_depth`'s vectorised iterations written for one element (an element stops where
+    the vectorised loop freezes it: converged, or after 200 iterations)."""
+    a, b, c = coefficients
+    roots = []
+    for target in targets:
+        lo, hi = 0.0, d_max
+        x = min(target / c, d_max)  # start from the linear (small-depth) guess
+        for _ in range(200):
+            f = ((a * x + b) * x + c) * x - target
+            if f <= 0.0:
+                lo = x
+            if f > 0.0:
+                hi = x
+            slope = (3.0 * a * x + 2.0 * b) * x + c
+            step = x - f / slope if slope != 0.0 else math.nan
+            bad = not math.isfinite(step) or step < lo or step > hi
+            new = 0.5 * (lo + hi) if bad else step
+            if f == 0.0:  # an exact root keeps its value
+                new = x
+            done = abs(new - x) <= rtol * abs(new) or hi - lo <= rtol * hi
+            x = new
+            if done:
+                break
+        roots.append(x)
+    return roots
 
 
 def notch_obstacle_volume(depth_obstacle, obstacle_radius: float, width: float,

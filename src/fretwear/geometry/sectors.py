@@ -41,18 +41,27 @@ def _inputs(value, value_name, unit, radius, radius_name, width, arc_deg):
     l = np.array(width, dtype=float)
     arc = np.array(arc_deg, dtype=float)
     for name, item, what in ((radius_name, r, "m"), ("width", l, "m")):
-        if not (np.isfinite(item) & (item > 0.0)).all():
+        if not (_positive(item.item()) if item.ndim == 0
+                else (np.isfinite(item) & (item > 0.0)).all()):
             raise InputError(f"{name} must be finite and > 0 [{what}], got {item.tolist()}")
-    if not (np.isfinite(arc) & (arc > 0.0) & (arc <= 360.0)).all():
+    if not ((arc > 0.0) & (arc <= 360.0)).all():  # NaN and ±inf fail one of the two
         raise InputError(
             f"arc_deg (the sector's angular extent) must lie in (0, 360] deg, got {arc.tolist()}")
     try:
-        np.broadcast_shapes(array.shape, r.shape, l.shape, arc.shape)
+        # radius and width numbers, arcs of the volumes' last axes (a table's sectors):
+        # they broadcast without asking numpy
+        if r.ndim or l.ndim or array.shape[array.ndim - arc.ndim:] != arc.shape:
+            np.broadcast_shapes(array.shape, r.shape, l.shape, arc.shape)
     except ValueError:
         raise InputError(
             f"{value_name} {array.shape}, {radius_name} {r.shape}, width {l.shape} and arc_deg "
             f"{arc.shape} do not broadcast together") from None
     return array, r, l, np.radians(arc)
+
+
+def _positive(number: float) -> bool:
+    """``number`` is finite and > 0."""
+    return math.isfinite(number) and number > 0.0
 
 
 def mobile_depth_from_area_density(density, radius):
@@ -76,11 +85,18 @@ def mobile_depth_from_area_density(density, radius):
     >>> round(float(mobile_depth_from_area_density((0.01**2 - 0.009**2) / 2, 0.01)), 12)
     0.001
     """
-    density = np.asarray(density, dtype=float)
+    return _mobile_depth(np.asarray(density, dtype=float), radius)[0]
+
+
+def _mobile_depth(density: np.ndarray, radius):
+    """(:func:`mobile_depth_from_area_density`, R² − 2a_θ) [m, m²]: the depth is NaN where the
+    second is < 0 (exactly where 2a_θ > R²: a difference of two floats has the sign of their
+    exact difference) or NaN."""
     root2 = radius * radius - 2.0 * density
     with np.errstate(invalid="ignore"):
-        return np.where(root2 >= 0.0,
-                        2.0 * density / (radius + np.sqrt(np.maximum(root2, 0.0))), np.nan)
+        depth = np.where(root2 >= 0.0,
+                         2.0 * density / (radius + np.sqrt(np.maximum(root2, 0.0))), np.nan)
+    return depth, root2
 
 
 def obstacle_depth_from_area_density(density, radius):
@@ -151,11 +167,9 @@ def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
     """
     v, r, l, arc = _inputs(volume, "volume", "m³", mobile_radius, "mobile_radius", width,
                            arc_deg)
-    density = v / (l * arc)
-    depth = mobile_depth_from_area_density(density, r)
-    with np.errstate(invalid="ignore"):
-        beyond = 2.0 * density > r * r
-    if np.any(beyond):
+    depth, root2 = _mobile_depth(v / (l * arc), r)
+    beyond = root2 < 0.0  # 2a_θ > R²
+    if beyond.any():
         warnings.warn(
             f"sector depth of the mobile: {int(np.count_nonzero(beyond))} volume(s) exceed the "
             "whole sector of the mobile's section (l·Δθ·R_m²/2): depth NaN", RangeWarning,

@@ -60,9 +60,16 @@ def _depths(geometry, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
     (the split d_o = D − D·V_m/V of a shared trace leaves a rounding residue otherwise).
     """
     dm, do = geometry.depth_from_volume(volume_mobile, volume_obstacle)
-    dm = np.broadcast_to(dm, volume_mobile.shape).astype(float)
-    do = np.broadcast_to(do, volume_mobile.shape).astype(float)
+    dm, do = _float_of_shape(dm, volume_mobile.shape), _float_of_shape(do, volume_mobile.shape)
     return dm, np.where((volume_obstacle == 0) & np.isfinite(dm), 0.0, do)
+
+
+def _float_of_shape(values, shape) -> np.ndarray:
+    """A float copy of ``values`` broadcast to ``shape`` (``np.broadcast_to(values, shape)
+    .astype(float)``; a plain copy when they have that shape already)."""
+    if type(values) is np.ndarray and values.shape == shape:
+        return values.astype(float)
+    return np.broadcast_to(values, shape).astype(float)
 
 
 def _global_frame(case, head, power, mobile, obstacle, clock, geometry) -> pd.DataFrame:
@@ -195,36 +202,56 @@ def _sector_arrays(law, state, head, result, case, mobile, obstacle, clock, geom
     k_m, k_o = _sector_coefficients(case, m, mobile, obstacle)
     r_m, r_o = geometry.mobile_radius, getattr(geometry, "obstacle_radius", None)
     width = geometry.obstacle_width
-    elapsed, fresh, replaced = clock.elapsed, clock.fresh, clock.replaced
-    zeros = np.zeros(m)
-    pm = zeros if state is None else np.array(state.sector_volume_mobile, dtype=float)
-    po = zeros if state is None else np.array(state.sector_volume_obstacle, dtype=float)
-    if pm.shape != (m,) or po.shape != (m,) or not (
-            np.isfinite(pm).all() and np.isfinite(po).all() and (pm >= 0).all()
-            and (po >= 0).all()):
-        return None  # the law's own checks, sector by sector
+    elapsed, fresh = clock.elapsed, clock.fresh
+    if state is None:
+        pm = po = np.zeros(m)
+    else:
+        pm = np.array(state.sector_volume_mobile, dtype=float)
+        po = np.array(state.sector_volume_obstacle, dtype=float)
+        if pm.shape != (m,) or po.shape != (m,) or not (
+                np.isfinite(pm).all() and np.isfinite(po).all() and (pm >= 0).all()
+                and (po >= 0).all()):
+            return None  # the law's own checks, sector by sector
     vm = _linear_sectors(law, key, powers, k_m, elapsed, pm, fresh)
     vo = _linear_sectors(law, key, powers, k_o, elapsed, po, None)
     if r_o is None and (vo > 0).any():
         return None  # the loop names the sectors
     arcs = edges[1:] - edges[:-1]
-    was_m = np.where(replaced[:, None], 0.0, pm)  # a replaced tube starts from zero
+    # a replaced tube starts from zero (without a replacement, pm in every row)
+    was_m = pm if fresh is None else np.where(clock.replaced[:, None], 0.0, pm)
     total_m, total_o = vm.sum(axis=1), vo.sum(axis=1)
     dm, do = _depths(geometry, total_m, total_o)
-    data = {k: np.repeat(np.asarray(v), m) for k, v in {
-        **head, "volume_mobile": total_m, "volume_obstacle": total_o, "depth_mobile": dm,
-        "depth_obstacle": do}.items()}
+    # instant-major order: row = i*m + j; per instant, each value repeated m times
+    per_instant = _repeated((*head.values(), total_m, total_o, dm, do), m)
+    data = dict(zip((*head, "volume_mobile", "volume_obstacle", "depth_mobile",
+                     "depth_obstacle"), per_instant, strict=True))
     depth_o = (np.where(vo == 0, 0.0, np.nan) if r_o is None
                else sector_depth_obstacle(vo, r_o, width, arcs))
-    data.update({  # instant-major order: row = i*m + j
-        "sector": np.tile(np.arange(1, m + 1), n), "angle_start": np.tile(edges[:-1], n),
-        "angle_end": np.tile(edges[1:], n), "sector_power": np.tile(powers, n),
+    data.update({  # per sector, the sectors' values in every instant
+        "sector": _tiled(np.arange(1, m + 1), n), "angle_start": _tiled(edges[:-1], n),
+        "angle_end": _tiled(edges[1:], n), "sector_power": _tiled(powers, n),
         "volume_mobile_sector": (vm - was_m).ravel(),
         "volume_obstacle_sector": (vo - po).ravel(),
         "depth_mobile_sector": np.asarray(sector_depth_mobile(vm, r_m, width, arcs)).ravel(),
         "depth_obstacle_sector": np.asarray(depth_o, dtype=float).ravel(),
         "volume_mobile_cumulated": vm.ravel(), "volume_obstacle_cumulated": vo.ravel()})
     return {c: data[c] for c in SECTOR_COLUMNS}
+
+
+def _repeated(columns, m: int) -> np.ndarray:
+    """The rows of ``columns`` (k arrays of n values) with each value repeated ``m`` times:
+    ``np.repeat(column, m)`` of each, in one (k, n·m) array."""
+    values = np.stack([np.asarray(c) for c in columns])
+    out = np.empty((*values.shape, m), dtype=values.dtype)
+    out[...] = values[..., None]
+    return out.reshape(values.shape[0], -1)
+
+
+def _tiled(values: np.ndarray, n: int) -> np.ndarray:
+    """``values`` (m of them) repeated n times in a row: ``np.tile(values, n)``."""
+    out = np.empty((n, values.size), dtype=values.dtype)
+    out[...] = values
+    return out.reshape(-1)
 
 
 @functools.lru_cache(maxsize=64)
@@ -234,10 +261,55 @@ def _index(names: tuple[str, ...]) -> pd.Index:
     return pd.Index(list(names))
 
 
+@functools.lru_cache(maxsize=64)
+def _layout(names: tuple[str, ...], dtypes: tuple) -> tuple:
+    """The blocks ``pd.DataFrame(columns)`` makes of columns of these names and numpy dtypes:
+    one per dtype, its columns' places in order ((dtype, places), float64 first)."""
+    groups: dict = {}
+    for at, dtype in enumerate(dtypes):
+        groups.setdefault(dtype, []).append(at)
+    order = sorted(groups, key=lambda d: d != np.float64)  # stable: then first appearance
+    return tuple((d, tuple(groups[d])) for d in order)
+
+
+@functools.cache
+def _from_blocks():
+    """pandas' public constructor from blocks (pandas >= 3), None before it (looked up at the
+    first table: pandas is imported when first used)."""
+    try:
+        from pandas.api.internals import create_dataframe_from_blocks
+    except ImportError:  # pragma: no cover - pandas 2
+        return None
+    return create_dataframe_from_blocks
+
+
 def _frame(columns: dict) -> pd.DataFrame:
     """The DataFrame of ``columns`` (name -> 1-d array, one length), as
-    ``pd.DataFrame(columns)`` gives it, built from one float block: the float columns
-    stacked once, the others (the sector numbers) inserted at their place."""
+    ``pd.DataFrame(columns)`` gives it (the same columns, dtypes, index and blocks: one per
+    dtype), built from its blocks directly: each dtype's columns stacked once.
+
+    Columns that are not 1-d numpy arrays of one length and a numeric or boolean dtype take
+    ``pd.DataFrame(columns)`` itself; a pandas without
+    ``pandas.api.internals.create_dataframe_from_blocks`` (pandas 2) :func:`_frame_inserted`.
+    """
+    arrays = tuple(columns.values())
+    if (not arrays or any(type(a) is not np.ndarray for a in arrays)
+            or len({a.shape for a in arrays}) != 1 or arrays[0].ndim != 1
+            or any(a.dtype.kind not in "fiub" for a in arrays)):
+        return pd.DataFrame(columns)
+    make = _from_blocks()
+    if make is None:  # pragma: no cover - pandas 2
+        return _frame_inserted(columns)
+    names = tuple(columns)
+    blocks = [(np.stack([arrays[at] for at in places]), np.array(places, dtype=np.intp))
+              for _, places in _layout(names, tuple(a.dtype for a in arrays))]
+    # a copy of the cached index per table: its data shared (immutable), its name its own
+    return make(blocks, index=pd.RangeIndex(arrays[0].shape[0]), columns=_index(names).copy())
+
+
+def _frame_inserted(columns: dict) -> pd.DataFrame:
+    """:func:`_frame` through pandas' own constructors: the float columns stacked once into a
+    DataFrame, the others (the sector numbers) inserted at their place."""
     names = tuple(columns)
     floats = tuple(c for c in names if np.asarray(columns[c]).dtype == np.float64)
     block = np.stack([columns[c] for c in floats]) if floats else np.empty((0, 0))
@@ -247,3 +319,4 @@ def _frame(columns: dict) -> pd.DataFrame:
         if name not in floats:
             frame.insert(at, name, columns[name])
     return frame
+
