@@ -19,7 +19,7 @@ from oracle import flat_cut_area, wedge_volume
 
 from fretwear.errors import RangeWarning
 from fretwear.geometry import contact_geometry
-from fretwear.geometry.tube_bav import TubeBav
+from fretwear.geometry.tube_bav import TubeBav, flat_trace_depth
 
 R, L = 9.525e-3, 12.7e-3  # 3/4" SG tube, 1/2" anti-vibration bar
 TILT_DEG = 1.0
@@ -162,3 +162,31 @@ def test_bar_without_wear_has_exactly_zero_depth():
         np.testing.assert_array_equal(d_m, d_total)
         v_m, v_o = g.volume_from_depth(d_m, 0.0)
         assert np.all(v_o == 0.0)
+
+
+@pytest.mark.parametrize("dims", [{}, {"tilt_angle": 1.0},
+                                  {"tilt_angle": 2.0, "impact_angle": 30.0}])
+def test_unworn_bar_is_the_shared_formula_bit_for_bit(dims):
+    """An obstacle volume of 0 (or −0) everywhere takes a shortcut: the shares of theory §6
+    written out here (d_m = D·V_m/V where V > 0, d_o = max(D − d_m, 0), NaN where D is), bit
+    for bit; zeros, NaN volumes and volumes beyond the range included."""
+    g = TubeBav(mobile_radius=R, obstacle_width=L, **dims)
+    vm = np.array([0.0, -0.0, 1e-300, 1e-12, 3.7e-10, 1.1e-9, np.nan, 2 * g.max_volume,
+                   10 * g.max_volume])
+    for vo in (np.zeros(vm.size), np.full(vm.size, -0.0)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            got = g._depth_from_volume(vm, vo)
+        total = vm + vo
+        depth = flat_trace_depth(total * math.cos(math.radians(g.impact_angle)), R, L,
+                                 math.radians(g.tilt_angle))  # D of V
+        depth = np.where(depth <= R, depth, np.nan)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            dm = np.where(total > 0.0, depth * (vm / total), 0.0)
+        dm = np.where(np.isnan(depth), np.nan, dm)
+        do = np.where(total > 0.0, depth - dm, 0.0)
+        do = np.where(np.isnan(depth), np.nan, np.maximum(do, 0.0))
+        for a, b in zip(got, (dm, do), strict=True):
+            assert np.array_equal(a, b, equal_nan=True)
+            assert np.array_equal(np.signbit(a), np.signbit(b))
+        assert np.isnan(got[0][-3:]).all() and np.isfinite(got[0][:-3]).all()

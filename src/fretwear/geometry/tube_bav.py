@@ -146,6 +146,15 @@ def flat_trace_depth(volume, mobile_radius, width, tilt=0.0):
     return _out(depth)
 
 
+def _unshared(depth: np.ndarray, total: np.ndarray):
+    """(d_m, d_o) [m] of :meth:`TubeBav._depth_from_volume` when V_o is 0 (or −0) everywhere:
+    where V > 0, V_m/V is exactly 1 (V = V_m + 0 is V_m), so d_m = D and d_o = D − D = 0; 0
+    where V is not > 0; NaN where D is."""
+    nan = np.isnan(depth)
+    return (np.where(nan, np.nan, np.where(total > 0.0, depth, 0.0)),
+            np.where(nan, np.nan, 0.0))
+
+
 @dataclasses.dataclass(frozen=True)
 class TubeBav(ContactGeometry):
     """TUBE_BAV: tube against an anti-vibration bar (flat trace, parabolic section).
@@ -201,6 +210,8 @@ class TubeBav(ContactGeometry):
         depth = flat_trace_depth(total * cos_impact, self.mobile_radius, self.obstacle_width,
                                  self.angle("tilt_angle"))
         depth = np.where(depth <= self.max_depth, depth, np.nan)
+        if not volume_obstacle.any():  # the bar does not wear: the tube's share is 1 exactly
+            return _unshared(depth, total)
         with np.errstate(invalid="ignore", divide="ignore"):
             # the share first: exactly 1 when the bar does not wear, so d_o is exactly 0
             depth_mobile = np.where(total > 0.0, depth * (volume_mobile / total), 0.0)

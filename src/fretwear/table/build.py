@@ -108,7 +108,7 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
         raise InputError(f"case must be a WearCase (WearCase.from_keywords(...)), got "
                          f"{type(case).__name__}")
     result, history, power = _power_of(case, source, history)
-    case = _with_run_sectors(case, result)
+    case, edges = _with_run_sectors(case, result)
     mobile, obstacle, sources = _body_coefficients(case, history, result)
     geometry = case.geometry
     clock = _Clock(case)
@@ -133,7 +133,7 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
             frame = frame.assign(**wall)
     if frame is None:
         frame = _frame(columns)
-    frame.attrs = _attrs(case, geometry, mobile, obstacle, sources, result)
+    frame.attrs = _attrs(case, geometry, mobile, obstacle, sources, result, edges)
     if limit is not None:
         frame.attrs.update(limit)
     return frame
@@ -169,23 +169,27 @@ def _power_of(case: WearCase, source, history):
     return None, None, power
 
 
-def _with_run_sectors(case: WearCase, result) -> WearCase:
-    """The case whose sectors are the run's: a PowerResult computed with sectors makes a
-    sector table (checked as if the case had them); sectors need a power with sectors."""
+def _with_run_sectors(case: WearCase, result) -> tuple[WearCase, np.ndarray | None]:
+    """(the case whose sectors are the run's, its ``sector_edges`` [deg]): a PowerResult
+    computed with sectors makes a sector table (checked as if the case had them); sectors need
+    a power with sectors."""
     run_edges = None if result is None else getattr(result, "sector_edges", None)
     if getattr(result, "sectors", None) is None:
         run_edges = None
     if case.sectors is None:
-        return case if run_edges is None else case.replace(
-            sectors=tuple(np.asarray(run_edges, dtype=float).tolist()))
+        if run_edges is None:
+            return case, None
+        case = case.replace(sectors=tuple(np.asarray(run_edges, dtype=float).tolist()))
+        return case, case.sector_edges
     if run_edges is None:
         raise InputError("sectors need a contact history with dy and dz (RESU_GENE): a power "
                          "alone (PUIS_USURE) has no contact angle")
-    if not np.array_equal(np.asarray(run_edges, dtype=float), case.sector_edges):
+    edges = case.sector_edges
+    if not np.array_equal(np.asarray(run_edges, dtype=float), edges):
         raise InputError(f"the PowerResult's sector edges {list(run_edges)} differ from the "
-                         f"case's sectors {case.sector_edges.tolist()} [deg]; compute the power "
+                         f"case's sectors {edges.tolist()} [deg]; compute the power "
                          "with the same sectors")
-    return case
+    return case, edges
 
 
 # --------------------------------------------------------------------------- 2. coefficients
@@ -274,11 +278,11 @@ class _Clock:
 
 
 # --------------------------------------------------------------------------- 6. metadata
-def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result) -> dict:
-    """The table's metadata: the run's description, the coefficients and their sources."""
+def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result, edges) -> dict:
+    """The table's metadata: the run's description, the coefficients and their sources
+    (``edges``: the case's ``sector_edges`` [deg])."""
     dimensions = dict(geometry.to_dict())
     dimensions.pop("contact_type", None)
-    edges = case.sector_edges
     return {
         "title": case.name, "contact_type": case.contact_type, "dimensions": dimensions,
         "law": case.law, "coefficients_mobile": mobile, "coefficients_obstacle": obstacle,
