@@ -58,15 +58,17 @@ def _blocks(frame):
     return sorted((str(b.dtype), b.mgr_locs.as_array.tolist()) for b in frame._mgr.blocks)
 
 
-@pytest.mark.parametrize("kind", ["dtypes", "not arrays"])
+@pytest.mark.parametrize("kind", ["dtypes", "not arrays", "objects"])
 def test_frame_of_other_columns_is_pandas_own_frame(kind):
     """Several integer and boolean columns (one block per dtype, as pandas makes them), and
-    columns that are not one-length numpy arrays (pandas' constructor itself)."""
+    columns that are not one-length numeric numpy arrays (pandas' constructor itself)."""
     rng = np.random.default_rng(5)
     columns = {"a": rng.integers(0, 9, 5), "x": rng.random(5), "b": rng.random(5) > 0.5,
                "c": np.arange(5, dtype=np.int32), "d": rng.integers(0, 9, 5), "y": rng.random(5)}
     if kind == "not arrays":
         columns["z"] = [1.5, 2.5, None, 4.0, 5.0]
+    if kind == "objects":
+        columns["z"] = np.array(["p", "q", None, "r", "s"], dtype=object)
     expected = pd.DataFrame(columns)
     got = _frame(columns)
     pd.testing.assert_frame_equal(got, expected, check_exact=True)

@@ -186,6 +186,8 @@ def _linear_sectors(law, key, powers, coefficients, elapsed, previous, fresh):
         return np.ascontiguousarray(np.broadcast_to(previous, (elapsed.size, m)), dtype=float)
     k = {key: coefficients}
     volume = np.asarray(law.volume(powers, elapsed[:, None], **k), dtype=float)
+    if fresh is None and not previous.any():  # V0 = 0 (or -0) in every sector: V itself
+        return np.ascontiguousarray(volume, dtype=float)
     out = np.where(previous == 0.0, volume, previous + volume)
     if fresh is not None:
         new = elapsed >= fresh
@@ -262,9 +264,12 @@ def _index(names: tuple[str, ...]) -> pd.Index:
 
 
 @functools.lru_cache(maxsize=64)
-def _layout(names: tuple[str, ...], dtypes: tuple) -> tuple:
+def _layout(names: tuple[str, ...], dtypes: tuple) -> tuple | None:
     """The blocks ``pd.DataFrame(columns)`` makes of columns of these names and numpy dtypes:
-    one per dtype, its columns' places in order ((dtype, places), float64 first)."""
+    one per dtype, its columns' places in order ((dtype, places), float64 first); None unless
+    every dtype is numeric or boolean."""
+    if any(d.kind not in "fiub" for d in dtypes):
+        return None
     groups: dict = {}
     for at, dtype in enumerate(dtypes):
         groups.setdefault(dtype, []).append(at)
@@ -293,16 +298,17 @@ def _frame(columns: dict) -> pd.DataFrame:
     ``pandas.api.internals.create_dataframe_from_blocks`` (pandas 2) :func:`_frame_inserted`.
     """
     arrays = tuple(columns.values())
-    if (not arrays or any(type(a) is not np.ndarray for a in arrays)
-            or len({a.shape for a in arrays}) != 1 or arrays[0].ndim != 1
-            or any(a.dtype.kind not in "fiub" for a in arrays)):
+    names = tuple(columns)
+    layout = (None if not arrays or any(type(a) is not np.ndarray for a in arrays)
+              or len({a.shape for a in arrays}) != 1 or arrays[0].ndim != 1
+              else _layout(names, tuple(a.dtype for a in arrays)))
+    if layout is None:
         return pd.DataFrame(columns)
     make = _from_blocks()
     if make is None:  # pragma: no cover - pandas 2
         return _frame_inserted(columns)
-    names = tuple(columns)
     blocks = [(np.stack([arrays[at] for at in places]), np.array(places, dtype=np.intp))
-              for _, places in _layout(names, tuple(a.dtype for a in arrays))]
+              for _, places in layout]
     # a copy of the cached index per table: its data shared (immutable), its name its own
     return make(blocks, index=pd.RangeIndex(arrays[0].shape[0]), columns=_index(names).copy())
 
