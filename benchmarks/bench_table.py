@@ -8,6 +8,13 @@ history (sectors of the example when it has them); KWU_EPRI's examples get their
 intensity from it (class counts of the same pass). Printed: median milliseconds per table over
 ``--repeat`` timings of ``--number`` tables each (and the min-max of those medians' inputs).
 
+An example that restarts from a table file (GRAPPE_2_ENCO: a Code_Aster IMPR_TABLE file) reads
+it in ``wear_table(power, **keywords)``; its restart state is remembered by the file's content
+(fretwear.table.restart), so the ``wear_table`` column is the cost with the same file every call.
+A line after the table gives both costs of that example: the same file every call (remembered),
+and a new file of new content every call (a copy with one more title line: read and parsed
+each time, the first-read cost).
+
 Usage::
 
     .venv/bin/python benchmarks/bench_table.py
@@ -17,6 +24,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import tempfile
 import time
 import warnings
 from pathlib import Path
@@ -46,6 +54,22 @@ def _keywords(name: str) -> dict:
     return {k: v for k, v in args.items() if v is not None}
 
 
+def _restart_copies(path: Path, folder: Path, count: int) -> list[Path]:
+    """``count`` copies of a Code_Aster table file, each of other content (one more title line
+    after the first: the numbers unchanged)."""
+    head, rest = path.read_text().split("\n", 1)
+    out = []
+    for i in range(count):
+        copy = folder / f"restart_{i}{path.suffix}"
+        copy.write_text(f"{head}\n#bench_table copy {i}\n{rest}")
+        out.append(copy)
+    return out
+
+
+def _ms(values: list[float]) -> str:
+    return f"{1e3 * np.median(values):6.3f} ({1e3 * min(values):.2f}-{1e3 * max(values):.2f})"
+
+
 def _time(fn, number: int, repeat: int) -> list[float]:
     out = []
     for _ in range(repeat):
@@ -66,6 +90,7 @@ def main(argv=None) -> None:
           "(min-max)")
     print(f"{'contact type':>15} {'law':>9} {'inst.':>5} {'sect.':>5} "
           f"{'wear_table':>17} {'from_case':>17}")
+    restarts = []
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for name in EXAMPLES:
@@ -84,6 +109,18 @@ def main(argv=None) -> None:
                   f"{sectors:>5} {1e3 * np.median(a):>6.3f} ({1e3 * min(a):.2f}-"
                   f"{1e3 * max(a):.2f}) {1e3 * np.median(b):>6.3f} ({1e3 * min(b):.2f}-"
                   f"{1e3 * max(b):.2f})", flush=True)
+            if isinstance(kw.get("initial_state"), str | Path):
+                restarts.append((name, kw, power, a))
+        for name, kw, power, same in restarts:
+            with tempfile.TemporaryDirectory() as folder:
+                files = iter(_restart_copies(Path(kw["initial_state"]), Path(folder),
+                                             args.number * args.repeat))
+                new = _time(lambda kw=kw, power=power, files=files: wear_table(
+                    power, **{**kw, "initial_state": next(files)}), args.number, args.repeat)
+            print(f"{name}: wear_table restarting from {Path(kw['initial_state']).name}: same "
+                  f"file every call (state remembered by content) {_ms(same)}; a new file of "
+                  f"new content every call (read and parsed: first read) {_ms(new)}",
+                  flush=True)
 
 
 if __name__ == "__main__":

@@ -21,12 +21,14 @@ import io
 import math
 import os
 import re
+from collections.abc import Mapping
 from pathlib import Path
 
 import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import FormatError, InputError
+from fretwear.io._aster_plain import plain_frame
 from fretwear.io.atomic import atomic_write
 from fretwear.io.guard import readable_file, reading
 
@@ -39,13 +41,19 @@ _TYPES = ("R", "I", "K8", "K16", "K24", "K32", "K80")
 _STRING_WIDTHS = (8, 16, 24, 32, 80)
 
 
-def _text_of(path_or_text: str | os.PathLike) -> tuple[str, str]:
-    """(text, label): a path is read; a string holding a newline is the table itself."""
+def _text_of(path_or_text: str | os.PathLike, data: bytes | None = None) -> tuple[str, str]:
+    """(text, label): a path is read (``data``: its bytes, already read); a string holding a
+    newline is the table itself."""
     if isinstance(path_or_text, str) and "\n" in path_or_text:
         return path_or_text, "<text>"
-    path = readable_file(path_or_text, "Code_Aster table file")
+    if data is None:
+        path = readable_file(path_or_text, "Code_Aster table file")
+    else:
+        name = os.fspath(path_or_text)
+        path = Path(os.fsdecode(name) if isinstance(name, bytes) else name)
     with reading(path, "Code_Aster table", "Code_Aster table file"):
-        data = path.read_bytes()
+        if data is None:
+            data = path.read_bytes()
         if data[:2] == GZIP_MAGIC:
             data = gzip.decompress(data)
         if data[:2] in (b"\xff\xfe", b"\xfe\xff"):  # UTF-16 with its byte-order mark
@@ -168,7 +176,11 @@ def _columns_fast(raw: dict) -> list[np.ndarray] | None:
         return None
     if frame.shape != (len(texts), len(raw["names"])) or frame.isna().to_numpy().any():
         return None
-    return [frame[j].to_numpy() for j in range(frame.shape[1])]
+    columns = [frame[j].to_numpy() for j in range(frame.shape[1])]
+    # a row shorter than the first is padded with empty strings (no cell is empty otherwise)
+    if any(c.dtype == object and (c == "").any() for c in columns):
+        return None
+    return columns
 
 
 def _cells(raw: dict, label: str) -> np.ndarray:
@@ -189,8 +201,14 @@ def _cells(raw: dict, label: str) -> np.ndarray:
     return table
 
 
-def _convert(raw: dict, label: str) -> pd.DataFrame:
+def _convert(raw: dict, label: str, rename: Mapping[str, str] | None = None) -> pd.DataFrame:
+    """The frame of a raw table; ``rename`` (old -> new) renames some of its columns (the
+    messages name the file's)."""
     names: list[str] = raw["names"]
+    columns = [rename.get(n, n) for n in names] if rename else list(names)
+    plain = plain_frame(raw, columns)  # a table of numbers only: numpy, the same frame
+    if plain is not None:
+        return plain
     ncol = len(names)
     fast = _columns_fast(raw)
     table = _cells(raw, label) if fast is None else None
@@ -240,7 +258,7 @@ def _convert(raw: dict, label: str) -> pd.DataFrame:
         else:
             series[j] = pd.Series(values)
     frame = pd.DataFrame(series) if series else pd.DataFrame(index=range(0))
-    frame.columns = list(names)
+    frame.columns = columns
     frame.attrs.update(title="\n".join(raw["title"]), types=list(kinds), format=raw["format"])
     return frame
 
@@ -329,7 +347,16 @@ def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = Non
     >>> frame.attrs["title"], frame.attrs["types"], frame["V_USUR_TUBE"].tolist()
     ('wear table', ['R', 'R', 'K8'], [nan, 2.5e-09])
     """
-    text, label = _text_of(path_or_text)
+    return _read_table(path_or_text, index=index, title=title)
+
+
+def _read_table(path_or_text: str | os.PathLike, *, index: int | None = None,
+                title: str | None = None, rename: Mapping[str, str] | None = None,
+                data: bytes | None = None) -> pd.DataFrame:
+    """:func:`read_aster_table`, some columns renamed (``rename``: old -> new) as the frame is
+    made (:func:`fretwear.table.files.read_wear_table`: native names without a copy); ``data``:
+    the file's bytes, already read (the restart memo parses the bytes it is keyed on)."""
+    text, label = _text_of(path_or_text, data)
     raw = _raw_tables(text, label)
     listing = "; ".join(f"{i}: {' / '.join(t['title']) or '(no title)'}"
                         for i, t in enumerate(raw))
@@ -350,7 +377,7 @@ def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = Non
                           "index=<n> or title='<text>' (command line: --read-option index=<n>)")
     else:
         chosen = 0
-    return _convert(raw[chosen], label)
+    return _convert(raw[chosen], label, rename)
 
 
 def _format_cell(value, kind: str, float_format: str) -> str:

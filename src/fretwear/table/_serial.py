@@ -84,17 +84,34 @@ def jsonable(value: Any) -> Any:
     return value
 
 
+_FLOAT64 = np.dtype(np.float64)
+
+
+def _rows(rows: pd.DataFrame) -> dict[str, list]:
+    """The rows' columns, dtype names and values as JSON-ready lists (NaN as None): the values
+    of ``jsonable(rows[c].tolist())`` per column, in one numpy pass when every column is
+    float64 (a restart table's rows)."""
+    dtypes = list(rows.dtypes)
+    columns = [str(c) for c in rows.columns]
+    if dtypes and all(t is _FLOAT64 for t in dtypes):  # (numpy's one float64 dtype)
+        values = rows.to_numpy(dtype=float).T.tolist()
+        if any(v != v for column in values for v in column):  # NaN
+            values = [[None if v != v else v for v in column] for column in values]
+        return {"columns": columns, "dtypes": ["float64"] * len(dtypes), "data": values}
+    return {"columns": columns, "dtypes": [str(t) for t in dtypes],
+            "data": [jsonable(rows[c].tolist()) for c in rows.columns]}
+
+
 def state_to_dict(state: InitialState) -> dict[str, Any]:
-    rows = state.rows
+    """The JSON-ready dict of a restart state (NaN as None; :func:`jsonable` keeps it as is)."""
     return {
-        "origin": float(state.origin), "volume_mobile": float(state.volume_mobile),
-        "volume_obstacle": float(state.volume_obstacle),
+        "origin": jsonable(float(state.origin)),
+        "volume_mobile": jsonable(float(state.volume_mobile)),
+        "volume_obstacle": jsonable(float(state.volume_obstacle)),
         "sector_volume_mobile": jsonable(state.sector_volume_mobile),
         "sector_volume_obstacle": jsonable(state.sector_volume_obstacle),
         "edges": jsonable(state.edges),
-        "rows": {"columns": [str(c) for c in rows.columns],
-                 "dtypes": [str(t) for t in rows.dtypes],
-                 "data": [jsonable(rows[c].tolist()) for c in rows.columns]},
+        "rows": _rows(state.rows),
     }
 
 

@@ -545,8 +545,9 @@ class WearCase:
             if f.name in ("coefficients", "obstacle_coefficients"):
                 value = None if value is None else {
                     k: {"value": c.value, "source": c.source} for k, c in value.items()}
-            elif f.name == "initial_state":
-                value = None if value is None else state_to_dict(value)
+            elif f.name == "initial_state":  # JSON-ready already: not walked again
+                out[f.name] = None if value is None else state_to_dict(value)
+                continue
             out[f.name] = jsonable(value)
         return out
 

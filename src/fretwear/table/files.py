@@ -17,16 +17,24 @@ from pathlib import Path
 from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear.errors import FormatError, InputError
-from fretwear.io.aster import TABLE_FORMATS, read_aster_table, write_aster_table
+from fretwear.io.aster import TABLE_FORMATS, _read_table, write_aster_table
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.io.guard import readable_file, reading
 from fretwear.table.provenance import PARQUET_KEY, header_lines, parse_header, provenance
-from fretwear.table.schema import FLOAT_FORMAT, PROFILE_COLUMNS, from_aster_names, to_aster_names
+from fretwear.table.schema import (
+    COLUMNS,
+    FLOAT_FORMAT,
+    PROFILE_COLUMNS,
+    from_aster_names,
+    to_aster_names,
+)
 
 __all__ = ["read_profile_table", "read_wear_table", "write_profile_table", "write_wear_table"]
 
 #: Suffixes of a wear table written as a Code_Aster text table (IMPR_TABLE, read by LIRE_TABLE).
 ASTER_SUFFIXES = (".tab", ".resu", ".txt")
+#: Code_Aster column name -> native name (a Code_Aster table is read with native names).
+_NATIVE = {aster: native for native, (aster, _, _) in COLUMNS.items()}
 
 
 def read_wear_table(path: str | os.PathLike, *, index: int | None = None) -> pd.DataFrame:
@@ -74,18 +82,25 @@ def read_wear_table(path: str | os.PathLike, *, index: int | None = None) -> pd.
             frame = pd.read_parquet(p)
             header = _parquet_provenance(p)
     else:
-        try:
-            with reading(p, "aster", "wear table file"):
-                frame = read_aster_table(p, index=index)
-        except FormatError as exc:
-            raise FormatError(f"{exc} [wear table: in a case file give [restart] table_index "
-                              "= <n>; in Python read_wear_table(path, index=<n>)]") from None
-        return _with_provenance(from_aster_names(frame),
-                                str(frame.attrs.get("title", "")).splitlines())
+        return read_aster_wear_table(p, index=index)
     if index not in (None, 0):
         raise InputError(f"wear table file {str(p)!r} holds one table; table_index / index = "
                          f"{index} applies to Code_Aster text files only")
     return _with_provenance(from_aster_names(frame), header)
+
+
+def read_aster_wear_table(path: Path, *, index: int | None = None, data: bytes | None = None
+                          ) -> pd.DataFrame:
+    """A wear table from a Code_Aster text file (:func:`read_wear_table` of a suffix other than
+    CSV and Parquet), native names; ``data``: the file's bytes, already read (parsed instead of
+    reading the file again: :func:`fretwear.table.restart.initial_state`'s memo)."""
+    try:
+        with reading(path, "aster", "wear table file"):  # native names as the frame is made
+            frame = _read_table(path, index=index, rename=_NATIVE, data=data)
+    except FormatError as exc:
+        raise FormatError(f"{exc} [wear table: in a case file give [restart] table_index "
+                          "= <n>; in Python read_wear_table(path, index=<n>)]") from None
+    return _with_provenance(frame, str(frame.attrs.get("title", "")).splitlines())
 
 
 def write_wear_table(table, path: Path, *, aster_names: bool = False, title: str | None = None,

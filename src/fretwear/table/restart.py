@@ -9,9 +9,14 @@ the tube (its volumes and depths restart from zero, the obstacle's are kept). Us
 
 from __future__ import annotations
 
+import copy
 import os
+import stat
+import threading
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -21,7 +26,7 @@ from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile
 from fretwear.laws import WEAR_LAWS
 from fretwear.sectors import sector_edges as _validated_edges
-from fretwear.table.files import read_wear_table
+from fretwear.table.files import read_aster_wear_table, read_wear_table
 from fretwear.table.schema import _TIME_TOL, COLUMNS, from_aster_names, to_aster_names
 
 __all__ = ["InitialState", "initial_state", "read_wear_table", "replace_tube"]
@@ -59,10 +64,27 @@ class InitialState:
         return 0 if self.edges is None else len(self.edges) - 1
 
 
-def _column(frame: pd.DataFrame, names: Sequence[str], what: str, source: str) -> np.ndarray:
+def _numeric_columns(frame: pd.DataFrame) -> dict[str, np.ndarray]:
+    """Name -> float values of every column when all are numbers (one ``to_numpy``, no column
+    taken one by one): the values ``pd.to_numeric(column).to_numpy(dtype=float)`` gives; an
+    empty dict otherwise (strings, missing integers, repeated names)."""
+    if not frame.columns.is_unique:
+        return {}
+    values = frame.to_numpy()
+    if values.dtype != np.float64:
+        return {}
+    return dict(zip(frame.columns, values.T, strict=True))
+
+
+def _column(frame: pd.DataFrame, names: Sequence[str], what: str, source: str,
+            numeric: dict[str, np.ndarray] | None = None) -> np.ndarray:
+    """The first of ``names`` in ``frame`` as floats, NaN as 0 (``numeric``: the frame's
+    :func:`_numeric_columns`, when known)."""
     for name in names:
         if name in frame.columns:
-            values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
+            values = numeric.get(name) if numeric else None
+            if values is None:
+                values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
             return np.where(np.isnan(values), 0.0, values)
     aster = [COLUMNS[n][0] for n in names if n in COLUMNS]
     raise InputError(f"initial wear table {source}: no column for {what}; expected one of "
@@ -93,15 +115,113 @@ def initial_state(table: pd.DataFrame | str | os.PathLike,
     >>> s.origin, s.volume_mobile, len(s.rows)
     (1.0, 1e-09, 1)
     """
-    source = "(DataFrame)"
     if not isinstance(table, pd.DataFrame):
-        source = repr(str(table))
-        table = read_wear_table(table)
-    else:
-        table = from_aster_names(table)
+        return _file_state(table, initial_instant)
+    return _own_state(from_aster_names(table), initial_instant, "(DataFrame)")
+
+
+# --------------------------------------------------------------------------- the memo of files
+#: Restart states of Code_Aster text files, keyed on the file's bytes and INST_INIT: a table
+#: read again (the same restart file for several contacts, a study run again) is parsed once.
+#: The key is the content itself (the state is parsed from those very bytes), so it cannot be
+#: stale; the states kept are never given out: each caller gets its own copy of their mutable
+#: parts (rows and their attrs, sector arrays). Files of at most _MEMO_BYTES, the last
+#: _MEMO_SIZE states.
+_MEMO: OrderedDict[tuple, tuple[InitialState, dict]] = OrderedDict()
+_MEMO_SIZE = 16
+_MEMO_BYTES = 1 << 18
+_MEMO_LOCK = threading.Lock()
+_UNKEYED = object()
+
+
+def _memo_bytes(path) -> bytes | None:
+    """The bytes of ``path`` when its state may be kept (a regular file of at most _MEMO_BYTES
+    that :func:`read_wear_table` reads as a Code_Aster text table), else None: it is then read
+    as usual, which words any problem."""
+    if not isinstance(path, str | os.PathLike):
+        return None
+    try:
+        name = os.fsdecode(os.fspath(path))
+        if Path(name).suffix.lower() in (".csv", ".parquet", ".pq"):
+            return None
+        with open(name, "rb") as handle:
+            info = os.fstat(handle.fileno())
+            if not stat.S_ISREG(info.st_mode) or info.st_size > _MEMO_BYTES:
+                return None
+            return handle.read()
+    except (OSError, ValueError):
+        return None
+
+
+def _file_state(path, initial_instant) -> InitialState:
+    """The state of a table file: remembered by content (see _MEMO), or read as usual."""
+    source = repr(str(path))
+    instant = (initial_instant if initial_instant is None
+               else float(initial_instant) if isinstance(initial_instant, int | float)
+               and not isinstance(initial_instant, bool) else _UNKEYED)
+    data = None if instant is _UNKEYED else _memo_bytes(path)
+    if data is None:
+        return _own_state(read_wear_table(path), initial_instant, source)
+    key = (data, instant)
+    with _MEMO_LOCK:
+        kept = _MEMO.get(key)
+        if kept is not None:
+            _MEMO.move_to_end(key)
+    if kept is None:
+        # parsed from the bytes of the key (the file may change meanwhile), named as
+        # read_wear_table names it
+        frame = read_aster_wear_table(Path(os.fsdecode(os.fspath(path))), data=data)
+        state = _own_state(frame, initial_instant, source)
+        kept = (state, state.rows.attrs)
+        state.rows.attrs = {}  # kept aside: copied once per caller (see _handed_out)
+        with _MEMO_LOCK:
+            _MEMO[key] = kept
+            while len(_MEMO) > _MEMO_SIZE:
+                _MEMO.popitem(last=False)
+    return _handed_out(*kept)
+
+
+def _handed_out(state: InitialState, attrs: dict) -> InitialState:
+    """A caller's own copy of a remembered state: its rows (attrs included) and arrays copied,
+    so that changing them never changes the memo or another caller's state."""
+    rows = state.rows.copy()
+    rows.attrs = _copied(attrs)
+    arrays = [None if a is None else a.copy() for a in
+              (state.sector_volume_mobile, state.sector_volume_obstacle, state.edges)]
+    return InitialState(state.origin, state.volume_mobile, state.volume_obstacle, *arrays, rows)
+
+
+def _copied(value):
+    """A deep copy of attrs (JSON-like: dicts, lists, strings, numbers; anything else by
+    :func:`copy.deepcopy`)."""
+    kind = type(value)
+    if kind is dict:
+        return {k: _copied(v) for k, v in value.items()}
+    if kind is list:
+        return [_copied(v) for v in value]
+    if kind in (str, int, float, bool, type(None)):
+        return value
+    return copy.deepcopy(value)
+
+
+def _own_state(table: pd.DataFrame, initial_instant, source: str) -> InitialState:
+    """The state of ``table``, our own frame (read, or renamed: a copy), native names."""
     if len(table) == 0:
         raise InputError(f"initial wear table {source} has no rows")
-    inst = _column(table, ["instant"], "the instant (INST)", source)
+    # pandas deep-copies a frame's attrs into every column and every slice taken from it: they
+    # are set aside while the state is computed and given to its rows (which have them, as a
+    # slice of ``table`` would)
+    attrs = table.attrs
+    table.attrs = {}
+    state = _state(table, initial_instant, source)
+    state.rows.attrs = attrs
+    return state
+
+
+def _state(table: pd.DataFrame, initial_instant: float | None, source: str) -> InitialState:
+    """The restart state of ``table`` (native names, at least one row); see initial_state."""
+    numeric = _numeric_columns(table)
+    inst = _column(table, ["instant"], "the instant (INST)", source, numeric)
     if initial_instant is None:
         origin = float(inst.max())
     else:
@@ -113,11 +233,16 @@ def initial_state(table: pd.DataFrame | str | os.PathLike,
                 f"table {source}; its instants are {sorted(set(inst.tolist()))}")
     scale = max(1.0, abs(origin))
     keep = inst <= origin + _TIME_TOL * scale
-    rows = table.loc[keep].reset_index(drop=True)
+    index = table.index
+    if keep.all() and type(index) is pd.RangeIndex and index.start == 0 and index.step == 1 \
+            and index.name is None:
+        rows = table  # (our own copy) every row kept, already numbered 0..n-1
+    else:
+        rows = table.loc[keep].reset_index(drop=True)
     at = np.abs(inst[keep] - origin) <= _TIME_TOL * scale
-    last = rows.loc[at]
     if "sector" in rows.columns and rows["sector"].notna().any():
         # rows without a sector number (a global row per instant) do not hold sector volumes
+        last = rows.loc[at]
         last = last[pd.to_numeric(last["sector"], errors="coerce").notna()].sort_values("sector")
         sectors = pd.to_numeric(last["sector"]).to_numpy()
         if len(np.unique(sectors)) != len(sectors):
@@ -135,10 +260,12 @@ def initial_state(table: pd.DataFrame | str | os.PathLike,
                       "the cumulated sector volume of the obstacle", source)
         return InitialState(origin, float(svm.sum()), float(svo.sum()), svm, svo,
                             _validated_edges(edges), rows)
-    vm = _column(last, ["volume_mobile_cumulated", "volume_mobile"], "the tube's volume", source)
-    vo = _column(last, ["volume_obstacle_cumulated", "volume_obstacle"],
-                 "the obstacle's volume", source)
-    return InitialState(origin, float(vm[-1]), float(vo[-1]), None, None, None, rows)
+    # the volumes of the last row at the origin (the rows are the table's ``keep`` rows)
+    vm = _column(table, ["volume_mobile_cumulated", "volume_mobile"], "the tube's volume",
+                 source, numeric)[keep]
+    vo = _column(table, ["volume_obstacle_cumulated", "volume_obstacle"],
+                 "the obstacle's volume", source, numeric)[keep]
+    return InitialState(origin, float(vm[at][-1]), float(vo[at][-1]), None, None, None, rows)
 
 
 def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None = None
