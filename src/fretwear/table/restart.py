@@ -73,7 +73,7 @@ def _numeric_columns(frame: pd.DataFrame) -> dict[str, np.ndarray]:
     values = frame.to_numpy()
     if values.dtype != np.float64:
         return {}
-    return dict(zip(frame.columns, values.T, strict=True))
+    return dict(zip(frame.columns.tolist(), values.T, strict=True))
 
 
 def _column(frame: pd.DataFrame, names: Sequence[str], what: str, source: str,
@@ -142,13 +142,21 @@ def _memo_bytes(path) -> bytes | None:
         return None
     try:
         name = os.fsdecode(os.fspath(path))
-        if Path(name).suffix.lower() in (".csv", ".parquet", ".pq"):
+        if os.path.splitext(name)[1].lower() in (".csv", ".parquet", ".pq"):
             return None
-        with open(name, "rb") as handle:
-            info = os.fstat(handle.fileno())
+        fd = os.open(name, os.O_RDONLY | getattr(os, "O_BINARY", 0))
+        try:
+            info = os.fstat(fd)
             if not stat.S_ISREG(info.st_mode) or info.st_size > _MEMO_BYTES:
                 return None
-            return handle.read()
+            data = os.read(fd, info.st_size + 1)  # less than asked: the end (a regular file)
+            chunks = [data]
+            while len(data) > info.st_size and chunks[-1] and len(data) <= _MEMO_BYTES:
+                chunks.append(os.read(fd, 1 << 16))  # grown meanwhile: read on to the end
+                data = b"".join(chunks)
+            return data if len(data) <= _MEMO_BYTES else None
+        finally:
+            os.close(fd)
     except (OSError, ValueError):
         return None
 
