@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 from iohelpers import FIXTURES, analytic_history, assert_same_history
 
-from fretwear.errors import FormatError, KeywordError, UnitsWarning
+from fretwear.errors import FormatError, InputError, KeywordError, UnitsWarning
 from fretwear.history import UNITS, ContactHistory
 from fretwear.io import FORMATS, guess_format, read_history, write_history
 from fretwear.io.aster import read_aster_table
@@ -246,3 +246,27 @@ def test_default_name_is_the_stem_without_gz(tmp_path, history):
     for suffix in (".resu", ".resu.gz"):
         out = write_history(history.replace(name=""), tmp_path / f"n12{suffix}")
         assert read_history(out).name == "n12"
+
+
+@pytest.mark.parametrize("codec, stored", [("lz4", "LZ4"), ("snappy", "SNAPPY"),
+                                           ("zstd", "ZSTD"), (None, "UNCOMPRESSED")])
+def test_parquet_codec_and_plain_pages(tmp_path, history, codec, stored):
+    """Every codec reads back the same doubles (binary, lossless); the pages are plain float64
+    (no dictionary: the samples of a signal seldom repeat); lz4 is the default."""
+    import pyarrow.parquet as pq
+
+    options = {} if codec == "lz4" else {"compression": codec}
+    path = write_history(history, tmp_path / "h.parquet", **options)
+    assert_same_history(history, read_history(path))
+    meta = pq.ParquetFile(path).metadata
+    for i in range(meta.num_columns):
+        column = meta.row_group(0).column(i)
+        assert column.compression == stored
+        assert "RLE_DICTIONARY" not in column.encodings and column.dictionary_page_offset is None
+
+
+def test_parquet_unknown_codec_is_refused_before_writing(tmp_path, history):
+    target = tmp_path / "h.parquet"
+    with pytest.raises(InputError, match=r"compression='lzma'.*'lz4', 'snappy'"):
+        write_history(history, target, compression="lzma")
+    assert not target.exists() and list(tmp_path.iterdir()) == []

@@ -62,7 +62,7 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({
                                              "encoding"), ("float_format", "delimiter"),
                       "delimited text (any delimiter, '#' comments, header guessed)"),
     "parquet": FileFormat("parquet", (".parquet", ".pq"), _binary.open_parquet,
-                          _binary.write_parquet, (), ("row_group_size",),
+                          _binary.write_parquet, (), ("row_group_size", "compression"),
                           "Apache Parquet (pyarrow), units in field metadata"),
     "hdf5": FileFormat("hdf5", (".h5", ".hdf5", ".hdf"), _binary.open_hdf5, _binary.write_hdf5,
                        ("group",), ("group",),
