@@ -213,13 +213,15 @@ def test_cli_joins_the_scheduler_and_exits_1_when_a_contact_failed(tmp_path, add
 
 
 def _environment() -> dict:
-    return dict(os.environ)
+    import dask
+
+    return {**os.environ, "profile": dask.config.get("distributed.worker.profile.enabled")}
 
 
 def test_without_a_scheduler_a_local_cluster_is_started(tmp_path, monkeypatch):
-    """... with single-threaded numerical libraries and glibc's own malloc thresholds: Dask's
-    MALLOC_TRIM_THRESHOLD_ made every block array a fresh mmap (1e5-sample contacts 11 ms
-    instead of 8.5 ms in a worker, docs/bundle.md)."""
+    """... with single-threaded numerical libraries, glibc's own malloc thresholds (Dask's
+    MALLOC_TRIM_THRESHOLD_ made every block array a fresh mmap: 1e5-sample contacts 11 ms
+    instead of 8.5 ms in a worker) and no statistical profiler (docs/bundle.md)."""
     from fretwear.bundle import engine
 
     seen = []
@@ -235,5 +237,6 @@ def test_without_a_scheduler_a_local_cluster_is_started(tmp_path, monkeypatch):
     assert result.stats["workers"] == 1 and result.stats["done"] == 2
     assert len(seen) == 1
     assert "MALLOC_TRIM_THRESHOLD_" not in seen[0] and seen[0]["OMP_NUM_THREADS"] == "1"
+    assert seen[0]["profile"] is False  # no stack sampling of the running contacts
     assert_identical(rows_of(result, "R1C1-AVB"),
                      reference(tmp_path / "histories/t0.parquet", case))

@@ -52,9 +52,13 @@ from fretwear.workflows.case_files import load_case, validate_case
 PART_SIZE = 100
 PART_SECONDS = 10.0
 #: Dask settings of the local cluster: tasks sent to the workers' queues at once; the workers'
-#: malloc left to glibc's defaults (Dask sets MALLOC_TRIM_THRESHOLD_ before spawning them).
+#: malloc left to glibc's defaults (Dask sets MALLOC_TRIM_THRESHOLD_ before spawning them); no
+#: statistical profiler in the workers (it samples the running task's stack every 10 ms for the
+#: dashboard's profile page: the same contacts took 4-14 % longer in a worker with it than in a
+#: plain process, 1-4 % without it; docs/bundle.md).
 LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": "inf",
-                        "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+                        "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
+                        "distributed.worker.profile.enabled": False}
 #: Tasks per worker when contacts are grouped (:func:`task_sizes`).
 TASKS_PER_WORKER = 16
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
