@@ -77,8 +77,16 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
     real_map = engine._Dask.map
     monkeypatch.setattr(engine._Dask, "map", lambda self, fn, items, *a, **k: submitted.append(
         (fn.__name__, [len(i) for i in items])) or real_map(self, fn, items, *a, **k))
+    crossed = []
+    real_gather = distributed.Client.gather
+    monkeypatch.setattr(distributed.Client, "gather", lambda self, futures, *a, **k: (
+        crossed.extend(type(v) for v in real_gather(self, futures, *a, **k))
+        or real_gather(self, futures, *a, **k)))
     result = run_bundle(manifest, case, scheduler=address)
     assert submitted == [("run_contacts", [3, 3])]
+    # each group's records cross to the client as one pickle (tasks.pickled), not as Dask's
+    # frame per array
+    assert crossed == [bytes, bytes]
     assert result.errors["contact"].tolist() == ["R3C1-AVB"]
     for k in (0, 1, 2, 3, 5):
         contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"

@@ -13,8 +13,10 @@ written part by part as they arrive.
 
 from __future__ import annotations
 
+import functools
 import json
 import logging
+import pickle
 import math
 import os
 import time
@@ -39,6 +41,7 @@ from fretwear.bundle.tasks import (
     merge_states,
     needs_whole_history,
     pack,
+    pickled,
     run_contact,
     run_contacts,
     time_bounds,
@@ -59,8 +62,9 @@ PART_SECONDS = 10.0
 LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": "inf",
                         "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
                         "distributed.worker.profile.enabled": False}
-#: Tasks per worker when contacts are grouped (:func:`task_sizes`).
-TASKS_PER_WORKER = 16
+#: Tasks per worker when contacts are grouped (:func:`task_sizes`; measured on 500 contacts ×
+#: 1e5 samples, 2 workers: 4, 6, 8, 12, 16 per worker took 1.39, 1.40, 1.39, 1.51, 1.50 s).
+TASKS_PER_WORKER = 8
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
@@ -187,10 +191,12 @@ class _Dask:
 
     def map(self, fn, items, *args, keys, retries: int = 2):
         # one graph for many contacts: one message to the scheduler, not one per contact
+        # the records come back pickled in one piece (tasks.pickled; unpickled in results)
         if not items:
             return []
-        return self.client.map(fn, items, *[[a] * len(items) for a in args], key=keys,
-                               pure=False, retries=retries)
+        return self.client.map(functools.partial(pickled, fn), items,
+                               *[[a] * len(items) for a in args], key=keys, pure=False,
+                               retries=retries)
 
     def results(self, handles):
         # the futures finished since the last look, their results fetched in one gather (one
@@ -200,7 +206,7 @@ class _Dask:
             finished = [f for f in batch if f.status == "finished"]
             values = self.client.gather(finished) if finished else []
             for future, value in zip(finished, values, strict=True):
-                yield future, value
+                yield future, pickle.loads(value) if isinstance(value, bytes) else value
             for future in batch:
                 if future.status != "finished":
                     try:
@@ -257,8 +263,9 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
 
     One contact per task for a bundle of fewer than :data:`TASKS_PER_WORKER` contacts per
     worker. Otherwise groups of ``contacts // (TASKS_PER_WORKER × workers)`` contacts (the last
-    one holds the rest): the scheduler's cost per task (about a millisecond of its CPU, shared
-    with the workers on a small machine) is spread over the group, and every worker still gets
+    one holds the rest): the cost of a task (the scheduler's and the client's CPU, shared with
+    the workers on a small machine: about 4 ms a task) is spread over the group, and every
+    worker still gets
     about :data:`TASKS_PER_WORKER` tasks to balance the load. Each contact keeps its own record,
     warnings and failure. (Guided sizes, large tasks first and single contacts last, were
     measured slower: the scheduler deals the tasks out by count before their durations are
@@ -270,7 +277,7 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
     [1, 1, 1, 1, 1]
     >>> sizes = task_sizes(500, 2)
     >>> len(sizes), sizes[0], sizes[-1], sum(sizes)
-    (34, 15, 5, 500)
+    (17, 31, 4, 500)
     """
     w = max(1, workers)
     size = max(1, contacts // (TASKS_PER_WORKER * w))
