@@ -106,8 +106,11 @@ class OutputDirectory:
         meta = {"part": stem, "rows_file": rows_file,
                 "contacts": [{k: v for k, v in r.items() if k not in ("table", "state")}
                              for r in records]}
+        # one line, by json.dumps: its C encoder (json.dump to a file, or any indent, takes
+        # the pure-Python one: 0.2 s for the records of 500 contacts)
+        text = json.dumps(meta, default=str)
         with atomic_write(self.parts / f"{stem}.json", encoding="utf-8") as handle:
-            json.dump(meta, handle, indent=1, default=str)
+            handle.write(text)
         for r in records:
             r["part"], r["rows_file"] = stem, rows_file
         return stem
