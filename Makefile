@@ -34,6 +34,7 @@ browser:
 bench: $(STAMP)
 	$(PY) benchmarks/bench_power.py
 	$(PY) benchmarks/bench_dynamics.py
+	$(PY) benchmarks/bench_table.py
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check src tests benchmarks
