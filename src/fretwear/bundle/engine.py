@@ -16,9 +16,9 @@ from __future__ import annotations
 import functools
 import json
 import logging
-import pickle
 import math
 import os
+import pickle
 import time
 import uuid
 from collections.abc import Callable, Mapping

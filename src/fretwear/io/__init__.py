@@ -151,9 +151,10 @@ def write_history(history: ContactHistory, path: str | os.PathLike, format: str 
         ``npz``, ``aster``); default from the suffix.
     **options
         csv ``float_format`` (default: shortest exact text), ``delimiter``; parquet
-        ``row_group_size``, ``compression`` (default ``"lz4"``, no dictionary pages); hdf5 ``group`` (default ``history``); aster ``table_format``
-        (``TABLEAU``/``ASTER``) and ``float_format`` (default ``%.16E``, exact) with Code_Aster
-        names (INST, FN, FT1, FT2, VN, VT1, VT2, DYLOC, DZLOC, VINT13).
+        ``row_group_size``, ``compression`` (default ``"lz4"``, no dictionary pages); hdf5
+        ``group`` (default ``history``); aster ``table_format`` (``TABLEAU``/``ASTER``) and
+        ``float_format`` (default ``%.16E``, exact) with Code_Aster names (INST, FN, FT1, FT2,
+        VN, VT1, VT2, DYLOC, DZLOC, VINT13).
 
     Returns
     -------
