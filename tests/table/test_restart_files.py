@@ -262,3 +262,65 @@ def test_rows_then_run_equal_the_pandas_concat():
         pd.testing.assert_frame_equal(got, expected, check_exact=True)
         assert list(got.columns) == list(columns)
     assert rows.attrs == {"title": "previous"} and len(rows.columns) == 4  # not modified
+
+
+# --------------------------------------------------------------------------- the memo's reads
+def test_a_signed_zero_initial_instant_is_remembered_apart(tmp_path):
+    """INST_INIT = 0.0 and -0.0 compare equal but give origins of their own sign (the origin
+    column of the new rows); the memo must not hand one the other's. Expected: the DataFrame
+    path, which has no memo."""
+    path = write(tmp_path, "#\nINST V_USUR_TUBE V_USUR_OBST\n"
+                 " -0.00000E+00 1.00000E-09 2.00000E-09\n 1.00000E+00 2.00000E-09 3.00000E-09\n")
+    frame = read_wear_table(path)
+    for first, second in ((0.0, -0.0), (-0.0, 0.0)):
+        restart._MEMO.clear()
+        for instant in (first, second):
+            got = initial_state(path, instant).origin
+            want = initial_state(frame, instant).origin
+            assert (got, np.copysign(1.0, got)) == (want, np.copysign(1.0, want)) == \
+                (0.0, np.copysign(1.0, instant))
+
+
+def test_a_short_read_is_read_on_to_the_end(tmp_path, monkeypatch):
+    """os.read may return fewer bytes than asked (FUSE and network file systems): the memo must
+    read on to the end, not parse a truncated table. Expected: the state read by pandas' path
+    (read_wear_table) before the reads were cut."""
+    path = sector_table(tmp_path)
+    reference = initial_state(read_wear_table(path))
+    real = os.read
+    monkeypatch.setattr(os, "read", lambda fd, n: real(fd, min(n, 97)))
+    same_state(initial_state(path), reference)
+    assert len(restart._MEMO) == 1
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="named pipes are POSIX")
+def test_a_named_pipe_is_left_to_the_usual_reader(tmp_path):
+    """A named pipe given as the restart table is read once, by read_wear_table: the memo does
+    not open it (opening blocks until a writer comes, and closing it unread loses what the
+    writer sent)."""
+    import threading
+
+    fifo = tmp_path / "pipe.tab"
+    os.mkfifo(fifo)
+    got = []
+    reader = threading.Thread(target=lambda: got.append(restart._memo_bytes(fifo)), daemon=True)
+    reader.start()
+    reader.join(5.0)
+    if reader.is_alive():  # blocked in open(): let it go
+        os.close(os.open(fifo, os.O_WRONLY))
+        reader.join(5.0)
+        pytest.fail("the memo opened the named pipe")
+    assert got == [None]
+
+
+def test_a_nan_volume_of_a_state_round_trips_through_json():
+    """state_to_dict writes NaN as None (strict JSON); state_from_dict reads None back as NaN
+    (IEEE 754: a missing volume stays NaN) for the scalars as for the arrays and rows."""
+    rows = pd.DataFrame({"instant": [1.0], "volume_mobile": [np.nan]})
+    state = InitialState(1.0, np.nan, np.nan, None, None, None, rows)
+    back = state_from_dict(json.loads(json.dumps(state_to_dict(state))))
+    assert back.origin == 1.0 and np.isnan(back.volume_mobile) and np.isnan(back.volume_obstacle)
+    pd.testing.assert_frame_equal(back.rows, rows, check_exact=True)
+    case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0], dimensions=BAV,
+                                  coefficients={"COEF_USURE": 1.1e-13}, initial_state=state)
+    assert np.isnan(WearCase.from_json(case.to_json()).initial_state.volume_mobile)

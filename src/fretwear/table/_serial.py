@@ -115,6 +115,11 @@ def state_to_dict(state: InitialState) -> dict[str, Any]:
     }
 
 
+def _number(value) -> float:
+    """A number of :func:`state_to_dict` (None: NaN, as :func:`jsonable` wrote it)."""
+    return math.nan if value is None else float(value)
+
+
 def _array(values) -> np.ndarray | None:
     return None if values is None else np.array(
         [np.nan if v is None else v for v in values], dtype=float)
@@ -130,6 +135,6 @@ def state_from_dict(data: Mapping[str, Any]) -> InitialState:
             values = [np.nan if v is None else v for v in values]
         columns[name] = pd.Series(values, dtype=dtype)
     frame = pd.DataFrame(columns, columns=list(rows["columns"]))
-    return InitialState(float(data["origin"]), float(data["volume_mobile"]),
-                        float(data["volume_obstacle"]), _array(data["sector_volume_mobile"]),
+    return InitialState(_number(data["origin"]), _number(data["volume_mobile"]),
+                        _number(data["volume_obstacle"]), _array(data["sector_volume_mobile"]),
                         _array(data["sector_volume_obstacle"]), _array(data["edges"]), frame)

@@ -10,6 +10,7 @@ the tube (its volumes and depths restart from zero, the obstacle's are kept). Us
 from __future__ import annotations
 
 import copy
+import math
 import os
 import stat
 import threading
@@ -144,15 +145,24 @@ def _memo_bytes(path) -> bytes | None:
         name = os.fsdecode(os.fspath(path))
         if os.path.splitext(name)[1].lower() in (".csv", ".parquet", ".pq"):
             return None
-        fd = os.open(name, os.O_RDONLY | getattr(os, "O_BINARY", 0))
+        # a named pipe or a device is never opened here (opening a pipe waits for a writer,
+        # and closing it unread loses what the writer sent): read_wear_table reads it once
+        if not stat.S_ISREG(os.stat(name).st_mode):
+            return None
+        fd = os.open(name, os.O_RDONLY | getattr(os, "O_BINARY", 0)
+                     | getattr(os, "O_NONBLOCK", 0))  # (swapped for a pipe meanwhile)
         try:
             info = os.fstat(fd)
             if not stat.S_ISREG(info.st_mode) or info.st_size > _MEMO_BYTES:
                 return None
-            data = os.read(fd, info.st_size + 1)  # less than asked: the end (a regular file)
-            chunks = [data]
-            while len(data) > info.st_size and chunks[-1] and len(data) <= _MEMO_BYTES:
-                chunks.append(os.read(fd, 1 << 16))  # grown meanwhile: read on to the end
+            data = os.read(fd, info.st_size + 1)  # its size: the end (asked one byte more)
+            chunks, size = [data], len(data)
+            # fewer bytes than its size (a read cut short: FUSE, network file systems) or more
+            # (grown meanwhile): read on to the end
+            while chunks[-1] and size != info.st_size and size <= _MEMO_BYTES:
+                chunks.append(os.read(fd, max(info.st_size + 1 - size, 1 << 16)))
+                size += len(chunks[-1])
+            if len(chunks) > 1:
                 data = b"".join(chunks)
             return data if len(data) <= _MEMO_BYTES else None
         finally:
@@ -170,7 +180,8 @@ def _file_state(path, initial_instant) -> InitialState:
     data = None if instant is _UNKEYED else _memo_bytes(path)
     if data is None:
         return _own_state(read_wear_table(path), initial_instant, source)
-    key = (data, instant)
+    # -0.0 == 0.0 (one hash) but each gives an origin of its own sign: the sign in the key
+    key = (data, instant, None if instant is None else math.copysign(1.0, instant))
     with _MEMO_LOCK:
         kept = _MEMO.get(key)
         if kept is not None:
