@@ -31,8 +31,6 @@ import numpy as np
 
 from fretwear._lazy import compiled_when_used
 from fretwear.geometry._shapes import (
-    _SERIES_LIMIT,
-    _SERIES_TUPLE,
     _lens_kernels,
     _out,
     frustum_volume,
@@ -270,10 +268,10 @@ def _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, t
     if kernels is None or lens_kernels is None:
         return volume
     stack_of, volumes_of = kernels
-    ratios_of = lens_kernels[0]
+    ratios_of, lens_of = lens_kernels
     r_m, r_o = float(mobile_radius), float(obstacle_radius)
     top = float(lens_range(np.asarray(r_m), np.asarray(r_o)))
-    constants = (r_m, r_o, slope, float(l), float(theta), float(reach), float(edges))
+    constants = (slope, float(l), float(theta), float(reach), float(edges))
 
     def compiled_volume(depth):
         # the operations of ``volume`` in their order: the arithmetic compiled, NumPy's own
@@ -287,8 +285,10 @@ def _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, t
         ratios_of(stacked, r_m, r_o, top, ratio)
         # the ratios are in [0, 1] or NaN: NumPy's arcsin and sin raise nothing on them
         u = 2.0 * np.arcsin(ratio)
+        lens = np.empty(stacked.size)
+        lens_of(u, np.sin(u), r_m, r_o, lens)
         out = np.empty(d.size)
-        volumes_of(stacked, u, np.sin(u), *constants, out)
+        volumes_of(stacked, lens, *constants, out)
         return _out(out.reshape(shape))
 
     return compiled_volume
@@ -308,43 +308,18 @@ def _enco_stack(d, reach, stacked):
             stacked[n + i] = e if (e != e or e > 0.0) else 0.0
 
 
-def _enco_volumes(stacked, u, sine, rm, ro, slope, l, theta, reach, edges, out):
-    """n·(wedge or frustum) of each depth from u = 2φ of the four segments of its two sections
-    (R_m ones first, then R_o ones, as :func:`~fretwear.geometry._shapes._lens_ratios` orders
-    them), with the operations of ``_stacked_enco_volume``'s ``volume`` in their order
-    (``sine``: sin u, used where |u| is not below the series limit)."""
+def _enco_volumes(stacked, lens, slope, l, theta, reach, edges, out):
+    """n·(wedge or frustum) of each depth from the lens areas of its two sections (``lens``:
+    :func:`~fretwear.geometry._shapes._lens_of_angles` of the stacked depths, D's then the
+    second section's), with the operations of ``_stacked_enco_volume``'s ``volume`` in their
+    order."""
     n = out.size
-    count = stacked.size
     third = l / 3.0
     for i in range(n):
-        a1 = 0.0
-        a2 = 0.0
-        for k in (i, n + i):
-            lens = 0.0
-            for j, rho in ((k, rm), (count + k, ro)):
-                uj = u[j]
-                if abs(uj) < _SERIES_LIMIT:
-                    u2 = uj * uj
-                    series = 0.0
-                    power = uj * u2
-                    for coefficient in _SERIES_TUPLE:
-                        series = series + coefficient * power
-                        power = power * u2
-                    value = series
-                else:
-                    value = uj - sine[j]
-                segment = 0.5 * rho * rho * value
-                if j == k:
-                    lens = segment
-                else:
-                    lens = lens - segment
-            x = stacked[k]
-            section = 0.5 * (lens + slope * x * x)
-            if k == i:
-                a1 = section
-            else:
-                a2 = section
         d = stacked[i]
+        e = stacked[n + i]
+        a1 = 0.5 * (lens[i] + slope * d * d)
+        a2 = 0.5 * (lens[n + i] + slope * e * e)
         if d < reach:
             value = d / theta * a1 / 3.0
         else:
