@@ -79,9 +79,13 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
         (fn.__name__, [len(i) for i in items])) or real_map(self, fn, items, *a, **k))
     crossed = []
     real_gather = distributed.Client.gather
-    monkeypatch.setattr(distributed.Client, "gather", lambda self, futures, *a, **k: (
-        crossed.extend(type(v) for v in real_gather(self, futures, *a, **k))
-        or real_gather(self, futures, *a, **k)))
+
+    def recording_gather(self, futures, *a, **k):
+        values = real_gather(self, futures, *a, **k)
+        crossed.extend(type(v) for v in values)
+        return values
+
+    monkeypatch.setattr(distributed.Client, "gather", recording_gather)
     result = run_bundle(manifest, case, scheduler=address)
     assert submitted == [("run_contacts", [3, 3])]
     # each group's records cross to the client as one pickle (tasks.pickled), not as Dask's
