@@ -361,3 +361,38 @@ def test_a_bundle_whose_every_contact_failed_still_writes_its_outputs(tmp_path):
     assert pd.read_csv(out / "errors.csv")["error"].tolist() == ["InputError", "InputError"]
     summary = pd.read_csv(out / "summary.csv")
     assert summary.empty and "time_to_limit" in summary.columns
+
+
+def test_the_client_freezes_its_old_objects_only_while_it_runs(tmp_path, monkeypatch):
+    """run_bundle freezes the objects alive at its start (gc.freeze: the collector's full
+    passes skip them while the bundle runs) and unfreezes them at the end; a process that froze
+    objects itself keeps its freeze, and a disabled collector is left alone."""
+    import gc
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    seen = []
+    real = engine_module.read_manifest
+
+    def spy(*args, **kwargs):
+        seen.append((gc.isenabled(), gc.get_freeze_count()))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(engine_module, "read_manifest", spy)
+    assert gc.get_freeze_count() == 0
+    run_bundle(manifest, case, scheduler="serial")
+    assert seen[-1][1] > 0 and gc.get_freeze_count() == 0  # frozen during the run only
+    gc.freeze()
+    try:
+        mine = gc.get_freeze_count()
+        run_bundle(manifest, case, scheduler="serial")
+        # the caller's freeze kept: not unfrozen, nothing more frozen (a frozen object freed
+        # by its reference count leaves the count)
+        assert seen[-1][1] <= mine and 0 < gc.get_freeze_count() <= mine
+    finally:
+        gc.unfreeze()
+    gc.disable()
+    try:
+        run_bundle(manifest, case, scheduler="serial")
+        assert seen[-1] == (False, 0) and not gc.isenabled()
+    finally:
+        gc.enable()

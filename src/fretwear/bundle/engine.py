@@ -13,7 +13,9 @@ written part by part as they arrive.
 
 from __future__ import annotations
 
+import contextlib
 import functools
+import gc
 import json
 import logging
 import math
@@ -68,6 +70,24 @@ TASKS_PER_WORKER = 8
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
+
+
+@contextlib.contextmanager
+def _gc_frozen():
+    """Run a block with the objects alive at its start frozen (:func:`gc.freeze`): the garbage
+    collector's full passes during the block go over the objects made since, not over every
+    object of the process (pandas, Dask, numba: some 150 000, a full pass 0.08 s on an idle
+    core, 0.1-0.24 s beside two busy workers, one run of 500 contacts in three). Nothing is
+    frozen when the collector is disabled or the process froze objects itself (their freeze is
+    left as it is); unfrozen at the end, a cycle among the old objects is collected then."""
+    if not gc.isenabled() or gc.get_freeze_count():
+        yield
+        return
+    gc.freeze()
+    try:
+        yield
+    finally:
+        gc.unfreeze()
 
 
 def _base_case(case) -> dict[str, Any]:
@@ -364,6 +384,14 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
         raise KeywordError(f"table_format {table_format!r}: choose one of {TABLE_FORMATS}")
     if dataset_format is not None and dataset_format not in DATASET_FORMATS:
         raise KeywordError(f"dataset_format {dataset_format!r}: choose one of {DATASET_FORMATS}")
+    with _gc_frozen():
+        return _run(manifest, case, scheduler, workers, output, force, chunk_size, split_every,
+                    retries, table_format, dataset_format, part_size, progress)
+
+
+def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_every, retries,
+         table_format, dataset_format, part_size, progress) -> BundleResult:
+    """:func:`run_bundle` once its options are checked."""
     started = time.perf_counter()
     man = manifest if isinstance(manifest, Manifest) else read_manifest(manifest)
     base = _base_case(case)

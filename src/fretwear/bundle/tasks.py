@@ -28,7 +28,7 @@ from fretwear.bundle.datasets import frame_of, require, store_arrays
 from fretwear.io import open_source, read_history
 from fretwear.io.channels import build_history, resolve_columns, resolve_units
 from fretwear.power import PowerAccumulator, wear_power
-from fretwear.table import wear_table_from_case
+from fretwear.table import wear_table_columns
 
 _LOCK = threading.Lock()
 #: Table attributes kept in a contact's record (JSON-ready; the power statistics are dropped).
@@ -51,9 +51,9 @@ def _plain(value: Any) -> Any:
     return value if value is None or isinstance(value, bool | int | float | str) else str(value)
 
 
-def _attrs(table, task: ContactTask) -> dict[str, Any]:
-    out = {k: _plain(table.attrs.get(k)) for k in _ATTRS}
-    power = table.attrs.get("power") or {}
+def _attrs(attrs: dict[str, Any], task: ContactTask) -> dict[str, Any]:
+    out = {k: _plain(attrs.get(k)) for k in _ATTRS}
+    power = attrs.get("power") or {}
     out["power"] = {k: _plain(power.get(k)) for k in ("total", "blocks", "spread", "t_start",
                                                       "t_end", "duration", "sectors")}
     out["time_unit"] = task.time_unit
@@ -76,9 +76,10 @@ def _warning_list(caught) -> list[list[str]]:
 def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None,
             samples: int = 0, seconds: float = 0.0, state=None) -> dict[str, Any]:
     return {"contact": task.contact, "key": task.key, "status": status,
-            "table": None if table is None else pack(table),
+            "table": None if table is None else {"columns": list(table[0]),
+                                                  "arrays": list(table[0].values())},
             "warnings": _warning_list(caught), "error": error, "samples": int(samples),
-            "seconds": seconds, "attrs": None if table is None else _attrs(table, task),
+            "seconds": seconds, "attrs": None if table is None else _attrs(table[1], task),
             "state": state}
 
 
@@ -189,7 +190,9 @@ def read_part(task: ContactTask, start: int, stop: int):
 
 # ----------------------------------------------------------------------------- computing
 def _wear_table(source, task: ContactTask, history=None):
-    return wear_table_from_case(task.wear_case(), source, history=history)
+    """(columns, attrs) of the contact's wear table (:func:`fretwear.table.wear_table_columns`:
+    the arrays the record sends, without a DataFrame in between)."""
+    return wear_table_columns(task.wear_case(), source, history=history)
 
 
 def _power_options(task: ContactTask) -> dict[str, Any]:

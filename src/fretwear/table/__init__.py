@@ -6,7 +6,8 @@
 - :mod:`fretwear.table.case`: :class:`WearCase`, the validated description of one contact's
   wear computation, with each coefficient's source (:class:`Coefficient`);
 - :mod:`fretwear.table.build`: :func:`wear_table_from_case`, the service-life table of a case
-  (theory §3, §7); :mod:`fretwear.table.core`: :func:`wear_table`, the same from keywords;
+  (theory §3, §7), and :func:`wear_table_columns`, its columns without the DataFrame;
+  :mod:`fretwear.table.core`: :func:`wear_table`, the same from keywords;
 - :mod:`fretwear.table.restart`: the initial state of a restart (ETAT_INIT) and the tube
   replacement (TUBE_NEUF);
 - :mod:`fretwear.table.limit`: the depth as a fraction of the wall, the instant of the limit;
@@ -16,7 +17,7 @@
   :mod:`fretwear.table.provenance` (version, date, law, coefficients and their sources).
 """
 
-from fretwear.table.build import wear_table_from_case
+from fretwear.table.build import wear_table_columns, wear_table_from_case
 from fretwear.table.case import Coefficient, WearCase
 from fretwear.table.core import wear_table
 from fretwear.table.files import (
@@ -56,6 +57,7 @@ __all__ = [
     "replace_tube",
     "to_aster_names",
     "wear_table",
+    "wear_table_columns",
     "wear_table_from_case",
     "write_profile_table",
     "write_wear_table",

@@ -49,7 +49,7 @@ def _cumulated(law, power: float, coefficients, elapsed_s: np.ndarray, previous:
             out[new] = np.asarray(law.volume(power, elapsed_s[new] - fresh_from_s,
                                              **coefficients), dtype=float)
     for w in caught:
-        warnings.warn(f"{body}: {w.message}", w.category, stacklevel=4)
+        warnings.warn(f"{body}: {w.message}", w.category, stacklevel=5)
     return out
 
 
@@ -150,7 +150,7 @@ def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> dict
         warnings.warn(f"sectors {unradiused}: the obstacle wears but "
                       f"{geometry.contact_type or 'the sector geometry'} has no obstacle_radius "
                       "(RAYON_OBST): their obstacle sector depth is NaN", RangeWarning,
-                      stacklevel=3)
+                      stacklevel=4)
     total_m, total_o = cum_m.sum(axis=1), cum_o.sum(axis=1)
     dm, do = _depths(geometry, total_m, total_o)
     glob = {"volume_mobile": total_m, "volume_obstacle": total_o,

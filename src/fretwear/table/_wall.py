@@ -40,7 +40,7 @@ def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
               np.asarray(table["depth_mobile_sector"], dtype=float) if sectored else None)
     options = {"wall": case.wall_thickness, "depth_limit": case.depth_limit,
                "origin": case.origin, "time_scale": case.time_scale, "fresh": fresh,
-               "unit": case.time_unit, "stacklevel": 4}
+               "unit": case.time_unit, "stacklevel": 5}
     if case.sectors is None and not law.linear_in_time:
         terms = [(power, mobile, obstacle, 0.0 if state is None else state.volume_mobile,
                   0.0 if state is None else state.volume_obstacle)]

@@ -44,7 +44,7 @@ from fretwear.table._columns import _frame, _global_frame, _sector_frame
 from fretwear.table._wall import _wall
 from fretwear.table.case import WearCase
 
-__all__ = ["wear_table_from_case"]
+__all__ = ["wear_table_columns", "wear_table_from_case"]
 
 #: Source of a coefficient computed from the contact history (KWU-EPRI's intensity w).
 HISTORY = "history (class statistics over the window)"
@@ -104,6 +104,65 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
     >>> wear_table_from_case(case, 0.01)["volume_mobile"].tolist()  # K·P·t
     [3.6e-13, 7.2e-13]
     """
+    columns, frame, attrs = _table_parts(case, source, history)
+    if frame is None:
+        frame = _frame(columns)
+    frame.attrs = attrs
+    return frame
+
+
+def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None = None
+                       ) -> tuple[dict[str, np.ndarray], dict]:
+    """The columns and metadata of :func:`wear_table_from_case`, without the DataFrame.
+
+    For a caller that only passes the table on (a bundle's worker sends each contact's table
+    back to the client as arrays): the DataFrame and its column-by-column unpacking cost about
+    0.2 ms a table.
+
+    Parameters
+    ----------
+    case, source, history
+        As :func:`wear_table_from_case`.
+
+    Returns
+    -------
+    columns : dict
+        Column name -> 1-d numpy array, in the table's order, the arrays
+        ``wear_table_from_case(case, source, history=history)[name].to_numpy()`` gives (the
+        same values and dtypes; units in :data:`fretwear.table.COLUMNS`).
+    attrs : dict
+        The table's ``attrs``.
+
+    Examples
+    --------
+    >>> case = WearCase.from_keywords(contact_type="TUBE_ALESAGE", instants=[1.0, 2.0],
+    ...     dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02},
+    ...     coefficients={"COEF_USURE": 1e-14}, time_scale=3.6e3)
+    >>> columns, attrs = wear_table_columns(case, 0.01)
+    >>> columns["volume_mobile"].tolist(), attrs["law"]
+    ([3.6e-13, 7.2e-13], 'ARCHARD')
+    """
+    columns, frame, attrs = _table_parts(case, source, history)
+    if frame is None and not _plain_numeric(columns):
+        frame = _frame(columns)  # what pandas makes of other columns
+    if frame is not None:
+        frame.attrs = {}  # pandas would deep-copy attrs into every column it hands out
+        columns = {str(c): frame[c].to_numpy() for c in frame.columns}
+    return columns, attrs
+
+
+def _plain_numeric(columns: dict) -> bool:
+    """Whether every column is a 1-d numeric or boolean numpy array, all of one length (the
+    DataFrame then holds the arrays' values and dtypes as they are)."""
+    arrays = list(columns.values())
+    return bool(arrays) and all(type(a) is np.ndarray and a.ndim == 1
+                                and a.dtype.kind in "fiub" for a in arrays) \
+        and len({a.shape for a in arrays}) == 1
+
+
+def _table_parts(case: WearCase, source, history: ContactHistory | None):
+    """(columns, frame, attrs) of :func:`wear_table_from_case`: the columns, or the frame when
+    the initial table's rows come first (then columns is None), and the metadata."""
     if not isinstance(case, WearCase):
         raise InputError(f"case must be a WearCase (WearCase.from_keywords(...)), got "
                          f"{type(case).__name__}")
@@ -130,12 +189,10 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
             columns.update(wall)
         else:
             frame = frame.assign(**wall)
-    if frame is None:
-        frame = _frame(columns)
-    frame.attrs = _attrs(case, geometry, mobile, obstacle, sources, result, edges)
+    attrs = _attrs(case, geometry, mobile, obstacle, sources, result, edges)
     if limit is not None:
-        frame.attrs.update(limit)
-    return frame
+        attrs.update(limit)
+    return (columns if frame is None else None), frame, attrs
 
 
 # --------------------------------------------------------------------------- 1. the power

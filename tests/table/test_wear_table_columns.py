@@ -1,0 +1,87 @@
+"""fretwear.table.wear_table_columns: the columns and metadata of wear_table_from_case without
+the DataFrame (what a bundle's worker sends back).
+
+Independent computation: the DataFrame of :func:`fretwear.table.wear_table_from_case` on the
+same case and source, column by column (``frame[name].to_numpy()``): the same names in the same
+order, the same dtypes, the same values bit for bit (NaN at the same places), the same attrs.
+Cases: without and with sectors, with a wall thickness (its fraction and limit columns), a
+restart whose initial rows come first (with and without sectors), a tube replacement, KWU-EPRI
+from a history (its class statistics), every contact type.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from fretwear import ContactHistory
+from fretwear.geometry import CONTACT_TYPES
+from fretwear.table import WearCase, wear_table, wear_table_columns, wear_table_from_case
+
+YEAR = 3.1536e7
+#: each geometry's example dimensions, with the obstacle width that sector depths need where
+#: the geometry takes one
+DIMENSIONS = {name: {**({"obstacle_width": 12.7e-3} if "obstacle_width" in
+                        {f.name for f in dataclasses.fields(cls)} else {}), **cls.example}
+              for name, cls in CONTACT_TYPES.items()}
+
+
+def _history(n: int = 4001) -> ContactHistory:
+    # sliding at 0.1 m/s under 10 N with impacts, the angle turning once a second
+    t = np.linspace(0.0, 2.0, n)
+    force = 10.0 * np.clip(np.sin(2 * np.pi * 7 * t), 0.0, None)
+    return ContactHistory(time=t, normal_force=force, vt1=np.full(n, 0.1),
+                          vt2=0.05 * np.cos(2 * np.pi * 3 * t), dy=np.cos(2 * np.pi * t),
+                          dz=np.sin(2 * np.pi * t))
+
+
+def _same(case: WearCase, source, history=None) -> None:
+    frame = wear_table_from_case(case, source, history=history)
+    columns, attrs = wear_table_columns(case, source, history=history)
+    assert list(columns) == [str(c) for c in frame.columns]
+    for name, values in columns.items():
+        expected = frame[name].to_numpy()
+        assert type(values) is np.ndarray and values.dtype == expected.dtype, name
+        assert np.array_equal(values, expected, equal_nan=values.dtype.kind == "f"), name
+    assert attrs.keys() == frame.attrs.keys()
+    assert repr(attrs) == repr(frame.attrs)  # NaN-safe equality of nested metadata
+
+
+def _case(contact_type="TUBE_BAV", **keywords) -> WearCase:
+    args = {"contact_type": contact_type, "dimensions": DIMENSIONS[contact_type],
+            "coefficients": {"COEF_USURE": 1e-17}, "instants": [1.0, 2.0, 5.0],
+            "time_scale": YEAR}
+    args.update(keywords)
+    return WearCase.from_keywords(**args)
+
+
+@pytest.mark.parametrize("contact_type", CONTACT_TYPES)
+def test_every_contact_type_without_and_with_sectors(contact_type):
+    _same(_case(contact_type), 0.01)
+    if "obstacle_width" in DIMENSIONS[contact_type]:  # sector depths need it
+        _same(_case(contact_type, sectors=6), _history())
+
+
+def test_wall_thickness_and_its_limit():
+    _same(_case(wall_thickness=1.09e-3, coefficients={"COEF_USURE": 1e-15}), 0.05)
+    _same(_case(wall_thickness=1.09e-3, sectors=4, coefficients={"COEF_USURE": 1e-16}),
+          _history())
+
+
+@pytest.mark.parametrize("sectors", [None, 4])
+def test_restart_rows_come_first(sectors):
+    first = wear_table(_history(), contact_type="TUBE_BAV", dimensions=DIMENSIONS["TUBE_BAV"],
+                       coefficients={"COEF_USURE": 1e-17}, instants=[1.0, 2.0],
+                       time_scale=YEAR, sectors=sectors)
+    case = _case(instants=[1.0, 3.0], sectors=sectors, initial_state=first)
+    assert len(case.initial_state.rows)  # the initial table's rows are in the table
+    _same(case, _history())
+
+
+def test_tube_replacement_and_kwu_from_a_history():
+    _same(_case(instants=[1.0, 4.0], tube_replacement=2.0), 0.02)
+    history = _history()
+    _same(_case(law="KWU_EPRI", coefficients={"COEF_USURE": 1e-17, "reference_intensity": 2.0}),
+          history)
