@@ -205,3 +205,27 @@ def test_dataset_and_stores_contact_by_time(tmp_path, where):
         case = tmp_path / ("narrow.toml" if k == 1 else "base.toml")
         assert_identical(rows_of(result, f"c{k}"), reference(tmp_path / f"c{k}.parquet", case))
     assert result.table.groupby("contact")["tube_row"].first().tolist() == [1, 2, 3]
+
+
+def test_history_paths_are_resolved_as_path_resolve_does(tmp_path):
+    """The manifest's history paths, resolved folder by folder (one lstat a file), equal
+    ``(manifest folder / path).resolve()``: plain files, a file that is a link, a folder that is
+    a link, ``..`` and ``.`` in the path, an absolute path."""
+    import os
+
+    real = tmp_path / "real"
+    (real / "sub").mkdir(parents=True)
+    for name in ("a.parquet", "b.parquet", "sub/c.parquet"):
+        (real / name).write_bytes(b"")
+    os.symlink(real / "a.parquet", real / "link.parquet")
+    os.symlink(real / "sub", tmp_path / "linked")
+    paths = ["real/a.parquet", "real/link.parquet", "linked/c.parquet", "real/sub/../b.parquet",
+             "./real/b.parquet", "linked/../real/a.parquet", str(real / "b.parquet"),
+             "real/sub/..", "missing/x.parquet"]
+    frame = pd.DataFrame({"contact": [f"c{k}" for k in range(len(paths))], "history": paths})
+    manifest = tmp_path / "manifest.csv"
+    frame.to_csv(manifest, index=False)
+    got = [row.history.path for row in read_manifest(manifest).rows]
+    expected = [str(p if os.path.isabs(p) else (tmp_path / p).resolve()) for p in paths]
+    assert got == expected
+    assert got[1] == str(real / "a.parquet") and got[2] == str(real / "sub" / "c.parquet")

@@ -51,6 +51,19 @@ def test_blocks_are_the_file_without_overlap(files, fmt):
     assert not blocks[0].time.flags.writeable
 
 
+@pytest.mark.parametrize("fmt", ["parquet", "parquet_small_groups"])
+def test_a_file_of_one_block_is_read_whole(files, fmt):
+    """A Parquet file no longer than the chunk is one block read as a table (its row groups
+    joined): the file's values, read-only, as the record batches give them
+    (test_blocks_are_the_file_without_overlap reads the same files in record batches)."""
+    h, paths = files
+    blocks = list(iter_history_blocks(paths[fmt], chunk_size=len(h)))
+    assert len(blocks) == 1 and blocks[0].metadata["first_row"] == 0
+    for ch in h.channels:
+        np.testing.assert_array_equal(getattr(blocks[0], ch), getattr(h, ch))
+    assert not blocks[0].time.flags.writeable
+
+
 def test_blocks_are_checked_like_chunks(tmp_path):
     # the same errors as the validated chunks: a repeated instant across two blocks, a force
     # below the tolerance in a later block, a NaN

@@ -269,6 +269,7 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[
         raise KeywordError(f"{source}: the manifest needs a 'contact' column (unique id of each "
                            f"contact); columns found: {columns}")
     rows = []
+    parents: dict[Path, Path] = {}  # the folders of the histories, resolved once
     for i, record in enumerate(frame.to_dict("records")):
         cid = record.get("contact")
         if _missing(cid):
@@ -283,7 +284,8 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[
         if _missing(hist):
             ref = HistoryRef("none", node=node)
         else:
-            ref = HistoryRef("file", path=str(_absolute(str(hist), directory)), node=node)
+            ref = HistoryRef("file", path=str(_absolute(str(hist), directory, parents)),
+                             node=node)
         identity["node"] = node
         rows.append(ContactRow(cid, ref, identity, overrides, wall))
     _check_unique([r.contact for r in rows], source)
@@ -322,11 +324,22 @@ def _wall(value: Any, contact: str, source: str) -> float:
     return wall
 
 
-def _absolute(value: Any, directory: Path) -> Any:
+def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
+    """``(directory / value).resolve()`` as text (a list element by element); with
+    ``parents``, the folders already resolved for this manifest: a file in a known folder
+    costs one ``lstat`` (is it a link?) instead of one per component of its path."""
     if isinstance(value, list):
-        return [_absolute(v, directory) for v in value]
+        return [_absolute(v, directory, parents) for v in value]
     p = Path(str(value))
-    return str(p if p.is_absolute() else (directory / p).resolve())
+    if p.is_absolute():
+        return str(p)
+    if parents is None or p.name in ("", ".", ".."):
+        return str((directory / p).resolve())
+    folder = parents.get(p.parent)
+    if folder is None:
+        folder = parents[p.parent] = (directory / p.parent).resolve()
+    target = folder / p.name
+    return str(target.resolve() if target.is_symlink() else target)
 
 
 def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:

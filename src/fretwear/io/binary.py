@@ -79,6 +79,14 @@ def _float_array(column) -> np.ndarray:
     return column.to_numpy(zero_copy_only=False).astype(float, copy=False)
 
 
+def _one_chunk(column):
+    """A pyarrow ChunkedArray as one Array (its chunks joined when there are several, as a file
+    of several row groups gives them; none: an empty array of its type)."""
+    if column.num_chunks == 1:
+        return column.chunk(0)
+    return column.combine_chunks()
+
+
 def open_parquet(path: str | os.PathLike) -> Source:
     """Open a Parquet file; columns are read whole or by record batches (bounded memory).
 
@@ -114,10 +122,19 @@ def open_parquet(path: str | os.PathLike) -> Source:
         # (measured: the whole 320 MB file); a 1 MiB read buffer keeps memory at O(chunk)
         handle = pq.ParquetFile(path, pre_buffer=False, buffer_size=1 << 20)
         if handle.metadata.num_rows <= size:  # one block: nothing to overlap
-            return batches(handle, positions, size)
+            return whole(handle, positions)
         # the next batch is decoded in a thread while the caller reduces this one (pyarrow
         # releases the GIL): decoding and reduction overlap; memory stays O(chunk)
         return read_ahead(batches(handle, positions, size))
+
+    def whole(handle, positions: list[int]) -> Iterator[list[np.ndarray]]:
+        # a file of one block read as a table: the values iter_batches gives, without its
+        # record-batch reader (a 1e5-sample file of 6 channels: 1.2 ms against 1.6 ms)
+        try:
+            table = handle.read(columns=[names[p] for p in positions])
+        finally:
+            handle.close()
+        yield [_float_array(_one_chunk(table.column(i))) for i in range(len(positions))]
 
     def batches(handle, positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         try:
