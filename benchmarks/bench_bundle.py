@@ -13,6 +13,10 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
   processes (one thread each, no scheduler-side queuing: the cluster ``run_bundle`` starts),
   joined through its client (cluster start excluded; workers warmed up by a small run first),
   without and with an output directory;
+* **rounds**: the serial loop, the machine's scaling and the bundle are measured in turn
+  ``--rounds`` times (a fresh cluster each round, started after the loop), and the medians
+  reported with the range of the rounds' speed-ups: a shared machine drifts by 10-20 % within
+  minutes, so one loop and one bundle measured minutes apart can be 10 % off either way;
 * **grouping**: the same bundle with one contact per Dask task instead of
   the tasks of ``engine.task_sizes``;
 * **the machine's scaling**: the serial loop split over ``--workers`` plain processes
@@ -202,6 +206,8 @@ def main(argv: list[str] | None = None) -> None:
                         help="samples of the long contact of the memory check (0: skip)")
     parser.add_argument("--chunk", type=float, default=2.5e5,
                         help="chunk of the long contact [samples]")
+    parser.add_argument("--rounds", type=int, default=3,
+                        help="rounds of (serial loop, bundle) measured in turn; medians shown")
     parser.add_argument("--keep", type=Path, help="generate the bundle here and keep it")
     args = parser.parse_args(argv)
     import distributed
@@ -219,56 +225,70 @@ def main(argv: list[str] | None = None) -> None:
         print(f"generated {n} contacts x {samples:.0e} samples (+ {n} tiny) as Parquet in "
               f"{time.perf_counter() - t0:.1f} s under {directory}")
         serial(warm, case)  # compile / load the kernels in this process
-        t_serial, tables = serial(manifest, case)
-        t_tiny_serial, _ = serial(tiny, case)
-        print(f"serial loop over wear_table: {t_serial:.2f} s, {n / t_serial:.1f} contacts/s, "
-              f"{n * samples / t_serial:.3g} samples/s (tiny contacts: {t_tiny_serial:.2f} s)")
-        # pyarrow decodes Parquet on all cores by default, so the loop above is partly
-        # parallel already; a Dask worker decodes on one thread (distributed sets
-        # OMP_NUM_THREADS=1). The same loop with one decoding thread isolates the scaling.
         import pyarrow
 
         threads = pyarrow.cpu_count()
-        pyarrow.set_cpu_count(1)
-        t_one, _ = serial(manifest, case)
-        pyarrow.set_cpu_count(threads)
-        print(f"serial loop, Parquet decoded on one thread: {t_one:.2f} s, "
-              f"{n / t_one:.1f} contacts/s")
-        scaling = machine_scaling(manifest, case, args.workers)
-        print(f"the machine's own scaling of the loop on {args.workers} plain processes "
-              f"(multiprocessing, no Dask): {scaling:.2f}x")
-        with local_cluster(args.workers) as cluster, distributed.Client(cluster) as client:
-            run_bundle(warm, case, scheduler=client)  # workers import fretwear, load kernels
-            with PeakMemory(client) as idle:
-                time.sleep(0.2)
-            with PeakMemory(client) as peaks:
-                t_bundle, result = bundle_time(manifest, case, client)
-            same = identical(result, tables)
-            t_out, _ = bundle_time(manifest, case, client, output=directory / "out")
-            t_tiny, _ = bundle_time(tiny, case, client)
-            speedup = t_serial / t_bundle
-            w = args.workers
-            print(f"bundle on {w} workers: {t_bundle:.2f} s, {n / t_bundle:.1f} contacts/s, "
-                  f"{n * samples / t_bundle:.3g} samples/s; speed-up {speedup:.2f}x over the "
-                  f"loop (goal >= 1.7x), {t_one / t_bundle:.2f}x over the one-thread loop; "
-                  f"tables bit-identical to the serial loop: {same}")
-            print(f"  with the output directory (parts, table, dataset, summary): {t_out:.2f} s, "
-                  f"{n / t_out:.1f} contacts/s")
-            saved = engine_module.TASKS_PER_WORKER
-            engine_module.TASKS_PER_WORKER = n + 1  # one contact per task
-            try:
-                t_single, _ = bundle_time(manifest, case, client)
-            finally:
-                engine_module.TASKS_PER_WORKER = saved
-            print(f"  one contact per task instead of {len(engine_module.task_sizes(n, w))} "
-                  f"tasks: {t_single:.2f} s (grouping gains {t_single / t_bundle:.2f}x)")
-            over = (w * t_bundle - t_serial) / n * 1e3
-            over_tiny = (w * t_tiny - t_tiny_serial) / n * 1e3
-            print(f"per-contact overhead (workers x T_bundle - T_serial)/N: {over:.1f} ms on "
-                  f"this bundle, {over_tiny:.1f} ms on 100-sample contacts (goal < 20 ms); "
-                  f"tiny bundle {t_tiny:.2f} s vs serial {t_tiny_serial:.2f} s")
-            print(f"peak memory per worker during the {n}-contact bundle: {peaks.text()} "
-                  f"(idle warmed-up workers: {idle.text()})")
+        w = args.workers
+        rounds = []  # (serial, one-thread serial, machine scaling, bundle) [s, s, -, s]
+        for k in range(args.rounds):
+            # the loop and the bundle measured in turn, so that both see the machine in the
+            # same state (a shared 2-vCPU machine drifts by 10-20 % within minutes)
+            t_serial, tables = serial(manifest, case)
+            # pyarrow decodes a large Parquet block on all cores by default, so the loop is
+            # partly parallel already; a Dask worker decodes on one thread (distributed sets
+            # OMP_NUM_THREADS=1). The same loop with one decoding thread isolates the scaling.
+            pyarrow.set_cpu_count(1)
+            t_one, _ = serial(manifest, case)
+            pyarrow.set_cpu_count(threads)
+            scaling = machine_scaling(manifest, case, w)
+            with local_cluster(w) as cluster, distributed.Client(cluster) as client:
+                run_bundle(warm, case, scheduler=client)  # workers import fretwear, kernels
+                if k == 0:
+                    with PeakMemory(client) as idle:
+                        time.sleep(0.2)
+                with PeakMemory(client) as peaks:
+                    t_bundle, result = bundle_time(manifest, case, client)
+                same = identical(result, tables)
+                rounds.append((t_serial, t_one, scaling, t_bundle))
+                print(f"round {k + 1}: serial loop {t_serial:.2f} s (one decoding thread "
+                      f"{t_one:.2f} s), machine's own scaling {scaling:.2f}x, bundle "
+                      f"{t_bundle:.2f} s: speed-up {t_serial / t_bundle:.2f}x; tables "
+                      f"bit-identical to the loop: {same}", flush=True)
+                if k == 0:
+                    memory = (peaks.text(), idle.text())
+                    t_tiny_serial, _ = serial(tiny, case)
+                    t_out, _ = bundle_time(manifest, case, client, output=directory / "out")
+                    t_tiny, _ = bundle_time(tiny, case, client)
+                    saved = engine_module.TASKS_PER_WORKER
+                    engine_module.TASKS_PER_WORKER = n + 1  # one contact per task
+                    try:
+                        t_single, _ = bundle_time(manifest, case, client)
+                    finally:
+                        engine_module.TASKS_PER_WORKER = saved
+        t_serial, t_one, scaling, t_bundle = np.median(np.array(rounds), axis=0).tolist()
+        ratios = [r[0] / r[3] for r in rounds]
+        print(f"serial loop over wear_table (median of {len(rounds)}): {t_serial:.2f} s, "
+              f"{n / t_serial:.1f} contacts/s, {n * samples / t_serial:.3g} samples/s; with "
+              f"one decoding thread {t_one:.2f} s")
+        print(f"the machine's own scaling of the loop on {w} plain processes "
+              f"(multiprocessing, no Dask), median: {scaling:.2f}x "
+              f"({min(r[2] for r in rounds):.2f}-{max(r[2] for r in rounds):.2f}x)")
+        print(f"bundle on {w} workers (median): {t_bundle:.2f} s, {n / t_bundle:.1f} "
+              f"contacts/s, {n * samples / t_bundle:.3g} samples/s; speed-up "
+              f"{t_serial / t_bundle:.2f}x over the loop (goal >= 1.7x; rounds "
+              f"{min(ratios):.2f}-{max(ratios):.2f}x), {t_one / t_bundle:.2f}x over the "
+              f"one-thread loop")
+        print(f"  with the output directory (parts, table, dataset, summary): {t_out:.2f} s, "
+              f"{n / t_out:.1f} contacts/s")
+        print(f"  one contact per task instead of {len(engine_module.task_sizes(n, w))} "
+              f"tasks: {t_single:.2f} s (grouping gains {t_single / rounds[0][3]:.2f}x)")
+        over = (w * t_bundle - t_serial) / n * 1e3
+        over_tiny = (w * t_tiny - t_tiny_serial) / n * 1e3
+        print(f"per-contact overhead (workers x T_bundle - T_serial)/N: {over:.1f} ms on "
+              f"this bundle, {over_tiny:.1f} ms on 100-sample contacts (goal < 20 ms); "
+              f"tiny bundle {t_tiny:.2f} s vs serial {t_tiny_serial:.2f} s")
+        print(f"peak memory per worker during the {n}-contact bundle: {memory[0]} "
+              f"(idle warmed-up workers: {memory[1]})")
         if args.long:  # fresh workers for each: ru_maxrss is the peak of a process's life
             long_manifest = make_bundle(directory, 1, int(args.long), "long")
             for label, chunk in (("chunks of", int(args.chunk)),
