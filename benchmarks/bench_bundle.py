@@ -11,8 +11,10 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
   every core, so the loop is run again with one decoding thread, as in a Dask worker;
 * **bundle**: :func:`fretwear.bundle.run_bundle` on a LocalCluster of ``--workers`` worker
   processes (one thread each, no scheduler-side queuing: the cluster ``run_bundle`` starts),
-  joined through its client (cluster start excluded; workers warmed up by a small run first),
-  without and with an output directory;
+  joined through its client (cluster start excluded; workers warmed up by a small run first,
+  then a full garbage collection in them as in this process before its loop: the warm-up's
+  imports would otherwise leave a 0.1 s collector pass to the next run), without and with an
+  output directory;
 * **rounds**: the serial loop, the machine's scaling and the bundle are measured in turn
   ``--rounds`` times (a fresh cluster each round, started after the loop), and the medians
   reported with the range of the rounds' speed-ups: a shared machine drifts by 10-20 % within
@@ -42,6 +44,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import gc
 import os
 import shutil
 import sys
@@ -233,6 +236,7 @@ def main(argv: list[str] | None = None) -> None:
         for k in range(args.rounds):
             # the loop and the bundle measured in turn, so that both see the machine in the
             # same state (a shared 2-vCPU machine drifts by 10-20 % within minutes)
+            gc.collect()  # both sides measured after a full collection (below: the workers)
             t_serial, tables = serial(manifest, case)
             # pyarrow decodes a large Parquet block on all cores by default, so the loop is
             # partly parallel already; a Dask worker decodes on one thread (distributed sets
@@ -243,6 +247,9 @@ def main(argv: list[str] | None = None) -> None:
             scaling = machine_scaling(manifest, case, w)
             with local_cluster(w) as cluster, distributed.Client(cluster) as client:
                 run_bundle(warm, case, scheduler=client)  # workers import fretwear, kernels
+                # the warm-up's imports leave the workers' collector due a full pass (0.1 s)
+                # early in the next run: collected now, as this process is before its loop
+                client.run(gc.collect)
                 if k == 0:
                     with PeakMemory(client) as idle:
                         time.sleep(0.2)
