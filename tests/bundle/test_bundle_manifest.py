@@ -229,3 +229,19 @@ def test_history_paths_are_resolved_as_path_resolve_does(tmp_path):
     expected = [str(p if os.path.isabs(p) else (tmp_path / p).resolve()) for p in paths]
     assert got == expected
     assert got[1] == str(real / "a.parquet") and got[2] == str(real / "sub" / "c.parquet")
+
+
+def test_a_history_name_the_system_refuses_fails_its_contact_only(tmp_path):
+    """A history whose file name is longer than the file system takes (ENAMETOOLONG on lstat)
+    resolves as ``Path.resolve`` resolves it (which ignores that error) and fails its own
+    contact (InputError in .errors), not the manifest: the other contacts complete."""
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    frame = pd.read_csv(manifest)
+    long = "z" * 300 + ".parquet"  # NAME_MAX is 255 on Linux, macOS and Windows file systems
+    frame.loc[len(frame)] = {**frame.iloc[0].to_dict(), "contact": "long", "history": long}
+    frame.to_csv(manifest, index=False)
+    rows = read_manifest(manifest).rows
+    assert rows[-1].history.path == str((tmp_path / long).resolve())
+    result = run_bundle(manifest, case, scheduler="serial")
+    assert result.errors[["contact", "error"]].values.tolist() == [["long", "InputError"]]
+    assert sorted(set(result.table["contact"])) == ["R1C1-AVB", "R1C2-AVB"]

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import os
+import stat
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -327,7 +328,9 @@ def _wall(value: Any, contact: str, source: str) -> float:
 def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
     """``(directory / value).resolve()`` as text (a list element by element); with
     ``parents``, the folders already resolved for this manifest: a file in a known folder
-    costs one ``lstat`` (is it a link?) instead of one per component of its path."""
+    costs one ``lstat`` (is it a link?) instead of one per component of its path. A name that
+    ``lstat`` cannot look at (missing, too long, no permission) is left to ``Path.resolve``,
+    which ignores those errors: that contact fails alone when its file is read."""
     if isinstance(value, list):
         return [_absolute(v, directory, parents) for v in value]
     p = Path(str(value))
@@ -337,9 +340,16 @@ def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
         return str((directory / p).resolve())
     folder = parents.get(p.parent)
     if folder is None:
-        folder = parents[p.parent] = (directory / p.parent).resolve()
+        try:
+            folder = parents[p.parent] = (directory / p.parent).resolve()
+        except (OSError, RuntimeError, ValueError):  # a link loop, a NUL: raised for the file
+            return str((directory / p).resolve())  # as Path.resolve raises it (its message)
     target = folder / p.name
-    return str(target.resolve() if target.is_symlink() else target)
+    try:
+        link = stat.S_ISLNK(os.lstat(target).st_mode)
+    except (OSError, ValueError):  # Path.is_symlink would raise ENAMETOOLONG, EACCES
+        return str((directory / p).resolve())
+    return str(target.resolve() if link else target)
 
 
 def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
