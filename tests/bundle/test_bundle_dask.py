@@ -63,7 +63,8 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
                                                                      monkeypatch):
     """Contacts grouped several per Dask task (engine.task_sizes, here 3 per task by asking one
     task per worker) give each contact's single-contact table bit for bit, and a bad contact
-    fails alone inside its group."""
+    fails alone inside its group. Each worker's first group is submitted as soon as it is full,
+    before the client builds the next contacts' tasks."""
     from fretwear.bundle import engine
 
     h = oscillator()
@@ -77,6 +78,9 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
     real_map = engine._Dask.map
     monkeypatch.setattr(engine._Dask, "map", lambda self, fn, items, *a, **k: submitted.append(
         (fn.__name__, [len(i) for i in items])) or real_map(self, fn, items, *a, **k))
+    real_build = engine.build_task
+    monkeypatch.setattr(engine, "build_task", lambda base, row, *a, **k: submitted.append(
+        ("build", row.contact)) or real_build(base, row, *a, **k))
     crossed = []
     real_gather = distributed.Client.gather
 
@@ -87,7 +91,8 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
 
     monkeypatch.setattr(distributed.Client, "gather", recording_gather)
     result = run_bundle(manifest, case, scheduler=address)
-    assert submitted == [("run_contacts", [3, 3])]
+    built = [("build", f"R{k // 2 + 1}C{k % 2 + 1}-AVB") for k in range(6)]
+    assert submitted == [*built[:3], ("run_contacts", [3]), *built[3:], ("run_contacts", [3])]
     # each group's records cross to the client as one pickle (tasks.pickled), not as Dask's
     # frame per array
     assert crossed == [bytes, bytes]
