@@ -64,6 +64,26 @@ def test_a_file_of_one_block_is_read_whole(files, fmt):
     assert not blocks[0].time.flags.writeable
 
 
+def test_a_file_of_one_block_given_in_several_chunks_is_joined(files, monkeypatch):
+    """pyarrow 26's ParquetFile.read gives the row groups of a column in one chunk; a reader
+    that gives one chunk a row group (as pyarrow's dataset reader, pq.read_table, does) must
+    give the same block: the file's values, in order, read-only."""
+    pq = pytest.importorskip("pyarrow.parquet")
+    pa = pytest.importorskip("pyarrow")
+    h, paths = files
+    real = pq.ParquetFile.read
+
+    def by_row_group(self, *args, **kwargs):  # the row groups of the file hold 3000 rows
+        return pa.Table.from_batches(real(self, *args, **kwargs).to_batches(max_chunksize=3000))
+
+    monkeypatch.setattr(pq.ParquetFile, "read", by_row_group)
+    blocks = list(iter_history_blocks(paths["parquet_small_groups"], chunk_size=len(h)))
+    assert len(blocks) == 1 and len(blocks[0]) == len(h)
+    for ch in h.channels:
+        np.testing.assert_array_equal(getattr(blocks[0], ch), getattr(h, ch))
+    assert not blocks[0].time.flags.writeable
+
+
 def test_blocks_are_checked_like_chunks(tmp_path):
     # the same errors as the validated chunks: a repeated instant across two blocks, a force
     # below the tolerance in a later block, a NaN

@@ -7,11 +7,15 @@ order, the same dtypes, the same values bit for bit (NaN at the same places), th
 Cases: without and with sectors, with a wall thickness (its fraction and limit columns), a
 restart whose initial rows come first (with and without sectors), a tube replacement, KWU-EPRI
 from a history (its class statistics), every contact type.
+The warnings the table build raises point at the line that called it, through either function
+(the frames in between are counted by each warning's stacklevel).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import inspect
+import warnings
 
 import numpy as np
 import pytest
@@ -85,3 +89,32 @@ def test_tube_replacement_and_kwu_from_a_history():
     history = _history()
     _same(_case(law="KWU_EPRI", coefficients={"COEF_USURE": 1e-17, "reference_intensity": 2.0}),
           history)
+
+
+#: (case keywords, source, warning category, message start) of each warning raised while the
+#: table is built: the law's (through the cumulated volumes), the sectors' without obstacle
+#: radius, the wall's
+WARNED = {
+    "law": (dict(law="EDF_MZ", coefficients={"COEF_USURE": 1e-20, "COEF_S": 1e-10}), 0.01,
+            "LawWarning", "mobile: EDF_MZ: the asymptotic rate"),
+    "sectors": (dict(sectors=4, obstacle_coefficients={"COEF_USURE": 1e-17}), "history",
+                "RangeWarning", "sectors [1, 2, 3, 4]: the obstacle wears"),
+    "wall": (dict(wall_thickness=1e-4, coefficients={"COEF_USURE": 1e-13}), 0.05,
+             "PerforationWarning", "the tube is worn through its wall"),
+}
+
+
+@pytest.mark.parametrize("name", WARNED)
+@pytest.mark.parametrize("function", [wear_table_from_case, wear_table_columns])
+def test_table_build_warnings_point_at_the_caller(name, function):
+    keywords, source, category, start = WARNED[name]
+    case = _case(**keywords)
+    source = _history() if source == "history" else source
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        line = inspect.currentframe().f_lineno + 1
+        function(case, source)
+    found = [w for w in caught
+             if w.category.__name__ == category and str(w.message).startswith(start)]
+    assert found, [str(w.message) for w in caught]
+    assert {(w.filename, w.lineno) for w in found} == {(__file__, line)}
