@@ -213,6 +213,8 @@ def main(argv: list[str] | None = None) -> None:
                         help="rounds of (serial loop, bundle) measured in turn; medians shown")
     parser.add_argument("--keep", type=Path, help="generate the bundle here and keep it")
     args = parser.parse_args(argv)
+    if args.rounds < 1:
+        parser.error("--rounds must be at least 1")
     import distributed
 
     n, samples = args.contacts, int(args.samples)

@@ -76,8 +76,11 @@ def _gc_frozen():
     collector's full passes during the block go over the objects made since, not over every
     object of the process (pandas, Dask, numba: some 150 000, a full pass 0.08 s on an idle
     core, 0.1-0.24 s beside two busy workers, one run of 500 contacts in three). Nothing is
-    frozen when the collector is disabled or the process froze objects itself (their freeze is
-    left as it is); unfrozen at the end, a cycle among the old objects is collected then."""
+    frozen when the collector is disabled or the process froze objects before the run (their
+    freeze is left as it is); unfrozen at the end, a cycle among the old objects is collected
+    then. Python unfreezes all or nothing: objects another thread of the process freezes while
+    the run goes on (or a concurrent run_bundle's) are unfrozen with them, which costs that
+    thread the speed of its freeze, never a result."""
     if not gc.isenabled() or gc.get_freeze_count():
         yield
         return

@@ -125,8 +125,10 @@ def open_parquet(path: str | os.PathLike) -> Source:
 
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
         # no pre-buffering: pyarrow would otherwise cache every row group it is asked for
-        # (measured: the whole 320 MB file); a 1 MiB read buffer keeps memory at O(chunk)
-        handle = pq.ParquetFile(path, pre_buffer=False)  # unbuffered: a read a column chunk
+        # (measured: the whole 320 MB file); a file of one block is read unbuffered (one read
+        # a column chunk, no longer than the chunk), a longer one through a 1 MiB read buffer
+        # that keeps memory at O(chunk)
+        handle = pq.ParquetFile(path, pre_buffer=False)
         if handle.metadata.num_rows <= size:  # one block: nothing to overlap
             return whole(handle, positions)
         handle.close()

@@ -184,8 +184,9 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
 
     The streaming reader of the wear power (:class:`fretwear.power.PowerAccumulator` bridges
     the interval between two blocks). Unlike :func:`iter_history_chunks`, the blocks are the
-    reader's own (Parquet record batches of at most ``chunk_size`` rows, HDF5/NetCDF slices,
-    slices of a whole read for the text formats), consecutive without overlap, and each is
+    reader's own (Parquet record batches of at most ``chunk_size`` rows, or the whole file as
+    one table when it holds no more; HDF5/NetCDF slices; slices of a whole read for the text
+    formats), consecutive without overlap, and each is
     checked by :func:`fretwear.io.channels.fast_history`: its arrays go into the history
     without a copy when they pass (the same errors otherwise, row numbers of the file). The
     instants must also increase across blocks. A block of one row is joined to the next (the
