@@ -280,36 +280,33 @@ def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int
 
 
 class _Batches:
-    """The contacts computed in one task each, grouped (:func:`task_sizes`) and submitted as
-    their groups fill: each worker's first group at once, so that the workers start while the
-    client builds the other contacts' tasks (some 30 µs a contact), the other groups in one
-    ``map`` at the end (one message to the scheduler)."""
+    """The contacts computed in one task each, grouped (:func:`task_sizes`) as their tasks are
+    built, and submitted in one ``map`` at the end (one message to the scheduler, which deals
+    the groups out evenly by count: submitting each worker's first group at once, while the
+    client built the others, left one worker 9 groups and the other 7)."""
 
     def __init__(self, tag: str, chunk_size: int, retries: int) -> None:
         self.tag, self.chunk_size, self.retries = tag, chunk_size, retries
         self.engine: Any = None
         self.size = 1
+        self.sizes: list[int] = []
         self.group: list[ContactTask] = []
         self.held: list[list[ContactTask]] = []
-        self.early = 0
 
     def start(self, engine, contacts: int) -> None:
         """Group for ``engine`` at most ``contacts`` contacts (the manifest's rows from the
         first one to compute on: some may be skipped or split later)."""
         self.engine = engine
-        self.size = task_sizes(contacts, engine.workers)[0] if isinstance(engine, _Dask) else 1
+        self.sizes = task_sizes(contacts, engine.workers) if isinstance(engine, _Dask) else [1]
+        self.size = max(self.sizes, default=1)  # 1: one contact per task
 
-    def add(self, task: ContactTask) -> dict:
-        """The handles submitted now (``{id: (handle, group)}``, empty while a group fills)."""
+    def add(self, task: ContactTask) -> None:
         self.group.append(task)
-        if len(self.group) < self.size:
-            return {}
-        group, self.group = self.group, []
-        if self.early < self.engine.workers:
-            self.early += 1
-            return self._map([group])
-        self.held.append(group)
-        return {}
+        if len(self.group) == (self.sizes[0] if self.sizes else self.size):
+            if len(self.sizes) > 1:
+                self.sizes.pop(0)
+            self.held.append(self.group)
+            self.group = []
 
     def flush(self) -> dict:
         """The handles of the groups still held and of the last, partial group."""
@@ -335,27 +332,29 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
     """How many contacts each Dask task computes, in submission order.
 
     One contact per task for a bundle of fewer than :data:`TASKS_PER_WORKER` contacts per
-    worker. Otherwise groups of ``contacts // (TASKS_PER_WORKER × workers)`` contacts (the last
-    one holds the rest): the cost of a task (the scheduler's and the client's CPU, shared with
-    the workers on a small machine: about 4 ms a task) is spread over the group, and every
-    worker still gets
-    about :data:`TASKS_PER_WORKER` tasks to balance the load. Each contact keeps its own record,
-    warnings and failure. (Guided sizes, large tasks first and single contacts last, were
-    measured slower: the scheduler deals the tasks out by count before their durations are
-    known, so one worker got the larger half.)
+    worker. Otherwise exactly ``TASKS_PER_WORKER × workers`` groups whose sizes differ by one
+    at most, the larger first: the cost of a task (the scheduler's and the client's CPU, shared
+    with the workers on a small machine: about 4 ms a task) is spread over the group, and the
+    scheduler, which deals the tasks out by count before it knows their durations, gives every
+    worker the same number of contacts within :data:`TASKS_PER_WORKER`. Each contact keeps its
+    own record, warnings and failure. (A last group holding the remainder, 16 groups of 31 and
+    one of 4, left one worker 31 contacts more when the groups were dealt in two batches; guided
+    sizes, large first and single contacts last, were measured slower.)
 
     Examples
     --------
     >>> task_sizes(5, 2)
     [1, 1, 1, 1, 1]
     >>> sizes = task_sizes(500, 2)
-    >>> len(sizes), sizes[0], sizes[-1], sum(sizes)
-    (17, 31, 4, 500)
+    >>> len(sizes), sizes[:5], sizes[-1], sum(sizes)
+    (16, [32, 32, 32, 32, 31], 31, 500)
     """
     w = max(1, workers)
-    size = max(1, contacts // (TASKS_PER_WORKER * w))
-    sizes = [size] * (contacts // size)
-    return sizes + ([contacts % size] if contacts % size else [])
+    if contacts < TASKS_PER_WORKER * w:
+        return [1] * contacts
+    groups = TASKS_PER_WORKER * w
+    size, rest = divmod(contacts, groups)
+    return [size + 1] * rest + [size] * (groups - rest)
 
 
 def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
@@ -463,8 +462,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     engine = None
     startup = 0.0
     try:
-        # each contact's task is built, then submitted as soon as its group is full: the first
-        # groups start on the workers while the client builds the rest
+        # each contact's task is built and grouped; a long history's chunks are submitted at
+        # once, the groups together at the end
         for at, row in enumerate(man.rows):
             walls[row.contact] = row.wall_thickness
             try:
@@ -487,7 +486,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 del exc
                 chunks = None
             if chunks is None:
-                handles.update(batch.add(task))
+                batch.add(task)
             else:
                 handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
                 handles[id(handle)] = (handle, [task])
