@@ -154,6 +154,32 @@ def test_a_dead_worker_is_replaced_and_its_contact_retried(tmp_path, address):
                      reference(tmp_path / "histories/t1.parquet", case))
 
 
+def _fails(x):
+    raise ValueError(f"bad {x}")
+
+
+@pytest.mark.parametrize("streaming", [True, False])
+def test_results_of_finished_and_failed_tasks(address, streaming):
+    """The engine yields every task once: a finished task's records (unpickled when they came
+    back pickled), a failed task's exception, whether the results are fetched as the tasks
+    finish or all at once at the end (one gather, when nobody watches the progress)."""
+    import pickle
+
+    from fretwear.bundle.engine import _Dask
+
+    with distributed.Client(address) as client:
+        engine = _Dask(client, None)
+        good = [client.submit(pickle.dumps, [{"contact": f"c{k}"}], pure=False)
+                for k in range(3)]
+        bad = client.submit(_fails, 7, pure=False)
+        plain = client.submit(dict, contact="p", pure=False)
+        out = {id(h): v for h, v in engine.results([*good, bad, plain], streaming)}
+    assert len(out) == 5
+    assert [out[id(h)] for h in good] == [[{"contact": f"c{k}"}] for k in range(3)]
+    assert isinstance(out[id(bad)], ValueError) and str(out[id(bad)]) == "bad 7"
+    assert out[id(plain)] == {"contact": "p"}
+
+
 SLOW_RUN = """
 import sys, time
 import fretwear.bundle.engine as engine

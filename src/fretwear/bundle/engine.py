@@ -156,7 +156,7 @@ class _Serial:
     def map(self, fn, items, *args, keys, retries: int = 0):
         return [_Deferred(fn, (item, *args)) for item in items]
 
-    def results(self, handles):
+    def results(self, handles, streaming: bool = True):
         for h in handles:
             yield h, h.value()
 
@@ -219,11 +219,16 @@ class _Dask:
                                *[[a] * len(items) for a in args], key=keys, pure=False,
                                retries=retries)
 
-    def results(self, handles):
+    def results(self, handles, streaming: bool = True):
         # the futures finished since the last look, their results fetched in one gather (one
         # round trip per batch, not per contact); a task lost for good (its workers died too
-        # often) gives its exception as the result
-        for batch in self._as_completed(handles).batches():
+        # often) gives its exception as the result. Not streaming (nobody watches the
+        # progress, no part to write): every result fetched in one gather once all are done
+        # (the client's CPU for 500 contacts in 16 tasks 0.18 -> 0.14 s, taken from the
+        # workers' cores on a small machine)
+        batches = self._as_completed(handles).batches() if streaming else \
+            [self._wait(handles)]
+        for batch in batches:
             finished = [f for f in batch if f.status == "finished"]
             values = self.client.gather(finished) if finished else []
             for future, value in zip(finished, values, strict=True):
@@ -236,6 +241,10 @@ class _Dask:
                         error = exc
                     yield future, error
                 future.release()
+
+    def _wait(self, handles):
+        require("distributed").wait(handles)
+        return handles
 
     def close(self):
         if self._own_client:
@@ -499,7 +508,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 progress(0, total, r)
         buffer: list[dict[str, Any]] = []
         last_flush = time.perf_counter()
-        for handle, value in engine.results([h for h, _ in handles.values()]):
+        streaming = store is not None or progress is not None
+        for handle, value in engine.results([h for h, _ in handles.values()], streaming):
             group = handles[id(handle)][1]
             values = value if isinstance(value, list) else [value] * len(group)
             for task, one in zip(group, values, strict=True):
