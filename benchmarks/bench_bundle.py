@@ -189,11 +189,11 @@ def identical(result, tables: dict[str, pd.DataFrame]) -> bool:
 def local_cluster(workers: int):
     """A LocalCluster as run_bundle starts one: single-threaded worker processes, every task
     sent to a worker's queue at once, the workers' malloc as in a plain process
-    (fretwear.bundle.engine.LOCAL_CLUSTER_CONFIG)."""
+    (fretwear.bundle.cluster.LOCAL_CLUSTER_CONFIG)."""
     import dask
     import distributed
 
-    from fretwear.bundle.engine import LOCAL_CLUSTER_CONFIG
+    from fretwear.bundle.cluster import LOCAL_CLUSTER_CONFIG
 
     with dask.config.set(LOCAL_CLUSTER_CONFIG):
         return distributed.LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,

@@ -75,8 +75,8 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
     monkeypatch.setattr(engine, "TASKS_PER_WORKER", 1)
     assert engine.task_sizes(6, 2) == [3, 3]
     submitted = []
-    real_map = engine._Dask.map
-    monkeypatch.setattr(engine._Dask, "map", lambda self, fn, items, *a, **k: submitted.append(
+    real_map = engine.DaskEngine.map
+    monkeypatch.setattr(engine.DaskEngine, "map", lambda self, fn, items, *a, **k: submitted.append(
         (fn.__name__, [len(i) for i in items])) or real_map(self, fn, items, *a, **k))
     real_build = engine.build_task
     monkeypatch.setattr(engine, "build_task", lambda base, row, *a, **k: submitted.append(
@@ -165,10 +165,10 @@ def test_results_of_finished_and_failed_tasks(address, streaming):
     finish or all at once at the end (one gather, when nobody watches the progress)."""
     import pickle
 
-    from fretwear.bundle.engine import _Dask
+    from fretwear.bundle.cluster import DaskEngine
 
     with distributed.Client(address) as client:
-        engine = _Dask(client, None)
+        engine = DaskEngine(client, None)
         good = [client.submit(pickle.dumps, [{"contact": f"c{k}"}], pure=False)
                 for k in range(3)]
         bad = client.submit(_fails, 7, pure=False)
@@ -268,13 +268,13 @@ def test_without_a_scheduler_a_local_cluster_is_started(tmp_path, monkeypatch):
     from fretwear.bundle import engine
 
     seen = []
-    close = engine._Dask.close
+    close = engine.DaskEngine.close
 
     def recording_close(self):
         seen.extend(self.client.run(_environment).values())
         close(self)
 
-    monkeypatch.setattr(engine._Dask, "close", recording_close)
+    monkeypatch.setattr(engine.DaskEngine, "close", recording_close)
     manifest, case = write_bundle(tmp_path, oscillator(), 2)
     result = run_bundle(manifest, case, workers=1)  # one process: the cheapest to start
     assert result.stats["workers"] == 1 and result.stats["done"] == 2

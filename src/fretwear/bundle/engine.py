@@ -14,13 +14,10 @@ written part by part as they arrive.
 from __future__ import annotations
 
 import contextlib
-import functools
 import gc
 import json
-import logging
 import math
 import os
-import pickle
 import time
 import uuid
 from collections.abc import Callable, Mapping
@@ -30,6 +27,7 @@ from typing import Any
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.bundle.cases import ContactTask, build_task
+from fretwear.bundle.cluster import DaskEngine, SerialEngine, open_engine
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
@@ -41,7 +39,6 @@ from fretwear.bundle.tasks import (
     merge_states,
     needs_whole_history,
     pack,
-    pickled,
     run_contact,
     run_contacts,
     time_bounds,
@@ -54,14 +51,6 @@ from fretwear.workflows.case_files import load_case, validate_case
 #: Contacts per part file (a part is also written every PART_SECONDS).
 PART_SIZE = 100
 PART_SECONDS = 10.0
-#: Dask settings of the local cluster: tasks sent to the workers' queues at once; the workers'
-#: malloc left to glibc's defaults (Dask sets MALLOC_TRIM_THRESHOLD_ before spawning them); no
-#: statistical profiler in the workers (it samples the running task's stack every 10 ms for the
-#: dashboard's profile page: the same contacts took 4-14 % longer in a worker with it than in a
-#: plain process, 1-4 % without it; docs/bundle.md).
-LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": "inf",
-                        "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
-                        "distributed.worker.profile.enabled": False}
 #: Tasks per worker when contacts are grouped (:func:`task_sizes`; measured on 500 contacts ×
 #: 1e5 samples, 2 workers: 4, 6, 8, 12, 16 per worker took 1.39, 1.40, 1.39, 1.51, 1.50 s).
 TASKS_PER_WORKER = 8
@@ -129,141 +118,6 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
     return [(a, min(a + chunk_size, n)) for a in range(0, n - 1, chunk_size - 1)]
 
 
-class _Deferred:
-    """A call of the serial engine, run when its value is first asked for."""
-
-    def __init__(self, fn, args) -> None:
-        self._call: tuple | None = (fn, args)
-        self._value: Any = None
-
-    def value(self) -> Any:
-        if self._call is not None:
-            fn, args = self._call
-            self._value = fn(*[a.value() if isinstance(a, _Deferred) else a for a in args])
-            self._call = None
-        return self._value
-
-
-class _Serial:
-    """The engine without Dask: tasks run in this process, one contact after the other as the
-    results are asked for (so parts are written as contacts finish) (``scheduler="serial"``)."""
-
-    workers = 1
-
-    def submit(self, fn, *args, key: str = "", retries: int = 0):
-        return _Deferred(fn, args)
-
-    def map(self, fn, items, *args, keys, retries: int = 0):
-        return [_Deferred(fn, (item, *args)) for item in items]
-
-    def results(self, handles, streaming: bool = True):
-        for h in handles:
-            yield h, h.value()
-
-    def close(self):
-        pass
-
-
-class _Dask:
-    """The engine on a dask.distributed cluster (local, or joined by its address)."""
-
-    def __init__(self, scheduler, workers: int | None) -> None:
-        dask = require("dask")
-        distributed = require("distributed")
-        self._cluster = None
-        if scheduler is None:
-            n = workers or os.cpu_count() or 1
-            # every task goes to a worker's queue at once (no scheduler-side queuing): a short
-            # task then starts without a round trip to the scheduler; and glibc's malloc keeps
-            # its own mmap threshold: Dask's MALLOC_TRIM_THRESHOLD_ fixes it, so that every
-            # block array is a fresh mmap whose pages fault in (a 1e5-sample contact took
-            # 11 ms in a worker against 8.5 ms without it, 7 ms in a plain process;
-            # docs/bundle.md)
-            # (an earlier Dask nanny of this process put MALLOC_TRIM_THRESHOLD_ in os.environ,
-            # which the workers would inherit: left out while they are spawned)
-            trim = os.environ.pop("MALLOC_TRIM_THRESHOLD_", None)
-            try:
-                with dask.config.set(LOCAL_CLUSTER_CONFIG):
-                    self._cluster = distributed.LocalCluster(
-                        n_workers=n, threads_per_worker=1, processes=True,
-                        dashboard_address=":0", silence_logs=logging.ERROR)
-            finally:
-                if trim is not None:
-                    os.environ["MALLOC_TRIM_THRESHOLD_"] = trim
-            self.client = distributed.Client(self._cluster)
-        elif isinstance(scheduler, distributed.Client):
-            self.client = scheduler
-        else:
-            if workers is not None:
-                raise KeywordError("workers applies to the local cluster started when no "
-                                   "scheduler is given; an existing cluster has its own workers")
-            try:
-                self.client = distributed.Client(scheduler, timeout="30s")
-            except OSError as exc:
-                raise InputError(f"cannot reach the Dask scheduler {scheduler!r} ({exc}); start "
-                                 "it (dask scheduler, or a dask-jobqueue cluster) or leave "
-                                 "--scheduler out for a local cluster") from None
-        self._own_client = not isinstance(scheduler, distributed.Client)
-        self._as_completed = distributed.as_completed
-        self.workers = max(1, len(self.client.scheduler_info().get("workers", {})))
-
-    def submit(self, fn, *args, key: str, retries: int = 2):
-        return self.client.submit(fn, *args, key=key, pure=False, retries=retries)
-
-    def map(self, fn, items, *args, keys, retries: int = 2):
-        # one graph for many contacts: one message to the scheduler, not one per contact
-        # the records come back pickled in one piece (tasks.pickled; unpickled in results)
-        if not items:
-            return []
-        return self.client.map(functools.partial(pickled, fn), items,
-                               *[[a] * len(items) for a in args], key=keys, pure=False,
-                               retries=retries)
-
-    def results(self, handles, streaming: bool = True):
-        # the futures finished since the last look, their results fetched in one gather (one
-        # round trip per batch, not per contact); a task lost for good (its workers died too
-        # often) gives its exception as the result. Not streaming (nobody watches the
-        # progress, no part to write): every result fetched in one gather once all are done
-        # (the client's CPU for 500 contacts in 16 tasks 0.18 -> 0.14 s, taken from the
-        # workers' cores on a small machine)
-        batches = self._as_completed(handles).batches() if streaming else \
-            [self._wait(handles)]
-        for batch in batches:
-            finished = [f for f in batch if f.status == "finished"]
-            values = self.client.gather(finished) if finished else []
-            for future, value in zip(finished, values, strict=True):
-                yield future, pickle.loads(value) if isinstance(value, bytes) else value
-            for future in batch:
-                if future.status != "finished":
-                    try:
-                        error = future.exception()
-                    except Exception as exc:  # noqa: BLE001 - cancelled
-                        error = exc
-                    yield future, error
-                future.release()
-
-    def _wait(self, handles):
-        require("distributed").wait(handles)
-        return handles
-
-    def close(self):
-        if self._own_client:
-            self.client.close()
-        if self._cluster is not None:
-            self._cluster.close()
-
-
-def _engine(scheduler, workers):
-    if isinstance(scheduler, str) and scheduler.lower() == "serial":
-        if workers not in (None, 1):
-            raise KeywordError("scheduler='serial' runs in this process: workers must be 1")
-        return _Serial()
-    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
-                                or workers < 1):
-        raise KeywordError(f"workers must be an integer >= 1, got {workers!r}")
-    return _Dask(scheduler, workers)
-
-
 def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int,
             retries: int, tag: str):
     """The handle of a contact's final record (a tree of chunk tasks for a long contact)."""
@@ -306,7 +160,7 @@ class _Batches:
         """Group for ``engine`` at most ``contacts`` contacts (the manifest's rows from the
         first one to compute on: some may be skipped or split later)."""
         self.engine = engine
-        self.sizes = task_sizes(contacts, engine.workers) if isinstance(engine, _Dask) else [1]
+        self.sizes = task_sizes(contacts, engine.workers) if isinstance(engine, DaskEngine) else [1]
         self.size = max(self.sizes, default=1)  # 1: one contact per task
 
     def add(self, task: ContactTask) -> None:
@@ -486,7 +340,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 continue
             if engine is None:  # the first contact to compute: the engine, and the group size
                 before = time.perf_counter()
-                engine = _engine(scheduler, workers)
+                engine = open_engine(scheduler, workers)
                 startup = time.perf_counter() - before
                 batch.start(engine, total - at)
             try:
@@ -501,7 +355,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 handles[id(handle)] = (handle, [task])
         handles.update(batch.flush())
         if engine is None:
-            engine = _Serial()
+            engine = SerialEngine()
         done_count = sum(1 for r in records.values() if r["status"] == "skipped")
         if progress is not None:
             for r in list(records.values()):

@@ -280,7 +280,7 @@ def pickled(fn, *args) -> bytes:
     metadata; Dask would serialise every array of every record as a frame of its own (541
     frames for a task of 15 contacts: 3.3 ms to send, 2.1 ms to receive, 0.5 ms to size),
     where one pickle takes 0.4 ms and 0.25 ms (docs/bundle.md). The client unpickles it
-    (:class:`fretwear.bundle.engine._Dask`).
+    (:class:`fretwear.bundle.cluster.DaskEngine`).
     """
     return pickle.dumps(fn(*args), protocol=pickle.HIGHEST_PROTOCOL)
 
