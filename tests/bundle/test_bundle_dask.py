@@ -63,8 +63,8 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
                                                                      monkeypatch):
     """Contacts grouped several per Dask task (engine.task_sizes, here 3 per task by asking one
     task per worker) give each contact's single-contact table bit for bit, and a bad contact
-    fails alone inside its group. The first group of each worker is submitted, in one graph,
-    as soon as they are full (here: after the last contact's task is built)."""
+    fails alone inside its group. The groups are submitted in one graph once every contact's
+    task is built (the scheduler then deals them out evenly by count)."""
     from fretwear.bundle import engine
 
     h = oscillator()
@@ -92,7 +92,7 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
     monkeypatch.setattr(distributed.Client, "gather", recording_gather)
     result = run_bundle(manifest, case, scheduler=address)
     built = [("build", f"R{k // 2 + 1}C{k % 2 + 1}-AVB") for k in range(6)]
-    assert submitted == [*built, ("run_contacts", [3, 3])]  # a group a worker: one graph
+    assert submitted == [*built, ("run_contacts", [3, 3])]  # the groups in one graph
     # each group's records cross to the client as one pickle (tasks.pickled), not as Dask's
     # frame per array
     assert crossed == [bytes, bytes]

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import itertools
 import json
 import math
 import os
@@ -27,7 +28,12 @@ from typing import Any
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.bundle.cases import ContactTask, build_task
-from fretwear.bundle.cluster import DaskEngine, SerialEngine, open_engine
+from fretwear.bundle.cluster import (
+    LOCAL_CLUSTER_CONFIG,  # noqa: F401 - its home until now
+    DaskEngine,
+    SerialEngine,
+    open_engine,
+)
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
@@ -140,55 +146,6 @@ def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int
                                key=f"merge-{name}-{depth}-{i}", retries=retries)
                  for i in range(0, len(level), split_every)]
     return engine.submit(finish_contact, task, level[0], key=f"finish-{name}", retries=retries)
-
-
-class _Batches:
-    """The contacts computed in one task each, grouped (:func:`task_sizes`) as their tasks are
-    built, and submitted in one ``map`` at the end (one message to the scheduler, which deals
-    the groups out evenly by count: submitting each worker's first group at once, while the
-    client built the others, left one worker 9 groups and the other 7)."""
-
-    def __init__(self, tag: str, chunk_size: int, retries: int) -> None:
-        self.tag, self.chunk_size, self.retries = tag, chunk_size, retries
-        self.engine: Any = None
-        self.size = 1
-        self.sizes: list[int] = []
-        self.group: list[ContactTask] = []
-        self.held: list[list[ContactTask]] = []
-
-    def start(self, engine, contacts: int) -> None:
-        """Group for ``engine`` at most ``contacts`` contacts (the manifest's rows from the
-        first one to compute on: some may be skipped or split later)."""
-        self.engine = engine
-        self.sizes = task_sizes(contacts, engine.workers) if isinstance(engine, DaskEngine) else [1]
-        self.size = max(self.sizes, default=1)  # 1: one contact per task
-
-    def add(self, task: ContactTask) -> None:
-        self.group.append(task)
-        if len(self.group) == (self.sizes[0] if self.sizes else self.size):
-            if len(self.sizes) > 1:
-                self.sizes.pop(0)
-            self.held.append(self.group)
-            self.group = []
-
-    def flush(self) -> dict:
-        """The handles of the groups still held and of the last, partial group."""
-        groups = self.held + ([self.group] if self.group else [])
-        self.held, self.group = [], []
-        return self._map(groups) if groups else {}
-
-    def _map(self, groups: list[list[ContactTask]]) -> dict:
-        if self.size == 1:
-            whole = [g[0] for g in groups]
-            mapped = self.engine.map(run_contact, whole, self.chunk_size,
-                                     keys=[f"contact-{t.contact}-{self.tag}" for t in whole],
-                                     retries=self.retries)
-        else:
-            mapped = self.engine.map(
-                run_contacts, groups, self.chunk_size,
-                keys=[f"contacts-{g[0].contact}-{len(g)}-{self.tag}" for g in groups],
-                retries=self.retries)
-        return {id(h): (h, g) for h, g in zip(mapped, groups, strict=True)}
 
 
 def task_sizes(contacts: int, workers: int) -> list[int]:
@@ -316,52 +273,65 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     previous = {} if store is None or force else store.previous()
 
     records: dict[str, dict[str, Any]] = {}
+    pending: list[ContactTask] = []
     walls: dict[str, float | None] = {}
     cases: dict = {}
+    for row in man.rows:
+        walls[row.contact] = row.wall_thickness
+        try:
+            task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
+        except (InputError, OSError) as exc:
+            records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
+            continue
+        old = previous.get(row.contact)
+        if old is not None and old.get("status") == "done" and old.get("key") == task.key:
+            records[row.contact] = {**old, "status": "skipped"}
+        else:
+            pending.append(task)
     total = len(man.rows)
-    tag = uuid.uuid4().hex[:8]
-    handles: dict[int, tuple[Any, list[ContactTask]]] = {}
-    batch = _Batches(tag, chunk_size, retries)
-    engine = None
-    startup = 0.0
+    done_count = sum(1 for r in records.values() if r["status"] == "skipped")
+    if progress is not None:
+        for r in records.values():
+            progress(0, total, r)
+    buffer: list[dict[str, Any]] = []
+    last_flush = time.perf_counter()
+    before = time.perf_counter()
+    engine = open_engine(scheduler, workers) if pending else SerialEngine()
+    startup = time.perf_counter() - before
     try:
-        # each contact's task is built and grouped; a long history's chunks are submitted at
-        # once, the groups together at the end
-        for at, row in enumerate(man.rows):
-            walls[row.contact] = row.wall_thickness
-            try:
-                task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
-            except (InputError, OSError) as exc:
-                records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
-                continue
-            old = previous.get(row.contact)
-            if old is not None and old.get("status") == "done" and old.get("key") == task.key:
-                records[row.contact] = {**old, "status": "skipped"}
-                continue
-            if engine is None:  # the first contact to compute: the engine, and the group size
-                before = time.perf_counter()
-                engine = open_engine(scheduler, workers)
-                startup = time.perf_counter() - before
-                batch.start(engine, total - at)
+        tag = uuid.uuid4().hex[:8]
+        handles = {}
+        whole = []
+        for task in pending:
             try:
                 chunks = plan_chunks(task, chunk_size)
             except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
                 del exc
                 chunks = None
             if chunks is None:
-                batch.add(task)
-            else:
-                handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
-                handles[id(handle)] = (handle, [task])
-        handles.update(batch.flush())
-        if engine is None:
-            engine = SerialEngine()
-        done_count = sum(1 for r in records.values() if r["status"] == "skipped")
-        if progress is not None:
-            for r in list(records.values()):
-                progress(0, total, r)
-        buffer: list[dict[str, Any]] = []
-        last_flush = time.perf_counter()
+                whole.append(task)
+                continue
+            handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
+            handles[id(handle)] = (handle, [task])
+        # the contacts computed whole, grouped (task_sizes) and submitted in one map: one
+        # message to the scheduler, which deals the groups out evenly by count (submitting
+        # each worker's first group early, while the client built the others, left one worker
+        # 9 groups and the other 7)
+        sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
+            else [1] * len(whole)
+        if all(size == 1 for size in sizes):
+            groups = [[t] for t in whole]
+            mapped = engine.map(run_contact, whole, chunk_size,
+                                keys=[f"contact-{t.contact}-{tag}" for t in whole],
+                                retries=retries)
+        else:
+            starts = list(itertools.accumulate(sizes, initial=0))
+            groups = [whole[a:b] for a, b in itertools.pairwise(starts)]
+            mapped = engine.map(run_contacts, groups, chunk_size,
+                                keys=[f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups],
+                                retries=retries)
+        for handle, group in zip(mapped, groups, strict=True):
+            handles[id(handle)] = (handle, group)
         streaming = store is not None or progress is not None
         for handle, value in engine.results([h for h, _ in handles.values()], streaming):
             group = handles[id(handle)][1]
@@ -387,8 +357,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 store.write_part(buffer)
         workers_used = engine.workers
     finally:
-        if engine is not None:
-            engine.close()
+        engine.close()
     elapsed = time.perf_counter() - started
     return _assemble(man, records, walls, store, (elapsed, startup), workers_used,
                      dataset_format)
