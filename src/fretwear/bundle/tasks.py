@@ -75,11 +75,14 @@ def _warning_list(caught) -> list[list[str]]:
 
 def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None,
             samples: int = 0, seconds: float = 0.0, state=None) -> dict[str, Any]:
+    """A task's record; ``table`` is ``(columns, attrs)`` of
+    :func:`fretwear.table.wear_table_columns`, sent as :func:`pack` lays a table out."""
+    columns, attrs = (None, None) if table is None else table
     return {"contact": task.contact, "key": task.key, "status": status,
-            "table": None if table is None else {"columns": list(table[0]),
-                                                  "arrays": list(table[0].values())},
+            "table": None if columns is None else {"columns": list(columns),
+                                                    "arrays": list(columns.values())},
             "warnings": _warning_list(caught), "error": error, "samples": int(samples),
-            "seconds": seconds, "attrs": None if table is None else _attrs(table[1], task),
+            "seconds": seconds, "attrs": None if attrs is None else _attrs(attrs, task),
             "state": state}
 
 
