@@ -95,20 +95,81 @@ def impact_durations(time: np.ndarray, force: np.ndarray) -> np.ndarray:
     return time[ends[:n]] - time[starts[:n]]
 
 
-def _largest_norm(a: np.ndarray, b: np.ndarray) -> float:
-    """``max(√(a² + b²))`` in the unit of ``a`` and ``b``: the square root of the largest sum of
-    squares (ten times cheaper than :func:`numpy.hypot` per sample), :func:`numpy.hypot` when
-    the squares overflow.
+def _largest_squares(a: np.ndarray, b: np.ndarray) -> float:
+    """The largest ``a² + b²`` (``inf`` when the squares overflow; :func:`_root` then turns
+    to :func:`numpy.hypot`): the numpy reference of :func:`fretwear.io._compiled.statistics`.
 
     Examples
     --------
-    >>> _largest_norm(np.array([3.0, 1.0]), np.array([4.0, 1.0])), _largest_norm(
-    ...     np.array([3e200]), np.array([4e200]))
+    >>> _largest_squares(np.array([3.0, 1.0]), np.array([4.0, 1.0]))
+    25.0
+    """
+    with np.errstate(over="ignore"):  # overflowing squares: numpy.hypot in _root
+        return float((a * a + b * b).max())
+
+
+#: Samples from which the checks run as one compiled pass when numba is installed
+#: (:mod:`fretwear.io._compiled`; a 1e5-sample history with dy/dz 0.65 -> 0.1 ms): below, the
+#: numpy expressions cost little and a short history read alone does not import numba.
+_KERNEL_SAMPLES = 1 << 14
+
+
+def _root(squares: float, a: np.ndarray, b: np.ndarray) -> float:
+    """``max(√(a² + b²))`` in the unit of ``a`` and ``b``, given ``squares``, the largest
+    ``a² + b²``: its square root (ten times cheaper than :func:`numpy.hypot` per sample), or
+    :func:`numpy.hypot` when the squares overflowed.
+
+    Examples
+    --------
+    >>> a, b = np.array([3.0, 1.0]), np.array([4.0, 1.0])
+    >>> big = np.array([3e200]), np.array([4e200])
+    >>> _root(_largest_squares(a, b), a, b), _root(_largest_squares(*big), *big)
     (5.0, 5e+200)
     """
-    with np.errstate(over="ignore"):  # overflowing squares: numpy.hypot just below
-        top = math.sqrt(float((a * a + b * b).max()))
+    top = math.sqrt(squares)
     return top if math.isfinite(top) else float(np.hypot(a, b).max())
+
+
+def _statistics(history: ContactHistory) -> tuple[float, float, float, float, np.ndarray]:
+    """What the checks compare with their limits: the largest ``vt1² + vt2²`` [m²/s²] and
+    ``dy² + dz²`` [m²] (0 without dy), the largest normal force [N], the median time step [s]
+    (or a value known to be at most the ``time_step`` limit, when fewer than half the steps
+    exceed it: the median is then not needed) and the contact episodes' durations [s].
+
+    One compiled pass (:func:`fretwear.io._compiled.statistics`) on a long history when numba
+    is installed, else numpy; the same numbers either way.
+    """
+    t, fn = history.time, history.normal_force
+    limit = THRESHOLDS["time_step"].limit
+    if t.size >= _KERNEL_SAMPLES and _compiled() is not None:
+        speed2, radial2, fmax, above, durations = _compiled().statistics(
+            t, fn, history.vt1, history.vt2, history.dy, history.dz, limit)
+        # the median of the m = size - 1 steps exceeds the limit only if at least m // 2 of
+        # them do (sorted, the middle one, or both middle ones, would be at most the limit)
+        step = float(np.median(np.diff(t))) if above >= (t.size - 1) // 2 else limit
+        return float(speed2), float(radial2), float(fmax), step, durations
+    speed2 = _largest_squares(history.vt1, history.vt2)
+    radial2 = 0.0 if history.dy is None else _largest_squares(history.dy, history.dz)
+    return (speed2, radial2, float(fn.max()), float(np.median(np.diff(t))),
+            impact_durations(t, fn))
+
+
+def _compiled():
+    """:mod:`fretwear.io._compiled`, or ``None`` without numba (imported at the first use)."""
+    global _KERNEL
+    if _KERNEL is False:
+        from fretwear._numba import HAVE_NUMBA
+
+        if HAVE_NUMBA:
+            from fretwear.io import _compiled as module
+
+            _KERNEL = module
+        else:  # pragma: no cover - exercised only without numba
+            _KERNEL = None
+    return _KERNEL
+
+
+_KERNEL = False
 
 
 def _name(history: ContactHistory) -> str:
@@ -214,23 +275,21 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
     def warn(key: str, channel: str, value: float, unit_read: str) -> None:
         _warn(key, name, channel, value, unit_read, skip, found)
 
-    top = _largest_norm(history.vt1, history.vt2)
+    speed2, radial2, fmax, step, durations = _statistics(history)
+    top = _root(speed2, history.vt1, history.vt2)
     if top > THRESHOLDS["sliding_speed_max"].limit:
         channel = "vt1" if np.abs(history.vt1).max() >= np.abs(history.vt2).max() else "vt2"
         warn("sliding_speed_max", channel, top, _unit(history, channel))
     if history.dy is not None:
-        radial = _largest_norm(history.dy, history.dz)
+        radial = _root(radial2, history.dy, history.dz)
         if radial > THRESHOLDS["displacement_max"].limit:
             warn("displacement_max", "dy", radial, _unit(history, "dy"))
-    fmax = float(history.normal_force.max())
     if fmax > THRESHOLDS["force_max"].limit:
         warn("force_max", "normal_force", fmax, _unit(history, "normal_force"))
     elif 0.0 < fmax < THRESHOLDS["force_min"].limit:
         warn("force_min", "normal_force", fmax, _unit(history, "normal_force"))
-    step = float(np.median(np.diff(history.time)))
     if step > THRESHOLDS["time_step"].limit:
         warn("time_step", "time", step, _unit(history, "time"))
-    durations = impact_durations(history.time, history.normal_force)
     if durations.size >= 3 and math.isfinite(mean := float(durations.mean())) \
             and mean > THRESHOLDS["impact_duration"].limit:
         warn("impact_duration", "time", mean, _unit(history, "time"))
