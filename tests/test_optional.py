@@ -201,6 +201,31 @@ print(HAVE_NUMBA, H2, fused("auto") is fused_numpy, abs(p - trapz) <= 1e-12 * tr
     assert out.stdout.split() == ["False", "False", "True", "True"]
 
 
+def test_plausibility_of_a_long_history_without_numba():
+    """In a fresh interpreter without numba, a history long enough for the compiled pass
+    (io/_compiled.py) is checked by the numpy expressions: the speed in mm/s is caught with
+    the largest ‖Vt‖ of numpy.hypot, and numba stays unimported."""
+    code = """
+import sys, warnings
+sys.modules["numba"] = None
+import numpy as np
+from fretwear.history import ContactHistory
+from fretwear.io import plausibility
+n = 2 * plausibility._KERNEL_SAMPLES
+t = np.arange(n) * 1e-5
+v = 30.0 * np.sin(t * 700.0)
+h = ContactHistory(time=t, normal_force=np.abs(np.sin(t * 300.0)), vt1=v, vt2=0.5 * v)
+with warnings.catch_warnings():
+    warnings.simplefilter("ignore")
+    found = plausibility.check_plausibility(h)
+top = float(np.hypot(h.vt1, h.vt2).max())
+print(len(found), f"{top:.4g} m/s" in found[0], plausibility._compiled() is None)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=ROOT)
+    assert out.stdout.split() == ["1", "True", "True"]
+
+
 def test_every_module_imports_without_any_optional_package():
     """Optional packages are never imported at a module's top: with all of them unimportable, a
     fresh interpreter imports every module of fretwear."""
