@@ -180,6 +180,35 @@ def test_results_of_finished_and_failed_tasks(address, streaming):
     assert out[id(plain)] == {"contact": "p"}
 
 
+def test_a_large_bundle_streams_its_results_even_when_nobody_watches(tmp_path, address,
+                                                                    monkeypatch):
+    """Without progress or output directory, the results come in one gather at the end only up
+    to engine.GATHER_AT_END contacts (here lowered to 3 for a bundle of 4): beyond, as each task
+    finishes, so that the workers do not hold every finished record until the end. Both ways
+    give every contact's single-contact table bit for bit."""
+    from fretwear.bundle import cluster, engine
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 4)
+    modes = []
+    real_results = cluster.DaskEngine.results
+
+    def recording_results(self, handles, streaming=True):
+        modes.append(streaming)
+        return real_results(self, handles, streaming)
+
+    monkeypatch.setattr(cluster.DaskEngine, "results", recording_results)
+    results = [run_bundle(manifest, case, scheduler=address)]
+    monkeypatch.setattr(engine, "GATHER_AT_END", 3)
+    results.append(run_bundle(manifest, case, scheduler=address))
+    assert modes == [False, True]
+    for result in results:
+        assert result.errors.empty and result.stats["done"] == 4
+        for k in range(4):
+            contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+            assert_identical(rows_of(result, contact),
+                             reference(tmp_path / f"histories/t{k}.parquet", case))
+
+
 SLOW_RUN = """
 import sys, time
 import fretwear.bundle.engine as engine

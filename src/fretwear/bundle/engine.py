@@ -60,6 +60,11 @@ PART_SECONDS = 10.0
 #: Tasks per worker when contacts are grouped (:func:`task_sizes`; measured on 500 contacts ×
 #: 1e5 samples, 2 workers: 4, 6, 8, 12, 16 per worker took 1.39, 1.40, 1.39, 1.51, 1.50 s).
 TASKS_PER_WORKER = 8
+#: Contacts to compute beyond which the results are fetched as each task finishes even when
+#: nobody watches (no progress, no output directory): below, one gather at the end spares the
+#: client some CPU (500 contacts: 0.18 -> 0.14 s); above, the workers would hold every finished
+#: record until the end (some 12 kB a contact of 48 rows: 600 MB for 50 000), not a task's.
+GATHER_AT_END = 2_000
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
@@ -332,7 +337,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                                 retries=retries)
         for handle, group in zip(mapped, groups, strict=True):
             handles[id(handle)] = (handle, group)
-        streaming = store is not None or progress is not None
+        streaming = (store is not None or progress is not None
+                     or len(pending) > GATHER_AT_END)
         for handle, value in engine.results([h for h, _ in handles.values()], streaming):
             group = handles[id(handle)][1]
             values = value if isinstance(value, list) else [value] * len(group)

@@ -9,10 +9,10 @@ module holds the machine code's structure:
   are scanned by blocks of ``BLOCK`` intervals, and a block whose ``BLOCK + 1`` forces are all
   zero (free flight: nothing to integrate) is skipped without reading its other channels.
 * A run of busy blocks of at least ``LONG`` intervals is reduced in two passes over the run
-  (:mod:`fretwear.power._passes`): :func:`_map` computes, without a branch, every integral of the interval (power, ∫Fn, ∫Fn²,
-  contact time and its force integrals with the threshold crossings located by linear
-  interpolation, sliding distance) and the pseudo-angle of its left sample; it is written so
-  that LLVM vectorises it. :func:`_scan_dense` (many crossings, white-noise-like signals: no
+  (:mod:`fretwear.power._passes`): :func:`_map` computes, without a branch, every integral of
+  the interval (power, ∫Fn, ∫Fn², contact time and its force integrals with the threshold
+  crossings located by linear interpolation, sliding distance) and the pseudo-angle of its
+  left sample; it is written so that LLVM vectorises it. :func:`_scan_dense` (many crossings, white-noise-like signals: no
   branch on the data) or :func:`_scan_sparse` (few crossings: predictable branches and a
   same-sector shortcut) then classifies the pseudo-angles into sectors through the bin table,
   adds each interval's power to its sector, and follows the episodes (contact runs).
