@@ -12,9 +12,10 @@ module holds the machine code's structure:
   (:mod:`fretwear.power._passes`): :func:`_map` computes, without a branch, every integral of
   the interval (power, ∫Fn, ∫Fn², contact time and its force integrals with the threshold
   crossings located by linear interpolation, sliding distance) and the pseudo-angle of its
-  left sample; it is written so that LLVM vectorises it. :func:`_scan_dense` (many crossings, white-noise-like signals: no
-  branch on the data) or :func:`_scan_sparse` (few crossings: predictable branches and a
-  same-sector shortcut) then classifies the pseudo-angles into sectors through the bin table,
+  left sample; it is written so that LLVM vectorises it. :func:`_scan_dense` (many
+  crossings, white-noise-like signals: no branch on the data) or :func:`_scan_sparse` (few
+  crossings: predictable branches and a same-sector shortcut) then classifies the
+  pseudo-angles into sectors through the bin table,
   adds each interval's power to its sector, and follows the episodes (contact runs).
 * A shorter run, and the tail of a long one, goes through :func:`_short`, a scalar loop that
   skips free-flight intervals one by one.
