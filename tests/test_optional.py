@@ -6,6 +6,7 @@ that does not need it still runs (the dynamics without pyarrow, the power withou
 from __future__ import annotations
 
 import ast
+import os
 import re
 import subprocess
 import sys
@@ -199,6 +200,84 @@ print(HAVE_NUMBA, H2, fused("auto") is fused_numpy, abs(p - trapz) <= 1e-12 * tr
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True, cwd=ROOT)
     assert out.stdout.split() == ["False", "False", "True", "True"]
+
+
+def test_a_kernel_whose_cache_cannot_be_written_is_compiled_without_it(monkeypatch):
+    """numba refuses ``cache=True`` at decoration when it finds no folder to write the cache in
+    (RuntimeError "cannot cache function ... no locator available"): fretwear._numba.njit then
+    compiles without the disk cache; any other error of numba still raises."""
+    from fretwear import _numba
+
+    if not _numba.HAVE_NUMBA:
+        pytest.skip("numba is not installed")
+    asked = []
+
+    class Refusing:
+        @staticmethod
+        def njit(*args, **kwargs):
+            asked.append(dict(kwargs))
+            if kwargs.get("cache"):
+                raise RuntimeError("cannot cache function 'f': no locator available for file "
+                                   "'/site-packages/fretwear/io/_compiled.py'")
+            return lambda func: ("compiled", func)
+
+    monkeypatch.setattr(_numba, "_numba", Refusing)
+
+    def f(x):
+        return x
+
+    assert _numba.njit(cache=True, nogil=True)(f) == ("compiled", f)
+    assert asked == [{"cache": True, "nogil": True}, {"cache": False, "nogil": True}]
+    assert _numba.njit(nogil=True)(f) == ("compiled", f)  # no cache asked: numba's own njit
+
+    class Broken:
+        @staticmethod
+        def njit(*args, **kwargs):
+            raise RuntimeError("some other failure")
+
+    monkeypatch.setattr(_numba, "_numba", Broken)
+    with pytest.raises(RuntimeError, match="some other failure"):
+        _numba.njit(cache=True)(f)
+
+
+def test_reading_and_the_power_as_a_user_with_no_writable_cache_folder():
+    """For real: a user (nobody) who can write neither the package's __pycache__ nor a home
+    reads a long history (the compiled plausibility pass) and computes its power (KWU-EPRI's
+    compiled class pass); numba would refuse to cache those kernels. Needs root (to become
+    nobody) and setpriv; skipped where nobody cannot run this interpreter on this tree."""
+    import shutil
+
+    if os.name != "posix" or os.geteuid() != 0 or shutil.which("setpriv") is None:
+        pytest.skip("needs root and setpriv to run as another user")
+    as_nobody = ["setpriv", "--reuid=65534", "--regid=65534", "--clear-groups"]
+    env = {**os.environ, "HOME": "/nonexistent", "PYTHONDONTWRITEBYTECODE": "1"}
+    env.pop("NUMBA_CACHE_DIR", None)
+    probe = subprocess.run([*as_nobody, sys.executable, "-c", "import numpy, fretwear.errors"],
+                           capture_output=True, text=True, cwd="/", env=env)
+    if probe.returncode != 0:
+        pytest.skip(f"nobody cannot import fretwear from this tree: {probe.stderr[-200:]}")
+    import tempfile
+
+    folder = Path(tempfile.mkdtemp(prefix="fretwear-nobody-"))  # pytest's is root's only
+    folder.chmod(0o755)
+    csv = folder / "long.csv"
+    t = np.arange(20_000) * 1e-5
+    np.savetxt(csv, np.column_stack([t, 1.0 + np.sin(t * 900.0), 0.1 + 0 * t, 0 * t]),
+               delimiter=",", header="time,normal_force,vt1,vt2", comments="")
+    csv.chmod(0o644)
+    code = f"""
+from fretwear.io import read_history
+from fretwear.power import wear_power
+h = read_history({str(csv)!r})
+print(len(h), wear_power(h, kwu=(None, None)).total > 0)
+"""
+    try:
+        out = subprocess.run([*as_nobody, sys.executable, "-c", code], capture_output=True,
+                             text=True, cwd="/", env=env)
+    finally:
+        shutil.rmtree(folder)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == ["20000", "True"]
 
 
 def test_plausibility_of_a_long_history_without_numba():
