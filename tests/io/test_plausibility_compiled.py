@@ -1,12 +1,14 @@
 """The compiled pass of the plausibility checks gives the numbers of the numpy reference.
 
-:func:`fretwear.io._compiled.statistics` (one walk over the channels, used from
+:func:`fretwear.io._compiled.statistics` (four loops over the channels, used from
 ``plausibility._KERNEL_SAMPLES`` samples on when numba is installed) against the numpy
 expressions of :mod:`fretwear.io.plausibility` (the reference, used below that size and
 without numba): the largest squares, the largest force and the contact episodes' durations
-equal bit for bit; the median sampling step, which the compiled path computes only when at
-least half the steps exceed the limit, gives the same decision and, when computed, the same
-value; and every message of :func:`check_plausibility` is the same on both paths.
+equal bit for bit (a largest force of zero may be -0.0 on one path and 0.0 on the other when
+the forces mix both zeros: no check can tell them apart); the median sampling step, which the
+compiled path computes only when at least half the steps exceed the limit, gives the same
+decision and, when computed, the same value; every message of :func:`check_plausibility` is
+the same on both paths.
 """
 
 from __future__ import annotations
@@ -26,11 +28,20 @@ LIMIT = THRESHOLDS["time_step"].limit
 
 
 def _both(history, monkeypatch):
-    """(compiled, numpy) results of ``plausibility._statistics``."""
+    """(compiled, numpy) results of ``plausibility._statistics``; the compiled kernel is
+    checked to have run for the first and not for the second."""
+    from fretwear.io import _compiled
+
+    calls = []
+    kernel = _compiled.statistics
+    monkeypatch.setattr(_compiled, "statistics", lambda *a: calls.append(1) or kernel(*a))
     monkeypatch.setattr(plausibility, "_KERNEL_SAMPLES", 0)
     compiled = plausibility._statistics(history)
+    assert calls == [1]
     monkeypatch.setattr(plausibility, "_KERNEL_SAMPLES", 1 << 62)
-    return compiled, plausibility._statistics(history)
+    reference = plausibility._statistics(history)
+    assert calls == [1]
+    return compiled, reference
 
 
 def _history(seed: int, n: int, *, radial: bool = True, scale: float = 1.0,
@@ -59,7 +70,7 @@ def test_compiled_statistics_equal_the_reference(monkeypatch, seed, n, radial, s
     history = _history(seed, n, radial=radial, scale=scale, force_at_ends=ends)
     (s2, r2, fmax, step, durations), (s2_, r2_, fmax_, step_, durations_) = _both(
         history, monkeypatch)
-    assert (s2, r2, fmax) == (s2_, r2_, fmax_)
+    assert (s2, r2, fmax) == (s2_, r2_, fmax_)  # a zero largest force may differ in sign
     assert durations.dtype == durations_.dtype and np.array_equal(durations, durations_)
     assert (step > LIMIT) == (step_ > LIMIT)
     assert plausibility._root(s2, history.vt1, history.vt2) == plausibility._root(
@@ -85,8 +96,7 @@ def test_the_median_step_decision_at_the_half(monkeypatch, steps, above, below, 
                              vt2=np.zeros(m + 1))
     (*_, step, _), (*_, step_, _) = _both(history, monkeypatch)
     median = float(np.median(np.diff(t)))
-    assert step_ == median
-    assert (step > LIMIT) == (median > LIMIT)
+    assert (step > LIMIT) == (median > LIMIT) == (step_ > LIMIT)
     if k >= m // 2:  # computed, not bounded
         assert step == median
 
@@ -94,7 +104,8 @@ def test_the_median_step_decision_at_the_half(monkeypatch, steps, above, below, 
 @pytest.mark.parametrize("factors", [
     {},                                                   # plausible: no message
     {"vt1": 1e3, "vt2": 1e3, "dy": 1e3, "dz": 1e3},       # mm and mm/s
-    {"time": 1e3, "vt1": 1e-3, "vt2": 1e-3},              # ms: step and impact duration
+    {"time": 1e3, "vt1": 1e-3, "vt2": 1e-3},              # ms: the sampling step
+    {"time": 1e5, "vt1": 1e-5, "vt2": 1e-5},              # step and impact duration
     {"normal_force": 1e5},                                # mN
     {"normal_force": 1e-4},                               # kN
 ])
@@ -111,3 +122,36 @@ def test_every_message_is_the_same_on_both_paths(monkeypatch, factors):
         found.append(messages)
     assert found[0] == found[1]
     assert bool(found[0]) == bool(factors)
+    if factors.get("time") == 1e5:
+        assert any("mean impact duration" in m for m in found[0])
+
+
+def test_each_square_as_numpy_computes_it(monkeypatch):
+    """No fused multiply-add: on 300 histories of 2 samples, the largest ``a*a + b*b`` is
+    numpy's bit for bit (a fused product would differ in about one value in eight)."""
+    rng = np.random.default_rng(11)
+    for _ in range(300):
+        v, d = rng.normal(0.0, 1.0, (2, 2)), rng.normal(0.0, 1e-3, (2, 2))
+        history = ContactHistory(time=[0.0, 1e-5], normal_force=[0.0, 1.0], vt1=v[0],
+                                 vt2=v[1], dy=d[0], dz=d[1])
+        (s2, r2, *_), _ = _both(history, monkeypatch)
+        assert s2 == float((v[0] * v[0] + v[1] * v[1]).max())
+        assert r2 == float((d[0] * d[0] + d[1] * d[1]).max())
+
+
+@pytest.mark.parametrize("force", [
+    [0, 5, 5, 0, 2, 0, 0, 3, 0],   # an episode from the second sample on
+    [4, 0, 1, 0, 1, 1, 1, 0, 6],   # open at both ends: dropped
+    [0, 1, 0, 1, 0, 1, 0, 1, 0],   # one-sample episodes
+    [0, 0, 0, 0, 0, 0, 0, 0, 0],   # free flight
+    [1, 1, 1, 1, 1, 1, 1, 1, 1],   # never ends
+])
+def test_contact_episodes_as_impact_durations_finds_them(monkeypatch, force):
+    t = np.array([0.0, 1.0, 3.0, 4.0, 7.0, 8.0, 10.0, 13.0, 14.0]) * 1e-4
+    history = ContactHistory(time=t, normal_force=np.array(force, dtype=float),
+                             vt1=np.zeros(9), vt2=np.zeros(9))
+    (*_, durations), _ = _both(history, monkeypatch)
+    expected = plausibility.impact_durations(t, np.array(force, dtype=float))
+    assert np.array_equal(durations, expected)
+    if force[:4] == [0, 5, 5, 0]:
+        assert durations.tolist() == [t[3] - t[1], t[5] - t[4], t[8] - t[7]]

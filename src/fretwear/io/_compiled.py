@@ -1,18 +1,20 @@
 """The compiled (numba) pass of the plausibility checks (:mod:`fretwear.io.plausibility`).
 
 Imported by :func:`fretwear.io.plausibility.check_plausibility` only when numba is installed
-and the history is long (``plausibility._KERNEL_SAMPLES``): importing numba costs a fraction of
-a second, which a short history read alone does not repay. The numpy expressions of
-``plausibility`` remain the reference; this pass computes the same numbers in one walk over
-the channels instead of eight array passes and their temporaries (a 1e5-sample history with
-dy/dz: 0.65 ms -> 0.1 ms; docs/formats.md).
+and the history is long (``plausibility._KERNEL_SAMPLES``). The numpy expressions of
+``plausibility`` remain the reference; this pass computes the same numbers in four loops over
+the channels (largest squares and force, dy/dz, time steps, contact episodes) instead of some
+eight array passes and their temporaries (a 1e5-sample history with dy/dz, out of cache: 0.65
+-> 0.23 ms; ``benchmarks/bench_read.py``).
 
 Every quantity is computed as the reference computes it, operation for operation, so the
 results are equal bit for bit: the squares ``a*a + b*b`` (no fused multiply-add: numba
 compiles without fast-math contraction), exact maxima, the differences ``t[i+1] - t[i]``, and
-the contact episodes' ``time[end] - time[start]``. The inputs are a history's channels: finite
-(a :class:`~fretwear.history.ContactHistory` holds no NaN), so a maximum taken by comparison
-is the maximum numpy returns.
+the contact episodes' ``time[end] - time[start]``. The one exception is the sign of a zero:
+when the forces are all zero, mixing 0.0 and -0.0, the largest force may be either (no check
+can tell them apart). The inputs are a history's channels: finite (a
+:class:`~fretwear.history.ContactHistory` holds no NaN or infinity), so a maximum taken by
+comparison is the maximum numpy returns.
 """
 
 from __future__ import annotations

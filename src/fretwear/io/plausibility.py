@@ -108,9 +108,10 @@ def _largest_squares(a: np.ndarray, b: np.ndarray) -> float:
         return float((a * a + b * b).max())
 
 
-#: Samples from which the checks run as one compiled pass when numba is installed
-#: (:mod:`fretwear.io._compiled`; a 1e5-sample history with dy/dz 0.65 -> 0.1 ms): below, the
-#: numpy expressions cost little and a short history read alone does not import numba.
+#: Samples from which the checks run compiled when numba is installed (:mod:`fretwear.io.
+#: _compiled`; a 1e5-sample history with dy/dz 0.65 -> 0.23 ms): below, the numpy expressions
+#: cost little, and reading short histories alone does not import numba (about 0.3 s, which
+#: :mod:`fretwear.power` pays anyway).
 _KERNEL_SAMPLES = 1 << 14
 
 
@@ -136,8 +137,8 @@ def _statistics(history: ContactHistory) -> tuple[float, float, float, float, np
     (or a value known to be at most the ``time_step`` limit, when fewer than half the steps
     exceed it: the median is then not needed) and the contact episodes' durations [s].
 
-    One compiled pass (:func:`fretwear.io._compiled.statistics`) on a long history when numba
-    is installed, else numpy; the same numbers either way.
+    Compiled (:func:`fretwear.io._compiled.statistics`) on a long history when numba is
+    installed, else numpy; the same numbers either way (but for the sign of a zero force).
     """
     t, fn = history.time, history.normal_force
     limit = THRESHOLDS["time_step"].limit
