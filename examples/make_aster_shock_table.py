@@ -16,6 +16,7 @@ Usage::
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 
 import pandas as pd
@@ -48,5 +49,18 @@ def main(source: Path = HERE / "data" / "oscillator_gap.csv",
     return output
 
 
+def cli(argv: list[str] | None = None) -> None:
+    """The command line: options, then :func:`main`."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--source", type=Path, default=HERE / "data" / "oscillator_gap.csv",
+                        help="the history to print (default: the demo history)")
+    parser.add_argument("--output", type=Path, default=HERE / "data" / "shock_N12.tab",
+                        help="the table written (default: examples/data/shock_N12.tab)")
+    parser.add_argument("--duration", type=float, default=1.0,
+                        help="seconds printed from the start of the history (default: 1)")
+    args = parser.parse_args(argv)
+    print(main(args.source, args.output, args.duration))
+
+
 if __name__ == "__main__":
-    print(main())
+    cli()
