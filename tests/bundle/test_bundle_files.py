@@ -34,3 +34,30 @@ def test_parquet_without_pyarrow_names_the_formats_extra(tmp_path, monkeypatch):
     with pytest.raises(MissingDependencyError, match=r"csv table format .*fretwear\[formats\]"):
         write_frame(pd.DataFrame({"x": [1.0]}), tmp_path / "t.parquet", "parquet")
     assert not (tmp_path / "t.parquet").exists()
+
+
+def test_a_run_in_another_format_replaces_the_earlier_outputs(tmp_path):
+    """The same output directory run again with --table-format csv and --dataset-format netcdf:
+    the contacts are skipped (the formats are not part of a contact's key), the table and the
+    dataset are written in the new formats, and the earlier table.parquet and dataset.zarr,
+    now stale, are gone; the CSV table holds the rows of the Parquet one."""
+    from bundle_helpers import oscillator, write_bundle
+
+    from fretwear.bundle import run_bundle
+
+    pytest.importorskip("xarray")
+    pytest.importorskip("zarr")
+    pytest.importorskip("netCDF4")
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    out = tmp_path / "out"
+    first = run_bundle(manifest, case, scheduler="serial", output=out, dataset_format="zarr")
+    assert (out / "table.parquet").is_file() and (out / "dataset.zarr").is_dir()
+    before = read_frame(out / "table.parquet")
+    second = run_bundle(manifest, case, scheduler="serial", output=out, table_format="csv",
+                        dataset_format="netcdf")
+    assert first.stats["done"] == 3 and second.stats["skipped"] == 3
+    assert sorted(p.name for p in out.iterdir() if p.name.startswith(("table", "dataset"))) \
+        == ["dataset.nc", "table.csv"]
+    after = read_frame(out / "table.csv")
+    assert after.shape == before.shape and list(after.columns) == list(before.columns)
+    np.testing.assert_allclose(after["depth_mobile"], before["depth_mobile"], rtol=1e-15)

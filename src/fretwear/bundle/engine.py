@@ -441,8 +441,7 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
 
 
 def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format):
-    fmt = store.table_format
-    write_frame(result.table, store.path / f"table.{fmt}", fmt)
+    store.write_table(result.table)
     write_frame(result.errors, store.path / "errors.csv", "csv")
     write_frame(result.warnings, store.path / "warnings.csv", "csv")
     write_frame(result.summary(), store.path / "summary.csv", "csv")

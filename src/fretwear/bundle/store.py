@@ -137,10 +137,27 @@ class OutputDirectory:
             if p.name.split(".")[0] not in keep:
                 p.unlink(missing_ok=True)
 
+    def write_table(self, table: pd.DataFrame) -> Path:
+        """Write the bundle's table as ``table.<format>`` (atomically); the table of the other
+        format, left by an earlier run of this directory, is removed: it is stale."""
+        target = self.path / f"table.{self.table_format}"
+        write_frame(table, target, self.table_format)
+        for other in TABLE_FORMATS:
+            if other != self.table_format:
+                (self.path / f"table.{other}").unlink(missing_ok=True)
+        return target
+
     def write_dataset(self, dataset, fmt: str) -> Path:
-        """Write the dataset atomically: a NetCDF file, or a Zarr directory swapped in whole."""
+        """Write the dataset atomically: a NetCDF file, or a Zarr directory swapped in whole;
+        the dataset of the other format, left by an earlier run of this directory, is removed:
+        it is stale."""
         if fmt not in DATASET_FORMATS:
             raise InputError(f"dataset format {fmt!r}: choose one of {DATASET_FORMATS}")
+        stale = self.path / ("dataset.zarr" if fmt == "netcdf" else "dataset.nc")
+        if stale.is_dir():
+            shutil.rmtree(stale, ignore_errors=True)
+        else:
+            stale.unlink(missing_ok=True)
         if fmt == "netcdf":
             target = self.path / "dataset.nc"
             with atomic_path(target) as tmp:
