@@ -4,7 +4,11 @@ reference): the same DataFrame bit for bit (rows, order, columns, dtypes, values
 methods), the same attrs and the same errors, on the bundle tests' tables (tests/bundle/
 bundle_helpers.py: the shipped oscillator history scaled per contact) with and without
 sectors, walls, limits, a tube replacement, depths beyond the relation's range, and on the
-same tables reshuffled, renamed, with equal instants or signed zeros."""
+same tables reshuffled, renamed, with equal instants or signed zeros.
+
+The reference follows the summary's rules as they change: since the fix of the default time to
+the limit (the table's limit_instant only where reached by the last instant, and for an explicit
+limit equal to the contact's own too), its FROM_TABLE branch says so; the rest is the old loop."""
 
 from __future__ import annotations
 
@@ -37,15 +41,15 @@ def _reference_global_rows(rows: pd.DataFrame) -> pd.DataFrame:
 
 def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
-    """summarize as it was up to commit bb56e91 (a loop over the contacts), unchanged."""
+    """summarize as it was up to commit bb56e91 (a loop over the contacts), with the rule of
+    the table's limit_instant of the later fix (module docstring)."""
     if limit is not None and not (0 < limit and math.isfinite(limit)):
         raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     info = contacts.set_index("contact") if len(contacts) else contacts
     # the wear table's own limit instant (law and geometry inverted), for the case's limit
-    given = "limit_instant" in table.columns and limit is None and limit_m is None \
-        and wall_thickness is None
+    given = "limit_instant" in table.columns and limit_m is None
     rows = []
     for contact, group in table.groupby("contact", sort=False):
         glob = _reference_global_rows(group)
@@ -58,13 +62,13 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
         if "wall_thickness" in info.columns and contact in info.index:
             given_wall = info.at[contact, "wall_thickness"]
             wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
+        its_wall = math.isfinite(wall)
         if not math.isfinite(wall) and wall_thickness is not None:
             wall = float(wall_thickness)
-        fraction = limit
-        if fraction is None:
-            own = info.at[contact, "depth_limit"] if "depth_limit" in info.columns \
-                and contact in info.index else None
-            fraction = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        own = info.at[contact, "depth_limit"] if "depth_limit" in info.columns \
+            and contact in info.index else None
+        own = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        fraction = own if limit is None else limit
         target = (fraction * wall if math.isfinite(wall) and limit_m is None
                   else (limit_m if limit_m is not None else math.nan))
         note = ""
@@ -75,8 +79,12 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
         replaced = (info.at[contact, "tube_replacement"]
                     if "tube_replacement" in info.columns and contact in info.index else None)
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
-        if given and glob["limit_instant"].notna().any():
+        if given and glob["limit_instant"].notna().any() and its_wall and fraction == own:
             t_lim = float(glob["limit_instant"].dropna().iloc[-1])
+            since = glob if replaced is None else glob[glob["instant"] >= replaced]
+            deepest = since["depth_mobile"][np.isfinite(since["instant"])].max()
+            reached = target <= 0 or deepest >= target
+            t_lim = t_lim if reached or t_lim <= float(last["instant"]) else math.nan
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
@@ -233,7 +241,11 @@ def test_summary_equals_the_per_contact_loop(bundles, name):
         assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
         assert s.loc["R1C2-AVB", "time_to_limit_method"].startswith("no limit")
         assert s.loc["R2C1-AVB", "limit_depth"] == 0.5 * 1e-6
-        assert summaries[1].attrs["time_to_limit"] == INTERPOLATED
+        # limit=0.4: R1C1's own limit (its table's instant), R2C1's is 0.5 (interpolated)
+        s = summaries[1].set_index("contact")
+        assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
+        assert s.loc["R2C1-AVB", "time_to_limit_method"] == INTERPOLATED
+        assert summaries[2].attrs["time_to_limit"] == INTERPOLATED  # limit=0.03
 
 
 def test_summary_of_reshaped_tables(bundles):
@@ -263,7 +275,10 @@ def test_summary_of_reshaped_tables(bundles):
             edited["limit_instant"] = lim
             summaries = assert_same(edited, contacts, [{}])
             first = summaries[0].set_index("contact").loc[table["contact"].iloc[0]]
-            assert first["time_to_limit_method"] == FROM_TABLE
+            if math.isnan(first["wall_thickness"]):  # an instant without a wall: unused
+                assert first["time_to_limit_method"].startswith("no limit")
+            else:
+                assert first["time_to_limit_method"] == FROM_TABLE
             assert math.isnan(first["time_to_limit"])
 
 

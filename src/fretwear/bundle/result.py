@@ -26,7 +26,8 @@ DEFAULT_LIMIT = 0.4
 #: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
 INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
                 "(PCHIP), from depth 0 at the origin of a new tube")
-FROM_TABLE = "the wear table's limit_instant (law and geometry inverted for the case's limit)"
+FROM_TABLE = ("the wear table's limit_instant (law and geometry inverted for the case's limit), "
+              "where reached by the last instant")
 
 
 @dataclass
@@ -99,10 +100,13 @@ class BundleResult:
             wall), ``limit_depth`` [m], ``time_to_limit`` (instant at which the depth reaches
             the limit, table unit; NaN if not reached by the last instant), ``time_to_limit_method``
             and ``note`` (beyond the relation's range, ...). A depth beyond its relation's range
-            (NaN) ranks first. The time is the wear table's ``limit_instant`` when the table has
-            it and no other limit is asked for here; else depth(t) is interpolated between the
-            table's instants (monotone cubic) and inverted. ``attrs["time_to_limit"]`` says
-            which.
+            (NaN) ranks first. Where the limit is the contact's own (its case's ``depth_limit``
+            of its own wall, whether by default or asked for here) and its table has
+            ``limit_instant``, the time is that instant (law and geometry inverted) when it is
+            reached by the last instant, NaN otherwise: the table's forecast beyond the last
+            instant (constant power) stays in ``table["limit_instant"]``. Any other limit:
+            depth(t) is interpolated between the table's instants (monotone cubic) and
+            inverted. ``attrs["time_to_limit"]`` says which.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -183,23 +187,24 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     info = contacts.set_index("contact") if len(contacts) else contacts
     # the wear table's own limit instant (law and geometry inverted), for the case's limit
-    given = "limit_instant" in table.columns and limit is None and limit_m is None \
-        and wall_thickness is None
+    given = "limit_instant" in table.columns and limit_m is None
     rows = []
     per = _Contacts(table, given)
     walls = _lookup(contacts, info, "wall_thickness", per.names)
-    owns = _lookup(contacts, info, "depth_limit", per.names) if limit is None else None
+    owns = _lookup(contacts, info, "depth_limit", per.names)
     replacements = _lookup(contacts, info, "tube_replacement", per.names)
-    targets, replaced_at = [], []
+    targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
         wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
-        if not math.isfinite(wall) and wall_thickness is not None:
+        its_wall = math.isfinite(wall)
+        if not its_wall and wall_thickness is not None:
             wall = float(wall_thickness)
-        fraction = limit
-        if fraction is None:
-            own = owns[k]
-            fraction = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        own = owns[k]
+        own = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        fraction = own if limit is None else limit
+        # the limit of the table's limit_instant: the case's depth_limit of its own wall
+        own_limit.append(its_wall and fraction == own)
         target = (fraction * wall if math.isfinite(wall) and limit_m is None
                   else (limit_m if limit_m is not None else math.nan))
         replaced = replacements[k]
@@ -214,8 +219,10 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     reached = per.reaches(targets, replaced_at)
     for k, row in enumerate(rows):
         target = targets[k]
-        if given and per.has_limit[k]:
+        if given and per.has_limit[k] and own_limit[k]:
+            # reached by the last instant: by the table's depths, or the instant itself
             t_lim = per.limit_instant[k]
+            t_lim = t_lim if reached[k] or t_lim <= per.instant[k] else math.nan
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):

@@ -1,0 +1,84 @@
+"""BundleResult.summary's ``time_to_limit`` on the shipped example bundle (examples/bundle:
+Archard, TUBE_BAV, wall 1.09 mm, the case's depth_limit 0.4 by default, instants 1-40 years),
+checked against an independent computation made here from the table's rows: the global depth
+at each instant, linearly interpolated.
+
+Expected values: the limit is reached by the last instant exactly where the depth at the last
+instant is at least the limit depth (else NaN, as docs/bundle.md says); where reached, the time
+lies in the interval of instants where the depth crosses the limit, at or before the time of the
+linear interpolation of the depth there (the depth of a flat worn into a cylinder grows as the
+volume to the 2/3, and Archard's volume linearly in time: depth(t) is concave, so its chord lies
+below it and reaches the limit later). The default limit and the same limit asked for explicitly
+give the same times bit for bit.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("xarray")
+
+from fretwear.bundle import run_bundle  # noqa: E402
+from fretwear.bundle.result import FROM_TABLE, INTERPOLATED  # noqa: E402
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
+
+
+@pytest.fixture(scope="module")
+def result():
+    return run_bundle(EXAMPLE / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial")
+
+
+def _global(result, contact):
+    """(instants, global depths [m]) of a contact, one row per instant, from its table."""
+    rows = result.table[result.table["contact"] == contact].drop_duplicates("instant")
+    rows = rows.sort_values("instant")
+    return rows["instant"].to_numpy(dtype=float), rows["depth_mobile"].to_numpy(dtype=float)
+
+
+def _linear_time(t, d, target):
+    """The instant where the linear interpolation of depth(t), from (0, 0), reaches target."""
+    t, d = np.concatenate(([0.0], t)), np.concatenate(([0.0], d))
+    i = int(np.argmax(d >= target))
+    return t[i - 1], t[i - 1] + (target - d[i - 1]) * (t[i] - t[i - 1]) / (d[i] - d[i - 1]), t[i]
+
+
+@pytest.mark.parametrize("limit", [None, 0.4, 0.3])
+def test_time_to_limit_is_reached_within_the_instants(result, limit):
+    summary = result.summary(limit)
+    wall = 1.09e-3
+    fraction = 0.4 if limit is None else limit
+    reached = 0
+    for row in summary.itertuples():
+        t, d = _global(result, row.contact)
+        target = fraction * wall
+        assert row.limit_depth == pytest.approx(target, rel=1e-15)
+        if d[-1] < target:  # not reached by the last instant (40 years)
+            assert math.isnan(row.time_to_limit), row.contact
+            continue
+        reached += 1
+        lo, linear, hi = _linear_time(t, d, target)
+        assert lo < row.time_to_limit <= hi, row.contact
+        assert row.time_to_limit <= linear * (1 + 1e-12), row.contact
+    assert reached >= 2  # the limit is crossed between two instants by some contacts
+    expected = FROM_TABLE if fraction == 0.4 else INTERPOLATED
+    assert summary.attrs["time_to_limit"] == expected
+
+
+def test_default_and_explicit_limit_agree(result):
+    default, explicit = result.summary(), result.summary(0.4)
+    a = default["time_to_limit"].to_numpy(dtype=float)
+    b = explicit["time_to_limit"].to_numpy(dtype=float)
+    assert np.array_equal(a, b, equal_nan=True)
+    # the shallow contact of the trial (1.6 % of the wall at 40 years): no time, not 4870 years
+    shallow = default.set_index("contact").loc["R1C3-AVB1"]
+    assert shallow["depth_fraction"] < 0.02
+    assert math.isnan(shallow["time_to_limit"])
+    # where reached, the time is the wear table's own limit_instant (law and geometry inverted)
+    for row in default.dropna(subset=["time_to_limit"]).itertuples():
+        rows = result.table[result.table["contact"] == row.contact]
+        assert row.time_to_limit == rows["limit_instant"].iloc[-1]
