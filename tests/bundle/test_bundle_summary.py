@@ -42,7 +42,7 @@ def _reference_global_rows(rows: pd.DataFrame) -> pd.DataFrame:
 def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
     """summarize as it was up to commit bb56e91 (a loop over the contacts), with the rule of
-    the table's limit_instant of the later fix (module docstring)."""
+    the table's limit_instant of the later fix (module docstring) and the time_unit column."""
     if limit is not None and not (0 < limit and math.isfinite(limit)):
         raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
@@ -98,13 +98,17 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
             method = INTERPOLATED
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
+        unit = (info.at[contact, "time_unit"] if "time_unit" in info.columns
+                and contact in info.index else None)
         row = {"contact": contact, "instant": float(last["instant"]),
+               "time_unit": None if unit is None or pd.isna(unit) else unit,
                "power": float(last["power"]), "depth": depth, "depth_sector_max": sector_max,
                "wall_thickness": wall, "depth_fraction": depth / wall if wall > 0 else math.nan,
                "limit_depth": target, "time_to_limit": t_lim, "time_to_limit_method": method,
                "note": note}
         rows.append(row)
-    out = pd.DataFrame(rows, columns=["contact", "instant", "power", "depth", "depth_sector_max",
+    out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
+                                      "depth_sector_max",
                                       "wall_thickness", "depth_fraction", "limit_depth",
                                       "time_to_limit", "time_to_limit_method", "note"])
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]

@@ -94,19 +94,20 @@ class BundleResult:
         Returns
         -------
         DataFrame
-            ``rank``, identity columns, ``instant`` (last, in the table's unit), ``power`` [W],
-            ``depth`` [m] (global tube depth ``depth_mobile``), ``depth_sector_max`` [m] (the
-            deepest sector, sector mode), ``wall_thickness`` [m], ``depth_fraction`` (depth /
-            wall), ``limit_depth`` [m], ``time_to_limit`` (instant at which the depth reaches
-            the limit, table unit; NaN if not reached by the last instant), ``time_to_limit_method``
-            and ``note`` (beyond the relation's range, ...). A depth beyond its relation's range
-            (NaN) ranks first. Where the limit is the contact's own (its case's ``depth_limit``
-            of its own wall, whether by default or asked for here) and its table has
-            ``limit_instant``, the time is that instant (law and geometry inverted) when it is
-            reached by the last instant, NaN otherwise: the table's forecast beyond the last
-            instant (constant power) stays in ``table["limit_instant"]``. Any other limit:
-            depth(t) is interpolated between the table's instants (monotone cubic) and
-            inverted. ``attrs["time_to_limit"]`` says which.
+            ``rank``, identity columns, ``instant`` (last, in the contact's time unit),
+            ``time_unit`` (the unit of ``instant`` and ``time_to_limit``, per contact: a manifest
+            may give contacts different units), ``power`` [W], ``depth`` [m] (global tube depth
+            ``depth_mobile``), ``depth_sector_max`` [m] (the deepest sector, sector mode),
+            ``wall_thickness`` [m], ``depth_fraction`` (depth / wall) [-], ``limit_depth`` [m],
+            ``time_to_limit`` (instant at which the depth reaches the limit, in ``time_unit``; NaN
+            if not reached by the last instant), ``time_to_limit_method`` and ``note`` (beyond the
+            relation's range, ...). A depth beyond its relation's range (NaN) ranks first. Where the
+            limit is the contact's own (its case's ``depth_limit`` of its own wall, whether by
+            default or asked for here) and its table has ``limit_instant``, the time is that instant
+            (law and geometry inverted) when it is reached by the last instant, NaN otherwise: the
+            table's forecast beyond the last instant (constant power) stays in
+            ``table["limit_instant"]``. Any other limit: depth(t) is interpolated between the
+            table's instants (monotone cubic) and inverted. ``attrs["time_to_limit"]`` says which.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -193,6 +194,7 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     walls = _lookup(contacts, info, "wall_thickness", per.names)
     owns = _lookup(contacts, info, "depth_limit", per.names)
     replacements = _lookup(contacts, info, "tube_replacement", per.names)
+    units = _lookup(contacts, info, "time_unit", per.names)
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
@@ -211,7 +213,9 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
         targets.append(target)
         replaced_at.append(replaced)
-        rows.append({"contact": contact, "instant": per.instant[k], "power": per.power[k],
+        rows.append({"contact": contact, "instant": per.instant[k],
+                     "time_unit": None if units[k] is None or pd.isna(units[k]) else units[k],
+                     "power": per.power[k],
                      "depth": per.depth[k], "depth_sector_max": per.sector_max[k],
                      "wall_thickness": wall,
                      "depth_fraction": per.depth[k] / wall if wall > 0 else math.nan,
@@ -234,7 +238,8 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         row.update(time_to_limit=t_lim, time_to_limit_method=method,
                    note="" if first_nan is None
                    else f"depth beyond the relation's range from instant {first_nan:g}")
-    out = pd.DataFrame(rows, columns=["contact", "instant", "power", "depth", "depth_sector_max",
+    out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
+                                      "depth_sector_max",
                                       "wall_thickness", "depth_fraction", "limit_depth",
                                       "time_to_limit", "time_to_limit_method", "note"])
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]

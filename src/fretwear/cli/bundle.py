@@ -16,6 +16,7 @@ from rich.progress import (
     TimeRemainingColumn,
 )
 from rich.table import Table
+from rich.text import Text
 
 from fretwear.bundle import run_bundle
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
@@ -62,19 +63,26 @@ def _summary(result, console, top: int, limit: float | None) -> None:
     shown = "each case's depth_limit" if limit is None else f"{limit:.0%} of the wall"
     table = Table(title=f"the {min(top, len(summary))} deepest contacts (global depth of the "
                         f"tube at the last instant; limit: {shown})")
+    # one time unit: in the header; several (the manifest's time.unit per contact): per row
+    units = summary["time_unit"].dropna().astype(str).unique()
+    one_unit = units[0] if len(units) == 1 else None
+    time_header = "time to limit" + (f" [{one_unit}]" if one_unit else "")
     for col in ("rank", "contact", "row", "col", "support", "P [W]", "global depth [mm]",
-                "depth/wall", "time to limit"):
-        table.add_column(col, justify="right")
+                "depth/wall", time_header):
+        table.add_column(Text(col), justify="right")  # Text: "[mm]" is not rich markup
 
     def text(v, fmt="{}"):
         return "" if v is None or (isinstance(v, float) and math.isnan(v)) else fmt.format(v)
 
     for r in summary.head(top).itertuples():
         depth = "beyond range" if math.isnan(r.depth) else f"{r.depth * 1e3:.4g}"
-        table.add_row(str(r.rank), str(r.contact), text(getattr(r, "tube_row", None)),
-                      text(getattr(r, "tube_column", None)), text(getattr(r, "support", None)),
-                      f"{r.power:.4g}", depth, text(r.depth_fraction, "{:.1%}"),
-                      text(r.time_to_limit, "{:.4g}"))
+        t_lim = text(r.time_to_limit, "{:.4g}")
+        if t_lim and one_unit is None and isinstance(r.time_unit, str):
+            t_lim = f"{t_lim} {r.time_unit}"
+        cells = (str(r.rank), str(r.contact), text(getattr(r, "tube_row", None)),
+                 text(getattr(r, "tube_column", None)), text(getattr(r, "support", None)),
+                 f"{r.power:.4g}", depth, text(r.depth_fraction, "{:.1%}"), t_lim)
+        table.add_row(*(Text(c) for c in cells))
     console.print(table)
     if summary["time_to_limit"].notna().any():
         console.print(f"time to limit: {summary.attrs['time_to_limit']}", style="dim",

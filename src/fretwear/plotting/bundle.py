@@ -163,8 +163,10 @@ def plot_worst_depths(results: Any, *, count: int = 10, limit: float | None = No
     Returns
     -------
     matplotlib.figure.Figure
-        Depth [mm] against the instant (the table's time unit), one line per contact, a dotted
-        line at each contact's limit depth.
+        Depth [mm] against the instant, one line per contact, a dotted line at each contact's
+        limit depth. The instants are each contact's own, in its time unit (not converted):
+        when the contacts drawn share one unit the x axis names it, else each line's legend
+        label names its contact's unit.
     """
     if not hasattr(results, "table"):
         raise InputError("plot_worst_depths needs the BundleResult (its table), not a "
@@ -174,6 +176,8 @@ def plot_worst_depths(results: Any, *, count: int = 10, limit: float | None = No
     fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(1, 1, 1)],
                                         figsize=(7, 4.5), what="plot_worst_depths")
     limits = {}
+    units = summary["time_unit"].dropna().astype(str).unique()  # of the contacts drawn
+    mixed = len(units) > 1
     for i, row in enumerate(summary.itertuples()):
         rows = table[table["contact"] == row.contact].drop_duplicates("instant")
         t = rows["instant"].to_numpy(dtype=float)
@@ -181,15 +185,15 @@ def plot_worst_depths(results: Any, *, count: int = 10, limit: float | None = No
         origin = rows["origin"].iloc[0] if "origin" in rows.columns and len(rows) else 0.0
         if origin == 0 and (t.size == 0 or t[0] > 0):
             t, d = np.concatenate(([0.0], t)), np.concatenate(([0.0], d))
-        axis.plot(t, d, "o-", ms=3, color=f"C{i % 10}", label=str(row.contact))
+        own = getattr(row, "time_unit", None)
+        label = f"{row.contact} [{own}]" if mixed and isinstance(own, str) else str(row.contact)
+        axis.plot(t, d, "o-", ms=3, color=f"C{i % 10}", label=label)
         if np.isfinite(getattr(row, "limit_depth", np.nan)):
             limits[float(row.limit_depth)] = f"C{i % 10}"
     for depth, color in limits.items():
         axis.axhline(depth * 1e3, color=color, ls=":", lw=1)
-    unit = ""
-    if hasattr(results, "contacts") and "time_unit" in results.contacts.columns:
-        units = results.contacts["time_unit"].dropna().unique()
-        unit = f" [{units[0]}]" if len(units) == 1 else ""
+    unit = (f" [{units[0]}]" if len(units) == 1
+            else " [each contact's own time unit, in the legend]" if mixed else "")
     axis.set_xlabel(f"instant{unit}")
     axis.set_ylabel("global depth of the tube [mm]")
     axis.set_title(f"the {len(summary)} deepest contacts" + (" (dotted: limit depth)"
