@@ -1,6 +1,7 @@
 """Contacts in different time units (the manifest's ``time.unit`` per contact): the summary,
 summary.csv, the terminal table of ``fretwear bundle`` and the worst-depths figure say each
-contact's unit.
+contact's unit; the dataset's time variables name the unit of ``instant``; docs/bundle.md lists
+every column of the summary with its unit.
 
 The bundle: three contacts of tests/bundle/bundle_helpers.py (base case in years, instants 0.5,
 1, 2 and 5), the first given in hours by the manifest (the same instants: 4380, 8760, 17520 and
@@ -8,6 +9,9 @@ The bundle: three contacts of tests/bundle/bundle_helpers.py (base case in years
 """
 
 from __future__ import annotations
+
+import re
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -77,3 +81,37 @@ def test_worst_depths_figure_names_each_curves_unit_when_they_differ(tmp_path):
     axis = fig.axes[0]
     assert axis.get_xlabel() == "instant [year]"
     assert {t.get_text() for t in axis.get_legend().get_texts()} == set(EXPECTED)
+
+
+TIME_VARIABLES = ("duration", "origin", "limit_instant", "limit_instant_sector")
+
+
+def test_dataset_time_variables_carry_the_instants_unit(tmp_path):
+    """The table's schema says "user time unit" for these columns; the dataset names the unit
+    (the base case's year), as it does on ``instant``."""
+    manifest, case = _bundle(tmp_path / "years", mixed=False)
+    ds = run_bundle(manifest, case, scheduler="serial").dataset
+    assert ds["instant"].attrs["units"] == "year"
+    for name in TIME_VARIABLES:
+        assert ds[name].attrs["units"] == "year", name
+    assert ds["depth_mobile"].attrs["units"] == "m"
+    manifest, case = _bundle(tmp_path / "mixed")
+    ds = run_bundle(manifest, case, scheduler="serial").dataset
+    for name in ("instant", *TIME_VARIABLES):
+        assert ds[name].attrs["units"] == "see the time_unit coordinate", name
+
+
+def test_docs_list_every_summary_column_with_its_unit(tmp_path):
+    """docs/bundle.md's table of the summary's columns names each column of summary() once."""
+    docs = (Path(__file__).resolve().parents[2] / "docs" / "bundle.md").read_text()
+    start = docs.index("The columns of `summary()` and of `OUT/summary.csv`")
+    rows = [line for line in docs[start:].split("\n\n")[1].splitlines()
+            if line.startswith("| `")]
+    documented = []
+    for row in rows:
+        name, unit = row.split("|")[1:3]
+        assert unit.strip(), row  # every column has a unit cell ("-" when none)
+        documented += re.findall(r"`([a-z_]+)`", name)
+    manifest, case = _bundle(tmp_path)
+    summary = run_bundle(manifest, case, scheduler="serial").summary()
+    assert sorted(documented) == sorted(summary.columns)

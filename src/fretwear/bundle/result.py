@@ -436,15 +436,17 @@ def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
                     "wall_thickness", "status"):
             if col in info.columns and info.loc[order, col].notna().any():
                 ds = ds.assign_coords({col: ("contact", _coordinate(info.loc[order, col]))})
+    units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
+    # the contacts' time unit where the table says "user time unit" (instant, duration, origin,
+    # limit_instant ...): the same on the coordinate and on every time variable
+    time_unit = units[0] if len(units) == 1 else "see the time_unit coordinate"
     for name in ds.data_vars:
         if name in COLUMNS:
             aster, unit, description = COLUMNS[name]
+            unit = time_unit if unit == COLUMNS["instant"][1] else unit
             ds[name].attrs.update(units=unit, long_name=description, aster_name=aster)
-    units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
     if "instant" in ds.coords:
-        ds["instant"].attrs.update(
-            units=units[0] if len(units) == 1 else "see the time_unit coordinate",
-            long_name=COLUMNS["instant"][2])
+        ds["instant"].attrs.update(units=time_unit, long_name=COLUMNS["instant"][2])
     if "sector" in ds.coords:
         ds["sector"].attrs.update(units="1", long_name=COLUMNS["sector"][2])
     if "wall_thickness" in ds.coords:
