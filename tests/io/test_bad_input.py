@@ -17,6 +17,7 @@ from fretwear.errors import (
     InputError,
     KeywordError,
     MissingDependencyError,
+    UnitsWarning,
 )
 from fretwear.io import guess_format, read_history, write_history
 
@@ -96,7 +97,10 @@ def test_unknown_units_list_the_known_ones(tmp_path):
     with pytest.raises(KeywordError, match=r"unknown time unit 'fortnight'.*known time units.*"
                                            r"declared by the file.*units=\{'time': 's'\}"):
         read_history(path)
-    assert read_history(path, units={"time": "s"}).time.tolist() == [0.0, 1.0]
+    # the user's unit wins over the file's unreadable one, which the warning names
+    with pytest.warns(UnitsWarning, match=r"override the units the file declares for time 's' "
+                                          r"\(the file: 'fortnight'\)"):
+        assert read_history(path, units={"time": "s"}).time.tolist() == [0.0, 1.0]
 
 
 def test_unknown_format_and_unknown_options(tmp_path):

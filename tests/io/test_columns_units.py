@@ -138,7 +138,14 @@ def test_units_in_the_header_and_user_precedence(tmp_path):
     np.testing.assert_allclose(h.time, [0.0, 1e-3], rtol=1e-15)
     np.testing.assert_allclose(h.normal_force, [1e3, 2e3], rtol=1e-15)
     np.testing.assert_allclose(h.vt2, [3e-3, 6e-3], rtol=1e-15)
-    h = read_history(path, units={"normal_force": "N"})  # the user's word wins over the header
+    # the user's word wins over the header, with a warning naming the disagreement only
+    with pytest.warns(UnitsWarning) as caught:
+        h = read_history(path, units={"normal_force": "N", "time": "ms"})
+    assert [str(w.message).split(": ", 1)[1] for w in caught] == [
+        "the units given override the units the file declares for normal_force 'N' (the file: "
+        "'kN'); the values are read in the units given. If the file is right, leave those "
+        "units out"]  # time in 'ms' agrees with the header's [ms]: not named
+    assert caught[0].filename == __file__  # points at the call
     np.testing.assert_array_equal(h.normal_force, [1.0, 2.0])
     assert h.metadata["unit_factors"]["time"] == 1e-3
 

@@ -8,7 +8,7 @@ import pytest
 
 import fretwear.io as fio
 import fretwear.power.core as core
-from fretwear.errors import HistoryError
+from fretwear.errors import HistoryError, UnitsWarning
 from fretwear.history import ContactHistory
 from fretwear.io import history_time_range, iter_history_blocks, write_history
 from fretwear.laws import KwuEpriAccumulator, kwu_epri_statistics
@@ -120,7 +120,8 @@ def test_small_negative_forces_are_zeroed_in_a_copy_like_the_validation(tmp_path
 def test_time_range_from_metadata(files, fmt):
     h, paths = files
     assert history_time_range(paths[fmt]) == (float(h.time[0]), float(h.time[-1]))
-    lo, hi = history_time_range(paths[fmt], units={"time": "ms"})
+    with pytest.warns(UnitsWarning, match="override the units the file declares for time"):
+        lo, hi = history_time_range(paths[fmt], units={"time": "ms"})  # the file says s
     assert (lo, hi) == (float(h.time[0]) * 1e-3, float(h.time[-1]) * 1e-3)
 
 

@@ -15,6 +15,7 @@ stick flag).
 from __future__ import annotations
 
 import re
+import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -22,8 +23,9 @@ from typing import Any
 
 import numpy as np
 
-from fretwear.errors import FormatError, HistoryError, KeywordError
+from fretwear.errors import FormatError, HistoryError, KeywordError, UnitsWarning
 from fretwear.history import CHANNELS, REQUIRED, UNITS, ContactHistory
+from fretwear.keys import keyword_hint
 
 #: Accepted column names of each channel (normalised: lower case, ``_`` for spaces/dashes/dots).
 ALIASES: Mapping[str, tuple[str, ...]] = MappingProxyType({
@@ -300,6 +302,29 @@ def resolve_columns(columns: Sequence[str], overrides: Mapping[Any, str | None] 
     return mapping
 
 
+#: The quantities a ``units`` option may name (besides channels).
+QUANTITIES = ("length", "force", "time", "velocity")
+
+
+def unknown_units_key(key: Any, label: str) -> str | None:
+    """The message of a ``units`` option's key that is neither a quantity nor a channel (with
+    the closest of them), or None for a valid key.
+
+    Examples
+    --------
+    >>> unknown_units_key("lenght", "h.csv")[:64]
+    "h.csv: units={'lenght': ...}: unknown key 'lenght' (did you mean"
+    >>> unknown_units_key("FN", "h.csv") is None
+    True
+    """
+    k = str(key).strip()
+    if k.lower() in QUANTITIES or k in CHANNELS or channel_of(k) is not None:
+        return None
+    return (f"{label}: units={{{key!r}: ...}}: unknown key {key!r}"
+            f"{keyword_hint(k, (*QUANTITIES, *CHANNELS))}; give a quantity ('length', 'force', "
+            f"'time', 'velocity') or a channel {list(CHANNELS)}")
+
+
 def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
                   units: Mapping[str, str] | None, *, label: str = "input"
                   ) -> tuple[dict[str, str], dict[str, float]]:
@@ -307,7 +332,10 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
 
     Precedence: a unit the user gives for the channel (``units={"dy": "mm"}``), then for its
     quantity (``units={"length": "mm"}``), then the unit the file declares for the column, then
-    for a velocity the user's ``<length>/<time>``, then SI.
+    for a velocity the user's ``<length>/<time>``, then SI. A unit given that differs from the
+    one the file declares for the same column (another factor to SI) still wins, with one
+    :class:`~fretwear.errors.UnitsWarning` naming every such column: the file and the option
+    disagree, and one of them is wrong.
 
     Parameters
     ----------
@@ -340,12 +368,11 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
         elif k in CHANNELS or channel_of(k) is not None:
             per_channel[k if k in CHANNELS else str(channel_of(k))] = unit
         else:
-            raise KeywordError(f"{label}: units={{{key!r}: ...}}: unknown key {key!r}; give a "
-                               "quantity ('length', 'force', 'time', 'velocity') or a channel "
-                               f"{list(CHANNELS)}")
+            raise KeywordError(unknown_units_key(key, label))
     derived = f"{per_quantity.get('length', 'm')}/{per_quantity.get('time', 's')}"
     chosen: dict[str, str] = {}
     factors: dict[str, float] = {}
+    overridden: list[str] = []
     for channel, pos in mapping.items():
         quantity = QUANTITY[channel]
         if channel in per_channel:
@@ -372,7 +399,25 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
             raise KeywordError(f"{exc}; this unit is declared by the file (header or "
                                f"attribute): override it with units={{{channel!r}: "
                                f"'{UNITS[channel]}'}}") from None
+        if not from_file and declared.get(pos) is not None \
+                and _differs(declared[pos], factors[channel], quantity):
+            overridden.append(f"{channel} {unit!r} (the file: {declared[pos]!r})")
+    if overridden:
+        warnings.warn(f"{label}: the units given override the units the file declares for "
+                      f"{', '.join(overridden)}; the values are read in the units given. If the "
+                      "file is right, leave those units out", UnitsWarning, stacklevel=4)
     return chosen, factors
+
+
+def _differs(declared: str, factor: float, quantity: str) -> bool:
+    """Whether the unit a file declares has another factor to SI than ``factor`` (a declared
+    unit fretwear cannot read differs)."""
+    if " since " in str(declared):
+        declared = str(declared).split(" since ")[0].strip()
+    try:
+        return unit_factor(declared, quantity, culprit="the declared unit") != factor
+    except KeywordError:
+        return True
 
 
 def check_lengths(sizes: list[int], names: list[str], label: str) -> int:

@@ -165,8 +165,15 @@ def history_time_range(path: Any, format: str | None = None, *,
     >>> h = ContactHistory(time=[0.5, 1.0, 2.5], normal_force=[1, 1, 1], vt1=[0, 0, 0],
     ...                    vt2=[0, 0, 0])
     >>> p = write_history(h, pathlib.Path(tempfile.mkdtemp()) / "h.parquet")
-    >>> history_time_range(p), history_time_range(p, units={"time": "ms"})
-    ((0.5, 2.5), (0.0005, 0.0025))
+    >>> history_time_range(p)
+    (0.5, 2.5)
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:  # the file declares seconds
+    ...     warnings.simplefilter("always")
+    ...     history_time_range(p, units={"time": "ms"})
+    (0.0005, 0.0025)
+    >>> caught[0].category.__name__
+    'UnitsWarning'
     """
     source, mapping, factors, _, _ = _prepare(path, format, units, columns, name, options)
     if source.ends is None:
