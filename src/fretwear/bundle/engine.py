@@ -50,6 +50,7 @@ from fretwear.bundle.tasks import (
     time_bounds,
 )
 from fretwear.errors import InputError, KeywordError
+from fretwear.geometry.base import GLOBAL_RANGE
 from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.io.atomic import atomic_write
 from fretwear.workflows.case_files import load_case, validate_case
@@ -411,8 +412,9 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
                            "rows_kept": False})
         elif rec["status"] in ("done", "skipped"):
             ranged = [m for cat, m in rec.get("warnings") or [] if cat == "RangeWarning"]
-            if ranged:
-                errors.append({"contact": c, "error": "RangeWarning", "message": ranged[0],
+            if ranged:  # the global depth's warning (the summary ranks by it), else a sector's
+                message = next((m for m in ranged if GLOBAL_RANGE in m), ranged[0])
+                errors.append({"contact": c, "error": "RangeWarning", "message": message,
                                "rows_kept": True})
     errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
     errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
