@@ -399,3 +399,23 @@ def test_the_client_freezes_its_old_objects_only_while_it_runs(tmp_path, monkeyp
         assert seen[-1] == (False, 0) and not gc.isenabled()
     finally:
         gc.enable()
+
+
+def test_errors_keep_the_global_depth_range_warning_rather_than_a_sectors(tmp_path):
+    """A bore (lunule, TUBE_ALESAGE) worn past its relation's range by a huge coefficient, in
+    4 sectors: each sector's depth leaves its range first (RangeWarnings of the sector depths,
+    in the contact's warnings first), then the tube's global depth (the geometry's relation):
+    errors.csv says the global one, the one the summary ranks by."""
+    from fretwear.geometry.base import GLOBAL_RANGE
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 1, extra={
+        "contact_type": ["TUBE_ALESAGE"], "obstacle_radius_m": [9.725e-3],
+        "law.mobile.COEF_USURE": [1e-10]})
+    result = run_bundle(manifest, case, scheduler="serial")
+    ranged = result.warnings[result.warnings["category"] == "RangeWarning"]["message"].tolist()
+    assert ranged[0].startswith("sector depth")  # the sectors' warnings come first
+    assert sum(GLOBAL_RANGE in m for m in ranged) == 1
+    assert result.errors["error"].tolist() == ["RangeWarning"]
+    message = result.errors["message"].iloc[0]
+    assert message.startswith("TUBE_ALESAGE: 4 volume(s) beyond the range of the relation")
+    assert message == next(m for m in ranged if GLOBAL_RANGE in m)

@@ -70,6 +70,9 @@ DIMENSION_DESCRIPTIONS: dict[str, str] = {
     "impact_angle": "angle between the impact direction and the bar's normal",
 }
 
+#: The words of the RangeWarning of a contact's global depths or volumes leaving the relation's
+#: range (the sector depths' warnings say "sector"): how a bundle's errors.csv tells it apart.
+GLOBAL_RANGE = "beyond the range of the relation"
 LENGTH_DIMENSIONS = ("mobile_radius", "obstacle_radius", "obstacle_width")
 ANGLE_DIMENSIONS = ("tilt_angle", "isthmus_angle", "impact_angle")
 
@@ -251,7 +254,7 @@ class ContactGeometry:
         count = int(np.count_nonzero(given & (np.isnan(x) | np.isnan(y))))
         if count:
             warnings.warn(
-                f"{self.contact_type}: {count} {kind}(s) beyond the range of the relation "
+                f"{self.contact_type}: {count} {kind}(s) {GLOBAL_RANGE} "
                 f"({self.range_limit}); the result there is NaN",
                 RangeWarning, stacklevel=3)
         return _out(x), _out(y)
