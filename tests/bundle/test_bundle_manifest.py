@@ -245,3 +245,82 @@ def test_a_history_name_the_system_refuses_fails_its_contact_only(tmp_path):
     result = run_bundle(manifest, case, scheduler="serial")
     assert result.errors[["contact", "error"]].values.tolist() == [["long", "InputError"]]
     assert sorted(set(result.table["contact"])) == ["R1C1-AVB", "R1C2-AVB"]
+
+
+@pytest.mark.parametrize("kind", ["csv", "toml", "parquet", "empty-csv"])
+def test_a_manifest_without_contacts_is_an_input_error(tmp_path, kind):
+    path = tmp_path / f"m.{kind.split('-')[-1]}"
+    if kind == "csv":
+        path.write_text("contact,history\n")
+    elif kind == "empty-csv":
+        path.write_text("")
+    elif kind == "toml":
+        path.write_text("contacts = []\n")
+    else:
+        pd.DataFrame({"contact": pd.Series([], dtype=str),
+                      "history": pd.Series([], dtype=str)}).to_parquet(path)
+    with pytest.raises(InputError, match=r"has no contacts \(a header only\?\)"):
+        read_manifest(path)
+
+
+def test_the_command_says_a_header_only_manifest_has_no_contacts(tmp_path, capsys):
+    from fretwear.cli import main
+
+    path = tmp_path / "empty.csv"
+    path.write_text("contact,history\n")
+    _, case = write_bundle(tmp_path, oscillator(), 1)
+    code = main(["bundle", str(path), "--case", str(case), "-q", "-o", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "empty.csv has no contacts (a header only?)" in err and "internal" not in err
+
+
+def test_semicolon_manifest_with_decimal_commas_reads_as_the_comma_one(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 3, extra={
+        "wall_thickness_m": [1.09e-3, 1.2e-3, None],
+        "mobile_radius_m": [None, 8.5e-3, None]})
+    frame = pd.read_csv(manifest)
+    # as a spreadsheet saves it in a French locale: ';' between cells, ',' as decimal mark
+    text = frame.to_csv(index=False, sep=";", decimal=",")
+    assert "0,00109" in text and "0,0085" in text
+    (tmp_path / "semi.csv").write_text(text)
+    (tmp_path / "tab.csv").write_text(frame.to_csv(index=False, sep="\t"))
+    expected = read_manifest(manifest)
+    for name in ("semi.csv", "tab.csv"):
+        got = read_manifest(tmp_path / name)
+        assert [(r.contact, r.history, r.identity, r.overrides, r.wall_thickness)
+                for r in got.rows] == [(r.contact, r.history, r.identity, r.overrides,
+                                        r.wall_thickness) for r in expected.rows]
+    assert expected.rows[1].overrides == {("geometry", "wall_thickness_m"): 1.2e-3,
+                                          ("geometry", "mobile_radius_m"): 8.5e-3}
+    a = run_bundle(tmp_path / "semi.csv", case, scheduler="serial")
+    b = run_bundle(manifest, case, scheduler="serial")
+    pd.testing.assert_frame_equal(a.table, b.table)
+
+
+def test_unknown_columns_all_at_once_and_toml_keys(tmp_path):
+    frame = pd.DataFrame({"contact": ["a"], "history": ["a.csv"], "mobile_radus_m": [1e-3],
+                          "tube_rwo": [1]})
+    with pytest.raises(KeywordError) as caught:
+        read_manifest(frame)
+    message = str(caught.value)
+    assert ("unknown columns 'mobile_radus_m' (did you mean 'mobile_radius_m'?), 'tube_rwo' "
+            "(did you mean 'tube_row'?)") in message
+    # every documented column of the manifest is listed, wall_thickness_m too
+    assert ("contact, history, node, tube_row, tube_column, support, wall_thickness_m"
+            in message)
+    toml = tmp_path / "m.toml"
+    toml.write_text('[[contacts]]\ncontact = "a"\nhistory = "a.csv"\nmobile_radus_m = 1e-3\n'
+                    '[[contacts]]\ncontact = "b"\nhistory = "b.csv"\n'
+                    'geometry = { obstacle_widht_m = 1e-2 }\n')
+    with pytest.raises(KeywordError) as caught:
+        read_manifest(toml)
+    message = str(caught.value)
+    assert ("unknown keys 'mobile_radus_m' (did you mean 'mobile_radius_m'?), "
+            "'geometry.obstacle_widht_m' (did you mean 'geometry.obstacle_width_m'?)") in message
+    assert "unknown column" not in message and "has the keys" in message
+    # a ;-separated file that the detection cannot take (a line without ';') is named so
+    bad = tmp_path / "bad.csv"
+    bad.write_text("contact;history\na;a.csv\nb\n")
+    with pytest.raises(KeywordError, match="looks ;-separated"):
+        read_manifest(bad)

@@ -44,6 +44,7 @@ from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.io import guess_format
 from fretwear.io.aster import read_aster_tables
 from fretwear.io.aster_source import NODE_COLUMNS
+from fretwear.io.delimited import scan
 from fretwear.keys import keyword_hint
 from fretwear.workflows.case_files import KEYS
 
@@ -122,13 +123,20 @@ class HistoryRef:
 
 @dataclass
 class ContactRow:
-    """One contact of the manifest: id, history, identity and raw case overrides."""
+    """One contact of the manifest: id, history, identity and raw case overrides.
+
+    ``labels`` names each override as the manifest wrote it (``column mobile_radius_m``, ``key
+    law.mobile``) for messages; ``manifest`` is the :class:`Manifest` holding the row (set by
+    it), through which a row's case can be checked against its siblings'.
+    """
 
     contact: str
     history: HistoryRef
     identity: dict[str, Any]
     overrides: dict[tuple[str, ...], Any]
     wall_thickness: float | None = None
+    labels: dict[tuple[str, ...], str] = field(default_factory=dict)
+    manifest: Manifest | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass
@@ -140,6 +148,10 @@ class Manifest:
     directory: Path
     kind: str
 
+    def __post_init__(self) -> None:
+        for row in self.rows:
+            row.manifest = self
+
     def __len__(self) -> int:
         return len(self.rows)
 
@@ -149,8 +161,18 @@ class Manifest:
                              for r in self.rows]).reindex(columns=list(IDENTITY))
 
 
-def column_key(column: str, source: str) -> tuple[str, ...] | str:
+def column_key(column: str, source: str, *, noun: str = "column") -> tuple[str, ...] | str:
     """What a manifest column means: a bundle column name, or the case key it overrides.
+
+    Parameters
+    ----------
+    column : str
+        The column's name (a TOML manifest's key, dotted).
+    source : str
+        The manifest, for messages.
+    noun : str
+        What the messages call it: ``"column"`` (a table, a Dataset's variable) or ``"key"``
+        (a TOML manifest).
 
     Returns
     -------
@@ -176,6 +198,17 @@ def column_key(column: str, source: str) -> tuple[str, ...] | str:
     ...     print(str(exc).split(";")[0])
     manifest: unknown column 'mobile_radus_m' (did you mean 'mobile_radius_m'?)
     """
+    key = _meaning(column)
+    if isinstance(key, list):
+        raise KeywordError(f"{source}: {noun} {column!r} is ambiguous: write it "
+                           f"{' or '.join(f'{s}.{column}' for s in key)}")
+    if key is None:
+        raise KeywordError(_unknown_message([column], source, noun))
+    return key
+
+
+def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
+    """:func:`column_key`'s answer, the sections of an ambiguous bare name, or None."""
     keys = _case_keys()
     if column in BUNDLE_COLUMNS or (column == WALL_COLUMN and not _wall_is_case_key()):
         return column
@@ -192,14 +225,48 @@ def column_key(column: str, source: str) -> tuple[str, ...] | str:
         if len(found) == 1:
             return (found[0], column)
         if len(found) > 1:
-            raise KeywordError(f"{source}: column {column!r} is ambiguous: write it "
-                               f"{' or '.join(f'{s}.{column}' for s in found)}")
+            return found
+    return None
+
+
+def identity_columns() -> list[str]:
+    """The manifest's documented columns: :data:`BUNDLE_COLUMNS` and ``wall_thickness_m`` (a
+    case key's bare name, or the manifest's own column while the case files have none)."""
+    return [*BUNDLE_COLUMNS, WALL_COLUMN]
+
+
+def _unknown_message(names: list[str], source: str, noun: str) -> str:
+    """The message of unknown manifest columns (or TOML keys), each with its closest name."""
     valid = valid_columns()
-    raise KeywordError(f"{source}: unknown column {column!r}{keyword_hint(column, valid)}; "
-                       f"a manifest has the columns {', '.join(BUNDLE_COLUMNS)}, and any case "
-                       "key as an override (bare when unique, else section.key; entries of "
-                       "inline tables as section.key.entry, e.g. law.mobile.COEF_USURE): "
-                       "fretwear bundle --help lists them")
+    listed = ", ".join(f"{n!r}{keyword_hint(n, valid)}" for n in names)
+    where = "a manifest has the columns" if noun == "column" else \
+        "a [[contacts]] table of a TOML manifest has the keys"
+    hint = ""
+    if any(sep in n for n in names for sep in (";", "\t")):
+        hint = (" (the names hold ';' or tabs: the file looks ;-separated but was not read so; "
+                "save it with one separator throughout)")
+    return (f"{source}: unknown {noun}{'s' if len(names) > 1 else ''} {listed}{hint}; "
+            f"{where} {', '.join(identity_columns())}, and any case key as an override (bare "
+            "when unique, else section.key; entries of inline tables as section.key.entry, "
+            "e.g. law.mobile.COEF_USURE): fretwear bundle --help lists them")
+
+
+def column_meanings(columns: list[str], source: str, *, noun: str = "column"
+                    ) -> dict[str, tuple[str, ...] | str]:
+    """:func:`column_key` of every column, the unknown ones reported together.
+
+    Raises
+    ------
+    KeywordError
+        Every unknown column at once (each with its closest valid name), or an ambiguous one.
+    """
+    meaning = {c: _meaning(c) for c in columns}
+    unknown = [c for c, m in meaning.items() if m is None]
+    if unknown:
+        raise KeywordError(_unknown_message(unknown, source, noun))
+    for c in columns:
+        column_key(c, source, noun=noun)  # an ambiguous name raises
+    return meaning  # type: ignore[return-value]
 
 
 def valid_columns() -> list[str]:
@@ -263,9 +330,12 @@ def _check_unique(ids: list[str], source: str) -> None:
         seen.add(c)
 
 
-def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[ContactRow]:
+def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
+                     noun: str = "column") -> list[ContactRow]:
     columns = [str(c) for c in frame.columns]
-    meaning = {c: column_key(c, source) for c in columns}
+    if frame.empty:
+        return []  # read_manifest says the manifest has no contacts
+    meaning = column_meanings(columns, source, noun=noun)
     if "contact" not in columns:
         raise KeywordError(f"{source}: the manifest needs a 'contact' column (unique id of each "
                            f"contact); columns found: {columns}")
@@ -276,9 +346,9 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[
         if _missing(cid):
             raise InputError(f"{source}: row {i + 1} has no contact id; give every row one")
         cid = str(_identity_value(cid))
-        identity, overrides, wall = _cells(
-            ((meaning[str(col)], value) for col, value in record.items()), cid, source,
-            directory)
+        identity, overrides, wall, labels = _cells(
+            ((str(col), meaning[str(col)], value) for col, value in record.items()), cid,
+            source, directory, noun)
         node = record.get("node")
         node = None if _missing(node) else str(_identity_value(node))
         hist = record.get("history")
@@ -288,19 +358,22 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path) -> list[
             ref = HistoryRef("file", path=str(_absolute(str(hist), directory, parents)),
                              node=node)
         identity["node"] = node
-        rows.append(ContactRow(cid, ref, identity, overrides, wall))
+        rows.append(ContactRow(cid, ref, identity, overrides, wall, labels))
     _check_unique([r.contact for r in rows], source)
     return rows
 
 
-def _cells(cells, contact: str, source: str, directory: Path
-           ) -> tuple[dict[str, Any], dict[tuple[str, ...], Any], float | None]:
-    """(identity, overrides, wall thickness) of one row from its ``(meaning, value)`` cells
-    (meaning from :func:`column_key`); empty cells are skipped, paths made absolute."""
+def _cells(cells, contact: str, source: str, directory: Path, noun: str = "column"
+           ) -> tuple[dict[str, Any], dict[tuple[str, ...], Any], float | None, dict]:
+    """(identity, overrides, wall thickness, labels) of one row from its ``(name, meaning,
+    value)`` cells (meaning from :func:`column_key`); empty cells are skipped, paths made
+    absolute; ``labels`` names each override as the manifest wrote it (``column
+    mobile_radius_m``)."""
     identity: dict[str, Any] = {}
     overrides: dict[tuple[str, ...], Any] = {}
+    labels: dict[tuple[str, ...], str] = {}
     wall = None
-    for key, value in cells:
+    for name, key, value in cells:
         if _missing(value) or key in ("contact", "history", "node"):
             continue
         if key == WALL_COLUMN:
@@ -310,7 +383,8 @@ def _cells(cells, contact: str, source: str, directory: Path
         else:
             value = _plain(value)
             overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
-    return identity, overrides, wall
+            labels[key] = f"{noun} {name}"
+    return identity, overrides, wall, labels
 
 
 def _wall(value: Any, contact: str, source: str) -> float:
@@ -382,6 +456,26 @@ def _read_toml(path: Path) -> pd.DataFrame:
     return pd.DataFrame([_flatten(c) for c in raw["contacts"]])
 
 
+def _read_csv(path: Path, label: str) -> pd.DataFrame:
+    """A CSV manifest: ``,``-separated, or ``;``- or tab-separated (a spreadsheet saved in a
+    locale whose decimal mark is the comma; decimal commas are then read), the separator and
+    the decimal mark found as the history reader finds them
+    (:func:`fretwear.io.delimited.scan`)."""
+    try:
+        info = scan(path)
+    except FormatError:  # no data lines: an empty file
+        return pd.DataFrame()
+    sep, decimal = (info["sep"], info["decimal"]) if info["sep"] in (";", "\t") else (",", ".")
+    try:
+        # only empty cells are missing: a contact may be called "NA" or "nan"
+        return pd.read_csv(path, sep=sep, decimal=decimal,
+                           dtype={"contact": str, "node": str, "history": str},
+                           keep_default_na=False, na_values=[""], skipinitialspace=True,
+                           encoding=info["encoding"])
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        raise FormatError(f"manifest {label!r} is not a readable CSV table: {exc}") from None
+
+
 def _is_store(path: Path) -> bool:
     if path.suffix.lower() in STORE_SUFFIXES:
         return True
@@ -418,6 +512,15 @@ def read_manifest(source: Any) -> Manifest:
     >>> [r.contact for r in m.rows], m.rows[0].overrides
     (['a', 'b'], {('geometry', 'mobile_radius_m'): 0.0095})
     """
+    manifest = _read(source)
+    if not manifest.rows:
+        raise InputError(f"{manifest.source} has no contacts (a header only?); a manifest has "
+                         "one row per contact")
+    return manifest
+
+
+def _read(source: Any) -> Manifest:
+    """:func:`read_manifest` before the check that it has contacts."""
     if isinstance(source, pd.DataFrame):
         return Manifest(_rows_from_frame(source, "manifest", Path.cwd()), "<DataFrame>",
                         Path.cwd(), "table")
@@ -438,16 +541,13 @@ def read_manifest(source: Any) -> Manifest:
                         "dataset")
     if suffix == ".toml":
         frame = _read_toml(path)
-    elif suffix in (".parquet", ".pq"):
+        return Manifest(_rows_from_frame(frame, label, directory, noun="key"), label, directory,
+                        "table")
+    if suffix in (".parquet", ".pq"):
         require("pyarrow", purpose="reading a Parquet manifest")
         frame = pd.read_parquet(path)
     elif suffix == ".csv":
-        try:
-            # only empty cells are missing: a contact may be called "NA" or "nan"
-            frame = pd.read_csv(path, dtype={"contact": str, "node": str, "history": str},
-                                keep_default_na=False, na_values=[""], skipinitialspace=True)
-        except (pd.errors.ParserError, UnicodeDecodeError) as exc:
-            raise FormatError(f"manifest {label!r} is not a readable CSV table: {exc}") from None
+        frame = _read_csv(path, label)
     else:
         if path.is_file() and guess_format(path) == "aster":
             return Manifest(_rows_from_aster(path.resolve(), label), label, directory, "aster")
@@ -497,7 +597,8 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
     for name, var in ds.variables.items():
         if name == CONTACT_DIM or var.dims != (CONTACT_DIM,):
             continue
-        columns[str(name)] = (column_key(str(name), label), var.values)
+        columns[str(name)] = var.values
+    meaning = column_meanings(list(columns), label)
     units = {c: str(ds[c].attrs["units"]) for c in channels if "units" in ds[c].attrs}
     if "time" in ds.coords and ds["time"].dims == (tdim,) and "time" not in channels:
         shared_time = np.asarray(ds["time"].values, dtype=float)
@@ -509,8 +610,9 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
     stamp = () if path is None else path_stamp(path)  # once: a Zarr store may hold many files
     rows = []
     for i, cid in enumerate(ids):
-        identity, overrides, wall = _cells(((key, values[i]) for key, values in columns.values()),
-                                           cid, label, directory)
+        identity, overrides, wall, labels = _cells(
+            ((name, meaning[name], values[i]) for name, values in columns.items()), cid, label,
+            directory)
         if path is None:
             arrays = {c: np.asarray(ds[c].isel({CONTACT_DIM: i}).values, dtype=float)
                       for c in channels}
@@ -520,8 +622,8 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
         else:
             ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim,
                              stamp=stamp)
-        node = columns["node"][1][i] if "node" in columns else None
+        node = columns["node"][i] if "node" in columns else None
         identity["node"] = None if _missing(node) else str(_identity_value(node))
-        rows.append(ContactRow(cid, ref, identity, overrides, wall))
+        rows.append(ContactRow(cid, ref, identity, overrides, wall, labels))
     _check_unique(ids, label)
     return rows
