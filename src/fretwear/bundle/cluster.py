@@ -8,10 +8,13 @@ they finish or all at once (``results``) and closes what it started (``close``).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import logging
 import os
 import pickle
+import signal
+import threading
 from typing import Any
 
 from fretwear.bundle.datasets import require
@@ -26,6 +29,19 @@ from fretwear.errors import InputError, KeywordError
 LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": "inf",
                         "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
                         "distributed.worker.profile.enabled": False}
+
+@contextlib.contextmanager
+def _sigint_ignored():
+    """SIGINT ignored in this process (the main thread only; elsewhere nothing changes)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
 
 class DeferredCall:
     """A call of the serial engine, run when its value is first asked for."""
@@ -81,7 +97,10 @@ class DaskEngine:
             # which the workers would inherit: left out while they are spawned)
             trim = os.environ.pop("MALLOC_TRIM_THRESHOLD_", None)
             try:
-                with dask.config.set(LOCAL_CLUSTER_CONFIG):
+                # Ctrl-C reaches the whole process group: the worker processes (spawned
+                # ignoring SIGINT, as they inherit it) leave it to this client, which writes
+                # what it received and closes them (without this each printed a traceback)
+                with dask.config.set(LOCAL_CLUSTER_CONFIG), _sigint_ignored():
                     self._cluster = distributed.LocalCluster(
                         n_workers=n, threads_per_worker=1, processes=True,
                         dashboard_address=":0", silence_logs=logging.ERROR)

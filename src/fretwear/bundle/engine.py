@@ -243,6 +243,10 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
     KeywordError, InputError
         A bad manifest (unknown column, duplicated id), base case or option; a contact's own
         problems never raise: they are rows of ``BundleResult.errors``.
+    BundleInterrupted
+        A :class:`KeyboardInterrupt` (Ctrl-C) during the run: the results received are written
+        as a part first; ``written`` counts the contacts in the output directory, which a run
+        with the same inputs skips.
 
     Notes
     -----
@@ -279,95 +283,135 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     previous = {} if store is None or force else store.previous()
 
     records: dict[str, dict[str, Any]] = {}
-    pending: list[ContactTask] = []
-    walls: dict[str, float | None] = {}
-    cases: dict = {}
-    for row in man.rows:
-        walls[row.contact] = row.wall_thickness
-        try:
-            task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
-        except (InputError, OSError) as exc:
-            records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
-            continue
-        old = previous.get(row.contact)
-        if old is not None and old.get("status") == "done" and old.get("key") == task.key:
-            records[row.contact] = {**old, "status": "skipped"}
-        else:
-            pending.append(task)
-    total = len(man.rows)
-    done_count = sum(1 for r in records.values() if r["status"] == "skipped")
-    if progress is not None:
-        for r in records.values():
-            progress(0, total, r)
     buffer: list[dict[str, Any]] = []
-    last_flush = time.perf_counter()
-    before = time.perf_counter()
-    engine = open_engine(scheduler, workers) if pending else SerialEngine()
-    startup = time.perf_counter() - before
+    total = len(man.rows)
     try:
-        tag = uuid.uuid4().hex[:8]
-        handles = {}
-        whole = []
-        for task in pending:
+        pending: list[ContactTask] = []
+        walls: dict[str, float | None] = {}
+        cases: dict = {}
+        for row in man.rows:
+            walls[row.contact] = row.wall_thickness
             try:
-                chunks = plan_chunks(task, chunk_size)
-            except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
-                del exc
-                chunks = None
-            if chunks is None:
-                whole.append(task)
+                task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
+            except (InputError, OSError) as exc:
+                records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
                 continue
-            handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
-            handles[id(handle)] = (handle, [task])
-        # the contacts computed whole, grouped (task_sizes) and submitted in one map: one
-        # message to the scheduler, which deals the groups out evenly by count (submitting
-        # each worker's first group early, while the client built the others, left one worker
-        # 9 groups and the other 7)
-        sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
-            else [1] * len(whole)
-        if all(size == 1 for size in sizes):
-            groups = [[t] for t in whole]
-            mapped = engine.map(run_contact, whole, chunk_size,
-                                keys=[f"contact-{t.contact}-{tag}" for t in whole],
-                                retries=retries)
-        else:
-            starts = list(itertools.accumulate(sizes, initial=0))
-            groups = [whole[a:b] for a, b in itertools.pairwise(starts)]
-            mapped = engine.map(run_contacts, groups, chunk_size,
-                                keys=[f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups],
-                                retries=retries)
-        for handle, group in zip(mapped, groups, strict=True):
-            handles[id(handle)] = (handle, group)
-        streaming = (store is not None or progress is not None
-                     or len(pending) > GATHER_AT_END)
-        for handle, value in engine.results([h for h, _ in handles.values()], streaming):
-            group = handles[id(handle)][1]
-            values = value if isinstance(value, list) else [value] * len(group)
-            for task, one in zip(group, values, strict=True):
-                rec = one if isinstance(one, dict) else _failed(task, one)
-                records[task.contact] = rec
-                done_count += 1
-                if store is not None:
-                    buffer.append(rec)
-                    now = time.perf_counter()
-                    if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
-                        store.write_part(buffer)
-                        buffer, last_flush = [], now
-                if progress is not None:
-                    progress(done_count, total, rec)
-        if store is not None:
-            # this run's last records, and the failures of the client-side checks
-            queued = {id(b) for b in buffer}
-            buffer += [r for r in records.values() if r["status"] == "failed"
-                       and "part" not in r and id(r) not in queued]
-            if buffer:
-                store.write_part(buffer)
-        workers_used = engine.workers
-    finally:
-        engine.close()
-    elapsed = time.perf_counter() - started
-    return _assemble(man, records, walls, store, (elapsed, startup), workers_used,
-                     dataset_format)
+            old = previous.get(row.contact)
+            if old is not None and old.get("status") == "done" and old.get("key") == task.key:
+                records[row.contact] = {**old, "status": "skipped"}
+            else:
+                pending.append(task)
+        done_count = sum(1 for r in records.values() if r["status"] == "skipped")
+        if progress is not None:
+            for r in records.values():
+                progress(0, total, r)
+        last_flush = time.perf_counter()
+        before = time.perf_counter()
+        engine = open_engine(scheduler, workers) if pending else SerialEngine()
+        startup = time.perf_counter() - before
+        try:
+            tag = uuid.uuid4().hex[:8]
+            handles = {}
+            whole = []
+            for task in pending:
+                try:
+                    chunks = plan_chunks(task, chunk_size)
+                except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
+                    del exc
+                    chunks = None
+                if chunks is None:
+                    whole.append(task)
+                    continue
+                handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
+                handles[id(handle)] = (handle, [task])
+            # the contacts computed whole, grouped (task_sizes) and submitted in one map: one
+            # message to the scheduler, which deals the groups out evenly by count (submitting
+            # each worker's first group early, while the client built the others, left one worker
+            # 9 groups and the other 7)
+            sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
+                else [1] * len(whole)
+            if all(size == 1 for size in sizes):
+                groups = [[t] for t in whole]
+                mapped = engine.map(run_contact, whole, chunk_size,
+                                    keys=[f"contact-{t.contact}-{tag}" for t in whole],
+                                    retries=retries)
+            else:
+                starts = list(itertools.accumulate(sizes, initial=0))
+                groups = [whole[a:b] for a, b in itertools.pairwise(starts)]
+                keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
+                mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
+                                    retries=retries)
+            for handle, group in zip(mapped, groups, strict=True):
+                handles[id(handle)] = (handle, group)
+            streaming = (store is not None or progress is not None
+                         or len(pending) > GATHER_AT_END)
+            for handle, value in engine.results([h for h, _ in handles.values()], streaming):
+                group = handles[id(handle)][1]
+                values = value if isinstance(value, list) else [value] * len(group)
+                for task, one in zip(group, values, strict=True):
+                    rec = one if isinstance(one, dict) else _failed(task, one)
+                    records[task.contact] = rec
+                    done_count += 1
+                    if store is not None:
+                        buffer.append(rec)
+                        now = time.perf_counter()
+                        if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
+                            store.write_part(buffer)
+                            buffer, last_flush = [], now
+                    if progress is not None:
+                        progress(done_count, total, rec)
+            if store is not None:
+                # this run's last records, and the failures of the client-side checks
+                queued = {id(b) for b in buffer}
+                buffer += [r for r in records.values() if r["status"] == "failed"
+                           and "part" not in r and id(r) not in queued]
+                if buffer:
+                    store.write_part(buffer)
+            workers_used = engine.workers
+        finally:
+            engine.close()
+        elapsed = time.perf_counter() - started
+        return _assemble(man, records, walls, store, (elapsed, startup), workers_used,
+                         dataset_format)
+    except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
+        raise _interrupted(store, records, buffer, total) from exc
+
+
+class BundleInterrupted(KeyboardInterrupt):
+    """A bundle run interrupted (Ctrl-C): the contacts whose results are in the output directory.
+
+    A :class:`KeyboardInterrupt`, so that code catching that still sees the interrupt.
+
+    Attributes
+    ----------
+    written : int
+        Contacts of the manifest done and in the output directory's parts (this run's and the
+        earlier runs' kept ones): a run with the same inputs skips them (0 without output).
+    total : int
+        Contacts of the manifest.
+    output : Path or None
+        The output directory.
+    """
+
+    def __init__(self, written: int, total: int, output: Path | None):
+        self.written, self.total, self.output = written, total, output
+        super().__init__(f"interrupted: {written} of {total} contacts written to {output}"
+                         if output is not None
+                         else f"interrupted: none of {total} contacts written (no output)")
+
+
+def _interrupted(store, records, buffer, total) -> BundleInterrupted:
+    """The :class:`BundleInterrupted` of an interrupted run, the records received but not yet
+    written saved first as a part (a second interrupt during that write leaves it out)."""
+    if store is not None and buffer:
+        with contextlib.suppress(OSError, KeyboardInterrupt):
+            store.write_part(buffer)
+    # a record is in a part once its part's JSON is written (write_part sets "part" then)
+    written = sum(1 for r in records.values()
+                  if r.get("part") and r["status"] in ("done", "skipped"))
+    if store is None:  # nothing written: the contacts computed before the interrupt
+        written = 0
+    return BundleInterrupted(written, total, None if store is None else store.path)
 
 
 def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,

@@ -17,6 +17,8 @@ from fretwear.errors import FretwearError
 
 #: Exit code of an unexpected exception (a bug), told apart from a user error (2).
 INTERNAL_ERROR = 3
+#: Exit code of an interrupt (Ctrl-C): 128 + SIGINT, as a shell reports a process it stopped.
+INTERRUPTED = 130
 
 SUBCOMMANDS: dict[str, str] = {
     "power": "Wear power, block and sector powers and contact statistics of a history.",
@@ -83,9 +85,14 @@ def _main(argv: list[str] | None) -> int:
     except click.ClickException as exc:
         exc.show()
         return exc.exit_code
-    except click.exceptions.Abort:
+    except click.exceptions.Abort as exc:
+        # click turns Ctrl-C (KeyboardInterrupt) into Abort, the interrupt as its cause
+        if isinstance(exc.__cause__, KeyboardInterrupt):
+            return _interrupted(exc.__cause__)
         click.echo("Aborted.", err=True)
         return 1
+    except KeyboardInterrupt as exc:  # outside click's own handling
+        return _interrupted(exc)
     except Exception as exc:  # noqa: BLE001 - turn library errors into a clean message
         if isinstance(exc, FretwearError | FileNotFoundError | ValueError):
             click.echo(f"fretwear: error: {exc}", err=True)
@@ -102,6 +109,12 @@ def _main(argv: list[str] | None) -> int:
                    err=True)
         return INTERNAL_ERROR
     return code if isinstance(code, int) else 0
+
+
+def _interrupted(exc: KeyboardInterrupt) -> int:
+    """One line for an interrupt (the command's own message when it gave one), and its code."""
+    click.echo(f"fretwear: {exc}" if str(exc) else "fretwear: interrupted", err=True)
+    return INTERRUPTED
 
 
 if __name__ == "__main__":  # pragma: no cover

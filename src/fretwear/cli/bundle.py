@@ -19,6 +19,7 @@ from rich.table import Table
 from rich.text import Text
 
 from fretwear.bundle import run_bundle
+from fretwear.bundle.engine import BundleInterrupted
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
@@ -52,7 +53,8 @@ Manifest columns:
 \b
 Exit status: 0 every contact computed; {EXIT_SOME_FAILED} some contacts failed or their depth
 left the relation's range (listed in OUT/errors.csv; the others are written); 2 the run could
-not start (bad manifest, case or option; the message says which).
+not start (bad manifest, case or option; the message says which); 130 interrupted (Ctrl-C):
+the contacts finished are written to OUT, and the same command resumes from them.
 """
 
 
@@ -131,10 +133,13 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         def step(done: int, total: int, record: dict) -> None:
             bar.update(task, completed=done, total=total)
 
-        result = run_bundle(manifest, base, scheduler=scheduler, workers=workers,
-                            output=output, force=force, chunk_size=chunk_size,
-                            table_format=table_format, dataset_format=dataset_format,
-                            progress=step)
+        try:
+            result = run_bundle(manifest, base, scheduler=scheduler, workers=workers,
+                                output=output, force=force, chunk_size=chunk_size,
+                                table_format=table_format, dataset_format=dataset_format,
+                                progress=step)
+        except BundleInterrupted as exc:  # Ctrl-C: the main entry prints it, exit 130
+            raise KeyboardInterrupt(f"{exc}; run the same command again to resume") from exc
     _summary(result, console, top, limit)
     s = result.stats
     errors = result.errors
