@@ -31,8 +31,8 @@ from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import path_stamp
 from fretwear.bundle.manifest import ContactRow, HistoryRef
-from fretwear.errors import InputError, KeywordError
-from fretwear.io.channels import channel_of
+from fretwear.errors import FretwearError, InputError, KeywordError
+from fretwear.io.channels import channel_of, unknown_units_key
 from fretwear.table import WearCase
 from fretwear.workflows.case_files import KEYS, case_arguments, history_options, validate_case
 
@@ -75,8 +75,67 @@ def _coerce(kind: Any, value: Any, where: str) -> Any:
     return value
 
 
+#: ``[law]`` keys of the two sources of a case's coefficients: given (the bodies' tables) or
+#: the database (a pair of materials, and what reads it)
+COEFFICIENT_KEYS = ("mobile", "obstacle")
+DATABASE_KEYS = ("materials", "obstacle_wear", "database")
+
+
+def _empty(value: Any) -> bool:
+    return isinstance(value, list | tuple | Mapping) and not value
+
+
+def _coefficient_source(law: dict[str, Any], given: Mapping[str, Any], where: str) -> None:
+    """Make the row's coefficient source replace the base case's, in the base's ``[law]``.
+
+    ``given``: the row's ``[law]`` overrides, ``{key: value}`` (an entry of ``law.mobile`` as
+    ``mobile``). A row giving coefficients (``law.mobile``, ``law.obstacle``, or an entry of
+    them) and no ``law.materials`` drops the base's ``materials``, ``obstacle_wear`` and
+    ``database``; a row giving ``law.materials`` and no coefficients drops the base's
+    ``mobile`` and ``obstacle``. An empty list or table (``law.materials = []``) gives nothing.
+    What the base took from the database and the row does not replace is an error rather than
+    a silent change: its ``law.mobile`` when the row gives only ``law.obstacle``, the
+    obstacle's coefficient (``obstacle_wear``) unless the row gives ``law.obstacle`` or
+    ``law.obstacle_wear``; and the base's own ``law.obstacle`` (a wearing obstacle) under the
+    row's materials unless the row says ``law.obstacle_wear``.
+
+    Raises
+    ------
+    KeywordError
+        The row replaces the base's source but leaves one body's coefficient unsaid.
+    """
+    coefficients = [k for k in COEFFICIENT_KEYS if k in given and not _empty(given[k])]
+    materials = "materials" in given and not _empty(given["materials"])
+    if coefficients and not materials and "materials" in law:
+        if "mobile" not in coefficients:
+            raise KeywordError(f"{where}: law.obstacle replaces the base case's law.materials "
+                               "for this contact, which gave the mobile's coefficient: give "
+                               "law.mobile too (a case takes its coefficients either from "
+                               "law.mobile and law.obstacle or from the database's materials)")
+        if law.get("obstacle_wear") and "obstacle" not in coefficients \
+                and "obstacle_wear" not in given:
+            raise KeywordError(f"{where}: law.mobile replaces the base case's law.materials "
+                               "for this contact, which also gave the obstacle's coefficient "
+                               "(obstacle_wear = true): give law.obstacle too, or "
+                               "law.obstacle_wear = false (the obstacle does not wear)")
+        for key in DATABASE_KEYS:
+            law.pop(key, None)
+    if materials and not coefficients and any(k in law for k in COEFFICIENT_KEYS):
+        if "obstacle" in law and "obstacle_wear" not in given:
+            raise KeywordError(f"{where}: law.materials replaces the base case's coefficients "
+                               "for this contact, and the base case's law.obstacle wears the "
+                               "obstacle: say law.obstacle_wear = true (the database's "
+                               "obstacle coefficient) or false (the obstacle does not wear)")
+        for key in COEFFICIENT_KEYS:
+            law.pop(key, None)
+
+
 def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[str, Any]:
     """The base case with the row's overrides, validated (not yet checked for consistency).
+
+    A row giving the law's coefficients replaces the base case's coefficient source (its
+    database materials), and a row giving materials replaces the base case's coefficients
+    (:func:`_coefficient_source`).
 
     Raises
     ------
@@ -85,18 +144,26 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
     """
     case = copy.deepcopy({k: v for k, v in base.items() if k != "_directory"})
     where = f"{source}: contact {row.contact!r}"
+    given: list[tuple[tuple[str, ...], Any]] = []
     for key, value in row.overrides.items():
         section, name = key[0], key[1]
-        column = ".".join(k for k in key if k)
         if len(key) == 3:
-            table = case.setdefault(section, {}).setdefault(name, {})
-            table[key[2]] = value.item() if isinstance(value, np.generic) else value
+            given.append((key, value.item() if isinstance(value, np.generic) else value))
             continue
-        coerced = _coerce(KEYS[section][name][0], value, f"{where}: column {column}")
-        if section:
-            case.setdefault(section, {})[name] = coerced
+        label = row.labels.get(key) or f"column {'.'.join(k for k in key if k)}"
+        given.append((key, _coerce(KEYS[section][name][0], value, f"{where}: {label}")))
+    if isinstance(case.get("law"), dict):
+        _coefficient_source(case["law"], {k[1]: v for k, v in given if k[0] == "law"}, where)
+    for key, value in given:
+        section, name = key[0], key[1]
+        if len(key) == 3:
+            case.setdefault(section, {}).setdefault(name, {})[key[2]] = value
+        elif section == "law" and name in (*COEFFICIENT_KEYS, *DATABASE_KEYS) and _empty(value):
+            case.get("law", {}).pop(name, None)  # law.materials = []: none for this contact
+        elif section:
+            case.setdefault(section, {})[name] = value
         else:
-            case[name] = coerced
+            case[name] = value
     case.get("history", {}).pop("file", None)
     case = validate_case(case, source=where)
     if "_directory" in base:
@@ -222,9 +289,11 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     InputError, KeywordError
         The merged case is invalid, or the row has neither a history nor ``power.value_W``.
     """
-    signature = json.dumps([sorted((".".join(k), _jsonable(v)) for k, v in
-                                   row.overrides.items()), row.wall_thickness,
-                            row.history.kind == "none"], default=str)
+    signature = _signature(row)
+    if cache is not None and _CHECKED not in cache:
+        cache[_CHECKED] = True
+        if row.manifest is not None:
+            check_base_case(base, row.manifest.rows, source, cache)
     cached = None if cache is None else cache.get(signature)
     if cached is None:
         cached = _wear_case_of(base, row, source)
@@ -262,6 +331,74 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
                        samples=samples, power=power)
 
 
+#: Key of a task cache once :func:`check_base_case` ran (the others are JSON lists).
+_CHECKED = "base case checked"
+
+
+class BaseCaseError(FretwearError, ValueError):
+    """The base case fails for every contact, whatever the manifest's rows give: the run stops
+    before any work (not an :class:`~fretwear.errors.InputError`: a contact's own problems are
+    those, reported per contact)."""
+
+
+def _signature(row: ContactRow) -> str:
+    """What a row's wear case depends on besides the base case (rows equal here share it)."""
+    return json.dumps([sorted((".".join(k), _jsonable(v)) for k, v in row.overrides.items()),
+                       row.wall_thickness, row.history.kind == "none"], default=str)
+
+
+def _message(exc: Exception, source: str, contact: str) -> str:
+    text = str(exc)
+    prefix = f"{source}: contact {contact!r}: "
+    return text[len(prefix):] if text.startswith(prefix) else text
+
+
+def check_base_case(base: Mapping[str, Any], rows, source: str, cache: dict | None = None
+                    ) -> None:
+    """Stop before any work when the base case fails for every row for its own reason.
+
+    The base case with each distinct set of overrides of ``rows`` is built in turn (what a
+    row's task builds anyway: the successes go into ``cache``) until one succeeds, which ends
+    the check. The run stops only when the base case alone fails (with a history, without
+    overrides) and every row fails with that same message: a base case missing a key that no
+    row gives, say ``contact_type``. A row that gives the key, or fails otherwise (its own bad
+    cell), leaves the failures to the contacts, each reported as usual.
+
+    Raises
+    ------
+    BaseCaseError
+        The base case's error, said once.
+    """
+    alone: str | None = None
+    seen: set[str] = set()
+    for row in rows:
+        signature = _signature(row)
+        if signature in seen:
+            continue
+        seen.add(signature)
+        if cache is not None and signature in cache:
+            return
+        try:
+            built = _wear_case_of(base, row, source)
+        except InputError as exc:
+            if alone is None:
+                probe = ContactRow("base case", HistoryRef("file"), {}, {})
+                try:
+                    _wear_case_of(base, probe, source)
+                    return
+                except InputError as base_exc:
+                    alone = _message(base_exc, source, probe.contact).removeprefix("case: ")
+            if _message(exc, source, row.contact).removeprefix("case: ") != alone:
+                return
+            continue
+        if cache is not None:
+            cache[signature] = built
+        return
+    if alone is not None:
+        raise BaseCaseError(f"{source}: the base case fails for every contact (no row of the "
+                            f"manifest gives what it lacks): {alone}; nothing was computed")
+
+
 def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
     """(merged case, WearCase, its to_dict, its JSON-ready form) of a row."""
     case = merge_case(base, row, source)
@@ -272,6 +409,11 @@ def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
                          "the manifest) or a power.value_W column")
     if row.history.kind != "none" and given_power:
         raise KeywordError(f"{where}: gives both a history and power.value_W; keep one")
+    units = case.get("history", {}).get("units")
+    for key in units if isinstance(units, Mapping) else ():
+        message = unknown_units_key(key, "[history]")
+        if message is not None:  # said here once, not when each contact's file is read
+            raise KeywordError(f"{where}: {message}")
     try:
         keywords = case_arguments(case, history_elsewhere=True)
         if row.wall_thickness is not None:

@@ -1,0 +1,241 @@
+"""A contact's wear case (fretwear.bundle.cases): which coefficients a row's overrides give
+against a base case that takes them from the database, and a base case that fails for every
+contact.
+
+References: the example manifest of docs/bundle.md run on the shipped example bundle
+(examples/bundle) against the single-contact wear table of the same history with the row's
+coefficient written in a case file (the case-file layer, an independent path); Archard's law
+V = K·P·t (docs/theory.md §4) for given powers.
+"""
+
+from __future__ import annotations
+
+import re
+import warnings
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from bundle_helpers import assert_identical, reference, rows_of
+
+from fretwear.bundle import run_bundle
+from fretwear.bundle.cases import BaseCaseError
+from fretwear.cli import main
+from fretwear.errors import KeywordError, PerforationWarning
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLE = ROOT / "examples" / "bundle"
+BASE = (EXAMPLE / "bundle.toml").read_text()
+MATERIALS = 'materials = ["I690", "A405"]'
+YEAR = 31536000.0  # [s], the case files' "year" (365 days)
+
+
+def _docs_manifest() -> str:
+    """The TOML manifest example of docs/bundle.md (the block starting '# manifest.toml')."""
+    text = (ROOT / "docs" / "bundle.md").read_text(encoding="utf-8")
+    blocks = re.findall(r"^```toml\n(# manifest\.toml\n.*?)^```", text, re.S | re.M)
+    assert len(blocks) == 1
+    return blocks[0]
+
+
+def _example_dir(tmp_path: Path) -> Path:
+    """A folder beside the example's histories (a link to them)."""
+    (tmp_path / "histories").symlink_to(EXAMPLE / "histories", target_is_directory=True)
+    return tmp_path
+
+
+def _case_with(tmp_path: Path, name: str, coefficient: float, width: str = "") -> Path:
+    """The example base case with a given coefficient instead of the database pair (and
+    another bar width)."""
+    assert BASE.count(MATERIALS) == 1
+    text = BASE.replace(MATERIALS, f"mobile = {{ COEF_USURE = {coefficient!r} }}")
+    text = text.replace("[geometry]\n", "[geometry]\nwall_thickness_m = 1.09e-3\n")
+    if width:
+        assert text.count("obstacle_width_m = 12.7e-3") == 1
+        text = text.replace("obstacle_width_m = 12.7e-3", f"obstacle_width_m = {width}")
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_the_docs_toml_example_runs_on_the_example_bundle(tmp_path):
+    folder = _example_dir(tmp_path)
+    (folder / "manifest.toml").write_text(_docs_manifest())
+    result = run_bundle(folder / "manifest.toml", EXAMPLE / "bundle.toml", scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    expected = {"R4C3-AVB2": (2.0e-15, "10e-3"), "R4C3-AVB1": (4.0e-15, "")}
+    assert sorted(result.contacts["contact"]) == sorted(expected)
+    for contact, (k, extra) in expected.items():
+        history = EXAMPLE / "histories" / (contact.replace("-", "_") + ".parquet")
+        case = _case_with(tmp_path, f"{contact}.toml", k, extra)
+        rows = rows_of(result, contact)
+        with warnings.catch_warnings():  # 5-10 times the database's K: worn through by 40 years
+            warnings.simplefilter("ignore", PerforationWarning)
+            assert_identical(rows, reference(history, case))
+        assert any("worn through its wall" in m for m in
+                   result.warnings[result.warnings["contact"] == contact]["message"])
+        # Archard (theory §4): the mobile's volume is K·P·t with the row's K
+        last = rows.iloc[-1]
+        assert last["volume_mobile"] == pytest.approx(k * last["power"] * 40 * YEAR, rel=1e-12)
+    # the base case's database coefficient (4.1e-16) was replaced, not used
+    other = run_bundle(pd.DataFrame({"contact": ["x"], "history": [str(EXAMPLE / "histories" /
+                                                                        "R4C3_AVB1.parquet")]}),
+                       EXAMPLE / "bundle.toml", scheduler="serial")
+    a, b = rows_of(result, "R4C3-AVB1").iloc[-1], rows_of(other, "x").iloc[-1]
+    assert a["power"] == b["power"]
+    assert a["volume_mobile"] / b["volume_mobile"] == pytest.approx(4.0e-15 / 4.1e-16)
+
+
+def test_csv_columns_give_the_coefficient_instead_of_the_materials(tmp_path):
+    folder = _example_dir(tmp_path)
+    frame = pd.DataFrame({"contact": ["a", "b", "c"],
+                          "history": [f"histories/R2C{i}_AVB1.parquet" for i in (1, 2, 3)],
+                          "wall_thickness_m": [1.09e-3] * 3,
+                          "law.mobile.COEF_USURE": [4.0e-15, None, None],
+                          "law.materials": [None, "[]", None],
+                          "law.mobile": [None, "{ COEF_USURE = 3.0e-15 }", None]})
+    frame.to_csv(folder / "manifest.csv", index=False)
+    result = run_bundle(folder / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    for contact, column, k in (("a", 1, 4.0e-15), ("b", 2, 3.0e-15)):
+        case = _case_with(tmp_path, f"{contact}.toml", k)
+        assert_identical(rows_of(result, contact),
+                         reference(EXAMPLE / "histories" / f"R2C{column}_AVB1.parquet", case))
+    # the row without overrides keeps the base case's database pair
+    case = tmp_path / "c.toml"
+    case.write_text(BASE.replace("[geometry]\n", "[geometry]\nwall_thickness_m = 1.09e-3\n"))
+    assert_identical(rows_of(result, "c"),
+                     reference(EXAMPLE / "histories" / "R2C3_AVB1.parquet", case))
+
+
+POWERED = """\
+[law]
+{law}
+[geometry]
+contact_type = "GRAPPE_ALESAGE"
+mobile_radius_m = 5e-3
+obstacle_radius_m = 5.2e-3
+obstacle_width_m = 1e-2
+[time]
+instants = [1]
+unit = "year"
+"""
+
+
+def _given_power(tmp_path, law: str, **columns):
+    """One contact of a given power 0.01 W, its row's columns, against a base case."""
+    case = tmp_path / "base.toml"
+    case.write_text(POWERED.format(law=law))
+    frame = pd.DataFrame({"contact": ["x"], "power.value_W": [0.01],
+                          **{k: [v] for k, v in columns.items()}})
+    return run_bundle(frame, case, scheduler="serial")
+
+
+def _volumes(result) -> tuple[float, float]:
+    assert result.errors.empty, result.errors.to_dict("records")
+    row = result.table.iloc[-1]
+    return row["volume_mobile"], row["volume_obstacle"]
+
+
+def test_what_a_row_replaces_of_the_base_coefficient_source(tmp_path):
+    database = 'materials = ["A304L", "A304L"]\nobstacle_wear = true'  # 2.6e-15, 3.7e-15
+    ptime = 0.01 * YEAR
+    # base: the database pair for both bodies (GRAPPE_ALESAGE A304L/A304L, the shipped table)
+    assert _volumes(_given_power(tmp_path, database)) == pytest.approx((2.6e-15 * ptime,
+                                                                        3.7e-15 * ptime))
+    # the row's coefficients for both bodies
+    got = _given_power(tmp_path, database, **{"law.mobile.COEF_USURE": 1e-15,
+                                              "law.obstacle.COEF_USURE": 2e-15})
+    assert _volumes(got) == pytest.approx((1e-15 * ptime, 2e-15 * ptime))
+    # the mobile's only, the obstacle said not to wear
+    got = _given_power(tmp_path, database, **{"law.mobile.COEF_USURE": 1e-15,
+                                              "law.obstacle_wear": False})
+    assert _volumes(got) == pytest.approx((1e-15 * ptime, 0.0))
+    # the mobile's only: the obstacle's database coefficient would be lost silently
+    got = _given_power(tmp_path, database, **{"law.mobile.COEF_USURE": 1e-15})
+    assert got.errors["error"].tolist() == ["KeywordError"]
+    assert "give law.obstacle too, or law.obstacle_wear = false" in got.errors["message"][0]
+    # the obstacle's only: the mobile's database coefficient would be lost
+    got = _given_power(tmp_path, database, **{"law.obstacle.COEF_USURE": 2e-15})
+    assert "give law.mobile too" in got.errors["message"][0]
+    # both sources in one row: the case layer's refusal
+    got = _given_power(tmp_path, database, **{"law.mobile.COEF_USURE": 1e-15,
+                                              "law.materials": '["A304L", "A304L"]'})
+    assert "not both" in got.errors["message"][0]
+
+    given = "mobile = { COEF_USURE = 1e-15 }\nobstacle = { COEF_USURE = 2e-15 }"
+    # materials instead of the base's coefficients: the row says whether the obstacle wears
+    got = _given_power(tmp_path, given, **{"law.materials": '["A304L", "A304L"]',
+                                           "law.obstacle_wear": True})
+    assert _volumes(got) == pytest.approx((2.6e-15 * ptime, 3.7e-15 * ptime))
+    got = _given_power(tmp_path, given, **{"law.materials": '["A304L", "A304L"]'})
+    assert "say law.obstacle_wear = true" in got.errors["message"][0]
+    # without an obstacle coefficient in the base, materials alone replace the mobile's
+    got = _given_power(tmp_path, "mobile = { COEF_USURE = 1e-15 }",
+                       **{"law.materials": '["A304L", "A304L"]'})
+    assert _volumes(got) == pytest.approx((2.6e-15 * ptime, 0.0))
+
+
+def test_a_bad_cell_is_named_as_the_manifest_wrote_it(tmp_path):
+    result = _given_power(tmp_path, "mobile = { COEF_USURE = 1e-15 }", mobile_radius_m="abc")
+    message = result.errors["message"][0]
+    assert "column mobile_radius_m = 'abc'" in message, message
+    toml = tmp_path / "m.toml"
+    toml.write_text('[[contacts]]\ncontact = "x"\npower.value_W = 0.01\n'
+                    'geometry.mobile_radius_m = "abc"\n')
+    result = run_bundle(toml, tmp_path / "base.toml", scheduler="serial")
+    assert "key geometry.mobile_radius_m = 'abc'" in result.errors["message"][0]
+
+
+def test_a_base_case_failing_for_every_contact_stops_before_any_work(tmp_path):
+    broken = POWERED.format(law="mobile = { COEF_USURE = 1e-15 }").replace(
+        'contact_type = "GRAPPE_ALESAGE"\n', "")
+    case = tmp_path / "base.toml"
+    case.write_text(broken)
+    frame = pd.DataFrame({"contact": [f"c{i}" for i in range(50)], "power.value_W": 0.01,
+                          "mobile_radius_m": [5e-3 + 1e-5 * (i % 3) for i in range(50)]})
+    with pytest.raises(BaseCaseError, match=r"base case fails for every contact .*"
+                                            r"\[geometry\] contact_type is required"):
+        run_bundle(frame, case, scheduler="serial", output=tmp_path / "out")
+    assert not list((tmp_path / "out").glob("parts/*"))
+    # a row that supplies the key runs; the others fail each on its own
+    frame["contact_type"] = [None] * 49 + ["GRAPPE_ALESAGE"]
+    result = run_bundle(frame, case, scheduler="serial")
+    assert result.stats["done"] == 1 and len(result.errors) == 49
+    # a row failing for its own reason (a bad cell) is not the base case's error: no stop
+    frame = pd.DataFrame({"contact": ["a", "b"], "power.value_W": 0.01,
+                          "mobile_radius_m": [5e-3, "abc"]})
+    result = run_bundle(frame, case, scheduler="serial")
+    assert len(result.errors) == 2
+    # a base case that works with no row's overrides but fails with a row's is not stopped
+    case.write_text(POWERED.format(law="mobile = { COEF_USURE = 1e-15 }"))
+    frame = pd.DataFrame({"contact": ["a"], "power.value_W": 0.01, "blocks": ["two"]})
+    assert run_bundle(frame, case, scheduler="serial").errors["error"].tolist() == [
+        "KeywordError"]
+
+
+def test_the_command_says_the_base_case_error_once_with_status_2(tmp_path, capsys):
+    case = tmp_path / "base.toml"
+    case.write_text(BASE.replace('contact_type = "TUBE_BAV"\n', ""))
+    code = main(["bundle", str(EXAMPLE / "manifest.csv"), "--case", str(case), "-q",
+                 "-o", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert err.count("contact_type is required") == 1, err
+
+
+def test_a_units_key_typo_is_named_with_the_closest_key(tmp_path):
+    case = tmp_path / "base.toml"
+    case.write_text(BASE + '\n[history]\nunits = { lenght = "mm" }\n')
+    with pytest.raises(BaseCaseError, match=r"unknown key 'lenght' \(did you mean 'length'\?\)"):
+        run_bundle(EXAMPLE / "manifest.csv", case, scheduler="serial")
+    # in a row's history.units, that contact fails alone, with the hint
+    frame = pd.DataFrame({"contact": ["a", "b"], "history": [
+        str(EXAMPLE / "histories" / "R1C1_AVB1.parquet")] * 2,
+        "history.units": [None, '{ lenght = "mm" }']})
+    result = run_bundle(frame, EXAMPLE / "bundle.toml", scheduler="serial")
+    assert result.errors["contact"].tolist() == ["b"]
+    assert "did you mean 'length'" in result.errors["message"][0]
+    with pytest.raises(KeywordError, match="did you mean 'length'"):
+        from fretwear.io import read_history
+        read_history(EXAMPLE / "histories" / "R1C1_AVB1.parquet", units={"lenght": "mm"})
