@@ -115,3 +115,14 @@ def test_docs_list_every_summary_column_with_its_unit(tmp_path):
     manifest, case = _bundle(tmp_path)
     summary = run_bundle(manifest, case, scheduler="serial").summary()
     assert sorted(documented) == sorted(summary.columns)
+
+
+def test_power_histogram_has_integer_ticks_on_its_count_axis():
+    """The y axis counts contacts: whole numbers only (3 contacts in 30 bins gave 0.25 steps)."""
+    from fretwear.plotting.bundle import plot_power_distribution
+
+    fig = plot_power_distribution(pd.DataFrame({"power": [1e-3, 2e-3, 5e-3]}))
+    fig.canvas.draw()
+    ticks = fig.axes[0].get_yticks()
+    assert len(ticks) >= 2
+    assert all(float(t).is_integer() for t in ticks), ticks

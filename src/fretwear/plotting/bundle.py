@@ -137,6 +137,7 @@ def plot_power_distribution(results: Any, *, bins: int = 30, ax: Any = None):
     axis.set_xscale("log")
     axis.set_xlabel("wear power [W]")
     axis.set_ylabel("contacts")
+    axis.yaxis.set_major_locator(matplotlib_module("ticker").MaxNLocator(integer=True))  # counts
     zero = int((power == 0).sum())
     axis.set_title(f"wear power over {power.size} contacts"
                    + (f" ({zero} without wear)" if zero else ""))
