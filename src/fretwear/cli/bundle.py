@@ -63,8 +63,10 @@ def _summary(result, console, top: int, limit: float | None) -> None:
     if not len(summary):
         return
     shown = "each case's depth_limit" if limit is None else f"{limit:.0%} of the wall"
-    table = Table(title=f"the {min(top, len(summary))} deepest contacts (global depth of the "
-                        f"tube at the last instant; limit: {shown})")
+    shown_count = min(top, len(summary))
+    what = "the deepest contact" if shown_count == 1 else f"the {shown_count} deepest contacts"
+    table = Table(title=f"{what} (global depth of the tube at the last instant; limit: "
+                        f"{shown})")
     # one time unit: in the header; several (the manifest's time.unit per contact): per row
     units = summary["time_unit"].dropna().astype(str).unique()
     one_unit = units[0] if len(units) == 1 else None
@@ -113,14 +115,25 @@ def _summary(result, console, top: int, limit: float | None) -> None:
                    "contact's depth_limit, 0.4 unless its case sets it).")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (tube-sheet map, power distribution, worst depths).")
-@click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
+@click.option("--top", type=click.IntRange(min=1), default=10, show_default=True,
               help="Contacts shown in the terminal summary.")
 @units_option
-@click.option("-q", "--quiet", is_flag=True, help="No progress bar and no summary.")
+@click.option("-q", "--quiet", is_flag=True,
+              help="No progress bar, no summary table, no list of errors; the final line (the "
+                   "counts and where the results are) stays, and the exit status says whether "
+                   "contacts failed.")
 def command(manifest: Path, case_file: Path | None, scheduler: str | None, workers: int | None,
             output: Path | None, force: bool, chunk_size: int, table_format: str,
             dataset_format: str | None, limit: float | None, plot_dir: Path | None, top: int,
             units: tuple[str, ...], quiet: bool) -> None:
+    if workers is not None and scheduler is not None:
+        if scheduler.lower() != "serial":
+            raise click.UsageError("--workers applies to the local cluster started without "
+                                   "--scheduler; the cluster joined by --scheduler has its own "
+                                   "workers")
+        if workers != 1:
+            raise click.UsageError("--scheduler serial runs in this process: --workers must be "
+                                   "1 or left out")
     console = Console(quiet=quiet)
     base = with_bundle_units(case_file, parse_units(units))
     if output is None:
@@ -156,10 +169,14 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         for fig, stem in figures:
             save_figure(fig, plot_dir, stem, close=True)
         console.print(f"figures written to [bold]{plot_dir}[/]")
-    click.echo(f"done {s['done']}, failed {s['failed']}, skipped {s['skipped']} of "
-               f"{s['contacts']} contacts in {s['seconds']:.1f} s (cluster start "
-               f"{s['startup_seconds']:.1f} s) on {s['workers']} worker(s): "
-               f"{s['contacts_per_s']:.3g} contacts/s, {s['samples_per_s']:.3g} samples/s; "
-               f"results in {output}")
+    counts = (f"done {s['done']}, failed {s['failed']}, skipped {s['skipped']} of "
+              f"{s['contacts']} contacts in {s['seconds']:.1f} s")
+    if s["done"] == 0 and s["skipped"] == s["contacts"]:  # nothing computed: no cluster
+        click.echo(f"{counts} (every contact unchanged since the last run: no cluster started, "
+                   f"--force recomputes); results in {output}")
+    else:
+        click.echo(f"{counts} (cluster start {s['startup_seconds']:.1f} s) on {s['workers']} "
+                   f"worker(s): {s['contacts_per_s']:.3g} contacts/s, "
+                   f"{s['samples_per_s']:.3g} samples/s; results in {output}")
     if len(errors):
         raise click.exceptions.Exit(EXIT_SOME_FAILED)

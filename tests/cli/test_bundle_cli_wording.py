@@ -1,0 +1,52 @@
+"""Wording of ``fretwear bundle`` on the shipped example bundle (examples/bundle, 24 contacts,
+run serially): --top's range and singular, the options named in the --workers/--scheduler
+error, what -q leaves (the final line, as its help says), and a run with nothing to compute
+saying that no cluster was started. Expected values: the option values given and the
+example's 24 contacts."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("xarray")
+
+from fretwear.cli import main  # noqa: E402
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
+ARGS = ["bundle", str(EXAMPLE / "manifest.csv"), "--case", str(EXAMPLE / "bundle.toml")]
+
+
+def test_top_must_be_at_least_one_and_one_is_singular(tmp_path, capsys):
+    assert main([*ARGS, "--scheduler", "serial", "-o", str(tmp_path), "--top", "0"]) == 2
+    assert "--top" in capsys.readouterr().err
+    assert main([*ARGS, "--scheduler", "serial", "-o", str(tmp_path), "--top", "1"]) == 0
+    out = capsys.readouterr().out
+    assert "the deepest contact (" in out
+    assert "the 1 deepest" not in out
+
+
+def test_workers_with_a_scheduler_names_the_options(tmp_path, capsys):
+    code = main([*ARGS, "--scheduler", "tcp://127.0.0.1:1", "--workers", "2",
+                 "-o", str(tmp_path)])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert "--workers applies to the local cluster" in err and "--scheduler" in err
+    assert main([*ARGS, "--scheduler", "serial", "--workers", "2", "-o", str(tmp_path)]) == 2
+    assert "--scheduler serial runs in this process: --workers" in capsys.readouterr().err
+
+
+def test_quiet_keeps_only_the_final_line_and_a_skipped_run_starts_no_cluster(tmp_path, capsys):
+    out_dir = tmp_path / "out"
+    assert main([*ARGS, "--scheduler", "serial", "-o", str(out_dir), "-q"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith("done 24, failed 0, skipped 0 of 24 contacts")
+    # again: every contact unchanged, nothing computed, no cluster (not "on 1 worker(s)")
+    assert main([*ARGS, "-o", str(out_dir), "-q"]) == 0
+    (line,) = capsys.readouterr().out.splitlines()
+    assert line.startswith("done 0, failed 0, skipped 24 of 24 contacts")
+    assert "no cluster started" in line
+    said = line.split("; results in ")[0]
+    assert "worker(s)" not in said and "(cluster start" not in said
