@@ -290,10 +290,6 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
         The merged case is invalid, or the row has neither a history nor ``power.value_W``.
     """
     signature = _signature(row)
-    if cache is not None and _CHECKED not in cache:
-        cache[_CHECKED] = True
-        if row.manifest is not None:
-            check_base_case(base, row.manifest.rows, source, cache)
     cached = None if cache is None else cache.get(signature)
     if cached is None:
         cached = _wear_case_of(base, row, source)
@@ -329,10 +325,6 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
                        read_options=options,
                        time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
                        samples=samples, power=power)
-
-
-#: Key of a task cache once :func:`check_base_case` ran (the others are JSON lists).
-_CHECKED = "base case checked"
 
 
 class BaseCaseError(FretwearError, ValueError):

@@ -27,7 +27,7 @@ from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
-from fretwear.bundle.cases import ContactTask, build_task
+from fretwear.bundle.cases import ContactTask, build_task, check_base_case
 from fretwear.bundle.cluster import (
     LOCAL_CLUSTER_CONFIG,  # noqa: F401 - its home until now
     DaskEngine,
@@ -289,6 +289,9 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         pending: list[ContactTask] = []
         walls: dict[str, float | None] = {}
         cases: dict = {}
+        # a base case that fails for every contact stops here, said once (the case it builds
+        # goes into the cache the tasks use)
+        check_base_case(base, man.rows, man.source, cases)
         for row in man.rows:
             walls[row.contact] = row.wall_thickness
             try:

@@ -126,8 +126,7 @@ class ContactRow:
     """One contact of the manifest: id, history, identity and raw case overrides.
 
     ``labels`` names each override as the manifest wrote it (``column mobile_radius_m``, ``key
-    law.mobile``) for messages; ``manifest`` is the :class:`Manifest` holding the row (set by
-    it), through which a row's case can be checked against its siblings'.
+    law.mobile``) for messages.
     """
 
     contact: str
@@ -136,7 +135,6 @@ class ContactRow:
     overrides: dict[tuple[str, ...], Any]
     wall_thickness: float | None = None
     labels: dict[tuple[str, ...], str] = field(default_factory=dict)
-    manifest: Manifest | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass
@@ -147,10 +145,6 @@ class Manifest:
     source: str
     directory: Path
     kind: str
-
-    def __post_init__(self) -> None:
-        for row in self.rows:
-            row.manifest = self
 
     def __len__(self) -> int:
         return len(self.rows)
