@@ -70,6 +70,22 @@ def test_long_contact_splits_into_chunks_merged_in_a_tree(tmp_path, monkeypatch)
     assert_identical(rows_of(whole, "long"), expected)
 
 
+def test_a_chunked_contacts_warnings_come_with_it_not_on_the_terminal(tmp_path, recwarn):
+    """A contact split into chunks whose units option disagrees with the file's declared units
+    (velocity in mm/s on an SI file): the UnitsWarning is in the contact's warnings, once;
+    nothing escapes to the caller's warnings (the client reads the first and last instants to
+    plan the chunks: that read's warnings were printed twice a contact)."""
+    h = oscillator()
+    path = tmp_path / "long.parquet"
+    write_history(h, path, row_group_size=400)
+    (tmp_path / "base.toml").write_text(BASE_CASE + '[history]\nunits = { velocity = "mm/s" }\n')
+    frame = pd.DataFrame({"contact": ["long"], "history": [str(path)]})
+    result = run_bundle(frame, tmp_path / "base.toml", scheduler="serial", chunk_size=500)
+    override = [m for m in result.warnings["message"] if "override the units" in m]
+    assert len(override) == 1 and "vt1 'mm/s' (the file: 'm/s')" in override[0]
+    assert not [w for w in recwarn if "override the units" in str(w.message)]
+
+
 def test_bad_contacts_land_in_errors_and_the_others_complete(tmp_path):
     h = oscillator()
     manifest, case = write_bundle(tmp_path, h, 3)

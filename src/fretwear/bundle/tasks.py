@@ -359,7 +359,10 @@ def finish_contact(task: ContactTask, merged: dict[str, Any]) -> dict[str, Any]:
 
 
 def time_bounds(task: ContactTask, samples: int) -> tuple[float, float]:
-    """First and last instant [s] of a contact of known length (two one-sample reads)."""
-    first = read_part(task, 0, 2).time[0]
-    last = read_part(task, samples - 2, samples).time[-1]
+    """First and last instant [s] of a contact of known length (two one-sample reads, on the
+    client: their warnings are the chunks' own, which the chunk tasks capture and return with
+    the contact; here they would only reach the terminal, twice a contact)."""
+    with captured():  # recorded and dropped, under the process's lock as a task's are
+        first = read_part(task, 0, 2).time[0]
+        last = read_part(task, samples - 2, samples).time[-1]
     return float(first), float(last)

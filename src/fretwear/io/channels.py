@@ -335,7 +335,8 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
     for a velocity the user's ``<length>/<time>``, then SI. A unit given that differs from the
     one the file declares for the same column (another factor to SI) still wins, with one
     :class:`~fretwear.errors.UnitsWarning` naming every such column: the file and the option
-    disagree, and one of them is wrong.
+    disagree, and one of them is wrong. A declared unit fretwear cannot read is replaced
+    without a warning (the reader's error asks for the unit in that case).
 
     Parameters
     ----------
@@ -410,14 +411,15 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
 
 
 def _differs(declared: str, factor: float, quantity: str) -> bool:
-    """Whether the unit a file declares has another factor to SI than ``factor`` (a declared
-    unit fretwear cannot read differs)."""
+    """Whether the unit a file declares has another factor to SI than ``factor``. A declared
+    unit fretwear cannot read (CF's ``m s-1``, say) is not said to differ: giving the unit is
+    then what the reader's error asks for, and nothing tells the two apart."""
     if " since " in str(declared):
         declared = str(declared).split(" since ")[0].strip()
     try:
         return unit_factor(declared, quantity, culprit="the declared unit") != factor
     except KeywordError:
-        return True
+        return False
 
 
 def check_lengths(sizes: list[int], names: list[str], label: str) -> int:
