@@ -239,3 +239,79 @@ def test_a_units_key_typo_is_named_with_the_closest_key(tmp_path):
     with pytest.raises(KeywordError, match="did you mean 'length'"):
         from fretwear.io import read_history
         read_history(EXAMPLE / "histories" / "R1C1_AVB1.parquet", units={"lenght": "mm"})
+
+
+def _kwu_bundle(tmp_path: Path, rows: str) -> tuple[Path, Path]:
+    """A TOML manifest of the oscillator history (examples/data) against the KWU-EPRI base
+    case examples/tube_alesage.toml (law.mobile = { COEF_USURE, reference_intensity })."""
+    from bundle_helpers import oscillator
+
+    from fretwear.io import write_history
+
+    write_history(oscillator(), tmp_path / "h.parquet")
+    manifest = tmp_path / "m.toml"
+    manifest.write_text(rows)
+    return manifest, ROOT / "examples" / "tube_alesage.toml"
+
+
+@pytest.mark.filterwarnings("ignore::fretwear.errors.StationarityWarning")  # 0.6 s of history
+def test_a_toml_row_updates_entries_of_the_base_case_law_table(tmp_path):
+    from bundle_helpers import oscillator
+
+    from fretwear.table import wear_table
+    from fretwear.workflows.case_files import case_arguments, load_case
+
+    manifest, base = _kwu_bundle(tmp_path, (
+        '[[contacts]]\ncontact = "dotted"\nhistory = "h.parquet"\n'
+        'law.mobile.COEF_USURE = 6.0e-14\n'
+        '[[contacts]]\ncontact = "inline"\nhistory = "h.parquet"\n'
+        'law.mobile = { COEF_USURE = 6.0e-14 }\n'
+        '[[contacts]]\ncontact = "subtable"\nhistory = "h.parquet"\n'
+        '[contacts.law.mobile]\nCOEF_USURE = 6.0e-14\n'))
+    result = run_bundle(manifest, base, scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    # reference: the single-contact wear_table with COEF_USURE changed, reference_intensity kept
+    case = load_case(base)
+    assert case["law"]["mobile"] == {"COEF_USURE": 5.2e-14, "reference_intensity": 1.0e-7}
+    case["law"]["mobile"]["COEF_USURE"] = 6.0e-14
+    expected = wear_table(oscillator(), **case_arguments(case, history_elsewhere=True))
+    for contact in ("dotted", "inline", "subtable"):
+        assert_identical(rows_of(result, contact), expected)
+    # (before: the row's table replaced the base's, reference_intensity dropped, depth ~5e4
+    # times smaller, no warning)
+    depth = expected["depth_mobile"].iloc[-1]
+    assert rows_of(result, "inline")["depth_mobile"].iloc[-1] == depth > 0
+    # a row whose table holds every entry gives the base case's own table: same table
+    manifest.write_text('[[contacts]]\ncontact = "all"\nhistory = "h.parquet"\n'
+                        'law.mobile = { COEF_USURE = 5.2e-14, reference_intensity = 1.0e-7 }\n')
+    same = run_bundle(manifest, base, scheduler="serial")
+    plain = run_bundle(pd.DataFrame({"contact": ["all"],
+                                     "history": [str(tmp_path / "h.parquet")]}),
+                       base, scheduler="serial")
+    assert_identical(rows_of(same, "all"), rows_of(plain, "all"))
+
+
+@pytest.mark.filterwarnings("ignore::fretwear.errors.LawWarning")  # S > A·P^b: a short history
+def test_a_toml_row_keeps_the_other_edf_mz_coefficients(tmp_path):
+    from fretwear.bundle import read_manifest
+
+    manifest, _ = _kwu_bundle(tmp_path, (
+        '[[contacts]]\ncontact = "a"\nhistory = "h.parquet"\n'
+        'law.obstacle = { COEF_USURE = 4.0e-15 }\n'
+        '[[contacts]]\ncontact = "b"\nhistory = "h.parquet"\nlaw.obstacle = {}\n'))
+    rows = read_manifest(manifest).rows
+    assert rows[0].overrides == {("law", "obstacle", "COEF_USURE"): 4.0e-15}
+    assert rows[1].overrides == {("law", "obstacle"): {}}  # {}: no obstacle coefficient
+    base = ROOT / "examples" / "grappe_alesage.toml"
+    result = run_bundle(manifest, base, scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    edited = tmp_path / "edited.toml"
+    text = base.read_text()
+    old = "obstacle = { COEF_USURE = 3.7e-15,"
+    assert text.count(old) == 1
+    edited.write_text(text.replace(old, "obstacle = { COEF_USURE = 4.0e-15,"))
+    assert_identical(rows_of(result, "a"), reference(tmp_path / "h.parquet", edited))
+    dropped = tmp_path / "dropped.toml"
+    lines = [ln for ln in text.splitlines() if not ln.startswith("obstacle = ")]
+    dropped.write_text("\n".join(lines) + "\n")
+    assert_identical(rows_of(result, "b"), reference(tmp_path / "h.parquet", dropped))

@@ -100,8 +100,8 @@ def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
         if key in keys[section] and (section, key) not in _SUPPLIED:
             if len(parts) == 2:
                 return (section, key)
-            if len(parts) == 3 and keys[section][key][0] is dict:
-                return (section, key, parts[2])
+            if len(parts) >= 3 and keys[section][key][0] is dict:  # the entry may hold dots
+                return (section, key, ".".join(parts[2:]))
     elif len(parts) == 1:
         found = [s for s, ks in keys.items() if column in ks and (s, column) not in _SUPPLIED]
         if len(found) == 1:

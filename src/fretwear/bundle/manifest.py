@@ -273,16 +273,22 @@ def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
 
 
 def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
-    """A TOML contact table -> manifest columns (nested tables become dotted names; the inline
-    tables of dict-valued case keys stay whole)."""
+    """A TOML contact table -> manifest columns: nested tables become dotted names, down to
+    the entries of dict-valued case keys (``law.mobile = { COEF_USURE = 6e-14 }`` and
+    ``law.mobile.COEF_USURE = 6e-14``, which TOML reads alike, both give the column
+    ``law.mobile.COEF_USURE``: the row updates that entry of the base case's table, as a CSV
+    column of that name does). An empty table (``law.mobile = {}``) stays whole: that key is
+    dropped for the row (:func:`fretwear.bundle.cases.merge_case`)."""
     keys = _case_keys()
     out: dict[str, Any] = {}
     for k, v in table.items():
         name = f"{prefix}{k}"
         parts = name.split(".")
-        whole = (len(parts) == 2 and parts[0] in keys and keys[parts[0]].get(parts[1], (None,))[0]
-                 is dict)
-        if isinstance(v, Mapping) and not whole:
+        entries = (len(parts) == 2 and parts[0] in keys
+                   and keys[parts[0]].get(parts[1], (None,))[0] is dict)
+        if entries and isinstance(v, Mapping) and v:
+            out.update({f"{name}.{entry}": value for entry, value in v.items()})
+        elif isinstance(v, Mapping) and not entries:
             out.update(_flatten(v, prefix=f"{name}."))
         else:
             out[name] = v
