@@ -61,3 +61,30 @@ def test_a_run_in_another_format_replaces_the_earlier_outputs(tmp_path):
     after = read_frame(out / "table.csv")
     assert after.shape == before.shape and list(after.columns) == list(before.columns)
     np.testing.assert_allclose(after["depth_mobile"], before["depth_mobile"], rtol=1e-15)
+
+
+def test_files_fretwear_did_not_write_are_never_removed(tmp_path):
+    """A directory holding the user's own table.csv and dataset.nc (no earlier run.json says
+    fretwear wrote them) keeps them when a bundle writes its Parquet table and Zarr dataset
+    there; so does a directory whose run.json predates the record of outputs."""
+    from bundle_helpers import oscillator, write_bundle
+
+    from fretwear.bundle import run_bundle
+
+    pytest.importorskip("zarr")
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    for name, run_json in (("user", None), ("older", '{"done": 2}')):
+        out = tmp_path / name
+        out.mkdir()
+        (out / "table.csv").write_text("my own table\n")
+        (out / "dataset.nc").write_bytes(b"my own data")
+        if run_json is not None:
+            (out / "run.json").write_text(run_json)
+        run_bundle(manifest, case, scheduler="serial", output=out, dataset_format="zarr")
+        assert (out / "table.csv").read_text() == "my own table\n"
+        assert (out / "dataset.nc").read_bytes() == b"my own data"
+        assert (out / "table.parquet").is_file() and (out / "dataset.zarr").is_dir()
+        import json
+
+        assert json.loads((out / "run.json").read_text())["outputs"][:2] == [
+            "table.parquet", "dataset.zarr"]

@@ -498,6 +498,8 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
         dataset_format = "netcdf" if optional("zarr") is None else "zarr"
     if len(result.table):
         store.write_dataset(result.dataset, dataset_format)
+    # the final files written, so that a later run in another format removes only those
+    outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv", "run.json"]
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
-        json.dump(result.stats, handle, indent=1, default=str)
+        json.dump({**result.stats, "outputs": outputs}, handle, indent=1, default=str)
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))

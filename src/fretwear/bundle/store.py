@@ -79,6 +79,30 @@ class OutputDirectory:
         self.table_format = table_format
         self._run = f"{time.time_ns():020d}"
         self._seq = 0
+        #: Final files an earlier run recorded in its run.json (``outputs``): the only ones a
+        #: later run of another format removes as stale (a file of the user's own is kept).
+        self.written_before = self._recorded_outputs()
+        #: Final files this run wrote, recorded in its run.json.
+        self.written: list[str] = []
+
+    def _recorded_outputs(self) -> set[str]:
+        try:
+            data = json.loads((self.path / "run.json").read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return set()
+        outputs = data.get("outputs") if isinstance(data, dict) else None
+        return {str(o) for o in outputs} if isinstance(outputs, list) else set()
+
+    def _remove_stale(self, name: str) -> None:
+        """Remove ``name``, the other format's table or dataset, if an earlier run of this
+        directory wrote it (its run.json says so)."""
+        if name not in self.written_before:
+            return
+        stale = self.path / name
+        if stale.is_dir() and not stale.is_symlink():
+            shutil.rmtree(stale, ignore_errors=True)
+        else:
+            stale.unlink(missing_ok=True)
 
     def previous(self) -> dict[str, dict[str, Any]]:
         """The latest record of every contact in the existing parts (``part`` = its stem)."""
@@ -139,25 +163,23 @@ class OutputDirectory:
 
     def write_table(self, table: pd.DataFrame) -> Path:
         """Write the bundle's table as ``table.<format>`` (atomically); the table of the other
-        format, left by an earlier run of this directory, is removed: it is stale."""
+        format that an earlier run of this directory wrote is removed: it is stale."""
         target = self.path / f"table.{self.table_format}"
         write_frame(table, target, self.table_format)
+        self.written.append(target.name)
         for other in TABLE_FORMATS:
             if other != self.table_format:
-                (self.path / f"table.{other}").unlink(missing_ok=True)
+                self._remove_stale(f"table.{other}")
         return target
 
     def write_dataset(self, dataset, fmt: str) -> Path:
         """Write the dataset atomically: a NetCDF file, or a Zarr directory swapped in whole;
-        the dataset of the other format, left by an earlier run of this directory, is removed:
-        it is stale."""
+        the dataset of the other format that an earlier run of this directory wrote is
+        removed: it is stale."""
         if fmt not in DATASET_FORMATS:
             raise InputError(f"dataset format {fmt!r}: choose one of {DATASET_FORMATS}")
-        stale = self.path / ("dataset.zarr" if fmt == "netcdf" else "dataset.nc")
-        if stale.is_dir():
-            shutil.rmtree(stale, ignore_errors=True)
-        else:
-            stale.unlink(missing_ok=True)
+        self._remove_stale("dataset.zarr" if fmt == "netcdf" else "dataset.nc")
+        self.written.append("dataset.nc" if fmt == "netcdf" else "dataset.zarr")
         if fmt == "netcdf":
             target = self.path / "dataset.nc"
             with atomic_path(target) as tmp:
