@@ -310,3 +310,30 @@ def test_unknown_columns_all_at_once_and_toml_keys(tmp_path):
     bad.write_text("contact;history\na;a.csv\nb\n")
     with pytest.raises(KeywordError, match="looks ;-separated"):
         read_manifest(bad)
+
+
+def test_a_windows_1252_manifest_is_named_so_with_the_fix(tmp_path):
+    # French Excel's "CSV (séparateur: point-virgule)": ';', decimal commas, Windows-1252
+    line = "R1;h.parquet;barre \u00e9paisse;0,00109\n"
+    header = "contact;history;support;wall_thickness_m\n"
+    path = tmp_path / "cp1252.csv"
+    path.write_bytes((header + line).encode("cp1252"))
+    with pytest.raises(InputError) as caught:
+        read_manifest(path)
+    message = str(caught.value)
+    assert "is not UTF-8 text (byte 0xe9 on line 2" in message, message
+    assert "save it as CSV UTF-8" in message and "no contacts" not in message
+    assert "encoding=" not in message  # the manifest reader has no such option
+    # saved as CSV UTF-8, the same content reads
+    path.write_bytes((header + line).encode("utf-8"))
+    row = read_manifest(path).rows[0]
+    assert row.identity["support"] == "barre \u00e9paisse"
+    assert row.overrides == {("geometry", "wall_thickness_m"): 1.09e-3}
+    # an empty or blank file has no contacts; a file of comments only says so
+    for text in ("", " \n\n\t\n"):
+        path.write_text(text)
+        with pytest.raises(InputError, match=r"has no contacts"):
+            read_manifest(path)
+    path.write_text("# nothing yet\n")
+    with pytest.raises(InputError, match=r"no data lines \(only comments"):
+        read_manifest(path)

@@ -54,7 +54,7 @@ from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.io import guess_format
 from fretwear.io.aster import read_aster_tables
 from fretwear.io.aster_source import NODE_COLUMNS
-from fretwear.io.delimited import scan
+from fretwear.io.delimited import UTF16_BOMS, scan
 
 #: Case keys holding paths (relative to the manifest when given in a manifest cell).
 PATH_KEYS = {("restart", "table"), ("law", "database")}
@@ -312,11 +312,30 @@ def _read_csv(path: Path, label: str) -> pd.DataFrame:
     """A CSV manifest: ``,``-separated, or ``;``- or tab-separated (a spreadsheet saved in a
     locale whose decimal mark is the comma; decimal commas are then read), the separator and
     the decimal mark found as the history reader finds them
-    (:func:`fretwear.io.delimited.scan`)."""
+    (:func:`fretwear.io.delimited.scan`). UTF-8 text (UTF-16 with its BOM); an empty or blank
+    file has no contacts.
+
+    Raises
+    ------
+    FormatError
+        Not UTF-8 text (a spreadsheet saved in its locale's code page, e.g. Windows-1252),
+        with how to save it; an unreadable table.
+    """
+    raw = path.read_bytes()
+    encoding = "utf-16" if raw[:2] in UTF16_BOMS else "utf-8-sig"
     try:
-        info = scan(path)
-    except FormatError:  # no data lines: an empty file
-        return pd.DataFrame()
+        text = raw.decode(encoding)
+    except UnicodeDecodeError as exc:
+        line = raw[:exc.start].count(b"\n") + 1
+        raise FormatError(
+            f"manifest {label!r} is not UTF-8 text (byte {raw[exc.start]:#04x} on line {line}: "
+            "an accented character saved in the spreadsheet's code page, e.g. Windows-1252 by "
+            "Excel's 'CSV (séparateur: point-virgule)'): save it as CSV UTF-8 (Excel: 'CSV "
+            "UTF-8 (délimité par des virgules)'); ';' separators and decimal commas are "
+            "read") from None
+    if not text.strip():
+        return pd.DataFrame()  # an empty or blank file: read_manifest says it has no contacts
+    info = scan(path)  # only comments: its FormatError says so
     sep, decimal = (info["sep"], info["decimal"]) if info["sep"] in (";", "\t") else (",", ".")
     try:
         # only empty cells are missing: a contact may be called "NA" or "nan"
