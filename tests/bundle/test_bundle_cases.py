@@ -315,3 +315,25 @@ def test_a_toml_row_keeps_the_other_edf_mz_coefficients(tmp_path):
     lines = [ln for ln in text.splitlines() if not ln.startswith("obstacle = ")]
     dropped.write_text("\n".join(lines) + "\n")
     assert_identical(rows_of(result, "b"), reference(tmp_path / "h.parquet", dropped))
+
+
+def test_a_file_the_system_refuses_in_the_first_row_fails_that_contact_only(tmp_path):
+    # a law.database name of 300 characters: OSError 'File name too long' (ENAMETOOLONG, a
+    # name component > 255 bytes) while building the case, which the base-case check must
+    # leave to that contact as the engine's loop does
+    result = _given_power(tmp_path, 'materials = ["A304L", "A304L"]',
+                          **{"law.database": "d" * 300 + ".csv"})
+    assert result.errors["error"].tolist() == ["OSError"]
+    assert "File name too long" in result.errors["message"][0]
+    case = tmp_path / "base.toml"
+    frame = pd.DataFrame({"contact": ["long", "fine"], "power.value_W": [0.01, 0.01],
+                          "law.database": ["d" * 300 + ".csv", None]})
+    result = run_bundle(frame, case, scheduler="serial")
+    assert result.errors["contact"].tolist() == ["long"]
+    # the other row: Archard V = K·P·t with the shipped A304L/A304L coefficient 2.6e-15 1/Pa
+    assert result.table["volume_mobile"].iloc[-1] == pytest.approx(2.6e-15 * 0.01 * YEAR)
+    # a base case whose own database name is refused fails for every contact: said once
+    case.write_text(POWERED.format(law='materials = ["A304L", "A304L"]\n'
+                                       f'database = "{"d" * 300}.csv"'))
+    with pytest.raises(BaseCaseError, match="File name too long"):
+        run_bundle(frame.drop(columns="law.database"), case, scheduler="serial")

@@ -345,6 +345,12 @@ def _message(exc: Exception, source: str, contact: str) -> str:
     return text[len(prefix):] if text.startswith(prefix) else text
 
 
+#: What building one row's task may raise, reported for that contact (the engine's loop over
+#: the rows catches the same): a bad case, or a file the system refuses (a database path too
+#: long, unreadable)
+ROW_ERRORS = (InputError, OSError)
+
+
 def check_base_case(base: Mapping[str, Any], rows, source: str, cache: dict | None = None
                     ) -> None:
     """Stop before any work when the base case fails for every row for its own reason.
@@ -372,13 +378,13 @@ def check_base_case(base: Mapping[str, Any], rows, source: str, cache: dict | No
             return
         try:
             built = _wear_case_of(base, row, source)
-        except InputError as exc:
+        except ROW_ERRORS as exc:
             if alone is None:
                 probe = ContactRow("base case", HistoryRef("file"), {}, {})
                 try:
                     _wear_case_of(base, probe, source)
                     return
-                except InputError as base_exc:
+                except ROW_ERRORS as base_exc:
                     alone = _message(base_exc, source, probe.contact).removeprefix("case: ")
             if _message(exc, source, row.contact).removeprefix("case: ") != alone:
                 return
