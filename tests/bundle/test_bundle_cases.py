@@ -337,3 +337,27 @@ def test_a_file_the_system_refuses_in_the_first_row_fails_that_contact_only(tmp_
                                        f'database = "{"d" * 300}.csv"'))
     with pytest.raises(BaseCaseError, match="File name too long"):
         run_bundle(frame.drop(columns="law.database"), case, scheduler="serial")
+
+
+def test_obstacle_wear_false_on_a_row_drops_the_base_obstacle_coefficients(tmp_path):
+    given = "mobile = { COEF_USURE = 1e-15 }\nobstacle = { COEF_USURE = 2e-15 }"
+    ptime = 0.01 * YEAR
+    # the base case: both bodies wear (Archard V = K·P·t, theory §4)
+    assert _volumes(_given_power(tmp_path, given)) == pytest.approx((1e-15 * ptime,
+                                                                     2e-15 * ptime))
+    # the row says the obstacle does not wear: it does not (was: 2e-15·P·t, silently)
+    got = _given_power(tmp_path, given, **{"law.obstacle_wear": False})
+    assert _volumes(got) == (pytest.approx(1e-15 * ptime), 0.0)
+    toml = tmp_path / "m.toml"
+    toml.write_text('[[contacts]]\ncontact = "x"\npower.value_W = 0.01\n'
+                    "law.obstacle_wear = false\n")
+    assert _volumes(run_bundle(toml, tmp_path / "base.toml", scheduler="serial")) == (
+        pytest.approx(1e-15 * ptime), 0.0)
+    # true asks for the database's obstacle coefficient: the case layer wants materials
+    got = _given_power(tmp_path, given, **{"law.obstacle_wear": True})
+    assert "give materials (MATER_USURE) too" in got.errors["message"][0]
+    # false with the row's own obstacle coefficients: contradictory, that contact fails
+    got = _given_power(tmp_path, given, **{"law.obstacle_wear": False,
+                                           "law.obstacle.COEF_USURE": 3e-15})
+    assert got.errors["error"].tolist() == ["KeywordError"]
+    assert "contradict each other" in got.errors["message"][0]

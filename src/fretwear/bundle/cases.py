@@ -97,15 +97,24 @@ def _coefficient_source(law: dict[str, Any], given: Mapping[str, Any], where: st
     a silent change: its ``law.mobile`` when the row gives only ``law.obstacle``, the
     obstacle's coefficient (``obstacle_wear``) unless the row gives ``law.obstacle`` or
     ``law.obstacle_wear``; and the base's own ``law.obstacle`` (a wearing obstacle) under the
-    row's materials unless the row says ``law.obstacle_wear``.
+    row's materials unless the row says ``law.obstacle_wear``. A row's ``law.obstacle_wear =
+    false`` drops the base's ``law.obstacle`` (the obstacle does not wear); with the row's own
+    ``law.obstacle`` it is an error.
 
     Raises
     ------
     KeywordError
-        The row replaces the base's source but leaves one body's coefficient unsaid.
+        The row replaces the base's source but leaves one body's coefficient unsaid, or says
+        both that the obstacle does not wear and how it wears.
     """
     coefficients = [k for k in COEFFICIENT_KEYS if k in given and not _empty(given[k])]
     materials = "materials" in given and not _empty(given["materials"])
+    if given.get("obstacle_wear") is False:  # the obstacle does not wear, for this contact
+        if "obstacle" in coefficients:
+            raise KeywordError(f"{where}: law.obstacle_wear = false (the obstacle does not "
+                               "wear) and law.obstacle (its coefficients) contradict each "
+                               "other: keep one")
+        law.pop("obstacle", None)
     if coefficients and not materials and "materials" in law:
         if "mobile" not in coefficients:
             raise KeywordError(f"{where}: law.obstacle replaces the base case's law.materials "
