@@ -194,7 +194,7 @@ def test_a_base_case_failing_for_every_contact_stops_before_any_work(tmp_path):
     case.write_text(broken)
     frame = pd.DataFrame({"contact": [f"c{i}" for i in range(50)], "power.value_W": 0.01,
                           "mobile_radius_m": [5e-3 + 1e-5 * (i % 3) for i in range(50)]})
-    with pytest.raises(BaseCaseError, match=r"base case fails for every contact .*"
+    with pytest.raises(BaseCaseError, match=r"base case fails for every contact: .*"
                                             r"\[geometry\] contact_type is required"):
         run_bundle(frame, case, scheduler="serial", output=tmp_path / "out")
     assert not list((tmp_path / "out").glob("parts/*"))
@@ -361,3 +361,18 @@ def test_obstacle_wear_false_on_a_row_drops_the_base_obstacle_coefficients(tmp_p
                                            "law.obstacle.COEF_USURE": 3e-15})
     assert got.errors["error"].tolist() == ["KeywordError"]
     assert "contradict each other" in got.errors["message"][0]
+
+
+def test_the_base_case_error_names_the_base_case_key(tmp_path):
+    # a base case giving [power] value_W, a manifest of histories: every row fails the same way
+    case = tmp_path / "base.toml"
+    case.write_text(POWERED.format(law="mobile = { COEF_USURE = 1e-15 }") +
+                    "[power]\nvalue_W = 0.01\n")
+    with pytest.raises(BaseCaseError) as caught:
+        run_bundle(EXAMPLE / "manifest.csv", case, scheduler="serial")
+    message = str(caught.value)
+    assert ("the base case fails for every contact: its [power] value_W gives every contact a "
+            "power, and the manifest's rows give histories: remove value_W from the base "
+            "case") in message, message
+    assert message.endswith("no row of the manifest changes that; nothing was computed")
+    assert "gives what it lacks" not in message

@@ -402,8 +402,15 @@ def check_base_case(base: Mapping[str, Any], rows, source: str, cache: dict | No
             cache[signature] = built
         return
     if alone is not None:
-        raise BaseCaseError(f"{source}: the base case fails for every contact (no row of the "
-                            f"manifest gives what it lacks): {alone}; nothing was computed")
+        if alone == BOTH_POWER_AND_HISTORY and "value_W" in base.get("power", {}):
+            alone = ("its [power] value_W gives every contact a power, and the manifest's rows "
+                     "give histories: remove value_W from the base case (a row without a "
+                     "history may give power.value_W)")
+        raise BaseCaseError(f"{source}: the base case fails for every contact: {alone}; no "
+                            "row of the manifest changes that; nothing was computed")
+
+
+BOTH_POWER_AND_HISTORY = "gives both a history and power.value_W; keep one"
 
 
 def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
@@ -415,7 +422,7 @@ def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
         raise InputError(f"{where}: no history: give the history column (a file relative to "
                          "the manifest) or a power.value_W column")
     if row.history.kind != "none" and given_power:
-        raise KeywordError(f"{where}: gives both a history and power.value_W; keep one")
+        raise KeywordError(f"{where}: {BOTH_POWER_AND_HISTORY}")
     units = case.get("history", {}).get("units")
     for key in units if isinstance(units, Mapping) else ():
         message = unknown_units_key(key, "[history]")
