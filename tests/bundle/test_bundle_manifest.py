@@ -337,3 +337,38 @@ def test_a_windows_1252_manifest_is_named_so_with_the_fix(tmp_path):
     path.write_text("# nothing yet\n")
     with pytest.raises(InputError, match=r"no data lines \(only comments"):
         read_manifest(path)
+
+
+def test_a_tsv_manifest_reads_as_the_csv_one(tmp_path):
+    manifest, case = write_bundle(tmp_path, oscillator(), 2,
+                                  extra={"mobile_radius_m": [None, 8.5e-3]})
+    frame = pd.read_csv(manifest)
+    (tmp_path / "m.tsv").write_text(frame.to_csv(index=False, sep="\t"))
+    a = run_bundle(tmp_path / "m.tsv", case, scheduler="serial")
+    b = run_bundle(manifest, case, scheduler="serial")
+    pd.testing.assert_frame_equal(a.table, b.table)
+    (tmp_path / "m.txt").write_text(frame.to_csv(index=False, sep="\t"))
+    with pytest.raises(InputError, match=r"give a \.csv, \.tsv, \.parquet or \.toml"):
+        read_manifest(tmp_path / "m.txt")
+
+
+def test_a_decimal_comma_not_read_as_a_number_is_hinted(tmp_path):
+    # a ;-separated column mixing decimal commas and points stays text: its comma cell fails
+    _, case = write_bundle(tmp_path, oscillator(), 1)
+    (tmp_path / "m.csv").write_text("contact;history;wall_thickness_m;mobile_radius_m\n"
+                                    "a;histories/t0.parquet;0,00109;0,0085\n"
+                                    "b;histories/t0.parquet;0,00109;9.525e-3\n")
+    result = run_bundle(tmp_path / "m.csv", case, scheduler="serial")
+    assert result.errors["contact"].tolist() == ["a"]
+    message = result.errors["message"][0]
+    assert ("column mobile_radius_m = '0,0085': not a number (a decimal comma? write 0.0085"
+            in message), message
+    # a word without a comma gets no such hint
+    (tmp_path / "m.csv").write_text("contact,history,mobile_radius_m\n"
+                                    "a,histories/t0.parquet,abc\n")
+    message = run_bundle(tmp_path / "m.csv", case, scheduler="serial").errors["message"][0]
+    assert message.endswith("column mobile_radius_m = 'abc': not a number"), message
+
+
+def test_an_entry_name_may_hold_dots():
+    assert column_key("history.columns.F.N", "manifest") == ("history", "columns", "F.N")

@@ -66,13 +66,27 @@ def _coerce(kind: Any, value: Any, where: str) -> Any:
         try:
             number = float(value)
         except ValueError:
-            raise KeywordError(f"{where} = {value!r}: not a number") from None
+            raise KeywordError(f"{where} = {value!r}: not a number{_comma_hint(value)}"
+                               ) from None
         return int(number) if float not in kinds and number.is_integer() else number
     if str in kinds and isinstance(value, int | float) and not isinstance(value, bool):
         return str(value)
     if list in kinds and not isinstance(value, list | tuple):
         return [value]
     return value
+
+
+def _comma_hint(text: str) -> str:
+    """The hint of a cell that is a number with a decimal comma (``"0,00109"``), else ""."""
+    if "," not in text:
+        return ""
+    point = text.strip().replace(",", ".")
+    try:
+        float(point)
+    except ValueError:
+        return " (a decimal comma? a number's decimal mark is a point here)"
+    return (f" (a decimal comma? write {point}: a ;- or tab-separated manifest's decimal "
+            "commas are read where its numbers do not mix them with points)")
 
 
 #: ``[law]`` keys of the two sources of a case's coefficients: given (the bodies' tables) or

@@ -58,7 +58,7 @@ from fretwear.io.delimited import UTF16_BOMS, scan
 
 #: Case keys holding paths (relative to the manifest when given in a manifest cell).
 PATH_KEYS = {("restart", "table"), ("law", "database")}
-TABLE_SUFFIXES = (".csv", ".parquet", ".pq", ".toml")
+TABLE_SUFFIXES = (".csv", ".tsv", ".parquet", ".pq", ".toml")
 STORE_SUFFIXES = (".zarr", ".nc", ".nc4", ".netcdf", ".cdf")
 
 
@@ -360,10 +360,10 @@ def read_manifest(source: Any) -> Manifest:
     Parameters
     ----------
     source : path-like, DataFrame or xarray.Dataset
-        A manifest table (``.csv``, ``.parquet``, ``.toml``), a Code_Aster table of several
-        shock points (one contact per ``NOEUD``), a Zarr or NetCDF store or an in-memory
-        Dataset with dimensions ``(contact, time)``, or a DataFrame of manifest rows (paths
-        relative to the current directory).
+        A manifest table (``.csv`` or ``.tsv``, ``.parquet``, ``.toml``), a Code_Aster
+        table of several shock points (one contact per ``NOEUD``), a Zarr or NetCDF store or
+        an in-memory Dataset with dimensions ``(contact, time)``, or a DataFrame of manifest
+        rows (paths relative to the current directory).
 
     Returns
     -------
@@ -417,14 +417,14 @@ def _read(source: Any) -> Manifest:
     if suffix in (".parquet", ".pq"):
         require("pyarrow", purpose="reading a Parquet manifest")
         frame = pd.read_parquet(path)
-    elif suffix == ".csv":
+    elif suffix in (".csv", ".tsv"):  # the separator is found, not taken from the suffix
         frame = _read_csv(path, label)
     else:
         if path.is_file() and guess_format(path) == "aster":
             return Manifest(_rows_from_aster(path.resolve(), label), label, directory, "aster")
-        raise InputError(f"{label!r} is not a manifest: give a .csv, .parquet or .toml table of "
-                         "contacts, a Code_Aster table of several nodes, or a Zarr/NetCDF store "
-                         "with dimensions (contact, time)")
+        raise InputError(f"{label!r} is not a manifest: give a .csv, .tsv, .parquet or .toml "
+                         "table of contacts, a Code_Aster table of several nodes, or a "
+                         "Zarr/NetCDF store with dimensions (contact, time)")
     return Manifest(_rows_from_frame(frame, label, directory), label, directory, "table")
 
 
