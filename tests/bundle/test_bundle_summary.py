@@ -79,8 +79,9 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
         replaced = (info.at[contact, "tube_replacement"]
                     if "tube_replacement" in info.columns and contact in info.index else None)
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
+        forecast = math.nan
         if given and glob["limit_instant"].notna().any() and its_wall and fraction == own:
-            t_lim = float(glob["limit_instant"].dropna().iloc[-1])
+            t_lim = forecast = float(glob["limit_instant"].dropna().iloc[-1])
             since = glob if replaced is None else glob[glob["instant"] >= replaced]
             deepest = since["depth_mobile"][np.isfinite(since["instant"])].max()
             reached = target <= 0 or deepest >= target
@@ -104,13 +105,14 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
                "time_unit": None if unit is None or pd.isna(unit) else unit,
                "power": float(last["power"]), "depth": depth, "depth_sector_max": sector_max,
                "wall_thickness": wall, "depth_fraction": depth / wall if wall > 0 else math.nan,
-               "limit_depth": target, "time_to_limit": t_lim, "time_to_limit_method": method,
-               "note": note}
+               "limit_depth": target, "time_to_limit": t_lim, "limit_forecast": forecast,
+               "time_to_limit_method": method, "note": note}
         rows.append(row)
     out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
                                       "depth_sector_max",
                                       "wall_thickness", "depth_fraction", "limit_depth",
-                                      "time_to_limit", "time_to_limit_method", "note"])
+                                      "time_to_limit", "limit_forecast",
+                                      "time_to_limit_method", "note"])
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
     if len(out):
         out = out.merge(contacts[["contact", *ident]], on="contact", how="left")

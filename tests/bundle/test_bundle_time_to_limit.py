@@ -82,3 +82,30 @@ def test_default_and_explicit_limit_agree(result):
     for row in default.dropna(subset=["time_to_limit"]).itertuples():
         rows = result.table[result.table["contact"] == row.contact]
         assert row.time_to_limit == rows["limit_instant"].iloc[-1]
+
+
+def test_limit_forecast_is_the_law_and_geometry_inverted_beyond_the_last_instant(result):
+    """``limit_forecast``: Archard's volume grows linearly in time (constant power), so the
+    instant at which the tube's worn volume reaches the volume of the limit depth is the last
+    instant scaled by the ratio of the two volumes, computed here with the TUBE_BAV geometry's
+    forward relation (fretwear.geometry, independent of the table's inversion). It is given for
+    every contact, also where the limit lies far beyond the last instant (time_to_limit NaN),
+    and equals time_to_limit where that one is reached."""
+    from fretwear.geometry import contact_geometry
+
+    bar = contact_geometry("TUBE_BAV", mobile_radius=9.525e-3, obstacle_width=12.7e-3)
+    s = result.summary().set_index("contact")
+    beyond = 0
+    for contact, row in s.iterrows():
+        rows = result.table[result.table["contact"] == contact].drop_duplicates("instant")
+        last = rows.sort_values("instant").iloc[-1]
+        worn = last["volume_mobile"]  # 0 for a contact that never touches: never reached
+        expected = (last["instant"] * bar.volume_from_depth(row["limit_depth"])[0] / worn
+                    if worn > 0 else math.inf)
+        assert row["limit_forecast"] == pytest.approx(expected, rel=1e-9), contact
+        if math.isnan(row["time_to_limit"]):
+            beyond += 1
+            assert row["limit_forecast"] > row["instant"]
+        else:
+            assert row["time_to_limit"] == row["limit_forecast"]
+    assert beyond >= 10  # most contacts reach 40 % of the wall only after the 40 years

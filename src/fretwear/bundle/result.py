@@ -104,10 +104,12 @@ class BundleResult:
             relation's range, ...). A depth beyond its relation's range (NaN) ranks first. Where the
             limit is the contact's own (its case's ``depth_limit`` of its own wall, whether by
             default or asked for here) and its table has ``limit_instant``, the time is that instant
-            (law and geometry inverted) when it is reached by the last instant, NaN otherwise: the
-            table's forecast beyond the last instant (constant power) stays in
-            ``table["limit_instant"]``. Any other limit: depth(t) is interpolated between the
-            table's instants (monotone cubic) and inverted. ``attrs["time_to_limit"]`` says which.
+            (law and geometry inverted) when it is reached by the last instant, NaN otherwise;
+            ``limit_forecast`` (in ``time_unit``) is that instant wherever it lies, also beyond
+            the last instant (the wear table's ``limit_instant``: the law and geometry inverted
+            at the history's power, inf if never reached), NaN for another limit. Any other
+            limit: depth(t) is interpolated between the table's instants (monotone cubic) and
+            inverted. ``attrs["time_to_limit"]`` says which.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -234,14 +236,18 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
             method = INTERPOLATED
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
+        # the table's forecast for the contact's own limit, also beyond the last instant
+        forecast = (per.limit_instant[k] if given and per.has_limit[k] and own_limit[k]
+                    else math.nan)
         first_nan = per.first_nan[k]
-        row.update(time_to_limit=t_lim, time_to_limit_method=method,
+        row.update(time_to_limit=t_lim, limit_forecast=forecast, time_to_limit_method=method,
                    note="" if first_nan is None
                    else f"depth beyond the relation's range from instant {first_nan:g}")
     out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
                                       "depth_sector_max",
                                       "wall_thickness", "depth_fraction", "limit_depth",
-                                      "time_to_limit", "time_to_limit_method", "note"])
+                                      "time_to_limit", "limit_forecast",
+                                      "time_to_limit_method", "note"])
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
     if len(out):
         out = out.merge(contacts[["contact", *ident]], on="contact", how="left")
