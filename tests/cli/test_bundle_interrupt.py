@@ -79,6 +79,34 @@ def test_run_bundle_writes_what_it_received_and_counts_it(tmp_path):
     assert str(raised.value) == "interrupted: none of 24 contacts written (no output)"
 
 
+def test_an_interrupt_while_the_tasks_are_built_counts_the_earlier_runs_contacts(
+        tmp_path, monkeypatch):
+    """A complete run, then a rerun interrupted at the fifth row's task: the 24 contacts of the
+    first run are in the output directory (and the next run skips them all), so the count says
+    24, not the 4 rows the rerun had reached."""
+    from fretwear.bundle import engine
+
+    manifest = _manifest(tmp_path, 1)
+    out = tmp_path / "out"
+    run_bundle(manifest, EXAMPLE / "bundle.toml", scheduler="serial", output=out)
+    built = []
+    real = engine.build_task
+
+    def interrupting(*args, **kwargs):
+        built.append(1)
+        if len(built) == 5:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(engine, "build_task", interrupting)
+    with pytest.raises(BundleInterrupted) as raised:
+        run_bundle(manifest, EXAMPLE / "bundle.toml", scheduler="serial", output=out)
+    assert (raised.value.written, raised.value.total) == (24, 24) == (len(_written(out)), 24)
+    monkeypatch.setattr(engine, "build_task", real)
+    again = run_bundle(manifest, EXAMPLE / "bundle.toml", scheduler="serial", output=out)
+    assert again.stats["skipped"] == 24
+
+
 def test_cli_interrupt_in_process_exits_130_with_one_line(tmp_path, monkeypatch, capsys):
     import fretwear.cli.bundle as cli_bundle
 

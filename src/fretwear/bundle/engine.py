@@ -377,7 +377,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         return _assemble(man, records, walls, store, (elapsed, startup), workers_used,
                          dataset_format)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
-        raise _interrupted(store, records, buffer, total) from exc
+        raise _interrupted(store, records, buffer, total, previous, man) from exc
 
 
 class BundleInterrupted(KeyboardInterrupt):
@@ -403,15 +403,20 @@ class BundleInterrupted(KeyboardInterrupt):
                          else f"interrupted: none of {total} contacts written (no output)")
 
 
-def _interrupted(store, records, buffer, total) -> BundleInterrupted:
+def _interrupted(store, records, buffer, total, previous, man) -> BundleInterrupted:
     """The :class:`BundleInterrupted` of an interrupted run, the records received but not yet
     written saved first as a part (a second interrupt during that write leaves it out)."""
     if store is not None and buffer:
         with contextlib.suppress(OSError, KeyboardInterrupt):
             store.write_part(buffer)
-    # a record is in a part once its part's JSON is written (write_part sets "part" then)
-    written = sum(1 for r in records.values()
-                  if r.get("part") and r["status"] in ("done", "skipped"))
+    # a record is in a part once its part's JSON is written (write_part sets "part" then); a
+    # contact the run had not reached yet (interrupted while the tasks were built) counts by
+    # the earlier runs' parts
+    written = sum(1 for row in man.rows
+                  if (row.contact in records and records[row.contact].get("part")
+                      and records[row.contact]["status"] in ("done", "skipped"))
+                  or (row.contact not in records
+                      and (previous.get(row.contact) or {}).get("status") == "done"))
     if store is None:  # nothing written: the contacts computed before the interrupt
         written = 0
     return BundleInterrupted(written, total, None if store is None else store.path)
