@@ -27,7 +27,7 @@ from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
-from fretwear.bundle.cases import ContactTask, build_task, check_base_case
+from fretwear.bundle.cases import ROW_ERRORS, ContactTask, build_task, check_base_case
 from fretwear.bundle.cluster import (
     LOCAL_CLUSTER_CONFIG,  # noqa: F401 - its home until now
     DaskEngine,
@@ -49,7 +49,7 @@ from fretwear.bundle.tasks import (
     run_contacts,
     time_bounds,
 )
-from fretwear.errors import InputError, KeywordError
+from fretwear.errors import KeywordError
 from fretwear.geometry.base import GLOBAL_RANGE
 from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.io.atomic import atomic_write
@@ -296,7 +296,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             walls[row.contact] = row.wall_thickness
             try:
                 task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
-            except (InputError, OSError) as exc:
+            except ROW_ERRORS as exc:
                 records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
                 continue
             old = previous.get(row.contact)
