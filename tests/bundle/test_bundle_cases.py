@@ -376,3 +376,23 @@ def test_the_base_case_error_names_the_base_case_key(tmp_path):
             "case") in message, message
     assert message.endswith("no row of the manifest changes that; nothing was computed")
     assert "gives what it lacks" not in message
+
+
+def test_a_row_naming_another_law_does_not_inherit_the_base_laws_coefficients(tmp_path):
+    """ARCHARD base (K = 2e-15 Pa⁻¹); a row switching to EDF_MZ with only its exponent b = 1:
+    Archard's K must not become EDF-MZ's A (another quantity, m³/(s·W^b)). The row's volume is
+    the one of a base case written for EDF_MZ with only COEF_B = 1 (its defaults otherwise),
+    and a switch to ARCHARD from a KWU-EPRI base does not carry reference_intensity over
+    (which ARCHARD would refuse)."""
+    for sub in "abc":
+        (tmp_path / sub).mkdir()
+    archard = 'name = "ARCHARD"\nmobile = { COEF_USURE = 2e-15 }'
+    switched = _given_power(tmp_path / "a", archard, **{"law.name": "EDF_MZ",
+                                                        "law.mobile.COEF_B": 1.0})
+    direct = _given_power(tmp_path / "b", 'name = "EDF_MZ"\nmobile = { COEF_B = 1.0 }')
+    assert _volumes(switched) == _volumes(direct)
+    assert _volumes(switched)[0] != pytest.approx(2e-15 * 0.01 * YEAR)
+    kwu = 'name = "KWU_EPRI"\nmobile = { COEF_USURE = 5.2e-14, reference_intensity = 1.0e-7 }'
+    back = _given_power(tmp_path / "c", kwu, **{"law.name": "ARCHARD",
+                                                "law.mobile.COEF_USURE": 2e-15})
+    assert _volumes(back) == pytest.approx((2e-15 * 0.01 * YEAR, 0.0))

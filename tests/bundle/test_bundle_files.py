@@ -88,3 +88,21 @@ def test_files_fretwear_did_not_write_are_never_removed(tmp_path):
 
         assert json.loads((out / "run.json").read_text())["outputs"][:2] == [
             "table.parquet", "dataset.zarr"]
+
+
+def test_a_run_without_rows_removes_the_earlier_runs_dataset(tmp_path):
+    """A run whose every contact fails writes an empty table and no dataset: the dataset an
+    earlier run wrote there (recorded in its run.json) is removed, not left beside it."""
+    from bundle_helpers import oscillator, write_bundle
+
+    from fretwear.bundle import run_bundle
+
+    pytest.importorskip("netCDF4")
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    out = tmp_path / "out"
+    run_bundle(manifest, case, scheduler="serial", output=out, dataset_format="netcdf")
+    assert (out / "dataset.nc").is_file()
+    frame = pd.read_csv(manifest).assign(history="histories/missing.parquet")
+    failed = run_bundle(frame, case, scheduler="serial", output=out, dataset_format="netcdf")
+    assert failed.stats["failed"] == 2 and not len(failed.table)
+    assert not (out / "dataset.nc").exists()

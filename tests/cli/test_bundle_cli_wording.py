@@ -50,3 +50,19 @@ def test_quiet_keeps_only_the_final_line_and_a_skipped_run_starts_no_cluster(tmp
     assert "no cluster started" in line
     said = line.split("; results in ")[0]
     assert "worker(s)" not in said and "(cluster start" not in said
+
+
+def test_the_forecast_column_shows_for_the_contacts_own_limit_only(tmp_path, capsys):
+    """The terminal table's forecast (the summary's limit_forecast) for the case's own limit:
+    R1C3-AVB1, at 1.6 % of the wall after 40 years, has no time to limit and a forecast of
+    about 4 870 years (tests/bundle/test_bundle_time_to_limit.py checks the value); with another
+    --limit there is no forecast, and no empty column."""
+    assert main([*ARGS, "--scheduler", "serial", "-o", str(tmp_path / "a"), "--top", "24"]) == 0
+    out = capsys.readouterr().out
+    assert "forecast [year]" in out
+    line = next(x for x in out.splitlines() if "R1C3-AVB1" in x)
+    assert "4870" in line
+    assert main([*ARGS, "--scheduler", "serial", "-o", str(tmp_path / "b"), "--limit", "0.3"]) \
+        == 0
+    out = capsys.readouterr().out
+    assert "forecast [" not in out and "forecast:" not in out

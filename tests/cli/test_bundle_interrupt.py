@@ -107,6 +107,32 @@ def test_an_interrupt_while_the_tasks_are_built_counts_the_earlier_runs_contacts
     assert again.stats["skipped"] == 24
 
 
+def test_contacts_recomputed_for_changed_inputs_count_only_once_written(tmp_path):
+    """A complete run, then the base case changed (one more instant: every contact's key
+    changes) and a rerun interrupted after 3 contacts: 3 are written with the new case, and the
+    count says 3, not the 24 old results on disk (which the next run recomputes)."""
+    manifest = _manifest(tmp_path, 1)
+    out = tmp_path / "out"
+    run_bundle(manifest, EXAMPLE / "bundle.toml", scheduler="serial", output=out)
+    case = tmp_path / "changed.toml"
+    case.write_text((EXAMPLE / "bundle.toml").read_text().replace(
+        "instants = [1, 2, 5, 10, 20, 30, 40]", "instants = [1, 2, 5, 10, 20, 30, 40, 50]"))
+    seen = []
+
+    def interrupt_after_three(done, total, record):
+        if record["status"] == "done":
+            seen.append(record["contact"])
+            if len(seen) == 3:
+                raise KeyboardInterrupt
+
+    with pytest.raises(BundleInterrupted) as raised:
+        run_bundle(manifest, case, scheduler="serial", output=out,
+                   progress=interrupt_after_three)
+    assert (raised.value.written, raised.value.total) == (3, 24)
+    again = run_bundle(manifest, case, scheduler="serial", output=out)
+    assert (again.stats["skipped"], again.stats["done"]) == (3, 21)
+
+
 def test_cli_interrupt_in_process_exits_130_with_one_line(tmp_path, monkeypatch, capsys):
     import fretwear.cli.bundle as cli_bundle
 

@@ -158,7 +158,9 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
 
     A row giving the law's coefficients replaces the base case's coefficient source (its
     database materials), and a row giving materials replaces the base case's coefficients
-    (:func:`_coefficient_source`).
+    (:func:`_coefficient_source`). A row naming another law (``law.name``) does not inherit the
+    base case's coefficient tables (``law.mobile``, ``law.obstacle``): their entries belong to
+    the base's law; the row's own entries, or the new law's defaults, apply.
 
     Raises
     ------
@@ -177,6 +179,13 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
         given.append((key, _coerce(KEYS[section][name][0], value, f"{where}: {label}")))
     if isinstance(case.get("law"), dict):
         _coefficient_source(case["law"], {k[1]: v for k, v in given if k[0] == "law"}, where)
+        # another law: the base law's coefficient tables mean other things (Archard's K is not
+        # EDF-MZ's A): not inherited, the row's entries (or the new law's defaults) only
+        new_law = next((v for k, v in given if k == ("law", "name")), None)
+        if new_law is not None and str(new_law).strip().upper() != str(
+                case["law"].get("name", "ARCHARD")).strip().upper():
+            for table in ("mobile", "obstacle"):
+                case["law"].pop(table, None)
     for key, value in given:
         section, name = key[0], key[1]
         if len(key) == 3:

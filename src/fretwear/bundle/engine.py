@@ -285,8 +285,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     records: dict[str, dict[str, Any]] = {}
     buffer: list[dict[str, Any]] = []
     total = len(man.rows)
+    pending: list[ContactTask] = []  # the rows made tasks (an interrupt counts them once done)
     try:
-        pending: list[ContactTask] = []
         walls: dict[str, float | None] = {}
         cases: dict = {}
         # a base case that fails for every contact stops here, said once (the case it builds
@@ -377,7 +377,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         return _assemble(man, records, walls, store, (elapsed, startup), workers_used,
                          dataset_format)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
-        raise _interrupted(store, records, buffer, total, previous, man) from exc
+        raise _interrupted(store, records, buffer, total, previous, man,
+                           {t.contact for t in pending}) from exc
 
 
 class BundleInterrupted(KeyboardInterrupt):
@@ -403,19 +404,19 @@ class BundleInterrupted(KeyboardInterrupt):
                          else f"interrupted: none of {total} contacts written (no output)")
 
 
-def _interrupted(store, records, buffer, total, previous, man) -> BundleInterrupted:
+def _interrupted(store, records, buffer, total, previous, man, tasks) -> BundleInterrupted:
     """The :class:`BundleInterrupted` of an interrupted run, the records received but not yet
     written saved first as a part (a second interrupt during that write leaves it out)."""
     if store is not None and buffer:
         with contextlib.suppress(OSError, KeyboardInterrupt):
             store.write_part(buffer)
     # a record is in a part once its part's JSON is written (write_part sets "part" then); a
-    # contact the run had not reached yet (interrupted while the tasks were built) counts by
-    # the earlier runs' parts
+    # row made a task (``tasks``) counts only once computed this run; a row not reached yet
+    # (interrupted while the tasks were built) counts by the earlier runs' parts
     written = sum(1 for row in man.rows
                   if (row.contact in records and records[row.contact].get("part")
                       and records[row.contact]["status"] in ("done", "skipped"))
-                  or (row.contact not in records
+                  or (row.contact not in records and row.contact not in tasks
                       and (previous.get(row.contact) or {}).get("status") == "done"))
     if store is None:  # nothing written: the contacts computed before the interrupt
         written = 0
@@ -503,6 +504,8 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
         dataset_format = "netcdf" if optional("zarr") is None else "zarr"
     if len(result.table):
         store.write_dataset(result.dataset, dataset_format)
+    else:
+        store.drop_dataset()
     # the final files written, so that a later run in another format removes only those
     outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv", "run.json"]
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:

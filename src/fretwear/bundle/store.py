@@ -172,6 +172,12 @@ class OutputDirectory:
                 self._remove_stale(f"table.{other}")
         return target
 
+    def drop_dataset(self) -> None:
+        """No dataset this run (no contact has rows): the one an earlier run of this directory
+        wrote, of either format, is removed (it would stand beside an empty table)."""
+        for name in ("dataset.nc", "dataset.zarr"):
+            self._remove_stale(name)
+
     def write_dataset(self, dataset, fmt: str) -> Path:
         """Write the dataset atomically: a NetCDF file, or a Zarr directory swapped in whole;
         the dataset of the other format that an earlier run of this directory wrote is

@@ -71,9 +71,11 @@ def _summary(result, console, top: int, limit: float | None) -> None:
     units = summary["time_unit"].dropna().astype(str).unique()
     one_unit = units[0] if len(units) == 1 else None
     time_header = "time to limit" + (f" [{one_unit}]" if one_unit else "")
+    # the forecast for the contacts' own limit; none for another --limit: no column
+    forecasts = bool(summary["limit_forecast"].notna().any())
     forecast_header = "forecast" + (f" [{one_unit}]" if one_unit else "")
     for col in ("rank", "contact", "row", "col", "support", "P [W]", "global depth [mm]",
-                "depth/wall", time_header, forecast_header):
+                "depth/wall", time_header, *([forecast_header] if forecasts else [])):
         table.add_column(Text(col), justify="right")  # Text: "[mm]" is not rich markup
 
     def text(v, fmt="{}"):
@@ -88,13 +90,14 @@ def _summary(result, console, top: int, limit: float | None) -> None:
             forecast = f"{forecast} {r.time_unit}" if forecast[:1].isdigit() else forecast
         cells = (str(r.rank), str(r.contact), text(getattr(r, "tube_row", None)),
                  text(getattr(r, "tube_column", None)), text(getattr(r, "support", None)),
-                 f"{r.power:.4g}", depth, text(r.depth_fraction, "{:.1%}"), t_lim, forecast)
+                 f"{r.power:.4g}", depth, text(r.depth_fraction, "{:.1%}"), t_lim,
+                 *([forecast] if forecasts else []))
         table.add_row(*(Text(c) for c in cells))
     console.print(table)
     if summary["time_to_limit"].notna().any():
         console.print(f"time to limit: {summary.attrs['time_to_limit']}", style="dim",
                       markup=False, highlight=False)
-    if summary["limit_forecast"].notna().any():
+    if forecasts:
         console.print("forecast: when the wear table's law and geometry, at the history's "
                       "power, reach the limit, also beyond the last instant", style="dim",
                       markup=False, highlight=False)
