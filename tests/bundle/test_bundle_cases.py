@@ -396,3 +396,15 @@ def test_a_row_naming_another_law_does_not_inherit_the_base_laws_coefficients(tm
     back = _given_power(tmp_path / "c", kwu, **{"law.name": "ARCHARD",
                                                 "law.mobile.COEF_USURE": 2e-15})
     assert _volumes(back) == pytest.approx((2e-15 * 0.01 * YEAR, 0.0))
+
+
+def test_a_table_given_whole_and_by_entry_in_one_row_is_refused(tmp_path):
+    """A CSV row with both law.mobile (a whole table) and law.mobile.COEF_USURE: the result
+    depended on the columns' order (a volume of 5.1e-8 or 4.6e-7 m³ for the same cells); now
+    that contact fails, in either order, naming both forms."""
+    base = 'name = "ARCHARD"\nmobile = { COEF_USURE = 2e-15 }'
+    cells = {"law.mobile": "{ COEF_USURE = 1e-15 }", "law.mobile.COEF_USURE": 3e-15}
+    for order in (list(cells), list(reversed(cells))):
+        got = _given_power(tmp_path, base, **{k: cells[k] for k in order})
+        assert got.errors["error"].tolist() == ["KeywordError"]
+        assert "law.mobile is given whole and by entry" in got.errors["message"][0]

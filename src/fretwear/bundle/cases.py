@@ -177,6 +177,11 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
             continue
         label = row.labels.get(key) or f"column {'.'.join(k for k in key if k)}"
         given.append((key, _coerce(KEYS[section][name][0], value, f"{where}: {label}")))
+    wholes = {k for k, _ in given if len(k) == 2}
+    both = sorted({".".join(k[:2]) for k, _ in given if len(k) == 3 and k[:2] in wholes})
+    if both:  # the result would depend on the columns' order
+        raise KeywordError(f"{where}: {both[0]} is given whole and by entry ({both[0]}.<entry>) "
+                           "in the same row: give the whole table, or its entries")
     if isinstance(case.get("law"), dict):
         _coefficient_source(case["law"], {k[1]: v for k, v in given if k[0] == "law"}, where)
         # another law: the base law's coefficient tables mean other things (Archard's K is not
