@@ -386,8 +386,8 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
             unit = derived
         else:
             unit = UNITS[channel]
-        if channel == "time" and " since " in str(unit):
-            unit = str(unit).split(" since ")[0].strip()  # CF "seconds since ..."
+        if channel == "time":
+            unit = _without_epoch(unit)
         chosen[channel] = str(unit)
         from_file = channel not in per_channel and quantity not in per_quantity \
             and declared.get(pos) is not None
@@ -410,14 +410,18 @@ def resolve_units(mapping: Mapping[str, int], declared: Mapping[int, str],
     return chosen, factors
 
 
+def _without_epoch(unit: Any) -> Any:
+    """A CF time unit without its epoch (``"seconds since 2000-01-01"`` -> ``"seconds"``)."""
+    return str(unit).split(" since ")[0].strip() if " since " in str(unit) else unit
+
+
 def _differs(declared: str, factor: float, quantity: str) -> bool:
     """Whether the unit a file declares has another factor to SI than ``factor``. A declared
     unit fretwear cannot read (CF's ``m s-1``, say) is not said to differ: giving the unit is
     then what the reader's error asks for, and nothing tells the two apart."""
-    if " since " in str(declared):
-        declared = str(declared).split(" since ")[0].strip()
     try:
-        return unit_factor(declared, quantity, culprit="the declared unit") != factor
+        read = unit_factor(_without_epoch(declared), quantity, culprit="the declared unit")
+        return read != factor
     except KeywordError:
         return False
 
