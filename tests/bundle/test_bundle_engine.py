@@ -435,3 +435,100 @@ def test_errors_keep_the_global_depth_range_warning_rather_than_a_sectors(tmp_pa
     message = result.errors["message"].iloc[0]
     assert message.startswith("TUBE_ALESAGE: 4 volume(s) beyond the range of the relation")
     assert message == next(m for m in ranged if GLOBAL_RANGE in m)
+
+
+def _same_bits(a: np.ndarray, b: np.ndarray) -> bool:
+    """Equal dtype, length and bytes (NaN payloads and the sign of zero included); object
+    arrays element by element."""
+    if a.dtype != b.dtype or a.shape != b.shape:
+        return False
+    if a.dtype == object:
+        return all(x is y or x == y for x, y in zip(a.tolist(), b.tolist(), strict=True))
+    return a.tobytes() == b.tobytes()
+
+
+def test_a_groups_records_travel_as_blocks_and_come_back_bit_for_bit():
+    """tasks.pickled lays a group's tables end to end (one array per column and layout) and
+    tasks.unpickled gives back every record with the same table, bit for bit: layouts with and
+    without sectors, an int column, a text column, -0.0 and NaN payloads, empty tables, failed
+    records without a table, and a record that is not a dict; the rest of each record is
+    untouched. Independent reference: the records pickled as they are."""
+    import pickle
+
+    from fretwear.bundle.tasks import pickled, unpickled
+
+    rng = np.random.default_rng(7)
+
+    def table(rows: int, sectors: bool) -> dict:
+        values = rng.normal(size=rows)
+        values[::3] = -0.0
+        values[1::5] = np.frombuffer(np.uint64(0x7FF8_0000_0000_0ABC).tobytes() * 1, float)[0]
+        columns = {"instant": np.arange(rows, dtype=float), "volume_mobile": values}
+        if sectors:
+            columns["sector"] = np.arange(rows, dtype=np.int64)
+            columns["label"] = np.array([f"s{k}" for k in range(rows)], dtype=object)
+        return {"columns": list(columns), "arrays": list(columns.values())}
+
+    records = []
+    for k in range(9):
+        rec = {"contact": f"c{k}", "status": "done", "warnings": [["W", "m"]], "seconds": 0.1 * k,
+               "attrs": {"law": "ARCHARD"}, "table": table(6 * (k % 4), sectors=k % 2 == 0)}
+        records.append(rec)
+    records[4] = {"contact": "c4", "status": "failed", "table": None, "error": ["E", "m"]}
+    records.append(ValueError("a task's exception"))
+    expected = pickle.loads(pickle.dumps(records))
+    data = pickled(lambda: records)
+    got = unpickled(data)
+    assert len(got) == len(expected)
+    for g, e in zip(got, expected, strict=True):
+        if not isinstance(e, dict):
+            assert type(g) is type(e) and str(g) == str(e)
+            continue
+        assert {k: v for k, v in g.items() if k != "table"} == \
+            {k: v for k, v in e.items() if k != "table"}
+        if e["table"] is None:
+            assert g["table"] is None
+            continue
+        assert g["table"]["columns"] == e["table"]["columns"]
+        for a, b in zip(g["table"]["arrays"], e["table"]["arrays"], strict=True):
+            assert _same_bits(a, b)
+    # one array per column and layout crossed the wire, not one per contact
+    _, light, blocks = pickle.loads(data)
+    assert len(blocks) == 2 and all(r is None or not isinstance(r, dict) or r["table"] is None
+                                    for r in light)
+    assert records[0]["table"] is not None  # the worker's own records are not modified
+
+
+def test_a_restart_reads_the_parts_rows_back_as_the_contacts_tables(tmp_path):
+    """OutputDirectory.packed_rows (the rows of skipped contacts, each part's columns converted
+    once and sliced) equals tasks.pack of each contact's rows taken out of the part by pandas
+    (groupby, drop, reset_index: the reference), bit for bit, for a part mixing contacts with
+    and without sectors, in both table formats; OutputDirectory.rows gives those frames."""
+    from fretwear.bundle.store import OutputDirectory
+    from fretwear.bundle.tasks import pack
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    tables = [reference(tmp_path / f"histories/t{k}.parquet", case) for k in range(3)]
+    tables.append(tables[0].drop(columns=["sector"]).iloc[:4])
+    records = [{"contact": f"c{k}", "status": "done", "key": "k", "table": pack(t),
+                "warnings": [], "error": None} for k, t in enumerate(tables)]
+    for fmt in ("parquet", "csv"):
+        store = OutputDirectory(tmp_path / f"out-{fmt}", table_format=fmt)
+        store.write_part([dict(r) for r in records[:2]])
+        store.write_part([dict(r) for r in records[2:]])
+        previous = store.previous()
+        wanted = [previous[c] for c in ("c3", "c0", "c2")]
+        got = store.packed_rows(wanted)
+        frames = store.rows(wanted)
+        assert sorted(got) == sorted(frames) == ["c0", "c2", "c3"]
+        for contact in got:
+            part = pd.read_parquet(store.parts / previous[contact]["rows_file"]) \
+                if fmt == "parquet" else pd.read_csv(store.parts / previous[contact]["rows_file"],
+                                                     dtype={"contact": str})
+            rows = part[part["contact"] == contact].drop(columns="contact") \
+                .reset_index(drop=True)
+            pd.testing.assert_frame_equal(frames[contact], rows, check_exact=True)
+            expected = pack(rows)
+            assert got[contact]["columns"] == expected["columns"]
+            for a, b in zip(got[contact]["arrays"], expected["arrays"], strict=True):
+                assert _same_bits(a, b), (fmt, contact)

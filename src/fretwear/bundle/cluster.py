@@ -12,13 +12,12 @@ import contextlib
 import functools
 import logging
 import os
-import pickle
 import signal
 import threading
 from typing import Any
 
 from fretwear.bundle.datasets import require
-from fretwear.bundle.tasks import pickled
+from fretwear.bundle.tasks import pickled, unpickled
 from fretwear.errors import InputError, KeywordError
 
 #: Dask settings of the local cluster: tasks sent to the workers' queues at once; the workers'
@@ -149,7 +148,7 @@ class DaskEngine:
             finished = [f for f in batch if f.status == "finished"]
             values = self.client.gather(finished) if finished else []
             for future, value in zip(finished, values, strict=True):
-                yield future, pickle.loads(value) if isinstance(value, bytes) else value
+                yield future, unpickled(value) if isinstance(value, bytes) else value
             for future in batch:
                 if future.status != "finished":
                     try:

@@ -44,7 +44,6 @@ from fretwear.bundle.tasks import (
     finish_contact,
     merge_states,
     needs_whole_history,
-    pack,
     run_contact,
     run_contacts,
     time_bounds,
@@ -435,7 +434,7 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
     missing = [records[c] for c in order if c not in packed and records[c]["status"]
                in ("done", "skipped")]
     if missing and store is not None:  # a restart: the rows of skipped contacts from the parts
-        packed.update({c: pack(f) for c, f in store.rows(missing).items()})
+        packed.update(store.packed_rows(missing))
     kept = [c for c in order if c in packed]
     table = concat_packed(kept, [packed[c] for c in kept])
     if "sector" in table.columns and table["sector"].isna().any():

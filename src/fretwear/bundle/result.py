@@ -433,8 +433,9 @@ def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
                 ["contact", "sector"])[list(_SECTOR_ONLY)].to_xarray()
             data.update({k: a[k] for k in a.data_vars})
     ds = xr.Dataset(data)
-    if "contact" in ds.dims:
-        ds = ds.reindex(contact=[c for c in ids if c in set(ds["contact"].values)])
+    if "contact" in ds.dims:  # the manifest's order (the set built once: 20 000 contacts took
+        present = set(ds["contact"].values)  # 28 s when it was rebuilt for each of them)
+        ds = ds.reindex(contact=[c for c in ids if c in present])
     info = done.set_index("contact") if len(done) else done
     if "contact" in ds.dims:
         order = [str(c) for c in ds["contact"].values]
