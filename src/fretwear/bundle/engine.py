@@ -372,8 +372,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             workers_used = engine.workers
         finally:
             engine.close()
-        elapsed = time.perf_counter() - started
-        return _assemble(man, records, walls, store, (elapsed, startup), workers_used,
+        return _assemble(man, records, walls, store, (started, startup), workers_used,
                          dataset_format)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         raise _interrupted(store, records, buffer, total, previous, man,
@@ -474,27 +473,36 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
     statuses = contacts["status"].value_counts()
     computed = [records[c] for c in order if records[c]["status"] in ("done", "failed")]
     samples = int(sum(r.get("samples", 0) for r in computed))
-    count = len(computed)
-    elapsed, startup = times
-    busy = elapsed - startup  # throughput without the cluster's start
+    started, startup = times
     stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
              "failed": int(statuses.get("failed", 0)),
-             "skipped": int(statuses.get("skipped", 0)), "seconds": elapsed,
-             "startup_seconds": startup,
-             "contacts_per_s": count / busy if busy > 0 else math.nan,
-             "samples": samples, "samples_per_s": samples / busy if busy > 0 else math.nan,
-             "workers": workers, "manifest": man.source}
+             "skipped": int(statuses.get("skipped", 0)), "seconds": math.nan,
+             "startup_seconds": startup, "contacts_per_s": math.nan, "samples": samples,
+             "samples_per_s": math.nan, "workers": workers, "manifest": man.source}
     result = BundleResult(table=table, errors=errors_frame,
                           warnings=pd.DataFrame(warns, columns=["contact", "category",
                                                                 "message"]),
                           contacts=contacts, stats=stats,
                           output=None if store is None else str(store.path))
     if store is not None:
-        _write_outputs(result, store, records, dataset_format)
+        _write_outputs(result, store, records, dataset_format, (started, len(computed)))
+    else:
+        _times(result.stats, started, len(computed))
     return result
 
 
-def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format):
+def _times(stats: dict[str, Any], started: float, count: int) -> None:
+    """The run's wall time [s] from the call to now (the results assembled, the files but
+    run.json written) and its throughput without the cluster's start [1/s]."""
+    elapsed = time.perf_counter() - started
+    busy = elapsed - stats["startup_seconds"]
+    stats["seconds"] = elapsed
+    stats["contacts_per_s"] = count / busy if busy > 0 else math.nan
+    stats["samples_per_s"] = stats["samples"] / busy if busy > 0 else math.nan
+
+
+def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format,
+                   clock: tuple[float, int]):
     store.write_table(result.table)
     write_frame(result.errors, store.path / "errors.csv", "csv")
     write_frame(result.warnings, store.path / "warnings.csv", "csv")
@@ -507,6 +515,7 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
         store.drop_dataset()
     # the final files written, so that a later run in another format removes only those
     outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv", "run.json"]
+    _times(result.stats, *clock)
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
         json.dump({**result.stats, "outputs": outputs}, handle, indent=1, default=str)
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))

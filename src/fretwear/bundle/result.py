@@ -51,7 +51,8 @@ class BundleResult:
         earlier run with the same inputs), ``samples``, ``seconds`` (compute time),
         ``power`` [W], ``time_unit``, ``wall_thickness`` [m] (when given).
     stats : dict
-        ``contacts``, ``done``, ``failed``, ``skipped``, ``seconds`` (wall time of the run),
+        ``contacts``, ``done``, ``failed``, ``skipped``, ``seconds`` (wall time of the run
+        [s], from the call to the results assembled and the output files written),
         ``startup_seconds`` (starting or joining the cluster), ``contacts_per_s`` and
         ``samples_per_s`` (computed contacts and history samples per second of the run without
         the start-up), ``samples``, ``workers``.
