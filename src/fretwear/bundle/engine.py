@@ -65,6 +65,7 @@ TASKS_PER_WORKER = 8
 #: client some CPU (500 contacts: 0.18 -> 0.14 s); above, the workers would hold every finished
 #: record until the end (some 12 kB a contact of 48 rows: 600 MB for 50 000), not a task's.
 GATHER_AT_END = 2_000
+STRIDED = False
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
@@ -340,6 +341,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             else:
                 starts = list(itertools.accumulate(sizes, initial=0))
                 groups = [whole[a:b] for a, b in itertools.pairwise(starts)]
+                if STRIDED:
+                    groups = [whole[g::len(sizes)] for g in range(len(sizes))]
                 keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
                 mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
                                     retries=retries)
