@@ -556,3 +556,28 @@ def test_the_runs_wall_time_includes_assembling_and_writing_the_results(tmp_path
     assert written["contacts_per_s"] == result.stats["contacts_per_s"] > 0
     no_output = run_bundle(manifest, case, scheduler="serial")
     assert 0 < no_output.stats["seconds"] < result.stats["seconds"]
+
+
+def test_dealt_groups_share_a_cost_that_grows_along_the_manifest():
+    """engine.deal: every contact in exactly one group, in manifest order within it, the sizes
+    of task_sizes; and when the cost grows linearly along the manifest (1 to 2: a manifest
+    sorted by row, the U-bend rows impacting more), the first half of the groups (what Dask
+    gives one of two workers) holds half the work to within one contact's cost, and so does
+    every group its share, where consecutive groups hold 0.625 of the work against 0.875 (the
+    integral of 1 + x over each half of [0, 1])."""
+    from fretwear.bundle.engine import deal, task_sizes
+
+    n, workers = 500, 2
+    sizes = task_sizes(n, workers)
+    groups = deal(list(range(n)), len(sizes))
+    assert sorted(i for g in groups for i in g) == list(range(n))
+    assert all(g == sorted(g) for g in groups) and [len(g) for g in groups] == sizes
+    cost = 1 + np.arange(n) / (n - 1)
+    half = len(groups) // 2
+    first = sum(cost[g].sum() for g in groups[:half])
+    second = sum(cost[g].sum() for g in groups[half:])
+    assert abs(first - second) <= cost.max()  # 250 contacts each
+    shares = np.array([cost[g].sum() / len(g) for g in groups])
+    assert np.ptp(shares) * 32 <= cost.max()
+    consecutive = cost[:n // 2].sum() / cost.sum()
+    assert consecutive == pytest.approx(0.625 / 1.5, rel=1e-2)

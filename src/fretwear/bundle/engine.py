@@ -15,7 +15,6 @@ from __future__ import annotations
 
 import contextlib
 import gc
-import itertools
 import json
 import math
 import os
@@ -65,7 +64,6 @@ TASKS_PER_WORKER = 8
 #: client some CPU (500 contacts: 0.18 -> 0.14 s); above, the workers would hold every finished
 #: record until the end (some 12 kB a contact of 48 rows: 600 MB for 50 000), not a task's.
 GATHER_AT_END = 2_000
-STRIDED = False
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
@@ -159,28 +157,74 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
 
     One contact per task for a bundle of fewer than :data:`TASKS_PER_WORKER` contacts per
     worker. Otherwise exactly ``TASKS_PER_WORKER × workers`` groups whose sizes differ by one
-    at most, the larger first: the cost of a task (the scheduler's and the client's CPU, shared
-    with the workers on a small machine: about 4 ms a task) is spread over the group, and the
-    scheduler, which deals the tasks out by count before it knows their durations, gives every
-    worker the same number of contacts within :data:`TASKS_PER_WORKER`. Each contact keeps its
-    own record, warnings and failure. (A last group holding the remainder, 16 groups of 31 and
-    one of 4, left one worker 31 contacts more when the groups were dealt in two batches; guided
-    sizes, large first and single contacts last, were measured slower.)
+    at most, the larger ones spread evenly along the order (:func:`_spread`): the cost of a
+    task (the scheduler's and the client's CPU, shared with the workers on a small machine:
+    about 4 ms a task) is spread over the group, and the scheduler, which gives each worker a
+    consecutive run of the tasks before it knows their durations, gives every worker the same
+    number of contacts within one (500 contacts on 2 workers: 250 each; with the larger groups
+    first, 252 and 248). Each contact keeps its own record, warnings and failure. (A last group
+    holding the remainder, 16 groups of 31 and one of 4, left one worker 31 contacts more when
+    the groups were dealt in two batches; guided sizes, large first and single contacts last,
+    were measured slower.)
 
     Examples
     --------
     >>> task_sizes(5, 2)
     [1, 1, 1, 1, 1]
     >>> sizes = task_sizes(500, 2)
-    >>> len(sizes), sizes[:5], sizes[-1], sum(sizes)
-    (16, [32, 32, 32, 32, 31], 31, 500)
+    >>> len(sizes), sizes[:4], sum(sizes[:8]), sum(sizes[8:])
+    (16, [31, 31, 31, 32], 250, 250)
     """
     w = max(1, workers)
     if contacts < TASKS_PER_WORKER * w:
         return [1] * contacts
     groups = TASKS_PER_WORKER * w
     size, rest = divmod(contacts, groups)
-    return [size + 1] * rest + [size] * (groups - rest)
+    return [size + extra for extra in _spread(rest, groups)]
+
+
+def _spread(rest: int, count: int) -> list[int]:
+    """``count`` zeros and ones holding ``rest`` ones spread evenly (one where ``(g + 1) rest /
+    count`` passes an integer): each run of ``count / k`` consecutive entries holds ``rest / k``
+    ones within one.
+
+    >>> _spread(4, 16)
+    [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]
+    """
+    return [int((g + 1) * rest // count > g * rest // count) for g in range(count)]
+
+
+def deal(items: list, count: int) -> list[list]:
+    """``items`` dealt into ``count`` groups as cards are dealt, back and forth (the ``r``-th
+    round of ``count`` items to the groups 0, 1, ... when ``r`` is even, ..., 1, 0 when odd),
+    each group in the items' order; the groups placed in the order of :func:`task_sizes` (the
+    larger ones spread).
+
+    Each group then samples the whole manifest. Dask gives each worker a consecutive run of one
+    map's tasks (the first half of the groups to one of two workers), so groups of consecutive
+    contacts would leave one worker one end of the manifest: when the cost grows along it (a
+    manifest sorted by tube row, the rows toward the U-bend impacting more), that worker gets
+    the costly end (a cost growing linearly from 1 to 2 along the manifest: 0.625 against
+    0.875 of the work). Dealt back and forth, every group holds the same share within one
+    contact (dealt one way only, the groups dealt first would hold the cheaper contacts of
+    every round).
+
+    Examples
+    --------
+    >>> deal(list(range(7)), 3)
+    [[1, 4], [2, 3], [0, 5, 6]]
+    >>> [len(g) for g in deal(list(range(500)), 16)] == task_sizes(500, 2)
+    True
+    """
+    hands: list[list] = [[] for _ in range(count)]
+    for i, item in enumerate(items):
+        r, k = divmod(i, count)
+        hands[k if r % 2 == 0 else count - 1 - k].append(item)
+    size = len(items) // count
+    larger = iter([h for h in hands if len(h) > size])
+    smaller = iter([h for h in hands if len(h) == size])
+    return [next(larger) if extra else next(smaller)
+            for extra in _spread(len(items) % count, count)]
 
 
 def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
@@ -327,10 +371,10 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                     continue
                 handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
                 handles[id(handle)] = (handle, [task])
-            # the contacts computed whole, grouped (task_sizes) and submitted in one map: one
-            # message to the scheduler, which deals the groups out evenly by count (submitting
-            # each worker's first group early, while the client built the others, left one worker
-            # 9 groups and the other 7)
+            # the contacts computed whole, dealt into groups (task_sizes, deal) and submitted
+            # in one map: one message to the scheduler, which deals the groups out evenly by
+            # count (submitting each worker's first group early, while the client built the
+            # others, left one worker 9 groups and the other 7)
             sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
                 else [1] * len(whole)
             if all(size == 1 for size in sizes):
@@ -339,10 +383,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                                     keys=[f"contact-{t.contact}-{tag}" for t in whole],
                                     retries=retries)
             else:
-                starts = list(itertools.accumulate(sizes, initial=0))
-                groups = [whole[a:b] for a, b in itertools.pairwise(starts)]
-                if STRIDED:
-                    groups = [whole[g::len(sizes)] for g in range(len(sizes))]
+                groups = deal(whole, len(sizes))
                 keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
                 mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
                                     retries=retries)
