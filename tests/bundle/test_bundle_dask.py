@@ -63,8 +63,8 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
                                                                      monkeypatch):
     """Contacts grouped several per Dask task (engine.task_sizes, here 3 per task by asking one
     task per worker, dealt as cards) give each contact's single-contact table bit for bit, and
-    a bad contact fails alone inside its group. The groups are submitted in one graph once every contact's
-    task is built (the scheduler then deals them out evenly by count)."""
+    a bad contact fails alone inside its group. The groups are submitted in one graph once
+    every contact's task is built (the scheduler then deals them out evenly by count)."""
     from fretwear.bundle import engine
 
     h = oscillator()
