@@ -59,6 +59,11 @@ PART_SECONDS = 10.0
 #: Tasks per worker when contacts are grouped (:func:`task_sizes`; measured on 500 contacts ×
 #: 1e5 samples, 2 workers: 4, 6, 8, 12, 16 per worker took 1.39, 1.40, 1.39, 1.51, 1.50 s).
 TASKS_PER_WORKER = 8
+#: Largest group of contacts in one task (:func:`task_sizes`): beyond 8 groups a worker of this
+#: size, a larger bundle makes more groups, so that a task's results (progress, a part, what a
+#: dead worker's retry recomputes, a worker's memory of finished records) stay about a part
+#: (:data:`PART_SIZE`) however large the bundle (50 000 contacts on 2 workers: 3 125 a task).
+GROUP_SIZE = 100
 #: Contacts to compute beyond which the results are fetched as each task finishes even when
 #: nobody watches (no progress, no output directory): below, one gather at the end spares the
 #: client some CPU (500 contacts: 0.18 -> 0.14 s); above, the workers would hold every finished
@@ -156,8 +161,9 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
     """How many contacts each Dask task computes, in submission order.
 
     One contact per task for a bundle of fewer than :data:`TASKS_PER_WORKER` contacts per
-    worker. Otherwise exactly ``TASKS_PER_WORKER × workers`` groups whose sizes differ by one
-    at most, the larger ones spread evenly along the order (:func:`_spread`): the cost of a
+    worker. Otherwise ``TASKS_PER_WORKER × workers`` groups, or more (a multiple of the
+    workers) so that none holds more than :data:`GROUP_SIZE` contacts, their sizes differing by
+    one at most, the larger ones spread evenly along the order (:func:`_spread`): the cost of a
     task (the scheduler's and the client's CPU, shared with the workers on a small machine:
     about 4 ms a task) is spread over the group, and the scheduler, which gives each worker a
     consecutive run of the tasks before it knows their durations, gives every worker the same
@@ -174,11 +180,14 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
     >>> sizes = task_sizes(500, 2)
     >>> len(sizes), sizes[:4], sum(sizes[:8]), sum(sizes[8:])
     (16, [31, 31, 31, 32], 250, 250)
+    >>> sizes = task_sizes(50_000, 2)
+    >>> len(sizes), max(sizes), sum(sizes)
+    (500, 100, 50000)
     """
     w = max(1, workers)
     if contacts < TASKS_PER_WORKER * w:
         return [1] * contacts
-    groups = TASKS_PER_WORKER * w
+    groups = w * max(TASKS_PER_WORKER, -(-contacts // (GROUP_SIZE * w)))
     size, rest = divmod(contacts, groups)
     return [size + extra for extra in _spread(rest, groups)]
 
