@@ -18,6 +18,7 @@ Values are the literals of ``impr_table_tableau.txt`` (the same shock printed by
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 from iohelpers import FIXTURES
 
@@ -166,3 +167,94 @@ def test_node_of_a_single_shock_file_of_another_format(tmp_path):
     bare.write_text("t,fn,vt1,vt2\n0,1,0,0\n1,1,1,0\n")
     h = read_history(bare, node="N13")
     assert h.metadata["node"] == "N13" and h.metadata["node_checked"] is False
+
+
+def _many_nodes(path, count: int, samples: int = 5) -> list[str]:
+    """An IMPR_TABLE of ``count`` shock points (NOEUD and NOEUD_CHOC columns, node k's forces
+    scaled by k + 1, the rows of the nodes interleaved sample by sample)."""
+    nodes = [f"N{k}" for k in range(count)]
+    lines = ["#", "#TABLE_SDASTER",
+             "NOEUD    NOEUD_CHOC  INST         VINT1        VINT11       VINT12"]
+    for i in range(samples):
+        for k, node in enumerate(nodes):
+            lines.append(f"{node:8s} {' ' + node.lower():10s} {i * 1e-3:12.5E} "
+                         f"{(k + 1) * FN[i % len(FN)]:12.5E} {0.1:12.5E} {0.0:12.5E}")
+    path.write_text("\n".join(lines) + "\n")
+    return nodes
+
+
+def test_the_nodes_of_one_file_are_read_from_one_parse(tmp_path, monkeypatch):
+    """Reading the nodes of a multi-node IMPR_TABLE one after the other (a bundle's worker, a
+    loop over wear_table(path, node=n)) parses the file once (aster_source.node_index): it was
+    parsed and scanned for every node, quadratic (270 ms a node at 1 000 nodes). Each node's
+    rows equal those of the file's table filtered by an independent pandas mask on its node
+    column; the index is rebuilt when the file changes, and what a caller does to the frames it
+    gets never reaches the next read."""
+    from fretwear.io import aster as aster_module
+    from fretwear.io import aster_source
+
+    aster_source.forget_node_index()
+    path = tmp_path / "nodes.tab"
+    _many_nodes(path, 40)
+    parses = []
+    real = aster_module.read_aster_tables
+    monkeypatch.setattr(aster_module, "read_aster_tables",
+                        lambda p: parses.append(p) or real(p))
+    whole = real(path)[0]
+    for k in (0, 7, 39, 12):
+        h = read_history(path, node=f" n{k} ")
+        mask = whole["NOEUD"].astype(str).str.strip() == f"N{k}"
+        np.testing.assert_array_equal(h.normal_force, whole.loc[mask, "VINT1"].to_numpy())
+        np.testing.assert_array_equal(h.time, whole.loc[mask, "INST"].to_numpy())
+        assert h.metadata["node"] == f"n{k}" and h.metadata["node_checked"] is True
+    assert len(parses) == 1
+    tables, _ = aster_source.node_index(path).select("N3", str(path))
+    tables[0].loc[0, "VINT1"] = -1.0
+    tables[0].attrs["title"] = "changed"
+    again, _ = aster_source.node_index(path).select("N3", str(path))
+    assert again[0].loc[0, "VINT1"] == 4 * FN[0] and again[0].attrs["title"] != "changed"
+    with pytest.raises(KeywordError, match=r"'N40' \(NOEUD/GROUP_NO\) is not in this file: its "
+                                           r"node column holds \['N0', 'N1', 'N2'"):
+        read_history(path, node="N40")
+    assert len(parses) == 1
+    _many_nodes(path, 41)  # rewritten: another size, another index
+    assert read_history(path, node="N40").normal_force.tolist() == [41 * f for f in FN]
+    assert len(parses) == 2
+    aster_source.forget_node_index()
+
+
+def test_node_index_selects_as_the_scan_of_each_table_did(tmp_path):
+    """NodeIndex(tables).select equals a scan of every table for the node (the code it
+    replaced, written out here): rows matched through either node column, case-blind and
+    stripped, tables without the node dropped, the tables' attributes kept, and a table
+    without node column kept when its title names the node."""
+    from fretwear.io.aster import read_aster_tables
+    from fretwear.io.aster_source import NodeIndex
+
+    path = tmp_path / "nodes.tab"
+    _many_nodes(path, 6)
+    table = read_aster_tables(path)[0]
+    other = table.copy()
+    other["NOEUD_CHOC"] = ["n5 "] * len(other)  # every row of this table names N5 too
+    titled = pd.DataFrame({"INST": [0.0, 1e-3], "VINT1": [1.0, 2.0]})
+    titled.attrs.update(title="FORCE DU CHOC N2", types=["R", "R"])
+    tables = [table, other, titled]
+    index = NodeIndex(tables)
+    for node in ("N0", "n5", " N2 "):
+        got, checked = index.select(node, "t")
+        expected = []
+        for frame in tables:
+            if "NOEUD" in frame.columns:
+                match = np.zeros(len(frame), dtype=bool)
+                for column in ("NOEUD", "NOEUD_CHOC"):
+                    match |= (frame[column].astype(str).str.strip().str.upper()
+                              == node.strip().upper()).to_numpy()
+                if match.any():
+                    expected.append(frame.loc[match].reset_index(drop=True))
+            elif node.strip().upper() in frame.attrs["title"]:
+                expected.append(frame)
+        assert checked is True and len(got) == len(expected)
+        for g, e in zip(got, expected, strict=True):
+            pd.testing.assert_frame_equal(g, e, check_exact=True)
+            assert g.attrs == e.attrs
+    assert index.held == [f"N{k}" for k in range(6)] + [f"n{k}" for k in range(6)]
