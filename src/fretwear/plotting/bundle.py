@@ -26,25 +26,148 @@ def _summary(results: Any, limit: float | None = None) -> pd.DataFrame:
     return results.summary() if limit is None else results.summary(limit)
 
 
+_CELLS_LIMIT = 4_000_000  # cells of the (row, column) grid the map accepts (2000 x 2000)
+_VECTOR_CELLS = 2_500     # larger grids are rasterised (an SVG/PDF keeps axes and text vector)
+_KEY_LINE = 0.2           # [in] a line of the black/grey cells' key, under the x label
+
+
+def _tube_grid(worst: pd.DataFrame) -> dict:
+    """The tubes on their (row, column) grid: the values, and the cells drawn without one."""
+    rows, cols = worst["row"].to_numpy(float), worst["column"].to_numpy(float)
+    odd = (rows != np.round(rows)) | (cols != np.round(cols))
+    if odd.any():
+        i = int(np.flatnonzero(odd)[0])
+        raise InputError("the tube-sheet map needs integer tube_row and tube_column (the tube's "
+                         f"row and column numbers), not row {rows[i]:g}, column {cols[i]:g}")
+    r0, c0 = int(rows.min()), int(cols.min())
+    shape = (int(rows.max()) - r0 + 1, int(cols.max()) - c0 + 1)
+    if shape[0] * shape[1] > _CELLS_LIMIT:
+        raise InputError(f"the tube-sheet map would span {shape[0]} rows x {shape[1]} columns "
+                         f"(rows {r0}-{r0 + shape[0] - 1}, columns {c0}-{c0 + shape[1] - 1}); "
+                         "check the manifest's tube_row and tube_column")
+    i, j = rows.astype(int) - r0, cols.astype(int) - c0
+    beyond = worst["beyond"].to_numpy(bool)
+    value = np.full(shape, np.nan)
+    value[i, j] = np.where(beyond, np.nan, worst["value"].to_numpy(float))
+    status = np.full(shape, np.nan)  # 1: beyond the relation's range, 0: a tube without a value
+    status[i, j] = np.where(beyond, 1.0, np.where(np.isnan(value[i, j]), 0.0, np.nan))
+    return {"value": value, "status": status, "first": (r0, c0), "shape": shape,
+            "beyond": (rows[beyond], cols[beyond])}
+
+
+def _layout(shape: tuple[int, int], key_lines: int) -> dict:
+    """Size of a new figure [in] around a map of square cells (the tube pitch), where its
+    colour bar goes (at the right, or under a map too flat to hold the bar's label) and the size
+    of a cell [pt]."""
+    rows, cols = shape
+    cell = min(8.0 / cols, 6.0 / rows, max(0.8, 3.2 / rows))  # [in]: the map within 8 x 6 in
+    horizontal = rows * cell < 3.2
+    left, top = 0.85, 0.45                   # row numbers and label; title
+    right = 0.35 if horizontal else 1.3      # colour bar, its numbers and label
+    bottom = (1.4 if horizontal else 0.6) + key_lines * _KEY_LINE
+    return {"horizontal": horizontal, "margins": (left, right, bottom, top), "cell": 72 * cell,
+            "figsize": (max(left + cols * cell + right, 5.5),  # the title is ~4.6 in long
+                        bottom + rows * cell + top)}
+
+
+def _map_axes(fig: Any, margins: tuple[float, float, float, float]) -> list:
+    """The map's Axes in ``fig``, within ``margins`` [in] (left, right, bottom, top)."""
+    width, height = fig.get_size_inches()
+    left, right, bottom, top = margins
+    w, h = max(width - left - right, 0.2 * width), max(height - bottom - top, 0.2 * height)
+    return [fig.add_axes((left / width, bottom / height, w / width, h / height))]
+
+
+def _colour_bar(fig: Any, axis: Any, art: Any, horizontal: bool, label: str) -> Any:
+    """The colour bar, an inset of the map's Axes as long as the map (whatever its aspect),
+    0.18 in thick, at 0.12 in right of it or under its x label; returns its Axes."""
+    transforms = matplotlib_module("transforms")
+    inches = fig.dpi_scale_trans
+    if horizontal:  # x: the map's width; y: inches from its bottom edge
+        frame = transforms.blended_transform_factory(
+            axis.transAxes, inches + transforms.ScaledTranslation(0, 0, axis.transAxes))
+        bounds = (0.0, -0.78, 1.0, 0.18)
+    else:           # x: inches from its right edge; y: the map's height
+        frame = transforms.blended_transform_factory(
+            inches + transforms.ScaledTranslation(1, 0, axis.transAxes), axis.transAxes)
+        bounds = (0.12, 0.0, 0.18, 1.0)
+    cax = axis.inset_axes(bounds, transform=frame)
+    fig.colorbar(art, cax=cax, orientation="horizontal" if horizontal else "vertical",
+                 label=label)
+    return cax
+
+
+def _mark_beyond(axis: Any, grid: dict, raster: bool, cell: float) -> bool:
+    """The white cross on each black cell (its diagonals, inset); where the cells are small
+    (``cell`` [pt], a large tube sheet), a red ring around it too, so that it is found.
+    Returns: ringed."""
+    rows, cols = grid["beyond"]
+    if not rows.size:
+        return False
+    n_rows, n_cols = grid["shape"]
+    arm = 0.3
+    segments = np.concatenate([
+        np.stack([np.c_[cols - arm, rows - arm], np.c_[cols + arm, rows + arm]], 1),
+        np.stack([np.c_[cols - arm, rows + arm], np.c_[cols + arm, rows - arm]], 1)])
+    axis.add_collection(matplotlib_module("collections").LineCollection(
+        segments, colors="white", linewidths=float(np.clip(40.0 / max(n_rows, n_cols), 0.4, 1.5)),
+        rasterized=raster and rows.size > 200), autolim=False)
+    if cell >= 12.0 or rows.size > 100:  # large cells are seen; many black cells are a region
+        return False
+    axis.scatter(cols, rows, s=max(3.0 * cell, 11.0) ** 2, marker="o", facecolors="none",
+                 edgecolors="red", linewidths=1.2)
+    return True
+
+
+def _cell_key(axis: Any, under: Any, entries: list[tuple[str, bool, str]]) -> None:
+    """Key of the black and grey cells, one line each, under the label ``under`` (outside the
+    map), aligned with the map's left edge."""
+    offsetbox = matplotlib_module("offsetbox")
+    patches, lines = matplotlib_module("patches"), matplotlib_module("lines")
+    items = []
+    for face, cross, text in entries:
+        swatch = offsetbox.DrawingArea(9, 9)
+        swatch.add_artist(patches.Rectangle((0, 0), 9, 9, facecolor=face, edgecolor="0.4",
+                                            linewidth=0.5))
+        if cross:
+            for ys in ((1.5, 7.5), (7.5, 1.5)):
+                swatch.add_artist(lines.Line2D((1.5, 7.5), ys, color="white", linewidth=1.2))
+        label = offsetbox.TextArea(text, textprops={"fontsize": "small"})
+        items.append(offsetbox.HPacker(children=[swatch, label], align="center", pad=0, sep=4))
+    axis.add_artist(offsetbox.AnnotationBbox(
+        offsetbox.VPacker(children=items, align="left", pad=0, sep=3), (0.0, 0.0),
+        xycoords=("axes fraction", under), xybox=(0.0, -4.0), boxcoords="offset points",
+        box_alignment=(0.0, 1.0), frameon=False, pad=0.0,
+        zorder=6))  # drawn after the colour bar (an inset: zorder 5) has placed its label
+
+
 def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
-    """Tube-sheet map: each tube at (column, row), coloured by its worst contact's depth.
+    """Tube-sheet map: each tube a cell at (column, row), coloured by its worst contact's depth.
 
     Parameters
     ----------
     results : BundleResult or DataFrame
-        The bundle's results, or their ``summary()`` (columns ``tube_row``, ``tube_column``,
-        ``depth`` [m], ``depth_fraction``).
+        The bundle's results, or their ``summary()`` (columns ``tube_row``, ``tube_column``
+        (integers), ``depth`` [m], ``depth_fraction``).
     quantity : str
         ``"depth"`` (global tube depth at the last instant [mm]), ``"fraction"`` (depth / wall
         thickness [%]), or ``"auto"`` (the fraction when every tube's wall is known).
     ax : Axes or Figure, optional
-        Where to draw (one panel).
+        Where to draw (one panel). The colour bar is an inset of that Axes, outside the map: in
+        a figure of several panels, ``layout="constrained"`` leaves it room.
 
     Returns
     -------
     matplotlib.figure.Figure
-        One square per tube, the colour of its deepest contact (over its supports); a tube with
-        a depth beyond its relation's range is drawn black with a white cross.
+        One square cell per tube on the (row, column) grid of the tube sheet (cell edges at the
+        half-integers, equal aspect: a square pitch), the colour of its deepest contact (over
+        its supports); no cell where the results have no tube. A tube with a depth beyond its
+        relation's range is a black cell with a white cross (ringed in red where the cells are
+        small); a tube without a value (its wall unknown, ``quantity="fraction"``) is grey; a
+        key under the map names both. The cells are one ``QuadMesh``
+        (``fig.axes[0].collections[0]``: its array the values, rows x columns, masked where no
+        value), rasterised above 2 500 cells so that an SVG or PDF stays small while the axes
+        and text stay vector. A new figure is sized to the tube sheet.
 
     Examples
     --------
@@ -53,6 +176,9 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     >>> fig = plot_tube_sheet(s)
     >>> fig.axes[0].get_xlabel()
     'tube column'
+    >>> print(fig.axes[0].collections[0].get_array())  # rows 1-2 x columns 1-2 [%]
+    [[10.0 20.0]
+     [-- --]]
     """
     summary = _summary(results)
     missing = [c for c in ("tube_row", "tube_column") if c not in summary.columns
@@ -73,28 +199,49 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
                          "beyond": summary["depth"].isna()}).dropna(subset=["row", "column"])
     worst = data.groupby(["row", "column"], as_index=False).agg(
         value=("value", "max"), beyond=("beyond", "any"))
-    fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(1, 1, 1)],
-                                        figsize=(7, 6), what="plot_tube_sheet")
-    ok = worst[~worst["beyond"]]
-    size = float(np.clip(2.0e4 / max(len(worst), 1), 4.0, 250.0))  # squares fill a small map
-    art = axis.scatter(ok["column"], ok["row"], c=ok["value"], marker="s", s=size,
-                       cmap="viridis", edgecolors="0.3", linewidths=0.4)
+    grid = _tube_grid(worst)
+    status = grid["status"]
+    counts = {k: int((status == k).sum()) for k in (1.0, 0.0)}  # beyond; without a value
+    layout = _layout(grid["shape"], sum(n > 0 for n in counts.values()))
+    fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: _map_axes(f, layout["margins"]),
+                                        figsize=layout["figsize"], what="plot_tube_sheet")
+    (r0, c0), (n_rows, n_cols) = grid["first"], grid["shape"]
+    col_edges = np.arange(n_cols + 1) + (c0 - 0.5)
+    row_edges = np.arange(n_rows + 1) + (r0 - 0.5)
+    raster = n_rows * n_cols > _VECTOR_CELLS
+    # large cells: thin white lines between them; small ones (a large map): a continuous field
+    lines = ({"edgecolors": "white", "linewidth": 0.6} if layout["cell"] >= 10.0
+             else {"edgecolors": "none"})
+    value = np.ma.masked_invalid(grid["value"])
+    art = axis.pcolormesh(col_edges, row_edges, value, cmap="viridis", shading="flat",
+                          rasterized=raster, **lines)
+    if value.count() == 0:
+        art.set_clim(0.0, 1.0)  # no value at all: an empty scale rather than a warning
+    ringed = False
+    if counts[1.0] or counts[0.0]:
+        axis.pcolormesh(col_edges, row_edges, np.ma.masked_invalid(status), shading="flat",
+                        cmap=matplotlib_module("colors").ListedColormap(["0.8", "black"]),
+                        vmin=0.0, vmax=1.0, rasterized=raster, **lines)
+        ringed = _mark_beyond(axis, grid, raster, layout["cell"])
+    axis.set_xlim(col_edges[0], col_edges[-1])
+    axis.set_ylim(row_edges[0], row_edges[-1])
+    axis.set_aspect("equal", adjustable="box")  # a square pitch; the axes fit the tube sheet
     label = ("global depth / wall [%]" if quantity == "fraction"
              else "global depth of the tube [mm]")
-    fig.colorbar(art, ax=axis, label=f"worst contact: {label}")
-    bad = worst[worst["beyond"]]
-    if len(bad):
-        axis.scatter(bad["column"], bad["row"], c="black", marker="s", s=size)
-        axis.scatter(bad["column"], bad["row"], c="white", marker="x", s=size / 2,
-                     label="beyond the relation's range")
-        axis.legend(loc="upper right", fontsize="small")
-    ticker = matplotlib_module("ticker")
-    axis.xaxis.set_major_locator(ticker.MaxNLocator(integer=True))
-    axis.yaxis.set_major_locator(ticker.MaxNLocator(integer=True))
+    cax = _colour_bar(fig, axis, art, layout["horizontal"], f"worst contact: {label}")
+    ticker = matplotlib_module("ticker")  # tube numbers only, also for a single row/column
+    axis.xaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
+    axis.yaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
     axis.set_xlabel("tube column")
     axis.set_ylabel("tube row")
-    axis.set_aspect("equal", adjustable="datalim")
     axis.set_title("tube sheet: worst contact per tube at the last instant")
+    entries = [(face, k == 1.0, f"{text} ({counts[k]} tube{'s' * (counts[k] != 1)}"
+                + (", ringed in red" if ringed and k == 1.0 else "") + ")")
+               for k, face, text in ((1.0, "black", "beyond the relation's range"),
+                                     (0.0, "0.8", "no value (wall thickness unknown)"))
+               if counts[k]]
+    if entries:
+        _cell_key(axis, cax.xaxis.label if layout["horizontal"] else axis.xaxis.label, entries)
     return fig
 
 
