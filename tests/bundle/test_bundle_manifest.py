@@ -372,3 +372,40 @@ def test_a_decimal_comma_not_read_as_a_number_is_hinted(tmp_path):
 
 def test_an_entry_name_may_hold_dots():
     assert column_key("history.columns.F.N", "manifest") == ("history", "columns", "F.N")
+
+
+@pytest.mark.parametrize("where", ["zarr", "netcdf"])
+def test_contact_lengths_of_a_store_with_a_2d_time(tmp_path, where, monkeypatch):
+    """A store whose contacts have their own instants (a 2-D time padded with NaN): every
+    contact's length (datasets.store_length, which decides its time chunks) equals the last
+    finite instant + 1 of its own row, computed here row by row, for contacts of full length,
+    shorter, one sample, none; read for all contacts at once in slabs of whole rows (here
+    several slabs of 2 rows, the Zarr store chunked across contacts as xarray chunks it by
+    default), once per store."""
+    xr = pytest.importorskip("xarray")
+    from fretwear.bundle import datasets
+
+    lengths = [9, 6, 0, 1, 9, 3, 8]
+    time = np.full((len(lengths), 9), np.nan)
+    force = np.zeros_like(time)
+    for k, n in enumerate(lengths):
+        time[k, :n] = 1e-3 * np.arange(n)
+        force[k, :n] = 1.0 + k
+    ds = xr.Dataset({"time": (("contact", "sample"), time),
+                     "normal_force": (("contact", "sample"), force)},
+                    coords={"contact": [f"c{k}" for k in range(len(lengths))]})
+    if where == "zarr":
+        pytest.importorskip("zarr")
+        source = tmp_path / "bundle.zarr"
+        ds.to_zarr(source, mode="w", consolidated=False, zarr_format=2,
+                   encoding={"time": {"chunks": (3, 4)}, "normal_force": {"chunks": (3, 4)}})
+    else:
+        source = tmp_path / "bundle.nc"
+        ds.to_netcdf(source)
+    monkeypatch.setattr(datasets, "_LENGTH_SLAB", 18)  # 2 rows of 9 samples a slab
+    datasets._store_lengths.cache_clear()
+    rows = read_manifest(source).rows
+    expected = [int(np.flatnonzero(np.isfinite(r))[-1]) + 1 if np.isfinite(r).any() else 0
+                for r in time]
+    assert [datasets.store_length(row.history) for row in rows] == expected == lengths
+    assert datasets._store_lengths.cache_info().misses == 1

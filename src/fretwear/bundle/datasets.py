@@ -136,9 +136,34 @@ def store_length(ref) -> int:
     ds = cached_store(ref)
     tdim = ref.time_dim
     if "time" in ds.variables and ds["time"].ndim == 2:
-        t = np.asarray(ds["time"].isel({CONTACT_DIM: ref.index}).values, dtype=float)
-        return int(np.flatnonzero(np.isfinite(t))[-1]) + 1 if np.isfinite(t).any() else 0
+        stamp = tuple(ref.stamp) if ref.stamp else path_stamp(ref.path)
+        return int(_store_lengths(ref.path, stamp, tdim)[ref.index])
     return int(ds.sizes[tdim])
+
+
+#: Samples of a 2-D ``time`` read at a time by :func:`_store_lengths` (32 MB of float64).
+_LENGTH_SLAB = 1 << 22
+
+
+@functools.lru_cache(maxsize=4)
+def _store_lengths(path: str, stamp: tuple, tdim: str) -> np.ndarray:
+    """Every contact's length in a store with a 2-D ``time`` (the last finite instant + 1, 0
+    without one), read once, in slabs of whole rows: the client asked for each contact's row in
+    turn, which for a Zarr store chunked across contacts (xarray's default chunks) decompressed
+    whole chunks for one row (3.4 ms a contact, 17 s for 5 000 before any task started)."""
+    ds = _cached_store(path, stamp)
+    time = ds["time"].transpose(CONTACT_DIM, tdim)
+    count, samples = time.shape
+    lengths = np.zeros(count, dtype=np.int64)
+    if samples == 0:
+        return lengths
+    step = max(1, _LENGTH_SLAB // samples)
+    for a in range(0, count, step):
+        finite = np.isfinite(np.asarray(time.isel({CONTACT_DIM: slice(a, a + step)}).values,
+                                        dtype=float))
+        last = samples - np.argmax(finite[:, ::-1], axis=1)
+        lengths[a:a + step] = np.where(finite.any(axis=1), last, 0)
+    return lengths
 
 
 def frame_of(arrays: dict[str, np.ndarray]) -> pd.DataFrame:
