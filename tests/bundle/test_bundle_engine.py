@@ -597,3 +597,30 @@ def test_task_groups_stay_small_however_large_the_bundle(contacts, workers):
     assert len(sizes) % workers == 0 and len(sizes) >= TASKS_PER_WORKER * workers
     runs = np.array(sizes).reshape(workers, -1).sum(axis=1)
     assert np.ptp(runs) <= 1
+
+
+def test_every_dataset_cell_is_the_tables_value(tmp_path):
+    """BundleResult.dataset holds the table's values cell by cell (each contact × instant
+    variable from the contact's first row at that instant, each sector variable from the row of
+    that sector, the sector bounds from the contact's rows), located here by a plain loop over
+    the table's rows: the independent reading of build_dataset's pandas → xarray path."""
+    from fretwear.bundle.result import _SECTOR_ONLY, _sector_columns
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    result = run_bundle(manifest, case, scheduler="serial")
+    ds, table = result.dataset, result.table
+    sector_vars = [v for v in ds.data_vars if v in _sector_columns() and v not in _SECTOR_ONLY]
+    global_vars = [v for v in ds.data_vars if v not in _sector_columns()]
+    assert sector_vars and global_vars
+    seen = set()
+    for row in table.itertuples(index=False):
+        c, t, s = row.contact, row.instant, int(row.sector)
+        if (c, t) not in seen:
+            seen.add((c, t))
+            for v in global_vars:
+                assert ds[v].sel(contact=c, instant=t).item() == getattr(row, v), v
+        for v in sector_vars:
+            assert ds[v].sel(contact=c, instant=t, sector=s).item() == getattr(row, v), v
+        for v in _SECTOR_ONLY:
+            assert ds[v].sel(contact=c, sector=s).item() == getattr(row, v), v
+    assert len(seen) == ds.sizes["contact"] * ds.sizes["instant"]
