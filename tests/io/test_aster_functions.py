@@ -17,6 +17,8 @@ Values are the literals of ``impr_table_tableau.txt`` (the same shock printed by
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -196,6 +198,8 @@ def test_the_nodes_of_one_file_are_read_from_one_parse(tmp_path, monkeypatch):
     aster_source.forget_node_index()
     path = tmp_path / "nodes.tab"
     _many_nodes(path, 40)
+    written = os.stat(path).st_mtime - 60
+    os.utime(path, (written, written))  # a file written a minute ago (see the racy rule below)
     parses = []
     real = aster_module.read_aster_tables
     monkeypatch.setattr(aster_module, "read_aster_tables",
@@ -211,8 +215,10 @@ def test_the_nodes_of_one_file_are_read_from_one_parse(tmp_path, monkeypatch):
     tables, _ = aster_source.node_index(path).select("N3", str(path))
     tables[0].loc[0, "VINT1"] = -1.0
     tables[0].attrs["title"] = "changed"
+    tables[0].attrs["types"].append("changed")
     again, _ = aster_source.node_index(path).select("N3", str(path))
     assert again[0].loc[0, "VINT1"] == 4 * FN[0] and again[0].attrs["title"] != "changed"
+    assert "changed" not in again[0].attrs["types"]
     with pytest.raises(KeywordError, match=r"'N40' \(NOEUD/GROUP_NO\) is not in this file: its "
                                            r"node column holds \['N0', 'N1', 'N2'"):
         read_history(path, node="N40")
@@ -220,6 +226,19 @@ def test_the_nodes_of_one_file_are_read_from_one_parse(tmp_path, monkeypatch):
     _many_nodes(path, 41)  # rewritten: another size, another index
     assert read_history(path, node="N40").normal_force.tolist() == [41 * f for f in FN]
     assert len(parses) == 2
+    # rewritten in place with the same size and its modification time set back (cp -p,
+    # rsync -t, or a coarse clock): the change time tells
+    os.utime(path, (written, written))
+    read_history(path, node="N40")
+    assert len(parses) == 3  # the 41-node file written just now was not kept (racy rule)
+    before = read_history(path, node="N40")
+    assert len(parses) == 3
+    text = path.read_text()
+    path.write_text(text.replace(f"{41 * FN[1]:12.5E}", f"{41 * FN[1] + 1:12.5E}"))
+    assert path.stat().st_size == len(text)
+    os.utime(path, (written, written))
+    after = read_history(path, node="N40")
+    assert len(parses) == 4 and after.normal_force[1] == before.normal_force[1] + 1
     aster_source.forget_node_index()
 
 

@@ -299,7 +299,8 @@ def unpickled(data: bytes) -> Any:
     """The value :func:`pickled` pickled (a group's records as :func:`run_contacts` gave them,
     each table's arrays slices of its block)."""
     value = pickle.loads(data)
-    if isinstance(value, tuple) and len(value) == 3 and value[0] == _BLOCKS:
+    if isinstance(value, tuple) and len(value) == 3 and isinstance(value[0], str) \
+            and value[0] == _BLOCKS:
         return unblocked(value)
     return value
 

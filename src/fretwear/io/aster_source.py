@@ -18,9 +18,12 @@ error says so and gives the FORMAT_R to print with (:func:`duplicated_instants_m
 
 from __future__ import annotations
 
+import copy
 import os
 import re
+import stat
 import threading
+import time
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -217,7 +220,7 @@ class NodeIndex:
                 positions = rows.get(key)
                 if positions is not None:
                     taken = frame.iloc[positions].reset_index(drop=True)
-                    taken.attrs.update(frame.attrs)
+                    taken.attrs.update(copy.deepcopy(frame.attrs))  # not the kept table's lists
                     kept.append(taken)
             elif _names(str(frame.attrs.get("title", "")), wanted):
                 kept.append(frame.copy())
@@ -242,25 +245,45 @@ _LAST_INDEX: dict[tuple, NodeIndex] = {}
 _INDEX_LOCK = threading.Lock()
 
 
+#: A file whose modification time is less than this before its index is built is not kept
+#: [s]: on a coarse clock (1-2 s on FAT, some NFS servers) it could be rewritten within the
+#: same tick, keeping its size and times (git's "racy" rule).
+_RACY_SECONDS = 2.0
+
+
+def _file_key(path: str | os.PathLike) -> tuple:
+    """(absolute path, device, inode, size, modification and change times [ns]) of a regular
+    file, its attributes taken through an open handle: NFS revalidates them on open, where a
+    plain ``stat`` may answer from its attribute cache. The change time moves on every write
+    and also when a tool sets the modification time back (``cp -p``, ``rsync -t``)."""
+    with open(path, "rb") as handle:
+        info = os.fstat(handle.fileno())
+    if not stat.S_ISREG(info.st_mode):
+        raise OSError(f"{path}: not a regular file")
+    return (os.path.abspath(os.fspath(path)), info.st_dev, info.st_ino, info.st_size,
+            info.st_mtime_ns, info.st_ctime_ns)
+
+
 def node_index(path: str | os.PathLike) -> NodeIndex:
     """The :class:`NodeIndex` of a Code_Aster file, kept for the last file asked for while it
-    is unchanged (same device, inode, size and modification time in ns): reading the nodes of
-    one file one after the other (a bundle's worker, a loop over ``wear_table(path, node=n)``)
-    parses and scans it once. One file's tables are held at a time (about the size of its
-    numbers); :func:`forget_node_index` lets them go."""
+    is unchanged (same device, inode, size, modification and change times, :func:`_file_key`):
+    reading the nodes of one file one after the other (a bundle's worker, a loop over
+    ``wear_table(path, node=n)``) parses and scans it once. A file modified within
+    :data:`_RACY_SECONDS` of the moment its index is built is parsed again the next time. One
+    file's tables are held at a time (about the size of its numbers);
+    :func:`forget_node_index` lets them go."""
     try:
-        info = os.stat(path)
-        key = (os.path.abspath(os.fspath(path)), info.st_dev, info.st_ino, info.st_size,
-               info.st_mtime_ns)
+        key = _file_key(path)
     except (OSError, TypeError, ValueError):  # not a plain file: parsed (and its errors) as ever
         return NodeIndex(_aster.read_aster_tables(path))
     with _INDEX_LOCK:
         index = _LAST_INDEX.get(key)
     if index is None:
         index = NodeIndex(_aster.read_aster_tables(path))
-        with _INDEX_LOCK:
-            _LAST_INDEX.clear()
-            _LAST_INDEX[key] = index
+        if time.time() - key[4] / 1e9 >= _RACY_SECONDS:
+            with _INDEX_LOCK:
+                _LAST_INDEX.clear()
+                _LAST_INDEX[key] = index
     return index
 
 
