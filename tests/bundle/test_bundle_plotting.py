@@ -205,9 +205,53 @@ def test_tube_sheet_cells_without_a_value_and_beyond():
     matplotlib.pyplot.close("all")
 
 
-def test_tube_sheet_needs_integer_positions():
-    with pytest.raises(InputError, match="integer tube_row and tube_column"):
-        plot_tube_sheet(pd.DataFrame({"tube_row": [1.5], "tube_column": [1], "depth": [1e-4]}))
+def test_tube_sheet_of_positions_off_the_integer_grid_draws_markers():
+    """Half columns (a staggered numbering) are no grid of cells: one square marker a tube at
+    its position, coloured by the worst contact (as the map was drawn before the cells)."""
+    s = pd.DataFrame({"tube_row": [1, 1, 2, 2], "tube_column": [1, 1, 1.5, 2.5],
+                      "depth": [1e-4, 3e-4, 2e-4, np.nan]})
+    fig = plot_tube_sheet(s, quantity="depth")
+    markers = fig.axes[0].collections[0]
+    assert np.asarray(markers.get_offsets()).tolist() == [[1.0, 1.0], [1.5, 2.0]]
+    np.testing.assert_allclose(markers.get_array(), [0.3, 0.2])  # worst per tube [mm]
+    assert np.asarray(fig.axes[0].collections[1].get_offsets()).tolist() == [[2.5, 2.0]]
+    matplotlib.pyplot.close("all")
+
+
+def test_tube_sheet_needs_numbers_for_positions():
+    """Letter rows give no position on the map: a clear error (numpy's 'zero-size array'
+    before), which fretwear bundle --plot reports while it writes the other figures."""
+    with pytest.raises(InputError, match=r"tube_row and tube_column as numbers.*\['A', 'B'\]"):
+        plot_tube_sheet(pd.DataFrame({"tube_row": ["A", "B"], "tube_column": [1, 2],
+                                      "depth": [1e-4, 2e-4]}))
+
+
+@pytest.mark.parametrize("where", ["subfigure", "panel", "small"])
+def test_tube_sheet_in_the_users_figure_keeps_within_its_axes(where):
+    """In the user's room (a SubFigure, the left panel of two, a small figure) the map and
+    its colour bar share the Axes' own room: the colour bar and its label end inside the
+    figure, the bar before the next panel (an inset at fixed inches overlapped them, and a
+    SubFigure raised)."""
+    s = pd.DataFrame({"tube_row": [1, 1, 2, 3], "tube_column": [1, 2, 1, 3],
+                      "depth": [1e-4, 2e-4, 3e-4, 4e-4]})
+    pyplot = matplotlib.pyplot
+    if where == "subfigure":
+        fig = pyplot.figure(figsize=(8, 4))
+        left, right = fig.subfigures(1, 2)
+        target, neighbour = left, right.add_subplot(1, 1, 1)
+    elif where == "panel":
+        fig, (target, neighbour) = pyplot.subplots(1, 2, figsize=(6.4, 4.8))
+    else:
+        fig, target = pyplot.subplots(figsize=(4, 4))
+        neighbour = None
+    plot_tube_sheet(s, ax=target)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    bar = [a for a in fig.axes if a.get_ylabel().startswith("worst contact")][0]
+    assert bar.get_tightbbox(renderer).x1 <= fig.bbox.width + 0.5  # its label included
+    if neighbour is not None:
+        assert bar.bbox.x1 <= neighbour.bbox.x0
+    pyplot.close("all")
 
 
 def test_power_distribution_counts_every_contact(result):

@@ -66,3 +66,28 @@ def test_the_forecast_column_shows_for_the_contacts_own_limit_only(tmp_path, cap
         == 0
     out = capsys.readouterr().out
     assert "forecast [" not in out and "forecast:" not in out
+
+
+def test_letter_rows_leave_out_the_map_not_the_other_figures(tmp_path, capsys):
+    """A manifest numbering its rows with letters: --plot says why there is no tube-sheet map
+    and still writes the power and worst-depth figures and the final line, exit 0 (the map's
+    error stopped the command with exit 2 and no figure)."""
+    import pandas as pd
+
+    pytest.importorskip("matplotlib")
+    frame = pd.read_csv(EXAMPLE / "manifest.csv")
+    frame["history"] = [str(EXAMPLE / h) for h in frame["history"]]
+    frame["tube_row"] = [chr(ord("A") + int(r) - 1) for r in frame["tube_row"]]
+    manifest = tmp_path / "letters.csv"
+    frame.to_csv(manifest, index=False)
+    figures = tmp_path / "figures"
+    code = main(["bundle", str(manifest), "--case", str(EXAMPLE / "bundle.toml"), "--scheduler",
+                 "serial", "-o", str(tmp_path / "out"), "--plot", str(figures)])
+    out = capsys.readouterr().out
+    assert code == 0
+    assert "no tube-sheet map: the tube-sheet map needs tube_row and tube_column as numbers" \
+        in " ".join(out.split())
+    assert sorted(p.name for p in figures.iterdir()) == [
+        "bundle_power.png", "bundle_power.svg", "bundle_worst_depths.png",
+        "bundle_worst_depths.svg"]
+    assert out.splitlines()[-1].startswith("done 24, failed 0, skipped 0 of 24 contacts")

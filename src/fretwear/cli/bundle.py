@@ -23,6 +23,7 @@ from fretwear.bundle.engine import BundleInterrupted
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
+from fretwear.errors import InputError
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 
@@ -175,7 +176,10 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         figures = [(plot_power_distribution(result), "bundle_power"),
                    (plot_worst_depths(result, limit=limit), "bundle_worst_depths")]
         if result.contacts[["tube_row", "tube_column"]].notna().all(axis=None):
-            figures.insert(0, (plot_tube_sheet(result.summary(limit)), "bundle_tube_sheet"))
+            try:  # positions it cannot place (letters): said, the other figures still written
+                figures.insert(0, (plot_tube_sheet(result.summary(limit)), "bundle_tube_sheet"))
+            except InputError as exc:
+                console.print(f"[yellow]no tube-sheet map: {exc}[/]", highlight=False)
         for fig, stem in figures:
             save_figure(fig, plot_dir, stem, close=True)
         console.print(f"figures written to [bold]{plot_dir}[/]")

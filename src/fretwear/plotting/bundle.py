@@ -34,11 +34,6 @@ _KEY_LINE = 0.2           # [in] a line of the black/grey cells' key, under the 
 def _tube_grid(worst: pd.DataFrame) -> dict:
     """The tubes on their (row, column) grid: the values, and the cells drawn without one."""
     rows, cols = worst["row"].to_numpy(float), worst["column"].to_numpy(float)
-    odd = (rows != np.round(rows)) | (cols != np.round(cols))
-    if odd.any():
-        i = int(np.flatnonzero(odd)[0])
-        raise InputError("the tube-sheet map needs integer tube_row and tube_column (the tube's "
-                         f"row and column numbers), not row {rows[i]:g}, column {cols[i]:g}")
     r0, c0 = int(rows.min()), int(cols.min())
     shape = (int(rows.max()) - r0 + 1, int(cols.max()) - c0 + 1)
     if shape[0] * shape[1] > _CELLS_LIMIT:
@@ -199,12 +194,28 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
                          "beyond": summary["depth"].isna()}).dropna(subset=["row", "column"])
     worst = data.groupby(["row", "column"], as_index=False).agg(
         value=("value", "max"), beyond=("beyond", "any"))
+    if worst.empty:
+        raise InputError("the tube-sheet map needs tube_row and tube_column as numbers (the "
+                         "tube's row and column numbers); the results have none: "
+                         f"{summary['tube_row'].dropna().astype(str).head(3).tolist()} ...")
+    label = ("global depth / wall [%]" if quantity == "fraction"
+             else "global depth of the tube [mm]")
+    rows, cols = worst["row"].to_numpy(float), worst["column"].to_numpy(float)
+    if ((rows != np.round(rows)) | (cols != np.round(cols))).any():
+        return _marker_map(worst, ax, f"worst contact: {label}")
     grid = _tube_grid(worst)
     status = grid["status"]
     counts = {k: int((status == k).sum()) for k in (1.0, 0.0)}  # beyond; without a value
     layout = _layout(grid["shape"], sum(n > 0 for n in counts.values()))
-    fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: _map_axes(f, layout["margins"]),
-                                        figsize=layout["figsize"], what="plot_tube_sheet")
+    # laid out here (a new figure sized to the tube sheet, or the user's empty Figure): the map
+    # within margins in inches, its colour bar an inset; else (Axes, a SubFigure) the colour
+    # bar takes its room from the user's Axes
+    own = ax is None or (isinstance(ax, matplotlib_module("figure").Figure) and not ax.axes)
+    fig, (axis,), _ = figure_and_axes(
+        ax, 1, (lambda f: _map_axes(f, layout["margins"])) if own
+        else (lambda f: [f.add_subplot(1, 1, 1)]),
+        figsize=layout["figsize"], what="plot_tube_sheet")
+    horizontal = own and layout["horizontal"]
     (r0, c0), (n_rows, n_cols) = grid["first"], grid["shape"]
     col_edges = np.arange(n_cols + 1) + (c0 - 0.5)
     row_edges = np.arange(n_rows + 1) + (r0 - 0.5)
@@ -226,9 +237,10 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     axis.set_xlim(col_edges[0], col_edges[-1])
     axis.set_ylim(row_edges[0], row_edges[-1])
     axis.set_aspect("equal", adjustable="box")  # a square pitch; the axes fit the tube sheet
-    label = ("global depth / wall [%]" if quantity == "fraction"
-             else "global depth of the tube [mm]")
-    cax = _colour_bar(fig, axis, art, layout["horizontal"], f"worst contact: {label}")
+    if own:
+        cax = _colour_bar(fig, axis, art, horizontal, f"worst contact: {label}")
+    else:  # in the user's axes: the colour bar takes its room from them
+        cax = fig.colorbar(art, ax=axis, label=f"worst contact: {label}").ax
     ticker = matplotlib_module("ticker")  # tube numbers only, also for a single row/column
     axis.xaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
     axis.yaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
@@ -241,7 +253,29 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
                                      (0.0, "0.8", "no value (wall thickness unknown)"))
                if counts[k]]
     if entries:
-        _cell_key(axis, cax.xaxis.label if layout["horizontal"] else axis.xaxis.label, entries)
+        _cell_key(axis, cax.xaxis.label if horizontal else axis.xaxis.label, entries)
+    return fig
+
+
+def _marker_map(worst: pd.DataFrame, ax: Any, label: str):
+    """The tube sheet as one square marker a tube, for positions that are not a grid of
+    integers (a staggered numbering with half columns): :func:`plot_tube_sheet` otherwise."""
+    fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(1, 1, 1)],
+                                        figsize=(7, 6), what="plot_tube_sheet")
+    ok, bad = worst[~worst["beyond"]], worst[worst["beyond"]]
+    size = float(np.clip(2.0e4 / max(len(worst), 1), 4.0, 250.0))  # squares fill a small map
+    art = axis.scatter(ok["column"], ok["row"], c=ok["value"], marker="s", s=size,
+                       cmap="viridis", edgecolors="0.3", linewidths=0.4)
+    fig.colorbar(art, ax=axis, label=label)
+    if len(bad):
+        axis.scatter(bad["column"], bad["row"], c="black", marker="s", s=size)
+        axis.scatter(bad["column"], bad["row"], c="white", marker="x", s=size / 2,
+                     label="beyond the relation's range")
+        axis.legend(loc="upper right", fontsize="small")
+    axis.set_xlabel("tube column")
+    axis.set_ylabel("tube row")
+    axis.set_aspect("equal", adjustable="datalim")
+    axis.set_title("tube sheet: worst contact per tube at the last instant")
     return fig
 
 
