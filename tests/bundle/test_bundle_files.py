@@ -106,3 +106,30 @@ def test_a_run_without_rows_removes_the_earlier_runs_dataset(tmp_path):
     failed = run_bundle(frame, case, scheduler="serial", output=out, dataset_format="netcdf")
     assert failed.stats["failed"] == 2 and not len(failed.table)
     assert not (out / "dataset.nc").exists()
+
+
+@pytest.mark.parametrize("name", ["NA", "None", "nan", "NULL"])
+def test_a_restart_from_csv_parts_keeps_a_contact_named_like_a_missing_value(tmp_path, name):
+    """Contact ids are text: one named NA (or None, nan, NULL) read back from CSV parts keeps
+    its rows (pandas read it as missing: the restart counted it skipped and dropped its rows),
+    and a missing number in the wear columns still reads as NaN."""
+    from fretwear.bundle import run_bundle
+    from fretwear.bundle.store import OutputDirectory
+
+    frame = pd.DataFrame({"contact": [name, "B"], "power.value_W": [1e-3, 2e-3]})
+    case = tmp_path / "base.toml"
+    case.write_text('[law]\nmobile = { COEF_USURE = 1e-17 }\n[geometry]\ncontact_type = '
+                    '"TUBE_BAV"\nmobile_radius_m = 9.525e-3\nobstacle_width_m = 12.7e-3\n'
+                    '[time]\ninstants = [1, 2]\nunit = "year"\n')
+    out = tmp_path / "out"
+    first = run_bundle(frame, case, scheduler="serial", output=out, table_format="csv")
+    again = run_bundle(frame, case, scheduler="serial", output=out, table_format="csv")
+    assert again.stats["skipped"] == 2
+    pd.testing.assert_frame_equal(again.table, first.table, check_exact=True)
+    assert (again.table["contact"] == name).sum() == (first.table["contact"] == name).sum() == 2
+    store = OutputDirectory(out, table_format="csv")
+    part = read_frame(store.parts / store.previous()[name]["rows_file"])
+    assert part["contact"].tolist().count(name) == 2
+    assert part.drop(columns="contact").isna().any(axis=None) == \
+        first.table.drop(columns=["contact", "tube_row", "tube_column", "support", "node",
+                                  "history"]).isna().any(axis=None)

@@ -48,12 +48,22 @@ def write_frame(frame: pd.DataFrame, path: Path, fmt: str) -> Path:
     return path
 
 
+#: What pandas reads as missing in a CSV by default: kept for every column but ``contact``,
+#: whose ids are text as written (a contact named ``NA`` or ``None`` read back as missing lost
+#: its rows on a restart from CSV parts).
+_CSV_MISSING = ("", "#N/A", "#N/A N/A", "#NA", "-1.#IND", "-1.#QNAN", "-NaN", "-nan", "1.#IND",
+                "1.#QNAN", "<NA>", "N/A", "NA", "NULL", "NaN", "None", "n/a", "nan", "null")
+
+
 def read_frame(path: Path) -> pd.DataFrame:
-    """Read a table written by :func:`write_frame`."""
+    """Read a table written by :func:`write_frame` (a CSV's ``contact`` ids as text, none of
+    them missing)."""
     if path.suffix == ".parquet":
         require("pyarrow", purpose="reading a bundle's Parquet table")
         return pd.read_parquet(path)
-    return pd.read_csv(path, dtype={"contact": str})
+    header = pd.read_csv(path, nrows=0).columns
+    return pd.read_csv(path, dtype={"contact": str}, keep_default_na=False,
+                       na_values={c: list(_CSV_MISSING) for c in header if c != "contact"})
 
 
 def _split(frame: pd.DataFrame, names: list[str], where: dict[str, Any]
