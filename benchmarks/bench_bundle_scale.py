@@ -34,25 +34,12 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _signals import smooth  # noqa: E402
+from bench_bundle import CASE, local_cluster  # noqa: E402  (the same base case and cluster)
 
 from fretwear.bundle import engine as engine_module  # noqa: E402
 from fretwear.bundle import run_bundle  # noqa: E402
 from fretwear.history import ContactHistory  # noqa: E402
 from fretwear.io import write_history  # noqa: E402
-
-CASE = """\
-[law]
-mobile = { COEF_USURE = 1e-17 }
-[geometry]
-contact_type = "TUBE_BAV"
-mobile_radius_m = 9.525e-3
-obstacle_width_m = 12.7e-3
-[sectors]
-count = 8
-[time]
-instants = [1, 2, 5, 10, 20, 40]
-unit = "year"
-"""
 
 
 def make_bundle(directory: Path, contacts: int, samples: int, distinct: int) -> Path:
@@ -118,9 +105,6 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args(argv)
     import distributed
-
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from bench_bundle import local_cluster
 
     directory = Path(tempfile.mkdtemp(prefix="bench_bundle_scale_"))
     try:
