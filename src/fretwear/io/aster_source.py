@@ -443,12 +443,12 @@ def open_aster(path: str | os.PathLike, *, index: int | None = None, title: str 
         tables = [_aster.read_aster_table(path, index=index, title=title)]
         if node is not None:
             tables, checked = select_node(tables, node, label)
-            metadata.update(node=str(node).strip(), node_checked=checked)
     elif node is not None:  # the file's node index, kept while its nodes are read in turn
         tables, checked = node_index(path).select(node, label)
-        metadata.update(node=str(node).strip(), node_checked=checked)
     else:
         tables = _aster.read_aster_tables(path)
+    if node is not None:
+        metadata.update(node=str(node).strip(), node_checked=checked)
     if select is not None:
         tables = [select_rows(t, select, label) for t in tables]
     metadata["aster_title"] = "\n".join(t.attrs.get("title", "") for t in tables)

@@ -244,9 +244,7 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     ticker = matplotlib_module("ticker")  # tube numbers only, also for a single row/column
     axis.xaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
     axis.yaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
-    axis.set_xlabel("tube column")
-    axis.set_ylabel("tube row")
-    axis.set_title("tube sheet: worst contact per tube at the last instant")
+    _sheet_labels(axis)
     entries = [(face, k == 1.0, f"{text} ({counts[k]} tube{'s' * (counts[k] != 1)}"
                 + (", ringed in red" if ringed and k == 1.0 else "") + ")")
                for k, face, text in ((1.0, "black", "beyond the relation's range"),
@@ -255,6 +253,12 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     if entries:
         _cell_key(axis, cax.xaxis.label if horizontal else axis.xaxis.label, entries)
     return fig
+
+
+def _sheet_labels(axis: Any) -> None:
+    axis.set_xlabel("tube column")
+    axis.set_ylabel("tube row")
+    axis.set_title("tube sheet: worst contact per tube at the last instant")
 
 
 def _marker_map(worst: pd.DataFrame, ax: Any, label: str):
@@ -272,10 +276,8 @@ def _marker_map(worst: pd.DataFrame, ax: Any, label: str):
         axis.scatter(bad["column"], bad["row"], c="white", marker="x", s=size / 2,
                      label="beyond the relation's range")
         axis.legend(loc="upper right", fontsize="small")
-    axis.set_xlabel("tube column")
-    axis.set_ylabel("tube row")
     axis.set_aspect("equal", adjustable="datalim")
-    axis.set_title("tube sheet: worst contact per tube at the last instant")
+    _sheet_labels(axis)
     return fig
 
 
