@@ -27,10 +27,15 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
 * **per-contact overhead**: (workers × T_bundle − T_serial)/N, the worker time a contact costs
   beyond the single-contact computation, measured on this bundle and on one of tiny contacts
   (100 samples, where the computation is almost nothing);
-* **memory**: peak resident memory of each worker process (sampled every 20 ms with psutil),
-  idle, during this bundle, and during one contact of ``--long`` samples read in chunks of
-  ``--chunk`` samples (chunk tasks merged in a tree) against the same contact in one task: the
-  peak follows the chunk, not the bundle or the history.
+* **CPU**: the CPU seconds of the worker processes and of this process (client, scheduler and
+  their event loop) during the timed bundle, against the loop's own CPU seconds: their sum
+  over ``--workers`` is the least time the bundle could take on that many cores perfectly
+  shared, and gives the highest speed-up this machine allows it;
+* **memory**: peak resident memory of each worker process (sampled every 20 ms with psutil, in
+  a run of its own: the sampling thread stays out of the timed run), idle, during this
+  bundle, and during one contact of ``--long`` samples read in chunks of ``--chunk`` samples
+  (chunk tasks merged in a tree) against the same contact in one task: the peak follows the
+  chunk, not the bundle or the history.
 
 The bundle's tables are checked equal to the serial ones bit for bit. Prints contacts/s,
 samples/s, the speed-up (goal >= 1.7 on 2 cores), the overhead (goal < 20 ms) and the memory.
@@ -136,6 +141,33 @@ def machine_scaling(manifest: Path, case: Path, workers: int) -> float:
     return one / max(many)
 
 
+class CpuTime:
+    """CPU seconds (user + system) of the worker processes, and of this process (the client,
+    the scheduler of a local cluster, their event loop), while in use [s]."""
+
+    def __init__(self, client) -> None:
+        import psutil
+
+        self.processes = [psutil.Process(pid) for pid in client.run(os.getpid).values()]
+        self.me = psutil.Process()
+        self.workers = self.client = 0.0
+
+    @staticmethod
+    def _seconds(process) -> float:
+        t = process.cpu_times()
+        return t.user + t.system
+
+    def __enter__(self) -> CpuTime:
+        self._start = [self._seconds(p) for p in self.processes], self._seconds(self.me)
+        return self
+
+    def __exit__(self, *exc) -> None:
+        workers, me = self._start
+        self.workers = sum(self._seconds(p) - s for p, s in zip(self.processes, workers,
+                                                                strict=True))
+        self.client = self._seconds(self.me) - me
+
+
 class PeakMemory:
     """Samples the resident memory of the worker processes every 20 ms while in use [MB]."""
 
@@ -239,7 +271,9 @@ def main(argv: list[str] | None = None) -> None:
             # the loop and the bundle measured in turn, so that both see the machine in the
             # same state (a shared 2-vCPU machine drifts by 10-20 % within minutes)
             gc.collect()  # both sides measured after a full collection (below: the workers)
+            c0 = time.process_time()
             t_serial, tables = serial(manifest, case)
+            t_cpu = time.process_time() - c0
             # pyarrow decodes a large Parquet block on all cores by default, so the loop is
             # partly parallel already; a Dask worker decodes on one thread (distributed sets
             # OMP_NUM_THREADS=1). The same loop with one decoding thread isolates the scaling.
@@ -252,18 +286,25 @@ def main(argv: list[str] | None = None) -> None:
                 # the warm-up's imports leave the workers' collector due a full pass (0.1 s)
                 # early in the next run: collected now, as this process is before its loop
                 client.run(gc.collect)
+                # timed alone: the memory sampler (a thread of this process) runs in a run
+                # of its own below, not in the timed one
+                with CpuTime(client) as cpu:
+                    t_bundle, result = bundle_time(manifest, case, client)
+                same = identical(result, tables)
+                rounds.append((t_serial, t_one, scaling, t_bundle, cpu.workers, cpu.client,
+                               t_cpu))
+                print(f"round {k + 1}: serial loop {t_serial:.2f} s (one decoding thread "
+                      f"{t_one:.2f} s), machine's own scaling {scaling:.2f}x, bundle "
+                      f"{t_bundle:.2f} s: speed-up {t_serial / t_bundle:.2f}x; CPU: workers "
+                      f"{cpu.workers:.2f} s, client and scheduler {cpu.client:.2f} s (the "
+                      f"loop's own {t_cpu:.2f} s); tables bit-identical to the loop: {same}",
+                      flush=True)
                 if k == 0:
                     with PeakMemory(client) as idle:
                         time.sleep(0.2)
-                with PeakMemory(client) as peaks:
-                    t_bundle, result = bundle_time(manifest, case, client)
-                same = identical(result, tables)
-                rounds.append((t_serial, t_one, scaling, t_bundle))
-                print(f"round {k + 1}: serial loop {t_serial:.2f} s (one decoding thread "
-                      f"{t_one:.2f} s), machine's own scaling {scaling:.2f}x, bundle "
-                      f"{t_bundle:.2f} s: speed-up {t_serial / t_bundle:.2f}x; tables "
-                      f"bit-identical to the loop: {same}", flush=True)
-                if k == 0:
+                    client.run(gc.collect)
+                    with PeakMemory(client) as peaks:
+                        bundle_time(manifest, case, client)
                     memory = (peaks.text(), idle.text())
                     t_tiny_serial, _ = serial(tiny, case)
                     t_out, _ = bundle_time(manifest, case, client, output=directory / "out")
@@ -274,7 +315,8 @@ def main(argv: list[str] | None = None) -> None:
                         t_single, _ = bundle_time(manifest, case, client)
                     finally:
                         engine_module.TASKS_PER_WORKER = saved
-        t_serial, t_one, scaling, t_bundle = np.median(np.array(rounds), axis=0).tolist()
+        t_serial, t_one, scaling, t_bundle, cpu_workers, cpu_client, t_cpu = np.median(
+            np.array(rounds), axis=0).tolist()
         ratios = [r[0] / r[3] for r in rounds]
         print(f"serial loop over wear_table (median of {len(rounds)}): {t_serial:.2f} s, "
               f"{n / t_serial:.1f} contacts/s, {n * samples / t_serial:.3g} samples/s; with "
@@ -287,6 +329,12 @@ def main(argv: list[str] | None = None) -> None:
               f"{t_serial / t_bundle:.2f}x over the loop (goal >= 1.7x; rounds "
               f"{min(ratios):.2f}-{max(ratios):.2f}x), {t_one / t_bundle:.2f}x over the "
               f"one-thread loop")
+        floor = (cpu_workers + cpu_client) / w
+        print(f"CPU of the bundle (median): workers {cpu_workers:.2f} s in all, against "
+              f"{t_cpu:.2f} s for the same contacts in the loop (x{cpu_workers / t_cpu:.2f}: "
+              f"the cores slow each other down, as in the machine's own scaling), client and "
+              f"scheduler {cpu_client:.2f} s; on {w} cores perfectly shared the bundle takes at "
+              f"least {floor:.2f} s, a speed-up of at most {t_serial / floor:.2f}x")
         print(f"  with the output directory (parts, table, dataset, summary): {t_out:.2f} s, "
               f"{n / t_out:.1f} contacts/s")
         print(f"  one contact per task instead of {len(engine_module.task_sizes(n, w))} "
