@@ -261,3 +261,36 @@ def test_restart_rules_are_checked_with_the_case():
         WearCase.from_keywords(**base(initial_state=first, sectors=4))
     case = WearCase.from_keywords(**base(initial_state=first))
     assert case.origin == 2.0 and case.initial_table == "(DataFrame)"
+
+
+def test_sectors_need_a_contact_type_with_an_obstacle_width():
+    """Sector depths fill the sector's arc over the obstacle's width l (docs/theory.md §3).
+    TUBE_TUBE, two crossed tubes, has none (SPEC §6 gives its depth from R_m and the crossing
+    angle alone): asked with sectors, one error says so, and no warning says first that the
+    width given for the sectors is unused (found by a user's trial: the warning, then an error
+    asking for the width just given). Every type with a width still takes sectors."""
+    from fretwear.geometry import CONTACT_TYPES
+
+    dimensions = {"mobile_radius": 9.525e-3, "obstacle_radius": 9.525e-3, "tilt_angle": 45.0,
+                  "obstacle_width": 12.7e-3}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # any warning would fail the test
+        with pytest.raises(KeywordError, match=r"TUBE_TUBE \(CONTACT\).*LARGEUR_OBST.*remove "
+                                               r"sectors"):
+            WearCase.from_keywords(contact_type="TUBE_TUBE", dimensions=dimensions, law="ARCHARD",
+                     coefficients={"COEF_USURE": 1e-17}, sectors=4, instants=[1.0])
+    refused = []
+    for name, cls in CONTACT_TYPES.items():
+        dims = {**cls.example, "obstacle_width": 12.7e-3}
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                WearCase.from_keywords(contact_type=name, dimensions=dims, law="ARCHARD",
+                         coefficients={"COEF_USURE": 1e-17}, sectors=4, instants=[1.0])
+        except KeywordError:
+            refused.append(name)
+    assert refused == ["TUBE_TUBE"]
+    # without sectors, TUBE_TUBE is as before: the width is unused, said by a warning
+    with pytest.warns(fretwear.errors.UnusedKeywordWarning, match="obstacle_width"):
+        WearCase.from_keywords(contact_type="TUBE_TUBE", dimensions=dimensions, law="ARCHARD",
+                 coefficients={"COEF_USURE": 1e-17}, instants=[1.0])

@@ -9,6 +9,7 @@ are in :mod:`fretwear.geometry.sectors`. The derivations are in ``docs/geometry.
 
 from __future__ import annotations
 
+import dataclasses
 import warnings
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
@@ -35,6 +36,7 @@ __all__ = [
     "ASTER_KEYWORDS",
     "CONTACT_TYPES",
     "ContactGeometry",
+    "check_sector_contact",
     "contact_geometry",
     "sector_depth_mobile",
     "sector_depth_obstacle",
@@ -55,6 +57,39 @@ CONTACT_TYPES: dict[str, type[ContactGeometry]] = {
 }
 
 _FROM_ASTER = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
+
+
+def check_sector_contact(contact_type: str) -> None:
+    """Refuse angular sectors for a contact type without an obstacle width.
+
+    A sector's depth assumes the defect fills the sector's arc Δθ over the obstacle's width l
+    (theory §3, :func:`fretwear.geometry.sector_depth_mobile`). TUBE_TUBE (two crossed tubes)
+    has no width: without this check the geometry would warn that the width given for the
+    sectors is not used, and the sectors would then fail for want of it. An unknown contact
+    type is left to :func:`contact_geometry`, which names the known ones.
+
+    Raises
+    ------
+    KeywordError
+        The contact type has no ``obstacle_width`` (LARGEUR_OBST).
+
+    Examples
+    --------
+    >>> check_sector_contact("TUBE_BAV")
+    >>> check_sector_contact("TUBE_TUBE")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    fretwear.errors.KeywordError: sectors (SECTEUR) with contact_type TUBE_TUBE (CONTACT): ...
+    """
+    cls = CONTACT_TYPES.get(str(contact_type).strip().upper())
+    if cls is None or "obstacle_width" in {f.name for f in dataclasses.fields(cls)}:
+        return
+    raise KeywordError(
+        f"sectors (SECTEUR) with contact_type {cls.contact_type} (CONTACT): a sector's depth "
+        "assumes the defect fills the sector's arc over the obstacle's width (LARGEUR_OBST), and "
+        f"{cls.contact_type} has no width (its obstacle is a tube crossing this one); remove "
+        "sectors for this contact, or leave contact_type out to get sector depths alone from "
+        "mobile_radius and obstacle_width")
 
 
 def contact_geometry(contact_type: str, **dimensions) -> ContactGeometry:

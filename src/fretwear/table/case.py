@@ -29,7 +29,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
-from fretwear.geometry import contact_geometry
+from fretwear.geometry import check_sector_contact, contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
@@ -308,6 +308,8 @@ class WearCase:
                                    "database is keyed by it")
             geometry = sector_geometry(**dict(self.dimensions or {}))
         else:
+            if self.sectors is not None:
+                check_sector_contact(self.contact_type)
             geometry = contact_geometry(self.contact_type, **dict(self.dimensions or {}))
         put("contact_type", geometry.contact_type)
         put("dimensions", FrozenMap(geometry.dimensions()))
