@@ -19,7 +19,7 @@ stick      [-]    1 while sticking, 0 while slipping or in free flight (optional
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 from types import MappingProxyType
 from typing import Any
 
@@ -92,6 +92,9 @@ class ContactHistory:
     force_tolerance : float, optional
         Absolute tolerance [N] on negative normal forces. Default ``1e-9 × max|Fn|`` (at least
         1e-12 N).
+    first_row : int
+        Row number of the first sample in the file it was read from (a chunk of a long file),
+        so that the messages name the file's rows; not stored. Default 0.
 
     Raises
     ------
@@ -125,8 +128,10 @@ class ContactHistory:
     name: str = ""
     metadata: Mapping[str, Any] = field(default_factory=dict)
     force_tolerance: float | None = None
+    first_row: InitVar[int] = 0
 
-    def __post_init__(self) -> None:
+    def __post_init__(self, first_row: int = 0) -> None:
+        r = int(first_row)  # rows named in the messages are the file's: r + index
         arrays: dict[str, np.ndarray] = {}
         for ch in CHANNELS:
             value = getattr(self, ch)
@@ -162,14 +167,14 @@ class ContactHistory:
                 i = _first_bad(bad)
                 raise HistoryError(
                     f"contact history {self.name!r}: channel {ch!r} has a non-finite value "
-                    f"({float(arr[i])}) at row {i}; remove or fill it before reading")
+                    f"({float(arr[i])}) at row {r + i}; remove or fill it before reading")
         dt = np.diff(arrays["time"])
         if (dt <= 0).any():
             i = _first_bad(dt <= 0) + 1
             t0, t1 = float(arrays["time"][i - 1]), float(arrays["time"][i])
             raise HistoryError(
                 f"contact history {self.name!r}: channel 'time' is not strictly increasing at row "
-                f"{i} (t[{i - 1}] = {t0!r}, t[{i}] = {t1!r}); "
+                f"{r + i} (t[{r + i - 1}] = {t0!r}, t[{r + i}] = {t1!r}); "
                 "sort the samples and drop duplicated instants")
         fn = arrays["normal_force"]
         tol = self.force_tolerance
@@ -182,9 +187,9 @@ class ContactHistory:
             i = _first_bad(neg)
             raise HistoryError(
                 f"contact history {self.name!r}: channel 'normal_force' is negative "
-                f"({float(fn[i])} N) at row {i} (t = {float(arrays['time'][i])!r} s); the normal "
-                "force must be >= 0 - check the sign convention of the exported FN column or "
-                "negate it")
+                f"({float(fn[i])} N) at row {r + i} (t = {float(arrays['time'][i])!r} s); the "
+                "normal force must be >= 0 - check the sign convention of the exported FN column "
+                "or negate it")
         np.maximum(fn, 0.0, out=fn)
         if ("dy" in arrays) != ("dz" in arrays):
             missing = "dz" if "dy" in arrays else "dy"
@@ -198,7 +203,7 @@ class ContactHistory:
                 i = _first_bad(bad)
                 raise HistoryError(
                     f"contact history {self.name!r}: channel 'stick' must be 0 or 1, got "
-                    f"{float(s[i])} at row {i}; Code_Aster's VINT13 is 1 while sticking")
+                    f"{float(s[i])} at row {r + i}; Code_Aster's VINT13 is 1 while sticking")
         for ch, arr in arrays.items():
             arr.flags.writeable = False
             object.__setattr__(self, ch, arr)

@@ -90,9 +90,40 @@ def test_error_in_a_later_chunk_names_the_file_row(tmp_path):
     chunks = iter_history_chunks(path, chunk_size=4)
     first = next(chunks)
     assert first.time.tolist() == [0.0, 1.0, 2.0, 3.0]
-    with pytest.raises(HistoryError, match=r"not strictly increasing at row 3 .*chunk starting "
-                                           r"at data row 3"):
+    # the file's row (0-based, header excluded), not the row within the chunk (3): found by a
+    # user's trial, who had to add the chunk's first row to the row named
+    with pytest.raises(HistoryError, match=r"not strictly increasing at row 6 \(t\[5\] = 5\.0, "
+                                           r"t\[6\] = 5\.0\)"):
         next(chunks)
+
+
+@pytest.mark.parametrize("suffix", [".parquet", ".csv"])
+@pytest.mark.parametrize(("channel", "value", "message"), [
+    ("normal_force", -2.0, r"'normal_force' is negative \(-2\.0 N\) at row 12345 "),
+    ("stick", 0.5, r"'stick' must be 0 or 1, got 0\.5 at row 12345;"),
+    ("time", None, r"not strictly increasing at row 12345 \(t\[12344\] = "),
+])
+def test_errors_of_a_long_file_read_by_blocks_name_the_file_row(tmp_path, suffix, channel, value,
+                                                                 message):
+    """The streaming reader's blocks (iter_history_blocks: wear_power of a file, the bundle's
+    chunks) name the file's row of a bad sample planted at row 12345, in a block starting at
+    row 10000 (blocks of 5000)."""
+    import pandas as pd
+
+    from fretwear.io import iter_history_blocks
+
+    n, bad = 20_000, 12_345
+    arrays = {"time": np.arange(n) * 1e-4, "normal_force": np.ones(n), "vt1": np.full(n, 0.1),
+              "vt2": np.zeros(n), "stick": np.zeros(n)}
+    arrays[channel][bad] = arrays[channel][bad - 1] if value is None else value
+    path = tmp_path / f"h{suffix}"
+    if suffix == ".parquet":
+        pd.DataFrame(arrays).to_parquet(path, index=False)
+    else:
+        pd.DataFrame(arrays).to_csv(path, index=False)
+    with pytest.raises(HistoryError, match=message):
+        for _ in iter_history_blocks(path, chunk_size=5000):
+            pass
 
 
 @pytest.mark.parametrize("bad", [1, 0, -5, 2.5, "10", True])

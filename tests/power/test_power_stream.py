@@ -92,8 +92,9 @@ def test_blocks_are_checked_like_chunks(tmp_path):
     t[3000] = t[2999]  # the repeated instant sits on a block boundary (blocks of 1000)
     fn = h.normal_force.copy()
     fn[4321] = -1.0
-    for change, words in (({"time": t}, ["not strictly increasing", "row"]),
-                          ({"normal_force": fn}, ["negative", "row 321", "data row 4000"])):
+    # the rows named are the file's (the planted rows 3000 and 4321), not the block's
+    for change, words in (({"time": t}, ["not strictly increasing", "at row 3000 "]),
+                          ({"normal_force": fn}, ["negative", "at row 4321 "])):
         path = tmp_path / f"bad{len(words)}{list(change)[0]}.csv"
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")

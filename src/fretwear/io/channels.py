@@ -465,13 +465,10 @@ def build_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
         # no copy when factor == 1: ContactHistory copies its inputs (the user's stay untouched)
         data[channel] = arr * factor if factor != 1.0 else arr
     try:
-        return ContactHistory(**data, name=name, metadata=dict(metadata))
+        return ContactHistory(**data, name=name, metadata=dict(metadata), first_row=first_row)
     except HistoryError as exc:
         used = ", ".join(f"{ch} <- {columns[pos]!r}" for ch, pos in mapping.items())
-        msg = str(exc)
-        if first_row:
-            msg += f" (row numbers within the chunk starting at data row {first_row})"
-        raise HistoryError(f"{label}: {msg} [columns used: {used}]") from None
+        raise HistoryError(f"{label}: {exc} [columns used: {used}]") from None
 
 
 def fast_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
