@@ -161,6 +161,30 @@ def test_text_file_named_like_hdf5_or_netcdf(tmp_path):
         read_history(path, format="netcdf")
 
 
+@pytest.mark.filterwarnings("ignore:.*median sampling step:fretwear.errors.UnitsWarning")
+@pytest.mark.parametrize(("suffix", "named"), [(".parquet", "Parquet"), (".h5", "HDF5"),
+                                              (".nc", "NetCDF"), (".npz", "NPZ")])
+def test_text_named_like_a_binary_format_says_so_when_its_columns_fail(tmp_path, suffix, named):
+    """A text file named like a binary format is read as text (its content decides); when its
+    columns then fail, the message says it is not the binary file its name says (a user's
+    trial: ``garbage.parquet`` gave only "no column for the required channel(s)"). A good CSV
+    under that name is still read, with no note."""
+    path = tmp_path / f"garbage{suffix}"
+    path.write_text("not a parquet file\n1 2 3 4\n")
+    for read in (lambda: read_history(path), lambda: list(iter_history_chunks(path))):
+        with pytest.raises(FormatError, match=rf"no column for the required channel.*named "
+                                              rf"\{suffix} but holds text, not {named}"):
+            read()
+    good = tmp_path / f"good{suffix}"
+    good.write_text(GOOD)
+    assert read_history(good).normal_force.tolist() == [1.0, 2.0, 0.0]
+    plain = tmp_path / "plain.csv"  # the same column error in a file named as text: no note
+    plain.write_text("not a parquet file\n1 2 3 4\n")
+    with pytest.raises(FormatError, match="no column for the required channel") as err:
+        read_history(plain)
+    assert "holds text" not in str(err.value)
+
+
 # --------------------------------------------------------------------------- text files
 def test_header_only_csv_says_no_instants(tmp_path):
     for text in ("INST,FN,VT1,VT2\n", "INST,FN,VT1,VT2\r\n"):

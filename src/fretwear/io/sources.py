@@ -231,7 +231,28 @@ def open_source(path: Any, format: str | None = None, **options: Any) -> Source:
     label = source_label(path)
     with reading(label, name, "history file"):
         source = fmt.open(path, **options)
+    if format is None:
+        source.hint += _suffix_hint(path, name)
     return _guarded(source, label, name)
+
+
+#: Formats whose files carry a signature: a file named like one of them that holds text is
+#: read as text (its content decides), and its column errors say so.
+_BINARY_FORMATS = {"parquet": "Parquet", "hdf5": "HDF5", "netcdf": "NetCDF", "npz": "NPZ"}
+
+
+def _suffix_hint(path: Any, guessed: str) -> str:
+    """For a column error: a file named like a binary format that was read as text (a text file
+    renamed, a failed export) is not the binary file its name says (found by a user's trial:
+    ``garbage.parquet`` gave only "no column for the required channel(s)")."""
+    if not _is_path(path) or guessed in _BINARY_FORMATS:
+        return ""
+    suffix = Path(path).suffix.lower()
+    named = next((v for k, v in _BINARY_FORMATS.items() if suffix in FORMATS[k].suffixes), None)
+    if named is None:
+        return ""
+    return (f"; note: the file is named {suffix} but holds text, not {named} (no {named} "
+            f"signature), so it was read as {guessed}: re-export it as {named}, or rename it")
 
 
 def source_label(path: Any) -> str:
