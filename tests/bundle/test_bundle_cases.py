@@ -197,7 +197,7 @@ def test_a_base_case_failing_for_every_contact_stops_before_any_work(tmp_path):
     with pytest.raises(BaseCaseError, match=r"base case fails for every contact: .*"
                                             r"\[geometry\] contact_type is required"):
         run_bundle(frame, case, scheduler="serial", output=tmp_path / "out")
-    assert not list((tmp_path / "out").glob("parts/*"))
+    assert not (tmp_path / "out").exists()  # nothing computed, nothing left (an empty parts/)
     # a row that supplies the key runs; the others fail each on its own
     frame["contact_type"] = [None] * 49 + ["GRAPPE_ALESAGE"]
     result = run_bundle(frame, case, scheduler="serial")

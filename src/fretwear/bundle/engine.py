@@ -332,6 +332,11 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     base = _base_case(case)
     if "_directory" not in base:
         base["_directory"] = str(man.directory)
+    cases: dict = {}
+    # a base case that fails for every contact stops here, said once (the case it builds goes
+    # into the cache the tasks use), before the output directory is made: a run that computes
+    # nothing leaves nothing behind (an empty parts/ folder before, found by a user's trial)
+    check_base_case(base, man.rows, man.source, cases)
     store = None if output is None else OutputDirectory(output, table_format=table_format)
     previous = {} if store is None or force else store.previous()
 
@@ -341,10 +346,6 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     pending: list[ContactTask] = []  # the rows made tasks (an interrupt counts them once done)
     try:
         walls: dict[str, float | None] = {}
-        cases: dict = {}
-        # a base case that fails for every contact stops here, said once (the case it builds
-        # goes into the cache the tasks use)
-        check_base_case(base, man.rows, man.source, cases)
         for row in man.rows:
             walls[row.contact] = row.wall_thickness
             try:
