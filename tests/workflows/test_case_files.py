@@ -56,6 +56,24 @@ def test_typo_in_key_is_named_with_suggestion(tmp_path):
         validate_case({"titel": "x"})
 
 
+def test_every_typo_of_a_case_file_is_said_at_once(tmp_path):
+    """A user's trial fixed mobile_radus_m, ran again, and only then learnt of [sector]: the
+    case file's unknown names and wrong types now come in one error, a line each, in the file's
+    order (one problem: the message as before)."""
+    path = write(tmp_path, 'titel = "x"\n[geometry]\ncontact_type = "TUBE_BAV"\n'
+                           'mobile_radus_m = 0.01\nobstacle_width_m = "wide"\n'
+                           '[sector]\ncount = 4\n')
+    with pytest.raises(KeywordError) as caught:
+        load_case(path)
+    lines = str(caught.value).splitlines()
+    assert len(lines) == 4
+    assert "unknown key titel" in lines[0]
+    assert "unknown key [geometry] mobile_radus_m (did you mean 'mobile_radius_m'?)" in lines[1]
+    assert "[geometry] obstacle_width_m = 'wide' has the wrong type" in lines[2]
+    assert "unknown section [sector] (did you mean 'sectors'?)" in lines[3]
+    assert all(line.startswith(str(path)) for line in lines)
+
+
 def test_wrong_types_and_foreign_sections():
     with pytest.raises(KeywordError, match=r"\[time\] instants = 3 has the wrong type"):
         validate_case({"time": {"instants": 3}})

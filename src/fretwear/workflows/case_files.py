@@ -167,21 +167,35 @@ def validate_case(case: Mapping[str, Any], source: str = "case") -> dict[str, An
     """
     out: dict[str, Any] = {}
     sections = [s for s in KEYS if s] + list(FOREIGN_SECTIONS)
+    problems: list[str] = []  # every unknown name and wrong type, said at once
     for name, value in case.items():
         if isinstance(value, Mapping) and name not in KEYS[""]:
             if name in FOREIGN_SECTIONS:
                 out[name] = dict(value)
                 continue
             if name not in KEYS:
-                raise KeywordError(f"{source}: unknown section [{name}]"
-                                   f"{keyword_hint(name, sections)}; valid sections: "
-                                   f"{', '.join(sections)}")
+                problems.append(f"{source}: unknown section [{name}]"
+                                f"{keyword_hint(name, sections)}; valid sections: "
+                                f"{', '.join(sections)}")
+                continue
             out[name] = dict(value)
-            check_keys(out[name], KEYS[name], source, key_prefix=f"[{name}] ")
+            for key, item in out[name].items():
+                _collect(problems, check_keys, {key: item}, KEYS[name], source,
+                         key_prefix=f"[{name}] ")
         else:
             out[name] = value
-            check_keys({name: value}, KEYS[""], source)
+            _collect(problems, check_keys, {name: value}, KEYS[""], source)
+    if problems:
+        raise KeywordError("\n".join(problems))
     return out
+
+
+def _collect(problems: list[str], check, *args, **keywords) -> None:
+    """Run one check; its KeywordError's message joins ``problems`` instead of stopping."""
+    try:
+        check(*args, **keywords)
+    except KeywordError as exc:
+        problems.append(str(exc))
 
 
 def load_case(path: str | os.PathLike) -> dict[str, Any]:
