@@ -409,3 +409,44 @@ def test_contact_lengths_of_a_store_with_a_2d_time(tmp_path, where, monkeypatch)
                 for r in time]
     assert [datasets.store_length(row.history) for row in rows] == expected == lengths
     assert datasets._store_lengths.cache_info().misses == 1
+
+
+def test_a_misspelt_entry_column_stops_the_run_before_any_work(tmp_path):
+    """A column law.mobile.COEF_USUR (COEF_USURE misspelt), filled on one row and empty on the
+    other: the run started, the first contact failed without a hint and the second silently
+    kept the base coefficient. Now the run stops before any work, as for a bare misspelt name,
+    every unknown entry named at once with the closest valid name, whatever the cells hold
+    (the entries of law.mobile, law.obstacle, history.units and history.options are known
+    sets)."""
+    manifest, case = write_bundle(tmp_path, oscillator(), 2, extra={
+        "law.mobile.COEF_USUR": [1e-14, None], "history.units.lenght": [None, None],
+        "law.obstacle.coef_usure": [None, None], "history.options.delimeter": [None, None]})
+    with pytest.raises(KeywordError) as caught:
+        run_bundle(manifest, case, scheduler="serial", output=tmp_path / "out")
+    message = str(caught.value)
+    assert ("unknown columns 'law.mobile.COEF_USUR' (did you mean 'law.mobile.COEF_USURE'?), "
+            "'history.units.lenght' (did you mean 'history.units.length'?), "
+            "'law.obstacle.coef_usure' (did you mean 'law.obstacle.COEF_USURE'?), "
+            "'history.options.delimeter' (did you mean 'history.options.delimiter'?)"
+            ) in message
+    assert "the entries of law.mobile are the coefficients of the row's law" in message
+    assert "ARCHARD: coefficient (COEF_USURE)" in message
+    assert not (tmp_path / "out").exists()
+    # a TOML manifest's row tables, inline or dotted, are the same columns
+    toml = tmp_path / "m.toml"
+    toml.write_text('[[contacts]]\ncontact = "a"\nhistory = "histories/t0.parquet"\n'
+                    "law.mobile = { COEF_USUR = 1e-14 }\n"
+                    '[[contacts]]\ncontact = "b"\nhistory = "histories/t1.parquet"\n'
+                    '"history.units" = { lenght = "mm" }\n')
+    with pytest.raises(KeywordError, match=r"unknown keys 'law.mobile.COEF_USUR' \(did you mean "
+                                           r"'law.mobile.COEF_USURE'\?\), 'history.units.lenght' "
+                                           r"\(did you mean 'history.units.length'\?\)"):
+        read_manifest(toml)
+    # valid entries pass: every law's coefficients (by name or keyword), channel aliases and
+    # quantities in any case as units, every reader's options; history.columns' entries are
+    # the file's own columns (free)
+    for column in ("law.mobile.COEF_USURE", "law.mobile.coefficient", "law.obstacle.COEF_B",
+                   "law.mobile.reference_intensity", "history.units.FN",
+                   "history.units.Length", "history.units.dy", "history.options.select",
+                   "history.columns.anything"):
+        assert column_key(column, "m") == tuple(column.split(".", 2))
