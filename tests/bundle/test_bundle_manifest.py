@@ -24,7 +24,7 @@ from bundle_helpers import (
 
 from fretwear.bundle import read_manifest, run_bundle
 from fretwear.bundle.manifest import column_key
-from fretwear.errors import InputError, KeywordError
+from fretwear.errors import InputError, KeywordError, LawWarning
 from fretwear.io import write_history
 
 
@@ -450,3 +450,59 @@ def test_a_misspelt_entry_column_stops_the_run_before_any_work(tmp_path):
                    "history.units.Length", "history.units.dy", "history.options.select",
                    "history.columns.anything"):
         assert column_key(column, "m") == tuple(column.split(".", 2))
+
+
+def test_a_row_drops_the_base_case_sectors_to_switch_to_a_law_without_them(tmp_path):
+    """An Archard base case with [sectors]: a row switching to EDF_MZ failed (EDF_MZ refuses
+    sectors) and nothing removed them: a TOML row's sectors = {} was silently ignored, and a
+    CSV manifest had no column for it. Now sectors = {} (TOML) or a sectors cell {} (CSV) drops
+    them for that row: its rows equal the single-contact wear table of the same history with
+    EDF_MZ and no sectors, bit for bit; the other row keeps the base case's sectors."""
+    manifest, case = write_bundle(tmp_path, oscillator(), 2, extra={
+        "law.name": [None, "EDF_MZ"], "sectors": [None, "{}"]})
+    (tmp_path / "m.toml").write_text(
+        '[[contacts]]\ncontact = "R1C1-AVB"\nhistory = "histories/t0.parquet"\n'
+        '[[contacts]]\ncontact = "R1C2-AVB"\nhistory = "histories/t1.parquet"\n'
+        'law.name = "EDF_MZ"\nsectors = {}\n')
+    no_sectors = tmp_path / "edf_mz.toml"
+    no_sectors.write_text(BASE_CASE.replace("[sectors]\ncount = 4\n", "").replace(
+        "mobile = { COEF_USURE = 9.2e-15 }", 'name = "EDF_MZ"'))
+    with pytest.warns(LawWarning, match="EDF_MZ"):  # its default S, at this power
+        expected = reference(tmp_path / "histories/t1.parquet", no_sectors)
+    for source in (manifest, tmp_path / "m.toml"):
+        result = run_bundle(source, case, scheduler="serial")
+        assert result.errors.empty, result.errors.to_dict("records")
+        # the bundle's table holds the sector columns of the other contact: empty here
+        rows = rows_of(result, "R1C2-AVB")
+        assert_identical(rows[list(expected.columns)], expected)
+        assert rows.drop(columns=list(expected.columns)).isna().all().all()
+        assert_identical(rows_of(result, "R1C1-AVB"),
+                         reference(tmp_path / "histories/t0.parquet", case))
+        assert rows_of(result, "R1C1-AVB")["sector"].notna().all()
+    # without dropping them, the row's error says how to
+    frame = pd.read_csv(manifest).drop(columns="sectors")
+    frame["history"] = [str(tmp_path / h) for h in frame["history"]]
+    result = run_bundle(frame, case, scheduler="serial")
+    assert result.errors["contact"].tolist() == ["R1C2-AVB"]
+    message = result.errors["message"][0]
+    assert "law 'EDF_MZ' with the base case's [sectors]" in message
+    assert "a sectors cell {} in its row (a TOML manifest: sectors = {})" in message
+    # a CSV cell holding a table replaces the base case's sectors whole (edges, not count)
+    edges = tmp_path / "edges.toml"
+    edges.write_text(BASE_CASE.replace("count = 4", "edges_deg = [-180, 0, 180]"))
+    result = run_bundle(pd.DataFrame({"contact": ["e"],
+                                      "history": [str(tmp_path / "histories/t0.parquet")],
+                                      "sectors": ["{ edges_deg = [-180, 0, 180] }"]}),
+                        case, scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    assert_identical(rows_of(result, "e"), reference(tmp_path / "histories/t0.parquet", edges))
+    assert rows_of(result, "e")["sector"].nunique() == 2
+    # the whole section and one of its keys in the same row: refused (order-dependent)
+    frame["sectors"], frame["sectors.count"] = [None, "{}"], [None, 8]
+    result = run_bundle(frame, case, scheduler="serial")
+    assert "sectors is given whole and by key" in result.errors["message"][0]
+    # an empty table of a section that a row cannot drop changed nothing: refused
+    (tmp_path / "g.toml").write_text('[[contacts]]\ncontact = "a"\nhistory = "h.csv"\n'
+                                     "geometry = {}\n")
+    with pytest.raises(KeywordError, match=r"contact 'a': geometry = \{\} would change nothing"):
+        read_manifest(tmp_path / "g.toml")

@@ -34,6 +34,9 @@ BUNDLE_COLUMNS: dict[str, str] = {
 IDENTITY: tuple[str, ...] = ("contact", "tube_row", "tube_column", "support", "node", "history")
 #: Per-contact wall thickness [m], a manifest column while the case files have no such key.
 WALL_COLUMN = "wall_thickness_m"
+#: Sections a row may give whole, as a table: ``{}`` drops the base case's section for the row
+#: (a law other than Archard refuses sectors), a CSV cell ``{ count = 8 }`` replaces it.
+WHOLE_SECTIONS: tuple[str, ...] = ("sectors",)
 #: Case keys the manifest gives through its own columns (history <- file, contact <- name).
 _SUPPLIED = {("history", "file"): "history", ("history", "name"): "contact",
              ("history", "node"): "node"}
@@ -104,7 +107,8 @@ def column_key(column: str, source: str, *, noun: str = "column") -> tuple[str, 
     str or tuple
         The column itself for :data:`BUNDLE_COLUMNS` (and ``wall_thickness_m`` while it is not
         a case key); else ``(section, key)`` or ``(section, key, entry)`` (an entry of an inline
-        table such as ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title.
+        table such as ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title,
+        ``("sectors",)`` for a section given whole (:data:`WHOLE_SECTIONS`).
 
     Raises
     ------
@@ -137,6 +141,8 @@ def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
     keys = _case_keys()
     if column in BUNDLE_COLUMNS or (column == WALL_COLUMN and not _wall_is_case_key()):
         return column
+    if column in WHOLE_SECTIONS:
+        return (column,)
     parts = column.split(".")
     if len(parts) > 1 and parts[0] in keys and parts[0]:
         section, key = parts[0], parts[1]
@@ -241,6 +247,7 @@ def valid_columns() -> list[str]:
     names = list(BUNDLE_COLUMNS)
     if not _wall_is_case_key():
         names.append(WALL_COLUMN)
+    names += WHOLE_SECTIONS
     counts: dict[str, int] = {}
     for section, ks in keys.items():
         for k in ks:
