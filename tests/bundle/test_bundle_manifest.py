@@ -506,3 +506,28 @@ def test_a_row_drops_the_base_case_sectors_to_switch_to_a_law_without_them(tmp_p
                                      "geometry = {}\n")
     with pytest.raises(KeywordError, match=r"contact 'a': geometry = \{\} would change nothing"):
         read_manifest(tmp_path / "g.toml")
+
+
+def test_ids_differing_only_by_surrounding_whitespace_are_refused(tmp_path):
+    """'A' and 'A ' were two contacts that look the same in the terminal and in summary.csv:
+    now the run stops before any work, naming both; ids are never trimmed, so a single id with
+    surrounding whitespace and no look-alike runs under its id as written."""
+    write_history(oscillator(), tmp_path / "h.parquet")
+    (tmp_path / "base.toml").write_text(BASE_CASE)
+    (tmp_path / "m.csv").write_text('contact,history\nA,h.parquet\nB,h.parquet\n'
+                                    'A ,h.parquet\n')
+    with pytest.raises(InputError) as caught:
+        run_bundle(tmp_path / "m.csv", tmp_path / "base.toml", scheduler="serial",
+                   output=tmp_path / "out")
+    assert ("contact ids 'A' (row 1) and 'A ' (row 3) differ only by surrounding whitespace"
+            in str(caught.value))
+    assert str(caught.value).endswith("make them distinct or trim them")
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(InputError, match=r"'\\xa0B' \(row 1\) and 'B' \(row 2\)"):
+        read_manifest(pd.DataFrame({"contact": ["\xa0B", "B"], "history": ["x", "y"]}))
+    # one id with surrounding whitespace and no look-alike: kept as written
+    history = str(tmp_path / "h.parquet")
+    result = run_bundle(pd.DataFrame({"contact": [" A ", "B"], "history": [history] * 2}),
+                        tmp_path / "base.toml", scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    assert result.contacts["contact"].tolist() == [" A ", "B"]

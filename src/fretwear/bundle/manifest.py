@@ -169,12 +169,29 @@ def _identity_value(value: Any) -> Any:
 
 
 def _check_unique(ids: list[str], source: str) -> None:
+    """Contact ids are unique, and no two differ only by surrounding whitespace (``'A'`` and
+    ``'A '`` look alike in the terminal and in summary.csv); ids are never trimmed: a single
+    id with surrounding whitespace is kept as written.
+
+    Raises
+    ------
+    InputError
+        An id given twice, or two ids that differ only by surrounding whitespace (both named).
+    """
     seen: set[str] = set()
     for i, c in enumerate(ids):
         if c in seen:
             raise InputError(f"{source}: contact {c!r} appears twice (row {i + 1}); contact ids "
                              "must be unique")
         seen.add(c)
+    trimmed: dict[str, int] = {}
+    for i, c in enumerate(ids):
+        j = trimmed.setdefault(c.strip(), i)
+        if j != i:
+            raise InputError(f"{source}: contact ids {ids[j]!r} (row {j + 1}) and {c!r} (row "
+                             f"{i + 1}) differ only by surrounding whitespace: they look the "
+                             "same in the terminal and in summary.csv; make them distinct or "
+                             "trim them")
 
 
 def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
