@@ -24,7 +24,7 @@ from bundle_helpers import (
 
 from fretwear.bundle import read_manifest, run_bundle
 from fretwear.bundle.manifest import column_key
-from fretwear.errors import InputError, KeywordError
+from fretwear.errors import InputError, KeywordError, LawWarning
 from fretwear.io import write_history
 
 
@@ -409,3 +409,125 @@ def test_contact_lengths_of_a_store_with_a_2d_time(tmp_path, where, monkeypatch)
                 for r in time]
     assert [datasets.store_length(row.history) for row in rows] == expected == lengths
     assert datasets._store_lengths.cache_info().misses == 1
+
+
+def test_a_misspelt_entry_column_stops_the_run_before_any_work(tmp_path):
+    """A column law.mobile.COEF_USUR (COEF_USURE misspelt), filled on one row and empty on the
+    other: the run started, the first contact failed without a hint and the second silently
+    kept the base coefficient. Now the run stops before any work, as for a bare misspelt name,
+    every unknown entry named at once with the closest valid name, whatever the cells hold
+    (the entries of law.mobile, law.obstacle, history.units and history.options are known
+    sets)."""
+    manifest, case = write_bundle(tmp_path, oscillator(), 2, extra={
+        "law.mobile.COEF_USUR": [1e-14, None], "history.units.lenght": [None, None],
+        "law.obstacle.coef_usure": [None, None], "history.options.delimeter": [None, None]})
+    with pytest.raises(KeywordError) as caught:
+        run_bundle(manifest, case, scheduler="serial", output=tmp_path / "out")
+    message = str(caught.value)
+    assert ("unknown columns 'law.mobile.COEF_USUR' (did you mean 'law.mobile.COEF_USURE'?), "
+            "'history.units.lenght' (did you mean 'history.units.length'?), "
+            "'law.obstacle.coef_usure' (did you mean 'law.obstacle.COEF_USURE'?), "
+            "'history.options.delimeter' (did you mean 'history.options.delimiter'?)"
+            ) in message
+    assert "the entries of law.mobile are the coefficients of the row's law" in message
+    assert "ARCHARD: coefficient (COEF_USURE)" in message
+    assert not (tmp_path / "out").exists()
+    # a TOML manifest's row tables, inline or dotted, are the same columns
+    toml = tmp_path / "m.toml"
+    toml.write_text('[[contacts]]\ncontact = "a"\nhistory = "histories/t0.parquet"\n'
+                    "law.mobile = { COEF_USUR = 1e-14 }\n"
+                    '[[contacts]]\ncontact = "b"\nhistory = "histories/t1.parquet"\n'
+                    '"history.units" = { lenght = "mm" }\n')
+    with pytest.raises(KeywordError, match=r"unknown keys 'law.mobile.COEF_USUR' \(did you mean "
+                                           r"'law.mobile.COEF_USURE'\?\), 'history.units.lenght' "
+                                           r"\(did you mean 'history.units.length'\?\)"):
+        read_manifest(toml)
+    # valid entries pass: every law's coefficients (by name or keyword), channel aliases and
+    # quantities in any case as units, every reader's options; history.columns' entries are
+    # the file's own columns (free)
+    for column in ("law.mobile.COEF_USURE", "law.mobile.coefficient", "law.obstacle.COEF_B",
+                   "law.mobile.reference_intensity", "history.units.FN",
+                   "history.units.Length", "history.units.dy", "history.options.select",
+                   "history.columns.anything"):
+        assert column_key(column, "m") == tuple(column.split(".", 2))
+
+
+def test_a_row_drops_the_base_case_sectors_to_switch_to_a_law_without_them(tmp_path):
+    """An Archard base case with [sectors]: a row switching to EDF_MZ failed (EDF_MZ refuses
+    sectors) and nothing removed them: a TOML row's sectors = {} was silently ignored, and a
+    CSV manifest had no column for it. Now sectors = {} (TOML) or a sectors cell {} (CSV) drops
+    them for that row: its rows equal the single-contact wear table of the same history with
+    EDF_MZ and no sectors, bit for bit; the other row keeps the base case's sectors."""
+    manifest, case = write_bundle(tmp_path, oscillator(), 2, extra={
+        "law.name": [None, "EDF_MZ"], "sectors": [None, "{}"]})
+    (tmp_path / "m.toml").write_text(
+        '[[contacts]]\ncontact = "R1C1-AVB"\nhistory = "histories/t0.parquet"\n'
+        '[[contacts]]\ncontact = "R1C2-AVB"\nhistory = "histories/t1.parquet"\n'
+        'law.name = "EDF_MZ"\nsectors = {}\n')
+    no_sectors = tmp_path / "edf_mz.toml"
+    no_sectors.write_text(BASE_CASE.replace("[sectors]\ncount = 4\n", "").replace(
+        "mobile = { COEF_USURE = 9.2e-15 }", 'name = "EDF_MZ"'))
+    with pytest.warns(LawWarning, match="EDF_MZ"):  # its default S, at this power
+        expected = reference(tmp_path / "histories/t1.parquet", no_sectors)
+    for source in (manifest, tmp_path / "m.toml"):
+        result = run_bundle(source, case, scheduler="serial")
+        assert result.errors.empty, result.errors.to_dict("records")
+        # the bundle's table holds the sector columns of the other contact: empty here
+        rows = rows_of(result, "R1C2-AVB")
+        assert_identical(rows[list(expected.columns)], expected)
+        assert rows.drop(columns=list(expected.columns)).isna().all().all()
+        assert_identical(rows_of(result, "R1C1-AVB"),
+                         reference(tmp_path / "histories/t0.parquet", case))
+        assert rows_of(result, "R1C1-AVB")["sector"].notna().all()
+    # without dropping them, the row's error says how to
+    frame = pd.read_csv(manifest).drop(columns="sectors")
+    frame["history"] = [str(tmp_path / h) for h in frame["history"]]
+    result = run_bundle(frame, case, scheduler="serial")
+    assert result.errors["contact"].tolist() == ["R1C2-AVB"]
+    message = result.errors["message"][0]
+    assert "law 'EDF_MZ' with the base case's [sectors]" in message
+    assert "a sectors cell {} in its row (a TOML manifest: sectors = {})" in message
+    # a CSV cell holding a table replaces the base case's sectors whole (edges, not count)
+    edges = tmp_path / "edges.toml"
+    edges.write_text(BASE_CASE.replace("count = 4", "edges_deg = [-180, 0, 180]"))
+    result = run_bundle(pd.DataFrame({"contact": ["e"],
+                                      "history": [str(tmp_path / "histories/t0.parquet")],
+                                      "sectors": ["{ edges_deg = [-180, 0, 180] }"]}),
+                        case, scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    assert_identical(rows_of(result, "e"), reference(tmp_path / "histories/t0.parquet", edges))
+    assert rows_of(result, "e")["sector"].nunique() == 2
+    # the whole section and one of its keys in the same row: refused (order-dependent)
+    frame["sectors"], frame["sectors.count"] = [None, "{}"], [None, 8]
+    result = run_bundle(frame, case, scheduler="serial")
+    assert "sectors is given whole and by key" in result.errors["message"][0]
+    # an empty table of a section that a row cannot drop changed nothing: refused
+    (tmp_path / "g.toml").write_text('[[contacts]]\ncontact = "a"\nhistory = "h.csv"\n'
+                                     "geometry = {}\n")
+    with pytest.raises(KeywordError, match=r"contact 'a': geometry = \{\} would change nothing"):
+        read_manifest(tmp_path / "g.toml")
+
+
+def test_ids_differing_only_by_surrounding_whitespace_are_refused(tmp_path):
+    """'A' and 'A ' were two contacts that look the same in the terminal and in summary.csv:
+    now the run stops before any work, naming both; ids are never trimmed, so a single id with
+    surrounding whitespace and no look-alike runs under its id as written."""
+    write_history(oscillator(), tmp_path / "h.parquet")
+    (tmp_path / "base.toml").write_text(BASE_CASE)
+    (tmp_path / "m.csv").write_text('contact,history\nA,h.parquet\nB,h.parquet\n'
+                                    'A ,h.parquet\n')
+    with pytest.raises(InputError) as caught:
+        run_bundle(tmp_path / "m.csv", tmp_path / "base.toml", scheduler="serial",
+                   output=tmp_path / "out")
+    assert ("contact ids 'A' (row 1) and 'A ' (row 3) differ only by surrounding whitespace"
+            in str(caught.value))
+    assert str(caught.value).endswith("make them distinct or trim them")
+    assert not (tmp_path / "out").exists()
+    with pytest.raises(InputError, match=r"'\\xa0B' \(row 1\) and 'B' \(row 2\)"):
+        read_manifest(pd.DataFrame({"contact": ["\xa0B", "B"], "history": ["x", "y"]}))
+    # one id with surrounding whitespace and no look-alike: kept as written
+    history = str(tmp_path / "h.parquet")
+    result = run_bundle(pd.DataFrame({"contact": [" A ", "B"], "history": [history] * 2}),
+                        tmp_path / "base.toml", scheduler="serial")
+    assert result.errors.empty, result.errors.to_dict("records")
+    assert result.contacts["contact"].tolist() == [" A ", "B"]

@@ -33,7 +33,9 @@ from fretwear.bundle.datasets import path_stamp
 from fretwear.bundle.manifest import ContactRow, HistoryRef
 from fretwear.errors import FretwearError, InputError, KeywordError
 from fretwear.io.channels import channel_of, unknown_units_key
+from fretwear.laws import get_law
 from fretwear.table import WearCase
+from fretwear.table.coefficients import laws_with, sector_parameter
 from fretwear.workflows.case_files import KEYS, case_arguments, history_options, validate_case
 
 
@@ -153,6 +155,16 @@ def _coefficient_source(law: dict[str, Any], given: Mapping[str, Any], where: st
             law.pop(key, None)
 
 
+def _section_table(value: Any, where: str) -> dict[str, Any]:
+    """A section given whole (a ``sectors`` cell): a table, in TOML syntax in a CSV cell."""
+    if isinstance(value, str) and value.strip()[:1] == "{":
+        value = _coerce(dict, value, where)
+    if not isinstance(value, Mapping):
+        raise KeywordError(f"{where} = {value!r}: give a table: {{}} drops the base case's "
+                           "section for this contact, { count = 8 } replaces it")
+    return dict(value)
+
+
 def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[str, Any]:
     """The base case with the row's overrides, validated (not yet checked for consistency).
 
@@ -160,7 +172,9 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
     database materials), and a row giving materials replaces the base case's coefficients
     (:func:`_coefficient_source`). A row naming another law (``law.name``) does not inherit the
     base case's coefficient tables (``law.mobile``, ``law.obstacle``): their entries belong to
-    the base's law; the row's own entries, or the new law's defaults, apply.
+    the base's law; the row's own entries, or the new law's defaults, apply. A section given
+    whole (``sectors``, :data:`fretwear.bundle.columns.WHOLE_SECTIONS`) replaces the base
+    case's, ``{}`` drops it (a law other than Archard refuses sectors).
 
     Raises
     ------
@@ -171,12 +185,19 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
     where = f"{source}: contact {row.contact!r}"
     given: list[tuple[tuple[str, ...], Any]] = []
     for key, value in row.overrides.items():
-        section, name = key[0], key[1]
         if len(key) == 3:
             given.append((key, value.item() if isinstance(value, np.generic) else value))
             continue
         label = row.labels.get(key) or f"column {'.'.join(k for k in key if k)}"
-        given.append((key, _coerce(KEYS[section][name][0], value, f"{where}: {label}")))
+        if len(key) == 1:  # a section given whole (sectors)
+            given.append((key, _section_table(value, f"{where}: {label}")))
+            continue
+        given.append((key, _coerce(KEYS[key[0]][key[1]][0], value, f"{where}: {label}")))
+    sections = {k[0] for k, _ in given if len(k) == 1}
+    both = sorted({k[0] for k, _ in given if len(k) > 1 and k[0] in sections})
+    if both:  # the result would depend on the columns' order
+        raise KeywordError(f"{where}: {both[0]} is given whole and by key ({both[0]}.<key>) in "
+                           "the same row: give the whole table, or its keys")
     wholes = {k for k, _ in given if len(k) == 2}
     both = sorted({".".join(k[:2]) for k, _ in given if len(k) == 3 and k[:2] in wholes})
     if both:  # the result would depend on the columns' order
@@ -192,6 +213,12 @@ def merge_case(base: Mapping[str, Any], row: ContactRow, source: str) -> dict[st
             for table in ("mobile", "obstacle"):
                 case["law"].pop(table, None)
     for key, value in given:
+        if len(key) == 1:  # sectors = {}: none for this contact; a table replaces the base's
+            if value:
+                case[key[0]] = dict(value)
+            else:
+                case.pop(key[0], None)
+            continue
         section, name = key[0], key[1]
         if len(key) == 3:
             case.setdefault(section, {}).setdefault(name, {})[key[2]] = value
@@ -441,6 +468,30 @@ def check_base_case(base: Mapping[str, Any], rows, source: str, cache: dict | No
 BOTH_POWER_AND_HISTORY = "gives both a history and power.value_W; keep one"
 
 
+def _check_sectors_law(row: ContactRow, case: Mapping[str, Any], where: str) -> None:
+    """The base case's sectors under a row's law that refuses them (another law than Archard):
+    the case layer's error, with how a manifest row drops them.
+
+    Raises
+    ------
+    KeywordError
+        The row's law takes no sectors and the row keeps the base case's.
+    """
+    if not case.get("sectors") or any(k[0] == "sectors" for k in row.overrides):
+        return  # no sectors, or the row's own: the case layer's message says it
+    try:
+        law = get_law(str(case.get("law", {}).get("name", "ARCHARD")))
+    except KeywordError:
+        return  # an unknown law: the case layer names it
+    if sector_parameter(law) is None:
+        raise KeywordError(
+            f"{where}: law {law.name!r} with the base case's [sectors]: sector tables take "
+            f"Archard coefficients only (SECTEUR belongs to LOI_USURE="
+            f"{laws_with(lambda lw: sector_parameter(lw) is not None)}); use law.name = "
+            "ARCHARD, or drop the sectors for this contact: a sectors cell {} in its row (a "
+            "TOML manifest: sectors = {})")
+
+
 def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
     """(merged case, WearCase, its to_dict, its JSON-ready form) of a row."""
     case = merge_case(base, row, source)
@@ -451,6 +502,7 @@ def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
                          "the manifest) or a power.value_W column")
     if row.history.kind != "none" and given_power:
         raise KeywordError(f"{where}: {BOTH_POWER_AND_HISTORY}")
+    _check_sectors_law(row, case, where)
     units = case.get("history", {}).get("units")
     for key in units if isinstance(units, Mapping) else ():
         message = unknown_units_key(key, "[history]")

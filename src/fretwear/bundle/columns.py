@@ -9,10 +9,14 @@ columns with the closest valid name (:func:`column_meanings`). Used by
 
 from __future__ import annotations
 
+import difflib
 from typing import Any
 
 from fretwear.errors import KeywordError
+from fretwear.io import FORMATS
+from fretwear.io.channels import CHANNELS, QUANTITIES, unknown_units_key
 from fretwear.keys import keyword_hint
+from fretwear.laws import WEAR_LAWS
 from fretwear.workflows.case_files import KEYS
 
 #: Columns of a manifest that are not case keys -> description (``fretwear bundle --help``).
@@ -30,6 +34,9 @@ BUNDLE_COLUMNS: dict[str, str] = {
 IDENTITY: tuple[str, ...] = ("contact", "tube_row", "tube_column", "support", "node", "history")
 #: Per-contact wall thickness [m], a manifest column while the case files have no such key.
 WALL_COLUMN = "wall_thickness_m"
+#: Sections a row may give whole, as a table: ``{}`` drops the base case's section for the row
+#: (a law other than Archard refuses sectors), a CSV cell ``{ count = 8 }`` replaces it.
+WHOLE_SECTIONS: tuple[str, ...] = ("sectors",)
 #: Case keys the manifest gives through its own columns (history <- file, contact <- name).
 _SUPPLIED = {("history", "file"): "history", ("history", "name"): "contact",
              ("history", "node"): "node"}
@@ -37,6 +44,45 @@ _SUPPLIED = {("history", "file"): "history", ("history", "name"): "contact",
 
 def _case_keys() -> dict[str, dict[str, tuple[Any, str]]]:
     return KEYS
+
+
+def entry_names(section: str, key: str) -> tuple[str, ...] | None:
+    """The entries a case key's inline table accepts, when they are a known set; None for a
+    table of free names (``history.columns``: the history file's own column names).
+
+    ``law.mobile`` and ``law.obstacle``: the coefficients of every wear law, by name or
+    Code_Aster keyword (a row may name its law); ``history.units``: the quantities and the
+    channels (their aliases are accepted too, :func:`entry_known`); ``history.options``: the
+    options of every format's reader.
+
+    Examples
+    --------
+    >>> entry_names("law", "mobile")[:3]
+    ('coefficient', 'COEF_USURE', 'reference_coefficient')
+    >>> entry_names("history", "columns") is None
+    True
+    """
+    if section == "law" and key in ("mobile", "obstacle"):
+        names: list[str] = []
+        for law in WEAR_LAWS.values():
+            for name in law.accepted:
+                names += [name, law.aster_keywords.get(name, name)]
+        return tuple(dict.fromkeys(names))
+    if (section, key) == ("history", "units"):
+        return tuple(dict.fromkeys((*QUANTITIES, *CHANNELS)))
+    if (section, key) == ("history", "options"):
+        return tuple(dict.fromkeys(o for f in FORMATS.values() for o in f.read_options))
+    return None
+
+
+def entry_known(section: str, key: str, entry: str) -> bool:
+    """Whether ``entry`` is an entry the table ``section.key`` accepts (any entry of a table of
+    free names); a ``history.units`` key as the case layer takes it (an alias of a channel,
+    a quantity in any case)."""
+    names = entry_names(section, key)
+    if names is None or entry in names:
+        return True
+    return (section, key) == ("history", "units") and unknown_units_key(entry, "") is None
 
 
 def _wall_is_case_key() -> bool:
@@ -61,7 +107,8 @@ def column_key(column: str, source: str, *, noun: str = "column") -> tuple[str, 
     str or tuple
         The column itself for :data:`BUNDLE_COLUMNS` (and ``wall_thickness_m`` while it is not
         a case key); else ``(section, key)`` or ``(section, key, entry)`` (an entry of an inline
-        table such as ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title.
+        table such as ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title,
+        ``("sectors",)`` for a section given whole (:data:`WHOLE_SECTIONS`).
 
     Raises
     ------
@@ -94,6 +141,8 @@ def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
     keys = _case_keys()
     if column in BUNDLE_COLUMNS or (column == WALL_COLUMN and not _wall_is_case_key()):
         return column
+    if column in WHOLE_SECTIONS:
+        return (column,)
     parts = column.split(".")
     if len(parts) > 1 and parts[0] in keys and parts[0]:
         section, key = parts[0], parts[1]
@@ -101,7 +150,8 @@ def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
             if len(parts) == 2:
                 return (section, key)
             if len(parts) >= 3 and keys[section][key][0] is dict:  # the entry may hold dots
-                return (section, key, ".".join(parts[2:]))
+                entry = ".".join(parts[2:])
+                return (section, key, entry) if entry_known(section, key, entry) else None
     elif len(parts) == 1:
         found = [s for s, ks in keys.items() if column in ks and (s, column) not in _SUPPLIED]
         if len(found) == 1:
@@ -120,17 +170,57 @@ def identity_columns() -> list[str]:
 def _unknown_message(names: list[str], source: str, noun: str) -> str:
     """The message of unknown manifest columns (or TOML keys), each with its closest name."""
     valid = valid_columns()
-    listed = ", ".join(f"{n!r}{keyword_hint(n, valid)}" for n in names)
+    listed = ", ".join(f"{n!r}{_closest(n, valid)}" for n in names)
     where = "a manifest has the columns" if noun == "column" else \
         "a [[contacts]] table of a TOML manifest has the keys"
     hint = ""
     if any(sep in n for n in names for sep in (";", "\t")):
         hint = (" (the names hold ';' or tabs: the file looks ;-separated but was not read so; "
                 "save it with one separator throughout)")
+    tables = dict.fromkeys(t for t in map(_table_of, names) if t is not None)
+    entries = "".join(f"; the entries of {'.'.join(t)} are {_entries_text(*t)}" for t in tables)
     return (f"{source}: unknown {noun}{'s' if len(names) > 1 else ''} {listed}{hint}; "
             f"{where} {', '.join(identity_columns())}, and any case key as an override (bare "
             "when unique, else section.key; entries of inline tables as section.key.entry, "
-            "e.g. law.mobile.COEF_USURE): fretwear bundle --help lists them")
+            "e.g. law.mobile.COEF_USURE): fretwear bundle --help lists them" + entries)
+
+
+def _table_of(name: str) -> tuple[str, str] | None:
+    """``(section, key)`` of a dotted name ``section.key.entry`` under a table of known
+    entries (:func:`entry_names`), else None."""
+    parts = name.split(".")
+    if len(parts) < 3 or parts[0] not in _case_keys() or not parts[0]:
+        return None
+    section, key = parts[0], parts[1]
+    if _case_keys()[section].get(key, (None,))[0] is not dict or \
+            entry_names(section, key) is None:
+        return None
+    return section, key
+
+
+def _closest(name: str, valid: list[str]) -> str:
+    """`` (did you mean 'x'?)`` for an unknown column: the closest entry of its table for
+    ``section.key.entry`` (``law.mobile.COEF_USURE``), else the closest valid column."""
+    table = _table_of(name)
+    if table is None:
+        return keyword_hint(name, valid)
+    prefix = ".".join(table) + "."
+    entry, names = name[len(prefix):], entry_names(*table)
+    close = difflib.get_close_matches(entry, names, n=1) or \
+        [n for n in names if n.lower() == entry.lower()][:1]
+    return f" (did you mean {prefix + close[0]!r}?)" if close else ""
+
+
+def _entries_text(section: str, key: str) -> str:
+    """The entries of a table of known entries, for messages (a law's coefficients by law)."""
+    if section == "law":
+        return "the coefficients of the row's law, by name or Code_Aster keyword: " + "; ".join(
+            f"{law.name}: " + ", ".join(f"{p} ({law.aster_keywords[p]})"
+                                       if p in law.aster_keywords else p
+                                       for p in law.accepted)
+            for law in WEAR_LAWS.values())
+    alias = " (or a channel's alias, e.g. FN)" if (section, key) == ("history", "units") else ""
+    return ", ".join(entry_names(section, key)) + alias
 
 
 def column_meanings(columns: list[str], source: str, *, noun: str = "column"
@@ -157,6 +247,7 @@ def valid_columns() -> list[str]:
     names = list(BUNDLE_COLUMNS)
     if not _wall_is_case_key():
         names.append(WALL_COLUMN)
+    names += WHOLE_SECTIONS
     counts: dict[str, int] = {}
     for section, ks in keys.items():
         for k in ks:

@@ -35,6 +35,7 @@ from fretwear.bundle.columns import (  # noqa: F401 - re-exported
     BUNDLE_COLUMNS,
     IDENTITY,
     WALL_COLUMN,
+    WHOLE_SECTIONS,
     _case_keys,
     column_key,
     column_meanings,
@@ -168,12 +169,29 @@ def _identity_value(value: Any) -> Any:
 
 
 def _check_unique(ids: list[str], source: str) -> None:
+    """Contact ids are unique, and no two differ only by surrounding whitespace (``'A'`` and
+    ``'A '`` look alike in the terminal and in summary.csv); ids are never trimmed: a single
+    id with surrounding whitespace is kept as written.
+
+    Raises
+    ------
+    InputError
+        An id given twice, or two ids that differ only by surrounding whitespace (both named).
+    """
     seen: set[str] = set()
     for i, c in enumerate(ids):
         if c in seen:
             raise InputError(f"{source}: contact {c!r} appears twice (row {i + 1}); contact ids "
                              "must be unique")
         seen.add(c)
+    trimmed: dict[str, int] = {}
+    for i, c in enumerate(ids):
+        j = trimmed.setdefault(c.strip(), i)
+        if j != i:
+            raise InputError(f"{source}: contact ids {ids[j]!r} (row {j + 1}) and {c!r} (row "
+                             f"{i + 1}) differ only by surrounding whitespace: they look the "
+                             "same in the terminal and in summary.csv; make them distinct or "
+                             "trim them")
 
 
 def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
@@ -272,13 +290,21 @@ def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
     return str(target.resolve() if link else target)
 
 
-def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+def _flatten(table: Mapping[str, Any], source: str, prefix: str = "") -> dict[str, Any]:
     """A TOML contact table -> manifest columns: nested tables become dotted names, down to
     the entries of dict-valued case keys (``law.mobile = { COEF_USURE = 6e-14 }`` and
     ``law.mobile.COEF_USURE = 6e-14``, which TOML reads alike, both give the column
     ``law.mobile.COEF_USURE``: the row updates that entry of the base case's table, as a CSV
-    column of that name does). An empty table (``law.mobile = {}``) stays whole: that key is
-    dropped for the row (:func:`fretwear.bundle.cases.merge_case`)."""
+    column of that name does). An empty table (``law.mobile = {}``, ``sectors = {}``) stays
+    whole: that key, or that section, is dropped for the row
+    (:func:`fretwear.bundle.cases.merge_case`).
+
+    Raises
+    ------
+    KeywordError
+        An empty table of a section that a row cannot drop (``geometry = {}``): it would
+        change nothing.
+    """
     keys = _case_keys()
     out: dict[str, Any] = {}
     for k, v in table.items():
@@ -288,8 +314,15 @@ def _flatten(table: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
                    and keys[parts[0]].get(parts[1], (None,))[0] is dict)
         if entries and isinstance(v, Mapping) and v:
             out.update({f"{name}.{entry}": value for entry, value in v.items()})
+        elif isinstance(v, Mapping) and not v and name in WHOLE_SECTIONS:
+            out[name] = {}  # the base case's section dropped for the row
+        elif isinstance(v, Mapping) and not v and name in keys and name not in BUNDLE_COLUMNS:
+            raise KeywordError(f"{source}: contact {table.get('contact', '?')!r}: {name} = {{}} "
+                               f"would change nothing: an empty table drops a section of the "
+                               f"base case only for {', '.join(WHOLE_SECTIONS)}; change "
+                               f"[{name}] key by key ({name}.<key> = value)")
         elif isinstance(v, Mapping) and not entries:
-            out.update(_flatten(v, prefix=f"{name}."))
+            out.update(_flatten(v, source, prefix=f"{name}."))
         else:
             out[name] = v
     return out
@@ -305,7 +338,7 @@ def _read_toml(path: Path) -> pd.DataFrame:
         raise KeywordError(f"manifest {str(path)!r}: a TOML manifest holds an array of tables "
                            f"[[contacts]] (one per contact) and nothing else; found keys "
                            f"{sorted(raw)}")
-    return pd.DataFrame([_flatten(c) for c in raw["contacts"]])
+    return pd.DataFrame([_flatten(c, str(path)) for c in raw["contacts"]])
 
 
 def _read_csv(path: Path, label: str) -> pd.DataFrame:

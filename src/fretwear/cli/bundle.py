@@ -50,6 +50,8 @@ Manifest columns:
   any case key (`fretwear run --help`), bare when unique or as section.key, e.g.
     mobile_radius_m, geometry.obstacle_radius_m, law.mobile.COEF_USURE, law.materials
     (lists and inline tables in TOML syntax in a CSV cell: [1, 2, 5])
+  sectors: {{}} drops the base case's [sectors] for the contact (a law other than
+    ARCHARD refuses sectors); a table, {{ count = 8 }}, replaces them
 
 \b
 Exit status: 0 every contact computed; {EXIT_SOME_FAILED} some contacts failed or their depth
