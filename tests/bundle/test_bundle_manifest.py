@@ -193,6 +193,23 @@ def test_dataset_and_stores_contact_by_time(tmp_path, where):
     assert result.table.groupby("contact")["tube_row"].first().tolist() == [1, 2, 3]
 
 
+def test_a_blank_units_attribute_of_a_store_declares_nothing(tmp_path):
+    """xarray and netCDF writers may leave ``units = ""`` on a variable: that declares no unit
+    (the values are SI, as with no attribute), where every contact used to fail with "unknown
+    force unit ''" (a user's trial). The reference: the same Dataset without the attributes."""
+    h = oscillator()
+    (tmp_path / "base.toml").write_text(BASE_CASE)
+    plain = _dataset(h)
+    blank = _dataset(h)
+    for name in ("normal_force", "vt1", "time"):
+        blank[name].attrs["units"] = "  " if name == "time" else ""
+    expected = run_bundle(plain, tmp_path / "base.toml", scheduler="serial")
+    got = run_bundle(blank, tmp_path / "base.toml", scheduler="serial")
+    assert got.errors.empty and expected.errors.empty
+    for k in range(3):
+        assert_identical(rows_of(got, f"c{k}"), rows_of(expected, f"c{k}"))
+
+
 def test_history_paths_are_resolved_as_path_resolve_does(tmp_path):
     """The manifest's history paths, resolved folder by folder (one lstat a file), equal
     ``(manifest folder / path).resolve()``: plain files, a file that is a link, a folder that is

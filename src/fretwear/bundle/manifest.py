@@ -485,6 +485,11 @@ def _rows_from_aster(path: Path, label: str) -> list[ContactRow]:
             for n in nodes]
 
 
+def _declared(variable) -> str:
+    """The ``units`` attribute of a store's variable, "" when absent or blank."""
+    return str(variable.attrs.get("units", "")).strip()
+
+
 def rows_from_dataset(ds, path: Path | None, label: str) -> list:
     """The :class:`ContactRow` of every contact of a Dataset or store (layout in
     :mod:`fretwear.bundle.datasets`)."""
@@ -503,11 +508,12 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
             continue
         columns[str(name)] = var.values
     meaning = column_meanings(list(columns), label)
-    units = {c: str(ds[c].attrs["units"]) for c in channels if "units" in ds[c].attrs}
+    # an empty units attribute (xarray and netCDF writers leave units="") declares nothing
+    units = {c: _declared(ds[c]) for c in channels if _declared(ds[c])}
     if "time" in ds.coords and ds["time"].dims == (tdim,) and "time" not in channels:
         shared_time = np.asarray(ds["time"].values, dtype=float)
-        if "units" in ds["time"].attrs:
-            units["time"] = str(ds["time"].attrs["units"])
+        if _declared(ds["time"]):
+            units["time"] = _declared(ds["time"])
     else:
         shared_time = None
     directory = Path.cwd() if path is None else path.parent
