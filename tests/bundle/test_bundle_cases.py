@@ -408,3 +408,27 @@ def test_a_table_given_whole_and_by_entry_in_one_row_is_refused(tmp_path):
         got = _given_power(tmp_path, base, **{k: cells[k] for k in order})
         assert got.errors["error"].tolist() == ["KeywordError"]
         assert "law.mobile is given whole and by entry" in got.errors["message"][0]
+
+
+def test_warnings_of_a_contacts_case_are_its_own(tmp_path):
+    """A warning raised while a contact's case is built in the client (here: a row switching
+    to TUBE_TUBE keeps the base's obstacle width, which crossed tubes do not use) lands in
+    BundleResult.warnings for that contact, and only for it, where it reached the terminal
+    alone before (a user's trial) and was missing from warnings.csv. The other contact, on the
+    base case, has none. Checked on the serial engine and through a warning filter that turns
+    any escaping warning into an error."""
+    case = tmp_path / "base.toml"
+    case.write_text(POWERED.format(law="mobile = { COEF_USURE = 1e-15 }"))
+    frame = pd.DataFrame({"contact": ["tube", "rod"], "power.value_W": [0.01, 0.01],
+                          "contact_type": ["TUBE_TUBE", None], "tilt_angle_deg": [45.0, None]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        result = run_bundle(frame, case, scheduler="serial", output=tmp_path / "out")
+    assert result.errors.empty
+    said = result.warnings
+    assert said["contact"].tolist() == ["tube"]
+    assert said["category"].tolist() == ["UnusedKeywordWarning"]
+    assert "TUBE_TUBE does not use obstacle_width" in said["message"][0]
+    on_disk = pd.read_csv(tmp_path / "out" / "warnings.csv")
+    assert on_disk["contact"].tolist() == ["tube"]
+    assert on_disk["message"].tolist() == said["message"].tolist()

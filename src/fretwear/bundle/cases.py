@@ -21,6 +21,7 @@ import json
 import math
 import os
 import tomllib
+import warnings
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from typing import Any
@@ -277,6 +278,10 @@ class ContactTask:
         Number of samples when known before reading (Parquet, stores).
     power : float or None
         A given wear power [W] (``power.value_W``) instead of a history.
+    warnings : list
+        ``[category, message]`` pairs of the warnings raised while the contact's case was
+        built in the client (a dimension its contact type does not use, ...): its record
+        starts with them, so they reach ``BundleResult.warnings`` with the contact's own.
     """
 
     contact: str
@@ -287,6 +292,7 @@ class ContactTask:
     key: str = ""
     samples: int | None = None
     power: float | None = None
+    warnings: list[list[str]] = field(default_factory=list)
 
     def wear_case(self):
         """The :class:`fretwear.table.WearCase` (rebuilt once per process for equal cases)."""
@@ -359,7 +365,7 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
         cached = _wear_case_of(base, row, source)
         if cache is not None:
             cache[signature] = cached
-    case, wear, payload, ident_case = cached
+    case, wear, payload, ident_case, caught = cached
     given_power = "value_W" in case.get("power", {})
     options = read_options(case, row.history)
     stamp: Any = None
@@ -388,7 +394,7 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     return ContactTask(contact=row.contact, history=row.history, case=payload,
                        read_options=options,
                        time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
-                       samples=samples, power=power)
+                       samples=samples, power=power, warnings=[list(w) for w in caught])
 
 
 class BaseCaseError(FretwearError, ValueError):
@@ -493,7 +499,16 @@ def _check_sectors_law(row: ContactRow, case: Mapping[str, Any], where: str) -> 
 
 
 def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
-    """(merged case, WearCase, its to_dict, its JSON-ready form) of a row."""
+    """(merged case, WearCase, its to_dict, its JSON-ready form, the warnings raised while it
+    was built as ``(category, message)`` pairs) of a row."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        built = _built_case(base, row, source)
+    said = tuple(dict.fromkeys((w.category.__name__, str(w.message)) for w in caught))
+    return (*built, said)
+
+
+def _built_case(base: Mapping[str, Any], row: ContactRow, source: str):
     case = merge_case(base, row, source)
     where = f"{source}: contact {row.contact!r}"
     given_power = "value_W" in case.get("power", {})

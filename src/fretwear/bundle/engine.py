@@ -238,7 +238,8 @@ def deal(items: list, count: int) -> list[list]:
 
 def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
     return {"contact": task.contact, "key": task.key, "status": "failed", "table": None,
-            "warnings": [], "error": [type(exc).__name__, str(exc)], "samples": 0,
+            "warnings": [list(w) for w in task.warnings],
+            "error": [type(exc).__name__, str(exc)], "samples": 0,
             "seconds": 0.0, "attrs": None, "state": None}
 
 

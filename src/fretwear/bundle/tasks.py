@@ -73,6 +73,12 @@ def _warning_list(caught) -> list[list[str]]:
         (w.category.__name__, str(w.message)) for w in caught)]
 
 
+def _with_case_warnings(task: ContactTask, caught: list[list[str]]) -> list[list[str]]:
+    """The warnings of the contact's case (raised in the client while it was built) first,
+    then the task's own, each once."""
+    return [list(w) for w in dict.fromkeys(tuple(w) for w in [*task.warnings, *caught])]
+
+
 def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None,
             samples: int = 0, seconds: float = 0.0, state=None) -> dict[str, Any]:
     """A task's record; ``table`` is ``(columns, attrs)`` of
@@ -81,7 +87,8 @@ def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None
     return {"contact": task.contact, "key": task.key, "status": status,
             "table": None if columns is None else {"columns": list(columns),
                                                     "arrays": list(columns.values())},
-            "warnings": _warning_list(caught), "error": error, "samples": int(samples),
+            "warnings": _with_case_warnings(task, _warning_list(caught)), "error": error,
+            "samples": int(samples),
             "seconds": seconds, "attrs": None if attrs is None else _attrs(attrs, task),
             "state": state}
 
