@@ -15,7 +15,7 @@ from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY
-from fretwear.errors import InputError
+from fretwear.errors import InputError, KeywordError
 from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 #: Columns of :attr:`BundleResult.errors`.
@@ -88,7 +88,8 @@ class BundleResult:
             thickness is known (the case's ``wall_thickness``, or the manifest's
             ``wall_thickness_m``).
         limit_m : float, optional
-            Depth limit [m] for every contact instead (when no wall thickness is given).
+            Depth limit [m] for every contact instead (when no wall thickness is given); give
+            ``limit`` or ``limit_m``, not both.
         wall_thickness : float, optional
             Wall thickness [m] of every tube, where the manifest gives none.
 
@@ -111,6 +112,13 @@ class BundleResult:
             at the history's power, inf if never reached), NaN for another limit. Any other
             limit: depth(t) is interpolated between the table's instants (monotone cubic) and
             inverted. ``attrs["time_to_limit"]`` says which.
+
+        Raises
+        ------
+        KeywordError
+            ``limit`` and ``limit_m`` given together.
+        InputError
+            A ``limit`` or ``limit_m`` that is not a finite number > 0.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -185,6 +193,9 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
     :func:`time_to_depth` is called only for the contacts whose depth reaches the limit.
     """
+    if limit is not None and limit_m is not None:
+        raise KeywordError(f"limit={limit!r} (a fraction of the wall) and limit_m={limit_m!r} "
+                           "(a depth [m]) given together; give one of them")
     if limit is not None and not (0 < limit and math.isfinite(limit)):
         raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
