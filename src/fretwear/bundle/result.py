@@ -186,6 +186,18 @@ def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
     return float(brentq(lambda x: float(f(x)) - target, t[i - 1], t[i], rtol=1e-12))
 
 
+def check_limit(limit) -> None:
+    """``limit`` is None or a fraction of the wall, 0 < limit <= 1 [-]; a KeywordError naming
+    it otherwise (:func:`fretwear.bundle.run_bundle`'s ``limit``, checked before any run)."""
+    if limit is None:
+        return
+    ok = isinstance(limit, int | float) and not isinstance(limit, bool)
+    if not (ok and math.isfinite(limit) and 0 < limit <= 1):
+        raise KeywordError(f"limit must be a fraction of the wall, 0 < limit <= 1 [-] (0.4: "
+                           f"40 % through-wall), or None for each contact's depth_limit; got "
+                           f"{limit!r}")
+
+
 def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
     """The ranking of :meth:`BundleResult.summary`.
