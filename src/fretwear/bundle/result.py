@@ -71,7 +71,9 @@ class BundleResult:
     @property
     def dataset(self):
         """The table as an xarray Dataset: ``contact × instant`` (× ``sector`` in sector mode),
-        identity columns as coordinates along ``contact``, units and meanings in ``attrs``."""
+        the identity columns, ``time_unit``, ``wall_thickness`` [m] and ``status`` as
+        coordinates along ``contact`` (every one, empty ones too: NaN or ""; whole numbers as
+        int64), units and meanings in ``attrs``."""
         if self._dataset is None:
             self._dataset = build_dataset(self.table, self.contacts)
         return self._dataset
@@ -426,12 +428,33 @@ _CONTACT_VARS = ("power",)
 _SECTOR_ONLY = ("angle_start", "angle_end")
 
 
-def _coordinate(values: pd.Series):
-    """Identity column -> a NetCDF/Zarr-friendly array (numbers as float, else text)."""
+#: Identity columns of numbers (all missing: NaN, not text).
+_NUMBER_COORDINATES = ("tube_row", "tube_column", "wall_thickness")
+#: Columns along ``contact`` made coordinates, every one whether given or not.
+_CONTACT_COORDINATES = ("tube_row", "tube_column", "support", "node", "history", "time_unit",
+                        "wall_thickness", "status")
+
+
+def _coordinate(values: pd.Series, name: str) -> np.ndarray:
+    """A column along ``contact`` -> a NetCDF/Zarr-friendly array.
+
+    Numbers as int64 where every value is given and whole (tube rows and columns; not
+    ``wall_thickness`` [m]), else float64 with NaN where missing; anything else as text, ""
+    where missing. A column without any value: NaN for ``tube_row``, ``tube_column`` and
+    ``wall_thickness``, "" for the text columns.
+    """
+    given = values.notna().to_numpy()
+    if not given.any():
+        return (np.full(len(values), np.nan) if name in _NUMBER_COORDINATES
+                else np.full(len(values), "", dtype=object))
     numeric = pd.to_numeric(values, errors="coerce")
-    if numeric.notna().sum() == values.notna().sum() and values.notna().any():
-        return numeric.to_numpy(dtype=float)
-    return values.fillna("").astype(str).to_numpy()
+    if numeric.notna().sum() == given.sum():
+        number = numeric.to_numpy(dtype=float)
+        if (name != "wall_thickness" and given.all() and np.isfinite(number).all()
+                and (number == np.round(number)).all() and (np.abs(number) < 2.0**53).all()):
+            return number.astype(np.int64)
+        return number
+    return values.fillna("").astype(str).to_numpy(dtype=object)
 
 
 def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
@@ -472,10 +495,10 @@ def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
     info = done.set_index("contact") if len(done) else done
     if "contact" in ds.dims:
         order = [str(c) for c in ds["contact"].values]
-        for col in ("tube_row", "tube_column", "support", "node", "history", "time_unit",
-                    "wall_thickness", "status"):
-            if col in info.columns and info.loc[order, col].notna().any():
-                ds = ds.assign_coords({col: ("contact", _coordinate(info.loc[order, col]))})
+        for col in _CONTACT_COORDINATES:  # every one, given or not (docs/bundle.md)
+            values = (info.loc[order, col] if col in info.columns
+                      else pd.Series([None] * len(order), dtype=object))
+            ds = ds.assign_coords({col: ("contact", _coordinate(values, col))})
     units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
     # the contacts' time unit where the table says "user time unit" (instant, duration, origin,
     # limit_instant ...): the same on the coordinate and on every time variable
