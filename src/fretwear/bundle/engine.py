@@ -510,7 +510,10 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
                      "time_unit": attrs.get("time_unit"), "origin": attrs.get("origin"),
                      "tube_replacement": attrs.get("tube_replacement"),
                      "wall_thickness": attrs.get("wall_thickness", walls.get(c)),
-                     "depth_limit": attrs.get("depth_limit")})
+                     "depth_limit": attrs.get("depth_limit"),
+                     # the geometry and law: the summary's exact time to another limit
+                     **{k: attrs.get(k) for k in ("contact_type", "dimensions", "law",
+                                                  "coefficients_mobile", "time_scale")}})
     contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
     errors = []
     warns = []
