@@ -8,7 +8,11 @@ same tables reshuffled, renamed, with equal instants or signed zeros.
 
 The reference follows the summary's rules as they change: since the fix of the default time to
 the limit (the table's limit_instant only where reached by the last instant, and for an explicit
-limit equal to the contact's own too), its FROM_TABLE branch says so; the rest is the old loop."""
+limit equal to the contact's own too), its FROM_TABLE branch says so; since the exact time to
+another limit (through the contact's geometry and worn volume), it hands each contact's rows,
+taken here group by group, to fretwear.bundle.limits.time_to_limit where the contact's geometry
+and law are known (that inversion is checked against independent computations in
+test_bundle_time_to_other_limit.py), the monotone cubic otherwise; the rest is the old loop."""
 
 from __future__ import annotations
 
@@ -20,6 +24,13 @@ import pytest
 from bundle_helpers import BASE_CASE, oscillator, write_bundle
 
 from fretwear.bundle import run_bundle
+from fretwear.bundle.limits import (
+    FROM_VOLUME,
+    METHODS,
+    ContactModels,
+    exact_method,
+    time_to_limit,
+)
 from fretwear.bundle.manifest import IDENTITY
 from fretwear.bundle.result import (
     DEFAULT_LIMIT,
@@ -89,14 +100,35 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            sel = glob
-            if replaced is not None:
-                sel = glob[glob["instant"] >= replaced]
-            origin = float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel) else 0
-            t_lim = time_to_depth(sel["instant"].to_numpy(dtype=float),
-                                  sel["depth_mobile"].to_numpy(dtype=float), target,
-                                  from_zero=origin == 0)
-            method = INTERPOLATED
+            def get(column, contact=contact):
+                value = (info.at[contact, column] if column in info.columns
+                         and contact in info.index else None)
+                return None if not isinstance(value, str | dict | float) or (
+                    isinstance(value, float) and math.isnan(value)) else value
+
+            geometry = MODELS.geometry(get("contact_type"), get("dimensions"))
+            law = MODELS.law(get("law"))
+            sectored = "sector" in group.columns and bool(group["sector"].notna().any())
+            model = exact_method(geometry, law, sectors=sectored, time_scale=get("time_scale"))
+            since = glob if replaced is None else glob[glob["instant"] >= replaced]
+            deepest = since["depth_mobile"][np.isfinite(since["instant"])].max()
+            if not (target <= 0 or deepest >= target):
+                t_lim, method = math.nan, model or INTERPOLATED
+            elif model is None:
+                sel = since
+                origin = (float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel)
+                          else 0)
+                t_lim = time_to_depth(sel["instant"].to_numpy(dtype=float),
+                                      sel["depth_mobile"].to_numpy(dtype=float), target,
+                                      from_zero=origin == 0)
+                method = INTERPOLATED
+            else:
+                t_lim, method = time_to_limit(
+                    glob["instant"], glob["depth_mobile"], target, origins=glob["origin"],
+                    replaced=replaced, volume_mobile=glob["volume_mobile"],
+                    volume_obstacle=glob["volume_obstacle"], powers=glob["power"],
+                    geometry=geometry, law=law, coefficients=get("coefficients_mobile"),
+                    time_scale=get("time_scale"), sectors=sectored)
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         unit = (info.at[contact, "time_unit"] if "time_unit" in info.columns
@@ -123,12 +155,14 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
     out.insert(0, "rank", np.arange(1, len(out) + 1))
     front = ["rank", "contact", *ident]
     out = out[front + [c for c in out.columns if c not in front]]
-    methods = [m for m in out["time_to_limit_method"].unique() if m in (INTERPOLATED,
-                                                                         FROM_TABLE)]
+    methods = [m for m in out["time_to_limit_method"].unique() if m in METHODS]
     out.attrs["time_to_limit"] = "; ".join(methods) if methods else "no limit"
     out.attrs["limit"] = limit
     out.attrs["limit_m"] = limit_m
     return out
+
+
+MODELS = ContactModels()
 
 
 # ------------------------------------------------------------------ the bundles
@@ -216,11 +250,11 @@ def assert_same(table: pd.DataFrame, contacts: pd.DataFrame, limits=LIMITS, *,
 
 
 def _interpolated(summaries) -> int:
-    """How many times to the limit were interpolated strictly between two instants (PCHIP and
-    brentq, not a table instant)."""
+    """How many times to the limit were found strictly between two instants (through the
+    volume, not a table instant)."""
     count = 0
     for s in summaries:
-        t = s.loc[s["time_to_limit_method"] == INTERPOLATED, "time_to_limit"].dropna()
+        t = s.loc[s["time_to_limit_method"] == FROM_VOLUME, "time_to_limit"].dropna()
         count += int((t % 0.5 != 0).sum())
     return count
 
@@ -238,7 +272,7 @@ def test_summary_equals_the_per_contact_loop(bundles, name):
              {"wall_thickness": -1e-3}]
     reached = assert_same(table, contacts, exact)
     assert (reached[0]["time_to_limit"] == reached[0]["instant"]).any()
-    assert _interpolated(summaries) > 0  # the PCHIP inversion was exercised
+    assert _interpolated(summaries) > 0  # the inversion through the volume was exercised
     if name.startswith("deep"):
         assert summaries[0]["contact"].iloc[0] == "deep"
         assert summaries[0]["note"].iloc[0].startswith("depth beyond the relation's range")
@@ -247,11 +281,11 @@ def test_summary_equals_the_per_contact_loop(bundles, name):
         assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
         assert s.loc["R1C2-AVB", "time_to_limit_method"].startswith("no limit")
         assert s.loc["R2C1-AVB", "limit_depth"] == 0.5 * 1e-6
-        # limit=0.4: R1C1's own limit (its table's instant), R2C1's is 0.5 (interpolated)
+        # limit=0.4: R1C1's own limit (its table's instant), R2C1's is 0.5 (through the volume)
         s = summaries[1].set_index("contact")
         assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
-        assert s.loc["R2C1-AVB", "time_to_limit_method"] == INTERPOLATED
-        assert summaries[2].attrs["time_to_limit"] == INTERPOLATED  # limit=0.03
+        assert s.loc["R2C1-AVB", "time_to_limit_method"] == FROM_VOLUME
+        assert summaries[2].attrs["time_to_limit"] == FROM_VOLUME  # limit=0.03
 
 
 def test_summary_of_reshaped_tables(bundles):
@@ -299,9 +333,9 @@ def test_summary_with_equal_instants_signed_zeros_and_no_rows(bundles):
                                        power=plain["power"] + k) for k in range(5)])
     for _ in range(4):
         shuffled = repeated.iloc[rng.permutation(len(repeated))]
-        assert_same(shuffled, contacts, [{}, {"limit_m": 1}])
-        # PCHIP refuses the repeated instants: the same ValueError
-        assert_same(shuffled, contacts, [{"limit_m": 6e-5}], fails=True)
+        assert_same(shuffled, contacts, [{}, {"limit_m": 1}, {"limit_m": 6e-5}])
+        # without the geometry, PCHIP refuses the repeated instants: the same ValueError
+        assert_same(shuffled, contacts[["contact"]], [{"limit_m": 6e-5}], fails=True)
     # 9 sector rows at the last instant (the 4 sectors twice and sector 1 again), depths 0.0
     # and -0.0: which zero the max keeps is numpy's reduction's (here unlike a running max)
     sectors, info = bundles["sectors"]

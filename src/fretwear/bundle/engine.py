@@ -35,7 +35,7 @@ from fretwear.bundle.cluster import (
 )
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
-from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, check_limit
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS, OutputDirectory, write_frame
 from fretwear.bundle.tasks import (
     chunk_state,
@@ -248,7 +248,8 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
                chunk_size: int = DEFAULT_CHUNK_SIZE, split_every: int = 8, retries: int = 2,
                table_format: str = "parquet", dataset_format: str | None = None,
                part_size: int = PART_SIZE,
-               progress: Callable[[int, int, dict], None] | None = None) -> BundleResult:
+               progress: Callable[[int, int, dict], None] | None = None,
+               limit: float | None = None) -> BundleResult:
     """Compute the wear table of every contact of a bundle, on Dask.
 
     Parameters
@@ -287,6 +288,11 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
         Contacts per part file (>= 1).
     progress : callable, optional
         ``progress(done, total, record)`` after each contact (done counts skipped ones too).
+    limit : float, optional
+        Depth limit as a fraction of the wall, 0 < limit <= 1 [-], of the ``summary.csv``
+        written to ``output`` (as :meth:`BundleResult.summary`'s ``limit``; recorded as
+        ``limit`` in ``run.json``). Default: each contact's ``depth_limit`` (``null`` in
+        ``run.json``).
 
     Returns
     -------
@@ -320,13 +326,14 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
         raise KeywordError(f"table_format {table_format!r}: choose one of {TABLE_FORMATS}")
     if dataset_format is not None and dataset_format not in DATASET_FORMATS:
         raise KeywordError(f"dataset_format {dataset_format!r}: choose one of {DATASET_FORMATS}")
+    check_limit(limit)
     with _gc_frozen():
         return _run(manifest, case, scheduler, workers, output, force, chunk_size, split_every,
-                    retries, table_format, dataset_format, part_size, progress)
+                    retries, table_format, dataset_format, part_size, progress, limit)
 
 
 def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_every, retries,
-         table_format, dataset_format, part_size, progress) -> BundleResult:
+         table_format, dataset_format, part_size, progress, limit) -> BundleResult:
     """:func:`run_bundle` once its options are checked."""
     started = time.perf_counter()
     man = manifest if isinstance(manifest, Manifest) else read_manifest(manifest)
@@ -428,7 +435,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         finally:
             engine.close()
         return _assemble(man, records, walls, store, (started, startup), workers_used,
-                         dataset_format)
+                         dataset_format, limit)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         raise _interrupted(store, records, buffer, total, previous, man,
                            {t.contact for t in pending}) from exc
@@ -477,8 +484,8 @@ def _interrupted(store, records, buffer, total, previous, man, tasks) -> BundleI
 
 
 def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
-              times: tuple[float, float], workers: int, dataset_format: str | None
-              ) -> BundleResult:
+              times: tuple[float, float], workers: int, dataset_format: str | None,
+              limit: float | None = None) -> BundleResult:
     """The BundleResult (and the output files) from every contact's latest record."""
     order = [r.contact for r in man.rows]
     identity = man.identity_frame()
@@ -505,7 +512,10 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
                      "time_unit": attrs.get("time_unit"), "origin": attrs.get("origin"),
                      "tube_replacement": attrs.get("tube_replacement"),
                      "wall_thickness": attrs.get("wall_thickness", walls.get(c)),
-                     "depth_limit": attrs.get("depth_limit")})
+                     "depth_limit": attrs.get("depth_limit"),
+                     # the geometry and law: the summary's exact time to another limit
+                     **{k: attrs.get(k) for k in ("contact_type", "dimensions", "law",
+                                                  "coefficients_mobile", "time_scale")}})
     contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
     errors = []
     warns = []
@@ -540,7 +550,7 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
                           contacts=contacts, stats=stats,
                           output=None if store is None else str(store.path))
     if store is not None:
-        _write_outputs(result, store, records, dataset_format, (started, len(computed)))
+        _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit)
     else:
         _times(result.stats, started, len(computed))
     return result
@@ -557,11 +567,13 @@ def _times(stats: dict[str, Any], started: float, count: int) -> None:
 
 
 def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format,
-                   clock: tuple[float, int]):
+                   clock: tuple[float, int], limit: float | None):
+    """The final files; ``summary.csv`` is ``result.summary(limit)``, and ``run.json`` records
+    ``limit`` (None: each contact's depth_limit)."""
     store.write_table(result.table)
     write_frame(result.errors, store.path / "errors.csv", "csv")
     write_frame(result.warnings, store.path / "warnings.csv", "csv")
-    write_frame(result.summary(), store.path / "summary.csv", "csv")
+    write_frame(result.summary(limit), store.path / "summary.csv", "csv")
     if dataset_format is None:
         dataset_format = "netcdf" if optional("zarr") is None else "zarr"
     if len(result.table):
@@ -572,5 +584,6 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
     outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv", "run.json"]
     _times(result.stats, *clock)
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
-        json.dump({**result.stats, "outputs": outputs}, handle, indent=1, default=str)
+        json.dump({**result.stats, "limit": limit, "outputs": outputs}, handle, indent=1,
+                  default=str)
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))

@@ -8,14 +8,23 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
-from scipy.interpolate import PchipInterpolator
-from scipy.optimize import brentq
 
 from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import require
+from fretwear.bundle.limits import (  # noqa: F401 - INTERPOLATED, time_to_depth: their home
+    FROM_LAW,
+    FROM_TABLE,
+    FROM_VOLUME,
+    INTERPOLATED,
+    METHODS,
+    ContactModels,
+    exact_method,
+    time_to_depth,
+    time_to_limit,
+)
 from fretwear.bundle.manifest import IDENTITY
-from fretwear.errors import InputError
+from fretwear.errors import InputError, KeywordError
 from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 #: Columns of :attr:`BundleResult.errors`.
@@ -23,11 +32,6 @@ ERROR_COLUMNS = ("contact", "error", "message", "rows_kept")
 #: Depth fraction of the wall used by :meth:`BundleResult.summary` by default (the common
 #: plugging criterion, 40 % through-wall).
 DEFAULT_LIMIT = 0.4
-#: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
-INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
-                "(PCHIP), from depth 0 at the origin of a new tube")
-FROM_TABLE = ("the wear table's limit_instant (law and geometry inverted for the case's limit), "
-              "where reached by the last instant")
 
 
 @dataclass
@@ -49,7 +53,11 @@ class BundleResult:
     contacts : DataFrame
         One row per contact: identity, ``status`` (``done``, ``failed``, ``skipped`` = done by an
         earlier run with the same inputs), ``samples``, ``seconds`` (compute time),
-        ``power`` [W], ``time_unit``, ``wall_thickness`` [m] (when given).
+        ``power`` [W], ``time_unit``, ``origin`` and ``tube_replacement`` [time unit],
+        ``wall_thickness`` [m] (when given), ``depth_limit`` [-], and the wear table's
+        ``contact_type``, ``dimensions`` (dict: lengths [m], angles [deg]), ``law``,
+        ``coefficients_mobile`` (dict, the law's units) and ``time_scale`` [s per time unit]
+        (None for a failed contact).
     stats : dict
         ``contacts``, ``done``, ``failed``, ``skipped``, ``seconds`` (wall time of the run
         [s], from the call to the results assembled and the output files written),
@@ -71,7 +79,9 @@ class BundleResult:
     @property
     def dataset(self):
         """The table as an xarray Dataset: ``contact × instant`` (× ``sector`` in sector mode),
-        identity columns as coordinates along ``contact``, units and meanings in ``attrs``."""
+        the identity columns, ``time_unit``, ``wall_thickness`` [m] and ``status`` as
+        coordinates along ``contact`` (every one, empty ones too: NaN or ""; whole numbers as
+        int64), units and meanings in ``attrs``."""
         if self._dataset is None:
             self._dataset = build_dataset(self.table, self.contacts)
         return self._dataset
@@ -88,7 +98,8 @@ class BundleResult:
             thickness is known (the case's ``wall_thickness``, or the manifest's
             ``wall_thickness_m``).
         limit_m : float, optional
-            Depth limit [m] for every contact instead (when no wall thickness is given).
+            Depth limit [m] for every contact instead (when no wall thickness is given); give
+            ``limit`` or ``limit_m``, not both.
         wall_thickness : float, optional
             Wall thickness [m] of every tube, where the manifest gives none.
 
@@ -109,8 +120,20 @@ class BundleResult:
             ``limit_forecast`` (in ``time_unit``) is that instant wherever it lies, also beyond
             the last instant (the wear table's ``limit_instant``: the law and geometry inverted
             at the history's power, inf if never reached), NaN for another limit. Any other
-            limit: depth(t) is interpolated between the table's instants (monotone cubic) and
-            inverted. ``attrs["time_to_limit"]`` says which.
+            limit: exact, the limit depth inverted through the contact's geometry to a worn
+            volume, reached linearly in time between the table's instants for a law linear in
+            time (through the law's equivalent time for EDF-MZ), from the tube's volume at its
+            origin or replacement (:mod:`fretwear.bundle.limits`); where the geometry or the
+            law is not known (or EDF-MZ with sectors), depth(t) interpolated between the
+            instants (monotone cubic) and inverted. ``time_to_limit_method`` says which per
+            contact, ``attrs["time_to_limit"]`` lists them.
+
+        Raises
+        ------
+        KeywordError
+            ``limit`` and ``limit_m`` given together.
+        InputError
+            A ``limit`` or ``limit_m`` that is not a finite number > 0.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -123,59 +146,16 @@ def _global_rows(rows: pd.DataFrame) -> pd.DataFrame:
     return rows.sort_values("instant")
 
 
-def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
-                  from_zero: bool = True) -> float:
-    """The instant at which a non-decreasing depth history reaches ``target``.
-
-    Parameters
-    ----------
-    instants : array
-        Increasing instants (any time unit; the result is in the same unit).
-    depths : array
-        Depths at those instants [m]; NaN entries are dropped.
-    target : float
-        Depth to reach [m].
-    from_zero : bool
-        Prepend (0, 0): a new tube has no wear at the origin.
-
-    Returns
-    -------
-    float
-        The instant, NaN when the last finite depth is below ``target``.
-
-    Notes
-    -----
-    depth(t) is interpolated by a piecewise monotone cubic (PCHIP, Fritsch & Carlson 1980
-    [1]_), which is monotone wherever the data are, and inverted on the bracketing interval
-    with Brent's method to 1e-12 relative.
-
-    References
-    ----------
-    .. [1] Fritsch, F. N., Carlson, R. E. (1980). Monotone piecewise cubic interpolation.
-       SIAM J. Numer. Anal. 17(2), 238-246.
-
-    Examples
-    --------
-    >>> t = np.array([1.0, 2.0, 4.0]); d = 1e-4 * t  # linear wear, 0.1 mm per unit
-    >>> round(time_to_depth(t, d, 2.5e-4), 9)
-    2.5
-    """
-    t = np.asarray(instants, dtype=float)
-    d = np.asarray(depths, dtype=float)
-    keep = np.isfinite(d) & np.isfinite(t)
-    t, d = t[keep], d[keep]
-    if from_zero and (t.size == 0 or t[0] > 0):
-        t, d = np.concatenate(([0.0], t)), np.concatenate(([0.0], d))
-    if t.size == 0 or d.max() < target:
-        return math.nan
-    d = np.maximum.accumulate(d)  # guard against round-off wiggles
-    i = int(np.argmax(d >= target))
-    if i == 0 or d[i] == target:
-        return float(t[i])
-    if t.size == 2:
-        return float(t[0] + (target - d[0]) * (t[1] - t[0]) / (d[1] - d[0]))
-    f = PchipInterpolator(t, d)
-    return float(brentq(lambda x: float(f(x)) - target, t[i - 1], t[i], rtol=1e-12))
+def check_limit(limit) -> None:
+    """``limit`` is None or a fraction of the wall, 0 < limit <= 1 [-]; a KeywordError naming
+    it otherwise (:func:`fretwear.bundle.run_bundle`'s ``limit``, checked before any run)."""
+    if limit is None:
+        return
+    ok = isinstance(limit, int | float) and not isinstance(limit, bool)
+    if not (ok and math.isfinite(limit) and 0 < limit <= 1):
+        raise KeywordError(f"limit must be a fraction of the wall, 0 < limit <= 1 [-] (0.4: "
+                           f"40 % through-wall), or None for each contact's depth_limit; got "
+                           f"{limit!r}")
 
 
 def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
@@ -183,8 +163,12 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     """The ranking of :meth:`BundleResult.summary`.
 
     The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
-    :func:`time_to_depth` is called only for the contacts whose depth reaches the limit.
+    :func:`~fretwear.bundle.limits.time_to_limit` is called only for the contacts whose depth
+    reaches the limit.
     """
+    if limit is not None and limit_m is not None:
+        raise KeywordError(f"limit={limit!r} (a fraction of the wall) and limit_m={limit_m!r} "
+                           "(a depth [m]) given together; give one of them")
     if limit is not None and not (0 < limit and math.isfinite(limit)):
         raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
@@ -198,6 +182,14 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     owns = _lookup(contacts, info, "depth_limit", per.names)
     replacements = _lookup(contacts, info, "tube_replacement", per.names)
     units = _lookup(contacts, info, "time_unit", per.names)
+    # each contact's geometry and law (its record's), for the exact time to another limit
+    models = ContactModels()
+    geometries = [models.geometry(c, d) for c, d in zip(
+        _lookup(contacts, info, "contact_type", per.names),
+        _lookup(contacts, info, "dimensions", per.names), strict=True)]
+    laws = [models.law(name) for name in _lookup(contacts, info, "law", per.names)]
+    coefficients = _lookup(contacts, info, "coefficients_mobile", per.names)
+    scales = _lookup(contacts, info, "time_scale", per.names)
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
@@ -233,8 +225,17 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            t_lim = per.time_to(k, target, replaced_at[k]) if reached[k] else math.nan
-            method = INTERPOLATED
+            scale = None if scales[k] is None or pd.isna(scales[k]) else float(scales[k])
+            model = {"geometry": geometries[k], "law": laws[k], "time_scale": scale,
+                     "coefficients": coefficients[k] if isinstance(coefficients[k], dict)
+                     else None}
+            if reached[k]:
+                t_lim, method = per.time_to(k, target, replaced_at[k], model)
+            else:  # not reached by the last instant: the method it would take
+                t_lim = math.nan
+                method = exact_method(geometries[k], laws[k], sectors=per.sectored[k],
+                                      volumes=per.vm is not None,
+                                      time_scale=scale) or INTERPOLATED
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
@@ -261,8 +262,7 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     out.insert(0, "rank", np.arange(1, len(out) + 1))
     front = ["rank", "contact", *ident]
     out = out[front + [c for c in out.columns if c not in front]]
-    methods = [m for m in out["time_to_limit_method"].unique() if m in (INTERPOLATED,
-                                                                         FROM_TABLE)]
+    methods = [m for m in out["time_to_limit_method"].unique() if m in METHODS]
     out.attrs["time_to_limit"] = "; ".join(methods) if methods else "no limit"
     out.attrs["limit"] = limit
     out.attrs["limit_m"] = limit_m
@@ -314,8 +314,8 @@ class _Contacts:
         valid = codes >= 0
         instant = table["instant"].to_numpy(dtype=float)
         rows = valid.copy()
+        has = np.zeros(n, dtype=bool)
         if "sector" in table.columns:
-            has = np.zeros(n, dtype=bool)
             has[codes[valid & table["sector"].notna().to_numpy()]] = True
             repeated = pd.DataFrame({"c": codes, "t": table["instant"]}).duplicated().to_numpy()
             rows &= ~(has[codes] & repeated)
@@ -354,6 +354,13 @@ class _Contacts:
                 self.limit_instant[c] = float(lim[have[i]])
         self.origin = (table["origin"].to_numpy(dtype=float)[pos]
                        if "origin" in table.columns else None)
+        self.sectored = has.tolist()  # contacts with sector rows
+
+        def column(name):
+            return table[name].to_numpy(dtype=float)[pos] if name in table.columns else None
+
+        self.vm, self.vo, self.p = (column("volume_mobile"), column("volume_obstacle"),
+                                    column("power"))
 
     def _sector_max(self, last: np.ndarray) -> list:
         """The largest sector depth of each contact's rows at its last instant [m]."""
@@ -372,8 +379,9 @@ class _Contacts:
         return out.tolist()
 
     def reaches(self, targets: list, replaced: list) -> np.ndarray:
-        """Whether :func:`time_to_depth` can find a time for each contact's target depth [m]
-        (False where it would return NaN: its last finite depth is below a positive target)."""
+        """Whether a time can be found for each contact's target depth [m] (False where
+        :func:`~fretwear.bundle.limits.time_to_limit` would return NaN: its last finite depth
+        since a replacement is below a positive target)."""
         n = len(self.names)
         if n == 0:
             return np.zeros(0, dtype=bool)
@@ -385,17 +393,19 @@ class _Contacts:
         np.fmax.at(deepest, gcode[usable], self.d[usable])
         return np.isfinite(target) & ~((target > 0) & ~(deepest >= target))
 
-    def time_to(self, k: int, target: float, replaced: float | None) -> float:
-        """:func:`time_to_depth` on contact ``k``'s global rows (since ``replaced``)."""
+    def time_to(self, k: int, target: float, replaced: float | None,
+                model: dict) -> tuple[float, str]:
+        """:func:`~fretwear.bundle.limits.time_to_limit` on contact ``k``'s global rows
+        (``model``: its ``geometry``, ``law``, ``coefficients``, ``time_scale``)."""
         s = slice(self.start[k], self.end[k])
-        t, d = self.t[s], self.d[s]
-        origin = None if self.origin is None else self.origin[s]
-        if replaced is not None:
-            keep = t >= replaced
-            t, d = t[keep], d[keep]
-            origin = None if origin is None else origin[keep]
-        origin = float(origin[0]) if origin is not None and len(origin) else 0
-        return time_to_depth(t, d, target, from_zero=origin == 0)
+
+        def rows(values):
+            return None if values is None else values[s]
+
+        return time_to_limit(self.t[s], self.d[s], target, origins=rows(self.origin),
+                             replaced=replaced, volume_mobile=rows(self.vm),
+                             volume_obstacle=rows(self.vo), powers=rows(self.p),
+                             sectors=self.sectored[k], **model)
 
 
 # ----------------------------------------------------------------------------- dataset
@@ -403,12 +413,33 @@ _CONTACT_VARS = ("power",)
 _SECTOR_ONLY = ("angle_start", "angle_end")
 
 
-def _coordinate(values: pd.Series):
-    """Identity column -> a NetCDF/Zarr-friendly array (numbers as float, else text)."""
+#: Identity columns of numbers (all missing: NaN, not text).
+_NUMBER_COORDINATES = ("tube_row", "tube_column", "wall_thickness")
+#: Columns along ``contact`` made coordinates, every one whether given or not.
+_CONTACT_COORDINATES = ("tube_row", "tube_column", "support", "node", "history", "time_unit",
+                        "wall_thickness", "status")
+
+
+def _coordinate(values: pd.Series, name: str) -> np.ndarray:
+    """A column along ``contact`` -> a NetCDF/Zarr-friendly array.
+
+    Numbers as int64 where every value is given and whole (tube rows and columns; not
+    ``wall_thickness`` [m]), else float64 with NaN where missing; anything else as text, ""
+    where missing. A column without any value: NaN for ``tube_row``, ``tube_column`` and
+    ``wall_thickness``, "" for the text columns.
+    """
+    given = values.notna().to_numpy()
+    if not given.any():
+        return (np.full(len(values), np.nan) if name in _NUMBER_COORDINATES
+                else np.full(len(values), "", dtype=object))
     numeric = pd.to_numeric(values, errors="coerce")
-    if numeric.notna().sum() == values.notna().sum() and values.notna().any():
-        return numeric.to_numpy(dtype=float)
-    return values.fillna("").astype(str).to_numpy()
+    if numeric.notna().sum() == given.sum():
+        number = numeric.to_numpy(dtype=float)
+        if (name != "wall_thickness" and given.all() and np.isfinite(number).all()
+                and (number == np.round(number)).all() and (np.abs(number) < 2.0**53).all()):
+            return number.astype(np.int64)
+        return number
+    return values.fillna("").astype(str).to_numpy(dtype=object)
 
 
 def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
@@ -449,10 +480,10 @@ def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
     info = done.set_index("contact") if len(done) else done
     if "contact" in ds.dims:
         order = [str(c) for c in ds["contact"].values]
-        for col in ("tube_row", "tube_column", "support", "node", "history", "time_unit",
-                    "wall_thickness", "status"):
-            if col in info.columns and info.loc[order, col].notna().any():
-                ds = ds.assign_coords({col: ("contact", _coordinate(info.loc[order, col]))})
+        for col in _CONTACT_COORDINATES:  # every one, given or not (docs/bundle.md)
+            values = (info.loc[order, col] if col in info.columns
+                      else pd.Series([None] * len(order), dtype=object))
+            ds = ds.assign_coords({col: ("contact", _coordinate(values, col))})
     units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
     # the contacts' time unit where the table says "user time unit" (instant, duration, origin,
     # limit_instant ...): the same on the coordinate and on every time variable

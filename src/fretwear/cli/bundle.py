@@ -123,9 +123,10 @@ def _summary(result, console, top: int, limit: float | None) -> None:
               show_default=True, help="Format of the table and of the parts.")
 @click.option("--dataset-format", type=click.Choice(DATASET_FORMATS),
               help="Format of the dataset (default zarr).")
-@click.option("--limit", type=click.FloatRange(min=0, min_open=True),
-              help="Depth limit, fraction of the wall, for the summary (default: each "
-                   "contact's depth_limit, 0.4 unless its case sets it).")
+@click.option("--limit", type=click.FloatRange(min=0, max=1, min_open=True),
+              help="Depth limit, fraction of the wall (0 < FRACTION <= 1), for the summary "
+                   "shown and OUT/summary.csv (default: each contact's depth_limit, 0.4 unless "
+                   "its case sets it).")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (tube-sheet map, power distribution, worst depths).")
 @click.option("--top", type=click.IntRange(min=1), default=10, show_default=True,
@@ -163,7 +164,7 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
             result = run_bundle(manifest, base, scheduler=scheduler, workers=workers,
                                 output=output, force=force, chunk_size=chunk_size,
                                 table_format=table_format, dataset_format=dataset_format,
-                                progress=step)
+                                progress=step, limit=limit)
         except BundleInterrupted as exc:  # Ctrl-C: the main entry prints it, exit 130
             raise KeyboardInterrupt(f"{exc}; run the same command again to resume") from exc
     _summary(result, console, top, limit)
