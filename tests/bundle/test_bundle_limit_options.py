@@ -88,3 +88,15 @@ def test_the_command_passes_limit_to_summary_csv(tmp_path, capsys):
     assert len(written) == 24
     assert np.allclose(written["limit_depth"], 0.2 * 1.09e-3, rtol=1e-15)
     assert json.loads((out / "run.json").read_text())["limit"] == 0.2
+
+
+@pytest.mark.parametrize("bad", [40, 1.5, 0])
+def test_summary_refuses_a_limit_that_is_not_a_fraction(bundle, bad):
+    """summary() takes the limits run_bundle and --limit take: 40 given for 40 % is a
+    KeywordError saying what a fraction of the wall is, not a depth 40 walls deep that no
+    contact reaches (summary() used to accept any positive fraction)."""
+    manifest, case = bundle
+    result = run_bundle(manifest, case, scheduler="serial")
+    with pytest.raises(KeywordError, match=r"0 < limit <= 1 \[-\] \(0\.4: 40 % through-wall\)"):
+        result.summary(bad)
+    assert len(result.summary(1)) == len(result.contacts)  # through-wall: accepted

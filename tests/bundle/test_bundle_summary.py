@@ -36,6 +36,7 @@ from fretwear.bundle.result import (
     DEFAULT_LIMIT,
     FROM_TABLE,
     INTERPOLATED,
+    check_limit,
     summarize,
     time_to_depth,
 )
@@ -54,8 +55,7 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
     """summarize as it was up to commit bb56e91 (a loop over the contacts), with the rule of
     the table's limit_instant of the later fix (module docstring) and the time_unit column."""
-    if limit is not None and not (0 < limit and math.isfinite(limit)):
-        raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
+    check_limit(limit)  # since run_bundle(limit=): the one check of a fraction of the wall
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     info = contacts.set_index("contact") if len(contacts) else contacts
@@ -170,7 +170,7 @@ NO_SECTORS = BASE_CASE.replace("[sectors]\ncount = 4\n", "")
 #: Limits asked of summary(): none (the table's limit_instant or the case's), fractions of the
 #: wall reached between instants or not at all, depths in metres (reached by every contact, by
 #: some, by none; an int), a wall for every tube, and combinations.
-LIMITS = [{}, {"limit": 0.4}, {"limit": 0.03}, {"limit": 2}, {"limit_m": 3e-5},
+LIMITS = [{}, {"limit": 0.4}, {"limit": 0.03}, {"limit": 1}, {"limit_m": 3e-5},
           {"limit_m": 1e-9}, {"limit_m": 7e-5}, {"limit_m": 1}, {"wall_thickness": 2e-4},
           {"wall_thickness": 2e-4, "limit": 0.25}, {"wall_thickness": 1e-3, "limit_m": 5e-5}]
 

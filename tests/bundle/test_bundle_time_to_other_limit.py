@@ -159,7 +159,13 @@ def test_a_replaced_tube_against_the_single_contact_table(tmp_path):
 def test_edf_mz_against_the_single_contact_table(tmp_path):
     """EDF-MZ's volume is not linear in time (a run-in decaying as exp(-n·t)): the time comes
     from the law's equivalent times of the volumes, as the single-contact table's."""
-    case_text = NO_SECTORS.replace("[law]\n", '[law]\nname = "EDF_MZ"\n')
+    # A = 9.2e-15 (the base's COEF_USURE) and S = 1e-19 m³/s, below these contacts' initial
+    # rate A·P^b (4e-18 to 7e-18 m³/s): a run-in slowing down, as the law means (the default
+    # S = 1.14e-16 m³/s would exceed it, and the law warns)
+    case_text = NO_SECTORS.replace("[law]\nmobile = { COEF_USURE = 9.2e-15 }\n",
+                                   '[law]\nname = "EDF_MZ"\n'
+                                   "mobile = { COEF_USURE = 9.2e-15, COEF_S = 1e-19 }\n")
+    assert "COEF_S" in case_text
     _, _, walls = _walls(tmp_path / "a", case_text)
     result = _run_with_walls(tmp_path / "b", case_text, walls)
     _check_against_single(tmp_path / "b", result, case_text, walls, FROM_LAW)

@@ -169,8 +169,7 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     if limit is not None and limit_m is not None:
         raise KeywordError(f"limit={limit!r} (a fraction of the wall) and limit_m={limit_m!r} "
                            "(a depth [m]) given together; give one of them")
-    if limit is not None and not (0 < limit and math.isfinite(limit)):
-        raise InputError(f"limit must be a fraction of the wall > 0, got {limit!r}")
+    check_limit(limit)  # as run_bundle's: 40 given for 40 % is refused, not a depth past the wall
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     info = contacts.set_index("contact") if len(contacts) else contacts
