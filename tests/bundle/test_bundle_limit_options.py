@@ -100,3 +100,18 @@ def test_summary_refuses_a_limit_that_is_not_a_fraction(bundle, bad):
     with pytest.raises(KeywordError, match=r"0 < limit <= 1 \[-\] \(0\.4: 40 % through-wall\)"):
         result.summary(bad)
     assert len(result.summary(1)) == len(result.contacts)  # through-wall: accepted
+
+
+def test_numpy_numbers_are_limits_too(bundle):
+    """A limit computed with numpy (np.float32(0.4), np.int64(1)) is a number like any other
+    (refused after the (0, 1] check was added: a review); numpy's bool is not."""
+    import numpy as np
+
+    manifest, case = bundle
+    result = run_bundle(manifest, case, scheduler="serial", limit=np.float64(0.2))
+    for limit in (np.float32(0.4), np.int64(1)):
+        got = result.summary(limit)
+        expected = result.summary(float(limit))
+        assert got["time_to_limit"].equals(expected["time_to_limit"])
+    with pytest.raises(KeywordError, match="limit must be a fraction of the wall"):
+        result.summary(np.bool_(True))

@@ -195,6 +195,79 @@ def test_a_restart_from_an_earlier_table_starts_from_its_volume(tmp_path):
     assert 5.0 < s.loc[result.contacts["contact"].iloc[0], "time_to_limit"] < 5.5
 
 
+EDF_MZ = ('[law]\nname = "EDF_MZ"\nmobile = { COEF_USURE = 9.2e-15, COEF_S = 1e-19 }\n')
+
+
+def test_edf_mz_with_a_wearing_obstacle_against_the_single_contact_table(tmp_path):
+    """The tube's depth on a flat bar depends on the bar's wear too (TUBE_BAV): both volumes
+    follow EDF-MZ from their equivalent times along the segment (obstacle A = 5e-15, its own
+    S), solved for the limit depth; it used to fall back to the cubic, 2.4 times late here
+    before the first instant (a review). Against the single-contact table's limit_instant."""
+    case_text = NO_SECTORS.replace("[law]\nmobile = { COEF_USURE = 9.2e-15 }\n",
+                                   EDF_MZ + "obstacle = { COEF_USURE = 5e-15, COEF_S = 1e-19 }\n")
+    assert "obstacle = {" in case_text
+    _, _, walls = _walls(tmp_path / "a", case_text)
+    result = _run_with_walls(tmp_path / "b", case_text, walls)
+    assert (_global(result, result.contacts["contact"][0])["volume_obstacle"] > 0).all()
+    _check_against_single(tmp_path / "b", result, case_text, walls, FROM_LAW)
+
+
+def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_path):
+    """A restart's table starts with the initial table's rows, which may come from another
+    law (here an Archard table continued with EDF-MZ): a limit reached among them is not this
+    run's law's to invert (it used to be, giving the next instant and calling it exact: up to
+    74 % late, a review); it is interpolated among those rows, as the initial table's own
+    depths give it (time_to_depth on them). A limit after the origin stays exact (FROM_LAW,
+    against the single-contact table)."""
+    directory = tmp_path / "r"
+    _, case = _bundle(directory, NO_SECTORS, count=2)
+    earlier = reference(directory / "histories/t0.parquet", case)
+    write_wear_table(earlier, directory / "earlier.csv")
+    edf = NO_SECTORS.replace("[law]\nmobile = { COEF_USURE = 9.2e-15 }\n", EDF_MZ)
+    restarted = edf + f'[restart]\ntable = "{directory / "earlier.csv"}"\n'
+    first = run_bundle(*_bundle(directory, restarted, count=2), scheduler="serial")
+    rows = [_global(first, c) for c in first.contacts["contact"]]
+    d0 = rows[0].set_index("instant")["depth_mobile"]
+    d1 = rows[1].set_index("instant")["depth_mobile"]
+    # contact 0: between the initial table's 1 and 2 years; contact 1: after the origin (5)
+    walls = [(d0[1.0] + d0[2.0]) / 2 / LIMIT, (d1[6.0] + d1[7.0]) / 2 / LIMIT]
+    result = run_bundle(*_bundle(directory, restarted, {"wall_thickness_m": walls}, count=2),
+                        scheduler="serial")
+    s = result.summary(LIMIT).set_index("contact")
+    c0, c1 = result.contacts["contact"]
+    initial = earlier.drop_duplicates("instant")
+    expected = time_to_depth(initial["instant"].to_numpy(), initial["depth_mobile"].to_numpy(),
+                             LIMIT * walls[0])
+    assert s.loc[c0, "time_to_limit_method"] == INTERPOLATED
+    assert s.loc[c0, "time_to_limit"] == pytest.approx(expected, rel=1e-12)
+    assert 1.0 < s.loc[c0, "time_to_limit"] < 2.0
+    assert s.loc[c1, "time_to_limit_method"] == FROM_LAW
+    single = _single(directory, "histories/t1.parquet", restarted, walls[1])
+    assert s.loc[c1, "time_to_limit"] == pytest.approx(single, rel=1e-12)
+
+
+def test_a_limit_after_a_replacement_inside_the_initial_table_is_not_called_exact():
+    """An initial table that replaced the tube (its depth drops) holds no replacement instant:
+    a limit the new tube reaches by the initial table's first row after the drop is at most
+    that row's instant, interpolated, not exact (it was labelled exact, a review); a limit the
+    old tube had reached before it was replaced does not count (the tube in place is the new
+    one, as for a replacement in this run)."""
+    from fretwear.bundle.limits import time_to_limit
+    from fretwear.laws import WEAR_LAWS
+
+    t = np.array([0.5, 1.0, 2.0, 5.0, 6.0, 7.0])
+    vm = 1e-9 * np.array([4.0, 8.0, 4.0, 16.0, 20.0, 24.0])  # replaced between 1 and 2
+    d = np.asarray(BAR.depth_from_volume(vm)[0])
+    origins = np.array([0.0, 0.0, 0.0, 0.0, 5.0, 5.0])
+    common = dict(origins=origins, replaced=None, volume_mobile=vm, powers=np.full(6, 0.01),
+                  geometry=BAR, law=WEAR_LAWS["ARCHARD"], time_scale=YEAR)
+    got, method = time_to_limit(t, d, 0.5 * (d[0] + d[2]), **common)  # below d at 0.5 and 2
+    assert method == INTERPOLATED and 1.0 < got <= 2.0
+    # after the origin: exact, the volume linear between 6 and 7 (22e-9 m³ at 6.5)
+    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(22e-9)[0]), **common)
+    assert method == FROM_VOLUME and got == pytest.approx(6.5, rel=1e-12)
+
+
 def test_a_contact_without_its_geometry_keeps_the_cubic_and_says_so(tmp_path):
     manifest, case = _bundle(tmp_path, NO_SECTORS, count=2)
     result = run_bundle(manifest, case, scheduler="serial")
@@ -210,3 +283,25 @@ def test_a_contact_without_its_geometry_keeps_the_cubic_and_says_so(tmp_path):
     rows = _global(result, a)
     assert s.loc[a, "time_to_limit"] == time_to_depth(rows["instant"], rows["depth_mobile"],
                                                       1e-6)
+
+
+def test_an_initial_table_without_a_row_at_the_origin():
+    """A restart from an instant the initial table does not hold (INST_INIT between its rows):
+    a limit reached between its last row and this run's first is interpolated across them; a
+    limit after this run's first row is exact from that row on (its volume is this run's)."""
+    from fretwear.bundle.limits import time_to_limit
+    from fretwear.laws import WEAR_LAWS
+
+    t = np.array([1.0, 2.0, 3.0, 4.0])  # the initial table's 1 and 2; this run's origin 2.5
+    vm = 1e-9 * np.array([2.0, 4.0, 6.0, 8.0])
+    d = np.asarray(BAR.depth_from_volume(vm)[0])
+    common = dict(origins=np.array([0.0, 0.0, 2.5, 2.5]), replaced=None, volume_mobile=vm,
+                  powers=np.full(4, 0.01), geometry=BAR, law=WEAR_LAWS["ARCHARD"],
+                  time_scale=YEAR)
+    target = 0.5 * (d[1] + d[2])
+    got, method = time_to_limit(t, d, target, **common)
+    assert method == INTERPOLATED
+    assert got == pytest.approx(time_to_depth(t[:3], d[:3], target), rel=1e-12)
+    assert 2.0 < got < 3.0
+    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(7e-9)[0]), **common)
+    assert method == FROM_VOLUME and got == pytest.approx(3.5, rel=1e-12)

@@ -503,9 +503,17 @@ def _wear_case_of(base: Mapping[str, Any], row: ContactRow, source: str):
     was built as ``(category, message)`` pairs) of a row."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        built = _built_case(base, row, source)
-    said = tuple(dict.fromkeys((w.category.__name__, str(w.message)) for w in caught))
-    return (*built, said)
+        try:
+            built = _built_case(base, row, source)
+        except ROW_ERRORS as exc:  # the contact fails: the warnings said before stay its own
+            exc.case_warnings = _said(caught)
+            raise
+    return (*built, _said(caught))
+
+
+def _said(caught) -> tuple:
+    """``(category, message)`` pairs of recorded warnings, each once, in order."""
+    return tuple(dict.fromkeys((w.category.__name__, str(w.message)) for w in caught))
 
 
 def _built_case(base: Mapping[str, Any], row: ContactRow, source: str):

@@ -358,8 +358,10 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             walls[row.contact] = row.wall_thickness
             try:
                 task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
-            except ROW_ERRORS as exc:
-                records[row.contact] = _failed(ContactTask(row.contact, row.history, {}), exc)
+            except ROW_ERRORS as exc:  # with the warnings its case raised before failing
+                said = [list(w) for w in getattr(exc, "case_warnings", ())]
+                records[row.contact] = _failed(
+                    ContactTask(row.contact, row.history, {}, warnings=said), exc)
                 continue
             old = previous.get(row.contact)
             if old is not None and old.get("status") == "done" and old.get("key") == task.key:
@@ -515,7 +517,8 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
                      "depth_limit": attrs.get("depth_limit"),
                      # the geometry and law: the summary's exact time to another limit
                      **{k: attrs.get(k) for k in ("contact_type", "dimensions", "law",
-                                                  "coefficients_mobile", "time_scale")}})
+                                                  "coefficients_mobile",
+                                                  "coefficients_obstacle", "time_scale")}})
     contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
     errors = []
     warns = []

@@ -14,8 +14,11 @@ from the table's rows of one contact:
   not linear in time (EDF-MZ) continues its volume from its equivalent time (theory §7): the
   time is the difference of the law's equivalent times of the two volumes at the run's power;
 * **interpolated** (:data:`INTERPOLATED`, the fallback where the geometry or the law is not
-  known, and for a law not linear in time with sectors or a depth of both volumes): depth(t)
-  by a monotone cubic between the instants, inverted (:func:`time_to_depth`).
+  known, for a law not linear in time whose tube depth needs a wearing obstacle's volume
+  without the obstacle's coefficients, and for a limit reached among a restart's initial-table
+  rows, which may come from another law or hold a tube replacement at an instant the table
+  does not give): depth(t) by a monotone cubic between the instants, inverted
+  (:func:`time_to_depth`).
 
 Times are in the contact's time unit (the table's ``instant``); ``time_scale`` [s per unit].
 """
@@ -35,7 +38,9 @@ from fretwear.laws import WEAR_LAWS
 #: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
 INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
                 "(PCHIP), from depth 0 at the origin of a new tube (the contact's geometry or "
-                "law not known, or a law not linear in time with sectors)")
+                "law not known, a law not linear in time whose tube depth needs a wearing "
+                "obstacle's coefficients not known, or a limit reached among a restart's "
+                "initial-table rows, whose law this run does not know)")
 FROM_TABLE = ("the wear table's limit_instant (law and geometry inverted for the case's limit), "
               "where reached by the last instant")
 FROM_VOLUME = ("exact: the limit depth inverted through the contact's geometry to a worn "
@@ -131,21 +136,28 @@ class ContactModels:
 
 
 def exact_method(geometry, law, *, sectors: bool, volumes: bool = True,
-                 time_scale: float | None = 1.0) -> str | None:
+                 time_scale: float | None = 1.0, obstacle_wears: bool = False,
+                 obstacle_coefficients: dict | None = None) -> str | None:
     """The exact method :func:`time_to_limit` uses for a contact (:data:`FROM_VOLUME` or
-    :data:`FROM_LAW`), or None where it interpolates: the geometry or the law not known, no
-    volume column, or a law not linear in time with sectors or without a time scale."""
+    :data:`FROM_LAW`) after its run's origin, or None where it interpolates: the geometry or
+    the law not known, no volume column, or a law not linear in time with sectors, without a
+    time scale, or whose tube depth needs the obstacle's wear (``obstacle_wears``) without the
+    obstacle's coefficients."""
     if geometry is None or law is None or not volumes:
         return None
     if law.linear_in_time:
         return FROM_VOLUME
-    return None if sectors or not time_scale else FROM_LAW
+    if sectors or not time_scale:
+        return None
+    if obstacle_wears and not geometry.mobile_depth_alone and obstacle_coefficients is None:
+        return None
+    return FROM_LAW
 
 
 def time_to_limit(instants, depths, target: float, *, origins, replaced: float | None,
                   volume_mobile=None, volume_obstacle=None, powers=None, geometry=None,
                   law=None, coefficients=None, time_scale: float | None = None,
-                  sectors: bool = False) -> tuple[float, str]:
+                  sectors: bool = False, obstacle_coefficients=None) -> tuple[float, str]:
     """The instant at which a contact's global depth first reaches ``target``, and the method.
 
     Parameters
@@ -166,8 +178,9 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
     geometry : ContactGeometry, optional
         The contact's geometry (:func:`fretwear.geometry.contact_geometry`).
     law : WearLaw, optional
-        Its wear law; ``coefficients`` the tube's coefficients, ``time_scale`` [s per unit]
-        (for a law not linear in time).
+        Its wear law; ``coefficients`` the tube's coefficients, ``obstacle_coefficients`` the
+        obstacle's (None: it does not wear), ``time_scale`` [s per unit] (for a law not linear
+        in time).
     sectors : bool
         The table has sectors (a law not linear in time then sums the sectors' laws: not the
         law at the global power).
@@ -177,21 +190,49 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
     (float, str)
         The instant (NaN when not reached by the last instant) and the method:
         :data:`FROM_VOLUME`, :data:`FROM_LAW` or :data:`INTERPOLATED` (module docstring).
+
+    Notes
+    -----
+    A restart's table starts with the initial table's rows (their own origin, before this
+    run's): they may come from another law, other coefficients or a tube replaced at an
+    instant the table does not hold, so a limit reached among them, or between them and this
+    run's first row when the initial table has no row at this run's origin, is interpolated
+    between those rows (:data:`INTERPOLATED`); the exact methods apply from this run's origin
+    on.
     """
     t = np.asarray(instants, dtype=float)
     d = np.asarray(depths, dtype=float)
     origins = np.zeros_like(t) if origins is None else np.asarray(origins, dtype=float)
+    vo = (np.zeros_like(t) if volume_obstacle is None
+          else np.nan_to_num(np.asarray(volume_obstacle, dtype=float)))
     method = exact_method(geometry, law, sectors=sectors, volumes=volume_mobile is not None,
-                          time_scale=time_scale)
+                          time_scale=time_scale, obstacle_wears=bool((vo != 0).any()),
+                          obstacle_coefficients=obstacle_coefficients)
+    earlier = _earlier_rows(origins)
+    if earlier:  # a restart: the initial table's rows first
+        origin = float(origins[-1])
+        start = earlier - 1 if t[earlier - 1] == origin else earlier
+        # the tube in place: after the initial table's last replacement (a drop of the depth)
+        drops = np.flatnonzero(d[1:start + 1] < d[:start])
+        first = int(drops[-1]) + 1 if drops.size else 0
+        hit = first + np.flatnonzero(d[first:] >= target)
+        if hit.size and hit[0] <= start:  # reached in the initial table's rows: among them
+            end = max(earlier, int(hit[0]) + 1)  # or up to this run's first row past them
+            return _interpolated(t[:end], d[:end], target,
+                                 float(origins[0]) == 0), INTERPOLATED
+        if method is None:
+            return _interpolated(t, d, target, float(origins[0]) == 0), INTERPOLATED
+        rows = slice(start, None)
+    else:
+        rows = slice(None)
     if method is not None:
-        origin = float(origins[0]) if origins.size else 0.0
-        found = _through_volume(t, d, np.asarray(volume_mobile, dtype=float),
-                                np.zeros_like(t) if volume_obstacle is None
-                                else np.nan_to_num(np.asarray(volume_obstacle, dtype=float)),
-                                np.zeros_like(t) if powers is None
-                                else np.asarray(powers, dtype=float),
+        origin = float(origins[-1] if earlier else (origins[0] if origins.size else 0.0))
+        found = _through_volume(t[rows], d[rows], np.asarray(volume_mobile, dtype=float)[rows],
+                                vo[rows],
+                                np.zeros_like(t[rows]) if powers is None
+                                else np.asarray(powers, dtype=float)[rows],
                                 target, origin, replaced, geometry, law, coefficients,
-                                time_scale)
+                                time_scale, obstacle_coefficients)
         if found is not None:
             return found, method
     if replaced is not None:
@@ -201,11 +242,29 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
     return time_to_depth(t, d, target, from_zero=origin == 0), INTERPOLATED
 
 
+def _earlier_rows(origins: np.ndarray) -> int:
+    """How many leading rows are an initial table's (a restart): rows whose origin differs
+    from this run's (the last row's), when this run's origin is after 0."""
+    if origins.size == 0 or not origins[-1] > 0:
+        return 0
+    return int(np.argmax(origins == origins[-1]))
+
+
+def _interpolated(t, d, target: float, from_zero: bool) -> float:
+    """:func:`time_to_depth` after the last drop of the depth (a tube replaced within an
+    initial table: the new tube's rows only; the time is then at most its first row's)."""
+    drops = np.flatnonzero(d[1:] < d[:-1])
+    if drops.size:
+        s = slice(int(drops[-1]) + 1, None)
+        t, d, from_zero = t[s], d[s], False
+    return time_to_depth(t, d, target, from_zero=from_zero)
+
+
 def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, coefficients,
-                    time_scale) -> float | None:
+                    time_scale, obstacle_coefficients=None) -> float | None:
     """:func:`time_to_limit` through the volume; None where it cannot invert (a law not linear
-    in time whose tube depth needs the obstacle's volume too, a volume out of the relation's
-    range)."""
+    in time whose tube depth needs a wearing obstacle's volume without its coefficients, a
+    volume out of the relation's range)."""
     keep = np.isfinite(t)
     t, d, vm, vo, p = t[keep], d[keep], vm[keep], vo[keep], p[keep]
     if origin == 0 and (t.size == 0 or t[0] > 0):  # a new tube: no wear at instant 0
@@ -246,10 +305,14 @@ def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, co
                 since = (float(law.equivalent_time(volume, p[b], **coefs))
                          - float(law.equivalent_time(vm[a], p[b], **coefs))) / time_scale
                 fraction = since / (t[b] - t[a])
-        elif law.linear_in_time:  # the depth of both volumes, each linear along the segment
+        else:  # the depth of both volumes along the segment
+            volumes = _segment_volumes(vm, vo, p, a, b, t, law, coefficients,
+                                       obstacle_coefficients, time_scale)
+            if volumes is None:
+                return None
+
             def excess(s):
-                depth = geometry.depth_from_volume(vm[a] + s * (vm[b] - vm[a]),
-                                                   vo[a] + s * (vo[b] - vo[a]))[0]
+                depth = geometry.depth_from_volume(*volumes(s))[0]
                 depth = float(np.asarray(depth))
                 return target if math.isnan(depth) else depth - target
 
@@ -259,8 +322,32 @@ def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, co
                 fraction = 1.0
             else:
                 fraction = brentq(excess, 0.0, 1.0, xtol=1e-15, rtol=1e-14)
-        else:
-            return None
     if not math.isfinite(fraction):
         return None
     return float(t[a] + min(max(fraction, 0.0), 1.0) * (t[b] - t[a]))
+
+
+def _segment_volumes(vm, vo, p, a: int, b: int, t, law, coefficients, obstacle_coefficients,
+                     time_scale):
+    """``s -> (tube volume, obstacle volume)`` [m³] at the fraction ``s`` of the segment from
+    row ``a`` to row ``b``: linear for a law linear in time; otherwise each body's law continued
+    from the equivalent time of its volume at row ``a`` (theory §7) at the run's power, the
+    obstacle's volume constant when it does not wear. None for a wearing obstacle whose
+    coefficients are not known."""
+    if law.linear_in_time:
+        return lambda s: (vm[a] + s * (vm[b] - vm[a]), vo[a] + s * (vo[b] - vo[a]))
+    if vo[b] != vo[a] and obstacle_coefficients is None:
+        return None
+    span = (t[b] - t[a]) * time_scale  # [s]
+    mobile = dict(coefficients or {})
+    start_m = float(law.equivalent_time(vm[a], p[b], **mobile))
+    if vo[b] == vo[a]:
+        def obstacle(s):
+            return vo[a]
+    else:
+        other = dict(obstacle_coefficients)
+        start_o = float(law.equivalent_time(vo[a], p[b], **other))
+
+        def obstacle(s):
+            return float(law.volume(p[b], start_o + s * span, **other))
+    return lambda s: (float(law.volume(p[b], start_m + s * span, **mobile)), obstacle(s))

@@ -4,6 +4,7 @@ and a ranking of the contacts by worn depth."""
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -56,8 +57,9 @@ class BundleResult:
         ``power`` [W], ``time_unit``, ``origin`` and ``tube_replacement`` [time unit],
         ``wall_thickness`` [m] (when given), ``depth_limit`` [-], and the wear table's
         ``contact_type``, ``dimensions`` (dict: lengths [m], angles [deg]), ``law``,
-        ``coefficients_mobile`` (dict, the law's units) and ``time_scale`` [s per time unit]
-        (None for a failed contact).
+        ``coefficients_mobile`` and ``coefficients_obstacle`` (dicts, the law's units; the
+        obstacle's None when it does not wear) and ``time_scale`` [s per time unit] (None for
+        a failed contact).
     stats : dict
         ``contacts``, ``done``, ``failed``, ``skipped``, ``seconds`` (wall time of the run
         [s], from the call to the results assembled and the output files written),
@@ -124,16 +126,18 @@ class BundleResult:
             volume, reached linearly in time between the table's instants for a law linear in
             time (through the law's equivalent time for EDF-MZ), from the tube's volume at its
             origin or replacement (:mod:`fretwear.bundle.limits`); where the geometry or the
-            law is not known (or EDF-MZ with sectors), depth(t) interpolated between the
-            instants (monotone cubic) and inverted. ``time_to_limit_method`` says which per
-            contact, ``attrs["time_to_limit"]`` lists them.
+            law is not known, and for a limit reached among a restart's initial-table rows,
+            depth(t) interpolated between the instants (monotone cubic) and inverted.
+            ``time_to_limit_method`` says which per contact, ``attrs["time_to_limit"]`` lists
+            them.
 
         Raises
         ------
         KeywordError
-            ``limit`` and ``limit_m`` given together.
+            ``limit`` and ``limit_m`` given together, or a ``limit`` outside (0, 1] (a
+            fraction of the wall: 0.4, not 40).
         InputError
-            A ``limit`` or ``limit_m`` that is not a finite number > 0.
+            A ``limit_m`` that is not a finite number > 0.
         """
         return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
                          wall_thickness=wall_thickness)
@@ -151,7 +155,7 @@ def check_limit(limit) -> None:
     it otherwise (:func:`fretwear.bundle.run_bundle`'s ``limit``, checked before any run)."""
     if limit is None:
         return
-    ok = isinstance(limit, int | float) and not isinstance(limit, bool)
+    ok = isinstance(limit, numbers.Real) and not isinstance(limit, bool | np.bool_)
     if not (ok and math.isfinite(limit) and 0 < limit <= 1):
         raise KeywordError(f"limit must be a fraction of the wall, 0 < limit <= 1 [-] (0.4: "
                            f"40 % through-wall), or None for each contact's depth_limit; got "
@@ -188,6 +192,7 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         _lookup(contacts, info, "dimensions", per.names), strict=True)]
     laws = [models.law(name) for name in _lookup(contacts, info, "law", per.names)]
     coefficients = _lookup(contacts, info, "coefficients_mobile", per.names)
+    obstacle_coefficients = _lookup(contacts, info, "coefficients_obstacle", per.names)
     scales = _lookup(contacts, info, "time_scale", per.names)
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
@@ -225,16 +230,20 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
             method = FROM_TABLE
         elif math.isfinite(target):
             scale = None if scales[k] is None or pd.isna(scales[k]) else float(scales[k])
+            other = obstacle_coefficients[k]
             model = {"geometry": geometries[k], "law": laws[k], "time_scale": scale,
                      "coefficients": coefficients[k] if isinstance(coefficients[k], dict)
-                     else None}
+                     else None,
+                     "obstacle_coefficients": other if isinstance(other, dict) else None}
             if reached[k]:
                 t_lim, method = per.time_to(k, target, replaced_at[k], model)
             else:  # not reached by the last instant: the method it would take
                 t_lim = math.nan
                 method = exact_method(geometries[k], laws[k], sectors=per.sectored[k],
-                                      volumes=per.vm is not None,
-                                      time_scale=scale) or INTERPOLATED
+                                      volumes=per.vm is not None, time_scale=scale,
+                                      obstacle_wears=per.obstacle_wears(k),
+                                      obstacle_coefficients=model["obstacle_coefficients"]
+                                      ) or INTERPOLATED
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
@@ -391,6 +400,12 @@ class _Contacts:
         deepest = np.full(n, np.nan)
         np.fmax.at(deepest, gcode[usable], self.d[usable])
         return np.isfinite(target) & ~((target > 0) & ~(deepest >= target))
+
+    def obstacle_wears(self, k: int) -> bool:
+        """Whether contact ``k``'s obstacle volume is not 0 at some instant."""
+        if self.vo is None:
+            return False
+        return bool(np.nan_to_num(self.vo[self.start[k]:self.end[k]]).any())
 
     def time_to(self, k: int, target: float, replaced: float | None,
                 model: dict) -> tuple[float, str]:
