@@ -51,6 +51,18 @@ def _reference_global_rows(rows: pd.DataFrame) -> pd.DataFrame:
     return rows.sort_values("instant")
 
 
+def _deepest(rows: pd.DataFrame) -> float:
+    """The deepest depth of rows of finite instants, a NaN depth of a finite volume (beyond the
+    relation's range) counting as deeper than any."""
+    rows = rows[np.isfinite(rows["instant"])]
+    depth = rows["depth_mobile"].to_numpy(dtype=float)
+    if "volume_mobile" in rows.columns:
+        beyond = np.isnan(depth) & np.isfinite(rows["volume_mobile"].to_numpy(dtype=float))
+        depth = np.where(beyond, np.inf, depth)
+    return float(np.nanmax(depth)) if np.isfinite(depth).any() or np.isinf(depth).any() \
+        else math.nan
+
+
 def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
     """summarize as it was up to commit bb56e91 (a loop over the contacts), with the rule of
@@ -94,7 +106,7 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
         if given and glob["limit_instant"].notna().any() and its_wall and fraction == own:
             t_lim = forecast = float(glob["limit_instant"].dropna().iloc[-1])
             since = glob if replaced is None else glob[glob["instant"] >= replaced]
-            deepest = since["depth_mobile"][np.isfinite(since["instant"])].max()
+            deepest = _deepest(since)
             reached = target <= 0 or deepest >= target
             t_lim = t_lim if reached or t_lim <= float(last["instant"]) else math.nan
             t_lim = math.nan if math.isinf(t_lim) else t_lim
@@ -111,7 +123,7 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
             sectored = "sector" in group.columns and bool(group["sector"].notna().any())
             model = exact_method(geometry, law, sectors=sectored, time_scale=get("time_scale"))
             since = glob if replaced is None else glob[glob["instant"] >= replaced]
-            deepest = since["depth_mobile"][np.isfinite(since["instant"])].max()
+            deepest = _deepest(since)
             if not (target <= 0 or deepest >= target):
                 t_lim, method = math.nan, model or INTERPOLATED
             elif model is None:

@@ -29,7 +29,13 @@ import pytest
 from bundle_helpers import BASE_CASE, oscillator, reference, write_bundle
 
 from fretwear.bundle import run_bundle
-from fretwear.bundle.limits import FROM_LAW, FROM_VOLUME, INTERPOLATED, time_to_depth
+from fretwear.bundle.limits import (
+    FROM_LAW,
+    FROM_VOLUME,
+    INITIAL_ROWS,
+    INTERPOLATED,
+    time_to_depth,
+)
 from fretwear.bundle.result import summarize
 from fretwear.geometry import contact_geometry
 from fretwear.table import write_wear_table
@@ -216,9 +222,10 @@ def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_pa
     """A restart's table starts with the initial table's rows, which may come from another
     law (here an Archard table continued with EDF-MZ): a limit reached among them is not this
     run's law's to invert (it used to be, giving the next instant and calling it exact: up to
-    74 % late, a review); it is interpolated among those rows, as the initial table's own
-    depths give it (time_to_depth on them). A limit after the origin stays exact (FROM_LAW,
-    against the single-contact table)."""
+    74 % late, a review); it is found among those rows, the volume linear in time between them
+    (INITIAL_ROWS: exact for the Archard table, checked against its own single-contact
+    table). A limit after the origin stays exact (FROM_LAW, against the single-contact
+    table)."""
     directory = tmp_path / "r"
     _, case = _bundle(directory, NO_SECTORS, count=2)
     earlier = reference(directory / "histories/t0.parquet", case)
@@ -235,10 +242,10 @@ def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_pa
                         scheduler="serial")
     s = result.summary(LIMIT).set_index("contact")
     c0, c1 = result.contacts["contact"]
-    initial = earlier.drop_duplicates("instant")
-    expected = time_to_depth(initial["instant"].to_numpy(), initial["depth_mobile"].to_numpy(),
-                             LIMIT * walls[0])
-    assert s.loc[c0, "time_to_limit_method"] == INTERPOLATED
+    # among the initial (Archard) table's rows: its volume linear in time, exact for it, so
+    # the single-contact Archard table of the same history gives the instant
+    expected = _single(directory, "histories/t0.parquet", NO_SECTORS, walls[0])
+    assert s.loc[c0, "time_to_limit_method"] == INITIAL_ROWS
     assert s.loc[c0, "time_to_limit"] == pytest.approx(expected, rel=1e-12)
     assert 1.0 < s.loc[c0, "time_to_limit"] < 2.0
     assert s.loc[c1, "time_to_limit_method"] == FROM_LAW
@@ -247,11 +254,11 @@ def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_pa
 
 
 def test_a_limit_after_a_replacement_inside_the_initial_table_is_not_called_exact():
-    """An initial table that replaced the tube (its depth drops) holds no replacement instant:
-    a limit the new tube reaches by the initial table's first row after the drop is at most
-    that row's instant, interpolated, not exact (it was labelled exact, a review); a limit the
-    old tube had reached before it was replaced does not count (the tube in place is the new
-    one, as for a replacement in this run)."""
+    """An initial table that replaced the tube (its volume drops) holds no replacement
+    instant: the new tube is counted from the initial table's last row before the drop, the
+    earliest the replacement can be, so the time is never late (it was the first row after the
+    drop, called exact, a review); a limit the old tube had reached before it was replaced
+    does not count (the tube in place is the new one, as for a replacement in this run)."""
     from fretwear.bundle.limits import time_to_limit
     from fretwear.laws import WEAR_LAWS
 
@@ -261,8 +268,9 @@ def test_a_limit_after_a_replacement_inside_the_initial_table_is_not_called_exac
     origins = np.array([0.0, 0.0, 0.0, 0.0, 5.0, 5.0])
     common = dict(origins=origins, replaced=None, volume_mobile=vm, powers=np.full(6, 0.01),
                   geometry=BAR, law=WEAR_LAWS["ARCHARD"], time_scale=YEAR)
-    got, method = time_to_limit(t, d, 0.5 * (d[0] + d[2]), **common)  # below d at 0.5 and 2
-    assert method == INTERPOLATED and 1.0 < got <= 2.0
+    # the new tube's 4e-9 m³ at 2 counted from 1, its earliest replacement: 2e-9 m³ at 1.5
+    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(2e-9)[0]), **common)
+    assert method == INITIAL_ROWS and got == pytest.approx(1.5, rel=1e-12)
     # after the origin: exact, the volume linear between 6 and 7 (22e-9 m³ at 6.5)
     got, method = time_to_limit(t, d, float(BAR.depth_from_volume(22e-9)[0]), **common)
     assert method == FROM_VOLUME and got == pytest.approx(6.5, rel=1e-12)
@@ -287,8 +295,9 @@ def test_a_contact_without_its_geometry_keeps_the_cubic_and_says_so(tmp_path):
 
 def test_an_initial_table_without_a_row_at_the_origin():
     """A restart from an instant the initial table does not hold (INST_INIT between its rows):
-    a limit reached between its last row and this run's first is interpolated across them; a
-    limit after this run's first row is exact from that row on (its volume is this run's)."""
+    a limit reached between its last row and this run's first is found across them (the
+    volume linear between them); a limit after this run's first row is exact from that row on
+    (its volume is this run's)."""
     from fretwear.bundle.limits import time_to_limit
     from fretwear.laws import WEAR_LAWS
 
@@ -298,10 +307,8 @@ def test_an_initial_table_without_a_row_at_the_origin():
     common = dict(origins=np.array([0.0, 0.0, 2.5, 2.5]), replaced=None, volume_mobile=vm,
                   powers=np.full(4, 0.01), geometry=BAR, law=WEAR_LAWS["ARCHARD"],
                   time_scale=YEAR)
-    target = 0.5 * (d[1] + d[2])
-    got, method = time_to_limit(t, d, target, **common)
-    assert method == INTERPOLATED
-    assert got == pytest.approx(time_to_depth(t[:3], d[:3], target), rel=1e-12)
-    assert 2.0 < got < 3.0
+    # between the initial table's last row (4e-9 m³ at 2) and this run's first (6e-9 at 3)
+    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(5e-9)[0]), **common)
+    assert method == INITIAL_ROWS and got == pytest.approx(2.5, rel=1e-12)
     got, method = time_to_limit(t, d, float(BAR.depth_from_volume(7e-9)[0]), **common)
     assert method == FROM_VOLUME and got == pytest.approx(3.5, rel=1e-12)

@@ -13,12 +13,15 @@ from the table's rows of one contact:
   origin, 0 at a tube replacement): the time is the linear interpolation of the volume. A law
   not linear in time (EDF-MZ) continues its volume from its equivalent time (theory §7): the
   time is the difference of the law's equivalent times of the two volumes at the run's power;
+* **among a restart's initial-table rows** (:data:`INITIAL_ROWS`): those rows may come from
+  another law or hold a tube replacement at an instant the table does not give; a limit
+  reached among them is found through the geometry with the volume linear in time between
+  them (exact for an earlier run of a law linear in time at constant power), after a
+  replacement among them from their last row before it (the earliest it can be);
 * **interpolated** (:data:`INTERPOLATED`, the fallback where the geometry or the law is not
-  known, for a law not linear in time whose tube depth needs a wearing obstacle's volume
-  without the obstacle's coefficients, and for a limit reached among a restart's initial-table
-  rows, which may come from another law or hold a tube replacement at an instant the table
-  does not give): depth(t) by a monotone cubic between the instants, inverted
-  (:func:`time_to_depth`).
+  known, or for a law not linear in time without the run's power or, where the tube's depth
+  needs a wearing obstacle's volume, without the obstacle's coefficients): depth(t) by a
+  monotone cubic between the instants, inverted (:func:`time_to_depth`).
 
 Times are in the contact's time unit (the table's ``instant``); ``time_scale`` [s per unit].
 """
@@ -38,9 +41,9 @@ from fretwear.laws import WEAR_LAWS
 #: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
 INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
                 "(PCHIP), from depth 0 at the origin of a new tube (the contact's geometry or "
-                "law not known, a law not linear in time whose tube depth needs a wearing "
-                "obstacle's coefficients not known, or a limit reached among a restart's "
-                "initial-table rows, whose law this run does not know)")
+                "law not known, or a law not linear in time without the run's power or, where "
+                "the tube's depth needs the obstacle's wear, without the obstacle's "
+                "coefficients)")
 FROM_TABLE = ("the wear table's limit_instant (law and geometry inverted for the case's limit), "
               "where reached by the last instant")
 FROM_VOLUME = ("exact: the limit depth inverted through the contact's geometry to a worn "
@@ -49,8 +52,13 @@ FROM_VOLUME = ("exact: the limit depth inverted through the contact's geometry t
 FROM_LAW = ("exact: the limit depth inverted through the contact's geometry to a worn volume, "
             "that volume to a time through the law's equivalent time at the run's power (a law "
             "not linear in time)")
+INITIAL_ROWS = ("among a restart's initial-table rows (their law not known to this run): the "
+                "limit depth inverted through the contact's geometry to a worn volume, the "
+                "volume linear in time between those rows (exact when the earlier run's law "
+                "was linear in time at constant power; after a tube replaced among them, from "
+                "their last row before the replacement, the earliest it can be)")
 #: The methods named in ``summary().attrs["time_to_limit"]``.
-METHODS = (FROM_TABLE, FROM_VOLUME, FROM_LAW, INTERPOLATED)
+METHODS = (FROM_TABLE, FROM_VOLUME, FROM_LAW, INITIAL_ROWS, INTERPOLATED)
 
 
 def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
@@ -137,21 +145,28 @@ class ContactModels:
 
 def exact_method(geometry, law, *, sectors: bool, volumes: bool = True,
                  time_scale: float | None = 1.0, obstacle_wears: bool = False,
-                 obstacle_coefficients: dict | None = None) -> str | None:
+                 obstacle_coefficients: dict | None = None, powers: bool = True) -> str | None:
     """The exact method :func:`time_to_limit` uses for a contact (:data:`FROM_VOLUME` or
     :data:`FROM_LAW`) after its run's origin, or None where it interpolates: the geometry or
     the law not known, no volume column, or a law not linear in time with sectors, without a
-    time scale, or whose tube depth needs the obstacle's wear (``obstacle_wears``) without the
-    obstacle's coefficients."""
+    time scale or the run's power, or whose tube depth needs the obstacle's wear
+    (``obstacle_wears``) without the obstacle's coefficients."""
     if geometry is None or law is None or not volumes:
         return None
     if law.linear_in_time:
         return FROM_VOLUME
-    if sectors or not time_scale:
+    if sectors or not time_scale or not powers:
         return None
     if obstacle_wears and not geometry.mobile_depth_alone and obstacle_coefficients is None:
         return None
     return FROM_LAW
+
+
+class _LinearInTime:
+    """What :func:`_through_volume` asks of a law among a restart's initial-table rows, whose
+    law is not known: volumes linear in time between the rows."""
+
+    linear_in_time = True
 
 
 def time_to_limit(instants, depths, target: float, *, origins, replaced: float | None,
@@ -165,8 +180,9 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
     instants : array
         The contact's instants, one per row, increasing [table time unit].
     depths, volume_mobile, volume_obstacle, powers : array
-        At those instants: the global tube depth ``depth_mobile`` [m], the cumulated worn
-        volumes of the tube and the obstacle [m³], the run's wear power [W].
+        At those instants: the global tube depth ``depth_mobile`` [m] (NaN beyond the
+        relation's range: deeper than it describes), the cumulated worn volumes of the tube and
+        the obstacle [m³], the run's wear power [W].
     target : float
         Depth to reach [m].
     origins : array or None
@@ -174,7 +190,8 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
         tube's (its volumes 0 at instant 0); otherwise the first row is an initial table's,
         holding the volumes at its instant.
     replaced : float or None
-        Instant of a tube replacement [table time unit] (the new tube's volume is 0 there).
+        Instant of a tube replacement in this run [table time unit]: only the new tube counts,
+        its volume 0 there.
     geometry : ContactGeometry, optional
         The contact's geometry (:func:`fretwear.geometry.contact_geometry`).
     law : WearLaw, optional
@@ -189,55 +206,61 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
     -------
     (float, str)
         The instant (NaN when not reached by the last instant) and the method:
-        :data:`FROM_VOLUME`, :data:`FROM_LAW` or :data:`INTERPOLATED` (module docstring).
+        :data:`FROM_VOLUME`, :data:`FROM_LAW`, :data:`INITIAL_ROWS` or :data:`INTERPOLATED`
+        (module docstring).
 
     Notes
     -----
     A restart's table starts with the initial table's rows (their own origin, before this
-    run's): they may come from another law, other coefficients or a tube replaced at an
-    instant the table does not hold, so a limit reached among them, or between them and this
-    run's first row when the initial table has no row at this run's origin, is interpolated
-    between those rows (:data:`INTERPOLATED`); the exact methods apply from this run's origin
-    on.
+    run's). They may come from another law, other coefficients or a tube replaced at an instant
+    the table does not hold, so a limit reached among them (or between the last of them and
+    this run's first row, when the initial table has no row at this run's origin) is found
+    among them (:data:`INITIAL_ROWS`, the volume linear between those rows; the cubic where
+    the geometry is not known); the exact methods apply from this run's origin on. With a
+    replacement in this run, only the new tube counts: the initial rows do not.
     """
     t = np.asarray(instants, dtype=float)
     d = np.asarray(depths, dtype=float)
     origins = np.zeros_like(t) if origins is None else np.asarray(origins, dtype=float)
+    vm = None if volume_mobile is None else np.asarray(volume_mobile, dtype=float)
     vo = (np.zeros_like(t) if volume_obstacle is None
           else np.nan_to_num(np.asarray(volume_obstacle, dtype=float)))
-    method = exact_method(geometry, law, sectors=sectors, volumes=volume_mobile is not None,
+    p = np.zeros_like(t) if powers is None else np.asarray(powers, dtype=float)
+    method = exact_method(geometry, law, sectors=sectors, volumes=vm is not None,
                           time_scale=time_scale, obstacle_wears=bool((vo != 0).any()),
-                          obstacle_coefficients=obstacle_coefficients)
-    earlier = _earlier_rows(origins)
+                          obstacle_coefficients=obstacle_coefficients,
+                          powers=powers is not None)
+    earlier = 0 if replaced is not None else _earlier_rows(origins)
+    rows = slice(None)
     if earlier:  # a restart: the initial table's rows first
         origin = float(origins[-1])
         start = earlier - 1 if t[earlier - 1] == origin else earlier
-        # the tube in place: after the initial table's last replacement (a drop of the depth)
-        drops = np.flatnonzero(d[1:start + 1] < d[:start])
-        first = int(drops[-1]) + 1 if drops.size else 0
-        hit = first + np.flatnonzero(d[first:] >= target)
-        if hit.size and hit[0] <= start:  # reached in the initial table's rows: among them
-            end = max(earlier, int(hit[0]) + 1)  # or up to this run's first row past them
-            return _interpolated(t[:end], d[:end], target,
+        hit = _reached(d, vm, target, _tube_start(d, vm, start))
+        if hit is not None and hit <= start:  # reached in the initial table's rows: there
+            end = max(earlier, hit + 1)  # or up to this run's first row past them
+            found = None
+            if geometry is not None and vm is not None:
+                found = _through_volume(t[:end], d[:end], vm[:end], vo[:end], p[:end], target,
+                                        float(origins[0]), None, geometry, _LinearInTime,
+                                        None, 1.0)
+            if found is not None:
+                return found, INITIAL_ROWS
+            return _interpolated(t[:end], d[:end], None if vm is None else vm[:end], target,
                                  float(origins[0]) == 0), INTERPOLATED
         if method is None:
-            return _interpolated(t, d, target, float(origins[0]) == 0), INTERPOLATED
+            return _interpolated(t, d, vm, target, float(origins[0]) == 0), INTERPOLATED
         rows = slice(start, None)
-    else:
-        rows = slice(None)
     if method is not None:
         origin = float(origins[-1] if earlier else (origins[0] if origins.size else 0.0))
-        found = _through_volume(t[rows], d[rows], np.asarray(volume_mobile, dtype=float)[rows],
-                                vo[rows],
-                                np.zeros_like(t[rows]) if powers is None
-                                else np.asarray(powers, dtype=float)[rows],
-                                target, origin, replaced, geometry, law, coefficients,
-                                time_scale, obstacle_coefficients)
+        found = _through_volume(t[rows], d[rows], vm[rows], vo[rows], p[rows], target, origin,
+                                replaced, geometry, law, coefficients, time_scale,
+                                obstacle_coefficients)
         if found is not None:
             return found, method
     if replaced is not None:
         keep = t >= replaced
         t, d, origins = t[keep], d[keep], origins[keep]
+        d = np.where(t == replaced, 0.0, d)  # the new tube, unworn at its replacement
     origin = float(origins[0]) if origins.size else 0.0
     return time_to_depth(t, d, target, from_zero=origin == 0), INTERPOLATED
 
@@ -250,13 +273,33 @@ def _earlier_rows(origins: np.ndarray) -> int:
     return int(np.argmax(origins == origins[-1]))
 
 
-def _interpolated(t, d, target: float, from_zero: bool) -> float:
-    """:func:`time_to_depth` after the last drop of the depth (a tube replaced within an
-    initial table: the new tube's rows only; the time is then at most its first row's)."""
-    drops = np.flatnonzero(d[1:] < d[:-1])
-    if drops.size:
-        s = slice(int(drops[-1]) + 1, None)
-        t, d, from_zero = t[s], d[s], False
+def _tube_start(d, vm, end: int) -> int:
+    """The first row of the tube in place among rows ``[0, end]``: after the last drop of the
+    tube's worn volume (a replacement; the depth alone can fall without one, when the
+    obstacle's wear flattens the contact), or of the depth where no volume is known."""
+    values = d if vm is None else vm
+    drops = np.flatnonzero(values[1:end + 1] < values[:end])
+    return int(drops[-1]) + 1 if drops.size else 0
+
+
+def _reached(d, vm, target: float, first: int = 0) -> int | None:
+    """The first row from ``first`` on whose depth reaches ``target``: a NaN depth of a finite
+    volume is beyond the relation's range, deeper than any it describes, so it reaches it."""
+    deep = d >= target
+    if vm is not None:
+        deep |= np.isnan(d) & np.isfinite(vm)
+    hit = np.flatnonzero(deep[first:])
+    return int(first + hit[0]) if hit.size else None
+
+
+def _interpolated(t, d, vm, target: float, from_zero: bool) -> float:
+    """:func:`time_to_depth` for the tube in place: after a replacement among the rows (a drop
+    of the volume, or of the depth where no volume is known), from depth 0 at the last row
+    before it, the earliest the replacement can be (the table does not say when it was)."""
+    j = _tube_start(d, vm, len(d) - 1)
+    if j:
+        t = np.concatenate(([t[j - 1]], t[j:]))
+        d, from_zero = np.concatenate(([0.0], d[j:])), False
     return time_to_depth(t, d, target, from_zero=from_zero)
 
 
@@ -275,20 +318,22 @@ def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, co
         if not after.any():
             return math.nan
         if t[after][0] > replaced:
-            vo_r = float(np.interp(replaced, t, vo)) if t.size else 0.0
+            vo_r = _obstacle_at(replaced, t, vo, p, law, obstacle_coefficients, time_scale)
             t = np.concatenate(([replaced], t[after]))
             d, vm = np.concatenate(([0.0], d[after])), np.concatenate(([0.0], vm[after]))
             vo, p = np.concatenate(([vo_r], vo[after])), np.concatenate((p[after][:1], p[after]))
-        else:
-            t, d, vm, vo, p = t[after], d[after], vm[after], vo[after], p[after]
-    drops = np.flatnonzero(vm[1:] < vm[:-1])  # a tube replaced in the initial table
-    if drops.size:
-        s = slice(int(drops[-1]) + 1, None)
-        t, d, vm, vo, p = t[s], d[s], vm[s], vo[s], p[s]
-    hit = np.flatnonzero(d >= target)  # NaN (beyond the relation's range) never counts
-    if not hit.size:
+        else:  # a row at the replacement: the new tube's, unworn (a restart's origin row
+            # holds the old tube's volumes there)
+            t, d, vm, vo, p = t[after], d[after].copy(), vm[after].copy(), vo[after], p[after]
+            d[0] = vm[0] = 0.0
+    drops = np.flatnonzero(vm[1:] < vm[:-1])  # a tube replaced among an initial table's rows
+    if drops.size:  # the new tube from the last row before, the earliest it can be
+        j = int(drops[-1]) + 1
+        t, vo, p = t[j - 1:], vo[j - 1:], p[j - 1:]
+        d, vm = np.concatenate(([0.0], d[j:])), np.concatenate(([0.0], vm[j:]))
+    b = _reached(d, vm, target)
+    if b is None:
         return math.nan
-    b = int(hit[0])
     if b == 0 or d[b] == target or t[b] == t[b - 1]:
         return float(t[b])
     a = b - 1
@@ -325,6 +370,24 @@ def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, co
     if not math.isfinite(fraction):
         return None
     return float(t[a] + min(max(fraction, 0.0), 1.0) * (t[b] - t[a]))
+
+
+def _obstacle_at(instant: float, t, vo, p, law, obstacle_coefficients, time_scale) -> float:
+    """The obstacle's worn volume [m³] at ``instant`` between two rows: linear for a law linear
+    in time, else its law continued from the equivalent time of the row before (the obstacle
+    does not change at the tube's replacement)."""
+    if t.size == 0:
+        return 0.0
+    a = int(np.searchsorted(t, instant, side="right")) - 1
+    if a < 0:
+        return float(vo[0])
+    if a + 1 >= t.size or vo[a + 1] == vo[a] or law.linear_in_time \
+            or obstacle_coefficients is None:
+        return float(np.interp(instant, t, vo))
+    other = dict(obstacle_coefficients)
+    power = p[a + 1]
+    start = float(law.equivalent_time(vo[a], power, **other))
+    return float(law.volume(power, start + (instant - t[a]) * time_scale, **other))
 
 
 def _segment_volumes(vm, vo, p, a: int, b: int, t, law, coefficients, obstacle_coefficients,

@@ -125,9 +125,10 @@ class BundleResult:
             limit: exact, the limit depth inverted through the contact's geometry to a worn
             volume, reached linearly in time between the table's instants for a law linear in
             time (through the law's equivalent time for EDF-MZ), from the tube's volume at its
-            origin or replacement (:mod:`fretwear.bundle.limits`); where the geometry or the
-            law is not known, and for a limit reached among a restart's initial-table rows,
-            depth(t) interpolated between the instants (monotone cubic) and inverted.
+            origin or replacement (:mod:`fretwear.bundle.limits`); among a restart's
+            initial-table rows, through the geometry with the volume linear between them;
+            where the geometry or the law is not known, depth(t) interpolated between the
+            instants (monotone cubic) and inverted.
             ``time_to_limit_method`` says which per contact, ``attrs["time_to_limit"]`` lists
             them.
 
@@ -388,17 +389,21 @@ class _Contacts:
 
     def reaches(self, targets: list, replaced: list) -> np.ndarray:
         """Whether a time can be found for each contact's target depth [m] (False where
-        :func:`~fretwear.bundle.limits.time_to_limit` would return NaN: its last finite depth
-        since a replacement is below a positive target)."""
+        :func:`~fretwear.bundle.limits.time_to_limit` would return NaN: its deepest depth
+        since a replacement is below a positive target; a NaN depth of a finite volume is
+        beyond the relation's range, deeper than any target)."""
         n = len(self.names)
         if n == 0:
             return np.zeros(0, dtype=bool)
         target = np.array(targets, dtype=float)
         since = np.array([-np.inf if r is None else r for r in replaced], dtype=float)
         gcode = self.codes[self.pos]
-        usable = np.isfinite(self.d) & np.isfinite(self.t) & (self.t >= since[gcode])
+        depth = self.d
+        if self.vm is not None:
+            depth = np.where(np.isnan(depth) & np.isfinite(self.vm), np.inf, depth)
+        usable = ~np.isnan(depth) & np.isfinite(self.t) & (self.t >= since[gcode])
         deepest = np.full(n, np.nan)
-        np.fmax.at(deepest, gcode[usable], self.d[usable])
+        np.fmax.at(deepest, gcode[usable], depth[usable])
         return np.isfinite(target) & ~((target > 0) & ~(deepest >= target))
 
     def obstacle_wears(self, k: int) -> bool:
