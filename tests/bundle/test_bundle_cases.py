@@ -410,45 +410,28 @@ def test_a_table_given_whole_and_by_entry_in_one_row_is_refused(tmp_path):
         assert "law.mobile is given whole and by entry" in got.errors["message"][0]
 
 
-def test_warnings_of_a_contacts_case_are_its_own(tmp_path):
+@pytest.mark.parametrize("tilt", [45.0, 0.0])
+def test_warnings_of_a_contacts_case_are_its_own(tmp_path, tilt):
     """A warning raised while a contact's case is built in the client (here: a row switching
     to TUBE_TUBE keeps the base's obstacle width, which crossed tubes do not use) lands in
     BundleResult.warnings for that contact, and only for it, where it reached the terminal
-    alone before (a user's trial) and was missing from warnings.csv. The other contact, on the
-    base case, has none. Checked on the serial engine and through a warning filter that turns
-    any escaping warning into an error."""
+    alone before (a user's trial) and was missing from warnings.csv; the other contact, on the
+    base case, has none. With a crossing angle of 0 the case then fails: the contact fails
+    with its error and keeps the warning (it was lost, a review). Checked on the serial engine
+    and through a warning filter that turns any escaping warning into an error."""
     case = tmp_path / "base.toml"
     case.write_text(POWERED.format(law="mobile = { COEF_USURE = 1e-15 }"))
     frame = pd.DataFrame({"contact": ["tube", "rod"], "power.value_W": [0.01, 0.01],
-                          "contact_type": ["TUBE_TUBE", None], "tilt_angle_deg": [45.0, None]})
+                          "contact_type": ["TUBE_TUBE", None], "tilt_angle_deg": [tilt, None]})
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         result = run_bundle(frame, case, scheduler="serial", output=tmp_path / "out")
-    assert result.errors.empty
+    assert result.errors["contact"].tolist() == ([] if tilt else ["tube"])
+    assert result.stats["done"] == (2 if tilt else 1)
     said = result.warnings
     assert said["contact"].tolist() == ["tube"]
     assert said["category"].tolist() == ["UnusedKeywordWarning"]
     assert "TUBE_TUBE does not use obstacle_width" in said["message"][0]
     on_disk = pd.read_csv(tmp_path / "out" / "warnings.csv")
     assert on_disk["contact"].tolist() == ["tube"]
-    assert on_disk["message"].tolist() == said["message"].tolist()
-
-
-def test_warnings_of_a_case_that_then_fails_stay_the_contacts(tmp_path):
-    """A row whose case warns and then fails (TUBE_TUBE keeps the base's obstacle width, unused,
-    then refuses a crossing angle of 0): the contact fails with its error and keeps the warning
-    (it was lost, neither on the terminal nor in warnings.csv: a review)."""
-    case = tmp_path / "base.toml"
-    case.write_text(POWERED.format(law="mobile = { COEF_USURE = 1e-15 }"))
-    frame = pd.DataFrame({"contact": ["tube", "rod"], "power.value_W": [0.01, 0.01],
-                          "contact_type": ["TUBE_TUBE", None], "tilt_angle_deg": [0.0, None]})
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        result = run_bundle(frame, case, scheduler="serial", output=tmp_path / "out")
-    assert result.errors["contact"].tolist() == ["tube"]
-    assert result.stats["done"] == 1
-    said = result.warnings
-    assert said["contact"].tolist() == ["tube"]
-    assert "TUBE_TUBE does not use obstacle_width" in said["message"][0]
-    on_disk = pd.read_csv(tmp_path / "out" / "warnings.csv")
     assert on_disk["message"].tolist() == said["message"].tolist()

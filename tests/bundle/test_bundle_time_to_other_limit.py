@@ -177,19 +177,24 @@ def test_edf_mz_against_the_single_contact_table(tmp_path):
     _check_against_single(tmp_path / "b", result, case_text, walls, FROM_LAW)
 
 
+def _restarted(directory, case_text):
+    """(case text continuing contact 0's 5-year Archard table with ``case_text``, the global
+    rows of the 2 contacts run with it)."""
+    _, case = _bundle(directory, NO_SECTORS, count=2)
+    earlier = reference(directory / "histories/t0.parquet", case)
+    write_wear_table(earlier, directory / "earlier.csv")
+    restarted = case_text + f'[restart]\ntable = "{directory / "earlier.csv"}"\n'
+    first = run_bundle(*_bundle(directory, restarted, count=2), scheduler="serial")
+    return restarted, [_global(first, c) for c in first.contacts["contact"]]
+
+
 def test_a_restart_from_an_earlier_table_starts_from_its_volume(tmp_path):
     """A run continuing an earlier 5-year table (origin 5, its volume there not 0), limits
     between the origin and the first new instant (5.5) and between new instants."""
     directory = tmp_path / "r"
-    _, case = _bundle(directory, NO_SECTORS, count=2)
-    earlier = reference(directory / "histories/t0.parquet", case)
-    write_wear_table(earlier, directory / "earlier.csv")
-    restarted = NO_SECTORS + f'[restart]\ntable = "{directory / "earlier.csv"}"\n'
-    first = run_bundle(*_bundle(directory, restarted, count=2), scheduler="serial")
-    rows = [_global(first, c) for c in first.contacts["contact"]]
+    restarted, rows = _restarted(directory, NO_SECTORS)
     assert rows[0]["origin"].iloc[-1] == 5.0 and rows[0]["volume_mobile"].iloc[3] > 0
-    d0 = rows[0].set_index("instant")["depth_mobile"]
-    d1 = rows[1].set_index("instant")["depth_mobile"]
+    d0, d1 = (r.set_index("instant")["depth_mobile"] for r in rows)
     walls = [(d0[5.0] + d0[5.5]) / 2 / LIMIT, (d1[6.0] + d1[7.0]) / 2 / LIMIT]
     result = run_bundle(*_bundle(directory, restarted, {"wall_thickness_m": walls}, count=2),
                         scheduler="serial")
@@ -227,15 +232,9 @@ def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_pa
     table). A limit after the origin stays exact (FROM_LAW, against the single-contact
     table)."""
     directory = tmp_path / "r"
-    _, case = _bundle(directory, NO_SECTORS, count=2)
-    earlier = reference(directory / "histories/t0.parquet", case)
-    write_wear_table(earlier, directory / "earlier.csv")
     edf = NO_SECTORS.replace("[law]\nmobile = { COEF_USURE = 9.2e-15 }\n", EDF_MZ)
-    restarted = edf + f'[restart]\ntable = "{directory / "earlier.csv"}"\n'
-    first = run_bundle(*_bundle(directory, restarted, count=2), scheduler="serial")
-    rows = [_global(first, c) for c in first.contacts["contact"]]
-    d0 = rows[0].set_index("instant")["depth_mobile"]
-    d1 = rows[1].set_index("instant")["depth_mobile"]
+    restarted, rows = _restarted(directory, edf)
+    d0, d1 = (r.set_index("instant")["depth_mobile"] for r in rows)
     # contact 0: between the initial table's 1 and 2 years; contact 1: after the origin (5)
     walls = [(d0[1.0] + d0[2.0]) / 2 / LIMIT, (d1[6.0] + d1[7.0]) / 2 / LIMIT]
     result = run_bundle(*_bundle(directory, restarted, {"wall_thickness_m": walls}, count=2),
