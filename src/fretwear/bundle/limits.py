@@ -326,9 +326,8 @@ def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, co
             # holds the old tube's volumes there)
             t, d, vm, vo, p = t[after], d[after].copy(), vm[after].copy(), vo[after], p[after]
             d[0] = vm[0] = 0.0
-    drops = np.flatnonzero(vm[1:] < vm[:-1])  # a tube replaced among an initial table's rows
-    if drops.size:  # the new tube from the last row before, the earliest it can be
-        j = int(drops[-1]) + 1
+    j = _tube_start(d, vm, vm.size - 1)  # a tube replaced among an initial table's rows
+    if j:  # the new tube from the last row before, the earliest it can be
         t, vo, p = t[j - 1:], vo[j - 1:], p[j - 1:]
         d, vm = np.concatenate(([0.0], d[j:])), np.concatenate(([0.0], vm[j:]))
     b = _reached(d, vm, target)
