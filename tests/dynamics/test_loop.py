@@ -234,8 +234,8 @@ def test_long_histories_are_reduced_by_chunks(tmp_path, monkeypatch):
     seen = {}
     original = loop._cycle_power
 
-    def spy(result, iw, args):
-        out = original(result, iw, args)
+    def spy(result, iw, args, *rest):
+        out = original(result, iw, args, *rest)
         seen["history"] = out[1]
         return out
 
@@ -323,3 +323,100 @@ def test_loop_stop_criterion_names_its_depth(tmp_path):
         max(last[c] for c in DEPTHS_OF[smallest]) >= threshold)
     with pytest.raises(KeywordError, match="max_depth_of = 'deepest'"):
         iterate_case(case(tmp_path, max_depth_of="deepest"), output=tmp_path / "d")
+
+
+def _batch_means(h, blocks, level=0.95):
+    """(mean, half-width) [W] of the batch-means interval of a history's power over its whole
+    span in ``blocks`` equal blocks, computed here: trapezoid with the stick rule per block
+    (theory §2), Student's t with B − 1 degrees of freedom (Fishman 1996, §6.6)."""
+    from scipy import stats
+
+    edges = np.linspace(h.time[0], h.time[-1], blocks + 1)
+    p = h.normal_force * np.hypot(h.vt1, h.vt2)
+    powers = []
+    for a, b in zip(edges[:-1], edges[1:], strict=True):
+        inside = (h.time >= a - 1e-12) & (h.time <= b + 1e-12)
+        t, q, stick = h.time[inside], p[inside], h.stick[inside]
+        keep = stick[:-1] == 0
+        powers.append(float(np.sum(0.5 * (q[1:] + q[:-1]) * np.diff(t) * keep) / (b - a)))
+    powers = np.array(powers)
+    return powers.mean(), stats.t.ppf(0.5 * (1 + level), blocks - 1) * powers.std(ddof=1) \
+        / math.sqrt(blocks)
+
+
+def test_each_cycle_power_has_its_batch_means_interval(tmp_path):
+    """The loop's interval is the batch-means interval of the cycle's history in
+    confidence_blocks blocks, computed here independently; the table's power is unchanged."""
+    import pyarrow.parquet as pq
+
+    from fretwear.history import ContactHistory
+
+    blocks = 8  # 0.4 s of history: blocks of 0.05 s, each a full period of the 25 Hz force
+    res = iterate_case(case(tmp_path, confidence_blocks=blocks, confidence_level=0.9),
+                       output=tmp_path / "out")
+    # fewer than 10 blocks: a ConfidenceWarning says so, in the loop's warnings
+    assert any(w.startswith("ConfidenceWarning") and "only 8 blocks" in w for w in res.warnings)
+    for k, row in res.summary.iterrows():
+        frame = pq.read_table(tmp_path / "out" / f"cycle_{k + 1:02d}" / "histories" /
+                              "bore.parquet").to_pandas()
+        h = ContactHistory.from_frame(frame)
+        mean, half = _batch_means(h, blocks, level=0.9)
+        assert row["power"] == pytest.approx(mean, rel=1e-9)
+        assert row["power_half_width"] == pytest.approx(half, rel=1e-6)
+        assert row["power_blocks"] == blocks and row["power_level"] == 0.9
+        assert str(res.intervals[k]).endswith("W (90 %)")
+    change = res.summary["power"].iloc[1] - res.summary["power"].iloc[0]
+    assert res.summary["power_change"].iloc[1] == pytest.approx(change, rel=1e-12)
+    assert res.summary["power_change_half_width"].iloc[1] == pytest.approx(
+        math.hypot(*res.summary["power_half_width"]), rel=1e-12)
+    assert res.summary["power_change_significant"].iloc[1] == (
+        abs(change) > res.summary["power_change_half_width"].iloc[1])
+    saved = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert saved["convergence"] == res.convergence[0]
+    assert saved["power_intervals"] == [str(iv) for iv in res.intervals]
+
+
+def test_convergence_is_judged_against_the_noise(tmp_path):
+    """Convergence is claimed only when the interval of the last change lies inside the
+    tolerance band. The same cycles run again (bit for bit on one machine) with a tolerance just
+    above |ΔP| + h stop 'converged' after cycle 2; just below, the noise leaves it undecided
+    and the loop goes on; without a tolerance a change within the noise is never converged."""
+    free = iterate_case(case(tmp_path, cycles=2), output=tmp_path / "free")
+    last = free.summary.iloc[-1]
+    reach = (abs(last["power_change"]) + last["power_change_half_width"]) / last["power"]
+    res = iterate_case(case(tmp_path, cycles=3, convergence_tolerance=1.01 * reach),
+                       output=tmp_path / "wide")
+    assert res.stopped == "converged" and len(res.summary) == 2
+    assert res.convergence[0] == "converged"
+    res = iterate_case(case(tmp_path, cycles=2, convergence_tolerance=0.99 * reach),
+                       output=tmp_path / "narrow")
+    assert res.stopped == "cycles" and len(res.summary) == 2
+    expected = ("undecided" if abs(last["power_change"]) - last["power_change_half_width"]
+                <= 0.99 * reach * last["power"] else "not converged")
+    assert res.convergence[0] == expected
+    within = abs(last["power_change"]) <= last["power_change_half_width"]
+    assert free.convergence[0] == ("undecided" if within else "not converged")
+
+
+@pytest.mark.parametrize("key, value", [("confidence_level", 1.5), ("confidence_level", 0.0),
+                                        ("confidence_blocks", 1),
+                                        ("convergence_tolerance", 5.0),
+                                        ("convergence_tolerance", -0.1)])
+def test_bad_noise_keys(tmp_path, key, value):
+    with pytest.raises(KeywordError, match=key):
+        iterate_case(case(tmp_path, **{key: value}), output=tmp_path / "out")
+
+
+def test_cli_prints_each_cycle_power_with_its_interval(tmp_path):
+    from fretwear.cli import cli
+
+    toml = tmp_path / "loop.toml"
+    toml.write_text(LOOP_TOML, encoding="utf-8")
+    out = CliRunner().invoke(cli, ["iterate", str(toml), "--cycles", "2", "--no-plot"])
+    assert out.exit_code == 0, out.output
+    import re
+
+    rows = [line for line in out.output.splitlines() if line.startswith("│")]
+    assert len(rows) == 2
+    assert all(re.search(r"P = \S+ ± \S+ W \(95 %\)", row) for row in rows)
+    assert "convergence: " in out.output

@@ -50,20 +50,44 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
     stopped = result.stopped + (f" ({result.max_depth_of} depth)"
                                 if result.stopped == "max_depth" else "")
     table = Table(title=f"fretwear iterate: {case_file.name} (stopped: {stopped})")
-    columns = (("cycle", "cycle", 1.0), ("instant", "instant", 1.0), ("power", "P [W]", 1.0),
+    level = result.intervals[0].level if result.intervals else 0.95
+    columns = (("cycle", "cycle", 1.0), ("instant", "instant", 1.0),
                ("depth_global_mobile", "global depth tube [mm]", 1e3),
                ("depth_sector_mobile_max", "max sector depth tube [mm]", 1e3),
                ("depth_mobile_max", "profile depth tube [mm]", 1e3),
                ("depth_obstacle_max", "profile depth obst. [mm]", 1e3),
                ("clearance_min", "gap min [mm]", 1e3), ("clearance_max", "gap max [mm]", 1e3),
                ("contact_fraction", "in contact [-]", 1.0))
-    for _, label, _ in columns:
+    for _, label, _ in columns[:2]:
         table.add_column(label, justify="right")
-    for row in result.summary.to_dict(orient="records"):
-        table.add_row(*[f"{row[c] * scale:.4g}" for c, _, scale in columns])
+    table.add_column(f"wear power ({100 * level:.3g} % interval)", justify="right")
+    table.add_column("change from the previous cycle", justify="right")
+    for _, label, _ in columns[2:]:
+        table.add_column(label, justify="right")
+    for row, interval in zip(result.summary.to_dict(orient="records"), result.intervals,
+                             strict=True):
+        cells = [f"{row[c] * scale:.4g}" for c, _, scale in columns]
+        table.add_row(*cells[:2], str(interval), _change(row), *cells[2:])
     console.print(table)
+    verdict, sentence = result.convergence
+    style = {"converged": "green", "not converged": "yellow"}.get(verdict, "")
+    console.print(f"convergence: {verdict}; {sentence}", style=style, markup=False,
+                  highlight=False)
+    if result.stopped == "max_depth" and bool(result.summary["max_depth_within_noise"].iloc[-1]):
+        console.print("the max_depth_m stop is within the noise: the depth's interval from the "
+                      "cycle's power straddles max_depth_m", style="yellow", markup=False,
+                      highlight=False)
     if result.warnings:
         console.print("[yellow]warnings:[/]")
         for w in result.warnings:
             console.print(f"  - {w}", markup=False, highlight=False, style="yellow")
     console.print(f"outputs written to [bold]{result.directory}[/]")
+
+
+def _change(row) -> str:
+    """``+0.0012 ± 0.0030 W, within the noise`` (empty on the first cycle)."""
+    significant = row.get("power_change_significant")
+    if significant is None or row["power_change"] != row["power_change"]:
+        return "-"
+    verdict = "beyond the noise" if significant else "within the noise"
+    return f"{row['power_change']:+.3g} ± {row['power_change_half_width']:.2g} W, {verdict}"

@@ -50,6 +50,15 @@ from fretwear.workflows.case_files import (
     read_case_toml,
     validate_case,
 )
+from fretwear.workflows.loop_noise import (
+    DEFAULT_CONFIDENCE_BLOCKS,
+    DEFAULT_CONFIDENCE_LEVEL,
+    convergence_verdict,
+    cycle_interval,
+    max_depth_noise,
+    noise_columns,
+    warn_if_noisy,
+)
 
 #: key -> (type, description with unit) of the ``[iterate]`` section.
 ITERATE_KEYS: dict[str, tuple[Any, str]] = {
@@ -64,6 +73,13 @@ ITERATE_KEYS: dict[str, tuple[Any, str]] = {
     "output": (str, "output folder, relative to the case file (default 'iterate')"),
     "plot": (bool, "write figures for every cycle (default true)"),
     "stop_on_perforation": (bool, "stop when the mobile is perforated (default true)"),
+    "confidence_level": (float, "confidence level of each cycle's power interval (default "
+                                "0.95)"),
+    "confidence_blocks": (int, "blocks of the batch-means interval of each cycle's power when "
+                               "[power] blocks is below 2 (default 10)"),
+    "convergence_tolerance": ((int, float), "stop when the power's relative change between two "
+                                            "cycles is inside ±this beyond the noise (the "
+                                            "interval of the change inside the band) [-]"),
 }
 
 
@@ -72,6 +88,18 @@ def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
     out = dict(section)
     if out.get("cycles", 1) < 1:
         raise KeywordError(f"[iterate] cycles must be >= 1, got {out['cycles']}")
+    level = out.get("confidence_level", DEFAULT_CONFIDENCE_LEVEL)
+    if isinstance(level, bool) or not 0.0 < level < 1.0:
+        raise KeywordError(f"[iterate] confidence_level must be a probability in (0, 1) "
+                           f"(e.g. 0.95), got {level!r}")
+    blocks = out.get("confidence_blocks", DEFAULT_CONFIDENCE_BLOCKS)
+    if isinstance(blocks, bool) or not 2 <= blocks <= 10_000:
+        raise KeywordError(f"[iterate] confidence_blocks must be an integer in 2..10000 (10 "
+                           f"or more for a checked interval), got {blocks!r}")
+    tolerance = out.get("convergence_tolerance")
+    if tolerance is not None and (isinstance(tolerance, bool) or not 0.0 < tolerance < 1.0):
+        raise KeywordError(f"[iterate] convergence_tolerance is a relative change in (0, 1) "
+                           f"(e.g. 0.05 for 5 %), got {tolerance!r}")
     if out.get("max_depth_of", "largest") not in DEPTHS_OF:
         raise KeywordError(f"[iterate] max_depth_of = {out['max_depth_of']!r}: choose one of "
                            f"{list(DEPTHS_OF)}")
@@ -168,7 +196,17 @@ class IterationResult:
         ``clearance_min``, ``clearance_max`` [m] (after the update), ``contact_fraction`` [-],
         ``perforated``, ``depth_global_mobile``, ``depth_global_obstacle`` [m] (the wear
         table's global depths, from the total volumes), ``depth_sector_mobile_max``,
-        ``depth_sector_obstacle_max`` [m] (its largest sector depths) at the cycle's end.
+        ``depth_sector_obstacle_max`` [m] (its largest sector depths) at the cycle's end;
+        the noise of the cycle (:mod:`fretwear.workflows.loop_noise`): ``power_low``,
+        ``power_high``, ``power_half_width`` [W] (the confidence interval of ``power``, batch
+        means over the cycle's history), ``power_level`` [-], ``power_blocks`` [-],
+        ``power_change`` [W] (from the previous cycle), ``power_change_half_width`` [W] (the
+        two intervals in quadrature), ``power_change_significant`` (the change is beyond its
+        interval; None on cycle 1), ``depth_increment_half_width`` [m] (the compared depth's
+        increment over the cycle times the power's relative half-width: the increment's
+        uncertainty, an upper bound for a law linear in the power and a depth concave in the
+        volume), ``max_depth_within_noise`` (the ``max_depth_m`` decision is inside that
+        uncertainty).
     tables : list of DataFrame
         The wear table after each cycle (each continues the previous one).
     profiles : list of ObstacleResult
@@ -176,10 +214,16 @@ class IterationResult:
     directory : Path or None
         Output folder.
     stopped : str
-        Why the loop stopped: ``"cycles"``, ``"max_depth"`` or ``"perforation"``.
+        Why the loop stopped: ``"cycles"``, ``"max_depth"``, ``"perforation"``,
+        ``"converged"`` or ``"invalid_profile"``.
     warnings : list of str
     max_depth_of : str
         Which depth the ``max_depth_m`` criterion compared (:data:`DEPTHS_OF`).
+    intervals : list of PowerInterval
+        Each cycle's power with its confidence interval (``str()``: ``P = … ± … W (95 %)``).
+    convergence : tuple of str
+        (verdict, sentence) of :func:`fretwear.workflows.loop_noise.convergence_verdict`:
+        whether the loop's power converged beyond the noise.
     """
 
     summary: pd.DataFrame
@@ -189,6 +233,8 @@ class IterationResult:
     stopped: str
     warnings: list[str] = field(default_factory=list)
     max_depth_of: str = "largest"
+    intervals: list[Any] = field(default_factory=list)
+    convergence: tuple[str, str] = ("one cycle", "")
 
 
 def _wear_case(case: Mapping[str, Any]) -> tuple[dict[str, Any], WearCase]:
@@ -281,7 +327,11 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     profile = new_profile
     max_depth = it.get("max_depth_m")
     depth_of = it.get("max_depth_of", "largest")
-    rows, tables, profiles = [], [], []
+    level = float(it.get("confidence_level", DEFAULT_CONFIDENCE_LEVEL))
+    tolerance = it.get("convergence_tolerance")
+    args_interval = {**args, "blocks": int(it.get("confidence_blocks",
+                                                  DEFAULT_CONFIDENCE_BLOCKS))}
+    rows, tables, profiles, intervals = [], [], [], []
     stopped = "cycles"
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -298,7 +348,9 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                 result = simulate(setup.model, shocks, setup.excitations,
                                   output_dir=cdir / "histories", **setup.options)
                 say(f"cycle {k}/{n_cycles}: wear power")
-                power, history, contact = _cycle_power(result, iw, args)
+                power, history, contact, split = _cycle_power(result, iw, args, args_interval)
+                interval = cycle_interval(power, level, interval_power=split)
+                warn_if_noisy(k, interval)
                 say(f"cycle {k}/{n_cycles}: wear table")
                 table = wear_table_from_case(wear, power)
                 say(f"cycle {k}/{n_cycles}: obstacle update")
@@ -325,7 +377,15 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                    "clearance_max": float(np.nanmax(update.clearance_worn)),
                    "contact_fraction": contact,
                    "perforated": bool(update.perforated), **_table_depths(table)}
+            compared_columns = DEPTHS_OF[depth_of]
+            depth_now = _largest(row, compared_columns)
+            depth_before = _largest(rows[-1], compared_columns) if rows else 0.0
+            row.update(noise_columns(interval, intervals[-1] if intervals else None,
+                                     depth_now - depth_before))
+            row["max_depth_within_noise"] = (max_depth_noise(row, compared_columns, max_depth)
+                                             if max_depth is not None else False)
             rows.append(row)
+            intervals.append(interval)
             if not np.all(np.isfinite(profile[1])):
                 warnings.warn(f"cycle {k}: the worn clearance has undefined values (depth beyond "
                               "the geometry's range); the loop stops", FretwearWarning,
@@ -339,10 +399,18 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             if max_depth is not None and compared and max(compared) >= max_depth:
                 stopped = "max_depth"
                 break
+            if (tolerance is not None and k < n_cycles
+                    and convergence_verdict(pd.DataFrame(rows), tolerance)[0] == "converged"):
+                stopped = "converged"
+                break
     summary = pd.DataFrame(rows)
+    convergence = convergence_verdict(summary, tolerance)
     _write_summary(out_dir, summary, stopped, do_plot, profiles,
                    {"max_depth_m": max_depth, "max_depth_of": depth_of,
-                    "max_depth_columns": list(DEPTHS_OF[depth_of])})
+                    "max_depth_columns": list(DEPTHS_OF[depth_of]),
+                    "convergence_tolerance": tolerance, "convergence": convergence[0],
+                    "convergence_said": convergence[1],
+                    "power_intervals": [str(iv) for iv in intervals]})
     texts = []
     for w in caught:
         t = f"{w.category.__name__}: {w.message}"
@@ -350,7 +418,14 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             texts.append(t)
     return IterationResult(summary=summary, tables=tables, profiles=profiles,
                            directory=out_dir, stopped=stopped, warnings=texts,
-                           max_depth_of=depth_of)
+                           max_depth_of=depth_of, intervals=intervals,
+                           convergence=convergence)
+
+
+def _largest(row: Mapping[str, Any], columns) -> float:
+    """The largest finite value of ``row`` among ``columns`` (0 when none) [m]."""
+    values = [float(row[c]) for c in columns if np.isfinite(row[c])]
+    return max(values) if values else 0.0
 
 
 #: Wear-shock histories up to this many samples are read whole by the loop; longer ones are
@@ -362,8 +437,13 @@ PLOT_SAMPLES = 200_000
 LOOP_CHUNK = 1_000_000
 
 
-def _cycle_power(result, iw: int, args: Mapping[str, Any]):
-    """(PowerResult, history for the wear table / figures, contact fraction) of the wear shock.
+def _cycle_power(result, iw: int, args: Mapping[str, Any], args_interval: Mapping[str, Any]):
+    """(PowerResult, history for the wear table / figures, contact fraction, the power in the
+    interval's blocks or None) of the wear shock.
+
+    The wear table's power keeps the user's ``[power] blocks``; when they are fewer than 2, the
+    same window is reduced a second time in ``args_interval["blocks"]`` blocks for the
+    batch-means interval of the cycle's power.
 
     Short histories are read whole (:func:`fretwear.workflows.case_files.chunked_power`). Long
     ones are reduced from the Parquet file by :class:`fretwear.power.PowerAccumulator` over
@@ -375,17 +455,28 @@ def _cycle_power(result, iw: int, args: Mapping[str, Any]):
     n = pq.ParquetFile(path).metadata.num_rows
     if n <= LOOP_IN_MEMORY:
         history = result.history(iw)
-        return chunked_power(history, args), history, float(np.mean(history.normal_force > 0))
-    acc = PowerAccumulator(
+        split = None
+        if args.get("blocks", 1) < 2:
+            with warnings.catch_warnings():  # the table's own power says its stationarity
+                warnings.simplefilter("ignore")
+                split = chunked_power(history, args_interval)
+        return (chunked_power(history, args), history,
+                float(np.mean(history.normal_force > 0)), split)
+    window = dict(
         t_start=args.get("t_start") if args.get("t_start") is not None else result.start_time,
         t_end=args.get("t_end") if args.get("t_end") is not None else result.end_time,
-        blocks=args.get("blocks", 1), sectors=args.get("sectors"))
+        sectors=args.get("sectors"))
+    acc = PowerAccumulator(blocks=args.get("blocks", 1), **window)
+    acc_split = (PowerAccumulator(blocks=args_interval["blocks"], **window)
+                 if args.get("blocks", 1) < 2 else None)
     stride = max(1, n // PLOT_SAMPLES)
     kept: dict[str, list] = {c: [] for c in CHANNELS}
     in_contact = 0
     row = 0
     for j, chunk in enumerate(iter_history_chunks(path, chunk_size=LOOP_CHUNK)):
         acc.update(chunk)
+        if acc_split is not None:
+            acc_split.update(chunk)
         skip = 0 if j == 0 else 1  # the sample shared with the previous chunk
         fn = chunk.normal_force[skip:]
         in_contact += int(np.count_nonzero(fn > 0))
@@ -394,11 +485,17 @@ def _cycle_power(result, iw: int, args: Mapping[str, Any]):
         for c in CHANNELS:
             kept[c].append(np.asarray(getattr(chunk, c))[skip:][pick])
         row = first + fn.size - 1
-    power = acc.result(stationarity_threshold=args.get("stationarity_threshold", 0.1))
+    threshold = args.get("stationarity_threshold", 0.1)
+    power = acc.result(stationarity_threshold=threshold)
+    split = None
+    if acc_split is not None:
+        with warnings.catch_warnings():  # the table's own power says its stationarity
+            warnings.simplefilter("ignore")
+            split = acc_split.result(stationarity_threshold=threshold)
     light = ContactHistory(**{c: np.concatenate(v) for c, v in kept.items()},
                            name=result.shock_names[iw],
                            metadata={"source": str(path), "decimated_by": stride})
-    return power, light, in_contact / n
+    return power, light, in_contact / n, split
 
 
 def _write_cycle(cdir: Path, table, update, result, history, do_plot: bool, figures,
