@@ -17,8 +17,12 @@ demo: $(STAMP)
 
 # The HTML report's test opens the page in a headless chromium: installed here when missing and
 # apt-get can (root, Debian's registry reachable, as in CI); otherwise that test is skipped.
+# The second line runs the tests marked numeric again with numpy's SIMD dispatch targets and
+# numba's CPU turned down (tests/reduced_simd.py): a result that holds only on this processor's
+# code paths fails here, not on the next machine.
 test: $(STAMP) browser
 	$(PY) -m pytest -n 2 -q
+	$(PY) tests/reduced_simd.py -n 2 -q
 
 browser:
 	@if command -v chromium >/dev/null 2>&1 || command -v chromium-browser >/dev/null 2>&1; \

@@ -34,8 +34,10 @@ guard.PROBE_TIMEOUT = 5.0
 
 def examples(n: int) -> settings:
     """Hypothesis settings of one fuzz test: ``n`` examples (times FRETWEAR_FUZZ_SCALE)."""
+    # derandomized in make test, exploring in a deep run; the example database is the
+    # profile's (tests/conftest.py: read-only in make test, written by a deep run)
     return settings(max_examples=max(1, int(n * SCALE)), deadline=None,
-                    derandomize=SCALE == 1, database=None, print_blob=True,
+                    derandomize=SCALE == 1, print_blob=True,
                     suppress_health_check=list(HealthCheck))
 
 
