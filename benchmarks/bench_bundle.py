@@ -37,7 +37,9 @@ record and its own force scale), with a CSV manifest and a base case (TUBE_BAV, 
   (chunk tasks merged in a tree) against the same contact in one task: the peak follows the
   chunk, not the bundle or the history.
 
-The bundle's tables are checked equal to the serial ones bit for bit. Prints contacts/s,
+The bundle's tables are checked equal to the serial ones bit for bit: both run in this
+benchmark, on this machine, in this environment (the workers are its child processes), which
+is where bit for bit is promised; across machines only to rounding. Prints contacts/s,
 samples/s, the speed-up (goal >= 1.7 on 2 cores), the overhead (goal < 20 ms) and the memory.
 
 Usage::

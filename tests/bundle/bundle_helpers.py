@@ -82,7 +82,12 @@ def rows_of(result, contact: str) -> pd.DataFrame:
 
 
 def assert_identical(got: pd.DataFrame, expected: pd.DataFrame) -> None:
-    """Same columns, same values bit for bit (NaN where NaN)."""
+    """Same columns, same values bit for bit (NaN where NaN).
+
+    Bit for bit holds because both sides run on this machine in this environment: the bundle's
+    Dask workers are child processes of the test, with its processor and its environment (the
+    same numpy and numba SIMD code paths). It is not a promise across machines; there the
+    results agree to rounding (tests/workflows/test_example_snapshots.py: 1e-12 relative)."""
     assert list(got.columns) == list(expected.columns)
     assert len(got) == len(expected)
     for c in expected.columns:

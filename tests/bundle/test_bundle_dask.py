@@ -2,7 +2,9 @@
 the tests of this module and joined through its address (``scheduler=``), as a user joins a
 cluster started elsewhere; plus one run that starts its own local cluster (no scheduler).
 
-Checked: every contact equals the single-contact wear table bit for bit; a corrupted and a
+Checked: every contact equals the single-contact wear table bit for bit (both computed on this
+machine in this environment: the workers are child processes with the test's processor and
+environment, so the same SIMD code paths; across machines only to rounding); a corrupted and a
 missing file land in ``errors`` while the rest complete; a chunked contact gives the same bits
 on the cluster as in one process; a worker that dies is replaced and its task retried; a run
 killed midway restarts without recomputing the contacts it had written; the CLI.

@@ -1,6 +1,7 @@
 """Manifests: columns, overrides of the base case, the sources a bundle can come from.
 
-Every contact's rows are compared bit for bit with the single-contact wear table
+Every contact's rows are compared bit for bit (both sides in this process, on this machine: not
+a promise across machines) with the single-contact wear table
 (fretwear.table.wear_table) of the same history and case; for a contact whose manifest row
 overrides a key, the reference case is a separate TOML file holding that value, read by the
 case-file layer (an independent path to the same keywords). These tests run without Dask
