@@ -399,7 +399,7 @@ def test_convergence_is_judged_against_the_noise(tmp_path):
 
 
 @pytest.mark.parametrize("key, value", [("confidence_level", 1.5), ("confidence_level", 0.0),
-                                        ("confidence_blocks", 1),
+                                        ("confidence_blocks", 1), ("ensemble", 0),
                                         ("convergence_tolerance", 5.0),
                                         ("convergence_tolerance", -0.1)])
 def test_bad_noise_keys(tmp_path, key, value):
@@ -420,3 +420,47 @@ def test_cli_prints_each_cycle_power_with_its_interval(tmp_path):
     assert len(rows) == 2
     assert all(re.search(r"P = \S+ ± \S+ W \(95 %\)", row) for row in rows)
     assert "convergence: " in out.output
+
+
+def _random_case(tmp_path, **iterate):
+    """:func:`case` under a random force along y and z (seeds 5 and 6)."""
+    c = case(tmp_path, **iterate)
+    c["dynamics"]["forces"] = [
+        {"point": 0, "direction": d, "kind": "random", "psd_frequencies_Hz": [5.0, 100.0],
+         "psd": [1.0, 1.0], "seed": seed} for d, seed in (("y", 5), ("z", 6))]
+    return c
+
+
+def test_ensemble_power_is_the_mean_of_its_runs(tmp_path):
+    """[iterate] ensemble = 3: three runs of each cycle with the random seeds moved; the table's
+    power is the mean of the runs' powers (each computed here from its own history), the
+    interval Student's over the three runs (t(2, 0.975) = 4.303), run 1 is the case as
+    written (its power equals the single run's)."""
+    import pyarrow.parquet as pq
+    from scipy import stats
+
+    from fretwear.history import ContactHistory
+
+    single = iterate_case(_random_case(tmp_path, cycles=1), output=tmp_path / "one")
+    res = iterate_case(_random_case(tmp_path, cycles=1, ensemble=3), output=tmp_path / "ens")
+    folder = tmp_path / "ens" / "cycle_01"
+    runs = []
+    for name in ("histories", "histories_run02", "histories_run03"):
+        frame = pq.read_table(folder / name / "bore.parquet").to_pandas()
+        runs.append(_power(ContactHistory.from_frame(frame)))
+    assert runs[0] == pytest.approx(single.summary["power"].iloc[0], rel=1e-12)
+    assert len(set(runs)) == 3  # the seeds moved: three different computations
+    row = res.summary.iloc[0]
+    assert row["power"] == pytest.approx(np.mean(runs), rel=1e-9)
+    half = stats.t.ppf(0.975, 2) * np.std(runs, ddof=1) / math.sqrt(3)
+    assert row["power_half_width"] == pytest.approx(half, rel=1e-6)
+    assert row["power_blocks"] == 3 and res.intervals[0].method == "ensemble"
+    # the wear table is fed the mean: Archard's V = K·P̄·t (theory §4)
+    last = res.tables[0][res.tables[0]["instant"] == res.tables[0]["instant"].max()]
+    assert float(last["volume_mobile_cumulated"].sum()) == pytest.approx(
+        K_MOBILE * np.mean(runs) * YEAR, rel=1e-9)
+
+
+def test_ensemble_needs_a_random_signal(tmp_path):
+    with pytest.raises(KeywordError, match="random excitation"):
+        iterate_case(case(tmp_path, ensemble=2), output=tmp_path / "out")

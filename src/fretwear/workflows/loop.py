@@ -42,6 +42,7 @@ from fretwear.plotting import (
     wear_figures,
 )
 from fretwear.power import PowerAccumulator
+from fretwear.power.confidence import ensemble_interval
 from fretwear.table import WearCase, wear_table_from_case, write_wear_table
 from fretwear.table.schema import FLOAT_FORMAT
 from fretwear.workflows.case_files import (
@@ -55,8 +56,10 @@ from fretwear.workflows.loop_noise import (
     DEFAULT_CONFIDENCE_LEVEL,
     convergence_verdict,
     cycle_interval,
+    ensemble_power,
     max_depth_noise,
     noise_columns,
+    reseeded,
     warn_if_noisy,
 )
 
@@ -77,6 +80,9 @@ ITERATE_KEYS: dict[str, tuple[Any, str]] = {
                                 "0.95)"),
     "confidence_blocks": (int, "blocks of the batch-means interval of each cycle's power when "
                                "[power] blocks is below 2 (default 10)"),
+    "ensemble": (int, "runs of each cycle's dynamics with the random signals' seeds moved by "
+                      "1000 per run: the cycle's power is their mean and its interval theirs "
+                      "(default 1: one run, a batch-means interval)"),
     "convergence_tolerance": ((int, float), "stop when the power's relative change between two "
                                             "cycles is inside ±this beyond the noise (the "
                                             "interval of the change inside the band) [-]"),
@@ -96,6 +102,10 @@ def _check_iterate(section: Mapping[str, Any]) -> dict[str, Any]:
     if isinstance(blocks, bool) or not 2 <= blocks <= 10_000:
         raise KeywordError(f"[iterate] confidence_blocks must be an integer in 2..10000 (10 "
                            f"or more for a checked interval), got {blocks!r}")
+    runs = out.get("ensemble", 1)
+    if isinstance(runs, bool) or not 1 <= runs <= 1000:
+        raise KeywordError(f"[iterate] ensemble must be an integer in 1..1000 (runs of each "
+                           f"cycle; 5 or more for an interval), got {runs!r}")
     tolerance = out.get("convergence_tolerance")
     if tolerance is not None and (isinstance(tolerance, bool) or not 0.0 < tolerance < 1.0):
         raise KeywordError(f"[iterate] convergence_tolerance is a relative change in (0, 1) "
@@ -331,6 +341,9 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
     tolerance = it.get("convergence_tolerance")
     args_interval = {**args, "blocks": int(it.get("confidence_blocks",
                                                   DEFAULT_CONFIDENCE_BLOCKS))}
+    ensemble = int(it.get("ensemble", 1))
+    if ensemble > 1:
+        reseeded(setup.excitations, 1)  # a case with no random signal is refused up front
     rows, tables, profiles, intervals = [], [], [], []
     stopped = "cycles"
     with warnings.catch_warnings(record=True) as caught:
@@ -345,11 +358,9 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                 if k > 1:
                     profiles_k[iw] = profile
                 shocks = setup.shocks_with(profiles_k)
-                result = simulate(setup.model, shocks, setup.excitations,
-                                  output_dir=cdir / "histories", **setup.options)
-                say(f"cycle {k}/{n_cycles}: wear power")
-                power, history, contact, split = _cycle_power(result, iw, args, args_interval)
-                interval = cycle_interval(power, level, interval_power=split)
+                result, power, history, contact, interval, steps = _cycle_runs(
+                    setup, shocks, iw, args, args_interval, cdir, level, ensemble,
+                    lambda what, k=k: say(f"cycle {k}/{n_cycles}: {what}"))
                 warn_if_noisy(k, interval)
                 say(f"cycle {k}/{n_cycles}: wear table")
                 table = wear_table_from_case(wear, power)
@@ -370,7 +381,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             profiles.append(update)
             instant = float(np.max(table["instant"]))
             row = {"cycle": k, "instant": instant, "power": float(power.total),
-                   "wear_power_steps": float(result.wear_power[iw]),
+                   "wear_power_steps": steps,
                    "depth_mobile_max": float(np.nanmax(update.depth_mobile)),
                    "depth_obstacle_max": float(np.nanmax(update.depth_obstacle)),
                    "clearance_min": float(np.nanmin(update.clearance_worn)),
@@ -435,6 +446,40 @@ LOOP_IN_MEMORY = 2_000_000
 PLOT_SAMPLES = 200_000
 #: Samples per chunk of that reduction.
 LOOP_CHUNK = 1_000_000
+
+
+def _cycle_runs(setup, shocks, iw: int, args, args_interval, cdir: Path, level: float,
+                ensemble: int, say):
+    """The dynamics of one cycle, once or as an ensemble of ``ensemble`` runs (random seeds
+    moved by :func:`~fretwear.workflows.loop_noise.reseeded`), and its power.
+
+    Returns (the first run's DynamicsResult, the power for the wear table [W], the first run's
+    history, the contact fraction [-], the power's PowerInterval, the power integrated over
+    the steps [W]); with an ensemble the power, the contact fraction and the steps' power are
+    the runs' means, the interval the runs' Student interval
+    (:func:`fretwear.power.ensemble_interval`), and run r's histories are in
+    ``histories_run{r:02d}/`` (run 1 in ``histories/``).
+    """
+    powers, contacts, steps = [], [], []
+    first = history = split = None
+    for r in range(ensemble):
+        say("dynamics" if ensemble == 1 else f"dynamics, run {r + 1}/{ensemble}")
+        folder = cdir / ("histories" if r == 0 else f"histories_run{r + 1:02d}")
+        result = simulate(setup.model, shocks, reseeded(setup.excitations, r),
+                          output_dir=folder, **setup.options)
+        say("wear power")
+        power, h, contact, s = _cycle_power(result, iw, args, args_interval)
+        if r == 0:
+            first, history, split = result, h, s
+        powers.append(power)
+        contacts.append(contact)
+        steps.append(float(result.wear_power[iw]))
+    if ensemble == 1:
+        interval = cycle_interval(powers[0], level, interval_power=split)
+    else:
+        interval = ensemble_interval(powers, level)
+    return (first, ensemble_power(powers), history, float(np.mean(contacts)), interval,
+            float(np.mean(steps)))
 
 
 def _cycle_power(result, iw: int, args: Mapping[str, Any], args_interval: Mapping[str, Any]):

@@ -22,8 +22,8 @@ import numpy as np
 from fretwear.errors import ConfidenceWarning
 
 __all__ = ["DEFAULT_CONFIDENCE_BLOCKS", "DEFAULT_CONFIDENCE_LEVEL", "change_interval",
-           "convergence_verdict", "cycle_interval", "max_depth_noise", "noise_columns",
-           "warn_if_noisy"]
+           "convergence_verdict", "cycle_interval", "ensemble_power", "max_depth_noise",
+           "noise_columns", "reseeded", "warn_if_noisy"]
 
 #: Blocks of the batch-means interval of a cycle's power when [power] blocks is below 2 [-].
 DEFAULT_CONFIDENCE_BLOCKS = 10
@@ -182,3 +182,64 @@ def warn_if_noisy(k: int, interval, threshold: float = 0.5) -> None:
         warnings.warn(f"cycle {k}: the wear power is known to ±{100 * rel:.0f} % only "
                       f"({interval}); a longer [dynamics] duration_s narrows it",
                       ConfidenceWarning, stacklevel=3)
+
+
+def reseeded(excitations, run: int, step: int = 1000):
+    """The excitations of ensemble run ``run`` (0-based): every random signal's seed moved by
+    ``run · step``; run 0 is the case as written.
+
+    Raises
+    ------
+    KeywordError
+        ``run`` > 0 and no excitation is random: every run would be the same computation.
+    """
+    from dataclasses import replace
+
+    from fretwear.errors import KeywordError
+
+    if run == 0:
+        return list(excitations)
+    out, moved = [], False
+    for e in excitations:
+        signal = getattr(e, "signal", None)
+        if signal is not None and signal.kind == "random":
+            e = replace(e, signal=replace(signal, seed=int(signal.seed) + run * step))
+            moved = True
+        out.append(e)
+    if not moved:
+        raise KeywordError("[iterate] ensemble > 1 needs a random excitation ([[dynamics.forces]] "
+                           "or [[dynamics.base]] with kind = \"random\"): with harmonic or table "
+                           "signals every run is the same computation; use ensemble = 1 (the "
+                           "batch-means interval)")
+    return out
+
+
+def ensemble_power(powers):
+    """The wear power of an ensemble of runs of one cycle: the mean of the runs' powers.
+
+    Parameters
+    ----------
+    powers : sequence of PowerResult
+        The runs' powers over the same window [W].
+
+    Returns
+    -------
+    PowerResult
+        ``total``, ``sectors``, ``blocks`` and ``block_sectors`` the means over the runs [W]
+        (the sector and block layouts are the same in every run); ``statistics`` and the other
+        fields those of the first run.
+    """
+    from dataclasses import replace
+
+    first = powers[0]
+    if len(powers) == 1:
+        return first
+
+    def mean(name):
+        values = [getattr(p, name) for p in powers]
+        return None if values[0] is None else np.mean(np.stack(
+            [np.asarray(v, dtype=float) for v in values]), axis=0)
+
+    return replace(first, total=float(np.mean([p.total for p in powers])),
+                   sectors=mean("sectors"), blocks=mean("blocks"),
+                   block_sectors=mean("block_sectors"))
