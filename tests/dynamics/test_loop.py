@@ -363,7 +363,7 @@ def test_each_cycle_power_has_its_batch_means_interval(tmp_path):
         mean, half = _batch_means(h, blocks, level=0.9)
         assert row["power"] == pytest.approx(mean, rel=1e-9)
         assert row["power_half_width"] == pytest.approx(half, rel=1e-6)
-        assert row["power_blocks"] == blocks and row["power_level"] == 0.9
+        assert row["power_interval_count"] == blocks and row["power_level"] == 0.9
         assert str(res.intervals[k]).endswith("W (90 %)")
     change = res.summary["power"].iloc[1] - res.summary["power"].iloc[0]
     assert res.summary["power_change"].iloc[1] == pytest.approx(change, rel=1e-12)
@@ -454,7 +454,7 @@ def test_ensemble_power_is_the_mean_of_its_runs(tmp_path):
     assert row["power"] == pytest.approx(np.mean(runs), rel=1e-9)
     half = stats.t.ppf(0.975, 2) * np.std(runs, ddof=1) / math.sqrt(3)
     assert row["power_half_width"] == pytest.approx(half, rel=1e-6)
-    assert row["power_blocks"] == 3 and res.intervals[0].method == "ensemble"
+    assert row["power_interval_count"] == 3 and res.intervals[0].method == "ensemble"
     # the wear table is fed the mean: Archard's V = K·P̄·t (theory §4)
     last = res.tables[0][res.tables[0]["instant"] == res.tables[0]["instant"].max()]
     assert float(last["volume_mobile_cumulated"].sum()) == pytest.approx(

@@ -91,7 +91,7 @@ def test_deterministic_within_rounding(current, name):
 def _half_width(summary: pd.DataFrame, level: float) -> np.ndarray:
     """The half-widths [W] of the cycles' power intervals at ``level``, from the 95 % ones the
     loop gives (the same Student standard error, another quantile)."""
-    dof = summary["power_blocks"].to_numpy() - 1
+    dof = summary["power_interval_count"].to_numpy() - 1
     se = summary["power_half_width"].to_numpy() / special.stdtrit(
         dof, 0.5 * (1 + summary["power_level"].to_numpy()))
     return special.stdtrit(dof, 0.5 * (1 + level)) * se

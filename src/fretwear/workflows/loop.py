@@ -209,7 +209,9 @@ class IterationResult:
         ``depth_sector_obstacle_max`` [m] (its largest sector depths) at the cycle's end;
         the noise of the cycle (:mod:`fretwear.workflows.loop_noise`): ``power_low``,
         ``power_high``, ``power_half_width`` [W] (the confidence interval of ``power``, batch
-        means over the cycle's history), ``power_level`` [-], ``power_blocks`` [-],
+        means over the cycle's history, or Student's over an ensemble's runs),
+        ``power_level`` [-], ``power_interval_count`` [-] (blocks, or runs),
+        ``power_interval_method`` (``"batch means"`` or ``"ensemble"``),
         ``power_change`` [W] (from the previous cycle), ``power_change_half_width`` [W] (the
         two intervals in quadrature), ``power_change_significant`` (the change is beyond its
         interval; None on cycle 1), ``depth_increment_half_width`` [m] (the compared depth's

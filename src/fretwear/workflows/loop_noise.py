@@ -85,7 +85,8 @@ def noise_columns(interval, previous, depth_increment: float) -> dict[str, Any]:
     row: dict[str, Any] = {
         "power_low": interval.low, "power_high": interval.high,
         "power_half_width": float(interval.half_width), "power_level": interval.level,
-        "power_blocks": int(interval.count),
+        "power_interval_count": int(interval.count),
+        "power_interval_method": interval.method,
         "power_change": math.nan, "power_change_half_width": math.nan,
         "power_change_significant": None}
     if previous is not None:
