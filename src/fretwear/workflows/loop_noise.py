@@ -70,7 +70,7 @@ def change_interval(current, previous) -> tuple[float, float]:
 
     Examples
     --------
-    >>> from fretwear.power import batch_means_interval
+    >>> from fretwear.power.confidence import batch_means_interval
     >>> a = batch_means_interval([1.0, 1.2, 0.8, 1.1, 0.9, 1.0, 1.05, 0.95, 1.0, 1.0])
     >>> d, h = change_interval(a, a)
     >>> d, round(h / a.half_width, 6)   # √2 times one half-width
