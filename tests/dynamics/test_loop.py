@@ -464,3 +464,17 @@ def test_ensemble_power_is_the_mean_of_its_runs(tmp_path):
 def test_ensemble_needs_a_random_signal(tmp_path):
     with pytest.raises(KeywordError, match="random excitation"):
         iterate_case(case(tmp_path, ensemble=2), output=tmp_path / "out")
+
+
+def test_cli_says_perforation_first(tmp_path):
+    """Bad news first: a tube worn through its wall is the first line printed, before the
+    table (a 1 µm wall: perforated in the first cycle)."""
+    from fretwear.cli import cli
+
+    toml = tmp_path / "loop.toml"
+    toml.write_text(LOOP_TOML.replace("wall_thickness_m = 1.1e-3", "wall_thickness_m = 1e-6"),
+                    encoding="utf-8")
+    out = CliRunner().invoke(cli, ["iterate", str(toml), "--cycles", "2", "--no-plot"])
+    assert out.exit_code == 0, out.output
+    first = next(line for line in out.output.splitlines() if line.strip())
+    assert first.startswith("PERFORATED: the tube is worn through its wall at cycle 1")

@@ -47,6 +47,13 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
         result = iterate_case(case_file, output=output, cycles=cycles,
                               plot=False if no_plot else None,
                               progress=lambda message: status.update(message))
+    perforated = result.summary[result.summary["perforated"].astype(bool)] \
+        if "perforated" in result.summary else result.summary.iloc[:0]
+    if len(perforated):  # bad news first
+        k = int(perforated["cycle"].iloc[0])
+        console.print(f"PERFORATED: the tube is worn through its wall at cycle {k} (profile "
+                      f"depth {1e3 * float(perforated['depth_mobile_max'].iloc[0]):.3g} mm)",
+                      style="bold red", markup=False, highlight=False)
     stopped = result.stopped + (f" ({result.max_depth_of} depth)"
                                 if result.stopped == "max_depth" else "")
     table = Table(title=f"fretwear iterate: {case_file.name} (stopped: {stopped})")
