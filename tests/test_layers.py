@@ -45,7 +45,7 @@ LAYER_OF = {
     "conftest": "foundation",
     "history": "physics", "sectors": "physics", "io": "physics", "power": "physics",
     "laws": "physics", "database": "physics", "geometry": "physics", "table": "physics",
-    "obstacle": "physics", "dynamics": "physics",
+    "obstacle": "physics", "dynamics": "physics", "assessment": "physics",
     "uncertainty": "physics",  # -> workflows if any of its modules imports workflows
     "plotting": "plotting",
     "workflows": "workflows", "bundle": "workflows", "report": "workflows",

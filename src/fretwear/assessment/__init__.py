@@ -1,0 +1,23 @@
+"""The outage decision (condition monitoring and operational assessment), its foundations:
+
+- :mod:`fretwear.assessment.technique`: an inspection technique's sizing error and its
+  probability of detection;
+- :mod:`fretwear.assessment.operational`: the probability that any tube of a bundle exceeds its
+  limit over an interval, the longest interval under a target, the preventive-plugging list and
+  the inspection sample, from the contacts' probabilities of exceeding the limit.
+
+The contacts' probabilities come from the depth model of each contact and the calibrated factor;
+the ``fretwear assess`` command that ties them to a bundle's results is not built yet.
+"""
+
+from fretwear.assessment.operational import (
+    BundleRisk,
+    bundle_risk,
+    inspection_sample,
+    longest_interval,
+    plugging_list,
+)
+from fretwear.assessment.technique import LogisticPOD, SizingModel
+
+__all__ = ["BundleRisk", "LogisticPOD", "SizingModel", "bundle_risk", "inspection_sample",
+           "longest_interval", "plugging_list"]
