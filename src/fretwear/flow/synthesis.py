@@ -44,7 +44,10 @@ def factor_matrices(matrices: np.ndarray) -> np.ndarray:
     True
     """
     m = np.asarray(matrices)
-    return np.stack([_factor(m[k]) for k in range(m.shape[0])])
+    try:  # one batched call when every matrix is positive definite
+        return np.linalg.cholesky(m)
+    except np.linalg.LinAlgError:
+        return np.stack([_factor(m[k]) for k in range(m.shape[0])])
 
 
 def synthesize(frequencies, matrices, *, duration: float, seed: int,
@@ -114,16 +117,16 @@ def synthesize(frequencies, matrices, *, duration: float, seed: int,
     fk = np.arange(n_t // 2 + 1) * df
     inside = (fk > 0) & (fk >= f[0]) & (fk <= f[-1]) & (np.arange(fk.size) < n_t // 2)
     n = s.shape[1]
-    table = s.reshape(f.size, n * n)
-    sk = np.zeros((fk.size, n * n), dtype=np.result_type(s.dtype, float))
-    for c in range(n * n):
-        sk[inside, c] = np.interp(fk[inside], f, table[:, c].real) + (
-            1j * np.interp(fk[inside], f, table[:, c].imag) if np.iscomplexobj(s) else 0.0)
+    # linear interpolation of every entry at once (a convex combination of two Hermitian
+    # positive semi-definite matrices is one)
+    fin = fk[inside]
+    lo = np.clip(np.searchsorted(f, fin, side="right") - 1, 0, f.size - 2)
+    w = ((fin - f[lo]) / (f[lo + 1] - f[lo]))[:, None, None]
     factors = np.zeros((fk.size, n, n), dtype=complex)
-    factors[inside] = factor_matrices(sk[inside].reshape(-1, n, n))
+    factors[inside] = factor_matrices((1.0 - w) * s[lo] + w * s[lo + 1])
     rng = np.random.default_rng(seed)
     phases = np.exp(1j * rng.uniform(0.0, 2.0 * np.pi, (fk.size, n)))
-    spectrum = 0.5 * n_t * np.sqrt(2.0 * df) * np.einsum("kjm,km->kj", factors, phases)
+    spectrum = 0.5 * n_t * np.sqrt(2.0 * df) * (factors @ phases[:, :, None])[:, :, 0]
     x = np.fft.irfft(spectrum, n_t, axis=0)
     t = np.arange(n_t + 1) * (duration / n_t)
     return t, np.vstack([x, x[:1]])
