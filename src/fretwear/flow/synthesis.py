@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from fretwear.dynamics.excitation import spectral_grid
 from fretwear.errors import InputError
 
 
@@ -105,16 +106,7 @@ def synthesize(frequencies, matrices, *, duration: float, seed: int,
     if not np.allclose(s, np.conj(np.swapaxes(s, 1, 2)), rtol=1e-10,
                        atol=1e-14 * float(np.max(np.abs(s)) or 1.0)):
         raise InputError("synthesis: the spectral matrices must be Hermitian (S_jl = conj S_lj)")
-    if not (np.isfinite(duration) and duration > 0):
-        raise InputError(f"synthesis: 'duration' must be > 0 [s], got {duration!r}")
-    fs = 8.0 * f[-1] if sample_rate is None else float(sample_rate)
-    if fs < 2.0 * f[-1]:
-        raise InputError(f"synthesis: sample_rate {fs} Hz is below twice the table's highest "
-                         f"frequency {f[-1]} Hz (Nyquist); raise it")
-    n_t = int(np.ceil(duration * fs))
-    n_t += n_t % 2
-    df = 1.0 / duration
-    fk = np.arange(n_t // 2 + 1) * df
+    n_t, df, fk = spectral_grid(f[-1], duration, sample_rate, "synthesis")
     inside = (fk > 0) & (fk >= f[0]) & (fk <= f[-1]) & (np.arange(fk.size) < n_t // 2)
     n = s.shape[1]
     # linear interpolation of every entry at once (a convex combination of two Hermitian
