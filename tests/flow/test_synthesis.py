@@ -105,3 +105,21 @@ def test_linear_oscillator_rms_equals_integral_of_h2_s():
 
     exact, _ = integrate.quad(lambda fr: h2(fr) * 3.0, 5.0, 80.0, points=[f0], limit=200)
     assert measured == pytest.approx(exact, rel=0.02)
+
+
+def test_code_aster_zzzz180a_standard_deviations():
+    """Code_Aster validation case zzzz180a (code_aster repository, astest/zzzz180a.comm;
+    GENE_FONC_ALEA, REFERENCE='ANALYTIQUE'): S11 = 2 up to 100 Hz, linear to 0.01 at 200 Hz,
+    0.01 to 300 Hz; S22 = 1; S12 = √(0.8 S11) e^{i2πf·0.025}; standard deviations √603 and
+    √600. Code_Aster's spectra are two-sided (σ² = 2∫₀^∞ S df): fretwear's one-sided matrix is
+    twice them. 70 s of signal as the case's 10 draws of 7 s; its precision 1e-3 on both (the
+    first channel is exact over the period here, the second mixes two phases per bin: 1e-2)."""
+    f = np.arange(0.0, 300.2, 0.2)
+    c11 = np.where(f <= 100, 2.0, np.where(f <= 200, (1e-2 - 2.0) * f / 100 + 4.0 - 1e-2, 1e-2))
+    c12 = np.sqrt(0.8 * c11) * np.exp(1j * 2 * np.pi * f * 0.025)
+    aster = np.stack([np.stack([c11, c12], -1), np.stack([np.conj(c12), np.ones_like(f)], -1)],
+                     -2)
+    t, x = synthesize(f, 2.0 * aster, duration=70.0, seed=180, sample_rate=1000.0)
+    std = x[:-1].std(axis=0)
+    assert std[0] == pytest.approx(np.sqrt(603.0), rel=1e-3)
+    assert std[1] == pytest.approx(np.sqrt(600.0), rel=1e-2)
