@@ -5,9 +5,9 @@ with the catalogue's defaults (``code_aster/Cata/Commands/defi_spec_turb.py``) a
 ``modal_spectrum(frequencies, tube)``: the one-sided cross-spectral matrix of the generalised
 forces Q_r = ∫ φ_r·f ds of the modes of a :class:`~fretwear.flow.tube.TubeFlow` [N²/Hz], shape
 (n_f, n_modes, n_modes) (PROJ_SPEC_BASE). The formulas follow the Fortran routines that evaluate
-them (spect1, coesp1, coesp4, sfifj, dspprs, accept, coegen, corcos, specep); docs/flow.md
-cites each and says which families are left out (SPEC_CORR_CONV_3, GRAPPE_1, the AU_YANG
-coherence) and why.
+them (spect1, coesp1, coesp4, sfifj, dspprs, accept, coegen, corcos, specep; GRAPPE_1 in
+:mod:`~fretwear.flow.grappe1`); docs/flow.md cites each and says what is left out
+(SPEC_CORR_CONV_3, the AU_YANG coherence) and why.
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from fretwear.errors import InputError, KeywordError
+from fretwear.flow.grappe1 import Grappe1
 from fretwear.flow.projection import convected_acceptance, exponential_acceptance
 from fretwear.flow.tube import TubeFlow
 
@@ -526,7 +527,7 @@ class Grappe2:
 #: The turbulence spectrum families, by Code_Aster keyword.
 SPECTRA: dict[str, type] = {cls.name: cls for cls in (
     SpecLongCor1, SpecLongCor2, SpecLongCor3, SpecLongCor4, SpecCorrConv1, SpecCorrConv2,
-    Grappe2)}
+    Grappe1, Grappe2)}
 
 
 def make_spectrum(name: str, **parameters: Any):
@@ -544,11 +545,12 @@ def make_spectrum(name: str, **parameters: Any):
     key = str(name).upper()
     if key not in SPECTRA:
         raise KeywordError(f"unknown turbulence spectrum {name!r}; choose one of {list(SPECTRA)}"
-                           " (SPEC_CORR_CONV_3 and GRAPPE_1 are left out: docs/flow.md)")
+                           " (SPEC_CORR_CONV_3 is left out: docs/flow.md)")
     cls = SPECTRA[key]
     aliases = {"visc_cine": "kinematic_viscosity", "taux_vide": "void_fraction",
                "vite_flui": "velocity", "rho_flui": "density", "d_flui": "hydraulic_diameter",
-               "methode": "method", "fonction": "function", "grappe_2": "configuration"}
+               "methode": "method", "fonction": "function", "grappe_2": "configuration",
+               "grappe_1": "flow_rate"}
     fields = {f.name for f in dataclasses.fields(cls)}
     given = {}
     for raw, value in parameters.items():
