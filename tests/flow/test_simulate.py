@@ -108,3 +108,21 @@ def test_example_description_gaps_are_seeded():
     assert [s.supports for s in a] == [s.supports for s in b]
     gaps = [c["gap_m"] for s in a for c in s.supports]
     assert len(set(gaps)) == len(gaps) == 24
+
+
+def test_a_failing_tube_is_isolated(tmp_path, capsys):
+    """GRAPPE_2 at 1.0 m: inside row 1's 1.2 m span, beyond row 2's 0.9 m one. Row 2's tube fails
+    in its task (the spectrum's own message), row 1's is written; exit status 1."""
+    desc = small_description(tmp_path, **{
+        'spectrum = "SPEC_LONG_COR_1"': 'spectrum = "GRAPPE_2"',
+        "parameters = { long_cor = 3.0, kinematic_viscosity = 1.2e-7 }":
+            'parameters = { configuration = "ASC_CEN", density = 700.0, velocity = 3.0, '
+            "position = 1.0 }",
+        "span_lengths_m = 1.2": "span_lengths_m = [1.2, 0.9]"})
+    out = tmp_path / "h"
+    assert main(["simulate", str(desc), "-o", str(out), "--scheduler", "serial"]) == 1
+    printed = capsys.readouterr().out
+    assert printed.index("1 tube(s) failed") < printed.index("R1C1")  # bad news first
+    errors = pd.read_csv(out / "errors.csv")
+    assert list(errors["tube"]) == ["R2C1"] and "outside the tube" in errors["error"][0]
+    assert set(pd.read_csv(out / "manifest.csv")["contact"]) == {"R1C1-AVB1", "R1C1-AVB2"}

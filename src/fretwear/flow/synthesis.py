@@ -29,8 +29,9 @@ def _factor(matrix: np.ndarray) -> np.ndarray:
         scale = max(float(np.max(np.abs(w))), 1e-300)
         if np.min(w) < -1e-8 * scale:
             raise InputError("spectral matrix: not positive semi-definite at some frequency "
-                             f"(eigenvalue {np.min(w):.3g} for a largest {scale:.3g}); a "
-                             "cross-spectrum exceeds √(S_ii S_jj)") from None
+                             f"(eigenvalue {np.min(w):.3g} for a largest {scale:.3g}), so no "
+                             "real signals have it (GRAPPE_1's measured matrix is such a case: "
+                             "docs/flow.md)") from None
         return v * np.sqrt(np.clip(w, 0.0, None))[None, :]
 
 
