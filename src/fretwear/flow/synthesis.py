@@ -87,7 +87,8 @@ def synthesize(frequencies, matrices, *, duration: float, seed: int,
     ----------
     .. [1] Shinozuka, M., & Deodatis, G. (1991). Simulation of stochastic processes by spectral
            representation. *Applied Mechanics Reviews* 44(4), 191-204.
-    .. [2] Code_Aster, GENE_FONC_ALEA (``bibfor/op/op0117.F90``).
+    .. [2] Code_Aster, GENE_FONC_ALEA (``code_aster/Cata/Commands/gene_fonc_alea.py``, op 118:
+           ``bibfor/op/op0118.F90``).
 
     Examples
     --------
