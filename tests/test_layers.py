@@ -49,6 +49,7 @@ LAYER_OF = {
     "uncertainty": "physics",  # -> workflows if any of its modules imports workflows
     "plotting": "plotting",
     "workflows": "workflows", "bundle": "workflows", "report": "workflows",
+    "flow": "workflows",  # fretwear simulate runs on the bundle's engines
     "__init__": "api",
     "cli": "cli",
 }

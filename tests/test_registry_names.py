@@ -30,7 +30,9 @@ from fretwear.workflows.case_files import KEYS, keys_help
 DOCS = Path(__file__).resolve().parents[1] / "docs"
 CONTACT = re.compile(r"\b(?:TUBE|GRAPPE)_[A-Z0-9_]+")
 LAW = re.compile(r"\b(?:ARCHARD|KWU_EPRI|EDF_MZ|[A-Z]+_MZ|KWU\w*)\b")
-NOT_CONTACT = {"TUBE_NEUF"}  # a POST_USURE keyword, not a contact type
+NOT_CONTACT = {"TUBE_NEUF",  # a POST_USURE keyword, not a contact type
+               # DEFI_SPEC_TURB's control-rod spectra (docs/flow.md), not contact types
+               "GRAPPE_1", "GRAPPE_2", "GRAPPE_2_COEFFICIENTS"}
 
 
 def contact_names(text: str) -> list[str]:

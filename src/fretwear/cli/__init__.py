@@ -27,6 +27,7 @@ SUBCOMMANDS: dict[str, str] = {
     "obstacle": "Update the obstacle's clearance profile from a wear table.",
     "iterate": "Coupled loop dynamics -> wear -> obstacle update -> dynamics.",
     "bundle": "Every contact of a tube bundle from a manifest, on Dask.",
+    "simulate": "A bundle's contact histories from its description (flow to wear), on Dask.",
     "calibrate": "Calibrate the wear coefficients on inspected depths; forecast every contact.",
     "report": "Run a case and write one HTML report with its uncertainty.",
 }

@@ -74,16 +74,7 @@ def random_signal_from_psd(frequencies, psd, *, duration: float, seed: int,
         raise InputError("random signal: PSD 'frequencies' must be >= 0 and strictly increasing")
     if np.any(s < 0) or not np.all(np.isfinite(s)):
         raise InputError("random signal: 'psd' values must be finite and >= 0")
-    if not duration > 0:
-        raise InputError(f"random signal: 'duration' must be > 0 [s], got {duration}")
-    fs = 8.0 * f[-1] if sample_rate is None else float(sample_rate)
-    if fs < 2.0 * f[-1]:
-        raise InputError(f"random signal: sample_rate {fs} Hz is below twice the PSD's highest "
-                         f"frequency {f[-1]} Hz (Nyquist); raise it")
-    n = int(np.ceil(duration * fs))
-    n += n % 2
-    df = 1.0 / duration
-    fk = np.arange(n // 2 + 1) * df
+    n, df, fk = spectral_grid(f[-1], duration, sample_rate, "random signal")
     sk = np.interp(fk, f, s, left=0.0, right=0.0)
     sk[0] = 0.0  # no mean
     sk[-1] = 0.0  # the Nyquist bin (n even) has no phase freedom
@@ -95,6 +86,43 @@ def random_signal_from_psd(frequencies, psd, *, duration: float, seed: int,
     t = np.arange(n) * (duration / n)
     # append the period end so the table covers [0, duration]
     return np.append(t, duration), np.append(x, x[0])
+
+
+def spectral_grid(highest: float, duration: float, sample_rate: float | None,
+                  what: str) -> tuple[int, float, np.ndarray]:
+    """The grid of a spectral-representation record: (samples n, Δf [Hz], frequencies f_k [Hz]).
+
+    Parameters
+    ----------
+    highest : float
+        Highest frequency of the spectrum [Hz].
+    duration : float
+        Record length T [s], > 0; Δf = 1/T.
+    sample_rate : float or None
+        Samples per second [Hz] (default 8 × ``highest``), at least 2 × ``highest``.
+    what : str
+        The caller's name, for the messages.
+
+    Returns
+    -------
+    n (even), Δf, f_k = k Δf for k = 0..n/2
+
+    Examples
+    --------
+    >>> n, df, fk = spectral_grid(50.0, 2.0, None, "signal")
+    >>> n, df, float(fk[-1])
+    (800, 0.5, 200.0)
+    """
+    if not (np.isfinite(duration) and duration > 0):
+        raise InputError(f"{what}: 'duration' must be > 0 [s], got {duration}")
+    fs = 8.0 * highest if sample_rate is None else float(sample_rate)
+    if fs < 2.0 * highest:
+        raise InputError(f"{what}: sample_rate {fs} Hz is below twice the spectrum's highest "
+                         f"frequency {highest} Hz (Nyquist); raise it")
+    n = int(np.ceil(duration * fs))
+    n += n % 2
+    df = 1.0 / duration
+    return n, df, np.arange(n // 2 + 1) * df
 
 
 @dataclass(frozen=True, eq=False)

@@ -1,0 +1,250 @@
+"""``fretwear simulate``: a bundle's contact histories from its description, on Dask.
+
+For each tube (one task): the modes of its span (:func:`~fretwear.flow.tube.beam_tube_flow`),
+the turbulence of its flow projected onto them (:mod:`~fretwear.flow.spectra`), correlated modal
+forces synthesised from that matrix (:func:`~fretwear.flow.synthesis.synthesize`), the shock
+dynamics (:func:`fretwear.dynamics.simulate`) and the stability ratios of its modes
+(:func:`~fretwear.flow.stability.stability_ratios`). Each tube's folder is written atomically
+with a ``tube.json`` carrying its inputs' signature, so a rerun into the same directory skips
+the tubes already done (``force`` recomputes); a tube that fails is recorded and the others go
+on. The manifest (``manifest.csv``) is the one ``fretwear bundle`` reads.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from fretwear._lazy import pandas as pd
+from fretwear.bundle.cluster import open_engine
+from fretwear.dynamics import NodalForce, Shock, Signal, simulate
+from fretwear.errors import InputError
+from fretwear.flow.description import TubeSpec, read_description
+from fretwear.flow.spectra import make_spectrum
+from fretwear.flow.stability import stability_ratios
+from fretwear.flow.synthesis import synthesize
+from fretwear.flow.tube import beam_tube_flow
+from fretwear.io import write_history
+from fretwear.io.atomic import atomic_folder, atomic_write
+
+#: Columns of the manifest written (``fretwear bundle`` reads them as they are).
+MANIFEST_COLUMNS = ("contact", "history", "tube_row", "tube_column", "support",
+                    "wall_thickness_m")
+
+
+def _profile(spec: TubeSpec, index: int) -> Callable[[float], float]:
+    def value(s: float) -> float:
+        for start, end, *values in spec.regions:
+            if start <= s <= end:
+                return values[index]
+        return 0.0 if index == 0 else float(np.mean([r[2 + index] for r in spec.regions]))
+    return value
+
+
+def tube_forces(spec: TubeSpec):
+    """The tube's modal model, its flow, and its synthesised modal forces (time [s], (N, n) [N])."""
+    model, tube = beam_tube_flow(
+        **spec.beam, shock_positions=[s["position_m"] for s in spec.supports],
+        shock_names=[s["name"] for s in spec.supports], diameter=spec.diameter,
+        grid_points=spec.grid_points, velocity=_profile(spec, 0), density=_profile(spec, 1),
+        void_fraction=_profile(spec, 2))
+    params = {k: v for k, v in spec.spectrum.items() if k != "name"}
+    spectrum = make_spectrum(spec.spectrum["name"], **params)
+    f = np.linspace(*spec.band_hz, spec.frequency_points)
+    matrices = spectrum.modal_spectrum(f, tube)
+    t, forces = synthesize(f, matrices, duration=spec.duration, seed=spec.seed)
+    return model, tube, t, forces
+
+
+def simulate_tube(spec: TubeSpec, folder: str | Path) -> dict:
+    """Run one tube and write its histories and ``tube.json`` into ``folder`` (atomically).
+
+    Returns
+    -------
+    dict
+        The tube's record: ``tube``, ``row``, ``column``, ``signature``, ``contacts`` (contact,
+        history relative to the output directory, support, gap_m), ``modes`` (the stability
+        table's rows), ``max_stability_ratio``, ``flagged``, ``simulated_s``, ``elapsed_s``.
+    """
+    start = time.perf_counter()
+    model, tube, t, forces = tube_forces(spec)
+    n = model.n_modes
+    driven = dataclasses.replace(model, forcing_shapes=np.eye(n)[:, None, :] * [[1.0], [0.0]],
+                                 forcing_names=tuple(f"mode{r + 1}" for r in range(n)))
+    loads = [NodalForce(r, "y", Signal("table", times=t, values=forces[:, r])) for r in range(n)]
+    shocks = [Shock(point=s["name"], obstacle=s["obstacle"], gap=s["gap_m"],
+                    normal_stiffness=s["normal_stiffness_n_m"],
+                    normal_damping=s["normal_damping_n_s_m"],
+                    tangential_stiffness=s["tangential_stiffness_n_m"],
+                    tangential_damping=s["tangential_damping_n_s_m"], friction=s["friction"],
+                    name=s["name"]) for s in spec.supports]
+    result = simulate(driven, shocks, loads, duration=spec.duration,
+                      archive_step=spec.archive_step)
+    modes = stability_ratios(model, tube, mass_per_length=spec.mass_per_length,
+                             constant=spec.connors_constant, margin=spec.stability_margin)
+    folder = Path(folder)
+    contacts = []
+    with atomic_folder(folder) as tmp:
+        for s in spec.supports:
+            contact = f"{spec.tube}-{s['name']}"
+            write_history(result.history(s["name"]).replace(name=contact),
+                          tmp / f"{s['name']}.parquet")
+            contacts.append({"contact": contact, "support": s["name"], "gap_m": s["gap_m"],
+                             "history": f"tubes/{spec.tube}/{s['name']}.parquet"})
+        record = {"tube": spec.tube, "row": spec.row, "column": spec.column,
+                  "signature": spec.signature(), "contacts": contacts,
+                  "wall_thickness_m": spec.wall_thickness,
+                  "modes": json.loads(modes.to_json(orient="records")),
+                  "max_stability_ratio": float(modes["stability_ratio"].max()),
+                  "flagged": bool(modes["flagged"].any()),
+                  "wear_power_w": dict(zip(result.shock_names, result.wear_power.tolist(),
+                                           strict=True)),
+                  "simulated_s": float(result.end_time - result.start_time),
+                  "elapsed_s": time.perf_counter() - start}
+        (tmp / "tube.json").write_text(json.dumps(record, indent=1), encoding="utf-8")
+    return record
+
+
+def _guarded(spec: TubeSpec, folder: Path) -> dict | str:
+    """:func:`simulate_tube`, a failure returned as its message (isolated from the others)."""
+    try:
+        return simulate_tube(spec, folder)
+    except Exception as exc:  # noqa: BLE001 - one tube's failure is recorded, the rest go on
+        return f"{type(exc).__name__}: {exc}"
+
+
+def _done(folder: Path, spec: TubeSpec) -> dict | None:
+    try:
+        record = json.loads((folder / "tube.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if record.get("signature") != spec.signature():
+        return None
+    if not all((folder.parent.parent / c["history"]).exists() for c in record["contacts"]):
+        return None
+    return record
+
+
+@dataclass
+class SimulateResult:
+    """Output of :func:`run_simulate`: one record per tube done, the failures, the files."""
+
+    output: Path
+    records: list[dict]
+    errors: dict[str, str]
+    reused: list[str]
+
+    def tubes(self) -> pd.DataFrame:
+        """One row per tube: row, column, max stability ratio, flagged, worst wear power [W];
+        the flagged tubes first, then by decreasing ratio (bad news first)."""
+        rows = [{"tube": r["tube"], "row": r["row"], "column": r["column"],
+                 "max_stability_ratio": r["max_stability_ratio"], "flagged": r["flagged"],
+                 "max_wear_power_w": max(r["wear_power_w"].values()),
+                 "simulated_s": r["simulated_s"], "elapsed_s": r["elapsed_s"]}
+                for r in self.records]
+        frame = pd.DataFrame(rows, columns=["tube", "row", "column", "max_stability_ratio",
+                                            "flagged", "max_wear_power_w", "simulated_s",
+                                            "elapsed_s"])
+        return frame.sort_values(["flagged", "max_stability_ratio"], ascending=False,
+                                 kind="stable").reset_index(drop=True)
+
+    def manifest(self) -> pd.DataFrame:
+        """The manifest of ``fretwear bundle`` (:data:`MANIFEST_COLUMNS`)."""
+        rows = [{"contact": c["contact"], "history": c["history"], "tube_row": r["row"],
+                 "tube_column": r["column"], "support": c["support"],
+                 "wall_thickness_m": r["wall_thickness_m"]}
+                for r in sorted(self.records, key=lambda r: (r["row"], r["column"]))
+                for c in r["contacts"]]
+        return pd.DataFrame(rows, columns=list(MANIFEST_COLUMNS))
+
+
+def _write_tables(result: SimulateResult) -> None:
+    out = result.output
+    with atomic_write(out / "manifest.csv") as fh:
+        result.manifest().to_csv(fh, index=False)
+    with atomic_write(out / "tubes.csv") as fh:
+        result.tubes().to_csv(fh, index=False, float_format="%.6g")
+    modes = [{"tube": r["tube"], **m} for r in result.records for m in r["modes"]]
+    with atomic_write(out / "stability.csv") as fh:
+        pd.DataFrame(modes).to_csv(fh, index=False, float_format="%.6g")
+    gaps = [{"contact": c["contact"], "gap_m": c["gap_m"]} for r in result.records
+            for c in r["contacts"]]
+    with atomic_write(out / "gaps.csv") as fh:
+        pd.DataFrame(gaps, columns=["contact", "gap_m"]).to_csv(fh, index=False,
+                                                                 float_format="%.6g")
+    with atomic_write(out / "errors.csv") as fh:
+        pd.DataFrame(sorted(result.errors.items()), columns=["tube", "error"]).to_csv(
+            fh, index=False)
+
+
+def run_simulate(description, output, *, scheduler=None, workers: int | None = None,
+                 force: bool = False, progress: Callable[[str, bool], None] | None = None
+                 ) -> SimulateResult:
+    """Simulate every tube of a bundle description into ``output`` (resumable).
+
+    Parameters
+    ----------
+    description : path or list of TubeSpec
+        The bundle description (TOML, :func:`read_description`) or its tubes.
+    output : path
+        Output directory: ``tubes/<tube>/<support>.parquet`` and ``tube.json`` per tube,
+        ``manifest.csv`` (for ``fretwear bundle``), ``tubes.csv`` (stability ratio and wear power
+        per tube), ``stability.csv`` (per mode), ``gaps.csv``, ``errors.csv``.
+    scheduler : None, "serial", address or dask Client
+        As ``fretwear bundle``: a local cluster (None), this process ("serial"), or a cluster.
+    workers : int, optional
+        Worker processes of the local cluster (default: one per core).
+    force : bool
+        Recompute the tubes already done.
+    progress : callable, optional
+        Called as ``progress(tube, ok)`` when each tube finishes (or is reused).
+
+    Returns
+    -------
+    SimulateResult
+    """
+    specs = read_description(description) if isinstance(description, (str, Path)) \
+        else list(description)
+    if not specs:
+        raise InputError("simulate: the description has no tube")
+    out = Path(output)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"simulate: output {str(out)!r} is a file; give a directory")
+    records, errors, reused, todo = [], {}, [], []
+    for spec in specs:
+        record = None if force else _done(out / "tubes" / spec.tube, spec)
+        if record is not None:
+            records.append(record)
+            reused.append(spec.tube)
+            if progress:
+                progress(spec.tube, True)
+        else:
+            todo.append(spec)
+    if todo:
+        engine = open_engine(scheduler, workers)
+        try:
+            handles = {engine.submit(_guarded, spec, out / "tubes" / spec.tube, retries=0,
+                                     key=f"simulate-{spec.tube}-{spec.signature()}"): spec
+                       for spec in todo}
+            for handle, value in engine.results(list(handles)):
+                spec = handles[handle]
+                ok = isinstance(value, dict)
+                if ok:
+                    records.append(value)
+                else:  # the task's own message, or the exception of a task lost by Dask
+                    errors[spec.tube] = (value if isinstance(value, str)
+                                         else f"{type(value).__name__}: {value}")
+                if progress:
+                    progress(spec.tube, ok)
+        finally:
+            engine.close()
+    result = SimulateResult(out, sorted(records, key=lambda r: (r["row"], r["column"])), errors,
+                            reused)
+    _write_tables(result)
+    return result

@@ -1,0 +1,274 @@
+"""A tube bundle from its description (TOML): tubes, supports, gaps, flow, simulation.
+
+:func:`read_description` reads the file of ``fretwear simulate`` (docs/flow.md, "Bundle
+description") and returns one :class:`TubeSpec` per tube: everything a worker needs to build the
+tube's modes, its turbulence and its shocks, the seeded gaps already drawn (so a rerun, or a
+resumed run, gives every contact the same gap). Every unknown key, wrong type or bad value is
+said with its place in the file and the fix.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from fretwear.errors import InputError, KeywordError
+from fretwear.flow.spectra import SPECTRA, make_spectrum
+
+#: Support types: the obstacle family of fretwear.dynamics.Shock each one becomes.
+SUPPORT_TYPES: dict[str, str] = {"AVB": "two_planes", "plate": "circle"}
+
+_SECTIONS: dict[str, dict[str, Any]] = {
+    "": {"title": "", "seed": 0, "tubes": None, "supports": None, "flow": None,
+         "simulation": None},
+    "tubes": {"rows": None, "columns": None, "span_lengths_m": None, "ends": ["clamped", "clamped"],
+              "outer_diameter_m": None, "wall_thickness_m": None, "young_modulus_pa": None,
+              "material_density_kg_m3": None, "internal_fluid_density_kg_m3": 0.0,
+              "added_mass_coefficient": 1.0, "modes": 4, "damping_ratio": None},
+    "supports": {"name": None, "position_m": None, "type": "AVB", "gap_m": None,
+                 "normal_stiffness_n_m": None, "normal_damping_n_s_m": 0.0,
+                 "tangential_stiffness_n_m": 0.0, "tangential_damping_n_s_m": 0.0,
+                 "friction": 0.0},
+    "flow": {"spectrum": None, "parameters": {}, "connors_constant": None,
+             "stability_margin": 1.0, "band_hz": None, "regions": None},
+    "flow.regions": {"rows": None, "velocity_m_s": None, "density_kg_m3": None,
+                     "void_fraction": 0.0, "span": [0.0, 1.0]},
+    "simulation": {"duration_s": None, "archive_step_s": None, "grid_points": 241,
+                   "frequency_points": 400},
+}
+
+
+def _table(raw: dict, section: str, where: str) -> dict[str, Any]:
+    known = _SECTIONS[section]
+    if not isinstance(raw, dict):
+        raise InputError(f"{where}: expected a table, got {type(raw).__name__}")
+    unknown = sorted(set(raw) - set(known))
+    if unknown:
+        raise KeywordError(f"{where}: unknown key(s) {unknown}; it takes {sorted(known)}")
+    out = {}
+    for key, default in known.items():
+        if key in raw:
+            out[key] = raw[key]
+        elif default is None and section:
+            raise KeywordError(f"{where}: missing key {key!r}")
+        else:
+            out[key] = default
+    return out
+
+
+def _number(value, where: str, *, positive=False, nonnegative=False) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise InputError(f"{where}: expected a finite number, got {value!r}")
+    if positive and value <= 0:
+        raise InputError(f"{where}: must be > 0, got {value!r}")
+    if nonnegative and value < 0:
+        raise InputError(f"{where}: must be >= 0, got {value!r}")
+    return float(value)
+
+
+def _count(value, where: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise InputError(f"{where}: expected an integer >= 1, got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class TubeSpec:
+    """One tube of the bundle, as a worker builds and runs it (every value in SI units).
+
+    ``beam`` holds the keywords of :func:`fretwear.dynamics.uniform_beam_modes`; ``supports``
+    one dict per contact (name, position_m, obstacle, gap_m and the contact law); ``regions``
+    the flow along the span ((start_m, end_m, U [m/s], ρ [kg/m³], α [-]) per region);
+    ``spectrum`` the family and its parameters.
+    """
+
+    tube: str
+    row: int
+    column: int
+    diameter: float
+    wall_thickness: float
+    mass_per_length: float
+    beam: dict
+    supports: tuple
+    regions: tuple
+    spectrum: dict
+    band_hz: tuple
+    connors_constant: float
+    stability_margin: float
+    duration: float
+    archive_step: float
+    grid_points: int
+    frequency_points: int
+    seed: int
+    extra: dict = field(default_factory=dict)
+
+    def signature(self) -> str:
+        """A digest of every input: a resumed run reuses a tube whose signature is unchanged."""
+        text = json.dumps(dataclasses.asdict(self), sort_keys=True, default=str)
+        return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _gap(value, where: str, rng: np.random.Generator) -> float:
+    if isinstance(value, dict):
+        if value.get("distribution") != "lognormal" or set(value) != {"distribution", "median",
+                                                                         "sigma_ln"}:
+            raise KeywordError(f"{where}: a drawn gap is {{ distribution = \"lognormal\", "
+                               f"median = ..., sigma_ln = ... }} (median [m], σ of ln [-]); got "
+                               f"{value!r}")
+        median = _number(value["median"], f"{where}.median", positive=True)
+        sigma = _number(value["sigma_ln"], f"{where}.sigma_ln", nonnegative=True)
+        return float(median * math.exp(sigma * rng.standard_normal()))
+    return _number(value, where)
+
+
+def _beam(tubes: dict, where: str, rho_external: float, length: float) -> tuple[dict, float]:
+    d = _number(tubes["outer_diameter_m"], f"{where}.outer_diameter_m", positive=True)
+    e = _number(tubes["wall_thickness_m"], f"{where}.wall_thickness_m", positive=True)
+    if 2 * e >= d:
+        raise InputError(f"{where}: wall_thickness_m {e} must be below half the diameter {d}")
+    di = d - 2 * e
+    area_wall, area_in, area_out = (math.pi / 4 * (d * d - di * di), math.pi / 4 * di * di,
+                                    math.pi / 4 * d * d)
+    mass = (_number(tubes["material_density_kg_m3"], f"{where}.material_density_kg_m3",
+                    positive=True) * area_wall
+            + _number(tubes["internal_fluid_density_kg_m3"],
+                      f"{where}.internal_fluid_density_kg_m3", nonnegative=True) * area_in
+            + _number(tubes["added_mass_coefficient"], f"{where}.added_mass_coefficient",
+                      nonnegative=True) * rho_external * area_out)
+    beam = {"young_modulus": _number(tubes["young_modulus_pa"], f"{where}.young_modulus_pa",
+                                     positive=True),
+            "second_moment": math.pi / 64 * (d**4 - di**4), "mass_per_length": mass,
+            "length": length, "n_modes": _count(tubes["modes"], f"{where}.modes"),
+            "ends": tuple(tubes["ends"]),
+            "damping_ratio": _number(tubes["damping_ratio"], f"{where}.damping_ratio",
+                                     nonnegative=True)}
+    return beam, mass
+
+
+def _regions(flow: dict, rows: int, lengths: list[float]) -> dict[int, list[tuple]]:
+    regions = flow["regions"]
+    if not isinstance(regions, list) or not regions:
+        raise InputError("[flow]: give at least one [[flow.regions]]")
+    out: dict[int, list[tuple]] = {r: [] for r in range(1, rows + 1)}
+    for k, raw in enumerate(regions, 1):
+        where = f"[[flow.regions]] #{k}"
+        reg = _table(raw, "flow.regions", where)
+        span = reg["span"]
+        if (not isinstance(span, list) or len(span) != 2
+                or not 0 <= _number(span[0], f"{where}.span") < _number(span[1], f"{where}.span")
+                <= 1):
+            raise InputError(f"{where}: span = [start, end] as fractions of the span, "
+                             f"0 <= start < end <= 1; got {span!r}")
+        values = (_number(reg["velocity_m_s"], f"{where}.velocity_m_s"),
+                  _number(reg["density_kg_m3"], f"{where}.density_kg_m3", positive=True),
+                  _number(reg["void_fraction"], f"{where}.void_fraction", nonnegative=True))
+        if values[2] >= 1:
+            raise InputError(f"{where}: void_fraction must be < 1, got {values[2]}")
+        for row in reg["rows"] if isinstance(reg["rows"], list) else [reg["rows"]]:
+            if row not in out:
+                raise InputError(f"{where}: row {row!r} is not one of the bundle's rows 1..{rows}")
+            length = lengths[row - 1]
+            item = (span[0] * length, span[1] * length, *values)
+            if any(a < item[1] and item[0] < b for a, b, *_ in out[row]):
+                raise InputError(f"{where}: overlaps another region on row {row}")
+            out[row].append(item)
+    missing = [r for r, items in out.items() if not items]
+    if missing:
+        raise InputError(f"[flow]: rows {missing} have no [[flow.regions]]; give each row its flow")
+    return out
+
+
+def read_description(path: str | Path) -> list[TubeSpec]:
+    """The tubes of a bundle description (TOML), gaps drawn with its seed.
+
+    Examples
+    --------
+    >>> from pathlib import Path
+    >>> specs = read_description(Path("examples/bundle/bundle_geometry.toml"))
+    >>> len(specs), specs[0].tube, [s["name"] for s in specs[0].supports]
+    (12, 'R1C1', ['AVB1', 'AVB2'])
+    """
+    path = Path(path)
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(f"{path}: not valid TOML ({exc})") from None
+    top = _table(raw, "", str(path))
+    for key in ("tubes", "supports", "flow", "simulation"):
+        if top[key] is None:
+            raise KeywordError(f"{path}: missing section [{key}] (docs/flow.md)")
+    tubes = _table(top["tubes"], "tubes", "[tubes]")
+    flow = _table(top["flow"], "flow", "[flow]")
+    sim = _table(top["simulation"], "simulation", "[simulation]")
+    rows, cols = _count(tubes["rows"], "[tubes].rows"), _count(tubes["columns"], "[tubes].columns")
+    spans = tubes["span_lengths_m"]
+    spans = [spans] * rows if not isinstance(spans, list) else spans
+    if len(spans) != rows:
+        raise InputError(f"[tubes].span_lengths_m: one value or one per row ({rows}), got "
+                         f"{len(spans)}")
+    lengths = [_number(v, "[tubes].span_lengths_m", positive=True) for v in spans]
+    if flow["spectrum"] not in SPECTRA:
+        raise KeywordError(f"[flow].spectrum: unknown {flow['spectrum']!r}; choose one of "
+                           f"{list(SPECTRA)}")
+    make_spectrum(flow["spectrum"], **flow["parameters"])  # parameters checked here
+    band = flow["band_hz"]
+    if (not isinstance(band, list) or len(band) != 2
+            or not 0 < _number(band[0], "[flow].band_hz") < _number(band[1], "[flow].band_hz")):
+        raise InputError(f"[flow].band_hz: [low, high] with 0 < low < high [Hz], got {band!r}")
+    regions = _regions(flow, rows, lengths)
+    supports = top["supports"]
+    if not isinstance(supports, list) or not supports:
+        raise InputError("give at least one [[supports]]")
+    seed = top["seed"]
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise InputError(f"seed: expected an integer >= 0, got {seed!r}")
+    rng = np.random.default_rng(seed)
+    specs = []
+    for row in range(1, rows + 1):
+        rho_ext = float(np.mean([r[3] for r in regions[row]]))
+        beam, mass = _beam(tubes, "[tubes]", rho_ext, lengths[row - 1])
+        for col in range(1, cols + 1):
+            contacts = []
+            for k, s in enumerate(supports, 1):
+                where = f"[[supports]] #{k}"
+                sup = _table(s, "supports", where)
+                if sup["type"] not in SUPPORT_TYPES:
+                    raise KeywordError(f"{where}.type: {sup['type']!r}; choose one of "
+                                       f"{list(SUPPORT_TYPES)}")
+                pos = _number(sup["position_m"], f"{where}.position_m", positive=True)
+                if pos >= lengths[row - 1]:
+                    raise InputError(f"{where}.position_m {pos} lies beyond the span of row "
+                                     f"{row} ({lengths[row - 1]} m)")
+                contacts.append({
+                    "name": str(sup["name"]), "position_m": pos,
+                    "obstacle": SUPPORT_TYPES[sup["type"]], "type": sup["type"],
+                    "gap_m": _gap(sup["gap_m"], f"{where}.gap_m", rng),
+                    **{key: _number(sup[key], f"{where}.{key}", nonnegative=True) for key in (
+                        "normal_stiffness_n_m", "normal_damping_n_s_m",
+                        "tangential_stiffness_n_m", "tangential_damping_n_s_m", "friction")}})
+            specs.append(TubeSpec(
+                tube=f"R{row}C{col}", row=row, column=col,
+                diameter=float(tubes["outer_diameter_m"]),
+                wall_thickness=float(tubes["wall_thickness_m"]), mass_per_length=mass,
+                beam=beam, supports=tuple(contacts), regions=tuple(regions[row]),
+                spectrum={"name": flow["spectrum"], **flow["parameters"]},
+                band_hz=(float(band[0]), float(band[1])),
+                connors_constant=_number(flow["connors_constant"], "[flow].connors_constant",
+                                         positive=True),
+                stability_margin=_number(flow["stability_margin"], "[flow].stability_margin",
+                                         positive=True),
+                duration=_number(sim["duration_s"], "[simulation].duration_s", positive=True),
+                archive_step=_number(sim["archive_step_s"], "[simulation].archive_step_s",
+                                     positive=True),
+                grid_points=_count(sim["grid_points"], "[simulation].grid_points"),
+                frequency_points=_count(sim["frequency_points"], "[simulation].frequency_points"),
+                seed=seed * 100_003 + 1000 * row + col))
+    return specs

@@ -1,0 +1,561 @@
+"""Turbulence excitation spectra of Code_Aster's DEFI_SPEC_TURB, projected onto the modes.
+
+Every family is a frozen dataclass registered in :data:`SPECTRA` under its Code_Aster keyword,
+with the catalogue's defaults (``code_aster/Cata/Commands/defi_spec_turb.py``) and one method,
+``modal_spectrum(frequencies, tube)``: the one-sided cross-spectral matrix of the generalised
+forces Q_r = ∫ φ_r·f ds of the modes of a :class:`~fretwear.flow.tube.TubeFlow` [N²/Hz], shape
+(n_f, n_modes, n_modes) (PROJ_SPEC_BASE). The formulas follow the Fortran routines that evaluate
+them (spect1, coesp1, coesp4, sfifj, dspprs, accept, coegen, corcos, specep; GRAPPE_1 in
+:mod:`~fretwear.flow.grappe1`); docs/flow.md cites each and says what is left out
+(SPEC_CORR_CONV_3, the AU_YANG coherence) and why.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from fretwear.errors import InputError, KeywordError
+from fretwear.flow.grappe1 import Grappe1
+from fretwear.flow.projection import convected_acceptance, exponential_acceptance
+from fretwear.flow.tube import TubeFlow
+
+
+def _frequencies(frequencies) -> np.ndarray:
+    f = np.asarray(frequencies, float).reshape(-1)
+    if f.size == 0 or np.any(f <= 0) or not np.all(np.isfinite(f)):
+        raise InputError("turbulence spectrum: frequencies [Hz] must be finite and > 0 (the "
+                         "reduced spectra of SPEC_LONG_COR_3 and _4 diverge at f = 0)")
+    return f
+
+
+def _positive(owner: str, **values: float) -> None:
+    for key, value in values.items():
+        if value is None or not (np.isfinite(value) and value > 0):
+            raise InputError(f"{owner}: {key!r} must be a finite value > 0, got {value!r}")
+
+
+# --------------------------------------------------------------------------- SPEC_LONG_COR_n
+def long_cor_1_coefficients(reynolds: float) -> tuple[float, float, float, float]:
+    """Coefficients (φ₀, ε, f_rc, β) of SPEC_LONG_COR_1 from the Reynolds number (coesp1).
+
+    Parameters
+    ----------
+    reynolds : float
+        Re = Ū·D/ν [-].
+
+    Returns
+    -------
+    φ₀ [-], ε [-], f_rc [-], β [-]
+
+    Notes
+    -----
+    φ₀ = 1.3e-4 × (2.1808 for Re ≤ 1.5e4; 20.42 − 14.00e-4 Re − 9.81e-8 Re² + 11.97e-12 Re³
+    − 35.95e-17 Re⁴ + 34.69e-22 Re⁵ up to 5e4; 38.6075 above); (ε, β) = (0.7, 3) for
+    Re ≤ 3.5e4, (0.3, 4) up to 5.5e4, (0.6, 4) above; f_rc = 0.2.
+
+    References
+    ----------
+    .. [1] Code_Aster, ``bibfor/modelisa/coesp1.F90``.
+
+    Examples
+    --------
+    >>> [round(v, 6) for v in long_cor_1_coefficients(1e4)]
+    [0.000284, 0.7, 0.2, 3.0]
+    """
+    re = abs(float(reynolds))
+    if re <= 1.5e4:
+        phi0 = 2.1808
+    elif re <= 5.0e4:
+        phi0 = (20.42 - 14.00e-4 * re - 9.81e-8 * re**2 + 11.97e-12 * re**3
+                - 35.95e-17 * re**4 + 34.69e-22 * re**5)
+    else:
+        phi0 = 38.6075
+    if re <= 3.5e4:
+        eps, beta = 0.7, 3.0
+    elif re > 5.5e4:
+        eps, beta = 0.6, 4.0
+    else:
+        eps, beta = 0.3, 4.0
+    return phi0 * 1.3e-4, eps, 0.2, beta
+
+
+def long_cor_4_phi0(void_fraction: float) -> float:
+    """φ₀ of SPEC_LONG_COR_4 from the void fraction α (coesp4) [SI units of (ρU)^γ].
+
+    Notes
+    -----
+    φ₀ = 10^(24.042 α^0.5 − 50.421 α^1.5 + 63.483 α^2.5 − 33.284 α^3.5) / 6.8e-2.
+
+    References
+    ----------
+    .. [1] Code_Aster, ``bibfor/modelisa/coesp4.F90``.
+
+    Examples
+    --------
+    >>> round(long_cor_4_phi0(0.0), 4)
+    14.7059
+    """
+    a = float(void_fraction)
+    if not 0 <= a < 1:
+        raise InputError(f"SPEC_LONG_COR_4: the void fraction must lie in [0, 1), got {a!r}")
+    exponent = 24.042 * a**0.5 - 50.421 * a**1.5 + 63.483 * a**2.5 - 33.284 * a**3.5
+    return 10.0**exponent / 6.8e-2
+
+
+@dataclass(frozen=True)
+class _LongCor:
+    """Shared evaluation of the correlation-length families (spect1)."""
+
+    name: ClassVar[str] = ""
+
+    def reduced_spectrum(self, reduced_frequency: np.ndarray, tube: TubeFlow,
+                         velocity: float) -> np.ndarray:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def modal_spectrum(self, frequencies, tube: TubeFlow) -> np.ndarray:
+        """Cross-spectral matrix of the generalised forces [N²/Hz], shape (n_f, n, n).
+
+        S_ij(f) = ¼ D³ Ū²|Ū| · LC2_ij · S_R(f_r), f_r = f·D/|Ū|,
+        LC2_ij = Σ_c ∬ e^{−|s₁−s₂|/λ} ρ(s₁)u(s₁)²φ_i(s₁) ρ(s₂)u(s₂)²φ_j(s₂) ds₁ds₂,
+        λ = LONG_COR·D, u = U/Ū (spect1 §5-6, spect4).
+        """
+        f = _frequencies(frequencies)
+        _positive(self.name, long_cor=self.long_cor)
+        d = tube.diameter
+        u_zone = tube.zone_velocity()
+        u_norm = tube.velocity / u_zone
+        lc2 = exponential_acceptance(tube, self.long_cor * d, tube.density * u_norm**2)
+        fr = np.abs(f * d / u_zone)
+        front = 0.25 * d**3 * u_zone**2 * abs(u_zone)
+        return front * lc2[None, :, :] * self.reduced_spectrum(fr, tube, u_zone)[:, None, None]
+
+
+@dataclass(frozen=True)
+class SpecLongCor1(_LongCor):
+    """SPEC_LONG_COR_1: cross flow, single phase; coefficients from the Reynolds number.
+
+    Parameters
+    ----------
+    long_cor : float
+        Correlation length λ/D [-] (LONG_COR, in diameters).
+    kinematic_viscosity : float
+        ν [m²/s] (VISC_CINE).
+
+    Notes
+    -----
+    S_R(f_r) = φ₀ / ((1 − x)² + 4ε²x), x = (f_r/f_rc)^(β/2), coefficients from
+    :func:`long_cor_1_coefficients` at Re = Ū·D/ν (spect1, ispect = 1).
+
+    Examples
+    --------
+    >>> SpecLongCor1(long_cor=3.0, kinematic_viscosity=1e-6).name
+    'SPEC_LONG_COR_1'
+    """
+
+    name: ClassVar[str] = "SPEC_LONG_COR_1"
+    long_cor: float = math.nan
+    kinematic_viscosity: float = math.nan
+
+    def reduced_spectrum(self, reduced_frequency, tube, velocity):
+        _positive(self.name, kinematic_viscosity=self.kinematic_viscosity)
+        phi0, eps, frc, beta = long_cor_1_coefficients(velocity * tube.diameter
+                                                       / self.kinematic_viscosity)
+        x = (reduced_frequency / frc) ** (beta / 2.0)
+        return phi0 / ((1.0 - x) ** 2 + 4.0 * eps * eps * x)
+
+
+@dataclass(frozen=True)
+class SpecLongCor2(_LongCor):
+    """SPEC_LONG_COR_2: S_R(f_r) = φ₀ / (1 + (f_r/f_rc)^β) (spect1, ispect = 2).
+
+    Parameters
+    ----------
+    long_cor : float
+        λ/D [-].
+    freq_coup, phi0, beta : float
+        f_rc [-] (catalogue 0.1), φ₀ [-] (1.5e-3), β [-] (2.7).
+
+    Examples
+    --------
+    >>> SpecLongCor2(long_cor=3.0).phi0
+    0.0015
+    """
+
+    name: ClassVar[str] = "SPEC_LONG_COR_2"
+    long_cor: float = math.nan
+    freq_coup: float = 0.1
+    phi0: float = 1.5e-3
+    beta: float = 2.7
+
+    def reduced_spectrum(self, reduced_frequency, tube, velocity):
+        return self.phi0 / (1.0 + (reduced_frequency / self.freq_coup) ** self.beta)
+
+
+@dataclass(frozen=True)
+class SpecLongCor3(_LongCor):
+    """SPEC_LONG_COR_3: S_R = φ₀₁/f_r^β₁ for f_r ≤ f_rc, φ₀₂/f_r^β₂ above (spect1, ispect = 3).
+
+    Parameters
+    ----------
+    long_cor : float
+        λ/D [-].
+    freq_coup, phi0_1, beta_1, phi0_2, beta_2 : float
+        Catalogue defaults 0.2, 5e-3, 0.5, 4e-5, 3.5 [-].
+
+    Examples
+    --------
+    >>> SpecLongCor3(long_cor=3.4).beta_2
+    3.5
+    """
+
+    name: ClassVar[str] = "SPEC_LONG_COR_3"
+    long_cor: float = math.nan
+    freq_coup: float = 0.2
+    phi0_1: float = 5.0e-3
+    beta_1: float = 0.5
+    phi0_2: float = 4.0e-5
+    beta_2: float = 3.5
+
+    def reduced_spectrum(self, reduced_frequency, tube, velocity):
+        low = reduced_frequency <= self.freq_coup
+        return np.where(low, self.phi0_1 / reduced_frequency**self.beta_1,
+                        self.phi0_2 / reduced_frequency**self.beta_2)
+
+
+@dataclass(frozen=True)
+class SpecLongCor4(_LongCor):
+    """SPEC_LONG_COR_4: two-phase cross flow, S_R = φ₀(α) / (f_r^β (ρ̄Ū)^γ) (spect1, ispect = 4).
+
+    Parameters
+    ----------
+    long_cor : float
+        λ/D [-].
+    void_fraction : float, optional
+        α [-] (TAUX_VIDE); default: the mean of the tube's void fraction over the grid points in
+        flow.
+    beta, gamma : float
+        Catalogue defaults 2 and 4 [-].
+
+    Notes
+    -----
+    ρ̄ is the mean of the density over the grid points in flow (spect1 averages its nodes);
+    φ₀ from :func:`long_cor_4_phi0`.
+
+    Examples
+    --------
+    >>> SpecLongCor4(long_cor=3.0, void_fraction=0.5).gamma
+    4.0
+    """
+
+    name: ClassVar[str] = "SPEC_LONG_COR_4"
+    long_cor: float = math.nan
+    void_fraction: float | None = None
+    beta: float = 2.0
+    gamma: float = 4.0
+
+    def reduced_spectrum(self, reduced_frequency, tube, velocity):
+        mask = tube.in_flow()
+        alpha = (float(np.mean(tube.void_fraction[mask])) if self.void_fraction is None
+                 else self.void_fraction)
+        rho_u = abs(float(np.mean(tube.density[mask])) * velocity)
+        return long_cor_4_phi0(alpha) / (reduced_frequency**self.beta * rho_u**self.gamma)
+
+
+# --------------------------------------------------------------------------- SPEC_CORR_CONV_n
+#: Coherence functions of the convected families along the tube (accept.F90), by METHODE.
+#: ``AU_YANG`` integrates around the circumference of a surface model: left out (docs/flow.md).
+COHERENCES: tuple[str, ...] = ("GENERALE", "CORCOS")
+
+
+def convected_coherence(method: str, distance, frequency: float, velocity: float,
+                        correlation_length: float) -> np.ndarray:
+    """Coherence of the convected families between two points of the tube's axis [-].
+
+    Parameters
+    ----------
+    method : {"GENERALE", "CORCOS"}
+        METHODE of SPEC_CORR_CONV_1/_2.
+    distance : array_like
+        Signed axial distance s₁ − s₂ [m].
+    frequency : float
+        f [Hz].
+    velocity : float
+        Flow velocity U [m/s]; the convection velocity is U_c = 0.65 U (accept.F90).
+    correlation_length : float
+        L [m] (LONG_COR_1), used by GENERALE.
+
+    Notes
+    -----
+    GENERALE: e^{−|Δ|/L} cos(ω|Δ|/U_c) (coegen); CORCOS along the axis (no transverse
+    separation on a line): e^{−k_l|Δ|} cos(ωΔ/U_c), k_l = 0.1 ω/U_c (corcos, accept).
+
+    Examples
+    --------
+    >>> float(convected_coherence("GENERALE", 0.0, 10.0, 1.0, 0.1))
+    1.0
+    """
+    d = np.abs(np.asarray(distance, float))
+    omega = 2.0 * np.pi * frequency
+    uc = 0.65 * velocity
+    if method == "GENERALE":
+        return np.exp(-d / correlation_length) * np.cos(omega * d / uc)
+    if method == "CORCOS":
+        return np.exp(-0.1 * omega / uc * d) * np.cos(omega * d / uc)
+    raise KeywordError(f"convected spectrum: METHODE {method!r} is not available; choose one of "
+                       f"{list(COHERENCES)} (AU_YANG needs a surface model: docs/flow.md)")
+
+
+@dataclass(frozen=True)
+class _Convected:
+    name: ClassVar[str] = ""
+
+    def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:  # pragma: no cover
+        raise NotImplementedError
+
+    def modal_spectrum(self, frequencies, tube: TubeFlow) -> np.ndarray:
+        """S_ij(f) = S_p(f) · Σ_c ∬ C(s₁−s₂, f) φ_i(s₁) φ_j(s₂) ds₁ds₂ [unit of S_p × m²]."""
+        f = _frequencies(frequencies)
+        _positive(self.name, velocity=self.velocity)
+        if self.method not in COHERENCES:
+            convected_coherence(self.method, 0.0, 1.0, 1.0, 1.0)  # raises the KeywordError
+        length = self.long_cor_1 if self.method == "GENERALE" else 1.0
+        _positive(self.name, long_cor_1=length)
+        sp = self.point_spectrum(f)
+        out = np.zeros((f.size, tube.n_modes, tube.n_modes))
+        live = sp > 0
+        if live.any():
+            acc = convected_acceptance(
+                tube, f[live],
+                lambda d, fk: convected_coherence(self.method, d, fk, self.velocity, length))
+            out[live] = sp[live, None, None] * acc
+        return out
+
+
+@dataclass(frozen=True)
+class SpecCorrConv1(_Convected):
+    """SPEC_CORR_CONV_1: axial flow, wall-pressure spectrum K²(ρU²)²D_h³ up to a cut-off.
+
+    Parameters
+    ----------
+    long_cor_1 : float
+        L [m] (LONG_COR_1).
+    velocity : float
+        U [m/s] (VITE_FLUI).
+    density : float
+        ρ [kg/m³] (RHO_FLUI).
+    hydraulic_diameter : float
+        D_h [m] (D_FLUI).
+    freq_coup : float, optional
+        Cut-off frequency [Hz] (FREQ_COUP); the reduced cut-off is min(FREQ_COUP·D_h/U, 10),
+        10 when not given (sfifj).
+    k : float
+        K [-], catalogue 5.8e-3.
+    method : {"GENERALE", "CORCOS"}
+        Coherence (catalogue default GENERALE).
+
+    Notes
+    -----
+    S_p(f) = K²(ρU²)²D_h³ for f·D_h/U ≤ f_c,red, 0 above (dspprs) [Pa²·m³], so the modal matrix
+    is in Pa²·m⁵ here: Code_Aster integrates it over a surface interface, fretwear along the
+    tube's axis (docs/flow.md).
+
+    Examples
+    --------
+    >>> s = SpecCorrConv1(long_cor_1=0.05, velocity=5.0, density=1000.0, hydraulic_diameter=0.01)
+    >>> float(s.point_spectrum(np.array([100.0, 6000.0]))[1])
+    0.0
+    """
+
+    name: ClassVar[str] = "SPEC_CORR_CONV_1"
+    long_cor_1: float = math.nan
+    velocity: float = math.nan
+    density: float = math.nan
+    hydraulic_diameter: float = math.nan
+    freq_coup: float | None = None
+    k: float = 5.8e-3
+    method: str = "GENERALE"
+
+    def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:
+        _positive(self.name, density=self.density, hydraulic_diameter=self.hydraulic_diameter)
+        dh, u = self.hydraulic_diameter, self.velocity
+        cut = 10.0 if self.freq_coup is None else min(self.freq_coup * dh / u, 10.0)
+        level = self.k**2 * (self.density * u * u) ** 2 * dh**3
+        return np.where(np.asarray(frequencies) * dh / u <= cut, level, 0.0)
+
+
+@dataclass(frozen=True)
+class SpecCorrConv2(_Convected):
+    """SPEC_CORR_CONV_2: a user spectrum S_p(ω) with the convected coherence.
+
+    Parameters
+    ----------
+    function : callable
+        S_p as a function of the circular frequency ω = 2πf [rad/s] (FONCTION, NOM_PARA PULS),
+        vectorised; its unit sets the unit of the result (× m²).
+    velocity : float
+        U [m/s] (VITE_FLUI).
+    freq_coup : float, optional
+        Cut-off [Hz]: S_p = 0 above (sfifj); none when not given.
+    long_cor_1 : float
+        L [m] of the GENERALE coherence. Code_Aster's SPEC_CORR_CONV_2 has no LONG_COR and
+        reads an unset value; fretwear asks for it.
+    method : {"GENERALE", "CORCOS"}
+
+    Examples
+    --------
+    >>> s = SpecCorrConv2(function=lambda w: 1.0 + 0 * w, velocity=2.0, freq_coup=50.0)
+    >>> s.point_spectrum(np.array([10.0, 60.0])).tolist()
+    [1.0, 0.0]
+    """
+
+    name: ClassVar[str] = "SPEC_CORR_CONV_2"
+    function: Callable | None = None
+    velocity: float = math.nan
+    freq_coup: float | None = None
+    long_cor_1: float = math.nan
+    method: str = "GENERALE"
+
+    def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:
+        if not callable(self.function):
+            raise InputError("SPEC_CORR_CONV_2: give 'function', the spectrum as a function of "
+                             "ω [rad/s]")
+        f = np.asarray(frequencies, float)
+        values = np.broadcast_to(np.asarray(self.function(2 * np.pi * f), float), f.shape)
+        if self.freq_coup is not None:
+            values = np.where(f > self.freq_coup, 0.0, values)
+        return np.array(values, float)
+
+
+# --------------------------------------------------------------------------- GRAPPE_2
+#: specep's coefficients of GRAPPE_2, by configuration: (force, moment) rows of
+#: (S_ref, f_r,ref, f_rc, β) for the ascending flows (S₀ = S_ref(1 + (f_r,ref/f_rc)^β)) and
+#: (S₀, f_rc, β) for the descending ones.
+GRAPPE_2_COEFFICIENTS: dict[str, tuple[tuple[float, ...], tuple[float, ...]]] = {
+    "ASC_CEN": ((1.0e-4, 1.9e-1, 7.0e-2, 1.6), (2.7e-5, 1.9e-1, 7.0e-2, 2.1)),
+    "ASC_EXC": ((1.0e-5, 5.0e-1, 2.0e-2, 2.9), (3.3e-4, 1.0e-1, 2.0e-2, 2.8)),
+    "DES_CEN": ((4.0e-5, 1.9e-1, 1.6), (2.7e-5, 1.9e-1, 2.1)),
+    "DES_EXC": ((1.7e-5, 2.2e-1, 2.9), (1.7e-5, 1.9e-1, 2.8)),
+}
+
+
+def grappe_2_spectra(configuration: str, reduced_frequency) -> tuple[np.ndarray, np.ndarray]:
+    """Reduced spectra (force, moment) of GRAPPE_2: S₀ / (1 + (f_r/f_rc)^β) [-] (specep §6.2).
+
+    Examples
+    --------
+    >>> f, m = grappe_2_spectra("DES_CEN", [0.0])
+    >>> float(f[0]), float(m[0])
+    (4e-05, 2.7e-05)
+    """
+    if configuration not in GRAPPE_2_COEFFICIENTS:
+        raise KeywordError(f"GRAPPE_2: unknown configuration {configuration!r}; choose one of "
+                           f"{list(GRAPPE_2_COEFFICIENTS)}")
+    fr = np.asarray(reduced_frequency, float)
+    out = []
+    for row in GRAPPE_2_COEFFICIENTS[configuration]:
+        if len(row) == 4:
+            sref, frref, frc, beta = row
+            s0 = sref * (1.0 + (frref / frc) ** beta)
+        else:
+            s0, frc, beta = row
+        out.append(s0 / (1.0 + (fr / frc) ** beta))
+    return out[0], out[1]
+
+
+@dataclass(frozen=True)
+class Grappe2:
+    """GRAPPE_2 (SPEC_EXCI_POINT): a force and a moment at one point of a control rod.
+
+    Parameters
+    ----------
+    configuration : {"ASC_CEN", "ASC_EXC", "DES_CEN", "DES_EXC"}
+        Ascending/descending flow, centred/eccentric rod (GRAPPE_2).
+    density : float
+        ρ [kg/m³] (RHO_FLUI).
+    velocity : float
+        U [m/s] (PROJ_SPEC_BASE's VITE_FLUI).
+    position : float
+        Abscissa of the excited point along the tube [m] (NOEUD).
+
+    Notes
+    -----
+    With c₁ = 282/890, c₂ = 0.77²/4, c_D = D/8.9e-2, f_r = f·D/|U| (specep):
+    S_ij = ¼c₁²ρ²|U|³D³ [c₁c_D² S_F(f_r) a_i a_j + c₁c_D⁴c₂ S_M(f_r) b_i b_j], with
+    a_r = φ_r,y + φ_r,z at the point (FORCE, both transverse directions, scalep) and
+    b_r = dφ_r,y/ds − dφ_r,z/ds (MOMENT: rotations DRZ + DRY of a beam along x).
+
+    Examples
+    --------
+    >>> Grappe2(configuration="ASC_CEN", density=1000.0, velocity=5.0, position=0.5).name
+    'GRAPPE_2'
+    """
+
+    name: ClassVar[str] = "GRAPPE_2"
+    configuration: str = "ASC_CEN"
+    density: float = math.nan
+    velocity: float = math.nan
+    position: float = math.nan
+
+    def modal_spectrum(self, frequencies, tube: TubeFlow) -> np.ndarray:
+        f = _frequencies(frequencies)
+        _positive(self.name, density=self.density, velocity=abs(self.velocity))
+        s = tube.positions
+        if not s[0] <= self.position <= s[-1]:
+            raise InputError(f"GRAPPE_2: 'position' {self.position!r} m lies outside the tube "
+                             f"[{s[0]}, {s[-1]}] m")
+        d, u = tube.diameter, abs(self.velocity)
+
+        def at(values):  # (n_grid, 2, n) -> (2, n) at the point
+            return np.array([[np.interp(self.position, s, values[:, c, r])
+                              for r in range(tube.n_modes)] for c in range(2)])
+
+        phi, rot = at(tube.shapes), at(tube.rotations)
+        a, b = phi[0] + phi[1], rot[0] - rot[1]
+        c1, c2, cd = 282.0 / 890.0, 0.77 * 0.77 / 4.0, d / 8.9e-2
+        sf, sm = grappe_2_spectra(self.configuration, f * d / u)
+        front = 0.25 * c1 * c1 * self.density**2 * u**3 * d**3
+        return front * (c1 * cd**2 * sf[:, None, None] * np.outer(a, a)[None]
+                        + c1 * cd**4 * c2 * sm[:, None, None] * np.outer(b, b)[None])
+
+
+#: The turbulence spectrum families, by Code_Aster keyword.
+SPECTRA: dict[str, type] = {cls.name: cls for cls in (
+    SpecLongCor1, SpecLongCor2, SpecLongCor3, SpecLongCor4, SpecCorrConv1, SpecCorrConv2,
+    Grappe1, Grappe2)}
+
+
+def make_spectrum(name: str, **parameters: Any):
+    """A spectrum family of :data:`SPECTRA` from its keyword and parameters.
+
+    Parameters are the dataclass fields in lower case (Code_Aster's keywords in capitals are
+    accepted: ``LONG_COR``, ``FREQ_COUP``, ``VISC_CINE`` → ``kinematic_viscosity``,
+    ``TAUX_VIDE`` → ``void_fraction``...).
+
+    Examples
+    --------
+    >>> make_spectrum("SPEC_LONG_COR_3", LONG_COR=3.4).long_cor
+    3.4
+    """
+    key = str(name).upper()
+    if key not in SPECTRA:
+        raise KeywordError(f"unknown turbulence spectrum {name!r}; choose one of {list(SPECTRA)}"
+                           " (SPEC_CORR_CONV_3 is left out: docs/flow.md)")
+    cls = SPECTRA[key]
+    aliases = {"visc_cine": "kinematic_viscosity", "taux_vide": "void_fraction",
+               "vite_flui": "velocity", "rho_flui": "density", "d_flui": "hydraulic_diameter",
+               "methode": "method", "fonction": "function", "grappe_2": "configuration",
+               "grappe_1": "flow_rate"}
+    fields = {f.name for f in dataclasses.fields(cls)}
+    given = {}
+    for raw, value in parameters.items():
+        k = aliases.get(raw.lower(), raw.lower())
+        if k not in fields:
+            raise KeywordError(f"{key}: unknown parameter {raw!r}; it takes {sorted(fields)}")
+        given[k] = value
+    return cls(**given)
