@@ -13,7 +13,7 @@ import pytest
 #: Test folders (and files) whose float results depend on the SIMD code path: marked
 #: ``numeric`` and run a second time with SIMD turned down by ``tests/reduced_simd.py`` (part of
 #: ``make test``), so that a test holding only on the processor that wrote it fails here.
-NUMERIC = ("power", "table", "geometry", "obstacle", "dynamics", "laws",
+NUMERIC = ("power", "table", "geometry", "obstacle", "dynamics", "laws", "flow", "assessment",
            "workflows/test_example_snapshots.py", "test_reduced_simd.py")
 
 
