@@ -186,7 +186,8 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         for fig, stem in figures:
             save_figure(fig, plot_dir, stem, close=True)
         console.print(f"figures written to [bold]{plot_dir}[/]")
-    counts = (f"done {s['done']}, failed {s['failed']}, skipped {s['skipped']} of "
+    stale = f", stale {s['stale']} (earlier rows kept)" if s.get("stale") else ""
+    counts = (f"done {s['done']}, failed {s['failed']}{stale}, skipped {s['skipped']} of "
               f"{s['contacts']} contacts in {s['seconds']:.1f} s")
     if s["done"] == 0 and s["skipped"] == s["contacts"]:  # nothing computed: no cluster
         click.echo(f"{counts} (every contact unchanged since the last run: no cluster started, "
