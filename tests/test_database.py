@@ -82,6 +82,8 @@ def test_fixture_parser_sanity():
 
 def test_every_builtin_value_matches_the_manual():
     db = load_database()
+    # the rows of Code_Aster's usuban.F90 (tests/test_database_usuban.py) are not the manual's
+    db = db[~db["source"].str.contains("usuban.F90")]
     got = {(r.contact_type, r.mobile_material, r.obstacle_material, r.law, r.body, r.parameter):
            r for r in db.itertuples()}
     assert set(got) == set(MANUAL)   # nothing missing, nothing added (empty boxes have no row)
@@ -97,6 +99,8 @@ def test_builtin_values_are_the_manuals_text_verbatim():
     with BUILTIN_CSV.open(encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
     for r in rows:
+        if "usuban.F90" in r["source"]:
+            continue
         key = (r["contact_type"], r["mobile_material"], r["obstacle_material"], r["law"],
                r["body"], r["parameter"])
         assert r["value"] == MANUAL[key][0], key
@@ -108,7 +112,10 @@ def test_units():
     assert units == {("ARCHARD", "coefficient"): "Pa⁻¹",
                      ("EDF_MZ", "rate_coefficient"): "m³/(s·W^b)",
                      ("EDF_MZ", "power_exponent"): "1", ("EDF_MZ", "decay_constant"): "s⁻¹",
-                     ("EDF_MZ", "asymptotic_rate"): "m³/s"}
+                     ("EDF_MZ", "asymptotic_rate"): "m³/s",
+                     ("KWU_EPRI", "reference_coefficient"): "Pa⁻¹",
+                     ("KWU_EPRI", "impact_factor"): "1", ("KWU_EPRI", "sliding_factor"): "1",
+                     ("KWU_EPRI", "k"): "1", ("KWU_EPRI", "c"): "1"}
 
 
 def test_material_codes_match_the_manual():
