@@ -31,6 +31,7 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import check_sector_contact, contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry
+from fretwear.io.geometry_units import check_wall_thickness
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
 from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
@@ -445,6 +446,9 @@ class WearCase:
 
     def _check_wall(self) -> None:
         wall, limit = check_wall(self.wall_thickness, self.depth_limit)
+        # a wall in mm typed into a metre key: thicker than the tube (issue 29)
+        check_wall_thickness(wall, self.dimensions.get("mobile_radius"),
+                             key="wall_thickness (wall_thickness_m in a case file or manifest)")
         object.__setattr__(self, "wall_thickness", wall)
         object.__setattr__(self, "depth_limit", limit)
 
