@@ -68,7 +68,7 @@ def _real(value: Any, name: str, *, none: bool = True) -> float | None:
         try:
             out = float(value)
             ok = math.isfinite(out)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             ok = False
     if not ok:
         raise InputError(f"{name} must be a finite number, got {value!r}")
@@ -78,6 +78,9 @@ def _real(value: Any, name: str, *, none: bool = True) -> float | None:
 def _instants(instants, restart: bool) -> tuple[float, ...]:
     try:
         arr = np.atleast_1d(np.asarray(instants, dtype=float)).ravel()
+    except OverflowError:  # a 400-digit integer
+        raise InputError(f"instants must be finite numbers, got one beyond the float range "
+                         f"({str(instants)[:40]}...)") from None
     except (TypeError, ValueError):
         raise InputError(f"instants must be numbers (user time unit), got {instants!r}") from None
     if arr.size == 0 or not np.isfinite(arr).all():
