@@ -92,7 +92,8 @@ def read_text_table(path: Any, what: str = "table") -> pd.DataFrame:
                           "the first line names the columns")
     header_line = lines[0][1]
     delimiter = max((",", ";", "\t"), key=header_line.count)
-    rows = list(csv.reader([line for _, line in lines], delimiter=delimiter))
+    # one row per line (a quote never joins lines: a row is what the user sees on one line)
+    rows = [next(csv.reader([line], delimiter=delimiter), []) for _, line in lines]
     header = [c.strip() for c in rows[0]]
     seen: set[str] = set()
     for name in header:
