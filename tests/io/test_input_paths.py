@@ -187,3 +187,15 @@ def test_a_non_fretwear_value_error_is_a_bug_exit_3(monkeypatch, capsys):
     assert main(["materials"]) == INTERNAL_ERROR == 3
     assert "internal error" in capsys.readouterr().err
     assert pd.isna(np.nan)
+
+
+def test_a_400_digit_length_in_a_manifest_fails_its_contact(tmp_path):
+    """Found by the deep fuzz run (FRETWEAR_FUZZ_SCALE=20): geometry.mobile_radius_m given a
+    400-digit integer raised an OverflowError out of run_bundle."""
+    path = tmp_path / "m.toml"
+    path.write_text(f'[[contacts]]\ncontact = "A"\n"power.value_W" = 1e-3\n'
+                    f'"geometry.mobile_radius_m" = {"1" * 400}\n'
+                    f'[[contacts]]\ncontact = "B"\n"power.value_W" = 1e-3\n')
+    result = _run(tmp_path, path)
+    assert result.errors["contact"].tolist() == ["A"]
+    assert "beyond the range of numbers" in result.errors["message"].iloc[0]
