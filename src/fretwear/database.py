@@ -16,7 +16,9 @@ source         provenance (optional in user files, default ``<file>:<line>``)
 ============== ==================================================================================
 
 The built-in values are those of the coefficient tables of Code_Aster's POST_USURE reference
-manual (R7.20.01 §3), verbatim, even where Code_Aster's current source differs (theory §5). An
+manual (R7.20.01 §3), verbatim, even where Code_Aster's current source differs (theory §5), and
+the KWU_EPRI and EDF_MZ values of TUBE_BAV I600/I600 that only Code_Aster's database routine
+(``usuban.F90``) has, their ``source`` naming it (docs/laws.md lists where the two differ). An
 empty box of those tables has no row: asking for it is a :class:`DatabaseError` that lists what
 exists. User files extend the built-in rows and override a row with the same
 (contact_type, mobile_material, obstacle_material, law, body, parameter); the ``source`` and
@@ -241,7 +243,7 @@ def load_database(paths: str | os.PathLike | Iterable[str | os.PathLike] | None 
     --------
     >>> db = load_database()
     >>> len(db), sorted(db.law.unique())
-    (111, ['ARCHARD', 'EDF_MZ'])
+    (120, ['ARCHARD', 'EDF_MZ', 'KWU_EPRI'])
     """
     frames = [_builtin().copy()] if builtin else []
     if paths is not None:

@@ -61,3 +61,8 @@ def check_keys(items: Mapping[str, Any], spec: Mapping[str, tuple[Any, str]], so
         if (isinstance(value, bool) and kind is not bool) or not isinstance(value, kind):
             raise KeywordError(f"{source}: {key_prefix}{key} = {value!r} has the wrong type; "
                                f"expected {spec[key][1]}")
+        if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 1000:
+            # a 400-digit integer: float(value) overflowed later (issue 29)
+            raise KeywordError(f"{source}: {key_prefix}{key} = {str(value)[:20]}... "
+                               f"({len(str(abs(value)))} digits) is beyond the range of numbers; "
+                               f"expected {spec[key][1]}")

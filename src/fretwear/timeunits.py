@@ -2,13 +2,30 @@
 
 from __future__ import annotations
 
-__all__ = ["TIME_UNITS", "describe_time_units"]
+__all__ = ["TIME_UNITS", "describe_time_units", "time_unit_name"]
 
 #: Named time units -> seconds per unit (a year is 365 days, Code_Aster users' 31 536 000 s).
 TIME_UNITS: dict[str, float] = {
     "s": 1.0, "second": 1.0, "min": 60.0, "minute": 60.0, "h": 3600.0, "hour": 3600.0,
     "day": 86400.0, "week": 604800.0, "year": 31536000.0,
 }
+
+
+def time_unit_name(name: str) -> str:
+    """The name of :data:`TIME_UNITS` a user's spelling means: case and surrounding spaces
+    ignored, a plural of a named unit taken as the unit ("years" -> "year"); other names
+    returned as given (stripped), for the caller to refuse.
+
+    >>> [time_unit_name(u) for u in (" Years", "hours", "s", "fortnight")]
+    ['year', 'hour', 's', 'fortnight']
+    """
+    text = str(name).strip()
+    for candidate in (text, text.lower()):
+        if candidate in TIME_UNITS:
+            return candidate
+        if candidate.endswith("s") and candidate[:-1] in TIME_UNITS and len(candidate) > 2:
+            return candidate[:-1]
+    return text
 
 
 def describe_time_units() -> str:

@@ -102,7 +102,9 @@ def test_a_run_without_rows_removes_the_earlier_runs_dataset(tmp_path):
     out = tmp_path / "out"
     run_bundle(manifest, case, scheduler="serial", output=out, dataset_format="netcdf")
     assert (out / "dataset.nc").is_file()
+    # other contacts (an earlier contact failing now would keep its rows: stale)
     frame = pd.read_csv(manifest).assign(history="histories/missing.parquet")
+    frame["contact"] = frame["contact"] + "-new"
     failed = run_bundle(frame, case, scheduler="serial", output=out, dataset_format="netcdf")
     assert failed.stats["failed"] == 2 and not len(failed.table)
     assert not (out / "dataset.nc").exists()

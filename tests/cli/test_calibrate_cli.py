@@ -113,3 +113,14 @@ def test_bundle_calibration(bundle_output, tmp_path, capsys):
     one = read_wear_table(out / "table.parquet") if (out / "table.parquet").exists() else None
     if one is not None:
         assert len(tables[contacts[0]]) == (one["contact"] == contacts[0]).sum()
+
+
+def test_the_readmes_calibrate_line_runs_on_the_shipped_inspections(bundle_output, capsys):
+    """README: ``fretwear calibrate examples/bundle/inspections.csv --bundle build/bundle``
+    (issue 29: the line named a file nobody had)."""
+    out, _ = bundle_output
+    readme = (EXAMPLES.parent / "README.md").read_text(encoding="utf-8")
+    assert "fretwear calibrate examples/bundle/inspections.csv --bundle build/bundle" in readme
+    assert main(["calibrate", str(EXAMPLES / "bundle" / "inspections.csv"), "--bundle",
+                 str(out)]) == 0
+    assert "posterior (" in capsys.readouterr().out

@@ -69,6 +69,9 @@ def test_help_documents_every_key(capsys):
         for key in keys:
             assert f"{key}:" in text, key
     for native, (aster, unit, _) in COLUMNS.items():
+        # a time column names the case's unit ([time] unit), not the schema's placeholder
+        unit = ("time unit of [time] unit, e.g. year" if unit == COLUMNS["instant"][1]
+                else unit)
         assert f"{native} ({aster}) [{unit}]" in text
     for option in ("--output", "--plot", "--aster-names", "--aster-format", "--database",
                    "--quiet"):

@@ -65,10 +65,10 @@ def test_edf_mz_with_the_catalogue_defaults():
 
 
 def test_a_pair_without_coefficients_reads_as_sentences():
-    # Code_Aster's usuban has KWU_EPRI values for TUBE_BAV I600_I600; R7.20.01's tables do not
+    # Code_Aster's usuban has KWU_EPRI values for TUBE_BAV I600_I600 only (docs/laws.md)
     with pytest.raises(DatabaseError, match=r"--database\)\. MATER_USURE in Code_Aster's form "
-                                            r"for TUBE_BAV/KWU_EPRI: none$"):
-        POST_USURE(PUIS_USURE=0.01, LOI_USURE="KWU_EPRI", MATER_USURE="I600_I600",
+                                            r"for TUBE_BAV/KWU_EPRI: I600_I600$"):
+        POST_USURE(PUIS_USURE=0.01, LOI_USURE="KWU_EPRI", MATER_USURE="I600_A405",
                    CONTACT="TUBE_BAV", RAYON_MOBILE=9.525e-3, LARGEUR_OBST=12.7e-3, INST=(1.0,))
 
 

@@ -37,7 +37,7 @@ def path_stamp(path: str | os.PathLike) -> tuple:
     p = Path(path)
     try:
         st = p.stat()
-    except OSError:
+    except (OSError, ValueError):  # a NUL byte in the name: the reader names it
         return ("missing",)
     if not p.is_dir():
         return (st.st_size, st.st_mtime_ns)

@@ -243,6 +243,21 @@ def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
             "seconds": 0.0, "attrs": None, "state": None}
 
 
+def _kept(rec: dict[str, Any], old: dict[str, Any] | None) -> dict[str, Any]:
+    """A contact failing this run (its history moved, unreadable, a case now invalid) whose
+    earlier run in the output directory computed it: its earlier record and rows kept, status
+    ``"stale"``, this run's error beside them. A stale record is never written to a part, so the
+    earlier good record stays the contact's latest (a later run with the input back skips it);
+    any other record is returned as it is."""
+    if rec["status"] != "failed" or not old or old.get("status") != "done" \
+            or not old.get("rows_file"):
+        return rec
+    said = [list(w) for w in old.get("warnings") or []]
+    said += [list(w) for w in rec.get("warnings") or [] if list(w) not in said]
+    return {**old, "status": "stale", "error": rec["error"], "warnings": said, "table": None,
+            "state": None}
+
+
 def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = None,
                output: str | os.PathLike | None = None, force: bool = False,
                chunk_size: int = DEFAULT_CHUNK_SIZE, split_every: int = 8, retries: int = 2,
@@ -346,7 +361,10 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     # nothing leaves nothing behind (an empty parts/ folder before, found by a user's trial)
     check_base_case(base, man.rows, man.source, cases)
     store = None if output is None else OutputDirectory(output, table_format=table_format)
-    previous = {} if store is None or force else store.previous()
+    # every contact's latest record in the directory: the ones to skip (unless force), and
+    # the earlier rows a contact failing this run keeps (_kept, even with force)
+    earlier = {} if store is None else store.previous()
+    previous = {} if force else earlier
 
     records: dict[str, dict[str, Any]] = {}
     buffer: list[dict[str, Any]] = []
@@ -360,8 +378,9 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
             except ROW_ERRORS as exc:  # with the warnings its case raised before failing
                 said = [list(w) for w in getattr(exc, "case_warnings", ())]
-                records[row.contact] = _failed(
-                    ContactTask(row.contact, row.history, {}, warnings=said), exc)
+                records[row.contact] = _kept(_failed(
+                    ContactTask(row.contact, row.history, {}, warnings=said), exc),
+                    earlier.get(row.contact))
                 continue
             old = previous.get(row.contact)
             if old is not None and old.get("status") == "done" and old.get("key") == task.key:
@@ -415,10 +434,11 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 group = handles[id(handle)][1]
                 values = value if isinstance(value, list) else [value] * len(group)
                 for task, one in zip(group, values, strict=True):
-                    rec = one if isinstance(one, dict) else _failed(task, one)
+                    rec = _kept(one if isinstance(one, dict) else _failed(task, one),
+                                earlier.get(task.contact))
                     records[task.contact] = rec
                     done_count += 1
-                    if store is not None:
+                    if store is not None and rec["status"] != "stale":
                         buffer.append(rec)
                         now = time.perf_counter()
                         if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
@@ -495,7 +515,7 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
     packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
                                          if records[c].get("table") is not None}
     missing = [records[c] for c in order if c not in packed and records[c]["status"]
-               in ("done", "skipped")]
+               in ("done", "skipped", "stale")]
     if missing and store is not None:  # a restart: the rows of skipped contacts from the parts
         packed.update(store.packed_rows(missing))
     kept = [c for c in order if c in packed]
@@ -529,6 +549,11 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
         if rec["status"] == "failed":
             errors.append({"contact": c, "error": rec["error"][0], "message": rec["error"][1],
                            "rows_kept": False})
+        elif rec["status"] == "stale":  # failed this run, its earlier run's rows kept
+            errors.append({"contact": c, "error": rec["error"][0],
+                           "message": f"{rec['error'][1]} (this run could not recompute it: "
+                                      f"its rows are the earlier run's, {rec['part']})",
+                           "rows_kept": True})
         elif rec["status"] in ("done", "skipped"):
             ranged = [m for cat, m in rec.get("warnings") or [] if cat == "RangeWarning"]
             if ranged:  # the global depth's warning (the summary ranks by it), else a sector's
@@ -544,7 +569,8 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
     started, startup = times
     stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
              "failed": int(statuses.get("failed", 0)),
-             "skipped": int(statuses.get("skipped", 0)), "seconds": math.nan,
+             "skipped": int(statuses.get("skipped", 0)),
+             "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
              "startup_seconds": startup, "contacts_per_s": math.nan, "samples": samples,
              "samples_per_s": math.nan, "workers": workers, "manifest": man.source}
     result = BundleResult(table=table, errors=errors_frame,

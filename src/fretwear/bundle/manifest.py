@@ -56,6 +56,8 @@ from fretwear.io import guess_format
 from fretwear.io.aster import read_aster_tables
 from fretwear.io.aster_source import NODE_COLUMNS
 from fretwear.io.delimited import UTF16_BOMS, scan
+from fretwear.io.guard import readable_file, reading
+from fretwear.io.text_tables import decode_text
 
 #: Case keys holding paths (relative to the manifest when given in a manifest cell).
 PATH_KEYS = {("restart", "table"), ("law", "database")}
@@ -244,6 +246,10 @@ def _cells(cells, contact: str, source: str, directory: Path, noun: str = "colum
             wall = _wall(value, contact, source)
         elif isinstance(key, str):
             identity[key] = _identity_value(value)
+            if not isinstance(identity[key], str | int | float | bool):
+                raise InputError(f"{source}: contact {contact!r}: {noun} {name} = {value!r} is "
+                                 f"not one value (a number or a name); give one {name} per "
+                                 "contact")
         else:
             value = _plain(value)
             overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
@@ -275,19 +281,29 @@ def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
     if p.is_absolute():
         return str(p)
     if parents is None or p.name in ("", ".", ".."):
-        return str((directory / p).resolve())
+        return _resolved(directory / p)
     folder = parents.get(p.parent)
     if folder is None:
         try:
             folder = parents[p.parent] = (directory / p.parent).resolve()
-        except (OSError, RuntimeError, ValueError):  # a link loop, a NUL: raised for the file
-            return str((directory / p).resolve())  # as Path.resolve raises it (its message)
+        except (OSError, RuntimeError, ValueError):  # a link loop, a NUL: the reader says so
+            return _resolved(directory / p)
     target = folder / p.name
     try:
         link = stat.S_ISLNK(os.lstat(target).st_mode)
     except (OSError, ValueError):  # Path.is_symlink would raise ENAMETOOLONG, EACCES
-        return str((directory / p).resolve())
-    return str(target.resolve() if link else target)
+        return _resolved(directory / p)
+    return _resolved(target) if link else str(target)
+
+
+def _resolved(path: Path) -> str:
+    """``path`` resolved, or as written when it cannot be (a loop of links: a RuntimeError on
+    Python < 3.13; a NUL byte: a ValueError): the contact's reader then fails with a fretwear
+    error naming it (:func:`fretwear.io.guard.readable_file`), the other contacts go on."""
+    try:
+        return str(path.resolve())
+    except (OSError, RuntimeError, ValueError):
+        return str(path)
 
 
 def _flatten(table: Mapping[str, Any], source: str, prefix: str = "") -> dict[str, Any]:
@@ -330,7 +346,8 @@ def _flatten(table: Mapping[str, Any], source: str, prefix: str = "") -> dict[st
 
 def _read_toml(path: Path) -> pd.DataFrame:
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        with reading(path, "toml", "manifest"):
+            raw = tomllib.loads(decode_text(path.read_bytes(), f"manifest {str(path)!r}"))
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"manifest {str(path)!r} is not valid TOML: {exc}") from None
     extra = sorted(set(raw) - {"contacts"})
@@ -437,6 +454,8 @@ def _read(source: Any) -> Manifest:
     path = Path(source)
     if not path.exists():
         raise InputError(f"manifest {str(path)!r} does not exist")
+    if not path.is_dir():  # a store is a directory; a file is read through the guard layer
+        readable_file(path, "manifest")  # (a named pipe or a device refused, never read)
     directory = path.resolve().parent
     label = str(path)
     suffix = path.suffix.lower()
@@ -449,7 +468,8 @@ def _read(source: Any) -> Manifest:
                         "table")
     if suffix in (".parquet", ".pq"):
         require("pyarrow", purpose="reading a Parquet manifest")
-        frame = pd.read_parquet(path)
+        with reading(readable_file(path, "manifest"), "parquet", "manifest"):
+            frame = pd.read_parquet(path)
     elif suffix in (".csv", ".tsv"):  # the separator is found, not taken from the suffix
         frame = _read_csv(path, label)
     else:

@@ -47,13 +47,16 @@ class BundleResult:
         support, node, history`` in front, contacts in manifest order.
     errors : DataFrame
         One row per contact that failed (``error`` = the error class, ``message``,
-        ``rows_kept`` False), or whose depth left its relation's range (``error`` =
-        ``RangeWarning``, ``rows_kept`` True: its rows are in the table with NaN depths).
+        ``rows_kept`` False), failed this run but keeps an earlier run's rows (status
+        ``stale``: ``rows_kept`` True, the message names the earlier part), or whose depth left
+        its relation's range (``error`` = ``RangeWarning``, ``rows_kept`` True: its rows are in
+        the table with NaN depths).
     warnings : DataFrame
         ``contact, category, message``: every warning of every contact, captured in its task.
     contacts : DataFrame
         One row per contact: identity, ``status`` (``done``, ``failed``, ``skipped`` = done by an
-        earlier run with the same inputs), ``samples``, ``seconds`` (compute time),
+        earlier run with the same inputs, ``stale`` = failed this run, the rows of an earlier
+        run kept in the table and in the output directory), ``samples``, ``seconds`` (compute time),
         ``power`` [W], ``time_unit``, ``origin`` and ``tube_replacement`` [time unit],
         ``wall_thickness`` [m] (when given), ``depth_limit`` [-], and the wear table's
         ``contact_type``, ``dimensions`` (dict: lengths [m], angles [deg]), ``law``,
@@ -61,7 +64,8 @@ class BundleResult:
         obstacle's None when it does not wear) and ``time_scale`` [s per time unit] (None for
         a failed contact).
     stats : dict
-        ``contacts``, ``done``, ``failed``, ``skipped``, ``seconds`` (wall time of the run
+        ``contacts``, ``done``, ``failed``, ``skipped``, ``stale``, ``seconds`` (wall time of
+        the run
         [s], from the call to the results assembled and the output files written),
         ``startup_seconds`` (starting or joining the cluster), ``contacts_per_s`` and
         ``samples_per_s`` (computed contacts and history samples per second of the run without
@@ -464,7 +468,8 @@ def _coordinate(values: pd.Series, name: str) -> np.ndarray:
 def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
     """The bundle's wear tables as an xarray Dataset (see :attr:`BundleResult.dataset`)."""
     xr = require("xarray")
-    done = contacts[contacts["status"].isin(["done", "skipped"])] if len(contacts) else contacts
+    done = (contacts[contacts["status"].isin(["done", "skipped", "stale"])] if len(contacts)
+            else contacts)
     ids = [c for c in done["contact"].astype(str)] if len(done) else []
     sector_mode = "sector" in table.columns and table["sector"].notna().any()
     wear = [c for c in table.columns if c in COLUMNS and c not in ("instant", "sector")]

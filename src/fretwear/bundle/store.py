@@ -12,7 +12,9 @@ Layout of ``OUT/``::
 A part's rows are written first and its JSON last, both atomically (temporary file + rename), so
 a part exists only once complete: a run killed at any moment leaves whole parts. The next run
 reads the JSON records, skips every contact whose input key is unchanged and whose status was
-``done``, and recomputes the others (``force=True`` recomputes all).
+``done``, and recomputes the others (``force=True`` recomputes all). A contact that fails
+when recomputed (its history moved, unreadable) keeps its earlier record and rows: it is
+reported ``stale`` and its failed record is not written, so no rerun loses a result.
 """
 
 from __future__ import annotations

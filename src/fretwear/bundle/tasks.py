@@ -25,8 +25,9 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.datasets import frame_of, require, store_arrays
-from fretwear.io import open_source, read_history
+from fretwear.io import iter_history_chunks, open_source, read_history
 from fretwear.io.channels import build_history, resolve_columns, resolve_units
+from fretwear.io.geometry_units import check_against_geometry
 from fretwear.power import PowerAccumulator, wear_power
 from fretwear.table import wear_table_columns
 
@@ -250,10 +251,36 @@ def _file_table(task: ContactTask, chunk_size: int):
     def progress(samples: int) -> None:
         read[0] = samples
 
+    _geometry_probe(task, chunk_size)
     power = wear_power(task.history.path, **task.wear_case().power_options,
                        chunk_size=chunk_size, progress=progress, name=task.contact,
                        **_file_options(task))
     return _wear_table(power, task), read[0]
+
+
+#: Samples of a streamed history's first chunk read to check its units against the contact's
+#: geometry (:func:`fretwear.io.geometry_units.check_against_geometry`; a unit error shows in
+#: the first block, as the plausibility checks assume).
+PROBE_SAMPLES = 1 << 16
+
+
+def _geometry_probe(task: ContactTask, chunk_size: int) -> None:
+    """The geometry checks of a streamed history on its first chunk (its absolute-limit
+    warnings left to the stream that follows, which gives them once)."""
+    dims = task.wear_case().dimensions
+    if not dims.get("mobile_radius"):
+        return
+    chunks = iter_history_chunks(task.history.path, chunk_size=min(chunk_size, PROBE_SAMPLES),
+                                 name=task.contact, **_file_options(task))
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            first = next(chunks, None)
+    finally:
+        chunks.close()
+    if first is not None:
+        check_against_geometry(first, mobile_radius=dims.get("mobile_radius"),
+                               obstacle_radius=dims.get("obstacle_radius"), name=task.contact)
 
 
 def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any]:
@@ -388,7 +415,13 @@ def chunk_state(task: ContactTask, start: int, stop: int, bounds: tuple[float, f
     opts["t_end"] = bounds[1] if opts["t_end"] is None else opts["t_end"]
     with captured() as caught:
         try:
-            acc = PowerAccumulator(**opts).update(read_part(task, start, stop))
+            part = read_part(task, start, stop)
+            if start == 0:  # the first chunk: units against the geometry (said once)
+                dims = task.wear_case().dimensions
+                check_against_geometry(part, mobile_radius=dims.get("mobile_radius"),
+                                       obstacle_radius=dims.get("obstacle_radius"),
+                                       name=task.contact)
+            acc = PowerAccumulator(**opts).update(part)
         except Exception as exc:  # noqa: BLE001
             return _record(task, status="failed", caught=caught, error=_error(exc),
                            seconds=time.perf_counter() - t0)

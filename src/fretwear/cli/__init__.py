@@ -95,7 +95,9 @@ def _main(argv: list[str] | None) -> int:
     except KeyboardInterrupt as exc:  # outside click's own handling
         return _interrupted(exc)
     except Exception as exc:  # noqa: BLE001 - turn library errors into a clean message
-        if isinstance(exc, FretwearError | FileNotFoundError | ValueError):
+        # fretwear's errors name the culprit and the fix: exit 2. A ValueError of another
+        # library escaped the guard layer: a bug of fretwear, exit 3 (issue 29)
+        if isinstance(exc, FretwearError | FileNotFoundError):
             click.echo(f"fretwear: error: {exc}", err=True)
             return 2
         if isinstance(exc, MemoryError):

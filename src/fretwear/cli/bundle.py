@@ -19,6 +19,7 @@ from rich.table import Table
 from rich.text import Text
 
 from fretwear.bundle import run_bundle
+from fretwear.bundle.digest import warning_lines
 from fretwear.bundle.engine import BundleInterrupted
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
@@ -61,8 +62,7 @@ the contacts finished are written to OUT, and the same command resumes from them
 """
 
 
-def _summary(result, console, top: int, limit: float | None) -> None:
-    summary = result.summary(limit)
+def _summary(summary, console, top: int, limit: float | None) -> None:
     if not len(summary):
         return
     shown = "each case's depth_limit" if limit is None else f"{limit:.0%} of the wall"
@@ -167,7 +167,11 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
                                 progress=step, limit=limit)
         except BundleInterrupted as exc:  # Ctrl-C: the main entry prints it, exit 130
             raise KeyboardInterrupt(f"{exc}; run the same command again to resume") from exc
-    _summary(result, console, top, limit)
+    # bad news first: a tube through its wall, units that look wrong (one line per kind)
+    summary = result.summary(limit)
+    for line in warning_lines(result.warnings, list(summary["contact"].astype(str))):
+        click.echo(line)  # shown with -q too
+    _summary(summary, console, top, limit)
     s = result.stats
     errors = result.errors
     if len(errors):
@@ -186,7 +190,8 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         for fig, stem in figures:
             save_figure(fig, plot_dir, stem, close=True)
         console.print(f"figures written to [bold]{plot_dir}[/]")
-    counts = (f"done {s['done']}, failed {s['failed']}, skipped {s['skipped']} of "
+    stale = f", stale {s['stale']} (earlier rows kept)" if s.get("stale") else ""
+    counts = (f"done {s['done']}, failed {s['failed']}{stale}, skipped {s['skipped']} of "
               f"{s['contacts']} contacts in {s['seconds']:.1f} s")
     if s["done"] == 0 and s["skipped"] == s["contacts"]:  # nothing computed: no cluster
         click.echo(f"{counts} (every contact unchanged since the last run: no cluster started, "

@@ -88,7 +88,7 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
         console.print("[yellow]warnings:[/]")
         for w in result.warnings:
             console.print(f"  - {w}", markup=False, highlight=False, style="yellow")
-    console.print(f"outputs written to [bold]{result.directory}[/]")
+    click.echo(f"outputs written to {result.directory}")  # where it writes, even with -q
 
 
 def _change(row) -> str:

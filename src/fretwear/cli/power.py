@@ -91,7 +91,8 @@ def _print_table(result, caught: list[str], interval=None, sector_intervals=()) 
     head = Table(title=f"Wear power of {result.name or 'history'}", show_header=False)
     head.add_column("quantity")
     head.add_column("value", justify="right")
-    head.add_row("window", f"[{result.t_start:.6g}, {result.t_end:.6g}] s")
+    # + 0.0: a window starting at -0.0 printed "[-0, ...]"
+    head.add_row("window", f"[{result.t_start + 0.0:.6g}, {result.t_end + 0.0:.6g}] s")
     head.add_row("duration T", _fmt(result.duration, "s"))
     head.add_row("wear power P", _fmt(result.total, "W"))
     if interval is not None:

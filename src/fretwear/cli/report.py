@@ -61,6 +61,6 @@ def command(case_file: Path, output: Path, inspections, units, **options) -> Non
     require("matplotlib.pyplot", purpose="fretwear report")
     case = with_history_units(load_case(case_file), parse_units(units))
     check_outputs({"-o": output}, {**case_inputs(case, case_file), "inspections": inspections})
-    analysis = analyse_case(case, inspections=inspections, **options)
+    analysis = analyse_case(case, inspections=inspections, source=case_file, **options)
     written = write_report(analysis, output)
     Console().print(f"report written to [bold]{written}[/]")

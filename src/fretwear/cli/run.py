@@ -35,8 +35,10 @@ from fretwear.workflows.inputs import RESTART_TABLE, case_inputs
 
 def columns_help() -> str:
     """The output columns (native name, Code_Aster name, unit, meaning), as plain text."""
-    return "\n".join(f"  {native} ({aster}) [{unit}]: {meaning}"
-                     for native, (aster, unit, meaning) in COLUMNS.items())
+    placeholder = COLUMNS["instant"][1]  # the schema's word for the case's [time] unit
+    return "\n".join(f"  {native} ({aster}) "
+                     f"[{'time unit of [time] unit, e.g. year' if unit == placeholder else unit}]"
+                     f": {meaning}" for native, (aster, unit, meaning) in COLUMNS.items())
 
 
 _ASTER = "/".join(ASTER_SUFFIXES)
@@ -262,5 +264,5 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
         console.print(f"figures written to [bold]{plot_dir}[/]: "
                       + ", ".join(f.name for f in files))
     if report is not None:
-        written = write_report(analyse_case(case, result=result), report)
+        written = write_report(analyse_case(case, result=result, source=case_file), report)
         console.print(f"report written to [bold]{written}[/]")

@@ -147,8 +147,14 @@ def readable_file(path: Any, what: str = "file") -> Path:
         raise InputError(f"{what} {text!r}: not a valid file name ({exc})") from None
     if stat.S_ISDIR(mode):
         raise InputError(f"{what} {text!r} is a directory, not a file")
-    if not stat.S_ISREG(mode) and not stat.S_ISFIFO(mode):
-        raise InputError(f"{what} {text!r} is not a regular file")
+    if stat.S_ISFIFO(mode):
+        # a pipe without a writer blocked the reader forever; one whose writer is done before
+        # the reader opens it loses what it sent (issue 29): files only
+        raise InputError(f"{what} {text!r} is a named pipe (FIFO), not a file: reading it can "
+                         "block forever; save the stream to a file and give that file")
+    if not stat.S_ISREG(mode):
+        raise InputError(f"{what} {text!r} is not a regular file (a device or socket); give "
+                         "the path of a file")
     if not os.access(p, os.R_OK):
         raise InputError(f"{what} {text!r} cannot be read (permission denied): check its "
                          "permissions")

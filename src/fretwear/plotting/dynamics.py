@@ -113,7 +113,8 @@ def plot_iteration(summary, profiles, *, ax=None):
              label="mobile")
     ax1.plot(summary["instant"], np.asarray(summary["depth_obstacle_max"]) * 1e3, "s-",
              label="obstacle")
-    ax1.set_xlabel("instant [user unit]")
+    unit = summary.attrs.get("time_unit") if hasattr(summary, "attrs") else None
+    ax1.set_xlabel(f"instant [{unit}]" if unit else "instant (the case's time unit)")
     ax1.set_ylabel("max obstacle-profile depth [mm]")
     ax1.legend(fontsize=8)
     ax2.plot(summary["cycle"], summary["power"], "o-")

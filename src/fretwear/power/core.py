@@ -61,6 +61,11 @@ def _as_bound(value, keyword: str) -> float | None:
     return x
 
 
+#: Most blocks of a window (each holds a power per sector and its statistics: some 100 bytes a
+#: block for 4 sectors, 100 MB at this bound).
+MAX_BLOCKS = 1_000_000
+
+
 class PowerAccumulator:
     """Streaming reduction of the wear power and contact statistics.
 
@@ -114,6 +119,10 @@ class PowerAccumulator:
             raise InputError(f"blocks must be an integer number of blocks >= 1, got {blocks!r}")
         if blocks < 1:
             raise InputError(f"blocks must be >= 1 (number of equal blocks), got {blocks}")
+        if blocks > MAX_BLOCKS:  # blocks = 4831838208 tried to allocate 36 GiB (issue 29)
+            raise InputError(f"blocks (NB_BLOC) = {blocks} is more than {MAX_BLOCKS:,} blocks "
+                             "(each holds a power per sector: the memory grows with them); "
+                             "give fewer blocks, at most the history's samples to be useful")
         self.t_start = _as_bound(t_start, "t_start")
         self.t_end = _as_bound(t_end, "t_end")
         if self.t_start is not None and self.t_end is not None and self.t_end <= self.t_start:

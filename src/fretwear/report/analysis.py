@@ -126,7 +126,7 @@ def _instants(result: CaseResult) -> np.ndarray:
 
 
 def analyse_case(case, *, result: CaseResult | None = None, inspections=None,
-                 **overrides) -> Analysis:
+                 source: str | os.PathLike | None = None, **overrides) -> Analysis:
     """Run a case and analyse its uncertainty.
 
     Parameters
@@ -137,6 +137,8 @@ def analyse_case(case, *, result: CaseResult | None = None, inspections=None,
         The case's run when it has been run already (``fretwear run --report``).
     inspections : path-like or DataFrame, optional
         Inspected depths for a calibration (default the section's ``inspections``).
+    source : path-like, optional
+        The case file the report names, when ``case`` is its loaded dict (else "(dict)").
     **overrides
         Options of :data:`UNCERTAINTY_KEYS` replacing the section's (None: keep).
 
@@ -150,7 +152,9 @@ def analyse_case(case, *, result: CaseResult | None = None, inspections=None,
     bodies and every sector), the power's the batch-means interval of its blocks
     (docs/uncertainty.md). Sobol' indices are computed for the depth at the last instant.
     """
-    source = "(dict)" if isinstance(case, Mapping) else os.fspath(case)
+    # the case file the report names (a loaded case's dict does not hold its name)
+    source = (os.fspath(source) if source is not None
+              else "(dict)" if isinstance(case, Mapping) else os.fspath(case))
     data = dict(case) if isinstance(case, Mapping) else load_case(case)
     options = uncertainty_options(data, overrides)
     result = run_case(data) if result is None else result

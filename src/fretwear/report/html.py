@@ -78,21 +78,27 @@ def _table_html(frame: pd.DataFrame, formats: dict[str, tuple[float, str]] | Non
     return {"columns": [str(c) for c in frame.columns], "rows": rows}
 
 
-def _unit_label(column: str) -> str:
+def _unit_label(column: str, time_unit: str | None = None) -> str:
+    """``column [unit]``: lengths in mm, volumes in mm³, times in the case's unit (``year``),
+    never the schema's placeholder "user time unit"."""
     unit = COLUMNS.get(column, (None, ""))[1]
+    if unit == COLUMNS["instant"][1]:
+        unit = time_unit or "time unit of the case"
     scale = {"m": " [mm]", "m³": " [mm³]"}.get(unit)
     return f"{column}{scale}" if scale else (f"{column} [{unit}]" if unit else column)
 
 
 def _wear_tables(table: pd.DataFrame) -> dict[str, Any]:
+    time_unit = table.attrs.get("time_unit")
+    label = lambda c: _unit_label(c, time_unit)  # noqa: E731
     scales = {c: (1e3, ".4g") for c, (_, u, _) in COLUMNS.items() if u == "m"}
     scales.update({c: (1e9, ".4g") for c, (_, u, _) in COLUMNS.items() if u == "m³"})
     glob_cols = [c for c in ("instant", "power", "volume_mobile", "volume_obstacle",
                              "depth_mobile", "depth_obstacle", "wall_fraction",
                              "limit_instant") if c in table.columns]
     glob = table.drop_duplicates("instant")[glob_cols]
-    out = {"global": _table_html(glob.rename(columns=_unit_label),
-                                 {_unit_label(c): scales.get(c, (1.0, ".4g"))
+    out = {"global": _table_html(glob.rename(columns=label),
+                                 {label(c): scales.get(c, (1.0, ".4g"))
                                   for c in glob_cols}),
            "sectors": None, "sector_instant": None}
     if "sector" in table.columns and table["sector"].notna().any():
@@ -101,8 +107,8 @@ def _wear_tables(table: pd.DataFrame) -> dict[str, Any]:
                             "volume_mobile_cumulated", "depth_mobile_sector",
                             "depth_obstacle_sector", "wall_fraction_sector",
                             "limit_instant_sector") if c in last.columns]
-        out["sectors"] = _table_html(last[cols].rename(columns=_unit_label),
-                                     {_unit_label(c): scales.get(c, (1.0, ".4g"))
+        out["sectors"] = _table_html(last[cols].rename(columns=label),
+                                     {label(c): scales.get(c, (1.0, ".4g"))
                                       for c in cols})
         out["sector_instant"] = _num(last["instant"].iloc[0])
     return out

@@ -39,6 +39,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.history import ContactHistory
+from fretwear.io.geometry_units import check_against_geometry
 from fretwear.power import wear_power
 from fretwear.table._columns import _frame, _global_frame, _sector_frame
 from fretwear.table._wall import _wall
@@ -167,6 +168,10 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
         raise InputError(f"case must be a WearCase (WearCase.from_keywords(...)), got "
                          f"{type(case).__name__}")
     result, history, power = _power_of(case, source, history)
+    if isinstance(source, ContactHistory):  # lengths and speeds against the geometry
+        check_against_geometry(source, mobile_radius=case.dimensions.get("mobile_radius"),
+                               obstacle_radius=case.dimensions.get("obstacle_radius"),
+                               name=case.name or "")
     case, edges = _with_run_sectors(case, result)
     mobile, obstacle, sources = _body_coefficients(case, history, result)
     geometry = case.geometry

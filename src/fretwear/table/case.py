@@ -31,6 +31,7 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import check_sector_contact, contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry
+from fretwear.io.geometry_units import check_wall_thickness
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
 from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
@@ -67,7 +68,7 @@ def _real(value: Any, name: str, *, none: bool = True) -> float | None:
         try:
             out = float(value)
             ok = math.isfinite(out)
-        except (TypeError, ValueError):
+        except (TypeError, ValueError, OverflowError):
             ok = False
     if not ok:
         raise InputError(f"{name} must be a finite number, got {value!r}")
@@ -77,6 +78,9 @@ def _real(value: Any, name: str, *, none: bool = True) -> float | None:
 def _instants(instants, restart: bool) -> tuple[float, ...]:
     try:
         arr = np.atleast_1d(np.asarray(instants, dtype=float)).ravel()
+    except OverflowError:  # a 400-digit integer
+        raise InputError(f"instants must be finite numbers, got one beyond the float range "
+                         f"({str(instants)[:40]}...)") from None
     except (TypeError, ValueError):
         raise InputError(f"instants must be numbers (user time unit), got {instants!r}") from None
     if arr.size == 0 or not np.isfinite(arr).all():
@@ -445,6 +449,9 @@ class WearCase:
 
     def _check_wall(self) -> None:
         wall, limit = check_wall(self.wall_thickness, self.depth_limit)
+        # a wall in mm typed into a metre key: thicker than the tube (issue 29)
+        check_wall_thickness(wall, self.dimensions.get("mobile_radius"),
+                             key="wall_thickness (wall_thickness_m in a case file or manifest)")
         object.__setattr__(self, "wall_thickness", wall)
         object.__setattr__(self, "depth_limit", limit)
 

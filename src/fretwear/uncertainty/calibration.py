@@ -34,6 +34,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry._shapes import solve_monotone
+from fretwear.io.text_tables import number, read_text_table
 from fretwear.uncertainty.cases import prepare_case
 from fretwear.uncertainty.distributions import LogNormal
 from fretwear.uncertainty.model import ContactModel, models_from_table
@@ -158,39 +159,45 @@ def read_inspections(source) -> pd.DataFrame:
     [0.0003]
     """
     if isinstance(source, str | os.PathLike):
-        try:
-            frame = pd.read_csv(source, comment="#", skipinitialspace=True)
-        except FileNotFoundError:
-            raise InputError(f"inspection file {os.fspath(source)!r} does not exist") from None
+        # through the guard layer: encodings, empty or commented files, ragged rows,
+        # duplicate labels, pipes: a fretwear error naming the file (issue 29)
+        frame = read_text_table(source, "inspection file")
+        where = f"inspection file {os.fspath(source)!r}"
+        lines = frame.attrs.get("lines") or []
     elif isinstance(source, pd.DataFrame):
         frame = source.copy()
+        where, lines = "inspections", []
     else:
         raise InputError(f"inspections must be a CSV path or a DataFrame, got "
                          f"{type(source).__name__}")
     frame.columns = [str(c).strip() for c in frame.columns]
+    if len(set(frame.columns)) != len(frame.columns):
+        raise InputError(f"{where}: a column is given twice ({list(frame.columns)}); keep one")
     known = set(INSPECTION_COLUMNS) | {"depth_mm"}
     unknown = [c for c in frame.columns if c not in known]
     if unknown:
-        raise InputError(f"inspections: unknown column(s) {unknown}; the columns are "
+        raise InputError(f"{where}: unknown column(s) {unknown}; the columns are "
                          f"{sorted(known)} (depth in m, or depth_mm in mm)")
     given = {"instant": "instant", "depth": "depth"}  # the user's column of each value
     if "depth" not in frame and "depth_mm" in frame:
         given["depth"] = "depth_mm"
-        frame["depth"] = pd.to_numeric(frame["depth_mm"], errors="coerce") * 1e-3
     for col in ("instant", "depth"):
-        if col not in frame:
-            raise InputError(f"inspections: the column {col!r} is missing "
+        if given[col] not in frame:
+            raise InputError(f"{where}: the column {col!r} is missing "
                              f"({INSPECTION_COLUMNS[col][1]} [{INSPECTION_COLUMNS[col][0]}])")
+
+    def numbers(name: str, scale: float = 1.0) -> np.ndarray:
+        return np.array([number(v) for v in frame[name]], dtype=float) * scale
+
     out = pd.DataFrame({
         "contact": frame["contact"].fillna("").astype(str) if "contact" in frame else "",
-        "sector": pd.to_numeric(frame["sector"], errors="coerce") if "sector" in frame
-        else np.nan,
-        "instant": pd.to_numeric(frame["instant"], errors="coerce"),
-        "depth": pd.to_numeric(frame["depth"], errors="coerce"),
-        "measurement_sigma": pd.to_numeric(frame["measurement_sigma"], errors="coerce")
+        "sector": numbers("sector") if "sector" in frame else np.nan,
+        "instant": numbers("instant"),
+        "depth": numbers(given["depth"], 1e-3 if given["depth"] == "depth_mm" else 1.0),
+        "measurement_sigma": numbers("measurement_sigma")
         if "measurement_sigma" in frame else np.nan}, index=range(len(frame)))
     if out.empty:
-        raise InputError("inspections: the table has no rows")
+        raise InputError(f"{where}: the table has no rows")
     for col in ("instant", "depth"):
         bad = ~np.isfinite(out[col].to_numpy(dtype=float))
         if col == "depth":
@@ -199,8 +206,10 @@ def read_inspections(source) -> pd.DataFrame:
             row = int(np.flatnonzero(bad)[0])
             name = given[col]
             unit = {"depth": " > 0 [m]", "depth_mm": " > 0 [mm]"}.get(name, "")
-            raise InputError(f"inspections row {row + 1}: {name} must be a finite number{unit}, "
-                             f"got {str(frame[name].iloc[row])!r}")
+            at = (f"line {lines[row]}, " if lines else "") + f"row {row + 1}"
+            cell = str(frame[name].iloc[row])
+            raise InputError(f"{where}, {at}: {name} must be a finite number{unit}, got "
+                             f"{cell if len(cell) <= 40 else cell[:37] + '...'!r}")
     return out
 
 
@@ -279,7 +288,9 @@ def _grid_posterior(obs, mu0, tau0) -> GridPosterior:
         if not np.isfinite(lp).any():
             raise InputError("calibration: no factor explains the inspections (every predicted "
                              "depth is beyond the geometric range); check the units (depth [m])")
-        keep = lp > lp.max() - 60.0
+        # >=: at |lp| ~ 1e19 (inspections no factor fits, a tiny measurement sigma) the
+        # spacing of doubles exceeds 60 and ``lp > max - 60`` kept nothing (an IndexError)
+        keep = lp >= lp.max() - 60.0
         if not (keep[0] or keep[-1]):
             break
         half *= 4.0

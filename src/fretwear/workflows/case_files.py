@@ -44,7 +44,7 @@ from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
 from fretwear.laws import WEAR_LAWS
 from fretwear.power import PowerAccumulator, wear_power
 from fretwear.table import WearCase, read_wear_table, wear_table_from_case
-from fretwear.timeunits import TIME_UNITS, describe_time_units  # noqa: F401 - re-exported
+from fretwear.timeunits import TIME_UNITS, describe_time_units, time_unit_name  # noqa: F401
 
 #: section -> key -> (expected type, description with unit). "*" sections are free tables.
 KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
@@ -331,11 +331,15 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
     if "unit" in time and "seconds_per_unit" in time:
         raise KeywordError("case: give [time] unit or seconds_per_unit, not both")
     scale = float(time.get("seconds_per_unit", 1.0))
+    # "years", "Year": the unit "year" (the user's dict is not changed)
+    unit = time_unit_name(time["unit"]) if isinstance(time.get("unit"), str) \
+        else time.get("unit")
     if "unit" in time:
-        if time["unit"] not in TIME_UNITS:
+        if unit not in TIME_UNITS:
             raise KeywordError(f"case: [time] unit = {time['unit']!r} is not one of "
-                               f"{', '.join(TIME_UNITS)}; or give seconds_per_unit")
-        scale = TIME_UNITS[time["unit"]]
+                               f"{', '.join(TIME_UNITS)} (or their plurals); or give "
+                               "seconds_per_unit")
+        scale = TIME_UNITS[unit]
     if "count" in sectors and "edges_deg" in sectors:
         raise KeywordError("case: give [sectors] count or edges_deg, not both")
     sector_spec = sectors.get("count", sectors.get("edges_deg"))
@@ -375,7 +379,7 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
         blocks=power.get("blocks", 1),
         stationarity_threshold=power.get("stationarity_threshold", 0.1),
         force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"),
-        coefficient_files=files or None, time_unit=time.get("unit"), name=case.get("title"),
+        coefficient_files=files or None, time_unit=unit, name=case.get("title"),
         wall_thickness=wall, depth_limit=geometry.get("depth_limit", 0.4))
 
 

@@ -1,0 +1,169 @@
+"""Units checked against the contact's own geometry: a length typed in millimetres is caught.
+
+The plausibility checks of :mod:`fretwear.io.plausibility` compare a history with absolute limits
+(50 mm, 10 m/s): a quiet contact exported in mm and mm/s (a 41 µm orbit read as 41 mm, 5 mm/s
+read as 5 m/s) passes them and gives a wear power 1000 times too large. The checks here compare
+the numbers with what the contact itself allows:
+
+* the wall of a tube is thinner than the tube's outer radius (:func:`check_wall_thickness`,
+  an :class:`~fretwear.errors.InputError`: no table is right with such a wall);
+* the displacement orbit (half the peak-to-peak of ``dy``, ``dz``) stays within the tube's
+  radius, and within :data:`ORBIT_GAP_FACTOR` times the radial gap of a tube or rod in a bore;
+* the largest sliding speed is not far above what the orbit at the motion's frequency gives,
+  ``2π f A`` (:data:`SPEED_ORBIT_FACTOR` times it at most; ``f`` from the zero crossings of
+  ``dy`` about its median: noise there only raises ``f`` and the bound).
+
+A failed history check is a :class:`~fretwear.errors.UnitsWarning` naming the quantity, the
+dimension it was compared with, the likely unit and the ``units = {...}`` option that fixes it.
+Nothing is changed.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+
+from fretwear.errors import InputError, UnitsWarning
+
+#: The orbit of a tube or rod in a bore may exceed the radial gap by the contact's penetration
+#: and the obstacle's own motion; ten gaps leave a decade of margin (a file in mm is 1000×).
+ORBIT_GAP_FACTOR = 10.0
+#: The largest sliding speed may exceed 2π f A (the orbit's speed at its frequency) through
+#: impacts' higher harmonics and axial sliding; a hundred times leaves two decades of margin and
+#: still catches speeds in mm/s beside lengths in m (1000×).
+SPEED_ORBIT_FACTOR = 100.0
+
+_FIX = ("case file: [history] units = {{ {entry} }}; command line: --units {cli}; Python: "
+        "read_history(..., units={{'{key}': '{unit}'}})")
+
+
+def _fix(key: str, unit: str) -> str:
+    return _FIX.format(entry=f"{key} = '{unit}'", cli=f"{key}={unit}", key=key, unit=unit)
+
+
+def check_wall_thickness(wall: float | None, radius: float | None, *,
+                         key: str = "wall_thickness") -> None:
+    """Refuse a wall [m] at least as thick as the tube's outer radius [m].
+
+    Parameters
+    ----------
+    wall : float or None
+        Wall thickness of the tube [m] (None: nothing to check).
+    radius : float or None
+        Outer radius of the tube, ``mobile_radius`` [m] (None: nothing to check).
+    key : str
+        The name the user gave the wall under, for the message.
+
+    Raises
+    ------
+    InputError
+        ``wall >= radius``, naming the key, the likely unit and the value in metres.
+
+    Examples
+    --------
+    >>> check_wall_thickness(0.00109, 0.009525)
+    >>> try:
+    ...     check_wall_thickness(1.09, 0.009525, key="wall_thickness_m")
+    ... except InputError as exc:
+    ...     print(str(exc)[:73])
+    wall_thickness_m = 1.09 m is at least the tube's outer radius 0.009525 m
+    """
+    if wall is None or radius is None or not (wall >= radius > 0):
+        return
+    unit, scale = next(((u, s) for u, s in (("mm", 1e-3), ("µm", 1e-6)) if wall * s < radius),
+                        ("mm", 1e-3))
+    raise InputError(
+        f"{key} = {wall:g} m is at least the tube's outer radius {radius:g} m (mobile_radius, "
+        f"{radius * 1e3:.4g} mm): a wall is thinner than its tube. A value in {unit}? Give it in "
+        f"metres: {key} = {wall * scale:g}")
+
+
+def _orbit(history) -> float:
+    """Half the largest peak-to-peak of ``dy`` and ``dz`` [m] (0 without them)."""
+    if history.dy is None:
+        return 0.0
+    return 0.5 * max(float(np.ptp(history.dy)), float(np.ptp(history.dz)))
+
+
+def _frequency(history) -> float:
+    """The motion's frequency [Hz] from the crossings of ``dy`` about its median."""
+    dy = history.dy
+    duration = float(history.time[-1] - history.time[0])
+    if dy is None or dy.size < 3 or not duration > 0:
+        return math.nan
+    sign = np.signbit(dy - np.median(dy))
+    crossings = int(np.count_nonzero(sign[1:] != sign[:-1]))
+    return crossings / (2.0 * duration) if crossings else math.nan
+
+
+def check_against_geometry(history, *, mobile_radius: float | None = None,
+                           obstacle_radius: float | None = None, name: str = "") -> list[str]:
+    """Warn (:class:`UnitsWarning`) where a history's lengths or speeds do not fit its contact.
+
+    Parameters
+    ----------
+    history : ContactHistory
+        The history, SI units (``metadata['units']`` when read from a file).
+    mobile_radius : float, optional
+        Outer radius of the tube or rod [m].
+    obstacle_radius : float, optional
+        Radius of the bore [m] (a tube or rod in a bore: the radial gap is
+        ``obstacle_radius - mobile_radius``).
+    name : str
+        The contact, for the messages.
+
+    Returns
+    -------
+    list of str
+        The messages warned.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from fretwear.history import ContactHistory
+    >>> t = np.linspace(0.0, 1.0, 2001)
+    >>> mm = ContactHistory(time=t, normal_force=np.full(t.size, 5.0),
+    ...                     vt1=5.0 * np.cos(2 * np.pi * 20 * t), vt2=0 * t,
+    ...                     dy=0.041 * np.sin(2 * np.pi * 20 * t), dz=0 * t)
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore")
+    ...     found = check_against_geometry(mm, mobile_radius=9.525e-3, name="R1C1")
+    >>> print(found[0].split(";")[0])
+    contact 'R1C1': the displacement orbit 0.041 m (half the peak-to-peak of dy, dz
+    """
+    found: list[str] = []
+    label = name or history.name or history.metadata.get("source", "")
+    units = history.metadata.get("units") or {}
+    orbit = _orbit(history)
+    limit, what = math.inf, ""
+    if mobile_radius:
+        limit, what = mobile_radius, f"the tube's outer radius {mobile_radius:g} m"
+    if obstacle_radius and mobile_radius and obstacle_radius > mobile_radius:
+        gap = obstacle_radius - mobile_radius
+        if ORBIT_GAP_FACTOR * gap < limit:
+            limit = ORBIT_GAP_FACTOR * gap
+            what = (f"{ORBIT_GAP_FACTOR:g} times the radial gap {gap:g} m (obstacle_radius - "
+                    "mobile_radius)")
+    if orbit > limit:
+        found.append(f"contact {label!r}: the displacement orbit {orbit:.4g} m (half the "
+                     f"peak-to-peak of dy, dz; read in {units.get('dy', 'SI')!r}) is larger than "
+                     f"{what}: a file in 'mm' gives this: if so, give the units: "
+                     f"{_fix('length', 'mm')}")
+    frequency = _frequency(history)
+    if orbit > 0 and math.isfinite(frequency):
+        bound = 2.0 * math.pi * frequency * orbit
+        with np.errstate(over="ignore"):
+            speed = float(np.sqrt((history.vt1 ** 2 + history.vt2 ** 2).max()))
+        if math.isfinite(speed) and speed > SPEED_ORBIT_FACTOR * bound:
+            found.append(
+                f"contact {label!r}: the largest sliding speed {speed:.4g} m/s (read in "
+                f"{units.get('vt1', 'SI')!r}) is {speed / bound:.3g} times what the orbit "
+                f"{orbit:.4g} m at its frequency {frequency:.4g} Hz gives (2π f A = "
+                f"{bound:.4g} m/s; plausible up to {SPEED_ORBIT_FACTOR:g} times): speeds in "
+                f"'mm/s' beside lengths in 'm' give this: if so, give the units: "
+                f"{_fix('velocity', 'mm/s')}")
+    for message in found:
+        warnings.warn(message, UnitsWarning, stacklevel=2)
+    return found
