@@ -65,8 +65,7 @@ class BundleResult:
         a failed contact).
     stats : dict
         ``contacts``, ``done``, ``failed``, ``skipped``, ``stale``, ``seconds`` (wall time of
-        the run
-        [s], from the call to the results assembled and the output files written),
+        the run [s], from the call to the results assembled and the output files written),
         ``startup_seconds`` (starting or joining the cluster), ``contacts_per_s`` and
         ``samples_per_s`` (computed contacts and history samples per second of the run without
         the start-up), ``samples``, ``workers``.
