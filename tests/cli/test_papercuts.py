@@ -75,9 +75,16 @@ def test_iterate_says_where_it_writes_even_with_q(tmp_path, monkeypatch, capsys)
     columns = ("cycle", "instant", "power", "depth_global_mobile", "depth_sector_mobile_max",
                "depth_mobile_max", "depth_obstacle_max", "clearance_min", "clearance_max",
                "contact_fraction")
+    from fretwear.power.confidence import batch_means_interval
+
     fake = SimpleNamespace(stopped="cycles", max_depth_of=None, warnings=[],
-                           summary=pd.DataFrame({c: [1.0] for c in columns}),
-                           directory=tmp_path / "loop_out")
+                           summary=pd.DataFrame({**{c: [1.0] for c in columns},
+                                                 "perforated": [False],
+                                                 "power_change_significant": [None],
+                                                 "power_change": [float("nan")]}),
+                           directory=tmp_path / "loop_out",
+                           intervals=[batch_means_interval([1.0] * 5 + [1.1] * 5)],
+                           convergence=("one cycle", "one cycle: no change to judge"))
     monkeypatch.setattr(iterate_cli, "iterate_case", lambda *a, **k: fake)
     case = tmp_path / "c.toml"
     case.write_text("")
