@@ -20,6 +20,8 @@
 from fretwear.table.build import wear_table_columns, wear_table_from_case
 from fretwear.table.case import Coefficient, WearCase
 from fretwear.table.core import wear_table
+from fretwear.table.depth import DepthModel, model_from_table, models_from_table
+from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.files import (
     read_profile_table,
     read_wear_table,
@@ -42,6 +44,8 @@ from fretwear.table.schema import (
 __all__ = [
     "COLUMNS",
     "Coefficient",
+    "DepthModel",
+    "EarlierRows",
     "FLOAT_FORMAT",
     "GLOBAL_COLUMNS",
     "PROFILE_COLUMNS",
@@ -52,6 +56,8 @@ __all__ = [
     "WearCase",
     "from_aster_names",
     "initial_state",
+    "model_from_table",
+    "models_from_table",
     "read_profile_table",
     "read_wear_table",
     "replace_tube",
