@@ -34,6 +34,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry._shapes import solve_monotone
+from fretwear.keys import check_level, check_probabilities
 from fretwear.table.depth import DepthModel, models_from_table
 from fretwear.uncertainty.cases import prepare_case
 from fretwear.uncertainty.distributions import LogNormal
@@ -328,7 +329,9 @@ class CalibrationResult:
         return float(self.posterior.median)
 
     def factor_interval(self, level: float = 0.95) -> tuple[float, float]:
-        """Central posterior interval of the factor [-]."""
+        """Central posterior interval of the factor [-] at ``level`` (a probability in
+        (0, 1): 0.95 for 95 %; an InputError otherwise)."""
+        level = check_level(level)
         return (float(self.posterior.ppf(0.5 * (1 - level))),
                 float(self.posterior.ppf(0.5 * (1 + level))))
 
@@ -344,7 +347,7 @@ class CalibrationResult:
         limit : float, optional
             Depth limit [m] (default each model's depth_limit × wall_thickness).
         q : sequence of float
-            Quantile levels of the depth [-].
+            Quantile levels of the depth [-], probabilities in (0, 1).
 
         Returns
         -------
@@ -359,6 +362,7 @@ class CalibrationResult:
         d(f, T) grows with f, so the depth's q-quantile is d(F⁻¹(q), T) and
         P(d > L) = 1 − F(f_L) with d(f_L, T) = L, solved on λ = ln f (exact, no sampling).
         """
+        q = check_probabilities(q, closed=False)
         rows = []
         for contact, models in self.models.items():
             for model in models.values():

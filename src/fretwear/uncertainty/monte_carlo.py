@@ -20,6 +20,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
+from fretwear.keys import check_probabilities
 from fretwear.power import PowerResult
 from fretwear.power.confidence import PowerInterval
 from fretwear.table.depth import DepthModel, given_names
@@ -203,9 +204,7 @@ class UncertaintyResult:
 
         ``inf`` where more than 1 − q of the samples lie beyond the relation's range.
         """
-        q = np.atleast_1d(np.asarray(q, dtype=float))
-        if not ((q >= 0) & (q <= 1)).all():
-            raise InputError(f"quantile levels must lie in [0, 1], got {q.tolist()}")
+        q = check_probabilities(q)
         with np.errstate(invalid="ignore"):
             values = np.quantile(self.depth, q, axis=0, method="linear")
         frame = pd.DataFrame(values.T, columns=[float(x) for x in q])
@@ -251,7 +250,7 @@ class UncertaintyResult:
     def time_to_limit_quantiles(self, q: Sequence[float] = QUANTILES,
                                 limit: float | None = None) -> pd.Series:
         """Quantiles of the instant of reaching ``limit`` [user time unit] (inf: never)."""
-        q = np.atleast_1d(np.asarray(q, dtype=float))
+        q = check_probabilities(q)
         t = self.time_to_limit(limit)
         with np.errstate(invalid="ignore"):
             values = np.quantile(t, q, method="linear")

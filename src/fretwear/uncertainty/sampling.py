@@ -15,6 +15,7 @@ import numpy as np
 from scipy.stats import norm, qmc
 
 from fretwear.errors import InputError
+from fretwear.keys import check_level
 
 __all__ = ["METHODS", "sobol_indices", "uniform_points"]
 
@@ -123,6 +124,7 @@ def sobol_indices(f_a, f_b, f_ab, *, resamples: int = 200, level: float = 0.95,
     >>> np.round(s["total"], 1).tolist()
     [0.2, 0.8]
     """
+    level = check_level(level)
     fa = np.asarray(f_a, dtype=float)
     fb = np.asarray(f_b, dtype=float)
     fab = np.atleast_2d(np.asarray(f_ab, dtype=float))
