@@ -24,7 +24,7 @@ from collections.abc import Callable
 import numpy as np
 
 from fretwear.errors import InputError, PerforationWarning
-from fretwear.geometry._shapes import solve_monotone
+from fretwear.geometry import solve_monotone
 
 __all__ = ["DEFAULT_DEPTH_LIMIT", "check_wall", "first_times", "time_to_depth", "wall_columns"]
 
@@ -101,7 +101,7 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
     Notes
     -----
     The bracket [lo, hi] grows by ×16 from ``first_guess`` until depth(hi) ≥ target, then
-    Chandrupatla's method (:func:`fretwear.geometry._shapes.solve_monotone`) narrows it to
+    Chandrupatla's method (:func:`fretwear.geometry.solve_monotone`) narrows it to
     ``rtol``. A NaN depth counts as above the target.
 
     Examples

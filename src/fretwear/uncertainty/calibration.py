@@ -33,7 +33,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, RangeWarning
-from fretwear.geometry._shapes import solve_monotone
+from fretwear.geometry import solve_monotone
 from fretwear.keys import check_level, check_probabilities
 from fretwear.table.depth import DepthModel, models_from_table
 from fretwear.uncertainty.cases import prepare_case
