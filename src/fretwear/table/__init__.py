@@ -28,6 +28,7 @@ from fretwear.table.files import (
     write_profile_table,
     write_wear_table,
 )
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.restart import InitialState, initial_state, replace_tube
 from fretwear.table.schema import (
     COLUMNS,
@@ -43,6 +44,7 @@ from fretwear.table.schema import (
 
 __all__ = [
     "COLUMNS",
+    "DEFAULT_DEPTH_LIMIT",
     "Coefficient",
     "DepthModel",
     "EarlierRows",

@@ -483,7 +483,8 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
     wall_thickness : float, optional
         Wall thickness [m] (default ``attrs["wall_thickness"]``).
     depth_limit : float, optional
-        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or 0.4).
+        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or
+        :data:`~fretwear.table.DEFAULT_DEPTH_LIMIT`).
     name : str
         Contact name.
 
