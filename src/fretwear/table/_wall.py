@@ -39,9 +39,12 @@ def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
     if sectored:
         law, state = case.wear_law, case.initial_state
         powers = np.asarray(result.sectors, dtype=float)
-        k_m, _ = _sector_coefficients(case, powers.size, mobile, obstacle)
-        rate_m = np.asarray(law.volume(powers, 1.0, **{law.parameters[0]: k_m}),
-                            dtype=float)  # [m³/s]
+        if glob is not None:  # the model's per-sector rates [m³/s], computed once
+            rate_m = glob.term_rates[0]
+        else:
+            k_m, _ = _sector_coefficients(case, powers.size, mobile, obstacle)
+            rate_m = np.asarray(law.volume(powers, 1.0, **{law.parameters[0]: k_m}),
+                                dtype=float)  # [m³/s]
         zeros = np.zeros(powers.size)
         v0_m = zeros if state is None else np.asarray(state.sector_volume_mobile, dtype=float)
         arcs = np.diff(np.asarray(result.sector_edges, dtype=float))

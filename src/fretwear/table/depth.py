@@ -249,13 +249,18 @@ class DepthModel:
         return vm, vo
 
     @functools.cached_property
-    def rates(self) -> tuple[float, float]:
-        """(tube, obstacle) worn volume per second at the nominal inputs [m³/s] of a law
-        linear in time, summed over the terms (0 for a body that does not wear)."""
+    def term_rates(self) -> tuple[np.ndarray, np.ndarray]:
+        """(tube, obstacle) worn volume per second of each term at the nominal inputs [m³/s]
+        of a law linear in time (0 for a body that does not wear)."""
         if not self.law.linear_in_time:
             raise KeywordError(f"the {self.law.name} law is not linear in time: no rate")
-        return tuple(float(np.cumsum(_rates(self.law, self.powers, c))[-1])
-                     for c in (self.coefficients_mobile, self.coefficients_obstacle))
+        return (_rates(self.law, self.powers, self.coefficients_mobile),
+                _rates(self.law, self.powers, self.coefficients_obstacle))
+
+    @functools.cached_property
+    def rates(self) -> tuple[float, float]:
+        """(tube, obstacle) :attr:`term_rates` summed over the terms [m³/s]."""
+        return tuple(float(np.cumsum(r)[-1]) for r in self.term_rates)
 
     def depth(self, elapsed_s, *, factor=1.0, power=None, coefficients=None,
               obstacle_coefficients=None, warn: bool = True) -> np.ndarray:
