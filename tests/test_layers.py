@@ -13,8 +13,9 @@ and so is every ``importlib.import_module("literal")`` call. Imports are resolve
 - A package's ``__init__.py`` importing its own submodules is an ordinary edge: it is fine as long
   as no submodule imports its package's ``__init__.py`` back (``from fretwear.table import x``
   inside ``fretwear/table/core.py``), which closes a circle and is reported.
-- The deprecated re-export shims (:data:`SHIMS`) are left out: their imports are not edges, and
-  an import *of* a shim by any other module is an error (new code imports the new homes).
+- A private name (``_x``, or anything in a private module ``_m``) belongs to the package that
+  holds it: importing it from another package is an error (it is made public in its package,
+  or moved). The root's private modules (``fretwear._lazy`` ...) belong to every module.
 
 Layers (docs/DESIGN.md), lowest first; a module may import its own layer or a lower one only:
 foundation → physics → plotting → workflows → api (the root ``fretwear/__init__.py``, which
@@ -54,9 +55,6 @@ LAYER_OF = {
     "cli": "cli",
 }
 
-#: Deprecated re-export shims (paths relative to fretwear/): exempt.
-SHIMS = {"operator.py", "restart.py", "case.py", "aster.py", "statistics.py", "kernels.py",
-         "kernel_reference.py", "dynamics/loop.py"}
 
 
 def module_name(path: Path) -> str:
@@ -67,7 +65,7 @@ def module_name(path: Path) -> str:
 
 
 def modules() -> dict[str, Path]:
-    """Dotted name -> file of every module under src/fretwear (shims included)."""
+    """Dotted name -> file of every module under src/fretwear."""
     return {module_name(p): p for p in sorted(ROOT.rglob("*.py"))}
 
 
@@ -98,15 +96,31 @@ def _imported_names(tree: ast.AST, name: str, path: Path):
             yield node.args[0].value, None, node.lineno
 
 
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def private_owner(target: str, attr: str | None, mods) -> str | None:
+    """The package a private import belongs to (None: nothing private is imported): the
+    package above the first private module of ``target``, else, for a private ``attr``, the
+    package of ``target`` (itself when it is a package)."""
+    parts = target.split(".")
+    for i, part in enumerate(parts[1:], start=1):
+        if _private(part):
+            return ".".join(parts[:i])
+    if attr and _private(attr) and f"{target}.{attr}" not in mods:
+        path = mods.get(target)
+        return target if path is not None and _is_package(path) else target.rpartition(".")[0]
+    return None
+
+
 def import_graph() -> tuple[dict[str, dict[str, int]], list[str]]:
-    """(edges module -> {imported module: line}, imports of shims) over the non-shim modules."""
+    """(edges module -> {imported module: line}, private names imported from another
+    package)."""
     mods = modules()
-    shim_names = {module_name(ROOT / s) for s in SHIMS}
     edges: dict[str, dict[str, int]] = defaultdict(dict)
-    shim_uses = []
+    private_uses = []
     for name, path in mods.items():
-        if name in shim_names:
-            continue
         edges[name]  # every module is a node
         tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
         own = name if _is_package(path) else name.rpartition(".")[0]
@@ -117,6 +131,10 @@ def import_graph() -> tuple[dict[str, dict[str, int]], list[str]]:
             full = f"{target}.{attr}" if attr and f"{target}.{attr}" in mods else target
             if full not in mods:
                 raise AssertionError(f"{path}:{line}: import of {full!r}, which is no module")
+            owner = private_owner(target, attr, mods)
+            if owner is not None and not (name == owner or name.startswith(owner + ".")):
+                private_uses.append(f"{path.relative_to(SRC)}:{line} imports "
+                                    f"{target}{'.' + attr if attr else ''}, private to {owner}")
             parts = full.split(".")
             reached = [".".join(parts[:i]) for i in range(2, len(parts) + 1)]
             if full == "fretwear" and name != "fretwear":
@@ -126,12 +144,8 @@ def import_graph() -> tuple[dict[str, dict[str, int]], list[str]]:
             for dep in reached:
                 if dep in ancestors or dep == name:
                     continue
-                if dep in shim_names:
-                    shim_uses.append(f"{path.relative_to(SRC)}:{line} imports the deprecated "
-                                     f"shim {dep}")
-                    continue
                 edges[name].setdefault(dep, line)
-    return edges, shim_uses
+    return edges, private_uses
 
 
 def strongly_connected(edges: dict[str, dict[str, int]]) -> list[list[str]]:
@@ -252,9 +266,27 @@ def test_design_lists_every_module_with_its_layer(graph):
     assert not wrong, f"layer in docs/DESIGN.md vs the import rules: {wrong}"
 
 
-def test_no_module_imports_a_deprecated_shim(graph):
-    _, shim_uses = graph
-    assert not shim_uses, "\n".join(shim_uses)
+def test_no_private_name_is_imported_from_another_package(graph):
+    _, private_uses = graph
+    assert not private_uses, "\n".join(private_uses)
+
+
+def test_no_re_export_shim_is_left():
+    """The deprecated shims of 0.1.0's development are gone (issue 25): their old paths are no
+    module."""
+    old = ("case", "aster", "operator", "restart", "statistics", "kernels", "kernel_reference",
+           "dynamics.loop")
+    assert not [m for m in old if f"fretwear.{m}" in modules()]
+
+
+def test_the_private_rule_can_fail():
+    mods = modules()
+    assert private_owner("fretwear.geometry._shapes", "solve_monotone", mods) == \
+        "fretwear.geometry"
+    assert private_owner("fretwear.io.aster", "_read", mods) == "fretwear.io"
+    assert private_owner("fretwear.table", "_x", mods) == "fretwear.table"
+    assert private_owner("fretwear._lazy", "pandas", mods) == "fretwear"
+    assert private_owner("fretwear.io.aster", "read_aster_table", mods) is None
 
 
 def test_the_checks_can_fail():

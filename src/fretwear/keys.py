@@ -1,17 +1,78 @@
 """Validation of user keys (case-file tables, manifest columns, keyword arguments): unknown keys
 and wrong value types become a :class:`~fretwear.errors.KeywordError` that names the key, the
-closest valid one and the expected type. Any layer may import this module.
+closest valid one and the expected type; a confidence level or quantile levels that are not
+probabilities an :class:`~fretwear.errors.InputError` naming the argument and the value
+(:func:`check_level`, :func:`check_probabilities`). Any layer may import this module.
 """
 
 from __future__ import annotations
 
 import difflib
+import math
 from collections.abc import Mapping
 from typing import Any
 
-from fretwear.errors import KeywordError
+import numpy as np
 
-__all__ = ["check_keys", "keyword_hint"]
+from fretwear.errors import InputError, KeywordError
+
+__all__ = ["check_keys", "check_level", "check_probabilities", "keyword_hint"]
+
+
+def _number(value) -> float:
+    """``value`` as a float, NaN where it is not a real number (a bool, a string, None)."""
+    if isinstance(value, bool | np.bool_ | str | bytes) or value is None:
+        return math.nan
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def check_level(level, name: str = "level") -> float:
+    """A confidence level: a probability strictly between 0 and 1 [-], as a float.
+
+    Raises
+    ------
+    InputError
+        Anything else, naming ``name`` and the value (0.95 for 95 %, not 95).
+
+    Examples
+    --------
+    >>> check_level(0.9)
+    0.9
+    """
+    p = _number(level)
+    if not 0.0 < p < 1.0:
+        raise InputError(f"{name} must be a probability in (0, 1) (e.g. 0.95 for 95 %), got "
+                         f"{level!r}")
+    return p
+
+
+def check_probabilities(values, name: str = "q", *, closed: bool = True) -> np.ndarray:
+    """Quantile levels: one or more probabilities [-], in [0, 1] (``closed``) or (0, 1), as a
+    1-d float array.
+
+    Raises
+    ------
+    InputError
+        No value, or a value that is not such a probability, naming ``name`` and the values
+        (0.95 for the 95 % quantile, not 95).
+
+    Examples
+    --------
+    >>> check_probabilities([0.05, 0.5]).tolist()
+    [0.05, 0.5]
+    """
+    raw = np.atleast_1d(np.asarray(values, dtype=object)).ravel()
+    p = np.array([_number(v) for v in raw], dtype=float)
+    inside = (p >= 0) & (p <= 1) if closed else (p > 0) & (p < 1)
+    if p.size == 0 or not inside.all():
+        bad = raw[~inside].tolist() if p.size else []
+        span = "[0, 1]" if closed else "(0, 1)"
+        raise InputError(f"{name} must be probabilities in {span} (e.g. 0.95 for the 95 % "
+                         f"quantile), got {bad if bad else 'none'}")
+    return p
 
 
 def keyword_hint(key: str, choices) -> str:

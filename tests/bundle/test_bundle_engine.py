@@ -22,11 +22,12 @@ from bundle_helpers import (
 )
 
 from fretwear.bundle import engine as engine_module
-from fretwear.bundle import run_bundle, time_to_depth
+from fretwear.bundle import run_bundle
 from fretwear.errors import StationarityWarning
 from fretwear.io import iter_history_chunks, write_history
 from fretwear.power import PowerAccumulator
 from fretwear.table import wear_table
+from fretwear.table.depth_rows import interpolated_time
 from fretwear.workflows.case_files import case_arguments, load_case
 
 YEAR = 31536000.0
@@ -210,11 +211,11 @@ def test_dataset_dimensions_values_and_units(tmp_path):
     assert ds["tube_row"].values.tolist() == [1, 1, 2]
 
 
-def test_time_to_depth_linear_and_monotone():
+def test_interpolated_time_linear_and_monotone():
     t = np.array([1.0, 2.0, 4.0, 8.0])
-    assert time_to_depth(t, 2e-5 * t, 5e-5) == pytest.approx(2.5, rel=1e-12)
-    assert math.isnan(time_to_depth(t, 2e-5 * t, 1.0))
-    assert time_to_depth(t, 2e-5 * t, 1e-5) == pytest.approx(0.5, rel=1e-12)  # from (0, 0)
+    assert interpolated_time(t, 2e-5 * t, 5e-5) == pytest.approx(2.5, rel=1e-12)
+    assert math.isnan(interpolated_time(t, 2e-5 * t, 1.0))
+    assert interpolated_time(t, 2e-5 * t, 1e-5) == pytest.approx(0.5, rel=1e-12)  # from (0, 0)
 
 
 def test_summary_time_to_limit_against_archard_on_a_flat_bar(tmp_path):

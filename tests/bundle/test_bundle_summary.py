@@ -10,7 +10,7 @@ The reference follows the summary's rules as they change: since the fix of the d
 the limit (the table's limit_instant only where reached by the last instant, and for an explicit
 limit equal to the contact's own too), its FROM_TABLE branch says so; since the exact time to
 another limit (through the contact's geometry and worn volume), it hands each contact's rows,
-taken here group by group, to fretwear.bundle.limits.time_to_limit where the contact's geometry
+taken here group by group, to fretwear.table.depth_rows.time_to_limit where the contact's geometry
 and law are known (that inversion is checked against independent computations in
 test_bundle_time_to_other_limit.py), the monotone cubic otherwise; the rest is the old loop."""
 
@@ -24,23 +24,20 @@ import pytest
 from bundle_helpers import BASE_CASE, oscillator, write_bundle
 
 from fretwear.bundle import run_bundle
-from fretwear.bundle.limits import (
+from fretwear.bundle.manifest import IDENTITY
+from fretwear.bundle.result import check_limit, summarize
+from fretwear.errors import InputError
+from fretwear.table.depth_rows import (
+    FROM_TABLE,
     FROM_VOLUME,
+    INTERPOLATED,
     METHODS,
     ContactModels,
     exact_method,
+    interpolated_time,
     time_to_limit,
 )
-from fretwear.bundle.manifest import IDENTITY
-from fretwear.bundle.result import (
-    DEFAULT_LIMIT,
-    FROM_TABLE,
-    INTERPOLATED,
-    check_limit,
-    summarize,
-    time_to_depth,
-)
-from fretwear.errors import InputError
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 
 
 # ------------------------------------------------------------------ the reference (old loop)
@@ -90,7 +87,7 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
             wall = float(wall_thickness)
         own = info.at[contact, "depth_limit"] if "depth_limit" in info.columns \
             and contact in info.index else None
-        own = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        own = DEFAULT_DEPTH_LIMIT if own is None or pd.isna(own) else float(own)
         fraction = own if limit is None else limit
         target = (fraction * wall if math.isfinite(wall) and limit_m is None
                   else (limit_m if limit_m is not None else math.nan))
@@ -130,7 +127,7 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
                 sel = since
                 origin = (float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel)
                           else 0)
-                t_lim = time_to_depth(sel["instant"].to_numpy(dtype=float),
+                t_lim = interpolated_time(sel["instant"].to_numpy(dtype=float),
                                       sel["depth_mobile"].to_numpy(dtype=float), target,
                                       from_zero=origin == 0)
                 method = INTERPOLATED

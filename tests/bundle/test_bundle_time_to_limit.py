@@ -25,7 +25,7 @@ import pytest
 pytest.importorskip("xarray")
 
 from fretwear.bundle import run_bundle  # noqa: E402
-from fretwear.bundle.result import FROM_TABLE, FROM_VOLUME  # noqa: E402
+from fretwear.table.depth_rows import FROM_TABLE, FROM_VOLUME  # noqa: E402
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
 

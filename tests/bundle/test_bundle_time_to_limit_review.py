@@ -1,7 +1,7 @@
 """``summary()``'s time to a limit other than the case's own: the cases a review of the exact
 method found wrong (each failed on commit bc9d746).
 
-References, independent of :mod:`fretwear.bundle.limits`:
+References, independent of :mod:`fretwear.table.depth_rows`:
 
 * the single-contact wear table (:func:`fretwear.table.wear_table`) run forward to a trial
   instant, its depth at that instant, bisected for the instant the depth reaches the limit
@@ -20,11 +20,17 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from fretwear.bundle.limits import FROM_LAW, FROM_VOLUME, INITIAL_ROWS, INTERPOLATED, time_to_limit
 from fretwear.bundle.result import summarize
 from fretwear.geometry import contact_geometry
 from fretwear.laws import WEAR_LAWS
 from fretwear.table import wear_table
+from fretwear.table.depth_rows import (
+    FROM_LAW,
+    FROM_VOLUME,
+    INITIAL_ROWS,
+    INTERPOLATED,
+    time_to_limit,
+)
 
 YEAR = 365 * 86400.0  # [s]
 K = 9.2e-15  # [1/Pa]

@@ -1,7 +1,7 @@
 """``BundleResult.summary(limit)``'s ``time_to_limit`` for a limit other than the case's own:
 exact, through the contact's geometry and the worn volume, not an interpolation of the depth.
 
-Independent computations (no code of fretwear.bundle.limits):
+Independent computations (no code of fretwear.table.depth_rows):
 
 * Archard's worn volume at constant power is V = K·P·t (theory §2; K = 9.2e-15 1/Pa of
   bundle_helpers.BASE_CASE, P the contact's power, t in seconds, a year of 365 days): the
@@ -29,16 +29,16 @@ import pytest
 from bundle_helpers import BASE_CASE, oscillator, reference, write_bundle
 
 from fretwear.bundle import run_bundle
-from fretwear.bundle.limits import (
+from fretwear.bundle.result import summarize
+from fretwear.geometry import contact_geometry
+from fretwear.table import write_wear_table
+from fretwear.table.depth_rows import (
     FROM_LAW,
     FROM_VOLUME,
     INITIAL_ROWS,
     INTERPOLATED,
-    time_to_depth,
+    interpolated_time,
 )
-from fretwear.bundle.result import summarize
-from fretwear.geometry import contact_geometry
-from fretwear.table import write_wear_table
 
 pytest.importorskip("xarray")
 # the walls are made thin to put the limits where wanted: worn through by the last instant
@@ -136,7 +136,7 @@ def test_archard_against_the_bisection_of_k_p_t(tmp_path):
         assert (row["time_to_limit"] < 0.5) == (k == 0)  # before the first instant
         # without the geometry (a contacts frame without it): the cubic, late before 0.5 year
         assert old.loc[contact, "time_to_limit_method"] == INTERPOLATED
-        cubic = time_to_depth(rows["instant"], rows["depth_mobile"], target)
+        cubic = interpolated_time(rows["instant"], rows["depth_mobile"], target)
         assert old.loc[contact, "time_to_limit"] == cubic
         if k == 0:
             assert cubic > 1.1 * hi
@@ -258,8 +258,8 @@ def test_a_limit_after_a_replacement_inside_the_initial_table_is_not_called_exac
     earliest the replacement can be, so the time is never late (it was the first row after the
     drop, called exact, a review); a limit the old tube had reached before it was replaced
     does not count (the tube in place is the new one, as for a replacement in this run)."""
-    from fretwear.bundle.limits import time_to_limit
     from fretwear.laws import WEAR_LAWS
+    from fretwear.table.depth_rows import time_to_limit
 
     t = np.array([0.5, 1.0, 2.0, 5.0, 6.0, 7.0])
     vm = 1e-9 * np.array([4.0, 8.0, 4.0, 16.0, 20.0, 24.0])  # replaced between 1 and 2
@@ -288,7 +288,7 @@ def test_a_contact_without_its_geometry_keeps_the_cubic_and_says_so(tmp_path):
     assert s.attrs["time_to_limit"] in (f"{FROM_VOLUME}; {INTERPOLATED}",
                                         f"{INTERPOLATED}; {FROM_VOLUME}")
     rows = _global(result, a)
-    assert s.loc[a, "time_to_limit"] == time_to_depth(rows["instant"], rows["depth_mobile"],
+    assert s.loc[a, "time_to_limit"] == interpolated_time(rows["instant"], rows["depth_mobile"],
                                                       1e-6)
 
 
@@ -297,8 +297,8 @@ def test_an_initial_table_without_a_row_at_the_origin():
     a limit reached between its last row and this run's first is found across them (the
     volume linear between them); a limit after this run's first row is exact from that row on
     (its volume is this run's)."""
-    from fretwear.bundle.limits import time_to_limit
     from fretwear.laws import WEAR_LAWS
+    from fretwear.table.depth_rows import time_to_limit
 
     t = np.array([1.0, 2.0, 3.0, 4.0])  # the initial table's 1 and 2; this run's origin 2.5
     vm = 1e-9 * np.array([2.0, 4.0, 6.0, 8.0])

@@ -720,3 +720,27 @@ def test_discret_table_of_code_aster_with_theta_in_radians(tmp_path):
         read_discret(path)
     assert read_discret(path, angle_unit="deg").angles.tolist() == [0.0, 1.0, 2.0]
     assert read_discret(path, angle_unit="rad").angles[1] == pytest.approx(57.29577951308232)
+
+
+def test_section_with_options_replaces_the_obstacle_and_keeps_the_section():
+    """fretwear obstacle's option merging (obstacle/config.py): a given obstacle replaces the
+    section's type and its keys, the section itself is not modified, and the refusals."""
+    from fretwear.errors import KeywordError
+    from fretwear.obstacle.config import section_with_options
+
+    section = {"type": "planes", "plane_gap_m": 4e-4, "orientation_deg": 30.0,
+               "wall_thickness_m": 1e-3}
+    merged = section_with_options(section, {"gap_m": 5e-4, "instant": 2.0, "shape": None})
+    assert merged == {"gap_m": 5e-4, "instant": 2.0, "wall_thickness_m": 1e-3}
+    assert section["type"] == "planes"  # the user's section untouched
+    planes = section_with_options(None, {"plane_gap_m": 1e-4, "orientation_deg": 10.0,
+                                         "mobile_radius_m": 1e-2, "wall_thickness_m": 1e-3},
+                                  table="wear.csv")
+    assert planes["type"] == "planes" and planes["orientation_deg"] == 10.0
+    assert planes["table"] == "wear.csv"
+    with pytest.raises(KeywordError, match="give one obstacle"):
+        section_with_options(section, {"gap_m": 1e-4, "file": "d.txt"})
+    with pytest.raises(KeywordError, match="--orientation describe two planes"):
+        section_with_options(section, {"gap_m": 1e-4, "orientation_deg": 5.0})
+    with pytest.raises(KeywordError, match="--wall-thickness, an obstacle"):
+        section_with_options(None, {"mobile_radius_m": 1e-2})

@@ -3,7 +3,7 @@
 * the table's frame, built from one float block (fretwear.table._columns._frame), against pandas'
   own ``pd.DataFrame(columns)``;
 * the global limit instant of a law linear in time with an unworn obstacle, inverted in closed
-  form (table._wall._GlobalDepth.time_to), against the bracketed solver on depth(t)
+  form (DepthModel.time_to), against the bracketed solver on depth(t)
   (fretwear.table.limit.time_to_depth) and against the geometry's forward relation: the depth
   of the volume K·P·t at the found t is the target;
 * the sector columns of every sector at once (_columns._sector_columns) against the
@@ -23,14 +23,34 @@ import pytest
 from fretwear.errors import PerforationWarning, RangeWarning
 from fretwear.geometry import CONTACT_TYPES, contact_geometry
 from fretwear.history import ContactHistory
+from fretwear.laws import get_law
 from fretwear.table import _columns, wear_table
 from fretwear.table._columns import _frame
-from fretwear.table._wall import _GlobalDepth
-from fretwear.table.limit import first_time, time_to_depth
+from fretwear.table.depth import DepthModel
+from fretwear.table.limit import time_to_depth
 from fretwear.table.schema import GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 YEAR = 3.1536e7
 R, WALL = 9.525e-3, 1.09e-3
+K = 1e-14  # [1/Pa]
+
+
+def _model(g, v0, rates, obstacle_rates=None):
+    """Archard's DepthModel of terms V_j = K·P_j·t of the given rates r_j = K·P_j [m³/s] (and
+    the obstacle's, at the same powers), V0 = Σ v0 [m³], origin 0, time unit a year."""
+    rates = np.atleast_1d(np.asarray(rates, dtype=float))
+    powers = tuple((rates / K).tolist())
+    obstacle = (None,) * rates.size if obstacle_rates is None else tuple(
+        {"coefficient": K * ro / r} for r, ro in zip(rates, obstacle_rates, strict=True))
+    return DepthModel(law=get_law("ARCHARD"), geometry=g, powers=powers,
+                      coefficients_mobile=({"coefficient": K},) * rates.size,
+                      coefficients_obstacle=obstacle, time_scale=YEAR,
+                      initial_mobile=float(np.sum(v0)))
+
+
+def _seconds(model, targets):
+    """DepthModel.time_to in seconds after the origin (0)."""
+    return np.asarray(model.time_to(targets), dtype=float) * YEAR
 
 
 @pytest.mark.parametrize("names", [GLOBAL_COLUMNS, SECTOR_COLUMNS])
@@ -96,34 +116,33 @@ def test_global_closed_form_matches_the_solver_and_the_forward_relation(kind, di
     g = contact_geometry(kind, **dims)
     rates = np.array([3e-13, 1e-13, 2e-13])  # three terms (sectors) [m³/s]
     for v0 in (np.zeros(3), np.array([1e-13, 0.0, 5e-14])):
-        depth = _GlobalDepth(g, v0, rates, np.zeros(3), np.zeros(3), 0.0, True, YEAR)
-        assert hasattr(depth, "time_to")
+        model = _model(g, v0, rates)
         targets = np.array([1e-5, 1e-4, 2e-4])
-        closed = depth.time_to(targets)
+        closed = _seconds(model, targets)
         assert (closed > 0).all()
-        solved = time_to_depth(depth, targets, first_guess=YEAR)
+        solved = time_to_depth(lambda t, m=model: m.depth(t, warn=False), targets,
+                               first_guess=YEAR)
         assert closed == pytest.approx(solved, rel=1e-11)
         # forward: the geometry's depth of the total volume at t is the target
         volume = v0.sum() + rates.sum() * closed
         dm, _ = g.depth_from_volume(volume)
         assert np.asarray(dm) == pytest.approx(targets, rel=1e-12)
     # already there at the origin, never there without wear
-    deep = _GlobalDepth(g, np.array([1e-7]), np.array([1e-13]), np.zeros(1), np.zeros(1),
-                        0.0, True, YEAR)
-    assert deep.time_to(np.array([1e-6])).tolist() == [0.0]
-    idle = _GlobalDepth(g, np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1), 0.0, True, YEAR)
-    assert idle.time_to(np.array([1e-6])).tolist() == [math.inf]
+    deep = _model(g, np.array([1e-7]), np.array([1e-13]))
+    assert _seconds(deep, np.array([1e-6])).tolist() == [0.0]
+    idle = _model(g, np.zeros(1), np.zeros(1))
+    assert _seconds(idle, np.array([1e-6])).tolist() == [math.inf]
 
 
 def test_global_closed_form_beyond_the_range_uses_the_solver():
     g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=12.7e-3)
-    depth = _GlobalDepth(g, np.zeros(1), np.array([1e-12]), np.zeros(1), np.zeros(1), 0.0,
-                         True, YEAR)
+    model = _model(g, np.zeros(1), np.array([1e-12]))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        t = depth.time_to(np.array([2 * R]))  # deeper than the relation's range
-        expected = time_to_depth(depth, np.array([2 * R]), first_guess=YEAR)
-    assert t.tolist() == np.asarray(expected).tolist()
+        t = _seconds(model, np.array([2 * R]))  # deeper than the relation's range
+        expected = time_to_depth(lambda t: model.depth(t, warn=False), np.array([2 * R]),
+                                 first_guess=YEAR)
+    assert t == pytest.approx(np.asarray(expected), rel=1e-15)
 
 
 def test_worn_obstacle_sharing_the_trace_solves_both_targets_at_once():
@@ -132,9 +151,6 @@ def test_worn_obstacle_sharing_the_trace_solves_both_targets_at_once():
     V = 2·K·P·t = (2d/c)^(3/2)."""
     g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=12.7e-3)
     assert not g.mobile_depth_alone
-    rate = np.array([1e-15])
-    depth = _GlobalDepth(g, np.zeros(1), rate, np.zeros(1), rate, 0.0, False, YEAR)
-    assert not hasattr(depth, "time_to")
     width, k, power = 12.7e-3, 1e-12, 1e-3
     kw = {"contact_type": "TUBE_BAV", "time_scale": YEAR, "instants": [0.1, 10.0],
           "dimensions": {"mobile_radius": R, "obstacle_width": width},
@@ -148,12 +164,12 @@ def test_worn_obstacle_sharing_the_trace_solves_both_targets_at_once():
 
     assert t["limit_instant"].iloc[0] == pytest.approx(reach(0.4 * WALL), rel=1e-12)
     assert t.attrs["through_wall"]["global"] == pytest.approx(reach(WALL), rel=1e-12)
-    # each element as the one-target solver finds it
+    # each element as the one-target call finds it
     rate = np.array([k * power])
-    depth = _GlobalDepth(g, np.zeros(1), rate, np.zeros(1), rate, 0.0, False, YEAR)
-    one = [first_time(depth, None, target, None, YEAR) for target in (0.4 * WALL, WALL)]
-    assert t["limit_instant"].iloc[0] * YEAR == pytest.approx(one[0], rel=1e-14)
-    assert t.attrs["through_wall"]["global"] * YEAR == pytest.approx(one[1], rel=1e-14)
+    model = _model(g, np.zeros(1), rate, rate)
+    one = [model.time_to(target) for target in (0.4 * WALL, WALL)]
+    assert t["limit_instant"].iloc[0] == pytest.approx(one[0], rel=1e-14)
+    assert t.attrs["through_wall"]["global"] == pytest.approx(one[1], rel=1e-14)
 
 
 @pytest.mark.parametrize("kind", sorted(CONTACT_TYPES))
@@ -179,11 +195,11 @@ def test_tube_tube_both_worn_limit_in_closed_form():
     (docs/theory.md §6), however fast the other tube wears."""
     g = contact_geometry("TUBE_TUBE", mobile_radius=R, obstacle_radius=R, tilt_angle=5.0)
     rate_m, rate_o = np.array([1e-15]), np.array([3e-15])
-    depth = _GlobalDepth(g, np.zeros(1), rate_m, np.zeros(1), rate_o, 0.0, True, YEAR)
+    model = _model(g, np.zeros(1), rate_m, rate_o)
     theta = math.radians(5.0)
     targets = np.array([0.4 * WALL, WALL])
     expected = (targets * (2 * R) ** 0.2) ** 2.5 * 8 / (15 * theta) / rate_m[0]
-    assert depth.time_to(targets) == pytest.approx(expected, rel=1e-13)
+    assert _seconds(model, targets) == pytest.approx(expected, rel=1e-13)
 
 
 def _sector_history():

@@ -1,5 +1,5 @@
 """The wall and its limit are checked once (fretwear.table.limit.check_wall): a wear case and an
-uncertainty ContactModel accept and refuse the same values with the same message (issue 10)."""
+uncertainty DepthModel accept and refuse the same values with the same message (issue 10)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
 from fretwear.table import WearCase
+from fretwear.table.depth import DepthModel
 from fretwear.table.limit import check_wall
-from fretwear.uncertainty.model import ContactModel
 
 DIMENSIONS = {"mobile_radius": 0.01, "obstacle_width": 0.02}
 
@@ -21,7 +21,7 @@ def _case(**wall):
 
 
 def _model(**wall):
-    return ContactModel(law=get_law("ARCHARD"), geometry=contact_geometry("TUBE_BAV", **DIMENSIONS),
+    return DepthModel(law=get_law("ARCHARD"), geometry=contact_geometry("TUBE_BAV", **DIMENSIONS),
                         powers=(0.01,), coefficients_mobile=({"coefficient": 1e-14},),
                         coefficients_obstacle=(None,), **wall)
 

@@ -21,7 +21,8 @@ from scipy import stats
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.history import ContactHistory
 from fretwear.table import wear_table
-from fretwear.uncertainty import ContactModel, LogNormal, model_from_table, monte_carlo
+from fretwear.table.depth import DepthModel, model_from_table
+from fretwear.uncertainty import LogNormal, monte_carlo
 
 R, L_BAR = 9.525e-3, 12.7e-3
 K0, SIGMA, P = 9.2e-15, 0.7, 0.01
@@ -199,7 +200,7 @@ def test_restart_and_edf_mz_continue_from_the_previous_volume():
     first = wear_table(0.01, instants=[0.0, 2.0], **base)
     second = wear_table(0.01, instants=[1.0, 3.0], initial_state=first, **base)
     model = model_from_table(second)
-    assert isinstance(model, ContactModel) and model.origin == 2.0
+    assert isinstance(model, DepthModel) and model.origin == 2.0
     np.testing.assert_allclose(model.depth(np.array([1.0, 3.0]) * YEAR),
                                second["depth_mobile"].iloc[-2:], rtol=1e-13)
     # the factor scales the new wear only: V(t) = f·V_law(τ_f + t), f·V_law(τ_f) = V₀
@@ -217,7 +218,7 @@ def test_sector_tables_give_sector_models():
           "coefficients": {"coefficient": K0},
           "sector_coefficients": [(K0, None), (2 * K0, None), (K0, None), (3 * K0, None)]}
     table = wear_table(h, **kw)
-    from fretwear.uncertainty import models_from_table
+    from fretwear.table import models_from_table
 
     models = models_from_table(table, sector_coefficients=kw["sector_coefficients"])
     last = table[table["instant"] == 10.0]

@@ -89,3 +89,14 @@ def test_lognormal():
         LogNormal(1.0)
     with pytest.raises(InputError, match="no median"):
         LogNormal(sigma_ln=0.3).ppf(0.5)
+
+
+def test_a_design_not_of_2_to_the_m_samples_is_refused():
+    """scipy.stats.sobol_indices computes the indices: it needs N = 2^m (the balance of
+    Sobol' points); another N is an InputError saying so, not scipy's ValueError."""
+    rng = np.random.default_rng(3)
+    fa, fb, fab = rng.random(1000), rng.random(1000), rng.random((2, 1000))
+    with pytest.raises(InputError, match="2\\^m samples"):
+        sobol_indices(fa, fb, fab, resamples=0)
+    one = sobol_indices(fa[:512], fb[:512], fab[:1, :512], resamples=0)  # a single input
+    assert one["first"].shape == (1,) and one["total"].shape == (1,)

@@ -144,10 +144,3 @@ def test_catalogue_of_post_dyna_moda_t_and_the_old_path():
         POST_DYNA_MODA_T(RESU_GENE=history(), CHOC=_F(OPTION="CHOC"))
     with pytest.raises(KeywordError, match="RESU_GENE is required"):
         POST_DYNA_MODA_T(CHOC=_F())
-    import importlib
-    import sys
-
-    sys.modules.pop("fretwear.aster", None)
-    with pytest.warns(DeprecationWarning):
-        old = importlib.import_module("fretwear.aster")
-    assert old.POST_DYNA_MODA_T is POST_DYNA_MODA_T

@@ -22,7 +22,7 @@ See docs/bundle.md.
 from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.engine import run_bundle
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, IDENTITY, Manifest, read_manifest
-from fretwear.bundle.result import BundleResult, time_to_depth
+from fretwear.bundle.result import BundleResult
 
 __all__ = [
     "BUNDLE_COLUMNS",
@@ -32,5 +32,4 @@ __all__ = [
     "Manifest",
     "read_manifest",
     "run_bundle",
-    "time_to_depth",
 ]

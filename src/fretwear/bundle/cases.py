@@ -406,7 +406,7 @@ class BaseCaseError(FretwearError, ValueError):
 def _signature(row: ContactRow) -> str:
     """What a row's wear case depends on besides the base case (rows equal here share it)."""
     return json.dumps([sorted((".".join(k), _jsonable(v)) for k, v in row.overrides.items()),
-                       row.wall_thickness, row.history.kind == "none"], default=str)
+                       row.history.kind == "none"], default=str)
 
 
 def _message(exc: Exception, source: str, contact: str) -> str:
@@ -533,8 +533,6 @@ def _built_case(base: Mapping[str, Any], row: ContactRow, source: str):
             raise KeywordError(f"{where}: {message}")
     try:
         keywords = case_arguments(case, history_elsewhere=True)
-        if row.wall_thickness is not None:
-            keywords["wall_thickness"] = row.wall_thickness
         wear = WearCase.from_keywords(**keywords)
     except InputError as exc:
         raise type(exc)(f"{where}: {exc}") from None

@@ -32,7 +32,7 @@ BUNDLE_COLUMNS: dict[str, str] = {
 }
 #: Identity columns carried in front of every result row, in this order.
 IDENTITY: tuple[str, ...] = ("contact", "tube_row", "tube_column", "support", "node", "history")
-#: Per-contact wall thickness [m], a manifest column while the case files have no such key.
+#: The per-contact wall thickness [m]: the case key [geometry] wall_thickness_m, by its bare name.
 WALL_COLUMN = "wall_thickness_m"
 #: Sections a row may give whole, as a table: ``{}`` drops the base case's section for the row
 #: (a law other than Archard refuses sectors), a CSV cell ``{ count = 8 }`` replaces it.
@@ -85,10 +85,6 @@ def entry_known(section: str, key: str, entry: str) -> bool:
     return (section, key) == ("history", "units") and unknown_units_key(entry, "") is None
 
 
-def _wall_is_case_key() -> bool:
-    return any(WALL_COLUMN in keys for keys in _case_keys().values())
-
-
 def column_key(column: str, source: str, *, noun: str = "column") -> tuple[str, ...] | str:
     """What a manifest column means: a bundle column name, or the case key it overrides.
 
@@ -105,9 +101,9 @@ def column_key(column: str, source: str, *, noun: str = "column") -> tuple[str, 
     Returns
     -------
     str or tuple
-        The column itself for :data:`BUNDLE_COLUMNS` (and ``wall_thickness_m`` while it is not
-        a case key); else ``(section, key)`` or ``(section, key, entry)`` (an entry of an inline
-        table such as ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title,
+        The column itself for :data:`BUNDLE_COLUMNS`; else ``(section, key)`` or
+        ``(section, key, entry)`` (an entry of an inline table such as
+        ``law.mobile.COEF_USURE``), ``("", "title")`` for the top-level title,
         ``("sectors",)`` for a section given whole (:data:`WHOLE_SECTIONS`).
 
     Raises
@@ -139,7 +135,7 @@ def column_key(column: str, source: str, *, noun: str = "column") -> tuple[str, 
 def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
     """:func:`column_key`'s answer, the sections of an ambiguous bare name, or None."""
     keys = _case_keys()
-    if column in BUNDLE_COLUMNS or (column == WALL_COLUMN and not _wall_is_case_key()):
+    if column in BUNDLE_COLUMNS:
         return column
     if column in WHOLE_SECTIONS:
         return (column,)
@@ -162,8 +158,8 @@ def _meaning(column: str) -> tuple[str, ...] | str | list[str] | None:
 
 
 def identity_columns() -> list[str]:
-    """The manifest's documented columns: :data:`BUNDLE_COLUMNS` and ``wall_thickness_m`` (a
-    case key's bare name, or the manifest's own column while the case files have none)."""
+    """The manifest's documented columns: :data:`BUNDLE_COLUMNS` and ``wall_thickness_m`` (the
+    case key ``[geometry] wall_thickness_m``'s bare name, an override like any case key)."""
     return [*BUNDLE_COLUMNS, WALL_COLUMN]
 
 
@@ -245,8 +241,6 @@ def valid_columns() -> list[str]:
     """Every column name a manifest accepts (bundle columns, bare and dotted case keys)."""
     keys = _case_keys()
     names = list(BUNDLE_COLUMNS)
-    if not _wall_is_case_key():
-        names.append(WALL_COLUMN)
     names += WHOLE_SECTIONS
     counts: dict[str, int] = {}
     for section, ks in keys.items():

@@ -371,9 +371,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     total = len(man.rows)
     pending: list[ContactTask] = []  # the rows made tasks (an interrupt counts them once done)
     try:
-        walls: dict[str, float | None] = {}
         for row in man.rows:
-            walls[row.contact] = row.wall_thickness
             try:
                 task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
             except ROW_ERRORS as exc:  # with the warnings its case raised before failing
@@ -456,7 +454,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             workers_used = engine.workers
         finally:
             engine.close()
-        return _assemble(man, records, walls, store, (started, startup), workers_used,
+        return _assemble(man, records, store, (started, startup), workers_used,
                          dataset_format, limit)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         raise _interrupted(store, records, buffer, total, previous, man,
@@ -505,7 +503,7 @@ def _interrupted(store, records, buffer, total, previous, man, tasks) -> BundleI
     return BundleInterrupted(written, total, None if store is None else store.path)
 
 
-def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
+def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
               times: tuple[float, float], workers: int, dataset_format: str | None,
               limit: float | None = None) -> BundleResult:
     """The BundleResult (and the output files) from every contact's latest record."""
@@ -533,7 +531,7 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], walls, store,
                      "power": (attrs.get("power") or {}).get("total"),
                      "time_unit": attrs.get("time_unit"), "origin": attrs.get("origin"),
                      "tube_replacement": attrs.get("tube_replacement"),
-                     "wall_thickness": attrs.get("wall_thickness", walls.get(c)),
+                     "wall_thickness": attrs.get("wall_thickness"),
                      "depth_limit": attrs.get("depth_limit"),
                      # the geometry and law: the summary's exact time to another limit
                      **{k: attrs.get(k) for k in ("contact_type", "dimensions", "law",

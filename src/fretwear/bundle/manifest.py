@@ -118,7 +118,6 @@ class ContactRow:
     history: HistoryRef
     identity: dict[str, Any]
     overrides: dict[tuple[str, ...], Any]
-    wall_thickness: float | None = None
     labels: dict[tuple[str, ...], str] = field(default_factory=dict)
 
 
@@ -212,7 +211,7 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
         if _missing(cid):
             raise InputError(f"{source}: row {i + 1} has no contact id; give every row one")
         cid = str(_identity_value(cid))
-        identity, overrides, wall, labels = _cells(
+        identity, overrides, labels = _cells(
             ((str(col), meaning[str(col)], value) for col, value in record.items()), cid,
             source, directory, noun)
         node = record.get("node")
@@ -224,27 +223,23 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
             ref = HistoryRef("file", path=str(_absolute(str(hist), directory, parents)),
                              node=node)
         identity["node"] = node
-        rows.append(ContactRow(cid, ref, identity, overrides, wall, labels))
+        rows.append(ContactRow(cid, ref, identity, overrides, labels))
     _check_unique([r.contact for r in rows], source)
     return rows
 
 
 def _cells(cells, contact: str, source: str, directory: Path, noun: str = "column"
-           ) -> tuple[dict[str, Any], dict[tuple[str, ...], Any], float | None, dict]:
-    """(identity, overrides, wall thickness, labels) of one row from its ``(name, meaning,
-    value)`` cells (meaning from :func:`column_key`); empty cells are skipped, paths made
-    absolute; ``labels`` names each override as the manifest wrote it (``column
-    mobile_radius_m``)."""
+           ) -> tuple[dict[str, Any], dict[tuple[str, ...], Any], dict]:
+    """(identity, overrides, labels) of one row from its ``(name, meaning, value)`` cells
+    (meaning from :func:`column_key`); empty cells are skipped, paths made absolute;
+    ``labels`` names each override as the manifest wrote it (``column mobile_radius_m``)."""
     identity: dict[str, Any] = {}
     overrides: dict[tuple[str, ...], Any] = {}
     labels: dict[tuple[str, ...], str] = {}
-    wall = None
     for name, key, value in cells:
         if _missing(value) or key in ("contact", "history", "node"):
             continue
-        if key == WALL_COLUMN:
-            wall = _wall(value, contact, source)
-        elif isinstance(key, str):
+        if isinstance(key, str):
             identity[key] = _identity_value(value)
             if not isinstance(identity[key], str | int | float | bool):
                 raise InputError(f"{source}: contact {contact!r}: {noun} {name} = {value!r} is "
@@ -254,19 +249,7 @@ def _cells(cells, contact: str, source: str, directory: Path, noun: str = "colum
             value = _plain(value)
             overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
             labels[key] = f"{noun} {name}"
-    return identity, overrides, wall, labels
-
-
-def _wall(value: Any, contact: str, source: str) -> float:
-    try:
-        wall = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{source}: contact {contact!r}: {WALL_COLUMN} = {value!r} is not a "
-                         "thickness in metres") from None
-    if not (wall > 0 and math.isfinite(wall)):
-        raise InputError(f"{source}: contact {contact!r}: {WALL_COLUMN} = {value!r} must be a "
-                         "finite thickness > 0 [m]")
-    return wall
+    return identity, overrides, labels
 
 
 def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
@@ -540,7 +523,7 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
     stamp = () if path is None else path_stamp(path)  # once: a Zarr store may hold many files
     rows = []
     for i, cid in enumerate(ids):
-        identity, overrides, wall, labels = _cells(
+        identity, overrides, labels = _cells(
             ((name, meaning[name], values[i]) for name, values in columns.items()), cid, label,
             directory)
         if path is None:
@@ -554,6 +537,6 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
                              stamp=stamp)
         node = columns["node"][i] if "node" in columns else None
         identity["node"] = None if _missing(node) else str(_identity_value(node))
-        rows.append(ContactRow(cid, ref, identity, overrides, wall, labels))
+        rows.append(ContactRow(cid, ref, identity, overrides, labels))
     _check_unique(ids, label)
     return rows

@@ -13,26 +13,21 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import require
-from fretwear.bundle.limits import (  # noqa: F401 - INTERPOLATED, time_to_depth: their home
-    FROM_LAW,
+from fretwear.bundle.manifest import IDENTITY
+from fretwear.errors import InputError, KeywordError
+from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
+from fretwear.table.depth_rows import (
     FROM_TABLE,
-    FROM_VOLUME,
     INTERPOLATED,
     METHODS,
     ContactModels,
     exact_method,
-    time_to_depth,
     time_to_limit,
 )
-from fretwear.bundle.manifest import IDENTITY
-from fretwear.errors import InputError, KeywordError
-from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 
 #: Columns of :attr:`BundleResult.errors`.
 ERROR_COLUMNS = ("contact", "error", "message", "rows_kept")
-#: Depth fraction of the wall used by :meth:`BundleResult.summary` by default (the common
-#: plugging criterion, 40 % through-wall).
-DEFAULT_LIMIT = 0.4
 
 
 @dataclass
@@ -128,7 +123,7 @@ class BundleResult:
             limit: exact, the limit depth inverted through the contact's geometry to a worn
             volume, reached linearly in time between the table's instants for a law linear in
             time (through the law's equivalent time for EDF-MZ), from the tube's volume at its
-            origin or replacement (:mod:`fretwear.bundle.limits`); among a restart's
+            origin or replacement (:mod:`fretwear.table.depth_rows`); among a restart's
             initial-table rows, through the geometry with the volume linear between them;
             where the geometry or the law is not known, depth(t) interpolated between the
             instants (monotone cubic) and inverted.
@@ -171,7 +166,7 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     """The ranking of :meth:`BundleResult.summary`.
 
     The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
-    :func:`~fretwear.bundle.limits.time_to_limit` is called only for the contacts whose depth
+    :func:`~fretwear.table.depth_rows.time_to_limit` is called only for the contacts whose depth
     reaches the limit.
     """
     if limit is not None and limit_m is not None:
@@ -206,7 +201,7 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         if not its_wall and wall_thickness is not None:
             wall = float(wall_thickness)
         own = owns[k]
-        own = DEFAULT_LIMIT if own is None or pd.isna(own) else float(own)
+        own = DEFAULT_DEPTH_LIMIT if own is None or pd.isna(own) else float(own)
         fraction = own if limit is None else limit
         # the limit of the table's limit_instant: the case's depth_limit of its own wall
         own_limit.append(its_wall and fraction == own)
@@ -392,7 +387,7 @@ class _Contacts:
 
     def reaches(self, targets: list, replaced: list) -> np.ndarray:
         """Whether a time can be found for each contact's target depth [m] (False where
-        :func:`~fretwear.bundle.limits.time_to_limit` would return NaN: its deepest depth
+        :func:`~fretwear.table.depth_rows.time_to_limit` would return NaN: its deepest depth
         since a replacement is below a positive target; a NaN depth of a finite volume is
         beyond the relation's range, deeper than any target)."""
         n = len(self.names)
@@ -417,7 +412,7 @@ class _Contacts:
 
     def time_to(self, k: int, target: float, replaced: float | None,
                 model: dict) -> tuple[float, str]:
-        """:func:`~fretwear.bundle.limits.time_to_limit` on contact ``k``'s global rows
+        """:func:`~fretwear.table.depth_rows.time_to_limit` on contact ``k``'s global rows
         (``model``: its ``geometry``, ``law``, ``coefficients``, ``time_scale``)."""
         s = slice(self.start[k], self.end[k])
 

@@ -27,6 +27,7 @@ from fretwear.cli._units import parse_units, units_option, with_bundle_units
 from fretwear.errors import InputError
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
+from fretwear.table import DEFAULT_DEPTH_LIMIT
 
 #: Exit code when some contacts failed or left their relation's range (the others are written).
 EXIT_SOME_FAILED = 1
@@ -125,7 +126,8 @@ def _summary(summary, console, top: int, limit: float | None) -> None:
               help="Format of the dataset (default zarr).")
 @click.option("--limit", type=click.FloatRange(min=0, max=1, min_open=True),
               help="Depth limit, fraction of the wall (0 < FRACTION <= 1), for the summary "
-                   "shown and OUT/summary.csv (default: each contact's depth_limit, 0.4 unless "
+                   f"shown and OUT/summary.csv (default: each contact's depth_limit, "
+                   f"{DEFAULT_DEPTH_LIMIT} unless "
                    "its case sets it).")
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (tube-sheet map, power distribution, worst depths).")

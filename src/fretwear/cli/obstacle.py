@@ -13,7 +13,7 @@ from fretwear.cli._units import parse_units, units_line, units_option, with_hist
 from fretwear.errors import FretwearWarning, KeywordError
 from fretwear.io.atomic import check_outputs
 from fretwear.obstacle import obstacle_from_config
-from fretwear.obstacle.config import MODEL_KEYS
+from fretwear.obstacle.config import section_with_options
 from fretwear.obstacle.depth import DEPTH_SHAPES
 from fretwear.obstacle.update import PROFILE_FORMATS
 from fretwear.plotting import plot_obstacle, save_figure
@@ -130,7 +130,7 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
             discrete_file, shape, perforation, resolution, step, output, fmt, discret_path,
             units, plot_dir, quiet) -> None:
     echo = (lambda *a, **k: None) if quiet else click.echo
-    section: dict = {}
+    section = None
     geometry: dict = {}
     directory = None
     case = None
@@ -147,46 +147,15 @@ def command(case_file, table_path, instant, mobile_radius, wall_thickness, width
     elif units:
         raise click.UsageError("--units gives the units of the history a case file reads; "
                                "a --table wear table is in SI (volumes m³)")
-    overrides = {"mobile_radius_m": mobile_radius, "wall_thickness_m": wall_thickness,
-                 "width_m": width, "shape": shape, "perforation": perforation,
-                 "instant": instant, "resolution_deg": resolution, "step_deg": step}
-    section.update({k: v for k, v in overrides.items() if v is not None})
-    models = {"gap_m": gap, "bore_radius_m": bore_radius, "plane_gap_m": plane_gap,
-              "file": None if discrete_file is None else str(discrete_file.resolve())}
-    given = {k: v for k, v in models.items() if v is not None}
-    if len(given) > 1:
-        raise click.UsageError("give one obstacle: --gap, --bore-radius, --plane-gap or "
-                               "--obstacle-table")
-    if plane_gap is None:
-        stray = [opt for opt, v in (("--plane-gap-opposite", plane_gap_opposite),
-                                    ("--orientation", orientation),
-                                    ("--closing-radius", closing_radius)) if v is not None]
-        if stray:
-            raise click.UsageError(f"{', '.join(stray)} describe two planes: give --plane-gap "
-                                   "too (or put the planes in the case's [obstacle] section)")
-    if given:
-        for key in ("type", *(k for keys in MODEL_KEYS.values() for k in keys)):
-            section.pop(key, None)  # the options' obstacle replaces the case's
-        section.update(given)
-        if plane_gap is not None:
-            section["type"] = "planes"
-            for key, v in (("orientation_deg", orientation), ("closing_radius_m", closing_radius),
-                           ("plane_gap_opposite_m", plane_gap_opposite)):
-                if v is not None:
-                    section[key] = v
-        elif discrete_file is not None:
-            section["type"] = "discrete"
-    if table_path is not None:
-        section["table"] = str(table_path.resolve())
-    if case_file is None:
-        missing = [opt for opt, key in (("--mobile-radius", "mobile_radius_m"),
-                                        ("--wall-thickness", "wall_thickness_m"))
-                   if key not in section]
-        if not given:
-            missing.append("an obstacle (--gap, --bore-radius, --plane-gap or "
-                           "--obstacle-table)")
-        if missing:
-            raise click.UsageError(f"with --table, give {', '.join(missing)}")
+    section = section_with_options(section, {
+        "mobile_radius_m": mobile_radius, "wall_thickness_m": wall_thickness, "width_m": width,
+        "shape": shape, "perforation": perforation, "instant": instant,
+        "resolution_deg": resolution, "step_deg": step, "gap_m": gap,
+        "bore_radius_m": bore_radius, "plane_gap_m": plane_gap,
+        "plane_gap_opposite_m": plane_gap_opposite, "orientation_deg": orientation,
+        "closing_radius_m": closing_radius,
+        "file": None if discrete_file is None else str(discrete_file.resolve())},
+        table=None if table_path is None else str(table_path.resolve()))
     setup = obstacle_from_config(section, geometry=geometry, directory=directory)
     inputs = case_inputs(case or {}, case_file)
     inputs.update({"wear table (--table)": table_path, "obstacle table": discrete_file,

@@ -27,7 +27,7 @@ from fretwear.io.atomic import check_outputs
 from fretwear.laws import WEAR_LAWS
 from fretwear.plotting import save_figure, wear_figures
 from fretwear.report import analyse_case, write_report
-from fretwear.table import COLUMNS, write_wear_table
+from fretwear.table import COLUMNS, DEFAULT_DEPTH_LIMIT, write_wear_table
 from fretwear.table.files import ASTER_SUFFIXES
 from fretwear.workflows.case_files import keys_help, load_case, run_case
 from fretwear.workflows.inputs import RESTART_TABLE, case_inputs
@@ -166,8 +166,9 @@ def _limit_lines(table) -> list[tuple[str, str | None]]:
     if wall is None or "limit_instant" not in table.columns:
         return []
     unit = attrs.get("time_unit") or "user time unit"
-    limit = attrs.get("depth_limit", 0.4) * wall
-    out = [(f"limit: {100 * attrs.get('depth_limit', 0.4):g} % of the {wall * 1e3:.4g} mm wall "
+    fraction = attrs.get("depth_limit", DEFAULT_DEPTH_LIMIT)
+    limit = fraction * wall
+    out = [(f"limit: {100 * fraction:g} % of the {wall * 1e3:.4g} mm wall "
             f"= {limit * 1e3:.4g} mm; the global depth reaches it at instant "
             f"{_instant(table['limit_instant'].iloc[-1])} [{unit}]", "bold")]
     if "limit_instant_sector" in table.columns:
@@ -204,7 +205,7 @@ def _limit_lines(table) -> list[tuple[str, str | None]]:
 @click.option("--depth-limit", "depth_limit", type=click.FloatRange(min=0, min_open=True),
               metavar="FRACTION",
               help="Depth limit as a fraction of the wall [-] (overrides [geometry] "
-                   "depth_limit; default 0.4).")
+                   f"depth_limit; default {DEFAULT_DEPTH_LIMIT}).")
 @click.option("--report", "report", type=click.Path(dir_okay=False, path_type=Path),
               help="Also write one self-contained HTML report (uncertainty from the case's "
                    "[uncertainty] section; see fretwear report).")

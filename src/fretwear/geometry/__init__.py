@@ -13,6 +13,7 @@ import dataclasses
 import warnings
 
 from fretwear.errors import KeywordError, UnusedKeywordWarning
+from fretwear.geometry._shapes import solve_monotone
 from fretwear.geometry.base import (
     ASTER_KEYWORDS,
     DIMENSION_DESCRIPTIONS,
@@ -42,6 +43,7 @@ __all__ = [
     "sector_depth_obstacle",
     "sector_volume_mobile",
     "sector_volume_obstacle",
+    "solve_monotone",
 ]
 
 #: Code_Aster contact name -> geometry class (theory §6).

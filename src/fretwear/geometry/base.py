@@ -243,6 +243,21 @@ class ContactGeometry:
     def _volume_from_depth(self, depth_mobile: np.ndarray, depth_obstacle: np.ndarray):
         raise NotImplementedError
 
+    def mobile_volume(self, depth_mobile: np.ndarray) -> np.ndarray:
+        """The mobile's worn volume [m³] of valid mobile depths [m] (an array, each ≥ 0), the
+        obstacle unworn: :meth:`volume_from_depth`'s relation without its checks and warning,
+        for a caller whose depths are valid by construction (NaN beyond the range).
+
+        Examples
+        --------
+        >>> from fretwear.geometry import contact_geometry
+        >>> g = contact_geometry("TUBE_BAV", mobile_radius=0.01, obstacle_width=0.02)
+        >>> bool(g.mobile_volume(np.array([1e-4]))[0] == g.volume_from_depth(1e-4)[0])
+        True
+        """
+        depth = np.asarray(depth_mobile, dtype=float)
+        return np.asarray(self._volume_from_depth(depth, np.zeros_like(depth))[0], dtype=float)
+
     def _apply(self, relation, kind: str, mobile, obstacle):
         """``relation`` on the validated pair of ``kind`` ("volume"/"depth"): NaN inputs give
         NaN, and new NaNs (beyond the range) a RangeWarning at the public method's caller."""

@@ -301,7 +301,8 @@ def list_aster_tables(path_or_text: str | os.PathLike) -> list[str]:
 
 
 def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = None,
-                     title: str | None = None) -> pd.DataFrame:
+                     title: str | None = None, rename: Mapping[str, str] | None = None,
+                     data: bytes | None = None) -> pd.DataFrame:
     """Read a table printed by Code_Aster's IMPR_TABLE (FORMAT 'TABLEAU' or 'ASTER').
 
     Parameters
@@ -312,6 +313,10 @@ def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = Non
         Which table (0-based) when the file holds several.
     title : str, optional
         Choose the table whose title contains this text (case-insensitive).
+    rename : mapping, optional
+        Columns renamed as the frame is made (old -> new; e.g. native names, without a copy).
+    data : bytes, optional
+        The file's bytes, already read (a caller keyed on them parses those bytes).
 
     Returns
     -------
@@ -347,15 +352,6 @@ def read_aster_table(path_or_text: str | os.PathLike, *, index: int | None = Non
     >>> frame.attrs["title"], frame.attrs["types"], frame["V_USUR_TUBE"].tolist()
     ('wear table', ['R', 'R', 'K8'], [nan, 2.5e-09])
     """
-    return _read_table(path_or_text, index=index, title=title)
-
-
-def _read_table(path_or_text: str | os.PathLike, *, index: int | None = None,
-                title: str | None = None, rename: Mapping[str, str] | None = None,
-                data: bytes | None = None) -> pd.DataFrame:
-    """:func:`read_aster_table`, some columns renamed (``rename``: old -> new) as the frame is
-    made (:func:`fretwear.table.files.read_wear_table`: native names without a copy); ``data``:
-    the file's bytes, already read (the restart memo parses the bytes it is keyed on)."""
     text, label = _text_of(path_or_text, data)
     raw = _raw_tables(text, label)
     listing = "; ".join(f"{i}: {' / '.join(t['title']) or '(no title)'}"

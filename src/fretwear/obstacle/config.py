@@ -107,6 +107,79 @@ class ObstacleSetup:
             resolution=self.resolution)
 
 
+#: How a command names each key it gives (``fretwear obstacle``'s options), for messages.
+OPTION_NAMES = {"gap_m": "--gap", "bore_radius_m": "--bore-radius", "plane_gap_m": "--plane-gap",
+                "plane_gap_opposite_m": "--plane-gap-opposite",
+                "orientation_deg": "--orientation", "closing_radius_m": "--closing-radius",
+                "file": "--obstacle-table", "mobile_radius_m": "--mobile-radius",
+                "wall_thickness_m": "--wall-thickness"}
+
+
+def section_with_options(section: Mapping[str, Any] | None, options: Mapping[str, Any], *,
+                         table: str | None = None,
+                         names: Mapping[str, str] = OPTION_NAMES) -> dict[str, Any]:
+    """An ``[obstacle]`` section (None: none, the options alone) with given values in front.
+
+    Parameters
+    ----------
+    section : mapping or None
+        The case file's ``[obstacle]`` section (not modified).
+    options : mapping
+        Section keys (:data:`OBSTACLE_KEYS`) -> values, None where not given. One obstacle at
+        most (``gap_m``, ``bore_radius_m``, ``plane_gap_m`` or ``file``): it replaces the
+        section's (its type and every key of its :data:`MODEL_KEYS`); ``plane_gap_m`` makes it
+        two planes (``plane_gap_opposite_m``, ``orientation_deg``, ``closing_radius_m`` go
+        with it only), ``file`` a DISCRET table.
+    table : str, optional
+        The wear table's path (the section's ``table``).
+    names : mapping
+        How the caller names each key, for the messages (default the command's options).
+
+    Returns
+    -------
+    dict
+        The merged section for :func:`obstacle_from_config`.
+
+    Raises
+    ------
+    KeywordError
+        Two obstacles, plane keys without ``plane_gap_m``, and, without a section, a missing
+        ``mobile_radius_m``, ``wall_thickness_m`` or obstacle.
+    """
+    merged = dict(section or {})
+    obstacles = ("gap_m", "bore_radius_m", "plane_gap_m", "file")
+    planes = ("plane_gap_opposite_m", "orientation_deg", "closing_radius_m")
+    given = {k: options[k] for k in obstacles if options.get(k) is not None}
+    merged.update({k: v for k, v in options.items()
+                   if v is not None and k not in obstacles and k not in planes})
+    if len(given) > 1:
+        raise KeywordError(f"give one obstacle: {', '.join(names.get(k, k) for k in obstacles)}")
+    stray = [names.get(k, k) for k in planes if options.get(k) is not None]
+    if "plane_gap_m" not in given and stray:
+        raise KeywordError(f"{', '.join(stray)} describe two planes: give "
+                           f"{names.get('plane_gap_m', 'plane_gap_m')} too (or put the planes "
+                           "in the case's [obstacle] section)")
+    if given:
+        for key in ("type", *(k for keys in MODEL_KEYS.values() for k in keys)):
+            merged.pop(key, None)  # the given obstacle replaces the section's
+        merged.update(given)
+        if "plane_gap_m" in given:
+            merged["type"] = "planes"
+            merged.update({k: options[k] for k in planes if options.get(k) is not None})
+        elif "file" in given:
+            merged["type"] = "discrete"
+    if table is not None:
+        merged["table"] = table
+    if section is None:
+        missing = [names.get(k, k) for k in ("mobile_radius_m", "wall_thickness_m")
+                   if k not in merged]
+        if not given:
+            missing.append(f"an obstacle ({', '.join(names.get(k, k) for k in obstacles)})")
+        if missing:
+            raise KeywordError(f"with a wear table alone, give {', '.join(missing)}")
+    return merged
+
+
 def _need(section: Mapping, key: str, fallback=None, hint: str = ""):
     if key in section:
         return section[key]

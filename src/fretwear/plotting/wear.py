@@ -11,7 +11,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.plotting._common import figure_and_axes
-from fretwear.table import from_aster_names
+from fretwear.table import DEFAULT_DEPTH_LIMIT, from_aster_names
 from fretwear.timeunits import TIME_UNITS
 
 #: quantity -> (column prefix, scale from SI, axis label)
@@ -59,7 +59,7 @@ def _draw_history(ax, table: pd.DataFrame, quantity: str) -> None:
                     xytext=(3, -24), textcoords="offset points", fontsize="small")
     wall = table.attrs.get("wall_thickness")
     if quantity == "depth" and wall:
-        limit = float(table.attrs.get("depth_limit", 0.4)) * float(wall)
+        limit = float(table.attrs.get("depth_limit", DEFAULT_DEPTH_LIMIT)) * float(wall)
         ax.axhline(limit * scale, color="C3", ls="--", lw=1,
                    label=f"limit {100 * limit / wall:g} % of the wall")
         if np.nanmax(glob["depth_mobile"], initial=0.0) > wall:

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from fretwear.errors import ConfidenceWarning, InputError
+from fretwear.keys import check_level
 
 __all__ = ["MINIMUM_BLOCKS", "PowerInterval", "TruncatedStudent", "batch_means_interval",
            "ensemble_interval", "format_interval"]
@@ -211,13 +212,7 @@ class PowerInterval:
 
 
 def _level(level: float) -> float:
-    try:
-        p = float(level)
-    except (TypeError, ValueError):
-        raise InputError(f"level must be a probability in (0, 1), got {level!r}") from None
-    if not 0.0 < p < 1.0:
-        raise InputError(f"level must be a probability in (0, 1) (e.g. 0.95), got {level!r}")
-    return p
+    return check_level(level)
 
 
 def lag1_autocorrelation(values) -> float:

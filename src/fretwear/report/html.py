@@ -26,7 +26,7 @@ from fretwear.laws import get_law
 from fretwear.plotting import plot_sector_wear, plot_wear_table
 from fretwear.plotting.uncertainty import plot_calibration, plot_fan_chart, plot_sensitivity
 from fretwear.report.analysis import Analysis
-from fretwear.table import COLUMNS
+from fretwear.table import COLUMNS, DEFAULT_DEPTH_LIMIT
 
 __all__ = ["render_report", "write_report"]
 
@@ -232,7 +232,7 @@ def render_report(analysis: Analysis, *, title: str | None = None) -> str:
         "time_unit": unit, "time_scale": _num(attrs.get("time_scale"), ".6g"),
         "wall": None if attrs.get("wall_thickness") is None
         else _num(attrs["wall_thickness"] * 1e3),
-        "depth_limit": _num(100 * float(attrs.get("depth_limit") or 0.4), "g"),
+        "depth_limit": _num(100 * float(attrs.get("depth_limit") or DEFAULT_DEPTH_LIMIT), "g"),
         "limit_instant": _num(table["limit_instant"].iloc[-1])
         if "limit_instant" in table.columns else None,
         "through_wall": {k: _num(v) for k, v in (attrs.get("through_wall") or {}).items()},

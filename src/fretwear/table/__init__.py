@@ -20,12 +20,15 @@
 from fretwear.table.build import wear_table_columns, wear_table_from_case
 from fretwear.table.case import Coefficient, WearCase
 from fretwear.table.core import wear_table
+from fretwear.table.depth import DepthModel, model_from_table, models_from_table
+from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.files import (
     read_profile_table,
     read_wear_table,
     write_profile_table,
     write_wear_table,
 )
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.restart import InitialState, initial_state, replace_tube
 from fretwear.table.schema import (
     COLUMNS,
@@ -41,7 +44,10 @@ from fretwear.table.schema import (
 
 __all__ = [
     "COLUMNS",
+    "DEFAULT_DEPTH_LIMIT",
     "Coefficient",
+    "DepthModel",
+    "EarlierRows",
     "FLOAT_FORMAT",
     "GLOBAL_COLUMNS",
     "PROFILE_COLUMNS",
@@ -52,6 +58,8 @@ __all__ = [
     "WearCase",
     "from_aster_names",
     "initial_state",
+    "model_from_table",
+    "models_from_table",
     "read_profile_table",
     "read_wear_table",
     "replace_tube",

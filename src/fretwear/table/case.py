@@ -46,7 +46,7 @@ from fretwear.table.coefficients import (
     resolve_coefficients,
     sector_parameter,
 )
-from fretwear.table.limit import check_wall
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT, check_wall
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _read_initial_state
 from fretwear.table.schema import _TIME_TOL
@@ -242,7 +242,7 @@ class WearCase:
     initial_table: str | None = None
     tube_replacement: float | None = None
     wall_thickness: float | None = None
-    depth_limit: float = 0.4
+    depth_limit: float = DEFAULT_DEPTH_LIMIT
     name: str | None = None
 
     # ----------------------------------------------------------------------- construction
@@ -258,7 +258,7 @@ class WearCase:
                       t_end: float | None = None, blocks: int = 1,
                       stationarity_threshold: float = 0.1, force_max: float | None = None,
                       speed_max: float | None = None, coefficient_files=None,
-                      wall_thickness: float | None = None, depth_limit: float = 0.4,
+                      wall_thickness: float | None = None, depth_limit: float = DEFAULT_DEPTH_LIMIT,
                       time_unit: str | None = None, name: str | None = None) -> WearCase:
         """The case of the keywords of :func:`fretwear.table.wear_table` (but ``source`` and
         ``history``), resolved and validated.

@@ -29,6 +29,7 @@ from fretwear.history import ContactHistory
 from fretwear.power.result import PowerResult
 from fretwear.table.build import wear_table_from_case
 from fretwear.table.case import WearCase, law_coefficients  # noqa: F401 - re-exported
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.schema import (  # noqa: F401 - re-exported
     COLUMNS,
     GLOBAL_COLUMNS,
@@ -51,7 +52,8 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                stationarity_threshold: float = 0.1, force_max: float | None = None,
                speed_max: float | None = None,
                coefficient_files=None, wall_thickness: float | None = None,
-               depth_limit: float = 0.4, time_unit: str | None = None, name: str | None = None,
+               depth_limit: float = DEFAULT_DEPTH_LIMIT, time_unit: str | None = None,
+               name: str | None = None,
                history: ContactHistory | None = None) -> pd.DataFrame:
     """The service-life wear table of one contact (theory §7; Code_Aster's POST_USURE).
 

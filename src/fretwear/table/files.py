@@ -17,7 +17,7 @@ from pathlib import Path
 from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear.errors import FormatError, InputError
-from fretwear.io.aster import TABLE_FORMATS, _read_table, write_aster_table
+from fretwear.io.aster import TABLE_FORMATS, read_aster_table, write_aster_table
 from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.io.guard import readable_file, reading
 from fretwear.table.provenance import PARQUET_KEY, header_lines, parse_header, provenance
@@ -96,7 +96,7 @@ def read_aster_wear_table(path: Path, *, index: int | None = None, data: bytes |
     reading the file again: :func:`fretwear.table.restart.initial_state`'s memo)."""
     try:
         with reading(path, "aster", "wear table file"):  # native names as the frame is made
-            frame = _read_table(path, index=index, rename=_NATIVE, data=data)
+            frame = read_aster_table(path, index=index, rename=_NATIVE, data=data)
     except FormatError as exc:
         raise FormatError(f"{exc} [wear table: in a case file give [restart] table_index "
                           "= <n>; in Python read_wear_table(path, index=<n>)]") from None

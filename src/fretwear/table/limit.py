@@ -5,12 +5,12 @@ With the case's ``wall_thickness`` [m] and ``depth_limit`` [-] the wear table ga
 global depth and for every sector depth (docs/uncertainty.md §1):
 
 * ``wall_fraction`` (``wall_fraction_sector``): the depth of the mobile over the wall [-];
-* ``limit_instant`` (``limit_instant_sector``): the instant [user time unit] at which that depth
-  reaches ``depth_limit × wall_thickness``, found by inverting the monotone depth(t) through the
-  law and the geometry (not by interpolating the table's rows): with a bracketed solver, or in
-  closed form when the depth function knows its inverse (``time_to``: a law linear in time,
-  through the geometry's volume_from_depth); ``inf`` when the law never gets there (no wear),
-  the origin when it is already reached there.
+* ``limit_instant`` (``limit_instant_sector``): the instant [user time unit] at which the tube
+  in place first reaches ``depth_limit × wall_thickness``: the global depth's by
+  :meth:`fretwear.table.DepthModel.time_to` (the one meaning of the time to a limit,
+  docs/uncertainty.md §1: a restart's earlier rows included, only the new tube after a
+  replacement), each sector's depth of a law linear in time inverted in closed form;
+  ``inf`` when the law never gets there (no wear).
 
 A depth beyond the wall (fraction > 1) is named by a :class:`~fretwear.errors.PerforationWarning`.
 """
@@ -24,10 +24,14 @@ from collections.abc import Callable
 import numpy as np
 
 from fretwear.errors import InputError, PerforationWarning
-from fretwear.geometry._shapes import solve_monotone
+from fretwear.geometry import solve_monotone
 
-__all__ = ["add_wall_columns", "check_wall", "first_time", "first_times", "time_to_depth",
-           "wall_columns"]
+__all__ = ["DEFAULT_DEPTH_LIMIT", "check_wall", "first_times", "time_to_depth", "wall_columns"]
+
+#: The depth limit of a tube by default, as a fraction of its wall [-]: the common plugging
+#: criterion, 40 % through-wall.
+DEFAULT_DEPTH_LIMIT = 0.4
+
 
 def _finite(value, name: str) -> float:
     ok = not isinstance(value, bool | str | bytes) and value is not None
@@ -97,7 +101,7 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
     Notes
     -----
     The bracket [lo, hi] grows by ×16 from ``first_guess`` until depth(hi) ≥ target, then
-    Chandrupatla's method (:func:`fretwear.geometry._shapes.solve_monotone`) narrows it to
+    Chandrupatla's method (:func:`fretwear.geometry.solve_monotone`) narrows it to
     ``rtol``. A NaN depth counts as above the target.
 
     Examples
@@ -143,28 +147,17 @@ def _past_wall(fraction) -> np.ndarray:
     return np.isnan(f) | (f > 1.0)
 
 
-def first_time(old: Callable, new: Callable | None, target: float, fresh: float | None,
-               first_guess: float) -> float:
-    """Seconds after the origin [s] at which the tube in place first reaches ``target`` [m].
-
-    ``old(t)`` is the depth of the tube in place at the origin, ``new(τ)`` the depth of a tube
-    put in ``fresh`` seconds after the origin (TUBE_NEUF), τ seconds after its replacement.
-    """
-    t = float(time_to_depth(old, target, first_guess=first_guess))
-    if fresh is None or new is None or t < fresh:
-        return t
-    return fresh + float(time_to_depth(new, target, first_guess=first_guess))
-
-
 def first_times(old: Callable, new: Callable | None, targets, fresh: float | None,
                 first_guess: float) -> np.ndarray:
-    """:func:`first_time` of several depth functions at once, element-wise [s].
+    """Seconds after the origin [s] at which the tube in place first reaches ``targets`` [m],
+    element-wise (e.g. the sectors of a table).
 
     ``old(t)`` and ``new(τ)`` map an array of times (one per element) to the array of depths of
-    the elements (e.g. the sectors of a table) [m]; ``targets`` the depths to reach [m]. Each
-    element goes through the same steps as a call of :func:`first_time` of its own. A function
-    with a ``time_to(targets)`` method (its inverse, e.g. a law linear in time through a
-    closed-form geometry) is inverted by it instead of the bracketed solver.
+    the elements [m]: ``old`` of the tube in place at the origin, ``new`` of a tube put in
+    ``fresh`` seconds after the origin (TUBE_NEUF), τ seconds after its replacement. After a
+    replacement only the new tube counts (docs/uncertainty.md §1). A function with a
+    ``time_to(targets)`` method (its inverse in closed form) is inverted by it instead of the
+    bracketed solver (:func:`time_to_depth`).
     """
     goal = np.asarray(targets, dtype=float)
 
@@ -174,49 +167,15 @@ def first_times(old: Callable, new: Callable | None, targets, fresh: float | Non
         return np.asarray(time_to_depth(depth_of_time, goal, first_guess=first_guess),
                           dtype=float)
 
-    t = solve(old)
-    if fresh is None or new is None or not (t >= fresh).any():
-        return t
-    later = t >= fresh
-    return np.where(later, fresh + solve(new), t)
-
-
-def add_wall_columns(frame, *, wall: float, depth_limit: float, origin: float,
-                     time_scale: float, fresh: float | None, global_depth, sector_depths=None,
-                     unit: str | None = None, stacklevel: int = 3):
-    """``frame`` with the wall columns (module docstring), and the limit's metadata.
-
-    Parameters
-    ----------
-    frame : DataFrame
-        The wear table (native columns).
-    wall, depth_limit, origin, time_scale, fresh, global_depth, sector_depths, unit
-        As in :func:`wall_columns`.
-
-    Returns
-    -------
-    (DataFrame, dict)
-        The table with ``wall_fraction``, ``limit_instant`` (and ``wall_fraction_sector``,
-        ``limit_instant_sector``), and ``{"limit_depth", "limit_instant", "through_wall"}``.
-    """
-    sectored = sector_depths is not None
-    columns, info = wall_columns(
-        frame["depth_mobile"].to_numpy(dtype=float),
-        frame["sector"].to_numpy(dtype=int) if sectored else None,
-        frame["depth_mobile_sector"].to_numpy(dtype=float) if sectored else None,
-        wall=wall, depth_limit=depth_limit, origin=origin, time_scale=time_scale, fresh=fresh,
-        global_depth=global_depth, sector_depths=sector_depths, unit=unit,
-        stacklevel=stacklevel + 1)
-    out = frame.copy()
-    for name, values in columns.items():
-        out[name] = values
-    return out, info
+    if fresh is None or new is None:
+        return solve(old)
+    return fresh + solve(new)
 
 
 def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
                  depth_mobile_sector: np.ndarray | None, *, wall: float, depth_limit: float,
                  origin: float, time_scale: float, fresh: float | None, global_depth,
-                 sector_depths=None, unit: str | None = None, vectorised: bool = False,
+                 sector_depths=None, unit: str | None = None,
                  stacklevel: int = 3) -> tuple[dict, dict]:
     """The wall columns of a wear table from its depth columns, and the limit's metadata.
 
@@ -236,18 +195,14 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
         Seconds per user time unit [s].
     fresh : float or None
         Seconds after the origin of a tube replacement (None: none) [s].
-    global_depth : (callable, callable) or None
-        ``(old, new)`` depth functions of the global depth (None: no global depth).
-    sector_depths : list of (callable, callable), or (callable, callable), optional
-        The same per sector (sector mode): a pair per sector, or one pair of functions of all
-        the sectors at once (:func:`first_times`: arrays of one time, one depth per sector).
+    global_depth : DepthModel or None
+        The global depth's model (None: no global depth): its
+        :meth:`~fretwear.table.DepthModel.time_to` gives the limit and through-wall instants.
+    sector_depths : (callable, callable), optional
+        ``(old, new)`` depth functions of all the sectors at once (sector mode; arrays of one
+        time, one depth per sector: :func:`first_times`).
     unit : str, optional
         Name of the user time unit, for the warning.
-    vectorised : bool
-        The global functions take an array of times (one per target) and return the depths
-        element-wise: the limit and the through-wall instants are then found in one solve
-        (:func:`first_times`, each element as by :func:`first_time`), or by the functions'
-        ``time_to`` inverse when they have one.
 
     Returns
     -------
@@ -259,29 +214,17 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
     limit = depth_limit * wall
     depth_mobile = np.asarray(depth_mobile, dtype=float)
 
-    def instant(fns, target):
-        if fns is None:
-            return np.nan
-        t = first_time(fns[0], fns[1], target, fresh, time_scale)
+    def sector_instants(targets):  # vectorised over the sectors
+        t = first_times(sector_depths[0], sector_depths[1], targets, fresh, time_scale)
         return origin + t / time_scale
-
-    def sector_instants(targets):
-        if sector_depths and callable(sector_depths[0]):  # vectorised over the sectors
-            t = first_times(sector_depths[0], sector_depths[1], targets, fresh, time_scale)
-            return origin + t / time_scale
-        return np.array([instant(fns, target)
-                         for fns, target in zip(sector_depths, targets, strict=True)])
 
     fraction = depth_mobile / wall
     past = global_depth is not None and _past_wall(fraction).any()
-    if vectorised and global_depth is not None:  # the limit and the wall in one solve
-        targets = np.array([limit, wall] if past else [limit])
-        found = first_times(global_depth[0], global_depth[1], targets, fresh, time_scale)
-        found = (origin + found / time_scale).tolist()
+    limit_at = wall_at = math.nan
+    if global_depth is not None:  # the limit and the wall in one call
+        found = np.atleast_1d(global_depth.time_to(np.array([limit, wall] if past
+                                                            else [limit]))).tolist()
         limit_at, wall_at = found[0], found[-1]
-    else:
-        limit_at = instant(global_depth, limit)
-        wall_at = instant(global_depth, wall) if past else None
     columns = {"wall_fraction": fraction, "limit_instant": np.full(fraction.shape, limit_at)}
     info = {"limit_depth": limit, "limit_instant": limit_at, "through_wall": {}}
     through = []

@@ -11,8 +11,8 @@ wear power of a rattling tube is chaotic, and that inspections measure real dept
   and the posterior predictive depth and exceedance probability of every contact;
 - :class:`LogNormal`: the usual distribution of a wear coefficient (median and σ_ln or a
   scatter factor);
-- :class:`ContactModel`: the forward model (depth as a vectorised function of the inputs and
-  time).
+- the forward model is :class:`fretwear.table.DepthModel` (depth as a vectorised function of
+  the inputs and time, and its inverse).
 
 The model and how to read the outputs: docs/uncertainty.md.
 """
@@ -24,21 +24,17 @@ from fretwear.uncertainty.calibration import (
     read_inspections,
 )
 from fretwear.uncertainty.distributions import LogNormal, lognormal_sigma
-from fretwear.uncertainty.model import ContactModel, model_from_table, models_from_table
 from fretwear.uncertainty.monte_carlo import UncertaintyResult, Variable, monte_carlo
 from fretwear.uncertainty.sampling import sobol_indices, uniform_points
 
 __all__ = [
     "CalibrationResult",
-    "ContactModel",
     "GridPosterior",
     "LogNormal",
     "UncertaintyResult",
     "Variable",
     "lognormal_sigma",
     "calibrate",
-    "model_from_table",
-    "models_from_table",
     "monte_carlo",
     "read_inspections",
     "sobol_indices",

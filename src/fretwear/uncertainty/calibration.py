@@ -2,7 +2,7 @@
 
 Eddy-current inspections measure worn depths y_i of contacts (and sectors) at instants t_i.
 The prediction of contact k is d_k(f, t), with f a factor on every wear coefficient, common to
-the contacts calibrated together (:mod:`fretwear.uncertainty.model`). With a lognormal prior
+the contacts calibrated together (:mod:`fretwear.table.depth`). With a lognormal prior
 ln f ~ N(μ₀, τ₀²) and a lognormal measurement error ln y_i = ln d_k(f, t_i) + ε_i,
 ε_i ~ N(0, σ_i²), the posterior of λ = ln f is
 
@@ -33,11 +33,12 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, RangeWarning
-from fretwear.geometry._shapes import solve_monotone
+from fretwear.geometry import solve_monotone
 from fretwear.io.text_tables import number, read_text_table
+from fretwear.keys import check_level, check_probabilities
+from fretwear.table.depth import DepthModel, models_from_table
 from fretwear.uncertainty.cases import prepare_case
 from fretwear.uncertainty.distributions import LogNormal
-from fretwear.uncertainty.model import ContactModel, models_from_table
 
 __all__ = ["CalibrationResult", "GridPosterior", "calibrate", "read_inspections"]
 
@@ -214,8 +215,8 @@ def read_inspections(source) -> pd.DataFrame:
 
 
 # ---------------------------------------------------------------------- predictions
-def _contact_models(item, name: str) -> dict[str, ContactModel]:
-    if isinstance(item, ContactModel):
+def _contact_models(item, name: str) -> dict[str, DepthModel]:
+    if isinstance(item, DepthModel):
         return {"global": item}
     if isinstance(item, pd.DataFrame):
         return models_from_table(item, name=name)
@@ -225,11 +226,11 @@ def _contact_models(item, name: str) -> dict[str, ContactModel]:
     if isinstance(item, tuple) and len(item) == 2:
         return prepare_case(item[0], item[1]).models
     raise InputError(f"prediction {name!r}: give a wear table (with its attrs), a run_case "
-                     f"result, a ContactModel or a (case, power) pair, got "
+                     f"result, a DepthModel or a (case, power) pair, got "
                      f"{type(item).__name__}")
 
 
-def _predictions(predictions) -> dict[str, dict[str, ContactModel]]:
+def _predictions(predictions) -> dict[str, dict[str, DepthModel]]:
     if isinstance(predictions, Mapping):
         return {str(k): _contact_models(v, str(k)) for k, v in predictions.items()}
     return {"": _contact_models(predictions, "")}
@@ -238,7 +239,7 @@ def _predictions(predictions) -> dict[str, dict[str, ContactModel]]:
 # ---------------------------------------------------------------------- the update
 @dataclass(frozen=True, eq=False)
 class _Observation:
-    model: ContactModel
+    model: DepthModel
     elapsed: float  # [s]
     log_depth: float
     sigma: float
@@ -321,7 +322,7 @@ class CalibrationResult:
         ``depth`` [m], ``measurement_sigma`` [-], ``prior_depth`` (median prediction under the
         prior) and ``posterior_depth`` (under the posterior) [m].
     models : dict
-        contact -> {"global"/"sector j" -> ContactModel}.
+        contact -> {"global"/"sector j" -> DepthModel}.
     predictive : DataFrame or None
         The forecast at ``calibrate(..., forecast=...)`` (:meth:`forecast`).
     """
@@ -339,7 +340,9 @@ class CalibrationResult:
         return float(self.posterior.median)
 
     def factor_interval(self, level: float = 0.95) -> tuple[float, float]:
-        """Central posterior interval of the factor [-]."""
+        """Central posterior interval of the factor [-] at ``level`` (a probability in
+        (0, 1): 0.95 for 95 %; an InputError otherwise)."""
+        level = check_level(level)
         return (float(self.posterior.ppf(0.5 * (1 - level))),
                 float(self.posterior.ppf(0.5 * (1 + level))))
 
@@ -355,7 +358,7 @@ class CalibrationResult:
         limit : float, optional
             Depth limit [m] (default each model's depth_limit × wall_thickness).
         q : sequence of float
-            Quantile levels of the depth [-].
+            Quantile levels of the depth [-], probabilities in (0, 1).
 
         Returns
         -------
@@ -370,6 +373,7 @@ class CalibrationResult:
         d(f, T) grows with f, so the depth's q-quantile is d(F⁻¹(q), T) and
         P(d > L) = 1 − F(f_L) with d(f_L, T) = L, solved on λ = ln f (exact, no sampling).
         """
+        q = check_probabilities(q, closed=False)
         rows = []
         for contact, models in self.models.items():
             for model in models.values():
@@ -412,7 +416,7 @@ def _exceed(model, elapsed, limit, dist, lam_lo, lam_hi) -> float:
     return float(dist.sf(math.exp(lam_l)))  # sf, not 1 − cdf: small probabilities still rank
 
 
-def _forecast_row(contact, model: ContactModel, instant, limit, q, prior, posterior) -> dict:
+def _forecast_row(contact, model: DepthModel, instant, limit, q, prior, posterior) -> dict:
     if instant < model.origin:
         raise InputError(f"forecast instant {instant:g} is before the origin {model.origin:g} "
                          f"of contact {contact!r}")
@@ -450,7 +454,7 @@ def calibrate(predictions, inspections, *, prior: LogNormal = DEFAULT_PRIOR,
 
     Parameters
     ----------
-    predictions : wear table, run_case result, ContactModel, (case, power), or a mapping of
+    predictions : wear table, run_case result, DepthModel, (case, power), or a mapping of
         contact name to one of them
         What predicts each contact's depth (a wear table must carry its metadata, attrs; a
         bundle's: :func:`fretwear.report.predictions.bundle_predictions`).

@@ -3,7 +3,7 @@
 A *case* is the description of one contact's wear computation: the keywords of
 :func:`fretwear.table.wear_table` as a mapping (plus ``wall_thickness`` [m] and
 ``depth_limit`` [-]), a wear-case object (``fretwear.table.WearCase``), a wear table with its
-metadata (``DataFrame.attrs``), or a :class:`~fretwear.uncertainty.model.ContactModel`. The
+metadata (``DataFrame.attrs``), or a :class:`~fretwear.table.depth.DepthModel`. The
 *power* is a number [W], a :class:`~fretwear.power.PowerResult` (its block powers give the
 interval), a :class:`~fretwear.power.confidence.PowerInterval` (an ensemble of runs), or a
 contact history (object or file) from which the power is computed with the case's window,
@@ -26,7 +26,7 @@ from fretwear.io import read_history
 from fretwear.power import PowerResult, wear_power
 from fretwear.power.confidence import PowerInterval
 from fretwear.table import wear_table
-from fretwear.uncertainty.model import ContactModel, models_from_table
+from fretwear.table.depth import DepthModel, models_from_table
 
 __all__ = ["PreparedCase", "prepare_case"]
 
@@ -40,7 +40,7 @@ class PreparedCase:
 
     Attributes
     ----------
-    models : dict of str to ContactModel
+    models : dict of str to DepthModel
         ``"global"`` and, in sector mode, ``"sector 1"`` ...
     power : PowerResult, PowerInterval or None
         What the power's uncertainty is known from (None: a bare number).
@@ -50,13 +50,13 @@ class PreparedCase:
         Instants of the case after the origin [user time unit].
     """
 
-    models: dict[str, ContactModel]
+    models: dict[str, DepthModel]
     power: Any
     table: pd.DataFrame | None
     durations: Any
 
     @property
-    def model(self) -> ContactModel:
+    def model(self) -> DepthModel:
         """The global model."""
         return self.models["global"]
 
@@ -92,7 +92,7 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
 
     Parameters
     ----------
-    case : mapping, WearCase, DataFrame or ContactModel
+    case : mapping, WearCase, DataFrame or DepthModel
         The wear case (module docstring).
     power : float, PowerResult, PowerInterval, ContactHistory or path-like, optional
         The wear power source [W] (not needed with a wear table or a model).
@@ -106,7 +106,7 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
     PreparedCase
     """
     options = {"wall_thickness": wall_thickness, "depth_limit": depth_limit}
-    if isinstance(case, ContactModel):
+    if isinstance(case, DepthModel):
         changes = {k: v for k, v in options.items() if v is not None}
         model = dataclasses.replace(case, **changes) if changes else case
         uncertainty = power if isinstance(power, PowerResult | PowerInterval) else None
@@ -130,7 +130,7 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
         return PreparedCase(models, uncertainty, table, _durations(table))
     if not isinstance(case, Mapping):
         raise InputError(f"case must be the keywords of wear_table (a mapping), a WearCase, a "
-                         f"wear table or a ContactModel, got {type(case).__name__}")
+                         f"wear table or a DepthModel, got {type(case).__name__}")
     keywords = dict(case)
     for key in WALL_KEYS:
         value = keywords.pop(key, None)

@@ -20,11 +20,12 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
+from fretwear.keys import check_probabilities
 from fretwear.power import PowerResult
 from fretwear.power.confidence import PowerInterval
+from fretwear.table.depth import DepthModel, given_names
 from fretwear.uncertainty.cases import prepare_case
 from fretwear.uncertainty.distributions import as_distribution, describe
-from fretwear.uncertainty.model import ContactModel, given_names
 from fretwear.uncertainty.sampling import sobol_indices, uniform_points
 
 __all__ = ["UncertaintyResult", "Variable", "monte_carlo"]
@@ -62,12 +63,12 @@ class Variable:
 class _Propagation:
     """Evaluates the depth of a model for rows of input values (one column per variable)."""
 
-    model: ContactModel
+    model: DepthModel
     variables: tuple[Variable, ...]
     elapsed: np.ndarray  # [s], shape (M,)
 
     def inputs(self, values: np.ndarray) -> tuple[dict, dict]:
-        """(keyword arguments of ContactModel.depth, dimensions) for columns of values."""
+        """(keyword arguments of DepthModel.depth, dimensions) for columns of values."""
         kw: dict[str, Any] = {}
         dims: dict[str, np.ndarray] = {}
         for j, var in enumerate(self.variables):
@@ -102,17 +103,19 @@ class _Propagation:
         out = np.broadcast_to(out, (values.shape[0], t.size)).astype(float)
         return np.where(np.isnan(out), np.inf, out)
 
-    def time_to_depth(self, values: np.ndarray, depth: float) -> np.ndarray:
-        """Time after the origin [s] to reach ``depth`` [m], one per row of values."""
+    def time_to(self, values: np.ndarray, depth: float) -> np.ndarray:
+        """Instant [user time unit] at which the tube in place reaches ``depth`` [m], one per
+        row of values (:meth:`DepthModel.time_to`)."""
         kw, dims = self.inputs(values)
         if not dims:
-            return np.asarray(self.model.time_to_depth(depth, **kw), dtype=float)
+            return np.broadcast_to(np.asarray(self.model.time_to(depth, **kw), dtype=float),
+                                   values.shape[:1]).astype(float)
         out = np.empty(values.shape[0])
         for i in range(values.shape[0]):
             model = self.model.with_dimensions(**{k: float(v[i]) for k, v in dims.items()})
             row = {k: (v[i] if k in ("factor", "power") else {n: c[i] for n, c in v.items()})
                    for k, v in kw.items()}
-            out[i] = model.time_to_depth(depth, **row)
+            out[i] = model.time_to(depth, **row)
         return out
 
 
@@ -201,9 +204,7 @@ class UncertaintyResult:
 
         ``inf`` where more than 1 − q of the samples lie beyond the relation's range.
         """
-        q = np.atleast_1d(np.asarray(q, dtype=float))
-        if not ((q >= 0) & (q <= 1)).all():
-            raise InputError(f"quantile levels must lie in [0, 1], got {q.tolist()}")
+        q = check_probabilities(q)
         with np.errstate(invalid="ignore"):
             values = np.quantile(self.depth, q, axis=0, method="linear")
         frame = pd.DataFrame(values.T, columns=[float(x) for x in q])
@@ -233,22 +234,23 @@ class UncertaintyResult:
     def time_to_limit(self, limit: float | None = None) -> np.ndarray:
         """Instant [user time unit] at which each sample's depth reaches ``limit`` [m].
 
-        Computed by inverting depth(t) on the law and the geometry (not by interpolating the
-        instants); ``inf`` where it is never reached, the origin where it is reached at once.
+        :meth:`fretwear.table.DepthModel.time_to` of each sample (the one meaning of the time
+        to a limit, docs/uncertainty.md §1): depth(t) inverted on the law and the geometry,
+        a restart's earlier rows included (they are the tube's history: no sample changes
+        them); ``inf`` where it is never reached.
         """
         value = self._limit(limit)
         key = ("time", value)
         if key not in self._cache:
             if self._propagation is None:
                 raise InputError("this result has no model to invert (built without one)")
-            elapsed = self._propagation.time_to_depth(self.inputs.to_numpy(), value)
-            self._cache[key] = self.origin + elapsed / self.time_scale
+            self._cache[key] = self._propagation.time_to(self.inputs.to_numpy(), value)
         return self._cache[key]
 
     def time_to_limit_quantiles(self, q: Sequence[float] = QUANTILES,
                                 limit: float | None = None) -> pd.Series:
         """Quantiles of the instant of reaching ``limit`` [user time unit] (inf: never)."""
-        q = np.atleast_1d(np.asarray(q, dtype=float))
+        q = check_probabilities(q)
         t = self.time_to_limit(limit)
         with np.errstate(invalid="ignore"):
             values = np.quantile(t, q, method="linear")
@@ -342,7 +344,7 @@ class UncertaintyResult:
         return out
 
 
-def _cap(model: ContactModel) -> float:
+def _cap(model: DepthModel) -> float:
     """Largest depth of the relation's range [m] (the mobile's radius for a sector)."""
     if model.sector_arc is not None:
         return float(model.geometry.mobile_radius)
@@ -373,7 +375,7 @@ def _power_variable(power_scatter, uncertainty, nominal: float) -> Variable | No
     return Variable("power", "power", dist, "W")
 
 
-def _coefficient_variables(spec, model: ContactModel, body: str) -> list[Variable]:
+def _coefficient_variables(spec, model: DepthModel, body: str) -> list[Variable]:
     if not spec:
         return []
     if not isinstance(spec, Mapping):
@@ -400,7 +402,7 @@ def _coefficient_variables(spec, model: ContactModel, body: str) -> list[Variabl
     return out
 
 
-def _dimension_variables(spec, model: ContactModel) -> list[Variable]:
+def _dimension_variables(spec, model: DepthModel) -> list[Variable]:
     if not spec:
         return []
     dims = model.geometry.dimensions()
@@ -427,7 +429,7 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
 
     Parameters
     ----------
-    case : mapping, WearCase, DataFrame or ContactModel
+    case : mapping, WearCase, DataFrame or DepthModel
         The wear case: the keywords of :func:`fretwear.table.wear_table` (plus
         ``wall_thickness`` [m], ``depth_limit`` [-]), a wear-case object, a wear table with its
         metadata, or a model (:mod:`fretwear.uncertainty.cases`).

@@ -12,9 +12,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from scipy import stats
 from scipy.stats import norm, qmc
 
 from fretwear.errors import InputError
+from fretwear.keys import check_level
 
 __all__ = ["METHODS", "sobol_indices", "uniform_points"]
 
@@ -94,14 +96,17 @@ def sobol_indices(f_a, f_b, f_ab, *, resamples: int = 200, level: float = 0.95,
 
     Notes
     -----
-    With V the variance of the output over A and B together and f centred on the mean of all
-    the outputs [1]_ [2]_ [3]_:
+    Computed by :func:`scipy.stats.sobol_indices` (its ``saltelli_2010`` method, the outputs
+    given as ``f_A``, ``f_B``, ``f_AB``), which needs N = 2^m (the balance of Sobol' points).
+    With V the variance of the output over A and B together and f centred on the mean of the
+    outputs of A and B [1]_ [2]_ [3]_:
 
     .. math:: S_i = \\frac{\\overline{f(B)\\,(f(A_B^{(i)}) - f(A))}}{V}, \\qquad
               S_{T,i} = \\frac{\\overline{(f(A) - f(A_B^{(i)}))^2}}{2V}
 
     (Saltelli 2010's first-order estimator, Jansen's total-effect estimator). For an additive
-    function S_i = S_T,i.
+    function S_i = S_T,i. The half-widths: ``z·σ`` of the indices over ``resamples``
+    bootstrap resamples of the N rows (the normal interval SALib gives).
 
     References
     ----------
@@ -123,6 +128,7 @@ def sobol_indices(f_a, f_b, f_ab, *, resamples: int = 200, level: float = 0.95,
     >>> np.round(s["total"], 1).tolist()
     [0.2, 0.8]
     """
+    level = check_level(level)
     fa = np.asarray(f_a, dtype=float)
     fb = np.asarray(f_b, dtype=float)
     fab = np.atleast_2d(np.asarray(f_ab, dtype=float))
@@ -131,21 +137,25 @@ def sobol_indices(f_a, f_b, f_ab, *, resamples: int = 200, level: float = 0.95,
     if not (np.isfinite(fa).all() and np.isfinite(fb).all() and np.isfinite(fab).all()):
         raise InputError("sobol_indices: the model outputs must be finite")
 
-    # centring on the mean of every output (as SALib does) lowers the variance of the
-    # first-order estimator, which is not invariant to a shift of f
-    centre = float(np.mean(np.concatenate([fa, fb, fab.ravel()])))
-    fa, fb, fab = fa - centre, fb - centre, fab - centre
+    n = fa.size
+    if n & (n - 1):
+        raise InputError(f"Sobol' indices need a Saltelli design of 2^m samples (the balance "
+                         f"of Sobol' points, scipy.stats.sobol_indices), got {n}: use "
+                         "method='sobol', or a power of two for samples")
 
     def estimate(idx):
         a, b, ab = fa[idx], fb[idx], fab[:, idx]
-        var = np.var(np.concatenate([a, b]))
-        if var <= 0:
+        if np.var(np.concatenate([a, b])) <= 0:
             return np.zeros(len(fab)), np.zeros(len(fab))
-        first = np.mean(b * (ab - a), axis=1) / var
-        total = 0.5 * np.mean((a - ab) ** 2, axis=1) / var
-        return first, total
+        d = len(ab)
+        # one input given twice: scipy 1.17 squeezes one input's indices to a scalar and then
+        # fails on it (each input's indices are computed alone, so the copy changes nothing)
+        pages = np.concatenate([ab, ab]) if d == 1 else ab
+        found = stats.sobol_indices(func={"f_A": a[None, :], "f_B": b[None, :],
+                                          "f_AB": pages[:, None, :]}, n=a.size)
+        return (np.asarray(found.first_order, dtype=float).reshape(-1)[:d],
+                np.asarray(found.total_order, dtype=float).reshape(-1)[:d])
 
-    n = fa.size
     first, total = estimate(np.arange(n))
     first_conf = np.full(first.shape, np.nan)
     total_conf = np.full(total.shape, np.nan)

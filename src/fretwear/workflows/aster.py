@@ -39,7 +39,13 @@ from fretwear.geometry.base import ASTER_KEYWORDS
 from fretwear.history import ContactHistory
 from fretwear.io import read_history
 from fretwear.laws import WEAR_LAWS
-from fretwear.table import WearCase, replace_tube, to_aster_names, wear_table_from_case
+from fretwear.table import (
+    DEFAULT_DEPTH_LIMIT,
+    WearCase,
+    replace_tube,
+    to_aster_names,
+    wear_table_from_case,
+)
 from fretwear.workflows.aster_catalogue import (
     _F,
     EXCLUS,
@@ -358,7 +364,8 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
             initial_instant=etat.get("INST_INIT"), t_start=kw.get("INST_INIT"),
             t_end=kw.get("INST_FIN"), blocks=kw.get("NB_BLOC", 1),
             force_max=kw.get("FNOR_MAXI"), speed_max=kw.get("VTAN_MAXI"),
-            wall_thickness=kw.get("EPAIS_PAROI"), depth_limit=kw.get("LIMITE_PAROI", 0.4),
+            wall_thickness=kw.get("EPAIS_PAROI"),
+            depth_limit=kw.get("LIMITE_PAROI", DEFAULT_DEPTH_LIMIT),
             name=kw.get("TITRE"))
     except DatabaseError as exc:
         if materials is None or contact is None:

@@ -43,7 +43,12 @@ from fretwear.io.guard import readable_file, reading
 from fretwear.keys import check_keys, keyword_hint  # noqa: F401 - re-exported
 from fretwear.laws import WEAR_LAWS
 from fretwear.power import PowerAccumulator, wear_power
-from fretwear.table import WearCase, read_wear_table, wear_table_from_case
+from fretwear.table import (
+    DEFAULT_DEPTH_LIMIT,
+    WearCase,
+    read_wear_table,
+    wear_table_from_case,
+)
 from fretwear.timeunits import TIME_UNITS, describe_time_units, time_unit_name  # noqa: F401
 
 #: section -> key -> (expected type, description with unit). "*" sections are free tables.
@@ -97,8 +102,8 @@ KEYS: dict[str, dict[str, tuple[type | tuple[type, ...], str]]] = {
         "wall_thickness_m": ((int, float), "wall thickness of the mobile (tube) [m]: the table "
                                            "gains the depth over the wall and the instant of "
                                            "reaching the limit (fretwear extension)"),
-        "depth_limit": ((int, float), "depth limit as a fraction of the wall [-], default 0.4 "
-                                      "(plugging criterion)"),
+        "depth_limit": ((int, float), f"depth limit as a fraction of the wall [-], default "
+                                      f"{DEFAULT_DEPTH_LIMIT} (plugging criterion)"),
     },
     "sectors": {
         "count": (int, "number of equal angular sectors over -180..180 deg"),
@@ -380,7 +385,7 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
         stationarity_threshold=power.get("stationarity_threshold", 0.1),
         force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"),
         coefficient_files=files or None, time_unit=unit, name=case.get("title"),
-        wall_thickness=wall, depth_limit=geometry.get("depth_limit", 0.4))
+        wall_thickness=wall, depth_limit=geometry.get("depth_limit", DEFAULT_DEPTH_LIMIT))
 
 
 def wear_case(case: Mapping[str, Any], *, history_elsewhere: bool = False) -> WearCase:

@@ -1,4 +1,8 @@
-"""The instant at which a contact's global depth reaches a limit, for :meth:`BundleResult.summary`.
+"""The time to a depth through a table's rows: a restart's earlier rows, a bundle's tables.
+
+The rows' side of :class:`fretwear.table.DepthModel` (its :attr:`~DepthModel.rows` and
+:func:`earlier_rows_time`), and :func:`time_to_limit`, the time at which a contact's global
+depth reaches a limit from its table's rows (:meth:`fretwear.bundle.BundleResult.summary`).
 
 For a limit other than the case's own (whose instant the wear table holds, ``limit_instant``),
 from the table's rows of one contact:
@@ -21,13 +25,14 @@ from the table's rows of one contact:
 * **interpolated** (:data:`INTERPOLATED`, the fallback where the geometry or the law is not
   known, or for a law not linear in time without the run's power or, where the tube's depth
   needs a wearing obstacle's volume, without the obstacle's coefficients): depth(t) by a
-  monotone cubic between the instants, inverted (:func:`time_to_depth`).
+  monotone cubic between the instants, inverted (:func:`interpolated_time`).
 
 Times are in the contact's time unit (the table's ``instant``); ``time_scale`` [s per unit].
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import warnings
 
@@ -37,6 +42,8 @@ from scipy.optimize import brentq
 
 from fretwear.geometry import contact_geometry
 from fretwear.laws import WEAR_LAWS
+
+_TIME_TOL = 1e-9
 
 #: How the time to reach the limit was found, in :meth:`BundleResult.summary`.
 INTERPOLATED = ("interpolated: depth(t) between the table's instants by a monotone cubic "
@@ -61,7 +68,7 @@ INITIAL_ROWS = ("among a restart's initial-table rows (their law not known to th
 METHODS = (FROM_TABLE, FROM_VOLUME, FROM_LAW, INITIAL_ROWS, INTERPOLATED)
 
 
-def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
+def interpolated_time(instants: np.ndarray, depths: np.ndarray, target: float, *,
                   from_zero: bool = True) -> float:
     """The instant at which a non-decreasing depth history reaches ``target``.
 
@@ -96,7 +103,7 @@ def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
     Examples
     --------
     >>> t = np.array([1.0, 2.0, 4.0]); d = 1e-4 * t  # linear wear, 0.1 mm per unit
-    >>> round(time_to_depth(t, d, 2.5e-4), 9)
+    >>> round(interpolated_time(t, d, 2.5e-4), 9)
     2.5
     """
     t = np.asarray(instants, dtype=float)
@@ -115,6 +122,62 @@ def time_to_depth(instants: np.ndarray, depths: np.ndarray, target: float, *,
         return float(t[0] + (target - d[0]) * (t[1] - t[0]) / (d[1] - d[0]))
     f = PchipInterpolator(t, d)
     return float(brentq(lambda x: float(f(x)) - target, t[i - 1], t[i], rtol=1e-12))
+
+
+@dataclasses.dataclass(frozen=True, eq=False)
+class EarlierRows:
+    """A restart's earlier rows: the tube's known history up to the origin (one row per
+    instant), whose law is not known to this run.
+
+    Attributes
+    ----------
+    instants : numpy.ndarray
+        Increasing instants [user time unit], the origin's row last.
+    depths : numpy.ndarray
+        The tube's global depth ``depth_mobile`` [m] at those instants.
+    volume_mobile, volume_obstacle : numpy.ndarray or None
+        The worn volumes of the tube and the obstacle [m³] (None: not known).
+    from_zero : bool
+        The first row's origin is 0: a new tube, unworn at instant 0.
+    """
+
+    instants: np.ndarray
+    depths: np.ndarray
+    volume_mobile: np.ndarray | None = None
+    volume_obstacle: np.ndarray | None = None
+    from_zero: bool = True
+
+    @classmethod
+    def from_rows(cls, rows, origin: float) -> EarlierRows | None:
+        """The earlier rows of a table's rows (native names) at or before ``origin`` [user time
+        unit] (one per instant: the first of a sector table's); None without a row."""
+        if rows is None or len(rows) == 0 or "instant" not in rows.columns:
+            return None
+        tol = _TIME_TOL * max(1.0, abs(origin))
+        keep = rows[np.asarray(rows["instant"], dtype=float) <= origin + tol]
+        keep = keep.drop_duplicates("instant", keep="first").sort_values("instant")
+        if keep.empty or "depth_mobile" not in keep.columns:
+            return None
+
+        def column(name):
+            return keep[name].to_numpy(dtype=float) if name in keep.columns else None
+
+        first = column("origin")
+        return cls(column("instant"), column("depth_mobile"), column("volume_mobile"),
+                   column("volume_obstacle"), bool(first is None or first[0] == 0))
+
+    def times(self, targets, geometry) -> dict[float, float]:
+        """Target depth [m] -> instant [user time unit], for the targets the tube in place
+        reaches among these rows (:func:`fretwear.table.depth_rows.earlier_rows_time`)."""
+        out = {}
+        for value in np.atleast_1d(targets).tolist():
+            found = earlier_rows_time(self.instants, self.depths, self.volume_mobile,
+                                      self.volume_obstacle, value,
+                                      geometry if hasattr(geometry, "contact_type")
+                                      and geometry.contact_type else None, self.from_zero)
+            if found is not None:
+                out[value] = found[0]
+        return out
 
 
 class ContactModels:
@@ -238,15 +301,8 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
         hit = _reached(d, vm, target, _tube_start(d, vm, start))
         if hit is not None and hit <= start:  # reached in the initial table's rows: there
             end = max(earlier, hit + 1)  # or up to this run's first row past them
-            found = None
-            if geometry is not None and vm is not None:
-                found = _through_volume(t[:end], d[:end], vm[:end], vo[:end], p[:end], target,
-                                        float(origins[0]), None, geometry, _LinearInTime,
-                                        None, 1.0)
-            if found is not None:
-                return found, INITIAL_ROWS
-            return _interpolated(t[:end], d[:end], None if vm is None else vm[:end], target,
-                                 float(origins[0]) == 0), INTERPOLATED
+            return earlier_rows_time(t[:end], d[:end], None if vm is None else vm[:end],
+                                     vo[:end], target, geometry, float(origins[0]) == 0)
         if method is None:
             return _interpolated(t, d, vm, target, float(origins[0]) == 0), INTERPOLATED
         rows = slice(start, None)
@@ -262,7 +318,46 @@ def time_to_limit(instants, depths, target: float, *, origins, replaced: float |
         t, d, origins = t[keep], d[keep], origins[keep]
         d = np.where(t == replaced, 0.0, d)  # the new tube, unworn at its replacement
     origin = float(origins[0]) if origins.size else 0.0
-    return time_to_depth(t, d, target, from_zero=origin == 0), INTERPOLATED
+    return interpolated_time(t, d, target, from_zero=origin == 0), INTERPOLATED
+
+
+def earlier_rows_time(t, d, vm, vo, target: float, geometry, from_zero: bool
+                      ) -> tuple[float, str] | None:
+    """The instant [table time unit] at which the tube in place reaches ``target`` [m] among a
+    restart's initial-table rows (their law not known to this run), and the method; None
+    where its depth there stays below ``target``.
+
+    Parameters
+    ----------
+    t, d, vm, vo : array
+        The rows' instants, ``depth_mobile`` [m] and worn volumes of the tube and the obstacle
+        [m³] (``vm`` None: not known), up to the restart's origin.
+    geometry : ContactGeometry or None
+        The contact's geometry (None: not known).
+    from_zero : bool
+        The rows' first origin is 0: a new tube, unworn at instant 0.
+
+    Returns
+    -------
+    (float, str) or None
+        Through the geometry with the volume linear in time between the rows
+        (:data:`INITIAL_ROWS`), after a tube replaced among them from their last row before
+        the replacement; where the geometry or the volumes are not known, the depth
+        interpolated between the rows (:data:`INTERPOLATED`).
+    """
+    t, d = np.asarray(t, dtype=float), np.asarray(d, dtype=float)
+    vm = None if vm is None else np.asarray(vm, dtype=float)
+    vo = np.zeros_like(t) if vo is None else np.nan_to_num(np.asarray(vo, dtype=float))
+    if t.size == 0 or _reached(d, vm, target, _tube_start(d, vm, t.size - 1)) is None:
+        return None
+    found = None
+    if geometry is not None and vm is not None:
+        found = _through_volume(t, d, vm, vo, np.zeros_like(t), target,
+                                0.0 if from_zero else math.nan, None, geometry, _LinearInTime,
+                                None, 1.0)
+    if found is not None:
+        return found, INITIAL_ROWS
+    return _interpolated(t, d, vm, target, from_zero), INTERPOLATED
 
 
 def _earlier_rows(origins: np.ndarray) -> int:
@@ -293,14 +388,14 @@ def _reached(d, vm, target: float, first: int = 0) -> int | None:
 
 
 def _interpolated(t, d, vm, target: float, from_zero: bool) -> float:
-    """:func:`time_to_depth` for the tube in place: after a replacement among the rows (a drop
+    """:func:`interpolated_time` for the tube in place: after a replacement among the rows (a drop
     of the volume, or of the depth where no volume is known), from depth 0 at the last row
     before it, the earliest the replacement can be (the table does not say when it was)."""
     j = _tube_start(d, vm, len(d) - 1)
     if j:
         t = np.concatenate(([t[j - 1]], t[j:]))
         d, from_zero = np.concatenate(([0.0], d[j:])), False
-    return time_to_depth(t, d, target, from_zero=from_zero)
+    return interpolated_time(t, d, target, from_zero=from_zero)
 
 
 def _through_volume(t, d, vm, vo, p, target, origin, replaced, geometry, law, coefficients,

@@ -1,10 +1,13 @@
-"""The wear prediction of one contact as a vectorised function of its uncertain inputs.
+"""The depth model: worn volumes and depth of a contact at any time, and the time to a depth.
 
-:class:`ContactModel` holds what a wear table was computed from (law and coefficients, power,
-contact geometry, time axis, volumes at the origin) and evaluates the worn depth of the mobile
-for arrays of inputs at once: a factor on the wear coefficients, the wear power, the law's
-coefficients, at any times. It is the forward model of the Monte Carlo propagation and of the
-calibration on inspections; with its nominal inputs it gives the wear table's depths.
+:class:`DepthModel` holds what a wear table is computed from (law and coefficients, power,
+contact geometry, time axis, volumes at the origin, a restart's earlier rows, a tube
+replacement) and evaluates the worn depth of the mobile for arrays of inputs at once: a factor
+on the wear coefficients, the wear power, the law's coefficients, at any times; and
+:meth:`DepthModel.time_to`, the instant at which the tube in place reaches a depth (the one
+meaning of "the time to a limit", docs/uncertainty.md §1). The wear table's ``limit_instant``,
+the bundle's summary, the Monte Carlo propagation and the calibration on inspections all call
+it; with its nominal inputs it gives the wear table's depths.
 
 The volume of a body after ``t`` seconds from the origin, with wear-coefficient factor ``f``
 (docs/uncertainty.md §1), is
@@ -20,6 +23,7 @@ Archard, k_r for KWU-EPRI, A and S together for EDF-MZ). The factor applies to b
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import warnings
 from collections.abc import Mapping
@@ -34,9 +38,10 @@ from fretwear.geometry.base import ContactGeometry
 from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile, sector_geometry
 from fretwear.laws import get_law
 from fretwear.laws.registry import WearLaw
-from fretwear.table.limit import check_wall, time_to_depth
+from fretwear.table.depth_rows import EarlierRows
+from fretwear.table.limit import DEFAULT_DEPTH_LIMIT, check_wall, time_to_depth
 
-__all__ = ["ContactModel", "model_from_table", "models_from_table"]
+__all__ = ["DepthModel", "model_from_table", "models_from_table"]
 
 _TIME_TOL = 1e-9
 
@@ -46,7 +51,7 @@ def _dict(value) -> dict | None:
 
 
 @dataclasses.dataclass(frozen=True, eq=False)
-class ContactModel:
+class DepthModel:
     """Worn depth of one contact, or of one angular sector of it, as a function of its inputs.
 
     Parameters
@@ -83,7 +88,7 @@ class ContactModel:
 
     >>> from fretwear.laws import get_law
     >>> from fretwear.geometry import contact_geometry
-    >>> m = ContactModel(law=get_law("ARCHARD"),
+    >>> m = DepthModel(law=get_law("ARCHARD"),
     ...                  geometry=contact_geometry("TUBE_BAV", mobile_radius=0.01,
     ...                                            obstacle_width=0.02),
     ...                  powers=(0.01,), coefficients_mobile=({"coefficient": 1e-14},),
@@ -106,17 +111,23 @@ class ContactModel:
     name: str = ""
     sector: int | None = None
     wall_thickness: float | None = None
-    depth_limit: float = 0.4
+    depth_limit: float = DEFAULT_DEPTH_LIMIT
+    replacement: float | None = None
+    rows: EarlierRows | None = None
 
     def __post_init__(self) -> None:
         n = len(self.powers)
         if n == 0 or len(self.coefficients_mobile) != n or len(self.coefficients_obstacle) != n:
-            raise InputError("ContactModel: give one power and one coefficient set per term")
+            raise InputError("DepthModel: give one power and one coefficient set per term")
         if n > 1 and not self.law.linear_in_time:
             raise KeywordError(f"several volume terms (sectors) need a law linear in time, not "
                                f"{self.law.name}")
         if not (math.isfinite(self.time_scale) and self.time_scale > 0):
             raise InputError(f"time_scale must be > 0 [s per unit], got {self.time_scale!r}")
+        if self.replacement is not None and not (math.isfinite(self.replacement)
+                                                 and self.replacement >= 0):
+            raise InputError(f"replacement is the seconds after the origin of a tube "
+                             f"replacement, >= 0 [s], got {self.replacement!r}")
         wall, limit = check_wall(self.wall_thickness, self.depth_limit)
         object.__setattr__(self, "wall_thickness", wall)
         object.__setattr__(self, "depth_limit", limit)
@@ -140,7 +151,7 @@ class ContactModel:
         value = coefs.get(name)
         return None if value is None else float(value)
 
-    def with_dimensions(self, **dimensions: float) -> ContactModel:
+    def with_dimensions(self, **dimensions: float) -> DepthModel:
         """The same model with other dimensions (SI, angles [deg]), validated."""
         geometry = _geometry(self.geometry.contact_type,
                              {**self.geometry.dimensions(), **dimensions})
@@ -196,7 +207,7 @@ class ContactModel:
         Parameters
         ----------
         elapsed_s : array_like
-            Time since the origin [s], ≥ 0.
+            Time since the origin [s], ≥ 0 (after a :attr:`replacement`, the new tube's volume).
         factor : array_like
             Wear-coefficient factor f > 0 [-] (scales every body's new wear).
         power : array_like, optional
@@ -214,11 +225,42 @@ class ContactModel:
         f = np.asarray(factor, dtype=float)
         if not (np.isfinite(f) & (f > 0)).all():
             raise InputError("the wear-coefficient factor must be finite and > 0 [-]")
-        powers, mobile, obstacle = self._terms(power, coefficients, obstacle_coefficients)
-        vm = self._body(t, f, powers, mobile, self.initial_mobile)
-        vo = self._body(t, f, powers, obstacle, self.initial_obstacle)
+        if self.law.linear_in_time and power is None and not coefficients \
+                and not obstacle_coefficients:  # V0 + f·r·t, the rates r computed once
+            rate_m, rate_o = f * self.rates[0], f * self.rates[1]
+            vm = _linear_volume(t, self.initial_mobile, rate_m)
+            if self.replacement is not None:  # the new tube from its replacement on
+                vm = np.where(t >= self.replacement, rate_m * (t - self.replacement), vm)
+            vo = _linear_volume(t, self.initial_obstacle, rate_o)
+        else:
+            vm, vo = self._volumes(t, f, power, coefficients, obstacle_coefficients)
         shape = np.broadcast_shapes(np.shape(vm), np.shape(vo))
         return (np.broadcast_to(vm, shape).astype(float), np.broadcast_to(vo, shape).astype(float))
+
+    def _volumes(self, t, f, power, coefficients, obstacle_coefficients):
+        """(V_m, V_o) [m³] of :meth:`volumes` through the law at every time."""
+        powers, mobile, obstacle = self._terms(power, coefficients, obstacle_coefficients)
+        vm = self._body(t, f, powers, mobile, self.initial_mobile)
+        if self.replacement is not None:  # the new tube from its replacement on, unworn there
+            fresh = self.replacement
+            vm = np.where(t >= fresh, self._body(np.maximum(t - fresh, 0.0), f, powers, mobile,
+                                                 0.0), vm)
+        vo = self._body(t, f, powers, obstacle, self.initial_obstacle)
+        return vm, vo
+
+    @functools.cached_property
+    def term_rates(self) -> tuple[np.ndarray, np.ndarray]:
+        """(tube, obstacle) worn volume per second of each term at the nominal inputs [m³/s]
+        of a law linear in time (0 for a body that does not wear)."""
+        if not self.law.linear_in_time:
+            raise KeywordError(f"the {self.law.name} law is not linear in time: no rate")
+        return (_rates(self.law, self.powers, self.coefficients_mobile),
+                _rates(self.law, self.powers, self.coefficients_obstacle))
+
+    @functools.cached_property
+    def rates(self) -> tuple[float, float]:
+        """(tube, obstacle) :attr:`term_rates` summed over the terms [m³/s]."""
+        return tuple(float(np.cumsum(r)[-1]) for r in self.term_rates)
 
     def depth(self, elapsed_s, *, factor=1.0, power=None, coefficients=None,
               obstacle_coefficients=None, warn: bool = True) -> np.ndarray:
@@ -240,28 +282,81 @@ class ContactModel:
                                          self.sector_arc)
         return np.asarray(dm, dtype=float).reshape(vm.shape)
 
-    def time_to_depth(self, depth, *, factor=1.0, power=None, coefficients=None,
-                      obstacle_coefficients=None, rtol: float = 1e-12) -> np.ndarray:
-        """Time since the origin [s] at which the mobile's depth reaches ``depth`` [m].
+    def time_to(self, depth, *, factor=1.0, power=None, coefficients=None,
+                obstacle_coefficients=None, rtol: float = 1e-12):
+        """The instant [user time unit] at which the tube in place first reaches ``depth`` [m].
 
-        depth(t) is non-decreasing; it is inverted by a bracketed solver
-        (:func:`fretwear.table.limit.time_to_depth`) on the law and the geometry, to ``rtol``
-        relative on the time. 0 where the depth is already
-        reached at the origin; ``inf`` where it is never reached (no wear, or a power of 0).
+        The one meaning of "the time to a limit" (docs/uncertainty.md §1): the first instant
+        at which the tube in place reaches the depth, over every row of its table, a restart's
+        earlier rows included.
+
+        * Among a restart's earlier rows (:attr:`rows`, the tube's known history up to the
+          origin; their law not known to this run): through the geometry, the volume linear in
+          time between the two rows that bracket the depth
+          (:func:`fretwear.table.depth_rows.earlier_rows_time`; the depth interpolated between
+          the rows where the geometry or the volumes are not known).
+        * From the origin on: depth(t) through the law and the geometry, inverted in closed
+          form for a law linear in time whose tube depth is a function of the tube's volume
+          (t = (V(d) − V₀)/(f·Σ r_j), V(d) from the geometry's ``volume_from_depth``), else by
+          the bracketed solver (:func:`fretwear.table.limit.time_to_depth`, to ``rtol`` on t).
+        * After a tube replacement in this run (:attr:`replacement`) only the new tube counts:
+          its time from the replacement, unworn there.
+
+        Non-decreasing in ``depth``; the origin where the depth is reached there (and not
+        among earlier rows), ``inf`` where it is never reached (no wear, a power of 0).
+
+        Parameters
+        ----------
+        depth : float or array_like
+            Depths to reach [m], > 0.
+        factor, power, coefficients, obstacle_coefficients
+            As :meth:`volumes` (arrays broadcast with ``depth``).
+        rtol : float
+            Relative tolerance on the time of the bracketed solver.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            Instants [user time unit], the broadcast shape of the inputs.
 
         Examples
         --------
         >>> from fretwear.laws import get_law
         >>> from fretwear.geometry import contact_geometry
         >>> g = contact_geometry("TUBE_ALESAGE", mobile_radius=0.01, obstacle_width=0.02)
-        >>> m = ContactModel(law=get_law("ARCHARD"), geometry=g, powers=(0.01,),
-        ...                  coefficients_mobile=({"coefficient": 1e-14},),
-        ...                  coefficients_obstacle=(None,))
-        >>> t = m.time_to_depth(1e-4)  # uniform wear: V = 2π·l·R·d = K·P·t
+        >>> m = DepthModel(law=get_law("ARCHARD"), geometry=g, powers=(0.01,),
+        ...                coefficients_mobile=({"coefficient": 1e-14},),
+        ...                coefficients_obstacle=(None,))
+        >>> t = m.time_to(1e-4)  # uniform wear: V = 2π·l·R·d = K·P·t
         >>> round(float(t) / (2 * np.pi * 0.02 * 0.01 * 1e-4 / 1e-16), 10)
         1.0
         """
+        target, kw = self._broadcast(depth, factor, power, coefficients, obstacle_coefficients)
+        elapsed = self._closed_form(target, kw)
+        if elapsed is None:
+            elapsed = self._solved(target, kw, rtol)
+        out = self.origin + elapsed / self.time_scale
+        if self.rows is not None and self.replacement is None:
+            found = self.rows.times(np.unique(target), self.geometry)
+            for value, instant in found.items():
+                out = np.where(target == value, instant, out)
+        return out if out.ndim else float(out)
+
+    def time_to_depth(self, depth, **inputs) -> np.ndarray:
+        """Seconds after the origin [s] of :meth:`time_to` (negative where the depth is
+        reached among a restart's earlier rows)."""
+        return (np.asarray(self.time_to(depth, **inputs), dtype=float) - self.origin) \
+            * self.time_scale
+
+    def _broadcast(self, depth, factor, power, coefficients, obstacle_coefficients):
+        """(targets [m], keyword arguments of :meth:`depth`), broadcast to one shape."""
         target = np.asarray(depth, dtype=float)
+        if power is None and not coefficients and not obstacle_coefficients \
+                and np.ndim(factor) == 0:  # the nominal inputs and one factor: the depths' shape
+            if not (np.isfinite(target) & (target > 0)).all():
+                raise InputError(f"the depth to reach must be finite and > 0 [m], got {depth!r}")
+            return target, {"factor": float(factor), "power": None, "coefficients": None,
+                            "obstacle_coefficients": None}
         shape = np.broadcast_shapes(target.shape, np.shape(factor), np.shape(power)
                                     if power is not None else (),
                                     *[np.shape(v) for v in (coefficients or {}).values()],
@@ -269,17 +364,78 @@ class ContactModel:
         target = np.broadcast_to(target, shape).astype(float)
         if not (np.isfinite(target) & (target > 0)).all():
             raise InputError(f"the depth to reach must be finite and > 0 [m], got {depth!r}")
+
+        def spread(values):
+            return {k: np.broadcast_to(np.asarray(v, dtype=float), shape)
+                    for k, v in values.items()}
+
         kw = {"factor": np.broadcast_to(np.asarray(factor, dtype=float), shape),
               "power": None if power is None else np.broadcast_to(
                   np.asarray(power, dtype=float), shape),
-              "coefficients": None if not coefficients else {
-                  k: np.broadcast_to(np.asarray(v, dtype=float), shape)
-                  for k, v in coefficients.items()},
-              "obstacle_coefficients": None if not obstacle_coefficients else {
-                  k: np.broadcast_to(np.asarray(v, dtype=float), shape)
-                  for k, v in obstacle_coefficients.items()}}
-        return time_to_depth(lambda t: self.depth(t, warn=False, **kw), target,
-                             first_guess=self.time_scale, rtol=rtol)
+              "coefficients": spread(coefficients) if coefficients else None,
+              "obstacle_coefficients": (spread(obstacle_coefficients)
+                                        if obstacle_coefficients else None)}
+        return target, kw
+
+    def _closed_form(self, target, kw) -> np.ndarray | None:
+        """Seconds after the origin [s] at which the depth reaches ``target`` in closed form:
+        a law linear in time at the nominal power and coefficients whose tube depth is a
+        function of the tube's volume (the obstacle's volume stays 0, or does not enter it);
+        None otherwise."""
+        if not self.law.linear_in_time or kw["power"] is not None or kw["coefficients"] \
+                or kw["obstacle_coefficients"]:
+            return None
+        if not (self.sector_arc is not None or self.geometry.mobile_depth_alone
+                or not (self.initial_obstacle or self.rates[1])):
+            return None
+        volume = self._volume_of(target)
+        if not np.isfinite(volume).all():  # a target beyond the relation's range
+            return None
+        rate = kw["factor"] * self.rates[0]
+        v0 = 0.0 if self.replacement is not None else self.initial_mobile
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (volume - v0) / rate
+        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        return t if self.replacement is None else self.replacement + t
+
+    def _volume_of(self, target) -> np.ndarray:
+        """The tube's worn volume [m³] of the depths ``target`` [m] (the obstacle's 0)."""
+        g = self.geometry
+        if self.sector_arc is not None:  # V = l·Δθ·d·(2R − d)/2 (theory §3)
+            d = np.minimum(target, g.mobile_radius)
+            return g.obstacle_width * np.radians(self.sector_arc) * d \
+                * (2.0 * g.mobile_radius - d) / 2.0
+        return g.mobile_volume(target)  # the targets are > 0 and finite (_broadcast)
+
+    def _solved(self, target, kw, rtol: float) -> np.ndarray:
+        """Seconds after the origin [s] by the bracketed solver on depth(t)."""
+        start = 0.0 if self.replacement is None else self.replacement
+        found = time_to_depth(lambda t: self.depth(start + t, warn=False, **kw), target,
+                              first_guess=self.time_scale, rtol=rtol)
+        return start + np.asarray(found, dtype=float)
+
+
+def _linear_volume(t, v0, rate):
+    """V0 + r·t [m³] (exactly r·t where V0 = 0)."""
+    v = rate * t
+    return v if v0 == 0.0 else v0 + v
+
+
+def _rates(law, powers, coefficients) -> np.ndarray:
+    """Volume per second [m³/s] of each term of a law linear in time (0 where the body does
+    not wear), every term in one call of the law where their coefficients share names."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the table's own volumes already warned
+        if all(c is None for c in coefficients):
+            return np.zeros(len(powers))
+        names = {tuple(sorted(c)) for c in coefficients if c is not None}
+        if len(names) == 1 and all(c is not None for c in coefficients):
+            given = {k: np.array([c[k] for c in coefficients]) for k in next(iter(names))}
+            return np.broadcast_to(np.asarray(law.volume(np.asarray(powers, dtype=float), 1.0,
+                                                         **given), dtype=float),
+                                   (len(powers),)).astype(float)
+        return np.array([0.0 if c is None else float(np.asarray(law.volume(p, 1.0, **c)))
+                         for p, c in zip(powers, coefficients, strict=True)])
 
 
 def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
@@ -318,7 +474,7 @@ def _origin_rows(table: pd.DataFrame, origin: float) -> pd.DataFrame:
 
 def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
                       wall_thickness: float | None = None, depth_limit: float | None = None,
-                      name: str = "") -> dict[str, ContactModel]:
+                      name: str = "") -> dict[str, DepthModel]:
     """The models of a wear table: ``"global"`` and, in sector mode, ``"sector 1"`` ...
 
     Parameters
@@ -332,13 +488,14 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
     wall_thickness : float, optional
         Wall thickness [m] (default ``attrs["wall_thickness"]``).
     depth_limit : float, optional
-        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or 0.4).
+        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or
+        :data:`~fretwear.table.DEFAULT_DEPTH_LIMIT`).
     name : str
         Contact name.
 
     Returns
     -------
-    dict of str to ContactModel
+    dict of str to DepthModel
 
     Raises
     ------
@@ -358,7 +515,11 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
     limit = depth_limit if depth_limit is not None else a.get("depth_limit")
     common = {"law": law, "geometry": geometry, "time_scale": float(a["time_scale"]),
               "origin": origin, "wall_thickness": None if wall is None else float(wall),
-              "depth_limit": 0.4 if limit is None else float(limit)}
+              "depth_limit": DEFAULT_DEPTH_LIMIT if limit is None else float(limit)}
+    earlier = None
+    if "origin" in table.columns and origin > 0:  # a restart: the initial table's rows first
+        earlier = EarlierRows.from_rows(
+            table[np.asarray(table["origin"], dtype=float) != origin], origin)
     mobile = _dict(a.get("coefficients_mobile"))
     obstacle = _dict(a.get("coefficients_obstacle"))
     power_info = a.get("power") or {}
@@ -368,9 +529,9 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
         total = float(power_info.get("total", table["power"].iloc[-1]))
         v0m = float(at["volume_mobile"].iloc[0]) if len(at) else 0.0
         v0o = float(at["volume_obstacle"].iloc[0]) if len(at) else 0.0
-        return {"global": ContactModel(powers=(total,), coefficients_mobile=(mobile,),
-                                       coefficients_obstacle=(obstacle,), initial_mobile=v0m,
-                                       initial_obstacle=v0o, name=name, **common)}
+        return {"global": DepthModel(powers=(total,), coefficients_mobile=(mobile,),
+                                     coefficients_obstacle=(obstacle,), initial_mobile=v0m,
+                                     initial_obstacle=v0o, name=name, rows=earlier, **common)}
     edges = np.asarray(edges, dtype=float)
     m = edges.size - 1
     sector_powers = np.asarray(power_info.get("sectors"), dtype=float)
@@ -392,12 +553,13 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
                 row = by_sector.loc[j + 1]
                 v0m_s[j] = float(np.atleast_1d(row["volume_mobile_cumulated"])[-1])
                 v0o_s[j] = float(np.atleast_1d(row["volume_obstacle_cumulated"])[-1])
-    out = {"global": ContactModel(powers=tuple(float(p) for p in sector_powers),
+    out = {"global": DepthModel(powers=tuple(float(p) for p in sector_powers),
                                   coefficients_mobile=coefs_m, coefficients_obstacle=coefs_o,
                                   initial_mobile=float(v0m_s.sum()),
-                                  initial_obstacle=float(v0o_s.sum()), name=name, **common)}
+                                  initial_obstacle=float(v0o_s.sum()), name=name,
+                                  rows=earlier, **common)}
     for j in range(m):
-        out[f"sector {j + 1}"] = ContactModel(
+        out[f"sector {j + 1}"] = DepthModel(
             powers=(float(sector_powers[j]),), coefficients_mobile=(coefs_m[j],),
             coefficients_obstacle=(coefs_o[j],), initial_mobile=float(v0m_s[j]),
             initial_obstacle=float(v0o_s[j]), sector_arc=float(edges[j + 1] - edges[j]),
@@ -424,7 +586,7 @@ def _sector_pairs(pairs, m: int, mobile, obstacle):
 
 
 def model_from_table(table: pd.DataFrame, *, sector: int | None = None, **options
-                     ) -> ContactModel:
+                     ) -> DepthModel:
     """The model of a wear table's global depth (``sector=None``) or of one sector (1-based).
 
     Options as :func:`models_from_table`.
