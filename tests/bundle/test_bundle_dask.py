@@ -177,8 +177,8 @@ def _workers_checking(client, crash_on: str | None, timeout: float | None):
         if crash_on is None:
             started = len(getattr(subprocess, "_fretwear_started", []))
             subprocess.Popen = real
-            guard._CHILD = guard._fretwear_child
-            guard.PROBE_TIMEOUT = guard._fretwear_timeout
+            guard._CHILD = getattr(guard, "_fretwear_child", guard._CHILD)
+            guard.PROBE_TIMEOUT = getattr(guard, "_fretwear_timeout", guard.PROBE_TIMEOUT)
             return started
         guard._fretwear_child, guard._fretwear_timeout = guard._CHILD, guard.PROBE_TIMEOUT
         subprocess._fretwear_real_popen = real
@@ -219,7 +219,8 @@ def test_a_file_that_crashes_or_hangs_the_library_fails_its_contact_alone(tmp_pa
     (tmp_path / "histories" / "crash.h5").write_bytes(crashing.read_bytes())
     frame.to_csv(manifest, index=False)
     with distributed.Client(address) as client:
-        _workers_checking(client, "crash.h5", 3.0)
+        client.wait_for_workers(2)  # a worker killed by an earlier test is replaced by now
+        assert len(_workers_checking(client, "crash.h5", 3.0)) == 2
         try:
             result = run_bundle(manifest, case, scheduler=client)
         finally:
