@@ -41,6 +41,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import shutil
 import sys
@@ -137,6 +138,60 @@ def pyarrow_read(manifest: Path, processes: int) -> float:
         return time.perf_counter() - t0
 
 
+def breakdown(manifest: Path, case: Path, count: int = 500) -> dict[str, float]:
+    """Seconds a contact of the manifest costs in this process, by step, each the best of 3
+    passes over its first ``count`` contacts: a pyarrow read of the four channels, the wear
+    power streamed from the file (fretwear.power.wear_power, as a worker calls it), the wear
+    table's columns from that power, and the worker's whole path for a group of contacts
+    (tasks.run_contacts and the pickle of its records). What bounds the run against the read."""
+    import warnings
+
+    import pyarrow.parquet as pq
+
+    from fretwear.bundle.cases import build_task
+    from fretwear.bundle.engine import _base_case
+    from fretwear.bundle.manifest import read_manifest
+    from fretwear.bundle.tasks import pickled, run_contacts
+    from fretwear.power import wear_power
+    from fretwear.table import wear_table_columns
+
+    warnings.simplefilter("ignore")
+    man = read_manifest(manifest)
+    base = _base_case(case)
+    base["_directory"] = str(man.directory)
+    cache: dict = {}
+    tasks = [build_task(base, r, man.source, chunk_size=1_000_000, cache=cache)
+             for r in man.rows[:count]]
+    wear = tasks[0].wear_case()
+    powers = [wear_power(t.history.path, **wear.power_options) for t in tasks]
+
+    def read():
+        for t in tasks:
+            pq.read_table(t.history.path, columns=["time", "normal_force", "vt1", "vt2"])
+
+    def power():
+        for t in tasks:
+            wear_power(t.history.path, **wear.power_options)
+
+    def table():
+        for p in powers:
+            wear_table_columns(wear, p)
+
+    def worker():
+        pickled(run_contacts, tasks)
+
+    out = {}
+    for name, step in (("pyarrow read", read), ("wear power", power),
+                       ("wear table from the power", table), ("worker's whole path", worker)):
+        best = math.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            step()
+            best = min(best, time.perf_counter() - t0)
+        out[name] = best / len(tasks)
+    return out
+
+
 def measure(manifest: Path, case: Path, client, output: Path
             ) -> tuple[float, float, float, PeakMemory]:
     """Seconds of (the run, its part after the last result, the restart), and the client's
@@ -194,6 +249,12 @@ def main(argv: list[str] | None = None) -> None:
         manifests = {n: make_bundle(directory, n, args.samples, args.distinct)
                      for n in (args.small, args.large)}
         warm = make_bundle(directory, 4, args.samples, args.distinct)
+        if args.contacts:
+            steps = breakdown(manifests[args.small], case)
+            ratio = steps["worker's whole path"] / steps["pyarrow read"]
+            print("a contact in one process (best of 3 over 500): " + ", ".join(
+                f"{name} {1e3 * t:.3f} ms" for name, t in steps.items())
+                + f"; the worker's path is {ratio:.1f}x the read", flush=True)
         costs = {}
         for n, manifest in manifests.items():
             # a fresh cluster per size: the scheduler's memory of the first size is not the
