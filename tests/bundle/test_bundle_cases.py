@@ -435,3 +435,43 @@ def test_warnings_of_a_contacts_case_are_its_own(tmp_path, tilt):
     on_disk = pd.read_csv(tmp_path / "out" / "warnings.csv")
     assert on_disk["contact"].tolist() == ["tube"]
     assert on_disk["message"].tolist() == said["message"].tolist()
+
+
+def test_task_key_is_the_hash_of_its_inputs_whether_the_case_is_shared_or_not(tmp_path):
+    """issue 28: the client encodes a shared case's JSON once for all its rows; the key is
+    still the blake2b hash of the JSON of every input, recomputed here independently as it
+    was defined (so an output directory written before keeps its contacts on a restart), for
+    rows sharing the case (cache) and alone (no cache), and differs when the history does."""
+    import hashlib
+    import json
+
+    from bundle_helpers import oscillator, write_bundle
+
+    from fretwear._version import __version__
+    from fretwear.bundle.cases import _jsonable, build_task
+    from fretwear.bundle.datasets import path_stamp
+    from fretwear.bundle.engine import _base_case
+    from fretwear.bundle.manifest import read_manifest
+    from fretwear.io import write_history
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    man = read_manifest(manifest)
+    base = _base_case(case)
+    base["_directory"] = str(man.directory)
+    cache: dict = {}
+    shared = [build_task(base, r, man.source, chunk_size=1000, cache=cache) for r in man.rows]
+    alone = [build_task(base, r, man.source, chunk_size=1000) for r in man.rows]
+    for task, row in zip(shared, man.rows, strict=True):
+        ident = {"case": _jsonable(task.case),
+                 "history": [row.history.kind, row.history.path, row.history.node,
+                             row.history.index, path_stamp(row.history.path)],
+                 "read": _jsonable(task.read_options), "chunk": 1000, "version": __version__,
+                 "power": None}
+        expected = hashlib.blake2b(json.dumps(ident, sort_keys=True, default=str).encode(),
+                                   digest_size=16).hexdigest()
+        assert task.key == expected
+    assert [t.key for t in shared] == [t.key for t in alone]
+    assert len({t.key for t in shared}) == 3
+    write_history(oscillator(), man.rows[0].history.path)  # another history: another key
+    again = build_task(base, man.rows[0], man.source, chunk_size=1000, cache=cache)
+    assert again.key != shared[0].key

@@ -19,6 +19,7 @@ import subprocess
 import sys
 import textwrap
 import time
+from pathlib import Path
 
 import pandas as pd
 import pytest
@@ -162,6 +163,83 @@ def test_a_dead_worker_is_replaced_and_its_contact_retried(tmp_path, address):
 
 def _fails(x):
     raise ValueError(f"bad {x}")
+
+
+def _workers_checking(client, crash_on: str | None, timeout: float | None):
+    """In each worker: count the processes it starts (subprocess.Popen), make its checking child
+    crash on the files named ``crash_on`` and time it out after ``timeout`` s; undone by
+    ``_workers_checking(client, None, None)``, which returns each worker's count."""
+    def setup(crash_on, timeout):
+        import subprocess
+
+        import fretwear.io.guard as guard
+        real = getattr(subprocess, "_fretwear_real_popen", subprocess.Popen)
+        if crash_on is None:
+            started = len(getattr(subprocess, "_fretwear_started", []))
+            subprocess.Popen = real
+            guard._CHILD = getattr(guard, "_fretwear_child", guard._CHILD)
+            guard.PROBE_TIMEOUT = getattr(guard, "_fretwear_timeout", guard.PROBE_TIMEOUT)
+            return started
+        guard._fretwear_child, guard._fretwear_timeout = guard._CHILD, guard.PROBE_TIMEOUT
+        subprocess._fretwear_real_popen = real
+        subprocess._fretwear_started = []
+
+        def counted(*args, **kwargs):
+            subprocess._fretwear_started.append(1)
+            return real(*args, **kwargs)
+
+        subprocess.Popen = counted
+        guard._CHILD = guard._CHILD.replace(
+            "def check(path, fmt):\n",
+            f"def check(path, fmt):\n    if path.endswith({crash_on!r}):\n"
+            "        import os\n        os._exit(139)\n")
+        guard.PROBE_TIMEOUT = timeout
+        guard._PROBED.clear()
+        return 0
+
+    return client.run(setup, crash_on, timeout)
+
+
+def test_a_file_that_crashes_or_hangs_the_library_fails_its_contact_alone(tmp_path, address):
+    """issue 28: in a bundle's worker, HDF5 files are checked by one long-lived child per worker
+    (not a child per file: 0.2 s a file). A file that kills that child (simulated: the checking
+    script patched in the workers to end its process on one file, as a segmentation fault of
+    h5py would) and a real file that makes h5py loop forever (found by fuzzing; cut after the
+    time limit) each fail their own contact with a message naming the file; the other contacts,
+    in the same tasks, complete with the single-contact tables bit for bit (this machine)."""
+    h = oscillator()
+    manifest, case = write_bundle(tmp_path, h, 6, fmt="h5")
+    loop = tmp_path / "histories" / "loop.h5"
+    fixture = Path(__file__).parents[1] / "io" / "fixtures" / "damaged" / "hdf5_attribute_loop.h5"
+    loop.write_bytes(fixture.read_bytes())
+    frame = pd.concat([pd.read_csv(manifest), pd.DataFrame(
+        {"contact": ["crash", "loop"], "history": ["histories/t2.h5", "histories/loop.h5"]})])
+    crashing = tmp_path / "histories" / "t2.h5"
+    frame.loc[frame["contact"] == "crash", "history"] = "histories/crash.h5"
+    (tmp_path / "histories" / "crash.h5").write_bytes(crashing.read_bytes())
+    frame.to_csv(manifest, index=False)
+    with distributed.Client(address) as client:
+        client.wait_for_workers(2)  # a worker killed by an earlier test is replaced by now
+        # the limit counts the checker's start (Python, h5py) as it did the child per file's:
+        # 10 s, ample on a loaded machine, for a file that loops forever
+        assert len(_workers_checking(client, "crash.h5", 10.0)) == 2
+        try:
+            result = run_bundle(manifest, case, scheduler=client)
+        finally:
+            started = _workers_checking(client, None, None)
+    errors = result.errors.set_index("contact")["message"].to_dict()
+    assert set(errors) == {"crash", "loop"}
+    assert "crash.h5: the HDF5 library crashed (exit status 139) reading this file: it is " \
+        "damaged" in errors["crash"]
+    assert "loop.h5: the HDF5 library did not finish reading the file's structure in 10 s" \
+        in errors["loop"] or "loop.h5: not a readable hdf5 file" in errors["loop"]
+    assert result.stats["done"] == 6
+    for k in range(6):
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.h5", case))
+    # 8 files on 2 workers: a checker each, one more after the crash and after the hang at most
+    assert sum(started.values()) <= 4, started
 
 
 @pytest.mark.parametrize("streaming", [True, False])

@@ -630,3 +630,41 @@ def test_every_dataset_cell_is_the_tables_value(tmp_path):
         for v in _SECTOR_ONLY:
             assert ds[v].sel(contact=c, sector=s).item() == getattr(row, v), v
     assert len(seen) == ds.sizes["contact"] * ds.sizes["instant"]
+
+
+def test_kwu_epri_one_pass_with_the_maxima_equals_two_passes_without(tmp_path):
+    """issue 28: a KWU-EPRI contact whose FNOR_MAXI and VTAN_MAXI come from the manifest
+    (columns force_max_N, speed_max_m_per_s, per contact) is read once; without them, twice
+    (the power's pass gives the window's maxima, a second the class counts), which
+    ``stats["two_pass_contacts"]`` says. Given the window's own maxima (the largest normal force
+    and the largest numpy.hypot(Vt1, Vt2) of the history: theory §4, computed here
+    independently with numpy), both give the same table bit for bit: both run in this process,
+    on this machine (across machines only to rounding). Contacts computed in one task (a
+    contact split in time chunks sums in another order: equal to rounding,
+    test_kwu_epri_contact_is_split_only_with_both_maxima); among them a file of several row
+    groups, streamed in blocks."""
+    h = oscillator()
+    manifest, _ = write_bundle(tmp_path, h, 3)
+    write_history(scaled(h, 3), tmp_path / "histories" / "groups.parquet", row_group_size=400)
+    frame = pd.read_csv(manifest)
+    frame.loc[3] = {**frame.loc[2].to_dict(), "contact": "groups",
+                    "history": "histories/groups.parquet"}
+    frame.to_csv(manifest, index=False)
+    (tmp_path / "kwu.toml").write_text(KWU_CASE.format(maxima=""))
+    two = run_bundle(manifest, tmp_path / "kwu.toml", scheduler="serial")
+    assert two.errors.empty, two.errors
+    assert two.stats["two_pass_contacts"] == 4
+    forces, speeds = [], []
+    for k in range(4):
+        hk = scaled(h, k)
+        forces.append(float(np.max(hk.normal_force)))
+        speeds.append(float(np.max(np.hypot(hk.vt1, hk.vt2))))
+    frame["force_max_N"], frame["speed_max_m_per_s"] = forces, speeds
+    given = tmp_path / "given.csv"
+    frame.to_csv(given, index=False, float_format="%.17g")
+    one = run_bundle(given, tmp_path / "kwu.toml", scheduler="serial")
+    assert one.errors.empty, one.errors
+    assert one.stats["two_pass_contacts"] == 0
+    for contact in frame["contact"]:
+        assert_identical(rows_of(one, contact), rows_of(two, contact))
+    assert np.all(rows_of(one, "groups")["volume_mobile"] > 0)

@@ -91,3 +91,33 @@ def test_letter_rows_leave_out_the_map_not_the_other_figures(tmp_path, capsys):
         "bundle_power.png", "bundle_power.svg", "bundle_worst_depths.png",
         "bundle_worst_depths.svg"]
     assert out.splitlines()[-1].startswith("done 24, failed 0, skipped 0 of 24 contacts")
+
+
+KWU = """[law]
+name = "KWU_EPRI"
+mobile = { COEF_USURE = 5.2e-14, reference_intensity = 1.0e-7 }
+[geometry]
+contact_type = "TUBE_ALESAGE"
+mobile_radius_m = 9.525e-3
+obstacle_radius_m = 9.725e-3
+obstacle_width_m = 20e-3
+[time]
+instants = [10, 100]
+unit = "hour"
+"""
+
+
+def test_the_final_lines_say_how_many_contacts_were_read_twice(tmp_path, capsys):
+    """issue 28: KWU-EPRI contacts without both class ranges are read twice, which the run
+    says with the keys that read them once; a contact given both (manifest columns) is not
+    counted. Expected: 1 of the 2 contacts of this manifest."""
+    history = Path(__file__).resolve().parents[2] / "examples" / "data" / "oscillator_gap.csv"
+    (tmp_path / "kwu.toml").write_text(KWU)
+    (tmp_path / "m.csv").write_text(f"contact,history,force_max_N,speed_max_m_per_s\n"
+                                    f"a,{history},,\nb,{history},400,0.5\n")
+    assert main(["bundle", str(tmp_path / "m.csv"), "--case", str(tmp_path / "kwu.toml"),
+                 "--scheduler", "serial", "-o", str(tmp_path / "out"), "-q"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[-1] == ("1 KWU-EPRI contact(s) read twice (the class bounds from the "
+                         "window's maxima); give force_max_N and speed_max_m_per_s (FNOR_MAXI, "
+                         "VTAN_MAXI) in the case or the manifest to read them once")

@@ -302,3 +302,64 @@ def test_streaming_a_format_read_whole_warns_above_a_size(tmp_path, monkeypatch,
     with warnings.catch_warnings():
         warnings.simplefilter("error", WholeReadWarning)
         list(iter_history_chunks(csv, chunk_size=50))
+
+
+# --------------------------------------------------------------------------- the per-file cost
+def _count_processes(monkeypatch) -> list:
+    """Every process started from now on (subprocess.Popen, which subprocess.run uses too)."""
+    import subprocess
+
+    started = []
+    real = subprocess.Popen
+
+    def counted(*args, **kwargs):
+        started.append(args[0] if args else kwargs.get("args"))
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(subprocess, "Popen", counted)
+    return started
+
+
+def test_guess_format_starts_no_process(tmp_path, monkeypatch):
+    """issue 28: guess_format tells NetCDF-4 from plain HDF5 by the header's bytes (the
+    ``_NCProperties`` root attribute netCDF-C writes), without starting a process (a child
+    walked each file before: 0.2 s a file); the formats are those the writers made."""
+    from fretwear.io import guess_format
+
+    h = analytic_history(n=25)
+    netcdf4 = write_history(h, tmp_path / "n.nc")
+    named_h5 = tmp_path / "netcdf4.h5"
+    named_h5.write_bytes(netcdf4.read_bytes())  # a NetCDF-4 file under an HDF5 suffix
+    plain = write_history(h, tmp_path / "p.h5")
+    named_nc = tmp_path / "plain.hdf"
+    named_nc.write_bytes(plain.read_bytes())
+    monkeypatch.setattr(guard, "_PROBED", {})
+    started = _count_processes(monkeypatch)
+    assert [guess_format(p) for p in (netcdf4, named_h5, plain, named_nc)] == [
+        "netcdf", "netcdf", "hdf5", "hdf5"]
+    assert started == []
+    assert read_history(named_h5).name == h.name  # read by netCDF4: its title is the name
+
+
+def test_one_checking_process_for_many_files(tmp_path, monkeypatch):
+    """issue 28: the files a process reads are walked by one long-lived child (a child per file
+    before: 5 processes for 5 files), which the crash of one file replaces; the files after it
+    are still checked and read."""
+    paths = [write_history(analytic_history(n=25 + k), tmp_path / f"h{k}.h5") for k in range(5)]
+    monkeypatch.setattr(guard, "_PROBED", {})
+    guard._drop_checker()
+    started = _count_processes(monkeypatch)
+    assert [len(read_history(p)) for p in paths] == [25, 26, 27, 28, 29]
+    assert len(started) == 1
+    crash = guard._CHILD.replace(
+        "def check(path, fmt):\n",
+        "def check(path, fmt):\n    if path.endswith('h2.h5'):\n        import os, signal\n"
+        "        os.kill(os.getpid(), signal.SIGSEGV)\n")
+    monkeypatch.setattr(guard, "_CHILD", crash)
+    monkeypatch.setattr(guard, "_PROBED", {})
+    for p in paths[:2]:
+        read_history(p)
+    with pytest.raises(FormatError, match=r"h2\.h5: the HDF5 library crashed \(SIGSEGV\)"):
+        read_history(paths[2])
+    assert [len(read_history(p)) for p in paths[3:]] == [28, 29]
+    assert len(started) == 3  # the patched script's child, and the one after its crash

@@ -570,7 +570,9 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
              "skipped": int(statuses.get("skipped", 0)),
              "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
              "startup_seconds": startup, "contacts_per_s": math.nan, "samples": samples,
-             "samples_per_s": math.nan, "workers": workers, "manifest": man.source}
+             "samples_per_s": math.nan, "workers": workers, "manifest": man.source,
+             # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
+             "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
     result = BundleResult(table=table, errors=errors_frame,
                           warnings=pd.DataFrame(warns, columns=["contact", "category",
                                                                 "message"]),

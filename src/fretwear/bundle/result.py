@@ -63,7 +63,9 @@ class BundleResult:
         the run [s], from the call to the results assembled and the output files written),
         ``startup_seconds`` (starting or joining the cluster), ``contacts_per_s`` and
         ``samples_per_s`` (computed contacts and history samples per second of the run without
-        the start-up), ``samples``, ``workers``.
+        the start-up), ``samples``, ``workers``, ``two_pass_contacts`` (contacts computed
+        this run whose history was read twice: KWU-EPRI without both FNOR_MAXI and VTAN_MAXI;
+        with them, or any other law, once).
     output : str or None
         The output directory.
     """

@@ -13,6 +13,7 @@ cannot mix two contacts' warnings (the local cluster runs one thread per worker 
 from __future__ import annotations
 
 import contextlib
+import functools
 import math
 import pickle
 import threading
@@ -28,6 +29,7 @@ from fretwear.bundle.datasets import frame_of, require, store_arrays
 from fretwear.io import iter_history_chunks, open_source, read_history
 from fretwear.io.channels import build_history, resolve_columns, resolve_units
 from fretwear.io.geometry_units import check_against_geometry
+from fretwear.laws import get_law
 from fretwear.power import PowerAccumulator, wear_power
 from fretwear.table import wear_table_columns
 
@@ -85,13 +87,16 @@ def _record(task: ContactTask, *, status: str, table=None, caught=(), error=None
     """A task's record; ``table`` is ``(columns, attrs)`` of
     :func:`fretwear.table.wear_table_columns`, sent as :func:`pack` lays a table out."""
     columns, attrs = (None, None) if table is None else table
-    return {"contact": task.contact, "key": task.key, "status": status,
+    record = {"contact": task.contact, "key": task.key, "status": status,
             "table": None if columns is None else {"columns": list(columns),
                                                     "arrays": list(columns.values())},
             "warnings": _with_case_warnings(task, _warning_list(caught)), "error": error,
             "samples": int(samples),
             "seconds": seconds, "attrs": None if attrs is None else _attrs(attrs, task),
             "state": state}
+    if status == "done":  # how many times the history was read (BundleResult.stats)
+        record["passes"] = history_passes(task)
+    return record
 
 
 def pack(table) -> dict[str, Any]:
@@ -222,8 +227,38 @@ def needs_whole_history(task: ContactTask) -> bool:
     """Whether a contact cannot be split in time chunks: KWU_EPRI without both FNOR_MAXI and
     VTAN_MAXI (its class bounds depend on the window's maxima, known only at the end: a second
     pass over the history; :mod:`fretwear.laws.kwu_stream`)."""
-    maxima = task.wear_case().power_options["kwu"]
-    return maxima is not None and (maxima[0] is None or maxima[1] is None)
+    return history_passes(task) == 2
+
+
+def history_passes(task: ContactTask) -> int:
+    """Passes over a contact's history: 0 without one (a given power), 2 for a law counting
+    KWU-EPRI classes without both FNOR_MAXI and VTAN_MAXI (``force_max_N``,
+    ``speed_max_m_per_s``, from the base case or the manifest: the pass of the power gives the
+    window's maxima, a second the class counts), else 1 (read from the task's case, without
+    building it: the client asks it of every contact).
+
+    Examples
+    --------
+    >>> from fretwear.bundle.manifest import HistoryRef
+    >>> task = ContactTask("c", HistoryRef("file", path="h.parquet"),
+    ...                    {"law": "KWU_EPRI", "force_max": 400.0, "speed_max": None})
+    >>> history_passes(task)
+    2
+    >>> task.case["speed_max"] = 0.5
+    >>> history_passes(task)
+    1
+    """
+    if task.history.kind == "none":
+        return 0
+    case = task.case
+    if case.get("force_max") is not None and case.get("speed_max") is not None:
+        return 1
+    return 2 if _counts_classes(case.get("law")) else 1
+
+
+@functools.cache
+def _counts_classes(law: str | None) -> bool:
+    return law is not None and get_law(law).needs_history
 
 
 def _compute(task: ContactTask, chunk_size: int):

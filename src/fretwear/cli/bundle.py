@@ -202,5 +202,9 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         click.echo(f"{counts} (cluster start {s['startup_seconds']:.1f} s) on {s['workers']} "
                    f"worker(s): {s['contacts_per_s']:.3g} contacts/s, "
                    f"{s['samples_per_s']:.3g} samples/s; results in {output}")
+    if s.get("two_pass_contacts"):
+        click.echo(f"{s['two_pass_contacts']} KWU-EPRI contact(s) read twice (the class "
+                   "bounds from the window's maxima); give force_max_N and speed_max_m_per_s "
+                   "(FNOR_MAXI, VTAN_MAXI) in the case or the manifest to read them once")
     if len(errors):
         raise click.exceptions.Exit(EXIT_SOME_FAILED)

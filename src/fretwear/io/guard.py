@@ -17,8 +17,10 @@ case files, obstacle tables):
   the signature and the size it declares (a truncated file is refused), then its structure is
   walked by a child process (``sys.executable``) with a time limit (:data:`PROBE_TIMEOUT`), so
   a file that makes the C library crash (segmentation fault) or loop forever ends in a
-  :class:`FormatError`, not in a dead or hung interpreter. The result is remembered per file
-  (path, size, modification time).
+  :class:`FormatError`, not in a dead or hung interpreter. The child is long-lived, one per
+  process (a bundle's worker, a command): it walks every file it is sent, and only a crash or a
+  hang costs a new one; a child per file cost 0.2 s a file (Python's start, h5py's import).
+  The result is remembered per file (path, size, modification time).
 
 Examples
 --------
@@ -37,15 +39,18 @@ Examples
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import errno
 import json
 import os
+import queue
 import signal
 import stat
 import struct
 import subprocess
 import sys
+import threading
 import warnings
 import zipfile
 import zlib
@@ -237,17 +242,12 @@ def warn_whole_read(files: list, label: str, format: str) -> None:
 _PROBED: dict[tuple, dict] = {}
 
 _CHILD = r"""
-import json, sys
-path, fmt = sys.argv[1], sys.argv[2]
-try:
-    if fmt == "hdf5":
-        import h5py
-    else:
-        import netCDF4
-except Exception as exc:
-    print(json.dumps({"import": repr(exc)})); sys.exit(4)
-info = {}
-try:
+import json, signal, sys
+signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's: it ends this on EOF
+
+
+def check(path, fmt):
+    info = {}
     if fmt == "hdf5":
         def touch(obj):
             for k in list(obj.attrs):
@@ -276,10 +276,105 @@ try:
                 for sub in g.groups.values():
                     walk(sub)
             walk(ds)
-except BaseException as exc:
-    print(json.dumps({"error": f"{type(exc).__name__}: {exc}"[:300]})); sys.exit(3)
-print(json.dumps(info))
+    return info
+
+
+for line in sys.stdin:
+    path, fmt = json.loads(line)
+    try:
+        if fmt == "hdf5":
+            import h5py
+        else:
+            import netCDF4
+    except Exception as exc:
+        answer = {"import": repr(exc)}
+    else:
+        try:
+            answer = check(path, fmt)
+        except BaseException as exc:
+            answer = {"error": f"{type(exc).__name__}: {exc}"[:300]}
+    sys.stdout.write(json.dumps(answer) + "\n")
+    sys.stdout.flush()
 """
+
+
+class _Checker:
+    """A long-lived child process (``sys.executable`` running :data:`_CHILD`) that walks the
+    files it is sent, one JSON line ``[path, format]`` in, one JSON line out.
+
+    One per process (:func:`_checker`): a bundle's worker starts it once for all its files
+    (a child per file cost about 0.2 s a file: Python's start and h5py's import), a
+    single-contact command once for its files. A file that makes the library crash kills this
+    child, not the caller; a hang is cut after :data:`PROBE_TIMEOUT` seconds by killing it; the
+    next file starts a new one. It ends when its caller's process ends (end of its input).
+    """
+
+    def __init__(self) -> None:
+        self.script = _CHILD
+        self.owner = os.getpid()
+        self.process = subprocess.Popen([sys.executable, "-c", self.script],
+                                        stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                        stderr=subprocess.DEVNULL, text=True, bufsize=1)
+        self.answers: queue.SimpleQueue = queue.SimpleQueue()
+        threading.Thread(target=self._listen, name="fretwear-probe", daemon=True).start()
+
+    def _listen(self) -> None:
+        for line in self.process.stdout:
+            self.answers.put(line)
+        self.answers.put(None)  # the child ended
+
+    def ask(self, path: Path, format: str, timeout: float) -> str | None:
+        """The child's answer line, or None when it died (its exit status in
+        ``self.process.returncode``); :class:`TimeoutError` after ``timeout`` seconds."""
+        try:
+            self.process.stdin.write(json.dumps([os.path.abspath(path), format]) + "\n")
+            self.process.stdin.flush()
+        except OSError:  # it had died: its end-of-output is queued
+            pass
+        try:
+            line = self.answers.get(timeout=timeout)
+        except queue.Empty:
+            raise TimeoutError from None
+        if line is None:
+            self.process.wait()
+        return line
+
+    def close(self) -> None:
+        with contextlib.suppress(OSError):
+            self.process.kill()
+        with contextlib.suppress(OSError, subprocess.SubprocessError):
+            self.process.wait(timeout=5)
+        for stream in (self.process.stdin, self.process.stdout):
+            with contextlib.suppress(OSError):
+                stream.close()
+
+
+_CHECKER: _Checker | None = None
+_CHECKER_LOCK = threading.Lock()
+
+
+def _checker() -> _Checker:
+    """This process's checker (started on first use; again after a crash, a hang, a fork or a
+    change of :data:`_CHILD`)."""
+    global _CHECKER
+    old = _CHECKER
+    if old is not None and old.owner == os.getpid() and old.script == _CHILD \
+            and old.process.poll() is None:
+        return old
+    if old is not None and old.owner == os.getpid():
+        old.close()
+    _CHECKER = _Checker()
+    return _CHECKER
+
+
+def _drop_checker() -> None:
+    global _CHECKER
+    if _CHECKER is not None and _CHECKER.owner == os.getpid():
+        _CHECKER.close()
+    _CHECKER = None
+
+
+atexit.register(_drop_checker)
 
 
 def _check_hdf5_superblock(path: Path, size: int) -> None:
@@ -330,10 +425,12 @@ def _check_netcdf_classic(path: Path, size: int) -> None:
 def probe(path: str | os.PathLike, format: str) -> dict:
     """Check an HDF5 or NetCDF file before the C library opens it in this process.
 
-    The signature and the size declared by the superblock are checked here; then a child
-    process opens the file, reads every attribute, the shape and the first and last value of
-    every 1-D dataset or variable. A child that crashes (segmentation fault), raises or runs
-    longer than :data:`PROBE_TIMEOUT` seconds makes a :class:`FormatError` here. The outcome is
+    The signature and the size declared by the superblock are checked here; then this process's
+    checking child (long-lived, started on the first file: one per bundle worker, one per
+    command) opens the file, reads every attribute, the shape and the first and last value of
+    every 1-D dataset or variable. A child that crashes on the file (segmentation fault), or
+    runs longer than :data:`PROBE_TIMEOUT` seconds on it (it is then killed), or a library that
+    raises, makes a :class:`FormatError` here; the next file gets a new child. The outcome is
     remembered for the file's (path, size, modification time).
 
     Parameters
@@ -367,30 +464,34 @@ def probe(path: str | os.PathLike, format: str) -> dict:
     elif head[:4] in NETCDF_CLASSIC_MAGIC:
         _check_netcdf_classic(p, st.st_size)
     library = "HDF5" if format == "hdf5" else "NetCDF"
-    try:
-        done = subprocess.run([sys.executable, "-c", _CHILD, str(p), format],
-                              capture_output=True, text=True, timeout=PROBE_TIMEOUT)
-    except subprocess.TimeoutExpired:
-        raise FormatError(f"{p}: the {library} library did not finish reading the file's "
-                          f"structure in {PROBE_TIMEOUT:g} s: the file is damaged (a corrupt "
-                          "attribute or index makes the library loop)") from None
-    except OSError:  # no interpreter to run the check: let the library open it
-        return {}
-    if done.returncode < 0:
+    with _CHECKER_LOCK:
         try:
-            sig = signal.Signals(-done.returncode).name
-        except ValueError:
-            sig = f"signal {-done.returncode}"
-        raise FormatError(f"{p}: the {library} library crashed ({sig}) reading this file: it "
-                          "is damaged; write it again or check the transfer")
-    lines = done.stdout.strip().splitlines()
+            checker = _checker()
+        except OSError:  # no interpreter to run the check: let the library open it
+            return {}
+        try:
+            line = checker.ask(p, format, PROBE_TIMEOUT)
+        except TimeoutError:
+            _drop_checker()
+            raise FormatError(f"{p}: the {library} library did not finish reading the file's "
+                              f"structure in {PROBE_TIMEOUT:g} s: the file is damaged (a "
+                              "corrupt attribute or index makes the library loop)") from None
+        if line is None:  # the checker died on this file
+            status = checker.process.returncode
+            _drop_checker()
+            try:
+                how = signal.Signals(-status).name if status < 0 else f"exit status {status}"
+            except ValueError:
+                how = f"signal {-status}"
+            raise FormatError(f"{p}: the {library} library crashed ({how}) reading this file: "
+                              "it is damaged; write it again or check the transfer")
     try:
-        info = json.loads(lines[-1]) if lines else {}
+        info = json.loads(line)
     except json.JSONDecodeError:
         info = {}
-    if done.returncode == 3:
-        raise FormatError(f"{p}: not a readable {format} file ({info.get('error', '?')})")
-    if done.returncode != 0 or "import" in info:
+    if "error" in info:
+        raise FormatError(f"{p}: not a readable {format} file ({info['error']})")
+    if "import" in info:
         return {}
     if len(_PROBED) > 256:
         _PROBED.clear()

@@ -18,7 +18,6 @@ from typing import Any
 
 import numpy as np
 
-from fretwear._optional import optional
 from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.history import ContactHistory
 from fretwear.io import aster as _aster
@@ -27,7 +26,7 @@ from fretwear.io import delimited as _delimited
 from fretwear.io.aster_source import open_aster as _open_aster
 from fretwear.io.aster_source import open_functions as _open_functions
 from fretwear.io.channels import Source, resolve_columns, resolve_units
-from fretwear.io.guard import HDF5_MAGIC, probe, readable_file, reading
+from fretwear.io.guard import HDF5_MAGIC, readable_file, reading
 
 #: Code_Aster parameter names used when a history is written as a Code_Aster table.
 ASTER_NAMES: Mapping[str, str] = MappingProxyType({
@@ -82,6 +81,10 @@ FORMATS: Mapping[str, FileFormat] = MappingProxyType({
                                      "history)"),
 })
 
+#: The bytes of the root attribute netCDF-C writes into every NetCDF-4 file it creates
+#: (:func:`guess_format`).
+NETCDF4_MARK = b"_NCProperties"
+
 _FORMAT_ALIASES = {"h5": "hdf5", "hdf": "hdf5", "nc": "netcdf", "pq": "parquet", "txt": "csv",
                    "dat": "csv", "tsv": "csv", "tableau": "aster", "aster-table": "aster",
                    "impr_table": "aster", "impr_fonction": "aster-function",
@@ -102,6 +105,18 @@ def guess_format(path: str | os.PathLike) -> str:
 
     Binary formats are recognised by their signature whatever the suffix; a text file is a
     Code_Aster table when its content says so (whatever the suffix), else delimited text.
+
+    An HDF5 file is NetCDF-4 when its suffix says so (``.nc``, ``.nc4``, ``.cdf``) or when its
+    first 64 KiB hold the root attribute ``_NCProperties`` that netCDF-C (4.4.1 and later)
+    writes into every file it creates, in the root group's header near the start (at byte 606
+    in a file written by :func:`fretwear.io.write_netcdf`). This reads bytes only: no library
+    opens the file and no process is started, so that guessing the formats of 10⁴ files costs
+    no more than reading their first blocks (a child process walked each file here, 0.2 s a
+    file). Otherwise it is read as plain HDF5, which h5py can read whatever wrote it: a
+    NetCDF-4 file under an HDF5 suffix from an older netCDF-C, or whose root attributes were
+    rewritten past 64 KiB, gives its variables as HDF5 datasets (give ``format="netcdf"`` for
+    its NetCDF title and metadata). The file's structure is checked when its reader opens it
+    (:func:`fretwear.io.guard.probe`).
 
     Raises
     ------
@@ -126,12 +141,10 @@ def guess_format(path: str | os.PathLike) -> str:
     if head.startswith(b"PAR1"):
         return "parquet"
     if head.startswith(HDF5_MAGIC):
-        if suffix in FORMATS["netcdf"].suffixes:
-            return "netcdf"
-        if optional("h5py") is None:
-            return "hdf5"
-        # the structure is walked in a child process: a damaged file cannot crash this one
-        return "netcdf" if probe(path, "hdf5").get("netcdf") else "hdf5"
+        # NetCDF-4 or plain HDF5, from the header's bytes (no process, no library: the file is
+        # checked when its reader opens it, fretwear.io.guard.probe)
+        return "netcdf" if suffix in FORMATS["netcdf"].suffixes or NETCDF4_MARK in head \
+            else "hdf5"
     if head[:4] in (b"CDF\x01", b"CDF\x02", b"CDF\x05"):
         return "netcdf"
     if head.startswith(b"PK\x03\x04"):
