@@ -83,7 +83,7 @@ def test_iterate_says_where_it_writes_even_with_q(tmp_path, monkeypatch, capsys)
                                                  "power_change_significant": [None],
                                                  "power_change": [float("nan")]}),
                            directory=tmp_path / "loop_out",
-                           intervals=[batch_means_interval([1.0] * 5 + [1.1] * 5)],
+                           intervals=[batch_means_interval([1.0, 1.1] * 5)],
                            convergence=("one cycle", "one cycle: no change to judge"))
     monkeypatch.setattr(iterate_cli, "iterate_case", lambda *a, **k: fake)
     case = tmp_path / "c.toml"
