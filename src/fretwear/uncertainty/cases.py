@@ -13,6 +13,7 @@ blocks and sectors.
 from __future__ import annotations
 
 import dataclasses
+import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -27,6 +28,7 @@ from fretwear.power import PowerResult, wear_power
 from fretwear.power.confidence import PowerInterval
 from fretwear.table import wear_table
 from fretwear.table.depth import DepthModel, models_from_table
+from fretwear.uncertainty.distributions import is_distribution, median_of
 
 __all__ = ["PreparedCase", "prepare_case"]
 
@@ -67,6 +69,11 @@ def _durations(table: pd.DataFrame) -> Any:
     return rows["duration"].drop_duplicates().to_numpy(dtype=float)
 
 
+def _uncertain(power) -> bool:
+    """Whether ``power`` carries the power's uncertainty (an interval or a distribution)."""
+    return isinstance(power, PowerResult | PowerInterval) or is_distribution(power)
+
+
 def _source(power, keywords: dict[str, Any]):
     """(source for wear_table, the power's uncertainty object)."""
     if isinstance(power, PowerInterval):
@@ -81,8 +88,15 @@ def _source(power, keywords: dict[str, Any]):
         keywords["history"] = power
         return result, result
     if power is None:
-        raise InputError("give the wear power: a number [W], a PowerResult, a PowerInterval or "
-                         "a contact history")
+        raise InputError("give the wear power: a number [W], a PowerResult, a PowerInterval, "
+                         "a distribution of the power [W] or a contact history")
+    if is_distribution(power):  # an absolute distribution of the power [W]
+        median = median_of(power)
+        if median is None or not (math.isfinite(median) and median > 0):
+            raise InputError(f"power={power!r}: a distribution of the power is absolute [W] "
+                             "and needs its median, e.g. LogNormal(0.01, sigma_ln=0.2) for "
+                             "0.01 W; a scatter relative to a nominal power is power_scatter=")
+        return median, power
     return power, None
 
 
@@ -109,11 +123,11 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
     if isinstance(case, DepthModel):
         changes = {k: v for k, v in options.items() if v is not None}
         model = dataclasses.replace(case, **changes) if changes else case
-        uncertainty = power if isinstance(power, PowerResult | PowerInterval) else None
+        uncertainty = power if _uncertain(power) else None
         return PreparedCase({"global": model}, uncertainty, None, None)
     if isinstance(case, pd.DataFrame):
         models = models_from_table(case, **options)
-        uncertainty = power if isinstance(power, PowerResult | PowerInterval) else None
+        uncertainty = power if _uncertain(power) else None
         return PreparedCase(models, uncertainty, case, _durations(case))
     if hasattr(case, "to_dict") and type(case).__name__ == "WearCase":
         window = {"t_start": case.t_start, "t_end": case.t_end, "blocks": case.blocks,

@@ -19,7 +19,8 @@ from scipy import stats
 
 from fretwear.errors import InputError
 
-__all__ = ["LogNormal", "as_distribution", "lognormal_sigma"]
+__all__ = ["LogNormal", "Scaled", "as_distribution", "is_distribution", "lognormal_sigma",
+           "median_of"]
 
 
 def lognormal_sigma(scatter: float, coverage: float = 0.95) -> float:
@@ -197,3 +198,43 @@ def describe(distribution) -> str:
         kwds = ", ".join(f"{k}={v:.4g}" for k, v in getattr(distribution, "kwds", {}).items())
         return f"{dist.name}({', '.join(p for p in (args, kwds) if p)})"
     return str(distribution)  # its own __str__ (e.g. TruncatedStudent with units), else repr
+
+
+class Scaled:
+    """``scale × X``: a relative distribution X [-] (a factor on a nominal value) made
+    absolute, e.g. a relative scatter of the power on its nominal power [W].
+
+    Examples
+    --------
+    >>> d = Scaled(LogNormal(1.0, sigma_ln=0.2), 0.01)
+    >>> round(float(d.ppf(0.5)), 6), str(d)
+    (0.01, '0.01 × lognormal(median=1, sigma_ln=0.2)')
+    """
+
+    def __init__(self, base, scale: float):
+        self.base, self.scale = base, float(scale)
+
+    def ppf(self, u):
+        return self.scale * np.asarray(self.base.ppf(u), dtype=float)
+
+    def cdf(self, x):
+        return self.base.cdf(np.asarray(x, dtype=float) / self.scale)
+
+    def median(self) -> float:
+        return float(self.ppf(0.5))
+
+    def __str__(self) -> str:
+        return f"{self.scale:g} × {describe(self.base)}"
+
+
+def median_of(distribution) -> float | None:
+    """The median of a distribution (a LogNormal's, or ``ppf(0.5)``); None for a LogNormal
+    without one."""
+    if isinstance(distribution, LogNormal):
+        return distribution.median
+    return float(np.asarray(distribution.ppf(0.5), dtype=float))
+
+
+def is_distribution(spec) -> bool:
+    """Whether ``spec`` is a distribution (a LogNormal, or anything with ``ppf``)."""
+    return isinstance(spec, LogNormal) or hasattr(spec, "ppf")

@@ -25,7 +25,13 @@ from fretwear.power import PowerResult
 from fretwear.power.confidence import PowerInterval
 from fretwear.table.depth import DepthModel, given_names
 from fretwear.uncertainty.cases import prepare_case
-from fretwear.uncertainty.distributions import as_distribution, describe
+from fretwear.uncertainty.distributions import (
+    Scaled,
+    as_distribution,
+    describe,
+    is_distribution,
+    median_of,
+)
 from fretwear.uncertainty.sampling import sobol_indices, uniform_points
 
 __all__ = ["UncertaintyResult", "Variable", "monte_carlo"]
@@ -355,6 +361,12 @@ def _cap(model: DepthModel) -> float:
 def _power_variable(power_scatter, uncertainty, nominal: float) -> Variable | None:
     if power_scatter is False or (isinstance(power_scatter, str) and power_scatter == "fixed"):
         return None
+    absolute = uncertainty is not None and is_distribution(uncertainty)
+    if absolute and power_scatter not in (None, "interval"):
+        raise InputError("power= is already a distribution of the power [W]: power_scatter= "
+                         "would compound a second scatter on it; give one of them")
+    if absolute:
+        return Variable("power", "power", uncertainty, "W")
     if power_scatter is None or (isinstance(power_scatter, str) and power_scatter == "interval"):
         if isinstance(uncertainty, PowerInterval):
             return Variable("power", "power", uncertainty.distribution(), "W")
@@ -367,12 +379,19 @@ def _power_variable(power_scatter, uncertainty, nominal: float) -> Variable | No
         return None
     if isinstance(power_scatter, PowerInterval):
         return Variable("power", "power", power_scatter.distribution(), "W")
-    dist = as_distribution(power_scatter, nominal, "power_scatter")
+    dist = as_distribution(power_scatter, 1.0, "power_scatter")
     if dist is None:
-        raise InputError("power_scatter: give a distribution of the power [W] (LogNormal(...), "
-                         "a scipy.stats distribution), a PowerInterval, 'interval' or 'fixed', "
-                         f"got {power_scatter!r}")
-    return Variable("power", "power", dist, "W")
+        raise InputError("power_scatter: give a relative scatter of the power [-] (a factor "
+                         "on the nominal power: LogNormal(sigma_ln=0.2), median 1), a "
+                         "PowerInterval, 'interval' or 'fixed', got "
+                         f"{power_scatter!r}; an absolute distribution [W] is power=")
+    median = median_of(dist)
+    if not 0.1 <= median <= 10.0:
+        raise InputError(f"power_scatter is relative to the nominal power {nominal:g} W (a "
+                         f"factor [-], median 1), but its median is {median:g}: a distribution "
+                         f"of the power in W is given as power=, e.g. "
+                         f"power=LogNormal({median:g}, sigma_ln=0.2)")
+    return Variable("power", "power", Scaled(dist, nominal), "W")
 
 
 def _coefficient_variables(spec, model: DepthModel, body: str) -> list[Variable]:
@@ -433,9 +452,11 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
         The wear case: the keywords of :func:`fretwear.table.wear_table` (plus
         ``wall_thickness`` [m], ``depth_limit`` [-]), a wear-case object, a wear table with its
         metadata, or a model (:mod:`fretwear.uncertainty.cases`).
-    power : float, PowerResult, PowerInterval, ContactHistory or path-like
+    power : float, PowerResult, PowerInterval, distribution, ContactHistory or path-like
         The wear power [W] or what gives it; a PowerResult of ≥ 2 blocks or a PowerInterval
-        also gives the power's uncertainty.
+        also gives the power's uncertainty; a distribution (``LogNormal(0.01,
+        sigma_ln=0.2)``, a frozen scipy.stats one) is the power's own, absolute [W], its median
+        the nominal power.
     coefficients, obstacle_coefficients : mapping, optional
         Distribution of law coefficients of the mobile / obstacle by name or Code_Aster keyword,
         e.g. ``{"coefficient": LogNormal(sigma_ln=0.7)}`` (median: the case's value) or
@@ -443,11 +464,15 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
         distributions are accepted.
     factor : distribution, optional
         Distribution of a factor on every wear coefficient [-] (both bodies; e.g. the posterior
-        of :func:`fretwear.uncertainty.calibrate`).
+        of :func:`fretwear.uncertainty.calibrate`). Refused together with ``coefficients`` or
+        ``obstacle_coefficients``: the two scatters would compound.
     power_scatter : None, "interval", "fixed", PowerInterval or distribution
-        The power's distribution [W]: None (default) takes the interval of a PowerResult or
-        PowerInterval ``power`` (scaled Student truncated at 0) and a number as exact;
-        a LogNormal without median is centred on the nominal power.
+        The power's scatter: None (default) takes the interval of a PowerResult or
+        PowerInterval ``power`` (scaled Student truncated at 0), the distribution of a
+        distribution ``power`` [W], and a number as exact; a distribution here is
+        **relative**, a factor [-] on the nominal power (``LogNormal(sigma_ln=0.2)``, median
+        1; a median outside [0.1, 10] is refused as a power in W given in the wrong place).
+        An absolute distribution of the power [W] is ``power=LogNormal(0.01, sigma_ln=0.2)``.
     dimensions : mapping, optional
         Distributions of geometry dimensions [m] or [deg] (evaluated sample by sample: slower).
     samples : int
@@ -520,6 +545,11 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
     if not (np.isfinite(durations).all() and (durations >= 0).all()):
         raise InputError(f"instants must be finite and >= 0, got {durations.tolist()}")
 
+    if factor is not None and (coefficients or obstacle_coefficients):
+        raise InputError("factor= and coefficients= both scale the wear coefficients: their "
+                         "scatters would compound; give the coefficients' scatter either as one "
+                         "factor on every coefficient (factor=) or coefficient by coefficient "
+                         "(coefficients=, obstacle_coefficients=)")
     variables: list[Variable] = []
     if factor is not None:
         dist = as_distribution(factor, 1.0, "factor")
