@@ -15,11 +15,12 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
-from fretwear.errors import ConfidenceWarning
+from fretwear.errors import ConfidenceWarning, KeywordError
 
 __all__ = ["DEFAULT_CONFIDENCE_BLOCKS", "DEFAULT_CONFIDENCE_LEVEL", "change_interval",
            "convergence_verdict", "cycle_interval", "ensemble_power", "max_depth_noise",
@@ -53,8 +54,6 @@ def cycle_interval(power, level: float, *, interval_power=None):
     source = power if len(np.atleast_1d(power.blocks)) >= 2 else interval_power
     iv = source.confidence_interval(level)
     # the table's power is the estimate: the block split may round its mean differently
-    from dataclasses import replace
-
     return replace(iv, estimate=float(power.total))
 
 
@@ -194,10 +193,6 @@ def reseeded(excitations, run: int, step: int = 1000):
     KeywordError
         ``run`` > 0 and no excitation is random: every run would be the same computation.
     """
-    from dataclasses import replace
-
-    from fretwear.errors import KeywordError
-
     if run == 0:
         return list(excitations)
     out, moved = [], False
@@ -230,8 +225,6 @@ def ensemble_power(powers):
         (the sector and block layouts are the same in every run); ``statistics`` and the other
         fields those of the first run.
     """
-    from dataclasses import replace
-
     first = powers[0]
     if len(powers) == 1:
         return first
