@@ -37,19 +37,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from fretwear.errors import InputError
+from fretwear.keys import check_level
 
 __all__ = ["BundleRisk", "bundle_risk", "longest_interval", "inspection_sample",
            "plugging_list"]
-
-
-def _probability(name: str, value) -> float:
-    try:
-        p = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a probability in (0, 1), got {value!r}") from None
-    if not 0.0 < p < 1.0:
-        raise InputError(f"{name} must be a probability in (0, 1) (e.g. 0.05), got {value!r}")
-    return p
 
 
 @dataclass(frozen=True)
@@ -153,7 +144,7 @@ def longest_interval(risk_at: Callable[[float], BundleRisk], target: float, *,
     """
     from scipy.optimize import brentq
 
-    target = _probability("target", target)
+    target = check_level(target, "target")
     gap = lambda t: risk_at(t).probability_any() - target  # noqa: E731
     if gap(lower) > 0:
         raise InputError(f"the target {target:g} is missed already at T = {lower:g} s: no "
@@ -179,7 +170,7 @@ def plugging_list(risk: BundleRisk, target: float, *, always=()) -> list:
     >>> plugging_list(r, 0.05)
     ['A', 'C']
     """
-    target = _probability("target", target)
+    target = check_level(target, "target")
     plugged = [t for t in always]
     unknown = [t for t in plugged if t not in set(risk.tubes.tolist())]
     if unknown:

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from fretwear.errors import InputError
+from fretwear.keys import check_level
 
 __all__ = ["LogisticPOD", "SizingModel"]
 
@@ -162,8 +163,6 @@ class LogisticPOD:
 
     def depth_at(self, probability: float) -> float:
         """The depth detected with ``probability`` in (0, 1) [m] (a90 for 0.9)."""
-        p = _finite("probability", probability)
-        if not 0.0 < p < 1.0:
-            raise InputError(f"a detection probability is in (0, 1), got {probability!r}")
+        p = check_level(probability, "a detection probability")
         x = (math.log(p / (1.0 - p)) - self.beta0) / self.beta1
         return math.exp(x) if self.log_depth else x
