@@ -57,6 +57,7 @@ from fretwear.workflows.loop_noise import (
     convergence_verdict,
     cycle_interval,
     ensemble_power,
+    largest_depth,
     max_depth_noise,
     noise_columns,
     reseeded,
@@ -391,8 +392,9 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                    "contact_fraction": contact,
                    "perforated": bool(update.perforated), **_table_depths(table)}
             compared_columns = DEPTHS_OF[depth_of]
-            depth_now = _largest(row, compared_columns)
-            depth_before = _largest(rows[-1], compared_columns) if rows else 0.0
+            compared = largest_depth(row, compared_columns)  # None when none is finite
+            depth_now = compared if compared is not None else 0.0
+            depth_before = (largest_depth(rows[-1], compared_columns) if rows else None) or 0.0
             row.update(noise_columns(interval, intervals[-1] if intervals else None,
                                      depth_now - depth_before))
             row["max_depth_within_noise"] = (max_depth_noise(row, compared_columns, max_depth)
@@ -408,8 +410,7 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
             if update.perforated and it.get("stop_on_perforation", True):
                 stopped = "perforation"
                 break
-            compared = [row[c] for c in DEPTHS_OF[depth_of] if np.isfinite(row[c])]
-            if max_depth is not None and compared and max(compared) >= max_depth:
+            if max_depth is not None and compared is not None and compared >= max_depth:
                 stopped = "max_depth"
                 break
             if (tolerance is not None and k < n_cycles
@@ -434,11 +435,6 @@ def iterate_case(case: str | Path | Mapping[str, Any], *, output: str | Path | N
                            max_depth_of=depth_of, intervals=intervals,
                            convergence=convergence)
 
-
-def _largest(row: Mapping[str, Any], columns) -> float:
-    """The largest finite value of ``row`` among ``columns`` (0 when none) [m]."""
-    values = [float(row[c]) for c in columns if np.isfinite(row[c])]
-    return max(values) if values else 0.0
 
 
 #: Wear-shock histories up to this many samples are read whole by the loop; longer ones are

@@ -23,8 +23,8 @@ import numpy as np
 from fretwear.errors import ConfidenceWarning, KeywordError
 
 __all__ = ["DEFAULT_CONFIDENCE_BLOCKS", "DEFAULT_CONFIDENCE_LEVEL", "change_interval",
-           "convergence_verdict", "cycle_interval", "ensemble_power", "max_depth_noise",
-           "noise_columns", "reseeded", "warn_if_noisy"]
+           "convergence_verdict", "cycle_interval", "ensemble_power", "largest_depth",
+           "max_depth_noise", "noise_columns", "reseeded", "warn_if_noisy"]
 
 #: Blocks of the batch-means interval of a cycle's power when [power] blocks is below 2 [-].
 DEFAULT_CONFIDENCE_BLOCKS = 10
@@ -165,8 +165,15 @@ def max_depth_noise(row: Mapping[str, Any], columns, max_depth: float) -> bool:
     half = float(row.get("depth_increment_half_width", math.nan))
     if not math.isfinite(half):
         return False
+    depth = largest_depth(row, columns)
+    return depth is not None and depth - half < max_depth <= depth + half
+
+
+def largest_depth(row: Mapping[str, Any], columns) -> float | None:
+    """The largest finite value of ``row`` among ``columns`` [m], None when none is finite
+    (the depth the ``max_depth_m`` criterion compares)."""
     values = [float(row[c]) for c in columns if np.isfinite(row[c])]
-    return bool(values) and max(values) - half < max_depth <= max(values) + half
+    return max(values) if values else None
 
 
 def _percent(value: float, reference: float) -> str:
