@@ -393,3 +393,46 @@ def test_summary_errors_are_the_same(bundles):
     # a contact listed twice in ``contacts``: the same failure as the loop's
     twice = pd.concat([contacts, contacts.iloc[:1]], ignore_index=True)
     assert_same(table, twice, [{}, {"limit_m": 1e-5}], fails=True)
+
+
+def test_summary_is_computed_once_per_limit_and_kept(bundles, monkeypatch):
+    """BundleResult.summary() calls summarize once per (limit, limit_m, wall_thickness) and
+    reads its ranking after (issue 28); distinct limits give distinct rankings, each the one
+    summarize gives directly; a caller's change to a returned ranking is not seen again; a
+    refused limit is refused on every call (limit=True is not the cached limit=1)."""
+    from fretwear.bundle import result as result_module
+    from fretwear.bundle.result import BundleResult
+    from fretwear.errors import KeywordError
+
+    table, contacts = bundles["walls"]
+    result = BundleResult(table=table, errors=pd.DataFrame(), warnings=pd.DataFrame(),
+                          contacts=contacts)
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append(kwargs)
+        return summarize(*args, **kwargs)
+
+    monkeypatch.setattr(result_module, "summarize", counted)
+    first = result.summary()
+    first["depth"] = -1.0  # the caller's copy
+    again = result.summary()
+    assert len(calls) == 1
+    direct = summarize(table, contacts, limit=None, limit_m=None, wall_thickness=None)
+    pd.testing.assert_frame_equal(again, direct, check_exact=True)  # same process: exact
+    assert again.attrs == direct.attrs
+    deep = result.summary(0.03)
+    assert result.summary(0.03) is not deep
+    pd.testing.assert_frame_equal(result.summary(0.03), deep)
+    assert len(calls) == 2
+    # a shallower limit: reached earlier by the contacts that reach both
+    both = deep.merge(again, on="contact", suffixes=("_03", "_own"))
+    assert not both["limit_depth_03"].equals(both["limit_depth_own"])
+    result.summary(limit_m=1e-5)
+    result.summary(limit_m=1e-5)
+    assert len(calls) == 3
+    assert result.summary(1) is not None
+    with pytest.raises(KeywordError):
+        result.summary(True)
+    with pytest.raises(KeywordError):
+        result.summary(True)

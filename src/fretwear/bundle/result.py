@@ -77,6 +77,9 @@ class BundleResult:
     stats: dict[str, Any] = field(default_factory=dict)
     output: str | None = None
     _dataset: Any = field(default=None, repr=False)
+    #: ``summary()``'s rankings, one per ``(limit, limit_m, wall_thickness)``: a result is
+    #: never changed once built, so a ranking is computed once and read after (issue 28).
+    _summaries: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
     def dataset(self):
@@ -104,6 +107,10 @@ class BundleResult:
             ``limit`` or ``limit_m``, not both.
         wall_thickness : float, optional
             Wall thickness [m] of every tube, where the manifest gives none.
+
+        Computed once per ``(limit, limit_m, wall_thickness)`` and kept on the result (a
+        result is not changed once built); each call returns a copy, so that a caller's
+        change to its ranking is not seen by the next call.
 
         Returns
         -------
@@ -140,8 +147,18 @@ class BundleResult:
         InputError
             A ``limit_m`` that is not a finite number > 0.
         """
-        return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
-                         wall_thickness=wall_thickness)
+        # the type in the key: limit=True (refused) is not the cached limit=1
+        key = tuple((type(v), v) for v in (limit, limit_m, wall_thickness))
+        try:
+            ranking = self._summaries.get(key)
+        except TypeError:  # an unhashable argument: summarize says what is wrong with it
+            return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
+                             wall_thickness=wall_thickness)
+        if ranking is None:
+            ranking = summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
+                                wall_thickness=wall_thickness)
+            self._summaries[key] = ranking
+        return ranking.copy()
 
 
 def _global_rows(rows: pd.DataFrame) -> pd.DataFrame:
