@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import hashlib
 import json
 import math
 import os
@@ -26,6 +27,7 @@ from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
+from fretwear._version import __version__
 from fretwear.bundle.cases import ROW_ERRORS, ContactTask, build_task, check_base_case
 from fretwear.bundle.cluster import (
     LOCAL_CLUSTER_CONFIG,  # noqa: F401 - its home until now
@@ -36,7 +38,13 @@ from fretwear.bundle.cluster import (
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, check_limit
-from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS, OutputDirectory, write_frame
+from fretwear.bundle.store import (
+    DATASET_FORMATS,
+    TABLE_FORMATS,
+    OutputDirectory,
+    read_frame,
+    write_frame,
+)
 from fretwear.bundle.tasks import (
     chunk_state,
     concat_packed,
@@ -510,18 +518,17 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     order = [r.contact for r in man.rows]
     identity = man.identity_frame()
     identity["contact"] = identity["contact"].astype(str)
-    packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
-                                         if records[c].get("table") is not None}
-    missing = [records[c] for c in order if c not in packed and records[c]["status"]
-               in ("done", "skipped", "stale")]
-    if missing and store is not None:  # a restart: the rows of skipped contacts from the parts
-        packed.update(store.packed_rows(missing))
-    kept = [c for c in order if c in packed]
-    table = concat_packed(kept, [packed[c] for c in kept])
-    if "sector" in table.columns and table["sector"].isna().any():
-        table["sector"] = table["sector"].astype("Int64")
-    table = identity.merge(table, on="contact", how="right")
-    table = table[list(IDENTITY) + [c for c in table.columns if c not in IDENTITY]]
+    # a restart that skips every contact into a directory whose final files are those of the
+    # same records (outputs_digest, recorded in run.json with the files' stamps): the files
+    # are not written again, the table is read back from its file (issue 28: a restart of
+    # 10^5 contacts rewrote 4 final files, 88 s)
+    digest = None if store is None else outputs_digest(
+        identity, order, records, store.table_format, dataset_format or "default", limit)
+    unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
+                 and store.unchanged(digest))
+    table = _saved_table(store, order) if unchanged else None
+    if table is None:
+        table = _table(order, identity, records, store)
     info = []
     for c in order:
         rec = records[c]
@@ -579,7 +586,8 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
                           contacts=contacts, stats=stats,
                           output=None if store is None else str(store.path))
     if store is not None:
-        _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit)
+        _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit,
+                       digest, unchanged)
     else:
         _times(result.stats, started, len(computed))
     return result
@@ -596,23 +604,87 @@ def _times(stats: dict[str, Any], started: float, count: int) -> None:
 
 
 def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format,
-                   clock: tuple[float, int], limit: float | None):
+                   clock: tuple[float, int], limit: float | None, digest: str,
+                   unchanged: bool = False):
     """The final files; ``summary.csv`` is ``result.summary(limit)``, and ``run.json`` records
-    ``limit`` (None: each contact's depth_limit)."""
-    store.write_table(result.table)
-    write_frame(result.errors, store.path / "errors.csv", "csv")
-    write_frame(result.warnings, store.path / "warnings.csv", "csv")
-    write_frame(result.summary(limit), store.path / "summary.csv", "csv")
-    if dataset_format is None:
-        dataset_format = "netcdf" if optional("zarr") is None else "zarr"
-    if len(result.table):
-        store.write_dataset(result.dataset, dataset_format)
+    ``limit`` (None: each contact's depth_limit), the ``digest`` of what the files hold
+    (:func:`outputs_digest`) and their stamps. ``unchanged``: the files of an earlier run are
+    those of ``digest`` and still as written: only ``run.json`` is written (this run's stats)."""
+    if unchanged:
+        order = ("table.parquet", "table.csv", "dataset.zarr", "dataset.nc", "errors.csv",
+                 "warnings.csv", "summary.csv")
+        outputs = [o for o in order if o in store.written_before]
     else:
-        store.drop_dataset()
+        if dataset_format is None:
+            dataset_format = "netcdf" if optional("zarr") is None else "zarr"
+        store.write_table(result.table)
+        write_frame(result.errors, store.path / "errors.csv", "csv")
+        write_frame(result.warnings, store.path / "warnings.csv", "csv")
+        write_frame(result.summary(limit), store.path / "summary.csv", "csv")
+        if len(result.table):
+            store.write_dataset(result.dataset, dataset_format)
+        else:
+            store.drop_dataset()
+        outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
     # the final files written, so that a later run in another format removes only those
-    outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv", "run.json"]
+    stamps = store.stamps(outputs)
     _times(result.stats, *clock)
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
-        json.dump({**result.stats, "limit": limit, "outputs": outputs}, handle, indent=1,
-                  default=str)
+        json.dump({**result.stats, "limit": limit, "outputs": [*outputs, "run.json"],
+                   "digest": digest, "stamps": stamps}, handle, indent=1, default=str)
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))
+
+
+def outputs_digest(identity: pd.DataFrame, order: list[str], records: dict[str, dict],
+                   table_format: str, dataset_format: str, limit: float | None) -> str:
+    """What a bundle's final files hold, as a hash: fretwear's version, the output options,
+    the manifest's identity columns, and each contact's record: its input key, status and the
+    part holding its rows (a part is never rewritten: a new run writes new parts; a skipped
+    contact counts as the done one it was). Two runs of the same digest write the same
+    files."""
+    h = hashlib.blake2b(digest_size=16)
+    h.update(json.dumps([__version__, table_format, dataset_format, limit,
+                         list(identity.columns)], default=str).encode())
+    h.update(pd.util.hash_pandas_object(identity.astype(str), index=False).to_numpy().tobytes())
+    skipped = {"skipped": "done"}  # a skipped contact's record is its earlier done one
+    h.update(json.dumps([[c, records[c].get("key"),
+                          skipped.get(records[c]["status"], records[c]["status"]),
+                          records[c].get("part"), records[c].get("rows_file")] for c in order],
+                        default=str).encode())
+    return h.hexdigest()
+
+
+def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str, Any]],
+           store: OutputDirectory | None) -> pd.DataFrame:
+    """The bundle's table from the records' rows (this run's, and the skipped or stale
+    contacts' read back from the parts), identity columns in front."""
+    packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
+                                         if records[c].get("table") is not None}
+    missing = [records[c] for c in order if c not in packed and records[c]["status"]
+               in ("done", "skipped", "stale")]
+    if missing and store is not None:  # a restart: the rows of skipped contacts from the parts
+        packed.update(store.packed_rows(missing))
+    kept = [c for c in order if c in packed]
+    table = concat_packed(kept, [packed[c] for c in kept])
+    if "sector" in table.columns and table["sector"].isna().any():
+        table["sector"] = table["sector"].astype("Int64")
+    table = identity.merge(table, on="contact", how="right")
+    return table[list(IDENTITY) + [c for c in table.columns if c not in IDENTITY]]
+
+
+def _saved_table(store: OutputDirectory, order: list[str]) -> pd.DataFrame | None:
+    """The table an earlier run wrote as Parquet, read back (Parquet keeps every column's
+    dtype: the table :func:`_table` assembles; a CSV table is assembled again), or None when
+    it cannot be read or its contacts are not ``order``'s."""
+    path = store.path / "table.parquet"
+    if store.table_format != "parquet" or not path.is_file():
+        return None
+    try:
+        table = read_frame(path)
+    except Exception:  # noqa: BLE001 - unreadable: assembled from the parts, written again
+        return None
+    ids = pd.unique(table["contact"].astype(str)) if "contact" in table.columns else []
+    wanted = set(order)
+    if not all(c in wanted for c in ids):
+        return None
+    return table
