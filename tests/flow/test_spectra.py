@@ -47,22 +47,38 @@ PARAMETERS = {
                          "hydraulic_diameter": 0.01},
     "SPEC_CORR_CONV_2": {"function": lambda w: 1.0 / (1.0 + (w / 200.0) ** 2),
                          "velocity": 2.0, "long_cor_1": 0.05, "method": "CORCOS"},
+    "SPEC_CORR_CONV_3": {"function": lambda s1, t1, s2, t2, f: np.exp(-np.abs(s1 - s2) / 0.05)
+                         * np.exp(-np.abs(t1 - t2)) * np.cos(2 * np.pi * f * (s1 - s2) / 1.3),
+                         "circumferential_points": 8, "axial_points": 101},
     "GRAPPE_1": {"flow_rate": "DEBIT_300", "position": 0.6},
     "GRAPPE_2": {"configuration": "ASC_EXC", "density": 1000.0, "velocity": 3.0,
                  "position": 0.3},
 }
 
 
+#: the families' variants the contract also holds (a coherence of their own).
+VARIANTS = {
+    "SPEC_CORR_CONV_1/AU_YANG": ("SPEC_CORR_CONV_1", {
+        **PARAMETERS["SPEC_CORR_CONV_1"], "method": "AU_YANG", "long_cor_2": 0.004,
+        "coef_vite_flui_a": 0.65, "coef_vite_flui_o": 0.55}),
+    "SPEC_CORR_CONV_2/AU_YANG": ("SPEC_CORR_CONV_2", {
+        **PARAMETERS["SPEC_CORR_CONV_2"], "method": "AU_YANG", "long_cor_2": 0.004,
+        "coef_vite_flui_a": 0.65, "coef_vite_flui_o": 0.55}),
+}
+CASES = {**{name: (name, parameters) for name, parameters in PARAMETERS.items()}, **VARIANTS}
+
+
 def test_every_family_has_parameters_here():
     assert set(PARAMETERS) == set(SPECTRA)
 
 
-@pytest.mark.parametrize("name", sorted(SPECTRA))
-def test_contract(name):
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_contract(case):
     """Shared contract: (n_f, n, n), finite, Hermitian, positive semi-definite (or flagged
     ``positive_semidefinite = False`` and then truly not), quadratic in the mode shapes, and
     positive somewhere in a band of interest."""
-    spectrum = make_spectrum(name, **PARAMETERS[name])
+    name, parameters = CASES[case]
+    spectrum = make_spectrum(name, **parameters)
     tube = pinned_tube(n_grid=401, modes=3)
     f = np.linspace(2.0, 300.0, 40)
     s = spectrum.modal_spectrum(f, tube)
@@ -101,8 +117,12 @@ def test_unknown_names_say_what_exists():
         make_spectrum("SPEC_LONG_COR_9")
     with pytest.raises(KeywordError, match="long_cor"):
         make_spectrum("SPEC_LONG_COR_2", longcor=3.0)
-    with pytest.raises(KeywordError, match="AU_YANG"):
+    with pytest.raises(KeywordError, match="surface"):
         convected_coherence("AU_YANG", 0.0, 1.0, 1.0, 1.0)
+    with pytest.raises(InputError, match="long_cor_2"):
+        make_spectrum("SPEC_CORR_CONV_1", **{**PARAMETERS["SPEC_CORR_CONV_1"],
+                                             "method": "AU_YANG"}).modal_spectrum(
+            [1.0], pinned_tube())
     with pytest.raises(InputError, match="> 0"):
         make_spectrum("SPEC_LONG_COR_2", long_cor=3.0).modal_spectrum([0.0, 1.0], pinned_tube())
 

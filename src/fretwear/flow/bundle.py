@@ -99,7 +99,8 @@ def simulate_tube(spec: TubeSpec, folder: str | Path) -> dict:
                              "history": f"tubes/{spec.tube}/{s['name']}.parquet"})
         record = {"tube": spec.tube, "row": spec.row, "column": spec.column,
                   "signature": spec.signature(), "contacts": contacts,
-                  "wall_thickness_m": spec.wall_thickness,
+                  "wall_thickness_m": spec.wall_thickness, "span_length_m": spec.beam["length"],
+                  **spec.extra,
                   "modes": json.loads(modes.to_json(orient="records")),
                   "max_stability_ratio": float(modes["stability_ratio"].max()),
                   "flagged": bool(modes["flagged"].any()),

@@ -29,11 +29,12 @@ SUPPORT_TYPES: dict[str, str] = {"AVB": "two_planes", "plate": "circle"}
 _SECTIONS: dict[str, dict[str, Any]] = {
     "": {"title": "", "seed": 0, "tubes": None, "supports": None, "flow": None,
          "simulation": None},
-    "tubes": {"rows": None, "columns": None, "span_lengths_m": None, "ends": ["clamped", "clamped"],
+    "tubes": {"rows": None, "columns": None, "span_lengths_m": "", "u_bend_radii_m": "",
+              "straight_leg_m": 0.0, "ends": ["clamped", "clamped"],
               "outer_diameter_m": None, "wall_thickness_m": None, "young_modulus_pa": None,
               "material_density_kg_m3": None, "internal_fluid_density_kg_m3": 0.0,
               "added_mass_coefficient": 1.0, "modes": 4, "damping_ratio": None},
-    "supports": {"name": None, "position_m": None, "type": "AVB", "gap_m": None,
+    "supports": {"name": None, "position_m": "", "angle_deg": "", "type": "AVB", "gap_m": None,
                  "normal_stiffness_n_m": None, "normal_damping_n_s_m": 0.0,
                  "tangential_stiffness_n_m": 0.0, "tangential_damping_n_s_m": 0.0,
                  "friction": 0.0},
@@ -72,6 +73,99 @@ def _number(value, where: str, *, positive=False, nonnegative=False) -> float:
     if nonnegative and value < 0:
         raise InputError(f"{where}: must be >= 0, got {value!r}")
     return float(value)
+
+
+def u_bend_span_length(radius: float, straight_leg: float = 0.0) -> float:
+    """Developed length of a U-bend span [m]: the half circle and its two straight legs.
+
+    Parameters
+    ----------
+    radius : float
+        Bend radius R of the tube's centre line [m].
+    straight_leg : float
+        Length of each straight leg between the end support and the start of the bend [m].
+
+    Returns
+    -------
+    float
+        L = π·R + 2·leg [m].
+
+    Examples
+    --------
+    >>> round(u_bend_span_length(0.5, 0.1), 6)
+    1.770796
+    """
+    return math.pi * radius + 2.0 * straight_leg
+
+
+def u_bend_abscissa(radius: float, straight_leg: float, angle_deg: float) -> float:
+    """Abscissa along a U-bend span of the point at ``angle_deg`` into the bend [m].
+
+    The angle [°] is measured at the bend's centre from the start of the bend (0) to its end
+    (180; 90 is the apex): s = leg + R·θ.
+
+    Examples
+    --------
+    >>> u_bend_abscissa(0.5, 0.1, 90.0) == u_bend_span_length(0.5, 0.1) / 2
+    True
+    """
+    return straight_leg + radius * math.radians(angle_deg)
+
+
+def _u_bend_radii(value, rows: int) -> list[float]:
+    where = "[tubes].u_bend_radii_m"
+    if isinstance(value, dict):
+        if set(value) != {"first", "pitch"}:
+            raise KeywordError(f"{where}: a table is {{ first = R₁, pitch = p }} (row r has "
+                               f"R₁ + (r − 1)·p [m]); got keys {sorted(value)}")
+        first = _number(value["first"], f"{where}.first", positive=True)
+        pitch = _number(value["pitch"], f"{where}.pitch", nonnegative=True)
+        return [first + (r - 1) * pitch for r in range(1, rows + 1)]
+    values = value if isinstance(value, list) else [value] * rows
+    if len(values) != rows:
+        raise InputError(f"{where}: one value, one per row ({rows}) or {{ first, pitch }}; got "
+                         f"{len(values)} values")
+    return [_number(v, where, positive=True) for v in values]
+
+
+def _span_lengths(tubes: dict, rows: int) -> tuple[list[float], list[float] | None, float]:
+    """Span length per row [m], the U-bend radii per row (None for straight spans), the leg."""
+    spans, radii = tubes["span_lengths_m"], tubes["u_bend_radii_m"]
+    if (spans == "") == (radii == ""):
+        raise KeywordError("[tubes]: give either span_lengths_m or u_bend_radii_m (with "
+                           "straight_leg_m), not both and not neither")
+    leg = _number(tubes["straight_leg_m"], "[tubes].straight_leg_m", nonnegative=True)
+    if radii != "":
+        radii = _u_bend_radii(radii, rows)
+        return [u_bend_span_length(r, leg) for r in radii], radii, leg
+    if leg:
+        raise KeywordError("[tubes].straight_leg_m: only with u_bend_radii_m")
+    spans = [spans] * rows if not isinstance(spans, list) else spans
+    if len(spans) != rows:
+        raise InputError(f"[tubes].span_lengths_m: one value or one per row ({rows}), got "
+                         f"{len(spans)}")
+    return [_number(v, "[tubes].span_lengths_m", positive=True) for v in spans], None, leg
+
+
+def _position(sup: dict, where: str, row: int, length: float, radii, leg: float) -> float:
+    if (sup["position_m"] == "") == (sup["angle_deg"] == ""):
+        raise KeywordError(f"{where}: give either position_m or angle_deg, not both and not "
+                           "neither")
+    if sup["angle_deg"] != "":
+        if radii is None:
+            raise KeywordError(f"{where}.angle_deg: only with [tubes].u_bend_radii_m (give "
+                               "position_m for straight spans)")
+        angle = _number(sup["angle_deg"], f"{where}.angle_deg")
+        if not 0 <= angle <= 180:
+            raise InputError(f"{where}.angle_deg: in [0, 180] (from the start of the bend), got "
+                             f"{angle}")
+        pos = u_bend_abscissa(radii[row - 1], leg, angle)
+    else:
+        pos = _number(sup["position_m"], f"{where}.position_m", positive=True)
+    if not 0 < pos < length:
+        raise InputError(f"{where}: position {pos} m lies beyond the span of row {row} "
+                         f"(0 < s < {length} m)")
+    return pos
 
 
 def _count(value, where: str) -> int:
@@ -209,12 +303,7 @@ def read_description(path: str | Path) -> list[TubeSpec]:
     flow = _table(top["flow"], "flow", "[flow]")
     sim = _table(top["simulation"], "simulation", "[simulation]")
     rows, cols = _count(tubes["rows"], "[tubes].rows"), _count(tubes["columns"], "[tubes].columns")
-    spans = tubes["span_lengths_m"]
-    spans = [spans] * rows if not isinstance(spans, list) else spans
-    if len(spans) != rows:
-        raise InputError(f"[tubes].span_lengths_m: one value or one per row ({rows}), got "
-                         f"{len(spans)}")
-    lengths = [_number(v, "[tubes].span_lengths_m", positive=True) for v in spans]
+    lengths, radii, leg = _span_lengths(tubes, rows)
     if flow["spectrum"] not in SPECTRA:
         raise KeywordError(f"[flow].spectrum: unknown {flow['spectrum']!r}; choose one of "
                            f"{list(SPECTRA)}")
@@ -243,10 +332,7 @@ def read_description(path: str | Path) -> list[TubeSpec]:
                 if sup["type"] not in SUPPORT_TYPES:
                     raise KeywordError(f"{where}.type: {sup['type']!r}; choose one of "
                                        f"{list(SUPPORT_TYPES)}")
-                pos = _number(sup["position_m"], f"{where}.position_m", positive=True)
-                if pos >= lengths[row - 1]:
-                    raise InputError(f"{where}.position_m {pos} lies beyond the span of row "
-                                     f"{row} ({lengths[row - 1]} m)")
+                pos = _position(sup, where, row, lengths[row - 1], radii, leg)
                 contacts.append({
                     "name": str(sup["name"]), "position_m": pos,
                     "obstacle": SUPPORT_TYPES[sup["type"]], "type": sup["type"],
@@ -270,5 +356,7 @@ def read_description(path: str | Path) -> list[TubeSpec]:
                                      positive=True),
                 grid_points=_count(sim["grid_points"], "[simulation].grid_points"),
                 frequency_points=_count(sim["frequency_points"], "[simulation].frequency_points"),
-                seed=seed * 100_003 + 1000 * row + col))
+                seed=seed * 100_003 + 1000 * row + col,
+                extra={} if radii is None else {"u_bend_radius_m": radii[row - 1],
+                                                "straight_leg_m": leg}))
     return specs

@@ -18,6 +18,22 @@ from fretwear.errors import InputError
 from fretwear.flow.tube import TubeFlow
 
 
+def positive_frequencies(frequencies) -> np.ndarray:
+    """Frequencies [Hz] as a 1-D array, refused unless finite and > 0."""
+    f = np.asarray(frequencies, float).reshape(-1)
+    if f.size == 0 or np.any(f <= 0) or not np.all(np.isfinite(f)):
+        raise InputError("turbulence spectrum: frequencies [Hz] must be finite and > 0 (the "
+                         "reduced spectra of SPEC_LONG_COR_3 and _4 diverge at f = 0)")
+    return f
+
+
+def check_positive(owner: str, **values: float) -> None:
+    """Refuse any of ``values`` that is not a finite number > 0, naming it."""
+    for key, value in values.items():
+        if value is None or not (np.isfinite(value) and value > 0):
+            raise InputError(f"{owner}: {key!r} must be a finite value > 0, got {value!r}")
+
+
 def _weighted_shapes(tube: TubeFlow, weight: np.ndarray, directions) -> list[np.ndarray]:
     w = tube.weights * weight
     return [tube.shapes[:, d, :] * w[:, None] for d in directions]

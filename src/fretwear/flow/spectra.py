@@ -6,8 +6,8 @@ with the catalogue's defaults (``code_aster/Cata/Commands/defi_spec_turb.py``) a
 forces Q_r = ∫ φ_r·f ds of the modes of a :class:`~fretwear.flow.tube.TubeFlow` [N²/Hz], shape
 (n_f, n_modes, n_modes) (PROJ_SPEC_BASE). The formulas follow the Fortran routines that evaluate
 them (spect1, coesp1, coesp4, sfifj, dspprs, accept, coegen, corcos, specep; GRAPPE_1 in
-:mod:`~fretwear.flow.grappe1`); docs/flow.md cites each and says what is left out
-(SPEC_CORR_CONV_3, the AU_YANG coherence) and why.
+:mod:`~fretwear.flow.grappe1`; the surface families, AU_YANG and SPEC_CORR_CONV_3, in
+:mod:`~fretwear.flow.surface`); docs/flow.md cites each and says what is left out and why.
 """
 
 from __future__ import annotations
@@ -22,22 +22,14 @@ import numpy as np
 
 from fretwear.errors import InputError, KeywordError
 from fretwear.flow.grappe1 import Grappe1
-from fretwear.flow.projection import convected_acceptance, exponential_acceptance
+from fretwear.flow.projection import (
+    check_positive,
+    convected_acceptance,
+    exponential_acceptance,
+    positive_frequencies,
+)
+from fretwear.flow.surface import SpecCorrConv3, au_yang_acceptance, au_yang_parameters
 from fretwear.flow.tube import TubeFlow
-
-
-def _frequencies(frequencies) -> np.ndarray:
-    f = np.asarray(frequencies, float).reshape(-1)
-    if f.size == 0 or np.any(f <= 0) or not np.all(np.isfinite(f)):
-        raise InputError("turbulence spectrum: frequencies [Hz] must be finite and > 0 (the "
-                         "reduced spectra of SPEC_LONG_COR_3 and _4 diverge at f = 0)")
-    return f
-
-
-def _positive(owner: str, **values: float) -> None:
-    for key, value in values.items():
-        if value is None or not (np.isfinite(value) and value > 0):
-            raise InputError(f"{owner}: {key!r} must be a finite value > 0, got {value!r}")
 
 
 # --------------------------------------------------------------------------- SPEC_LONG_COR_n
@@ -125,8 +117,8 @@ class _LongCor:
         LC2_ij = Σ_c ∬ e^{−|s₁−s₂|/λ} ρ(s₁)u(s₁)²φ_i(s₁) ρ(s₂)u(s₂)²φ_j(s₂) ds₁ds₂,
         λ = LONG_COR·D, u = U/Ū (spect1 §5-6, spect4).
         """
-        f = _frequencies(frequencies)
-        _positive(self.name, long_cor=self.long_cor)
+        f = positive_frequencies(frequencies)
+        check_positive(self.name, long_cor=self.long_cor)
         d = tube.diameter
         u_zone = tube.zone_velocity()
         u_norm = tube.velocity / u_zone
@@ -163,7 +155,7 @@ class SpecLongCor1(_LongCor):
     kinematic_viscosity: float = math.nan
 
     def reduced_spectrum(self, reduced_frequency, tube, velocity):
-        _positive(self.name, kinematic_viscosity=self.kinematic_viscosity)
+        check_positive(self.name, kinematic_viscosity=self.kinematic_viscosity)
         phi0, eps, frc, beta = long_cor_1_coefficients(velocity * tube.diameter
                                                        / self.kinematic_viscosity)
         x = (reduced_frequency / frc) ** (beta / 2.0)
@@ -268,9 +260,9 @@ class SpecLongCor4(_LongCor):
 
 
 # --------------------------------------------------------------------------- SPEC_CORR_CONV_n
-#: Coherence functions of the convected families along the tube (accept.F90), by METHODE.
-#: ``AU_YANG`` integrates around the circumference of a surface model: left out (docs/flow.md).
-COHERENCES: tuple[str, ...] = ("GENERALE", "CORCOS")
+#: Coherence functions of the convected families (accept.F90), by METHODE: GENERALE and CORCOS
+#: along the tube's axis, AU_YANG on its surface (:mod:`~fretwear.flow.surface`).
+COHERENCES: tuple[str, ...] = ("GENERALE", "CORCOS", "AU_YANG")
 
 
 def convected_coherence(method: str, distance, frequency: float, velocity: float,
@@ -307,8 +299,11 @@ def convected_coherence(method: str, distance, frequency: float, velocity: float
         return np.exp(-d / correlation_length) * np.cos(omega * d / uc)
     if method == "CORCOS":
         return np.exp(-0.1 * omega / uc * d) * np.cos(omega * d / uc)
+    if method == "AU_YANG":
+        raise KeywordError("convected spectrum: METHODE 'AU_YANG' is a surface coherence: "
+                           "fretwear.flow.surface.au_yang_coherence")
     raise KeywordError(f"convected spectrum: METHODE {method!r} is not available; choose one of "
-                       f"{list(COHERENCES)} (AU_YANG needs a surface model: docs/flow.md)")
+                       f"{list(COHERENCES)}")
 
 
 @dataclass(frozen=True)
@@ -320,15 +315,23 @@ class _Convected:
 
     def modal_spectrum(self, frequencies, tube: TubeFlow) -> np.ndarray:
         """S_ij(f) = S_p(f) · Σ_c ∬ C(s₁−s₂, f) φ_i(s₁) φ_j(s₂) ds₁ds₂ [unit of S_p × m²]."""
-        f = _frequencies(frequencies)
-        _positive(self.name, velocity=self.velocity)
+        f = positive_frequencies(frequencies)
+        check_positive(self.name, velocity=abs(self.velocity))
         if self.method not in COHERENCES:
             convected_coherence(self.method, 0.0, 1.0, 1.0, 1.0)  # raises the KeywordError
-        length = self.long_cor_1 if self.method == "GENERALE" else 1.0
-        _positive(self.name, long_cor_1=length)
         sp = self.point_spectrum(f)
         out = np.zeros((f.size, tube.n_modes, tube.n_modes))
         live = sp > 0
+        if self.method == "AU_YANG":
+            parameters = au_yang_parameters(self.name, self.velocity, self.coef_vite_flui_a,
+                                            self.coef_vite_flui_o, self.long_cor_1,
+                                            self.long_cor_2)
+            if live.any():
+                out[live] = sp[live, None, None] * au_yang_acceptance(tube, f[live],
+                                                                      **parameters)
+            return out
+        length = self.long_cor_1 if self.method == "GENERALE" else 1.0
+        check_positive(self.name, long_cor_1=length)
         if live.any():
             acc = convected_acceptance(
                 tube, f[live],
@@ -356,14 +359,20 @@ class SpecCorrConv1(_Convected):
         10 when not given (sfifj).
     k : float
         K [-], catalogue 5.8e-3.
-    method : {"GENERALE", "CORCOS"}
+    method : {"GENERALE", "CORCOS", "AU_YANG"}
         Coherence (catalogue default GENERALE).
+    long_cor_2 : float, optional
+        L_t [m], circumferential correlation length of AU_YANG (LONG_COR_2).
+    coef_vite_flui_a, coef_vite_flui_o : float, optional
+        AU_YANG's axial and circumferential convection velocities over U [-]
+        (COEF_VITE_FLUI_A, COEF_VITE_FLUI_O; sfifj).
 
     Notes
     -----
     S_p(f) = K²(ρU²)²D_h³ for f·D_h/U ≤ f_c,red, 0 above (dspprs) [Pa²·m³], so the modal matrix
-    is in Pa²·m⁵ here: Code_Aster integrates it over a surface interface, fretwear along the
-    tube's axis (docs/flow.md).
+    is in Pa²·m⁵ with GENERALE and CORCOS, integrated along the tube's axis (Code_Aster
+    integrates over a surface interface: docs/flow.md), and in Pa²·m⁷ with AU_YANG, integrated
+    over the tube's outer surface (:func:`~fretwear.flow.surface.au_yang_acceptance`).
 
     Examples
     --------
@@ -380,9 +389,12 @@ class SpecCorrConv1(_Convected):
     freq_coup: float | None = None
     k: float = 5.8e-3
     method: str = "GENERALE"
+    long_cor_2: float | None = None
+    coef_vite_flui_a: float | None = None
+    coef_vite_flui_o: float | None = None
 
     def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:
-        _positive(self.name, density=self.density, hydraulic_diameter=self.hydraulic_diameter)
+        check_positive(self.name, density=self.density, hydraulic_diameter=self.hydraulic_diameter)
         dh, u = self.hydraulic_diameter, self.velocity
         cut = 10.0 if self.freq_coup is None else min(self.freq_coup * dh / u, 10.0)
         level = self.k**2 * (self.density * u * u) ** 2 * dh**3
@@ -405,7 +417,10 @@ class SpecCorrConv2(_Convected):
     long_cor_1 : float
         L [m] of the GENERALE coherence. Code_Aster's SPEC_CORR_CONV_2 has no LONG_COR and
         reads an unset value; fretwear asks for it.
-    method : {"GENERALE", "CORCOS"}
+    method : {"GENERALE", "CORCOS", "AU_YANG"}
+    long_cor_2, coef_vite_flui_a, coef_vite_flui_o : float, optional
+        AU_YANG's parameters, as SPEC_CORR_CONV_1 (Code_Aster's sfifj leaves U_c and U_ct unset
+        for SPEC_CORR_CONV_2 with AU_YANG; fretwear asks for them).
 
     Examples
     --------
@@ -420,6 +435,9 @@ class SpecCorrConv2(_Convected):
     freq_coup: float | None = None
     long_cor_1: float = math.nan
     method: str = "GENERALE"
+    long_cor_2: float | None = None
+    coef_vite_flui_a: float | None = None
+    coef_vite_flui_o: float | None = None
 
     def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:
         if not callable(self.function):
@@ -503,8 +521,8 @@ class Grappe2:
     position: float = math.nan
 
     def modal_spectrum(self, frequencies, tube: TubeFlow) -> np.ndarray:
-        f = _frequencies(frequencies)
-        _positive(self.name, density=self.density, velocity=abs(self.velocity))
+        f = positive_frequencies(frequencies)
+        check_positive(self.name, density=self.density, velocity=abs(self.velocity))
         s = tube.positions
         if not s[0] <= self.position <= s[-1]:
             raise InputError(f"GRAPPE_2: 'position' {self.position!r} m lies outside the tube "
@@ -527,7 +545,7 @@ class Grappe2:
 #: The turbulence spectrum families, by Code_Aster keyword.
 SPECTRA: dict[str, type] = {cls.name: cls for cls in (
     SpecLongCor1, SpecLongCor2, SpecLongCor3, SpecLongCor4, SpecCorrConv1, SpecCorrConv2,
-    Grappe1, Grappe2)}
+    SpecCorrConv3, Grappe1, Grappe2)}
 
 
 def make_spectrum(name: str, **parameters: Any):
@@ -544,8 +562,8 @@ def make_spectrum(name: str, **parameters: Any):
     """
     key = str(name).upper()
     if key not in SPECTRA:
-        raise KeywordError(f"unknown turbulence spectrum {name!r}; choose one of {list(SPECTRA)}"
-                           " (SPEC_CORR_CONV_3 is left out: docs/flow.md)")
+        raise KeywordError(f"unknown turbulence spectrum {name!r}; choose one of "
+                           f"{list(SPECTRA)}")
     cls = SPECTRA[key]
     aliases = {"visc_cine": "kinematic_viscosity", "taux_vide": "void_fraction",
                "vite_flui": "velocity", "rho_flui": "density", "d_flui": "hydraulic_diameter",
