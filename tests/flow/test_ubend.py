@@ -90,3 +90,18 @@ def test_ubend_errors_name_the_key(tmp_path):
     with pytest.raises(InputError, match="beyond the span"):   # 0° with no leg: at the end
         read_description(ubend_description(tmp_path, leg="0.0",
                                            **{"angle_deg = 45.0": "angle_deg = 0.0"}))
+
+
+def test_shipped_ubend_example():
+    """examples/bundle/ubend_geometry.toml: rows bend with 0.35 + 0.03 (r − 1) m, legs 0.05 m,
+    AVBs at 60° and 120°, symmetric about the apex."""
+    from .test_simulate import EXAMPLE
+
+    specs = read_description(EXAMPLE / "ubend_geometry.toml")
+    assert len(specs) == 12
+    for spec in specs:
+        radius = 0.35 + 0.03 * (spec.row - 1)
+        assert spec.beam["length"] == pytest.approx(math.pi * radius + 0.1, rel=1e-12)
+        a, b = (c["position_m"] for c in spec.supports)
+        assert a == pytest.approx(0.05 + radius * math.pi / 3, rel=1e-12)
+        assert a + b == pytest.approx(spec.beam["length"], rel=1e-12)
