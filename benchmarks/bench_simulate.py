@@ -8,7 +8,9 @@ Parquet histories: :func:`fretwear.flow.bundle.simulate_tube`) run one tube afte
 this process, after one warm-up tube (numba compilation). The bundle run joins a local 2-worker
 cluster started beforehand (its start time is printed apart) and recomputes every tube
 (``force=True``). Printed: tube-seconds per second of both and their ratio (2 is the ideal on 2
-idle cores; the machine's other load and the per-task overhead lower it).
+idle cores; the machine's other load and the per-task overhead lower it), with the machine's
+load average (as ``uptime``) before and after: the two figures are comparable only under the
+same load.
 
 Usage::
 
@@ -20,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -39,6 +42,7 @@ def main() -> None:
     specs = [dataclasses.replace(s, duration=args.duration)
              for s in read_description(EXAMPLE)][:args.tubes]
     work = len(specs) * args.duration
+    load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
         simulate_tube(specs[0], Path(tmp) / "warmup")
         t = time.perf_counter()
@@ -63,7 +67,10 @@ def main() -> None:
         finally:
             client.close()
             cluster.close()
-    print(f"{len(specs)} tubes x {args.duration:g} s simulated")
+    load_after = os.getloadavg()
+    print(f"{len(specs)} tubes x {args.duration:g} s simulated on {os.cpu_count()} CPU(s)")
+    print("load average (1, 5, 15 min) before: " + ", ".join(f"{v:.2f}" for v in load_before)
+          + "; after: " + ", ".join(f"{v:.2f}" for v in load_after))
     print(f"single-tube integrator, this process: {single:8.2f} tube-s/s")
     print(f"fretwear simulate, 2 workers:         {bundle:8.2f} tube-s/s "
           f"(cluster start {start:.1f} s, not counted)")

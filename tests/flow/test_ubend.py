@@ -90,3 +90,43 @@ def test_ubend_errors_name_the_key(tmp_path):
     with pytest.raises(InputError, match="beyond the span"):   # 0° with no leg: at the end
         read_description(ubend_description(tmp_path, leg="0.0",
                                            **{"angle_deg = 45.0": "angle_deg = 0.0"}))
+
+
+def test_shipped_ubend_example():
+    """examples/bundle/ubend_geometry.toml: rows bend with 0.35 + 0.03 (r − 1) m, legs 0.05 m,
+    AVBs at 60° and 120°, symmetric about the apex."""
+    from .test_simulate import EXAMPLE
+
+    specs = read_description(EXAMPLE / "ubend_geometry.toml")
+    assert len(specs) == 12
+    for spec in specs:
+        radius = 0.35 + 0.03 * (spec.row - 1)
+        assert spec.beam["length"] == pytest.approx(math.pi * radius + 0.1, rel=1e-12)
+        a, b = (c["position_m"] for c in spec.supports)
+        assert a == pytest.approx(0.05 + radius * math.pi / 3, rel=1e-12)
+        assert a + b == pytest.approx(spec.beam["length"], rel=1e-12)
+
+
+def test_ubend_stability_ratio_scales_as_velocity_times_span_squared():
+    """Connors' U_c ∝ f and a clamped beam's f ∝ 1/L² (same section, same mass per length: the
+    rows share the density 350 kg/m³), U_eff = U in uniform flow: the most critical ratio of row
+    4 over row 1 is (U₄/U₁)·(L₄/L₁)², with L = πR + 2·leg."""
+    import dataclasses
+
+    from fretwear.flow.bundle import tube_forces
+    from fretwear.flow.stability import stability_ratios
+
+    from .test_simulate import EXAMPLE
+
+    specs = {s.row: s for s in read_description(EXAMPLE / "ubend_geometry.toml")
+             if s.column == 1}
+    ratio = {}
+    for row in (1, 4):
+        spec = dataclasses.replace(specs[row], duration=0.05)
+        model, tube, _, _ = tube_forces(spec)
+        table = stability_ratios(model, tube, mass_per_length=spec.mass_per_length,
+                                 constant=spec.connors_constant, margin=spec.stability_margin)
+        ratio[row] = table["stability_ratio"].max()
+    lengths = {row: math.pi * (0.35 + 0.03 * (row - 1)) + 0.1 for row in (1, 4)}
+    assert ratio[4] / ratio[1] == pytest.approx(3.5 / 2.0 * (lengths[4] / lengths[1]) ** 2,
+                                                rel=1e-6)

@@ -316,7 +316,7 @@ class _Convected:
     def modal_spectrum(self, frequencies, tube: TubeFlow) -> np.ndarray:
         """S_ij(f) = S_p(f) · Σ_c ∬ C(s₁−s₂, f) φ_i(s₁) φ_j(s₂) ds₁ds₂ [unit of S_p × m²]."""
         f = positive_frequencies(frequencies)
-        check_positive(self.name, velocity=abs(self.velocity))
+        check_positive(self.name, velocity=self.velocity)
         if self.method not in COHERENCES:
             convected_coherence(self.method, 0.0, 1.0, 1.0, 1.0)  # raises the KeywordError
         sp = self.point_spectrum(f)

@@ -1,0 +1,48 @@
+"""The shipped simulated bundle (examples/bundle/simulated): the output of
+``fretwear simulate examples/bundle/bundle_geometry.toml -o examples/bundle/simulated``.
+
+Checked: it is the output of the shipped description as it reads today (every tube's inputs'
+signature in its tube.json), ``fretwear bundle`` reads its manifest as it is, the contacts' wear
+power grows toward the faster rows, and the stability ratios follow Connors' form independently
+of the code: the rows differ only by their uniform velocity (same tube, same density 350 kg/m³,
+same added mass), so U_eff = U and U_c is the same, and ratio/U is one constant.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from fretwear.bundle import run_bundle
+from fretwear.flow.description import read_description
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
+SIMULATED = EXAMPLE / "simulated"
+VELOCITY = {1: 2.0, 2: 2.5, 3: 3.0, 4: 3.5}   # bundle_geometry.toml's [[flow.regions]]
+
+
+def test_shipped_outputs_are_those_of_the_shipped_description():
+    specs = read_description(EXAMPLE / "bundle_geometry.toml")
+    for spec in specs:
+        record = json.loads((SIMULATED / "tubes" / spec.tube / "tube.json").read_text())
+        assert record["signature"] == spec.signature(), (
+            f"{spec.tube}: examples/bundle/simulated is stale; rerun fretwear simulate "
+            "examples/bundle/bundle_geometry.toml -o examples/bundle/simulated --force")
+    assert pd.read_csv(SIMULATED / "errors.csv").empty
+
+
+def test_stability_ratio_is_proportional_to_the_row_velocity():
+    tubes = pd.read_csv(SIMULATED / "tubes.csv")
+    per_velocity = tubes["max_stability_ratio"] / tubes["row"].map(VELOCITY)
+    np.testing.assert_allclose(per_velocity, per_velocity.iloc[0], rtol=1e-5)  # 6 digits
+    assert tubes["flagged"].tolist() == (tubes["max_stability_ratio"] > 1.0).tolist()
+
+
+def test_bundle_reads_the_manifest_and_wear_grows_toward_the_fast_rows():
+    result = run_bundle(SIMULATED / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial")
+    assert result.errors.empty
+    by_row = result.summary().groupby("tube_row")["power"].median()
+    assert (np.diff(by_row.to_numpy()) > 0).all(), by_row
