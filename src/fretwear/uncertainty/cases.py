@@ -130,15 +130,16 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
         uncertainty = power if _uncertain(power) else None
         return PreparedCase(models, uncertainty, case, _durations(case))
     if hasattr(case, "to_dict") and type(case).__name__ == "WearCase":
-        window = {"t_start": case.t_start, "t_end": case.t_end, "blocks": case.blocks,
-                  "sectors": case.sectors,
-                  "stationarity_threshold": case.stationarity_threshold}
+        window = {"t_start": case.window.t_start, "t_end": case.window.t_end,
+                  "blocks": case.window.blocks, "sectors": case.sectors,
+                  "stationarity_threshold": case.window.stationarity_threshold}
         source, uncertainty = _source(power, window)
         table = fretwear_table.wear_table_from_case(case, source,
                                                     history=window.get("history"))
+        given = {"wall_thickness": case.wall.thickness, "depth_limit": case.wall.limit}
         for key in WALL_KEYS:
             if options[key] is None:
-                options[key] = getattr(case, key, None)
+                options[key] = given[key]
         models = models_from_table(table, sector_coefficients=getattr(
             case, "sector_coefficients", None), **options)
         return PreparedCase(models, uncertainty, table, _durations(table))
