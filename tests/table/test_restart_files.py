@@ -323,4 +323,4 @@ def test_a_nan_volume_of_a_state_round_trips_through_json():
     pd.testing.assert_frame_equal(back.rows, rows, check_exact=True)
     case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0], dimensions=BAV,
                                   coefficients={"COEF_USURE": 1.1e-13}, initial_state=state)
-    assert np.isnan(WearCase.from_json(case.to_json()).initial_state.volume_mobile)
+    assert np.isnan(WearCase.from_json(case.to_json()).restart.table.volume_mobile)

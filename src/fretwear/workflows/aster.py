@@ -367,7 +367,8 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
             wall_thickness=kw.get("EPAIS_PAROI"), depth_limit=kw.get("LIMITE_PAROI"),
             name=kw.get("TITRE"))
         # a keyword not given: its default, written once (fretwear.table.keywords.KEYWORDS)
-        case = WearCase.from_keywords(**{k: v for k, v in given.items() if v is not None})
+        case = WearCase.from_keywords(**{k: v for k, v in given.items()
+                                         if v is not None or k == "contact_type"})
     except DatabaseError as exc:
         if materials is None or contact is None:
             raise
