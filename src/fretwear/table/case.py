@@ -47,7 +47,7 @@ from fretwear.table.coefficients import (
     resolve_coefficients,
     sector_parameter,
 )
-from fretwear.table.keywords import check_keywords, keywords_doc
+from fretwear.table.keywords import KEYWORDS, check_keywords, keywords_doc
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _read_initial_state
 
@@ -59,12 +59,8 @@ _HISTORY_KEYWORDS = {"force_max": "FNOR_MAXI", "speed_max": "VTAN_MAXI"}
 FORMAT = "fretwear.WearCase/1"
 #: The keys of :meth:`WearCase.to_dict`, in its order: the user's flat vocabulary (the keywords
 #: of :func:`fretwear.table.wear_table` and ``initial_table``, where the restart came from).
-FLAT_KEYS = ("contact_type", "dimensions", "instants", "law", "coefficients",
-             "obstacle_coefficients", "materials", "obstacle_wear", "coefficient_files",
-             "sectors", "sector_coefficients", "time_scale", "time_unit", "t_start", "t_end",
-             "blocks", "stationarity_threshold", "force_max", "speed_max", "initial_state",
-             "initial_instant", "initial_table", "tube_replacement", "wall_thickness",
-             "depth_limit", "name")
+FLAT_KEYS = tuple(k for name in KEYWORDS for k in (
+    (name, "initial_table") if name == "initial_instant" else (name,)))
 #: A grouped field of the case -> (its type, flat key -> the type's attribute).
 _GROUPS = {
     "window": (PowerWindow, {"t_start": "t_start", "t_end": "t_end", "blocks": "blocks",
