@@ -153,6 +153,11 @@ KEYWORDS: dict[str, Keyword] = _keywords(
 )
 
 
+#: The keywords that must be given, and the defaults of the others (read at every call).
+_REQUIRED = tuple(k.name for k in KEYWORDS.values() if k.default is REQUIRED)
+_DEFAULTS = {k.name: k.default for k in KEYWORDS.values()}
+
+
 def keywords_doc(indent: int = 4) -> str:
     """The numpydoc entries of every keyword of :data:`KEYWORDS`, indented by ``indent``.
 
@@ -188,9 +193,8 @@ def check_keywords(keywords: Mapping[str, Any], where: str = "wear_table") -> di
         hints = ", ".join(f"{k}{keyword_hint(k, KEYWORDS)}" for k in unknown)
         raise KeywordError(f"{where}: unknown keyword {hints}; the keywords are "
                            f"{', '.join(KEYWORDS)} (docs: help(fretwear.table.wear_table))")
-    missing = [k.name for k in KEYWORDS.values()
-               if k.default is REQUIRED and k.name not in keywords]
+    missing = [name for name in _REQUIRED if name not in keywords]
     if missing:
         raise KeywordError(f"{where}: missing keyword(s) {', '.join(missing)}: "
                            + "; ".join(KEYWORDS[k].doc().replace("\n   ", "") for k in missing))
-    return {k.name: keywords.get(k.name, k.default) for k in KEYWORDS.values()}
+    return {**_DEFAULTS, **keywords}
