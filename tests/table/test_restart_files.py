@@ -234,10 +234,10 @@ def test_state_to_dict_of_mixed_rows_and_case_round_trips(tmp_path):
                                   coefficients={"COEF_USURE": 1.1e-13}, initial_state=path)
     again = WearCase.from_json(case.to_json())
     assert again == case
-    pd.testing.assert_frame_equal(again.initial_state.rows, case.initial_state.rows,
+    pd.testing.assert_frame_equal(again.restart.table.rows, case.restart.table.rows,
                                   check_exact=True)  # (the attrs of the file are not carried)
-    assert np.array_equal(again.initial_state.sector_volume_mobile,
-                          case.initial_state.sector_volume_mobile)
+    assert np.array_equal(again.restart.table.sector_volume_mobile,
+                          case.restart.table.sector_volume_mobile)
 
 
 def test_rows_then_run_equal_the_pandas_concat():
@@ -323,4 +323,4 @@ def test_a_nan_volume_of_a_state_round_trips_through_json():
     pd.testing.assert_frame_equal(back.rows, rows, check_exact=True)
     case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0], dimensions=BAV,
                                   coefficients={"COEF_USURE": 1.1e-13}, initial_state=state)
-    assert np.isnan(WearCase.from_json(case.to_json()).initial_state.volume_mobile)
+    assert np.isnan(WearCase.from_json(case.to_json()).restart.table.volume_mobile)

@@ -106,7 +106,7 @@ def test_round_trip_of_a_sector_restart_keeps_the_initial_rows_exactly():
         again = WearCase.from_json(case.to_json())
         a, b = wear_table_from_case(case, h), wear_table_from_case(again, h)
     assert first["depth_obstacle_sector"].isna().any()
-    assert case.initial_state.rows["sector"].dtype == again.initial_state.rows["sector"].dtype
+    assert case.restart.table.rows["sector"].dtype == again.restart.table.rows["sector"].dtype
     assert again == case
     assert_same_table(a, b)
     assert a["instant"].tolist()[-4:] == [5.0] * 4  # origin 2 + 3
@@ -132,13 +132,10 @@ def test_from_dict_names_unknown_keys():
 
 
 def test_from_keywords_takes_exactly_the_keywords_of_wear_table():
-    import inspect
-
-    table = inspect.signature(wear_table).parameters
-    case = inspect.signature(WearCase.from_keywords).parameters
-    assert set(table) - {"source", "history"} == set(case)
-    assert {k: v.default for k, v in case.items()} == {
-        k: v.default for k, v in table.items() if k not in ("source", "history")}
+    # both read the one keyword table (tests/table/test_keywords.py checks the docstrings)
+    kw = {"contact_type": "TUBE_ALESAGE", "instants": [1.0], "dimensions": BAV,
+          "coefficients": {"COEF_USURE": 1e-14}, "wall_thickness": 1e-3}
+    assert wear_table_from_case(WearCase.from_keywords(**kw), 0.01).equals(wear_table(0.01, **kw))
 
 
 def test_fretwear_exports_the_case():
@@ -260,7 +257,7 @@ def test_restart_rules_are_checked_with_the_case():
     with pytest.raises(InputError, match="has 0 sectors and this run has 4"):
         WearCase.from_keywords(**base(initial_state=first, sectors=4))
     case = WearCase.from_keywords(**base(initial_state=first))
-    assert case.origin == 2.0 and case.initial_table == "(DataFrame)"
+    assert case.origin == 2.0 and case.restart.source == "(DataFrame)"
 
 
 def test_sectors_need_a_contact_type_with_an_obstacle_width():

@@ -80,7 +80,7 @@ def test_restart_rows_come_first(sectors):
                        coefficients={"COEF_USURE": 1e-17}, instants=[1.0, 2.0],
                        time_scale=YEAR, sectors=sectors)
     case = _case(instants=[1.0, 3.0], sectors=sectors, initial_state=first)
-    assert len(case.initial_state.rows)  # the initial table's rows are in the table
+    assert len(case.restart.table.rows)  # the initial table's rows are in the table
     _same(case, _history())
 
 

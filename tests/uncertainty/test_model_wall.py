@@ -45,6 +45,6 @@ def test_accepted_walls_are_the_same_floats():
     assert check_wall(1, 1) == (1.0, 1.0)  # a limit of the whole wall is allowed
     case, model = _case(wall_thickness=1.09e-3, depth_limit=1), _model(wall_thickness=1.09e-3,
                                                                        depth_limit=1)
-    assert (case.wall_thickness, case.depth_limit) == (model.wall_thickness,
+    assert (case.wall.thickness, case.wall.limit) == (model.wall_thickness,
                                                        model.depth_limit) == (1.09e-3, 1.0)
     assert model.limit_depth == 1.09e-3  # depth_limit × wall_thickness [m]

@@ -378,6 +378,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     buffer: list[dict[str, Any]] = []
     total = len(man.rows)
     pending: list[ContactTask] = []  # the rows made tasks (an interrupt counts them once done)
+    built: dict[str, Any] = {}  # contact -> its WearCase, built once here
     try:
         for row in man.rows:
             try:
@@ -388,6 +389,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                     ContactTask(row.contact, row.history, {}, warnings=said), exc),
                     earlier.get(row.contact))
                 continue
+            built[row.contact] = task.wear_case()  # carried to the result (BundleResult.cases)
             old = previous.get(row.contact)
             if old is not None and old.get("status") == "done" and old.get("key") == task.key:
                 records[row.contact] = {**old, "status": "skipped"}
@@ -463,7 +465,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         finally:
             engine.close()
         return _assemble(man, records, store, (started, startup), workers_used,
-                         dataset_format, limit)
+                         dataset_format, limit, built)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         raise _interrupted(store, records, buffer, total, previous, man,
                            {t.contact for t in pending}) from exc
@@ -513,8 +515,9 @@ def _interrupted(store, records, buffer, total, previous, man, tasks) -> BundleI
 
 def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
               times: tuple[float, float], workers: int, dataset_format: str | None,
-              limit: float | None = None) -> BundleResult:
-    """The BundleResult (and the output files) from every contact's latest record."""
+              limit: float | None = None, built: dict[str, Any] | None = None) -> BundleResult:
+    """The BundleResult (and the output files) from every contact's latest record and the
+    wear cases ``built`` (contact -> WearCase) of this run."""
     order = [r.contact for r in man.rows]
     identity = man.identity_frame()
     identity["contact"] = identity["contact"].astype(str)
@@ -529,21 +532,11 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     table = _saved_table(store, order) if unchanged else None
     if table is None:
         table = _table(order, identity, records, store)
-    info = []
-    for c in order:
-        rec = records[c]
-        attrs = rec.get("attrs") or {}
-        info.append({"contact": c, "status": rec["status"], "samples": rec.get("samples", 0),
-                     "seconds": rec.get("seconds", 0.0),
-                     "power": (attrs.get("power") or {}).get("total"),
-                     "time_unit": attrs.get("time_unit"), "origin": attrs.get("origin"),
-                     "tube_replacement": attrs.get("tube_replacement"),
-                     "wall_thickness": attrs.get("wall_thickness"),
-                     "depth_limit": attrs.get("depth_limit"),
-                     # the geometry and law: the summary's exact time to another limit
-                     **{k: attrs.get(k) for k in ("contact_type", "dimensions", "law",
-                                                  "coefficients_mobile",
-                                                  "coefficients_obstacle", "time_scale")}})
+    # the case of each contact whose rows are its (done, or skipped: done before with the same
+    # inputs); a failed contact has none, a stale one the rows of an earlier case
+    cases = {c: (built or {})[c] for c in order
+             if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
+    info = [_contact_info(c, records[c], cases.get(c)) for c in order]
     contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
     errors = []
     warns = []
@@ -584,13 +577,38 @@ def _assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
                           warnings=pd.DataFrame(warns, columns=["contact", "category",
                                                                 "message"]),
                           contacts=contacts, stats=stats,
-                          output=None if store is None else str(store.path))
+                          output=None if store is None else str(store.path), cases=cases)
     if store is not None:
         _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit,
                        digest, unchanged)
     else:
         _times(result.stats, started, len(computed))
     return result
+
+
+def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
+    """A contact's row of ``BundleResult.contacts``: its record's status and computed values
+    (power, resolved coefficients), and what its wear case says (the carried ``case``; the
+    record's metadata for a contact whose rows are an earlier run's)."""
+    attrs = rec.get("attrs") or {}
+    info = {"contact": contact, "status": rec["status"], "samples": rec.get("samples", 0),
+            "seconds": rec.get("seconds", 0.0),
+            "power": (attrs.get("power") or {}).get("total"), "time_unit": attrs.get("time_unit")}
+    if case is not None and attrs:
+        info.update(origin=case.origin, tube_replacement=case.restart.tube_replacement,
+                    wall_thickness=case.wall.thickness, depth_limit=case.wall.limit,
+                    contact_type=case.contact_type, dimensions=dict(case.dimensions),
+                    law=case.law)
+    else:
+        info.update({k: attrs.get(k) for k in ("origin", "tube_replacement", "wall_thickness",
+                                               "depth_limit", "contact_type", "dimensions",
+                                               "law")})
+    # the geometry and law: the summary's exact time to another limit
+    info.update(coefficients_mobile=attrs.get("coefficients_mobile"),
+                coefficients_obstacle=attrs.get("coefficients_obstacle"),
+                time_scale=case.time_scale if case is not None and attrs
+                else attrs.get("time_scale"))
+    return info
 
 
 def _times(stats: dict[str, Any], started: float, count: int) -> None:

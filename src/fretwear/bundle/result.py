@@ -68,6 +68,10 @@ class BundleResult:
         with them, or any other law, once).
     output : str or None
         The output directory.
+    cases : dict of str to WearCase
+        The wear case of every contact whose rows are in the table as computed from it (done
+        this run, or skipped: done by an earlier run with the same inputs), as the bundle
+        built it once from the manifest: its wall (``cases[c].wall``), window, restart.
     """
 
     table: pd.DataFrame
@@ -76,6 +80,7 @@ class BundleResult:
     contacts: pd.DataFrame
     stats: dict[str, Any] = field(default_factory=dict)
     output: str | None = None
+    cases: dict[str, Any] = field(default_factory=dict, repr=False)
     _dataset: Any = field(default=None, repr=False)
     #: ``summary()``'s rankings, one per ``(limit, limit_m, wall_thickness)``: a result is
     #: never changed once built, so a ranking is computed once and read after (issue 28).

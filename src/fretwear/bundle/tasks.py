@@ -220,7 +220,7 @@ def _power_options(task: ContactTask) -> dict[str, Any]:
 
 
 def _threshold(task: ContactTask) -> float:
-    return task.wear_case().stationarity_threshold
+    return task.wear_case().window.stationarity_threshold
 
 
 def needs_whole_history(task: ContactTask) -> bool:

@@ -59,26 +59,26 @@ Output columns, native (Code_Aster) [unit]; one row per instant, or per instant 
 
 
 def _summary(result, console) -> None:
-    table = result.table
-    attrs = table.attrs
-    title = attrs.get("title") or "fretwear run"
+    table, case = result.table, result.wear_case  # the case the table was computed from
+    attrs = table.attrs  # the computation's outputs: coefficients resolved, through-wall
+    title = case.name or "fretwear run"
     # a rule as wide as the terminal, or 100 columns in a file (its width is then unbounded)
     console.print(Rule(f"[bold]{title}"), width=console.width if console.is_terminal else 100)
     power = result.power
-    unit = attrs.get("time_unit") or f"{attrs.get('time_scale')} s"
-    console.print(f"contact [bold]{attrs.get('contact_type')}[/], law [bold]{attrs.get('law')}"
+    unit = case.time_unit or f"{case.time_scale:g} s"
+    console.print(f"contact [bold]{case.contact_type}[/], law [bold]{case.law}"
                   f"[/], time unit = {unit}")
     console.print(f"wear power P = [bold]{result.total_power:.6g} W[/]")
     console.print(units_line(getattr(result, "units", None)), markup=False, highlight=False)
-    origin = attrs.get("origin") or 0.0
+    origin = case.origin
     if origin:
         previous = result.case.get("restart", {}).get("table", "the initial table")
         console.print(f"continues {previous} from instant {origin:g} (ORIG_INST)", markup=False,
                       highlight=False)
-    if attrs.get("tube_replacement") is not None:
-        console.print(f"tube replaced by a new one at instant {attrs['tube_replacement']:g} "
-                      "(TUBE_NEUF)")
-    units = WEAR_LAWS[attrs["law"]].units if attrs.get("law") in WEAR_LAWS else {}
+    if case.restart.tube_replacement is not None:
+        console.print(f"tube replaced by a new one at instant "
+                      f"{case.restart.tube_replacement:g} (TUBE_NEUF)")
+    units = WEAR_LAWS[case.law].units
     for key, source in (attrs.get("coefficient_sources") or {}).items():
         body, _, name = key.partition(".")
         value = (attrs.get(f"coefficients_{body}") or {}).get(name)
@@ -140,7 +140,7 @@ def _summary(result, console) -> None:
                    mm(r["depth_mobile"]), f"{r['volume_obstacle'] * 1e9:.4g}",
                    mm(r["depth_obstacle"]), *extra)
     console.print(gt)
-    for line, style in _limit_lines(table):
+    for line, style in _limit_lines(table, case):
         console.print(line, markup=False, highlight=False, style=style)
     if result.warnings or notes:
         console.print("[yellow]warnings:[/]")
@@ -159,15 +159,13 @@ def _percent_of_wall(fraction: float) -> str:
     return f"{100 * fraction:.3g}" + (" THROUGH" if fraction > 1 else "")
 
 
-def _limit_lines(table) -> list[tuple[str, str | None]]:
-    """Lines on the wall and the limit (empty without a wall thickness)."""
-    attrs = table.attrs
-    wall = attrs.get("wall_thickness")
+def _limit_lines(table, case) -> list[tuple[str, str | None]]:
+    """Lines on the wall and the limit of ``case`` (empty without a wall thickness)."""
+    wall = case.wall.thickness
     if wall is None or "limit_instant" not in table.columns:
         return []
-    unit = attrs.get("time_unit") or "user time unit"
-    fraction = attrs.get("depth_limit", DEFAULT_DEPTH_LIMIT)
-    limit = fraction * wall
+    unit = case.time_unit or f"{case.time_scale:g} s"
+    fraction, limit = case.wall.limit, case.wall.limit_depth
     out = [(f"limit: {100 * fraction:g} % of the {wall * 1e3:.4g} mm wall "
             f"= {limit * 1e3:.4g} mm; the global depth reaches it at instant "
             f"{_instant(table['limit_instant'].iloc[-1])} [{unit}]", "bold")]
@@ -176,7 +174,7 @@ def _limit_lines(table) -> list[tuple[str, str | None]]:
         first = last.loc[last["limit_instant_sector"].idxmin()]
         out.append((f"the first sector to reach it: sector {int(first['sector'])} at instant "
                     f"{_instant(first['limit_instant_sector'])} [{unit}]", "bold"))
-    for where, instant in (attrs.get("through_wall") or {}).items():
+    for where, instant in (table.attrs.get("through_wall") or {}).items():
         depth = "global depth" if where == "global" else f"{where} depth"
         out.append((f"THROUGH THE WALL: the tube's {depth} passes the {wall * 1e3:.4g} mm wall "
                     f"at instant {instant:.4g} [{unit}]", "bold red"))
@@ -257,7 +255,7 @@ def command(case_file: Path, output: Path | None, plot_dir: Path | None, aster_n
     _summary(result, console)
     if output is not None:
         written = write_wear_table(result.table, output, aster_names=aster_names,
-                              title=result.table.attrs.get("title"), aster_format=aster_format)
+                              title=result.wear_case.name, aster_format=aster_format)
         console.print(f"table written to [bold]{written}[/]")
     if plot_dir is not None:
         files = [path for name, fig in wear_figures(result.table).items()

@@ -172,7 +172,7 @@ def analyse_case(case, *, result: CaseResult | None = None, inspections=None,
                          factor=_factor(options), power_scatter=scatter,
                          samples=int(options["samples"]), seed=int(options["seed"]),
                          method=options["method"], instants=_instants(result),
-                         name=result.table.attrs.get("title") or "")
+                         name=result.wear_case.name or "")
         mc.sensitivity()
         if mc.limit is not None:
             mc.time_to_limit()

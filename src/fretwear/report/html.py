@@ -26,7 +26,7 @@ from fretwear.laws import get_law
 from fretwear.plotting import plot_sector_wear, plot_wear_table
 from fretwear.plotting.uncertainty import plot_calibration, plot_fan_chart, plot_sensitivity
 from fretwear.report.analysis import Analysis
-from fretwear.table import COLUMNS, DEFAULT_DEPTH_LIMIT
+from fretwear.table import COLUMNS
 
 __all__ = ["render_report", "write_report"]
 
@@ -212,9 +212,9 @@ def render_report(analysis: Analysis, *, title: str | None = None) -> str:
                              autoescape=jinja2.select_autoescape(["html", "j2"]),
                              undefined=jinja2.StrictUndefined)
     result = analysis.case
-    table = result.table
-    attrs = table.attrs
-    unit = attrs.get("time_unit") or f"{attrs.get('time_scale')} s"
+    table, case = result.table, result.wear_case  # the case the table was computed from
+    attrs = table.attrs  # the computation's outputs: coefficients resolved, through-wall
+    unit = case.time_unit or f"{case.time_scale:g} s"
     figures = [{"title": "Worn volumes and global depths against time",
                 "uri": figure_data_uri(plot_wear_table(table))}]
     if "sector" in table.columns and table["sector"].notna().any():
@@ -222,17 +222,16 @@ def render_report(analysis: Analysis, *, title: str | None = None) -> str:
                         "uri": figure_data_uri(plot_sector_wear(table))})
     power = result.power
     context = {
-        "title": title or attrs.get("title") or "fretwear report",
+        "title": title or case.name or "fretwear report",
         "version": __version__,
         "generated": _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
         "python": platform.python_version(), "numpy": np.__version__,
         "source": analysis.source,
-        "contact_type": attrs.get("contact_type"), "law": attrs.get("law"),
-        "dimensions": {k: _num(v, ".6g") for k, v in (attrs.get("dimensions") or {}).items()},
-        "time_unit": unit, "time_scale": _num(attrs.get("time_scale"), ".6g"),
-        "wall": None if attrs.get("wall_thickness") is None
-        else _num(attrs["wall_thickness"] * 1e3),
-        "depth_limit": _num(100 * float(attrs.get("depth_limit") or DEFAULT_DEPTH_LIMIT), "g"),
+        "contact_type": case.contact_type, "law": case.law,
+        "dimensions": {k: _num(v, ".6g") for k, v in case.dimensions.items()},
+        "time_unit": unit, "time_scale": _num(case.time_scale, ".6g"),
+        "wall": None if case.wall.thickness is None else _num(case.wall.thickness * 1e3),
+        "depth_limit": _num(100 * case.wall.limit, "g"),
         "limit_instant": _num(table["limit_instant"].iloc[-1])
         if "limit_instant" in table.columns else None,
         "through_wall": {k: _num(v) for k, v in (attrs.get("through_wall") or {}).items()},

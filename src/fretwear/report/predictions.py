@@ -25,7 +25,7 @@ def case_predictions(case) -> dict[str, pd.DataFrame]:
     its history's name ("" when neither)."""
     result = run_case(case)
     table = result.table
-    name = str(result.case.get("history", {}).get("name") or table.attrs.get("title") or "")
+    name = str(result.case.get("history", {}).get("name") or result.wear_case.name or "")
     return {name: table}
 
 

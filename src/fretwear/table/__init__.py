@@ -4,7 +4,10 @@
   (:data:`COLUMNS`; the obstacle profile's :data:`PROFILE_COLUMNS`), :func:`to_aster_names`,
   :func:`from_aster_names`, and :data:`FLOAT_FORMAT`, the one format of reals in text files;
 - :mod:`fretwear.table.case`: :class:`WearCase`, the validated description of one contact's
-  wear computation, with each coefficient's source (:class:`Coefficient`);
+  wear computation, with each coefficient's source (:class:`Coefficient`), made of the frozen
+  values of :mod:`fretwear.table.case_values` (:class:`Wall`, :class:`PowerWindow`,
+  :class:`Restart`); :mod:`fretwear.table.keywords`: :data:`KEYWORDS`, the keywords of a
+  wear computation documented once;
 - :mod:`fretwear.table.build`: :func:`wear_table_from_case`, the service-life table of a case
   (theory §3, §7), and :func:`wear_table_columns`, its columns without the DataFrame;
   :mod:`fretwear.table.core`: :func:`wear_table`, the same from keywords;
@@ -19,6 +22,7 @@
 
 from fretwear.table.build import wear_table_columns, wear_table_from_case
 from fretwear.table.case import Coefficient, WearCase
+from fretwear.table.case_values import PowerWindow, Restart, Wall
 from fretwear.table.core import wear_table
 from fretwear.table.depth import DepthModel, model_from_table, models_from_table
 from fretwear.table.depth_rows import EarlierRows
@@ -28,6 +32,7 @@ from fretwear.table.files import (
     write_profile_table,
     write_wear_table,
 )
+from fretwear.table.keywords import KEYWORDS
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.restart import InitialState, initial_state, replace_tube
 from fretwear.table.schema import (
@@ -55,6 +60,10 @@ __all__ = [
     "WALL_COLUMNS",
     "WALL_SECTOR_COLUMNS",
     "InitialState",
+    "KEYWORDS",
+    "PowerWindow",
+    "Restart",
+    "Wall",
     "WearCase",
     "from_aster_names",
     "initial_state",

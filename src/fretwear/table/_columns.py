@@ -74,7 +74,7 @@ def _float_of_shape(values, shape) -> np.ndarray:
 
 def _global_frame(case, head, power, mobile, obstacle, clock, geometry) -> pd.DataFrame:
     """The table without sectors: one row per instant."""
-    law, state = case.wear_law, case.initial_state
+    law, state = case.wear_law, case.restart.table
     prev_m = 0.0 if state is None else state.volume_mobile
     prev_o = 0.0 if state is None else state.volume_obstacle
     vm = _cumulated(law, power, mobile, clock.elapsed, prev_m, clock.fresh, "mobile")
@@ -109,7 +109,7 @@ def _sector_frame(case, head, result, mobile, obstacle, clock, geometry) -> dict
     columns = _sector_columns(case, head, result, mobile, obstacle, clock, geometry)
     if columns is not None:
         return columns
-    law, state = case.wear_law, case.initial_state
+    law, state = case.wear_law, case.restart.table
     key = law.parameters[0]
     edges = np.asarray(result.sector_edges, dtype=float)
     powers = np.asarray(result.sectors, dtype=float)
@@ -165,7 +165,7 @@ def _sector_columns(case, head, result, mobile, obstacle, clock, geometry) -> di
     """The columns of :func:`_sector_frame` with every sector at once: (instant, sector)
     arrays through the same element-wise operations as sector by sector (the same bits);
     None where that loop is needed (a warning, an error, a law not linear in time)."""
-    law, state = case.wear_law, case.initial_state
+    law, state = case.wear_law, case.restart.table
     if not law.linear_in_time:
         return None
     try:

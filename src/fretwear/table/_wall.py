@@ -29,7 +29,7 @@ def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
     depths = (np.asarray(table["depth_mobile"], dtype=float),
               np.asarray(table["sector"], dtype=int) if sectored else None,
               np.asarray(table["depth_mobile_sector"], dtype=float) if sectored else None)
-    options = {"wall": case.wall_thickness, "depth_limit": case.depth_limit,
+    options = {"wall": case.wall.thickness, "depth_limit": case.wall.limit,
                "origin": case.origin, "time_scale": case.time_scale, "fresh": clock.fresh,
                "unit": case.time_unit, "stacklevel": 5}
     glob = None
@@ -37,7 +37,7 @@ def _wall(case, table, power, result, mobile, obstacle, clock, geometry):
         glob = case_model(case, power, result, mobile, obstacle, clock.fresh, geometry)
     sectors = None
     if sectored:
-        law, state = case.wear_law, case.initial_state
+        law, state = case.wear_law, case.restart.table
         powers = np.asarray(result.sectors, dtype=float)
         if glob is not None:  # the model's per-sector rates [m³/s], computed once
             rate_m = glob.term_rates[0]
@@ -58,7 +58,7 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
     """The global :class:`DepthModel` of a case at its power [W] (``result``'s sector powers
     in sector mode), the bodies' coefficients ``mobile`` and ``obstacle`` (None: it does not
     wear), a tube replaced ``fresh`` seconds after the origin (None: not)."""
-    law, state = case.wear_law, case.initial_state
+    law, state = case.wear_law, case.restart.table
     if case.sectors is None:
         powers = (float(power),)
         coefs_m, coefs_o = (mobile,), (obstacle,)
@@ -78,7 +78,7 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
     return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
                       coefficients_obstacle=coefs_o, time_scale=case.time_scale,
                       origin=case.origin, initial_mobile=v0_m, initial_obstacle=v0_o,
-                      wall_thickness=case.wall_thickness, depth_limit=case.depth_limit,
+                      wall_thickness=case.wall.thickness, depth_limit=case.wall.limit,
                       replacement=fresh, rows=rows)
 
 

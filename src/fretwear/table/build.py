@@ -182,12 +182,12 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
         columns = _global_frame(case, head, power, mobile, obstacle, clock, geometry)
     else:
         columns = _sector_frame(case, head, result, mobile, obstacle, clock, geometry)
-    state = case.initial_state
+    state = case.restart.table
     frame = None
     if state is not None and len(state.rows):
         frame = _after_rows(state.rows, columns)
     limit = None
-    if case.wall_thickness is not None:
+    if case.wall.thickness is not None:
         wall, limit = _wall(case, columns if frame is None else frame, power, result, mobile,
                             obstacle, clock, geometry)
         if frame is None:
@@ -214,9 +214,10 @@ def _power_of(case: WearCase, source, history):
         result = wear_power(source, **case.power_options)
         return result, None, float(result.total)
     if isinstance(source, ContactHistory):
-        result = wear_power(source, t_start=case.t_start, t_end=case.t_end, blocks=case.blocks,
-                            sectors=case.sectors,
-                            stationarity_threshold=case.stationarity_threshold)
+        window = case.window
+        result = wear_power(source, t_start=window.t_start, t_end=window.t_end,
+                            blocks=window.blocks, sectors=case.sectors,
+                            stationarity_threshold=window.stationarity_threshold)
         return result, source, float(result.total)
     if is_result:
         return source, history, float(source.total)
@@ -264,8 +265,8 @@ def _pass_counts(result, case: WearCase, coefs: dict):
     # the case's window; a missing bound is the record's end (the power's window), which
     # selects the same samples as no bound at all
     for bound, power_bound, counted, open_end in (
-            (case.t_start, result.t_start, counts.t_start, -np.inf),
-            (case.t_end, result.t_end, counts.t_end, np.inf)):
+            (case.window.t_start, result.t_start, counts.t_start, -np.inf),
+            (case.window.t_end, result.t_end, counts.t_end, np.inf)):
         if counted != (power_bound if bound is None else bound) and not (
                 bound is None and counted == open_end):
             return None
@@ -298,8 +299,8 @@ def _body_coefficients(case: WearCase, history, result=None):
                         f"{(coefs.get('force_max'), coefs.get('speed_max'))} (force_max, "
                         "speed_max): give the history too (history=)")
                 else:
-                    stats = law.statistics(history, t_start=case.t_start, t_end=case.t_end,
-                                           **coefs)
+                    stats = law.statistics(history, t_start=case.window.t_start,
+                                           t_end=case.window.t_end, **coefs)
                 coefs["intensity"] = float(stats.intensity)
                 sources[f"{body}.intensity"] = HISTORY
     return mobile, obstacle, sources
@@ -328,7 +329,7 @@ class _Clock:
     @property
     def fresh(self) -> float | None:
         """Seconds after the origin at which a new tube starts (None: no replacement) [s]."""
-        at = self.case.tube_replacement
+        at = self.case.restart.tube_replacement
         return None if at is None else (at - self.case.origin) * self.case.time_scale
 
     @property
@@ -373,8 +374,8 @@ def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result, edges) -
         else [list(p) for p in case.sector_coefficients],
         "time_scale": case.time_scale,
         "time_unit": case.time_unit or f"{case.time_scale:g} s",
-        "origin": case.origin, "tube_replacement": case.tube_replacement,
-        "wall_thickness": case.wall_thickness, "depth_limit": case.depth_limit,
+        "origin": case.origin, "tube_replacement": case.restart.tube_replacement,
+        "wall_thickness": case.wall.thickness, "depth_limit": case.wall.limit,
         "global_depth": getattr(geometry, "reason", None),  # why the global depths are NaN
         "power": None if result is None else _power_dict(result),
         "case": case.to_dict(),

@@ -35,6 +35,7 @@ from fretwear.io.geometry_units import check_wall_thickness
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
 from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
+from fretwear.table.case_values import PowerWindow, Restart, Wall, _real
 from fretwear.table.coefficients import (
     USER,
     Coefficient,
@@ -46,33 +47,30 @@ from fretwear.table.coefficients import (
     resolve_coefficients,
     sector_parameter,
 )
-from fretwear.table.limit import DEFAULT_DEPTH_LIMIT, check_wall
+from fretwear.table.keywords import KEYWORDS, check_keywords, keywords_doc
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _read_initial_state
-from fretwear.table.schema import _TIME_TOL
 
-__all__ = ["Coefficient", "WearCase", "law_coefficients"]
+__all__ = ["Coefficient", "PowerWindow", "Restart", "Wall", "WearCase", "law_coefficients"]
 
 #: The Code_Aster names of the KWU-EPRI class ranges given as separate keywords.
 _HISTORY_KEYWORDS = {"force_max": "FNOR_MAXI", "speed_max": "VTAN_MAXI"}
 #: Format tag of :meth:`WearCase.to_dict`.
 FORMAT = "fretwear.WearCase/1"
-
-
-def _real(value: Any, name: str, *, none: bool = True) -> float | None:
-    if value is None and none:
-        return None
-    if isinstance(value, bool | str | bytes) or value is None:
-        ok = False
-    else:
-        try:
-            out = float(value)
-            ok = math.isfinite(out)
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-    if not ok:
-        raise InputError(f"{name} must be a finite number, got {value!r}")
-    return out
+#: The keys of :meth:`WearCase.to_dict`, in its order: the user's flat vocabulary (the keywords
+#: of :func:`fretwear.table.wear_table` and ``initial_table``, where the restart came from).
+FLAT_KEYS = tuple(k for name in KEYWORDS for k in (
+    (name, "initial_table") if name == "initial_instant" else (name,)))
+#: A grouped field of the case -> (its type, flat key -> the type's attribute).
+_GROUPS = {
+    "window": (PowerWindow, {"t_start": "t_start", "t_end": "t_end", "blocks": "blocks",
+                             "stationarity_threshold": "stationarity_threshold"}),
+    "restart": (Restart, {"initial_state": "table", "initial_instant": "instant",
+                          "initial_table": "source", "tube_replacement": "tube_replacement"}),
+    "wall": (Wall, {"wall_thickness": "thickness", "depth_limit": "limit"}),
+}
+#: Flat key -> the grouped field holding it.
+_GROUP_OF = {key: group for group, (_, names) in _GROUPS.items() for key in names}
 
 
 def _instants(instants, restart: bool) -> tuple[float, ...]:
@@ -184,26 +182,16 @@ class WearCase:
         Seconds per user time unit [s] (COEF_INST).
     time_unit : str or None
         Name of the user time unit (``"year"``, ...), for the table's metadata.
-    t_start, t_end : float or None
-        Window of the history [s] (INST_INIT, INST_FIN of RESU_GENE).
-    blocks : int
-        Blocks of the power computation (NB_BLOC).
-    stationarity_threshold : float
-        Relative block spread above which a StationarityWarning is given [-].
+    window : PowerWindow
+        The window of the history the power is computed over, its blocks and the
+        stationarity threshold (INST_INIT, INST_FIN, NB_BLOC of RESU_GENE).
     force_max, speed_max : float or None
         KWU-EPRI class ranges [N], [m/s] (FNOR_MAXI, VTAN_MAXI); None: the window's maxima.
-    initial_state : InitialState or None
-        The restart state (ETAT_INIT), read from the initial table.
-    initial_instant : float or None
-        INST_INIT of ETAT_INIT [user time unit] the state was read at (None: the table's last).
-    initial_table : str or None
-        Where the restart state came from (a path, ``"(DataFrame)"``), for the provenance.
-    tube_replacement : float or None
-        Instant [user time unit] of the tube's replacement by a new one (TUBE_NEUF).
-    wall_thickness : float or None
-        Wall thickness of the mobile [m], when known.
-    depth_limit : float
-        Depth limit as a fraction of the wall thickness [-] (default 0.4, a plugging criterion).
+    restart : Restart
+        The restart state read from the initial table and the instant it was read at
+        (ETAT_INIT), the tube replacement (TUBE_NEUF).
+    wall : Wall
+        The wall thickness of the mobile [m] (when known) and the depth limit [-].
     name : str or None
         A name or title of the case.
 
@@ -214,6 +202,8 @@ class WearCase:
     ...                               coefficients={"COEF_USURE": 1e-14}, time_scale=3.6e3)
     >>> case.coefficients["coefficient"]
     Coefficient(value=1e-14, source='user')
+    >>> case.wall.limit, case.window.blocks, case.restart.origin
+    (0.4, 1, 0.0)
     >>> WearCase.from_dict(case.to_dict()) == case
     True
     """
@@ -231,35 +221,16 @@ class WearCase:
     sector_coefficients: tuple[tuple[float, float | None], ...] | None = None
     time_scale: float = 1.0
     time_unit: str | None = None
-    t_start: float | None = None
-    t_end: float | None = None
-    blocks: int = 1
-    stationarity_threshold: float = 0.1
+    window: PowerWindow = dataclasses.field(default_factory=PowerWindow)
     force_max: float | None = None
     speed_max: float | None = None
-    initial_state: InitialState | None = None
-    initial_instant: float | None = None
-    initial_table: str | None = None
-    tube_replacement: float | None = None
-    wall_thickness: float | None = None
-    depth_limit: float = DEFAULT_DEPTH_LIMIT
+    restart: Restart = dataclasses.field(default_factory=Restart)
+    wall: Wall = dataclasses.field(default_factory=Wall)
     name: str | None = None
 
     # ----------------------------------------------------------------------- construction
     @classmethod
-    def from_keywords(cls, *, contact_type: str | None,
-                      dimensions: Mapping[str, float] | None = None, instants, law: str = "ARCHARD",
-                      coefficients: Mapping[str, float] | None = None,
-                      obstacle_coefficients: Mapping[str, float] | None = None,
-                      materials: tuple[str, str] | None = None, obstacle_wear: bool = False,
-                      sectors=None, sector_coefficients=None, time_scale: float = 1.0,
-                      initial_state=None, initial_instant: float | None = None,
-                      tube_replacement: float | None = None, t_start: float | None = None,
-                      t_end: float | None = None, blocks: int = 1,
-                      stationarity_threshold: float = 0.1, force_max: float | None = None,
-                      speed_max: float | None = None, coefficient_files=None,
-                      wall_thickness: float | None = None, depth_limit: float = DEFAULT_DEPTH_LIMIT,
-                      time_unit: str | None = None, name: str | None = None) -> WearCase:
+    def from_keywords(cls, **keywords: Any) -> WearCase:
         """The case of the keywords of :func:`fretwear.table.wear_table` (but ``source`` and
         ``history``), resolved and validated.
 
@@ -268,31 +239,31 @@ class WearCase:
         :class:`~fretwear.table.InitialState` at ``initial_instant``. Each coefficient keeps its
         source (:class:`Coefficient`).
 
+        Parameters
+        ----------
+{keywords}
+
         Raises
         ------
         KeywordError
-            Keywords that exclude each other or need another one, naming both and the fix.
+            An unknown keyword (:data:`fretwear.table.keywords.KEYWORDS` lists them), keywords
+            that exclude each other or need another one, naming both and the fix.
         InputError
             A bad value (instants, time scale, sector coefficients, ...), a missing file.
         DatabaseError
             A material pair without coefficients.
         """
-        wear_law = get_law(law)
-        files = coefficient_file_paths(coefficient_files, materials)
-        state, label = _restart_state(initial_state, initial_instant)
+        kw = check_keywords(keywords, "WearCase.from_keywords")
+        wear_law = get_law(kw["law"])
+        files = coefficient_file_paths(kw["coefficient_files"], kw["materials"])
+        state, label = _restart_state(kw["initial_state"], kw["initial_instant"])
         mobile, obstacle = resolve_coefficients(
-            wear_law, contact_type, coefficients, obstacle_coefficients, materials, obstacle_wear,
-            force_max, speed_max, files)
-        return cls(contact_type=contact_type, dimensions=dict(dimensions or {}),
-                   instants=instants, law=wear_law.name, coefficients=mobile,
-                   obstacle_coefficients=obstacle, materials=materials,
-                   obstacle_wear=obstacle_wear, coefficient_files=files, sectors=sectors,
-                   sector_coefficients=sector_coefficients, time_scale=time_scale,
-                   time_unit=time_unit, t_start=t_start, t_end=t_end, blocks=blocks,
-                   stationarity_threshold=stationarity_threshold, force_max=force_max,
-                   speed_max=speed_max, initial_state=state, initial_instant=initial_instant,
-                   initial_table=label, tube_replacement=tube_replacement,
-                   wall_thickness=wall_thickness, depth_limit=depth_limit, name=name)
+            wear_law, kw["contact_type"], kw["coefficients"], kw["obstacle_coefficients"],
+            kw["materials"], kw["obstacle_wear"], kw["force_max"], kw["speed_max"], files)
+        kw.update(dimensions=dict(kw["dimensions"] or {}), law=wear_law.name,
+                  coefficients=mobile, obstacle_coefficients=obstacle, coefficient_files=files,
+                  initial_state=state, initial_table=label)
+        return cls._from_flat(kw)
 
     def __post_init__(self) -> None:
         """Normalise the values and check every rule between them (the one place)."""
@@ -320,21 +291,16 @@ class WearCase:
         put("coefficients", _coefficient_map(self.coefficients, "mobile"))
         if self.obstacle_coefficients is not None:
             put("obstacle_coefficients", _coefficient_map(self.obstacle_coefficients, "obstacle"))
-        state = self.initial_state
-        if state is not None and not isinstance(state, InitialState):
-            raise InputError("initial_state must be an InitialState (WearCase.from_keywords reads "
-                             f"a table or a file into one), got {type(state).__name__}")
-        if self.initial_instant is not None:
-            if state is None:
-                raise KeywordError("initial_instant (INST_INIT of ETAT_INIT) needs an "
-                                   "initial_state (TABL_USURE): give the table to continue")
-            put("initial_instant", _real(self.initial_instant, "initial_instant (INST_INIT)"))
+        for field, kind in (("window", PowerWindow), ("restart", Restart), ("wall", Wall)):
+            if not isinstance(getattr(self, field), kind):
+                raise InputError(f"{field} must be a {kind.__name__}, got "
+                                 f"{type(getattr(self, field)).__name__}")
+        state = self.restart.table
         put("instants", _instants(self.instants, state is not None))
         self._check_time()
         self._check_materials()
         self._check_history_keywords(law)
         self._check_sectors(law, geometry, state)
-        self._check_window()
         self._check_wall()
 
     def _check_time(self) -> None:
@@ -348,14 +314,6 @@ class WearCase:
         object.__setattr__(self, "time_scale", scale)
         if self.time_unit is not None and not isinstance(self.time_unit, str):
             raise InputError(f"time_unit must be the name of the unit, got {self.time_unit!r}")
-        if self.tube_replacement is not None:
-            at = _real(self.tube_replacement, "tube_replacement (TUBE_NEUF)")
-            origin = self.origin
-            if at < origin - _TIME_TOL * max(1.0, abs(origin)):
-                raise InputError(f"tube_replacement (TUBE_NEUF) at {at:g} is before the origin "
-                                 f"{origin:g} of this run; replace the tube in the initial table "
-                                 "with replace_tube() instead")
-            object.__setattr__(self, "tube_replacement", at)
 
     def _check_materials(self) -> None:
         if self.materials is not None:
@@ -432,28 +390,11 @@ class WearCase:
             raise KeywordError("sector depths need mobile_radius (RAYON_MOBILE) and "
                                "obstacle_width (LARGEUR_OBST); give them in the dimensions")
 
-    def _check_window(self) -> None:
-        for name, keyword in (("t_start", "INST_INIT"), ("t_end", "INST_FIN")):
-            object.__setattr__(self, name, _real(getattr(self, name), f"{name} ({keyword}) [s]"))
-        if self.t_start is not None and self.t_end is not None and self.t_end <= self.t_start:
-            raise InputError(f"t_end (INST_FIN) = {self.t_end:g} s must be after t_start "
-                             f"(INST_INIT) = {self.t_start:g} s")
-        blocks = self.blocks
-        if isinstance(blocks, bool) or not isinstance(blocks, int | np.integer) or blocks < 1:
-            raise InputError(f"blocks (NB_BLOC) must be a whole number >= 1, got {blocks!r}")
-        object.__setattr__(self, "blocks", int(blocks))
-        threshold = _real(self.stationarity_threshold, "stationarity_threshold", none=False)
-        if threshold < 0:
-            raise InputError(f"stationarity_threshold must be >= 0 [-], got {threshold:g}")
-        object.__setattr__(self, "stationarity_threshold", threshold)
-
     def _check_wall(self) -> None:
-        wall, limit = check_wall(self.wall_thickness, self.depth_limit)
-        # a wall in mm typed into a metre key: thicker than the tube (issue 29)
-        check_wall_thickness(wall, self.dimensions.get("mobile_radius"),
+        """The wall is checked by :class:`Wall`; here against the tube it belongs to: a wall in
+        mm typed into a metre key is thicker than the tube (issue 29)."""
+        check_wall_thickness(self.wall.thickness, self.dimensions.get("mobile_radius"),
                              key="wall_thickness (wall_thickness_m in a case file or manifest)")
-        object.__setattr__(self, "wall_thickness", wall)
-        object.__setattr__(self, "depth_limit", limit)
 
     # ----------------------------------------------------------------------- derived values
     @property
@@ -485,15 +426,16 @@ class WearCase:
         >>> case.power_options["blocks"], case.power_options["kwu"]
         (4, None)
         """
-        return dict(t_start=self.t_start, t_end=self.t_end, blocks=self.blocks,
-                    sectors=self.sectors, stationarity_threshold=self.stationarity_threshold,
+        w = self.window
+        return dict(t_start=w.t_start, t_end=w.t_end, blocks=w.blocks,
+                    sectors=self.sectors, stationarity_threshold=w.stationarity_threshold,
                     kwu=(self.force_max, self.speed_max) if self.wear_law.needs_history
                     else None)
 
     @property
     def origin(self) -> float:
         """ORIG_INST of the new rows [user time unit]: 0, or the restart state's origin."""
-        return 0.0 if self.initial_state is None else float(self.initial_state.origin)
+        return self.restart.origin
 
     @property
     def sector_edges(self) -> np.ndarray | None:
@@ -515,8 +457,20 @@ class WearCase:
         return out
 
     def replace(self, **changes: Any) -> WearCase:
-        """A copy with some fields changed, validated again."""
-        return dataclasses.replace(self, **changes)
+        """A copy with some fields changed, validated again: the case's fields (``wall=``,
+        ``window=``, ``restart=``, ...) or the flat keywords of the case file and of
+        :meth:`to_dict` (``wall_thickness=``, ``t_start=``, ``initial_state=``, ...)."""
+        flat = self._flat()
+        for group, (_, names) in _GROUPS.items():
+            if group in changes:
+                value = changes.pop(group)
+                flat.update({key: getattr(value, attr) for key, attr in names.items()})
+        unknown = sorted(set(changes) - set(flat))
+        if unknown:
+            raise KeywordError(f"unknown wear-case key(s) {unknown}; a wear case has "
+                               f"{sorted(flat)} (or {sorted(_GROUPS)})")
+        flat.update(changes)
+        return self._from_flat(flat)
 
     def with_initial_state(self, table, initial_instant: float | None = None) -> WearCase:
         """The same case continuing ``table`` (a wear table, its file or an InitialState) from
@@ -524,6 +478,24 @@ class WearCase:
         state, label = _restart_state(table, initial_instant)
         return self.replace(initial_state=state, initial_instant=initial_instant,
                             initial_table=label)
+
+    def _flat(self) -> dict[str, Any]:
+        """The case as the flat keys of :meth:`to_dict`, in their order (values as they are)."""
+        out = {}
+        for name in FLAT_KEYS:
+            group = _GROUP_OF.get(name)
+            out[name] = getattr(self, name) if group is None else \
+                getattr(getattr(self, group), _GROUPS[group][1][name])
+        return out
+
+    @classmethod
+    def _from_flat(cls, flat: Mapping[str, Any]) -> WearCase:
+        """The case of the flat keys of :meth:`to_dict`, grouped and validated."""
+        flat = dict(flat)
+        grouped = {group: kind(**{attr: flat.pop(key) for key, attr in names.items()
+                                  if key in flat})
+                   for group, (kind, names) in _GROUPS.items()}
+        return cls(**flat, **grouped)
 
     # ----------------------------------------------------------------------- dict / JSON
     def to_dict(self) -> dict[str, Any]:
@@ -549,15 +521,14 @@ class WearCase:
 
     def _make_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {"format": FORMAT}
-        for f in dataclasses.fields(self):
-            value = getattr(self, f.name)
-            if f.name in ("coefficients", "obstacle_coefficients"):
+        for name, value in self._flat().items():
+            if name in ("coefficients", "obstacle_coefficients"):
                 value = None if value is None else {
                     k: {"value": c.value, "source": c.source} for k, c in value.items()}
-            elif f.name == "initial_state":  # JSON-ready already: not walked again
-                out[f.name] = None if value is None else state_to_dict(value)
+            elif name == "initial_state":  # JSON-ready already: not walked again
+                out[name] = None if value is None else state_to_dict(value)
                 continue
-            out[f.name] = jsonable(value)
+            out[name] = jsonable(value)
         return out
 
     def __getstate__(self) -> dict[str, Any]:
@@ -580,11 +551,10 @@ class WearCase:
         if fmt != FORMAT:
             raise KeywordError(f"not a wear case of this version: format {fmt!r}, expected "
                                f"{FORMAT!r}")
-        names = {f.name for f in dataclasses.fields(cls)}
-        unknown = sorted(set(data) - names)
+        unknown = sorted(set(data) - set(FLAT_KEYS))
         if unknown:
             raise KeywordError(f"unknown wear-case key(s) {unknown}; a wear case has "
-                               f"{sorted(names)}")
+                               f"{sorted(FLAT_KEYS)}")
         if data.get("initial_state") is not None:
             data["initial_state"] = state_from_dict(data["initial_state"])
         for name in ("materials", "coefficient_files"):
@@ -594,7 +564,7 @@ class WearCase:
             data["sectors"] = tuple(data["sectors"])
         if data.get("sector_coefficients") is not None:
             data["sector_coefficients"] = tuple(tuple(p) for p in data["sector_coefficients"])
-        return cls(**data)
+        return cls._from_flat(data)
 
     def to_json(self) -> str:
         """:meth:`to_dict` as JSON text (floats round-trip exactly)."""
@@ -612,3 +582,7 @@ class WearCase:
 
     def __hash__(self) -> int:
         return hash(self.to_json())
+
+
+WearCase.from_keywords.__func__.__doc__ = WearCase.from_keywords.__func__.__doc__.replace(
+    "{keywords}", keywords_doc(8))

@@ -19,17 +19,16 @@ from __future__ import annotations
 
 import numbers
 import warnings
-from collections.abc import Mapping
 
 import numpy as np
 
 from fretwear._lazy import pandas as pd
-from fretwear.errors import UnusedKeywordWarning
+from fretwear.errors import InputError, UnusedKeywordWarning
 from fretwear.history import ContactHistory
 from fretwear.power.result import PowerResult
 from fretwear.table.build import wear_table_from_case
 from fretwear.table.case import WearCase, law_coefficients  # noqa: F401 - re-exported
-from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
+from fretwear.table.keywords import check_keywords, keywords_doc
 from fretwear.table.schema import (  # noqa: F401 - re-exported
     COLUMNS,
     GLOBAL_COLUMNS,
@@ -40,21 +39,8 @@ from fretwear.table.schema import (  # noqa: F401 - re-exported
 
 
 # --------------------------------------------------------------------------- wear table
-def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | None = None,
-               instants, law: str = "ARCHARD",
-               coefficients: Mapping[str, float] | None = None,
-               obstacle_coefficients: Mapping[str, float] | None = None,
-               materials: tuple[str, str] | None = None, obstacle_wear: bool = False,
-               sectors=None, sector_coefficients=None, time_scale: float = 1.0,
-               initial_state=None,
-               initial_instant: float | None = None, tube_replacement: float | None = None,
-               t_start: float | None = None, t_end: float | None = None, blocks: int = 1,
-               stationarity_threshold: float = 0.1, force_max: float | None = None,
-               speed_max: float | None = None,
-               coefficient_files=None, wall_thickness: float | None = None,
-               depth_limit: float = DEFAULT_DEPTH_LIMIT, time_unit: str | None = None,
-               name: str | None = None,
-               history: ContactHistory | None = None) -> pd.DataFrame:
+def wear_table(source, case: WearCase | None = None, *, history: ContactHistory | None = None,
+               **keywords) -> pd.DataFrame:
     """The service-life wear table of one contact (theory §7; Code_Aster's POST_USURE).
 
     Parameters
@@ -62,69 +48,18 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
     source : float, ContactHistory, PowerResult or path-like
         The wear power P [W] (PUIS_USURE), or a contact history (RESU_GENE) or its file, whose
         power is computed over ``[t_start, t_end]`` [s] in ``blocks`` blocks (theory §2).
-    contact_type : str
-        One of :data:`fretwear.geometry.CONTACT_TYPES` (CONTACT), e.g. ``"TUBE_BAV"``.
-    dimensions : mapping
-        Geometry in SI: ``mobile_radius`` [m], ``obstacle_radius`` [m], ``obstacle_width`` [m],
-        ``tilt_angle``, ``isthmus_angle``, ``impact_angle`` [deg], whichever the type uses.
-    instants : sequence of float
-        Durations of service after the origin [user time unit] (INST / LIST_INST); the table's
-        ``instant`` is origin + duration.
-    law : str
-        ``"ARCHARD"``, ``"KWU_EPRI"`` or ``"EDF_MZ"`` (LOI_USURE). Sector mode is Archard only.
-    coefficients, obstacle_coefficients : mapping, optional
-        Law coefficients of the mobile / obstacle (native names or Code_Aster keywords, e.g.
-        ``{"COEF_USURE": 1e-14}`` [1/Pa]). The obstacle wears only if given (or
-        ``obstacle_wear`` with ``materials``): otherwise its volume stays at its initial value.
-    materials : (str, str), optional
-        (mobile, obstacle) material pair of the coefficient database (MATER_USURE).
-    obstacle_wear : bool
-        Take the obstacle coefficient from the database too (USURE_OBST='OUI').
-    sectors : int or sequence of float, optional
-        Angular sectors (count or edges [deg]); needs a history with ``dy``/``dz``.
-    sector_coefficients : sequence of (float, float or None), optional
-        Archard coefficients (mobile, obstacle) [1/Pa] per sector (one pair for all allowed);
-        default the law coefficients.
-    time_scale : float
-        Seconds per user time unit [s] (COEF_INST), e.g. 31 536 000 for years.
-    initial_state : DataFrame, path-like or fretwear.table.InitialState, optional
-        Previous wear table to continue (ETAT_INIT / TABL_USURE), ours or Code_Aster's.
-    initial_instant : float, optional
-        INST_INIT [user time unit]: continue from this instant of ``initial_state``.
-    tube_replacement : float, optional
-        Instant [user time unit] at which the tube is replaced by a new one (TUBE_NEUF): from it
-        on the tube's volumes restart from zero, the obstacle's continue.
-    t_start, t_end : float, optional
-        Window of the history [s] (INST_INIT/INST_FIN of RESU_GENE). With a plain power
-        ``source`` (a number: nothing to window) they are ignored with an
-        :class:`~fretwear.errors.UnusedKeywordWarning`, as POST_USURE ignores them with
-        PUIS_USURE.
-    blocks : int
-        Number of blocks of the power computation (NB_BLOC); ignored, warned, with a plain
-        power, as ``t_start`` and ``t_end``. With a PowerResult ``source``, the three are those
-        of the result: other values are ignored with an UnusedKeywordWarning.
-    stationarity_threshold : float
-        Relative block spread above which a StationarityWarning is raised [-].
-    force_max, speed_max : float, optional
-        KWU_EPRI class ranges FNOR_MAXI [N] and VTAN_MAXI [m/s] (default: the history's maxima).
-    coefficient_files : path-like or sequence of path-like, optional
-        The user's coefficient CSV file(s), in the format of :mod:`fretwear.database`
-        (docs/laws.md), extending and overriding the built-in table for ``materials``; a later
-        file wins over an earlier one (``lookup(..., extra=coefficient_files)``). A fretwear
-        extension: POST_USURE has no such keyword.
-    wall_thickness : float, optional
-        Wall thickness of the mobile [m], when known (carried in the case and ``attrs``).
-    depth_limit : float
-        Depth limit as a fraction of the wall thickness [-], default 0.4.
-    time_unit : str, optional
-        Name of the user time unit (``"year"``, ...) for the metadata; ``time_scale`` gives the
-        seconds.
-    name : str, optional
-        A name or title of the case (the table's ``attrs["title"]``, the files' provenance).
+    case : WearCase, optional
+        The case to compute (:meth:`WearCase.from_keywords`); keywords given with it replace
+        its values. Without it the keywords make the case (``contact_type`` and ``instants``
+        are then required).
     history : ContactHistory, optional
         With a PowerResult ``source``, the history it was computed from: a law that needs the
         history's class statistics (KWU_EPRI) reads them over ``[t_start, t_end]`` without
         computing the power again.
+    **keywords
+        The keywords of the case, :data:`fretwear.table.keywords.KEYWORDS` (their one list):
+
+{keywords}
 
     Returns
     -------
@@ -165,19 +100,10 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
     >>> t["volume_mobile"].tolist()  # K·P·t
     [3.6e-13, 7.2e-13]
     """
-    case = WearCase.from_keywords(
-        contact_type=contact_type, dimensions=dimensions, instants=instants, law=law,
-        coefficients=coefficients, obstacle_coefficients=obstacle_coefficients,
-        materials=materials, obstacle_wear=obstacle_wear, sectors=sectors,
-        sector_coefficients=sector_coefficients, time_scale=time_scale,
-        initial_state=initial_state, initial_instant=initial_instant,
-        tube_replacement=tube_replacement, t_start=t_start, t_end=t_end, blocks=blocks,
-        stationarity_threshold=stationarity_threshold, force_max=force_max, speed_max=speed_max,
-        coefficient_files=coefficient_files, wall_thickness=wall_thickness,
-        depth_limit=depth_limit, time_unit=time_unit, name=name)
-    window = {key: value for key, value, default in (("t_start", t_start, None),
-                                                     ("t_end", t_end, None), ("blocks", blocks, 1))
-              if value != default}  # the window keywords given
+    case = _case(case, keywords)
+    window = {key: keywords[key] for key, default in (("t_start", None), ("t_end", None),
+                                                      ("blocks", 1))
+              if keywords.get(key, default) != default}  # the window keywords given
     if history is None and isinstance(source, numbers.Real | np.ndarray) and np.ndim(source) == 0:
         ignored = list(window)
         if ignored:
@@ -198,3 +124,25 @@ def wear_table(source, *, contact_type: str, dimensions: Mapping[str, float] | N
                           f"with them (wear_power(history, t_start=..., t_end=..., blocks=...)) "
                           f"or give the history", UnusedKeywordWarning, stacklevel=2)
     return wear_table_from_case(case, source, history=history)
+
+
+def _case(case: WearCase | None, keywords: dict) -> WearCase:
+    """The case of :func:`wear_table`: made of the keywords, or ``case`` with them replaced."""
+    if case is None:
+        check_keywords(keywords, "wear_table")
+        return WearCase.from_keywords(**keywords)
+    if not isinstance(case, WearCase):
+        raise InputError(f"wear_table: case must be a WearCase (WearCase.from_keywords), got "
+                         f"{type(case).__name__}; give the keywords by name")
+    if not keywords:
+        return case
+    check_keywords(dict(keywords, contact_type=case.contact_type, instants=case.instants),
+                   "wear_table")
+    changes = dict(keywords)
+    if "initial_state" in changes or "initial_instant" in changes:
+        case = case.with_initial_state(changes.pop("initial_state", case.restart.table),
+                                       changes.pop("initial_instant", None))
+    return case.replace(**changes) if changes else case
+
+
+wear_table.__doc__ = wear_table.__doc__.replace("{keywords}", keywords_doc(8))

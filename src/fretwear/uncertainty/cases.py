@@ -19,6 +19,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from fretwear import table as fretwear_table
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
@@ -26,7 +28,7 @@ from fretwear.history import ContactHistory
 from fretwear.io import read_history
 from fretwear.power import PowerResult, wear_power
 from fretwear.power.confidence import PowerInterval
-from fretwear.table import wear_table
+from fretwear.table import WearCase
 from fretwear.table.depth import DepthModel, models_from_table
 from fretwear.uncertainty.distributions import is_distribution, median_of
 
@@ -50,12 +52,18 @@ class PreparedCase:
         The nominal wear table.
     durations : numpy.ndarray
         Instants of the case after the origin [user time unit].
+    case : WearCase or None
+        The wear case the models were computed from (None: given a wear table or a model).
+    power_result : PowerResult or None
+        The power computation of the case (None: a power given as a number or a distribution).
     """
 
     models: dict[str, DepthModel]
     power: Any
     table: pd.DataFrame | None
     durations: Any
+    case: WearCase | None = None
+    power_result: PowerResult | None = None
 
     @property
     def model(self) -> DepthModel:
@@ -129,29 +137,25 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
         models = models_from_table(case, **options)
         uncertainty = power if _uncertain(power) else None
         return PreparedCase(models, uncertainty, case, _durations(case))
-    if hasattr(case, "to_dict") and type(case).__name__ == "WearCase":
-        window = {"t_start": case.t_start, "t_end": case.t_end, "blocks": case.blocks,
-                  "sectors": case.sectors,
-                  "stationarity_threshold": case.stationarity_threshold}
-        source, uncertainty = _source(power, window)
-        table = fretwear_table.wear_table_from_case(case, source,
-                                                    history=window.get("history"))
-        for key in WALL_KEYS:
-            if options[key] is None:
-                options[key] = getattr(case, key, None)
-        models = models_from_table(table, sector_coefficients=getattr(
-            case, "sector_coefficients", None), **options)
-        return PreparedCase(models, uncertainty, table, _durations(table))
-    if not isinstance(case, Mapping):
+    if isinstance(case, Mapping):  # the keywords of wear_table, with the wall's
+        keywords = dict(case)
+        window = {k: keywords[k] for k in ("t_start", "t_end", "blocks", "sectors",
+                                            "stationarity_threshold") if k in keywords}
+        case = WearCase.from_keywords(**keywords)
+    elif isinstance(case, WearCase):
+        window = {"t_start": case.window.t_start, "t_end": case.window.t_end,
+                  "blocks": case.window.blocks, "sectors": case.sectors,
+                  "stationarity_threshold": case.window.stationarity_threshold}
+    else:
         raise InputError(f"case must be the keywords of wear_table (a mapping), a WearCase, a "
                          f"wear table or a DepthModel, got {type(case).__name__}")
-    keywords = dict(case)
+    source, uncertainty = _source(power, window)
+    table = fretwear_table.wear_table_from_case(case, source, history=window.get("history"))
+    given = {"wall_thickness": case.wall.thickness, "depth_limit": case.wall.limit}
     for key in WALL_KEYS:
-        value = keywords.pop(key, None)
         if options[key] is None:
-            options[key] = value
-    source, uncertainty = _source(power, keywords)
-    table = wear_table(source, **keywords)
-    models = models_from_table(table, sector_coefficients=keywords.get("sector_coefficients"),
-                               **options)
-    return PreparedCase(models, uncertainty, table, _durations(table))
+            options[key] = given[key]
+    models = models_from_table(table, sector_coefficients=case.sector_coefficients, **options)
+    result = source if isinstance(source, PowerResult) else None
+    return PreparedCase(models, uncertainty, table, np.asarray(case.instants, dtype=float),
+                        case, result)

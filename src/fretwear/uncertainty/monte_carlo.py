@@ -160,6 +160,10 @@ class UncertaintyResult:
         Which depth of the mobile the samples are: ``"global"`` (the wear table's
         ``depth_mobile``, from the total volume) or ``"sector j"`` (``depth_mobile_sector`` of
         sector j, its volume spread over its arc).
+    case : WearCase or None
+        The wear case the samples were computed from (None: given a wear table or a model).
+    power_result : PowerResult or None
+        The power computation of the case (None: a power given as a number or a distribution).
     """
 
     instants: np.ndarray
@@ -175,6 +179,8 @@ class UncertaintyResult:
     depth_limit: float
     name: str = ""
     depth_of: str = "global"
+    case: Any = field(default=None, repr=False)
+    power_result: Any = field(default=None, repr=False)
     _propagation: _Propagation | None = field(default=None, repr=False)
     _second: np.ndarray | None = field(default=None, repr=False)
     _cache: dict = field(default_factory=dict, repr=False)
@@ -583,6 +589,6 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
         variables=tuple(variables), nominal_depth=nominal, method=method, seed=seed,
         time_scale=model.time_scale, origin=model.origin, wall_thickness=model.wall_thickness,
         depth_limit=model.depth_limit, name=name or model.name, depth_of=key,
-        _propagation=prop,
+        case=prepared.case, power_result=prepared.power_result, _propagation=prop,
         _second=second)
 

@@ -143,8 +143,8 @@ CATALOGUE = Catalogue(
         # fretwear extras, not in Code_Aster's catalogue
         "EPAIS_PAROI": _r("wall thickness of the tube [m] (fretwear extra): adds FRAC_PAROI and "
                           "INST_LIMITE (the instant the depth reaches LIMITE_PAROI of the wall)"),
-        "LIMITE_PAROI": _r("depth limit as a fraction of the wall [-], default 0.4 (fretwear "
-                           "extra)"),
+        "LIMITE_PAROI": _r(f"depth limit as a fraction of the wall [-], default "
+                           f"{DEFAULT_DEPTH_LIMIT} (fretwear extra)"),
     },
     blocs=(
         Bloc("RESU_GENE is given", exists("RESU_GENE"),
@@ -353,20 +353,22 @@ def POST_USURE(**keywords: Any) -> pd.DataFrame:  # noqa: N802 - Code_Aster's na
     source = (kw["PUIS_USURE"] if "PUIS_USURE" in kw
               else _history_source(kw["RESU_GENE"], kw.get("NOEUD", kw.get("GROUP_NO"))))
     try:
-        case = WearCase.from_keywords(
+        given = dict(
             contact_type=contact, dimensions=dimensions,
             instants=kw["INST"] if "INST" in kw else kw["LIST_INST"], law=law,
             coefficients=mobile if "MOBILE" in kw else None,  # _F(): the law's defaults
             obstacle_coefficients=obstacle if "OBSTACLE" in kw else None,
             materials=materials, obstacle_wear="USURE_OBST" in kw and materials is not None,
             sectors=sectors, sector_coefficients=sector_coefficients,
-            time_scale=kw.get("COEF_INST", 1.0), initial_state=etat.get("TABL_USURE"),
+            time_scale=kw.get("COEF_INST"), initial_state=etat.get("TABL_USURE"),
             initial_instant=etat.get("INST_INIT"), t_start=kw.get("INST_INIT"),
-            t_end=kw.get("INST_FIN"), blocks=kw.get("NB_BLOC", 1),
+            t_end=kw.get("INST_FIN"), blocks=kw.get("NB_BLOC"),
             force_max=kw.get("FNOR_MAXI"), speed_max=kw.get("VTAN_MAXI"),
-            wall_thickness=kw.get("EPAIS_PAROI"),
-            depth_limit=kw.get("LIMITE_PAROI", DEFAULT_DEPTH_LIMIT),
+            wall_thickness=kw.get("EPAIS_PAROI"), depth_limit=kw.get("LIMITE_PAROI"),
             name=kw.get("TITRE"))
+        # a keyword not given: its default, written once (fretwear.table.keywords.KEYWORDS)
+        case = WearCase.from_keywords(**{k: v for k, v in given.items()
+                                         if v is not None or k == "contact_type"})
     except DatabaseError as exc:
         if materials is None or contact is None:
             raise

@@ -49,6 +49,7 @@ from fretwear.table import (
     read_wear_table,
     wear_table_from_case,
 )
+from fretwear.table.keywords import check_keywords
 from fretwear.timeunits import TIME_UNITS, describe_time_units, time_unit_name  # noqa: F401
 
 #: section -> key -> (expected type, description with unit). "*" sections are free tables.
@@ -370,22 +371,23 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
                            "give the tube's wall once, in [geometry]")
     # the rules between the keys (materials a pair, database files need materials, sectors
     # Archard only, ...) are the wear case's: fretwear.table.WearCase checks them once
-    return dict(
+    args = dict(
         contact_type=geometry["contact_type"],
         dimensions={_DIMENSIONS[k]: float(v) for k, v in geometry.items() if k in _DIMENSIONS},
-        instants=time["instants"], law=law.get("name", "ARCHARD"),
+        instants=time["instants"], law=law.get("name"),
         coefficients=law.get("mobile"), obstacle_coefficients=law.get("obstacle"),
         materials=None if materials is None else tuple(materials),
-        obstacle_wear=law.get("obstacle_wear", False), sectors=sector_spec,
+        obstacle_wear=law.get("obstacle_wear"), sectors=sector_spec,
         sector_coefficients=pairs, time_scale=scale,
         initial_state=_restart_table(case, restart),
         initial_instant=restart.get("instant"), tube_replacement=time.get("tube_replacement"),
-        t_start=power.get("t_start_s"), t_end=power.get("t_end_s"),
-        blocks=power.get("blocks", 1),
-        stationarity_threshold=power.get("stationarity_threshold", 0.1),
+        t_start=power.get("t_start_s"), t_end=power.get("t_end_s"), blocks=power.get("blocks"),
+        stationarity_threshold=power.get("stationarity_threshold"),
         force_max=law.get("force_max_N"), speed_max=law.get("speed_max_m_per_s"),
         coefficient_files=files or None, time_unit=unit, name=case.get("title"),
-        wall_thickness=wall, depth_limit=geometry.get("depth_limit", DEFAULT_DEPTH_LIMIT))
+        wall_thickness=wall, depth_limit=geometry.get("depth_limit"))
+    # a key not given: the keyword's default, written once (fretwear.table.keywords.KEYWORDS)
+    return check_keywords({k: v for k, v in args.items() if v is not None}, "case")
 
 
 def wear_case(case: Mapping[str, Any], *, history_elsewhere: bool = False) -> WearCase:

@@ -1,0 +1,69 @@
+"""The frozen values a WearCase is made of (issue 25, point 3): Wall, PowerWindow, Restart,
+each checked once where it is built; the case's flat keys (case files, to_dict) unchanged.
+
+Expected values: limit depth = limit × thickness and fraction = depth / thickness (the
+definitions of docs/uncertainty.md §1), with the default limit 0.4 (DEFAULT_DEPTH_LIMIT)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fretwear.errors import InputError, KeywordError
+from fretwear.table import DEFAULT_DEPTH_LIMIT, PowerWindow, Restart, Wall, WearCase
+
+DIMS = {"mobile_radius": 0.01, "obstacle_width": 0.02}
+
+
+def test_wall_limit_depth_and_fraction():
+    wall = Wall(1.09e-3)
+    assert wall.limit == DEFAULT_DEPTH_LIMIT
+    assert math.isclose(wall.limit_depth, 0.4 * 1.09e-3, rel_tol=1e-15)
+    assert np.allclose(wall.fraction([0.0, 1.09e-3, 2.18e-3]), [0.0, 1.0, 2.0], rtol=1e-15)
+    assert Wall().limit_depth is None
+    with pytest.raises(InputError, match="no wall thickness"):
+        Wall().fraction(1e-4)
+
+
+@pytest.mark.parametrize("thickness, limit, match", [
+    (-1e-3, 0.4, "wall_thickness must be > 0"), (math.nan, 0.4, "finite"),
+    (1e-3, 40, "fraction of the wall"), (1e-3, 0, "fraction of the wall")])
+def test_a_bad_wall_is_refused_where_it_is_built(thickness, limit, match):
+    with pytest.raises(InputError, match=match):
+        Wall(thickness, limit)
+
+
+def test_power_window_checks():
+    assert PowerWindow(0.0, 10.0, blocks=4) == PowerWindow(0, 10, 4, 0.1)
+    with pytest.raises(InputError, match="must be after t_start"):
+        PowerWindow(10.0, 1.0)
+    with pytest.raises(InputError, match="blocks .NB_BLOC. must be a whole number"):
+        PowerWindow(blocks=0)
+
+
+def test_restart_checks():
+    assert Restart().origin == 0.0 and Restart(tube_replacement=3.0).tube_replacement == 3.0
+    with pytest.raises(KeywordError, match="needs an initial_state"):
+        Restart(instant=2.0)
+    with pytest.raises(InputError, match="must be an InitialState"):
+        Restart(table="table.csv")
+
+
+def test_the_case_is_grouped_and_its_flat_keys_kept():
+    case = WearCase.from_keywords(contact_type="TUBE_ALESAGE", instants=[1.0], dimensions=DIMS,
+                                  coefficients={"COEF_USURE": 1e-14}, wall_thickness=1e-3,
+                                  depth_limit=0.5, t_start=0.0, t_end=2.0, blocks=2,
+                                  tube_replacement=0.5)
+    assert case.wall == Wall(1e-3, 0.5)
+    assert case.window == PowerWindow(0.0, 2.0, 2)
+    assert case.restart.tube_replacement == 0.5 and case.restart.table is None
+    data = case.to_dict()
+    assert (data["wall_thickness"], data["depth_limit"], data["blocks"]) == (1e-3, 0.5, 2)
+    assert WearCase.from_dict(data) == case
+    # replace by flat key or by group, the same case
+    assert case.replace(wall_thickness=2e-3) == case.replace(wall=Wall(2e-3, 0.5))
+    with pytest.raises(KeywordError, match="unknown wear-case key"):
+        case.replace(wall_thicknes=2e-3)
+    # a wall thicker than the tube (mm typed for m): refused by the case, naming the key
+    with pytest.raises(InputError, match="wall_thickness .*at least the tube's outer radius"):
+        case.replace(wall_thickness=1.0)
