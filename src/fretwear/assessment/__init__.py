@@ -4,6 +4,8 @@
   probability of detection;
 - :mod:`fretwear.assessment.inspections`: the field's inspection file (sized, NDD, not
   inspected, plugged; per contact or tube location) with its technique models;
+- :mod:`fretwear.assessment.calibration`: the hierarchical calibration of the factor on those
+  inspections (censored by the POD), per-contact posteriors and forecasts;
 - :mod:`fretwear.assessment.operational`: the probability that any tube of a bundle exceeds its
   limit over an interval, the longest interval under a target, the preventive-plugging list and
   the inspection sample, from the contacts' probabilities of exceeding the limit.
@@ -12,6 +14,7 @@ The contacts' probabilities come from the depth model of each contact and the ca
 the ``fretwear assess`` command that ties them to a bundle's results is not built yet.
 """
 
+from fretwear.assessment.calibration import BundleCalibration, FactorPrior, calibrate_bundle
 from fretwear.assessment.inspections import (
     Inspections,
     Technique,
@@ -26,6 +29,6 @@ from fretwear.assessment.operational import (
 )
 from fretwear.assessment.technique import LogisticPOD, LogSizingModel, SizingModel
 
-__all__ = ["BundleRisk", "Inspections", "LogSizingModel", "LogisticPOD", "SizingModel",
+__all__ = ["BundleCalibration", "BundleRisk", "FactorPrior", "calibrate_bundle", "Inspections", "LogSizingModel", "LogisticPOD", "SizingModel",
            "Technique", "bundle_risk", "inspection_sample", "longest_interval", "plugging_list",
            "read_field_inspections"]

@@ -189,7 +189,9 @@ class BundleCalibration:
         g = self.levels
         x = self.limit_log_factor(instant, limit)
         h = g.grid[1] - g.grid[0]
-        above = g.grid[None, :] > x[:, None]
+        with np.errstate(invalid="ignore"):  # the cell holding λ_L counted by its share
+            above = np.clip((g.grid[None, :] - x[:, None]) / h + 0.5, 0.0, 1.0)
+        above = np.where(np.isnan(above), (x[:, None] < g.grid[None, :]) * 1.0, above)
         top = np.max(g.log_lik, axis=1, keepdims=True)
         lik = np.exp(g.log_lik - np.where(np.isfinite(top), top, 0.0))
         p = np.empty((len(self.contacts), g.grid.size))
