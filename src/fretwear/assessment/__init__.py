@@ -29,6 +29,6 @@ from fretwear.assessment.operational import (
 )
 from fretwear.assessment.technique import LogisticPOD, LogSizingModel, SizingModel
 
-__all__ = ["BundleCalibration", "BundleRisk", "FactorPrior", "calibrate_bundle", "Inspections", "LogSizingModel", "LogisticPOD", "SizingModel",
-           "Technique", "bundle_risk", "inspection_sample", "longest_interval", "plugging_list",
-           "read_field_inspections"]
+__all__ = ["BundleCalibration", "BundleRisk", "FactorPrior", "Inspections", "LogSizingModel",
+           "LogisticPOD", "SizingModel", "Technique", "bundle_risk", "calibrate_bundle",
+           "inspection_sample", "longest_interval", "plugging_list", "read_field_inspections"]
