@@ -28,7 +28,6 @@ import re
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
@@ -47,7 +46,7 @@ from fretwear.keys import check_probabilities
 from fretwear.table.depth import DepthModel, models_from_table
 from fretwear.uncertainty.distributions import LogNormal
 
-__all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle"]
+__all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle", "support_type"]
 
 _PASS1 = 801
 _MAX_POINTS = 1601
@@ -553,23 +552,3 @@ def _with_depths(result: BundleCalibration) -> BundleCalibration:
             float(result.models[c].depth(t, factor=median[i], warn=False))
             for c, t, i in zip(obs["contact"], obs["elapsed_s"], obs["index"], strict=True)]
     return BundleCalibration(**{**result.__dict__, "observations": obs})
-
-
-def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:
-    """Bad news first: contacts and tubes whose median depth is past the limit or through the
-    wall, and the worst contact (the forecast's first row)."""
-    past = forecast["depth_q50"] >= forecast["limit"]
-    wall = forecast["wall_fraction_q50"] >= 1.0 if "wall_fraction_q50" in forecast \
-        else past & False
-    tube = None
-    if identity is not None and {"tube_row", "tube_column"} <= set(identity):
-        where = identity.set_index("contact")
-        tube = [f"R{int(where.loc[c, 'tube_row'])}C{int(where.loc[c, 'tube_column'])}"
-                if c in where.index else c for c in forecast["contact"]]
-    tubes = pd.Series(tube if tube is not None else forecast["contact"].tolist())
-    worst = forecast.iloc[0]
-    return {"contacts_past_limit": int(past.sum()), "tubes_past_limit": int(tubes[past].nunique()),
-            "contacts_through_wall": int(wall.sum()),
-            "tubes_through_wall": int(tubes[wall].nunique()),
-            "worst_contact": str(worst["contact"]), "worst_exceedance": float(worst["exceedance"]),
-            "worst_depth_q50": float(worst["depth_q50"])}

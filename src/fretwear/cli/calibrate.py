@@ -13,6 +13,7 @@ from rich.table import Table
 
 from fretwear._optional import require
 from fretwear.cli._units import parse_units, units_option, with_history_units
+from fretwear.cli.calibrate_field import calibrate_field, field_options
 from fretwear.io.atomic import atomic_write
 from fretwear.plotting import save_figure
 from fretwear.plotting.uncertainty import plot_calibration, plot_exceedance_map
@@ -70,10 +71,11 @@ Inspection columns:
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (PNG, SVG) into this directory.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of tables.")
+@field_options
 @units_option
 def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, prior_sigma_ln,
             measurement_sigma, method, forecast, limit_mm, output, plot_dir, as_json,
-            units) -> None:
+            units, **field) -> None:
     if (case_file is None) == (bundle_dir is None):
         raise click.UsageError("give exactly one of --case CASE.toml and --bundle RESULTS")
     if units and bundle_dir is not None:
@@ -89,6 +91,16 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
     identity = None
     if bundle_dir is not None:
         predictions, identity = bundle_predictions(bundle_dir)
+        frame = calibrate_field(predictions, identity, inspections, prior, measurement_sigma,
+                                forecast, limit_mm, **field)
+        if output is not None:
+            with atomic_write(output, encoding="utf-8", newline="") as handle:
+                frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
+        if plot_dir is not None and "exceedance" in frame and frame["tube_row"].notna().any():
+            save_figure(plot_exceedance_map(frame), plot_dir, "exceedance_map", close=True)
+        if as_json:
+            click.echo(frame.to_json(orient="records", indent=2))
+        return
     else:
         predictions = case_predictions(with_history_units(case_file, parse_units(units)))
     result = calibrate(predictions, inspections, prior=prior,
