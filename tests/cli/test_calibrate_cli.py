@@ -18,7 +18,7 @@ import pytest
 
 from fretwear.cli import main
 from fretwear.table import read_wear_table
-from fretwear.uncertainty import LogNormal, calibrate
+from fretwear.uncertainty import LogNormal
 from fretwear.workflows.case_files import load_case, run_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
