@@ -185,3 +185,21 @@ def test_ndd_needs_a_pod_and_unknown_contacts_are_named():
     with pytest.raises(InputError, match="unknown contact 'Z'"):
         calibrate_bundle(models, ndd.assign(contact="Z"),
                          techniques=Technique(SizingModel(), LogisticPOD(0.0, 1.0)))
+
+
+def test_bad_news_counts_leave_plugged_tubes_out():
+    """summary_counts: contacts in service at or past the limit (median depth), the worst in
+    service named, the plugged tubes counted apart; each contact its own tube here."""
+    from fretwear.assessment.summary import summary_counts, tube_summary
+
+    models = {c: _model(p, c) for c, p in POWERS.items()}
+    campaign = _sized_campaign().assign(plugged=["", "", "", "yes"])
+    cal = calibrate_bundle(models, campaign, techniques=Technique(LogSizingModel(0.1)))
+    fc = cal.forecast(40.0, limit=4e-4)
+    assert fc["contact"].iloc[0] == "D" and fc["plugged"].iloc[0]
+    counts = summary_counts(fc)
+    past = fc[~fc["plugged"] & (fc["depth_q50"] >= 4e-4)]
+    assert counts["contacts_past_limit"] == len(past) > 0
+    assert counts["tubes_plugged"] == 1
+    assert counts["worst_contact"] == fc[~fc["plugged"]]["contact"].iloc[0]
+    assert tube_summary(fc).set_index("tube").loc["D", "plugged"]

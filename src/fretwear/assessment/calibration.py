@@ -109,6 +109,8 @@ class BundleCalibration:
         prior's and the contact posterior's median factor.
     inspected : numpy.ndarray
         Whether each contact has a sized or NDD result (bool).
+    plugged : numpy.ndarray
+        Whether each contact's tube is plugged (an inspection row says so) (bool).
     """
 
     contacts: list
@@ -120,6 +122,7 @@ class BundleCalibration:
     prior: FactorPrior
     observations: pd.DataFrame
     inspected: np.ndarray
+    plugged: np.ndarray
 
     # ------------------------------------------------------------------ the factor
     def factor_summary(self) -> pd.DataFrame:
@@ -216,11 +219,11 @@ class BundleCalibration:
         Returns
         -------
         DataFrame
-            ``contact``, ``group``, ``inspected``, ``instant``, ``depth_q..`` [m] (posterior
-            quantiles), ``limit`` [m], ``wall_fraction_q50`` [-], ``exceedance`` [-] and
-            ``exceedance_prior`` [-] (the same contact under the prior), ``factor_median``,
-            ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then ``depth_q50``, the worst
-            first.
+            ``contact``, ``group``, ``inspected``, ``plugged``, ``instant``, ``depth_q..``
+            [m] (posterior quantiles), ``limit`` [m], ``wall_fraction_q50`` [-],
+            ``exceedance`` [-] and ``exceedance_prior`` [-] (the same contact under the
+            prior), ``factor_median``, ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then
+            ``depth_q50``, the worst first.
         """
         q = check_probabilities(q, closed=False)
         g = self.levels
@@ -239,7 +242,8 @@ class BundleCalibration:
         mean, sd = moments_rows(g.grid, g.contacts)
         out = pd.DataFrame({"contact": self.contacts,
                             "group": [self.groups[k] for k in self.group_of],
-                            "inspected": self.inspected, "instant": float(instant)})
+                            "inspected": self.inspected, "plugged": self.plugged,
+                            "instant": float(instant)})
         for j, level in enumerate(q):
             out[f"depth_q{100 * level:g}"] = depths[:, j]
         out["limit"] = limits
@@ -497,6 +501,11 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     elif techniques is not None:
         inspections = Inspections(inspections.table, dict(techniques) if isinstance(
             techniques, Mapping) else {techniques.name: techniques}, inspections.source)
+    sectors = inspections.table["sector"].notna()
+    if sectors.any():
+        raise InputError(f"inspections line {inspections.table.loc[sectors, 'line'].iloc[0]}: "
+                         "a sector depth; calibrate_bundle takes global depths (sector depths: "
+                         "fretwear.uncertainty.calibrate)")
     obs = _resolve(inspections.table, contacts, identity)
     used = set(obs.loc[obs["status"] != "not inspected", "technique"])
     missing = sorted(t for t in used if t not in inspections.techniques)
@@ -523,9 +532,11 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
                     scatter, mu0, tau0, tau_g)
     inspected = np.zeros(len(contacts), bool)
     inspected[obs.loc[obs["status"] != "not inspected", "index"].to_numpy(int)] = True
+    plugged = np.zeros(len(contacts), bool)
+    plugged[obs.loc[obs["plugged"].astype(bool), "index"].to_numpy(int)] = True
     result = BundleCalibration(contacts=contacts, models=models, groups=names,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
-                               observations=obs, inspected=inspected)
+                               observations=obs, inspected=inspected, plugged=plugged)
     return _with_depths(result)
 
 

@@ -98,12 +98,15 @@ def _say(console: Console, text: str, style: str | None = None) -> None:
 
 
 def _bad_news(c: dict, frame, instant, console: Console) -> None:
-    worst = frame.iloc[0]
     bad = c["contacts_past_limit"] or c["contacts_through_wall"]
+    plugged = f"; {c['tubes_plugged']} plugged tubes left out" if c["tubes_plugged"] else ""
     _say(console, f"at instant {instant:g}: {c['contacts_past_limit']} contacts "
                   f"({c['tubes_past_limit']} tubes) at or past the limit, "
                   f"{c['contacts_through_wall']} contacts ({c['tubes_through_wall']} tubes) "
-                  f"through the wall (median depth)", "bold red" if bad else None)
+                  f"through the wall (median depth){plugged}", "bold red" if bad else None)
+    if "worst_contact" not in c:
+        return
+    worst = frame[frame["contact"] == c["worst_contact"]].iloc[0]
     _say(console, f"worst: {c['worst_contact']} (tube {c['worst_tube']}), P(depth > limit) "
                   f"{c['worst_exceedance']:.3g}, median depth "
                   f"{c['worst_depth_q50'] * 1e3:.4g} mm "
