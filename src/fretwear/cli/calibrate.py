@@ -12,6 +12,7 @@ from rich.console import Console
 from rich.table import Table
 
 from fretwear._optional import require
+from fretwear.assessment.inspections import INPUT_COLUMNS
 from fretwear.cli._units import parse_units, units_option, with_history_units
 from fretwear.cli.calibrate_field import calibrate_field, field_options
 from fretwear.io.atomic import atomic_write
@@ -23,9 +24,8 @@ from fretwear.uncertainty import LogNormal, calibrate
 from fretwear.uncertainty.calibration import CALIBRATION_METHODS, INSPECTION_COLUMNS
 
 
-def _columns_help() -> str:
-    return "\n".join(f"  {name} [{unit}]: {meaning}"
-                     for name, (unit, meaning) in INSPECTION_COLUMNS.items())
+def _columns_help(columns=INSPECTION_COLUMNS) -> str:
+    return "\n".join(f"  {name} [{unit}]: {meaning}" for name, (unit, meaning) in columns.items())
 
 
 _HELP = f"""Calibrate the wear coefficients on inspections and forecast every contact.
@@ -37,9 +37,18 @@ updated by the depths (lognormal measurement error --measurement-sigma); prints 
 each inspection against its prediction, and with --forecast the posterior predictive depth and
 probability of exceeding the limit (depth_limit × wall thickness) of every contact.
 
+With --bundle, the field campaign's hierarchical calibration (docs/assessment.md): sized
+results through the sizing model, NDD (no detectable degradation) through 1 - POD, tubes not
+inspected give nothing; a bundle factor, a contact scatter (--contact-sigma-ln) and optionally
+a support-type level; bad news first, the --top worst tubes, every contact to -o.
+
 \b
-Inspection columns:
+Inspection columns (--case):
 {_columns_help()}
+
+\b
+Inspection columns (--bundle):
+{_columns_help(INPUT_COLUMNS)}
 """
 
 
