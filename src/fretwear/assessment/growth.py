@@ -1,0 +1,272 @@
+"""Each contact's depth at the end of an operating interval, as a probability: from its
+as-found state at the outage, plus the growth of the calibrated model.
+
+Notation (per contact; times in the bundle's time unit, counted from the contact's origin):
+
+* g = f·π, the contact's growth factor: f its wear factor (the bundle's posterior, a node
+  λ_k of weight w_k, times the contact's own scatter, σ_c in ln) and π the factor on its wear
+  power (its interval, σ_P in ln). Given the node, ln g ~ N(λ_k, s²), s² = σ_c² + σ_P².
+* The law is linear in time (Archard, KWU-EPRI): the worn volume is V₀ + g·r·t, so the
+  state reached at the factor g after t is the nominal model's state after g·t (the
+  nominal-time equivalent, τ). τ(d), the nominal time to the depth d, is
+  :meth:`fretwear.table.depth.DepthModel.time_to` (one root per contact, no new inversion)
+  and τ_L = τ(L) that of the plugging limit L.
+
+The contact exceeds L by the end of the interval (as found at a, interval T):
+
+* not inspected: g·(a + T) > τ_L, P = Φ̄((ln(τ_L/(a + T)) − λ_k)/s);
+* sized (measured m; true depth d₀ ~ N((m − a_s)/b, (σ/b)²) by the sizing model, independent
+  of the growth): τ(d₀) + g·T > τ_L, P = E_d₀[Φ̄((ln((τ_L − τ(d₀))/T) − λ_k)/s)] by
+  Gauss-Hermite in d₀ (1 where d₀ ≥ L);
+* inspected and nothing detected (NDD): the prediction's posterior given the miss, the
+  density of u = ln g ∝ φ((u − λ_k)/s)·(1 − POD(d(e^u, a))), and g·(a + T) > τ_L.
+
+Every case is monotone in g, so the probability is one threshold per contact and node: no
+sampling. With s = 0 (no contact scatter, no power interval), Φ̄ is the step 1[λ_k > ·].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import special
+
+from fretwear.errors import InputError
+
+__all__ = ["FactorNodes", "GrowthModel"]
+
+_U_HALF = 8.0     # the NDD grid of u = ln g spans λ ± 8 s around the nodes
+_U_POINTS = 97
+_D0_NODES = 24    # Gauss-Hermite nodes of the sized depth
+
+
+def _sf(x) -> np.ndarray:
+    """Φ̄(x), the standard normal tail."""
+    return 0.5 * special.erfc(np.asarray(x, float) / math.sqrt(2.0))
+
+
+@dataclass(frozen=True)
+class FactorNodes:
+    """The calibrated factor: the bundle's shared log-factor at quadrature nodes, and the
+    spread each contact keeps of its own.
+
+    Attributes
+    ----------
+    log_factor : numpy.ndarray
+        λ_k = ln f at the nodes [-].
+    weights : numpy.ndarray
+        w_k [-], summing to 1.
+    contact_sigma : float
+        σ_c, the standard deviation of ln f of one contact about the bundle's [-].
+    power_sigma : float
+        σ_P, the standard deviation of ln of the factor on each contact's power [-].
+    """
+
+    log_factor: np.ndarray
+    weights: np.ndarray
+    contact_sigma: float = 0.0
+    power_sigma: float = 0.0
+
+    def __post_init__(self) -> None:
+        lam = np.atleast_1d(np.asarray(self.log_factor, float))
+        w = np.atleast_1d(np.asarray(self.weights, float))
+        if lam.shape != w.shape or not np.isfinite(lam).all() or (w < 0).any() or w.sum() <= 0:
+            raise InputError("FactorNodes: one finite log-factor and one weight >= 0 per node")
+        for name in ("contact_sigma", "power_sigma"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and v >= 0):
+                raise InputError(f"{name} must be a standard deviation of ln >= 0, got {v!r}")
+        object.__setattr__(self, "log_factor", lam)
+        object.__setattr__(self, "weights", w / w.sum())
+
+    @property
+    def sigma(self) -> float:
+        """s = √(σ_c² + σ_P²) [-]."""
+        return math.hypot(self.contact_sigma, self.power_sigma)
+
+    @classmethod
+    def from_posterior(cls, posterior, *, count: int = 16, contact_sigma: float = 0.0,
+                       power_sigma: float = 0.0) -> FactorNodes:
+        """Nodes of a factor's distribution (anything with ``ppf``: a LogNormal, a calibration's
+        GridPosterior): λ_k = ln F⁻¹(Φ(x_k)) at the probabilists' Gauss-Hermite nodes x_k
+        (exact for a lognormal).
+
+        Examples
+        --------
+        >>> from fretwear.uncertainty.distributions import LogNormal
+        >>> n = FactorNodes.from_posterior(LogNormal(2.0, sigma_ln=0.3), count=8)
+        >>> round(float(np.dot(n.weights, n.log_factor)), 12) == round(math.log(2.0), 12)
+        True
+        """
+        x, w = np.polynomial.hermite_e.hermegauss(int(count))
+        u = np.clip(0.5 * special.erfc(-x / math.sqrt(2.0)), 1e-300, 1 - 1e-16)
+        lam = np.log(np.asarray(posterior.ppf(u), float))
+        return cls(lam, w, contact_sigma=float(contact_sigma), power_sigma=float(power_sigma))
+
+    def quantiles(self, q) -> np.ndarray:
+        """Quantiles of ln g, the mixture Σ w_k N(λ_k, s²) [-]."""
+        from scipy.optimize import brentq
+
+        s, lam, w = self.sigma, self.log_factor, self.weights
+        out = []
+        for level in np.atleast_1d(q):
+            if s == 0:
+                order = np.argsort(lam)
+                cum = np.cumsum(w[order])
+                out.append(lam[order][min(int(np.searchsorted(cum, level)), lam.size - 1)])
+                continue
+            cdf = lambda x: float(np.dot(w, 1 - _sf((x - lam) / s))) - level  # noqa: E731,B023
+            out.append(brentq(cdf, lam.min() - 12 * s, lam.max() + 12 * s, xtol=1e-12))
+        return np.asarray(out)
+
+
+@dataclass
+class GrowthModel:
+    """Each contact's probability of exceeding its limit by the end of an interval
+    (module notes), precomputed once and evaluated at any interval T.
+
+    Built by :meth:`build`; :meth:`probabilities` gives p_ik(T), shape (contacts, nodes).
+    """
+
+    nodes: FactorNodes
+    found: np.ndarray       # a, the as-found instant after the origin [time unit]
+    tau_limit: np.ndarray   # τ_L [time unit]
+    kind: np.ndarray        # 0 not inspected, 1 sized, 2 NDD
+    tau_d0: np.ndarray      # (sized, J) τ(d₀_j) [time unit]
+    h_d0: np.ndarray        # (J,) Gauss-Hermite weights of d₀
+    d0_nodes: np.ndarray    # (sized, J) d₀_j [m]
+    ndd_tail: np.ndarray    # (ndd, nodes, U) normalised tail of u = ln g
+    u_grid: np.ndarray      # (ndd, U)
+
+    @classmethod
+    def build(cls, models, found, kind, measured, nodes: FactorNodes, *, sizing, pod
+              ) -> GrowthModel:
+        """Precompute τ_L, τ(d₀) and the NDD posteriors.
+
+        Parameters
+        ----------
+        models : sequence of DepthModel
+            Each contact's global depth (its ``limit_depth`` the plugging limit [m]).
+        found : array_like
+            As-found instant of each contact [time unit, absolute].
+        kind : array_like of int
+            0 not inspected, 1 sized, 2 NDD.
+        measured : array_like
+            The sized depth [m] (NaN elsewhere).
+        nodes : FactorNodes
+        sizing : SizingModel
+        pod : LogisticPOD
+        """
+        kind = np.asarray(kind, int)
+        origin = np.array([m.origin for m in models])
+        a = np.asarray(found, float) - origin
+        if (a < 0).any():
+            bad = int(np.flatnonzero(a < 0)[0])
+            raise InputError(f"contact {models[bad].name!r}: inspected before its origin")
+        tau_l = np.array([float(m.time_to(m.limit_depth)) for m in models]) - origin
+        x, h = np.polynomial.hermite_e.hermegauss(_D0_NODES)
+        h = h / h.sum()
+        sized = np.flatnonzero(kind == 1)
+        d0 = (np.asarray(sizing.true_depth(np.asarray(measured, float)[sized]))[:, None]
+              + sizing.true_depth_sigma() * x[None, :]) if sized.size else np.zeros((0, x.size))
+        tau_d0 = np.zeros(d0.shape)  # τ(d₀) = 0 for d₀ <= 0 (unworn)
+        for row, i in enumerate(sized):
+            m = models[i]
+            worn = d0[row] > 0
+            if worn.any():
+                tau_d0[row, worn] = np.asarray(m.time_to(d0[row, worn])) - m.origin
+        ndd = np.flatnonzero(kind == 2)
+        s, lam = nodes.sigma, nodes.log_factor
+        tails = np.zeros((ndd.size, lam.size, _U_POINTS))
+        grids = np.zeros((ndd.size, _U_POINTS))
+        if s > 0:
+            for row, i in enumerate(ndd):
+                m = models[i]
+                u = np.linspace(lam.min() - _U_HALF * s, lam.max() + _U_HALF * s, _U_POINTS)
+                depth = m.depth(a[i] * m.time_scale, factor=np.exp(u), warn=False)
+                miss = pod.miss(np.where(np.isnan(depth), np.inf, depth))
+                dens = np.exp(-0.5 * ((u[None, :] - lam[:, None]) / s) ** 2) * miss[None, :]
+                seg = 0.5 * (dens[:, 1:] + dens[:, :-1])
+                tail = np.concatenate([np.cumsum(seg[:, ::-1], axis=1)[:, ::-1],
+                                       np.zeros((lam.size, 1))], axis=1)
+                total = tail[:, :1]
+                tails[row] = np.where(total > 0, tail / np.where(total > 0, total, 1), 0.0)
+                grids[row] = u
+        return cls(nodes=nodes, found=a, tau_limit=tau_l, kind=kind, tau_d0=tau_d0,
+                   h_d0=h, d0_nodes=d0, ndd_tail=tails, u_grid=grids)
+
+    def probabilities(self, interval: float) -> np.ndarray:
+        """p_ik, the probability that contact i exceeds its limit by the end of ``interval``
+        [time unit] after its inspection, given the factor's node k; shape (contacts, nodes)."""
+        T = float(interval)
+        if not (math.isfinite(T) and T >= 0):
+            raise InputError(f"the interval must be a time >= 0, got {interval!r}")
+        lam, s = self.nodes.log_factor, self.nodes.sigma
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = np.log(self.tau_limit / (self.found + T))  # ln of the g that reaches L
+        p = _step_or_sf(c[:, None], lam[None, :], s)
+        sized = np.flatnonzero(self.kind == 1)
+        if sized.size:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                gap = (self.tau_limit[sized, None] - self.tau_d0) / T if T > 0 else \
+                    np.where(self.tau_limit[sized, None] > self.tau_d0, np.inf, -np.inf)
+                cj = np.where(gap > 0, np.log(gap), -np.inf)
+            pj = _step_or_sf(cj[:, :, None], lam[None, None, :], s)
+            p[sized] = np.einsum("j,ijk->ik", self.h_d0, pj)
+        ndd = np.flatnonzero(self.kind == 2)
+        if ndd.size and s > 0:
+            u = self.u_grid
+            step = u[:, 1] - u[:, 0]
+            pos = np.clip((c[ndd] - u[:, 0]) / step, 0, u.shape[1] - 1)
+            lo = np.floor(pos).astype(int)
+            hi = np.minimum(lo + 1, u.shape[1] - 1)
+            frac = (pos - lo)[:, None]
+            rows = np.arange(ndd.size)
+            t_lo = self.ndd_tail[rows, :, lo]
+            t_hi = self.ndd_tail[rows, :, hi]
+            p[ndd] = (1 - frac) * t_lo + frac * t_hi
+            below = c[ndd] < u[:, 0]
+            p[ndd[below]] = self.ndd_tail[rows[below], :, 0]
+        return np.clip(p, 0.0, 1.0)
+
+    def end_nominal_times(self, interval: float, q) -> np.ndarray:
+        """Quantiles ``q`` of each contact's nominal-time equivalent at the end of the
+        interval [time unit] (the depth's quantiles through the nominal model: depth grows
+        with it), shape (contacts, len(q))."""
+        q = np.atleast_1d(np.asarray(q, float))
+        lam, s, w = self.nodes.log_factor, self.nodes.sigma, self.nodes.weights
+        g = np.exp(self.nodes.quantiles(q))
+        out = (self.found + interval)[:, None] * g[None, :]
+        z, hz = np.polynomial.hermite_e.hermegauss(16)
+        hz = hz / hz.sum()
+        growth = np.exp(lam[:, None] + s * z[None, :]).ravel()       # (K·Z,)
+        wg = (w[:, None] * hz[None, :]).ravel()
+        for row, i in enumerate(np.flatnonzero(self.kind == 1)):
+            tau = self.tau_d0[row][:, None] + interval * growth[None, :]
+            out[i] = _weighted_quantiles(tau.ravel(), np.outer(self.h_d0, wg).ravel(), q)
+        for row, i in enumerate(np.flatnonzero(self.kind == 2)):
+            if s == 0:
+                continue
+            u = self.u_grid[row]
+            mass = -np.diff(self.ndd_tail[row], axis=1)                # (K, U-1)
+            pts = 0.5 * (u[1:] + u[:-1])
+            weight = (w[:, None] * mass).sum(axis=0)
+            out[i] = (self.found[i] + interval) * np.exp(
+                _weighted_quantiles(pts, weight, q))
+        return out
+
+
+def _step_or_sf(c, lam, s):
+    if s > 0:
+        return _sf((c - lam) / s)
+    return (lam > c).astype(float)
+
+
+def _weighted_quantiles(values, weights, q) -> np.ndarray:
+    order = np.argsort(values)
+    v, w = values[order], weights[order]
+    cum = np.cumsum(w)
+    cum = cum / cum[-1]
+    return np.interp(q, cum, v)
