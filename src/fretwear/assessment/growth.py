@@ -38,8 +38,8 @@ from fretwear.errors import InputError
 __all__ = ["FactorNodes", "GrowthModel"]
 
 _U_HALF = 8.0     # the NDD grid of u = ln g spans λ ± 8 s around the nodes
-_U_POINTS = 97
-_D0_NODES = 24    # Gauss-Hermite nodes of the sized depth
+_U_POINTS = 129
+_D0_NODES = 48
 
 
 def _sf(x) -> np.ndarray:
@@ -135,10 +135,11 @@ class GrowthModel:
     tau_limit: np.ndarray   # τ_L [time unit]
     kind: np.ndarray        # 0 not inspected, 1 sized, 2 NDD
     tau_d0: np.ndarray      # (sized, J) τ(d₀_j) [time unit]
-    h_d0: np.ndarray        # (J,) Gauss-Hermite weights of d₀
+    h_d0: np.ndarray        # (sized, J) weights of d₀ (sum 1 per contact)
     d0_nodes: np.ndarray    # (sized, J) d₀_j [m]
     ndd_tail: np.ndarray    # (ndd, nodes, U) normalised tail of u = ln g
     u_grid: np.ndarray      # (ndd, U)
+    ndd_miss: np.ndarray    # (ndd, U) 1 − POD of the depth at the inspection, on the grid
 
     @classmethod
     def build(cls, models, found, kind, measured, nodes: FactorNodes, *, sizing, pod
@@ -166,11 +167,10 @@ class GrowthModel:
             bad = int(np.flatnonzero(a < 0)[0])
             raise InputError(f"contact {models[bad].name!r}: inspected before its origin")
         tau_l = np.array([float(m.time_to(m.limit_depth)) for m in models]) - origin
-        x, h = np.polynomial.hermite_e.hermegauss(_D0_NODES)
-        h = h / h.sum()
         sized = np.flatnonzero(kind == 1)
-        d0 = (np.asarray(sizing.true_depth(np.asarray(measured, float)[sized]))[:, None]
-              + sizing.true_depth_sigma() * x[None, :]) if sized.size else np.zeros((0, x.size))
+        limits = np.array([models[i].limit_depth for i in sized])
+        d0, h = _depth_nodes(np.asarray(sizing.true_depth(np.asarray(measured, float)[sized])),
+                             sizing.true_depth_sigma(), limits)
         tau_d0 = np.zeros(d0.shape)  # τ(d₀) = 0 for d₀ <= 0 (unworn)
         for row, i in enumerate(sized):
             m = models[i]
@@ -181,21 +181,19 @@ class GrowthModel:
         s, lam = nodes.sigma, nodes.log_factor
         tails = np.zeros((ndd.size, lam.size, _U_POINTS))
         grids = np.zeros((ndd.size, _U_POINTS))
+        misses = np.zeros((ndd.size, _U_POINTS))
         if s > 0:
+            u = np.linspace(lam.min() - _U_HALF * s, lam.max() + _U_HALF * s, _U_POINTS)
             for row, i in enumerate(ndd):
                 m = models[i]
-                u = np.linspace(lam.min() - _U_HALF * s, lam.max() + _U_HALF * s, _U_POINTS)
                 depth = m.depth(a[i] * m.time_scale, factor=np.exp(u), warn=False)
-                miss = pod.miss(np.where(np.isnan(depth), np.inf, depth))
-                dens = np.exp(-0.5 * ((u[None, :] - lam[:, None]) / s) ** 2) * miss[None, :]
-                seg = 0.5 * (dens[:, 1:] + dens[:, :-1])
-                tail = np.concatenate([np.cumsum(seg[:, ::-1], axis=1)[:, ::-1],
-                                       np.zeros((lam.size, 1))], axis=1)
-                total = tail[:, :1]
-                tails[row] = np.where(total > 0, tail / np.where(total > 0, total, 1), 0.0)
+                misses[row] = pod.miss(np.where(np.isnan(depth), np.inf, depth))
                 grids[row] = u
+            seg = _segments(grids[:, None, :-1], grids[:, None, 1:], misses[:, None, :-1],
+                            misses[:, None, 1:], lam[None, :, None], s)
+            tails[:, :, :-1] = np.cumsum(seg[:, :, ::-1], axis=2)[:, :, ::-1]
         return cls(nodes=nodes, found=a, tau_limit=tau_l, kind=kind, tau_d0=tau_d0,
-                   h_d0=h, d0_nodes=d0, ndd_tail=tails, u_grid=grids)
+                   h_d0=h, d0_nodes=d0, ndd_tail=tails, u_grid=grids, ndd_miss=misses)
 
     def probabilities(self, interval: float) -> np.ndarray:
         """p_ik, the probability that contact i exceeds its limit by the end of ``interval``
@@ -214,21 +212,24 @@ class GrowthModel:
                     np.where(self.tau_limit[sized, None] > self.tau_d0, np.inf, -np.inf)
                 cj = np.where(gap > 0, np.log(gap), -np.inf)
             pj = _step_or_sf(cj[:, :, None], lam[None, None, :], s)
-            p[sized] = np.einsum("j,ijk->ik", self.h_d0, pj)
+            p[sized] = np.einsum("ij,ijk->ik", self.h_d0, pj)
         ndd = np.flatnonzero(self.kind == 2)
-        if ndd.size and s > 0:
-            u = self.u_grid
+        if ndd.size and s > 0:  # the tail from the cut: its partial segment, then whole ones
+            u, miss = self.u_grid, self.ndd_miss
             step = u[:, 1] - u[:, 0]
-            pos = np.clip((c[ndd] - u[:, 0]) / step, 0, u.shape[1] - 1)
-            lo = np.floor(pos).astype(int)
-            hi = np.minimum(lo + 1, u.shape[1] - 1)
-            frac = (pos - lo)[:, None]
+            cut = np.clip(c[ndd], u[:, 0], u[:, -1])
+            j = np.clip(((cut - u[:, 0]) // step).astype(int), 0, u.shape[1] - 2)
             rows = np.arange(ndd.size)
-            t_lo = self.ndd_tail[rows, :, lo]
-            t_hi = self.ndd_tail[rows, :, hi]
-            p[ndd] = (1 - frac) * t_lo + frac * t_hi
-            below = c[ndd] < u[:, 0]
-            p[ndd[below]] = self.ndd_tail[rows[below], :, 0]
+            u0, u1 = u[rows, j], u[rows, j + 1]
+            m0, m1 = miss[rows, j], miss[rows, j + 1]
+            with np.errstate(divide="ignore"):
+                m_cut = np.exp(np.log(np.maximum(m0, 1e-300)) + (cut - u0) / step
+                               * (np.log(np.maximum(m1, 1e-300)) - np.log(np.maximum(m0, 1e-300))))
+            part = _segments(cut[:, None], u1[:, None], m_cut[:, None], m1[:, None],
+                             lam[None, :], s)
+            total = self.ndd_tail[:, :, 0]
+            tail = part + self.ndd_tail[rows, :, j + 1]
+            p[ndd] = np.where(total > 0, tail / np.where(total > 0, total, 1.0), 0.0)
         return np.clip(p, 0.0, 1.0)
 
     def end_nominal_times(self, interval: float, q) -> np.ndarray:
@@ -245,17 +246,55 @@ class GrowthModel:
         wg = (w[:, None] * hz[None, :]).ravel()
         for row, i in enumerate(np.flatnonzero(self.kind == 1)):
             tau = self.tau_d0[row][:, None] + interval * growth[None, :]
-            out[i] = _weighted_quantiles(tau.ravel(), np.outer(self.h_d0, wg).ravel(), q)
+            out[i] = _weighted_quantiles(tau.ravel(), np.outer(self.h_d0[row], wg).ravel(), q)
         for row, i in enumerate(np.flatnonzero(self.kind == 2)):
             if s == 0:
                 continue
             u = self.u_grid[row]
             mass = -np.diff(self.ndd_tail[row], axis=1)                # (K, U-1)
+            mass = mass / self.ndd_tail[row][:, :1]
             pts = 0.5 * (u[1:] + u[:-1])
             weight = (w[:, None] * mass).sum(axis=0)
             out[i] = (self.found[i] + interval) * np.exp(
                 _weighted_quantiles(pts, weight, q))
         return out
+
+
+def _depth_nodes(mean, sigma, limit):
+    """Nodes and weights of the true depth d₀ ~ N(mean, σ²) of each sized contact [m]:
+    Gauss-Legendre on [mean − 8σ, min(L, mean + 8σ)] weighted by the normal density, and one
+    node at E[d₀ | d₀ ≥ L] carrying P(d₀ ≥ L) (the step at the limit kept out of the
+    quadrature). Shapes (contacts, J + 1)."""
+    x, h = np.polynomial.legendre.leggauss(_D0_NODES)
+    lo = mean - 8 * sigma
+    hi = np.maximum(np.minimum(limit, mean + 8 * sigma), lo)
+    half = 0.5 * (hi - lo)
+    nodes = (0.5 * (hi + lo))[:, None] + half[:, None] * x[None, :]
+    w = h[None, :] * half[:, None] * np.exp(-0.5 * ((nodes - mean[:, None]) / sigma) ** 2) \
+        / (sigma * math.sqrt(2 * math.pi))
+    alpha = (limit - mean) / sigma
+    past = _sf(alpha)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tail_mean = np.where(past > 0, mean + sigma * np.exp(-0.5 * alpha ** 2)
+                             / math.sqrt(2 * math.pi) / past, limit)
+    nodes = np.concatenate([nodes, np.maximum(tail_mean, limit)[:, None]], axis=1)
+    w = np.concatenate([w, past[:, None]], axis=1)
+    w = w / np.where(w.sum(axis=1, keepdims=True) > 0, w.sum(axis=1, keepdims=True), 1.0)
+    return nodes, w
+
+
+def _segments(a, b, m_a, m_b, lam, s):
+    """∫_a^b φ((u − λ)/s)/s · m(u) du with ln m linear from ln m_a to ln m_b (the miss of a
+    logistic POD is nearly exponential piecewise): in closed form, completing the square,
+    exp(ln m_a + c(λ − a) + c²s²/2)·[Φ((b − λ')/s) − Φ((a − λ')/s)], λ' = λ + c·s²."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        la, lb = np.log(np.maximum(m_a, 1e-300)), np.log(np.maximum(m_b, 1e-300))
+        width = np.where(b > a, b - a, 1.0)
+        c = (lb - la) / width
+        shifted = lam + c * s * s
+        mass = _sf((a - shifted) / s) - _sf((b - shifted) / s)
+        scale = np.exp(np.minimum(la + c * (lam - a) + 0.5 * (c * s) ** 2, 700.0))
+        return np.where(b > a, scale * np.maximum(mass, 0.0), 0.0)
 
 
 def _step_or_sf(c, lam, s):

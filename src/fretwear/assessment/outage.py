@@ -177,11 +177,11 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
                          "(names as in the manifest's contact column)")
     outage = float(insp["instant"].max()) if len(insp) else float(table["last_instant"].max())
     table = table.merge(insp, on="contact", how="left")
-    plugged_tubes = set(table.loc[table["plugged"].fillna(False).astype(bool), "tube"])
+    flag = lambda name: table[name].astype("boolean").fillna(False).to_numpy(bool)  # noqa: E731
+    plugged_tubes = set(table.loc[flag("plugged"), "tube"])
     table["state"] = np.where(table["tube"].isin(plugged_tubes), "plugged",
                               np.where(table["instant"].isna(), "not inspected",
-                                       np.where(table["ndd"].fillna(False).astype(bool), "NDD",
-                                                "sized")))
+                                       np.where(flag("ndd"), "NDD", "sized")))
     table["found_at"] = table["instant"].fillna(outage)
     sized = table[table["state"] == "sized"]
     nodes_, fit = _posterior_nodes(posterior, models, sized, sizing, nodes, contact_sigma,
