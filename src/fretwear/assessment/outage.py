@@ -80,6 +80,36 @@ class Assessment:
     risk: BundleRisk | None = None
     models: dict = field(default_factory=dict, repr=False)
 
+    def write(self, directory) -> list:
+        """Write ``contacts.csv``, ``tubes.csv``, ``condition.csv``, ``predictions.csv``,
+        ``curve.csv`` and ``assessment.json`` (the bundle's numbers and the inputs) into
+        ``directory`` (created), each atomically; returns the paths."""
+        import json
+        from pathlib import Path
+
+        from fretwear.io.atomic import atomic_write
+        from fretwear.table.schema import FLOAT_FORMAT
+
+        root = Path(directory)
+        root.mkdir(parents=True, exist_ok=True)
+        written = []
+        for name, frame in (("contacts", self.contacts), ("tubes", self.tubes),
+                            ("condition", self.condition), ("predictions", self.predictions),
+                            ("curve", self.curve)):
+            with atomic_write(root / f"{name}.csv", encoding="utf-8", newline="") as handle:
+                frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
+            written.append(root / f"{name}.csv")
+        payload = {"bundle": self.bundle, "inputs": {k: repr(v) if k in ("sizing", "pod")
+                                                     else v for k, v in self.inputs.items()},
+                   "factor_nodes": {"log_factor": self.nodes.log_factor.tolist(),
+                                    "weights": self.nodes.weights.tolist(),
+                                    "contact_sigma": self.nodes.contact_sigma,
+                                    "power_sigma": self.nodes.power_sigma}}
+        with atomic_write(root / "assessment.json", encoding="utf-8") as handle:
+            json.dump(payload, handle, indent=1, default=str)
+        written.append(root / "assessment.json")
+        return written
+
     def bad_news(self) -> list[str]:
         """The lines said first: contacts and tubes past the limit and through the wall."""
         b = self.bundle
@@ -279,8 +309,7 @@ def _tube_rows(contacts, risk, plugs, must, sample, plugged_tubes) -> pd.DataFra
     agg["inspect"] = agg.index.isin(sample)
     reasons = {t: "at or past the plugging limit as measured" for t in must}
     for t in plugs:
-        reasons.setdefault(t, "preventive: its probability of exceeding the limit keeps the "
-                              "bundle over the target")
+        reasons.setdefault(t, "preventive: P(any) over the target without it")
     for t in plugged_tubes:
         reasons[t] = "plugged already"
     agg["reason"] = [reasons.get(t, "") for t in agg.index]
