@@ -117,3 +117,27 @@ def test_a_mutated_inspection_file_reads_or_says_why(data):
         assert np.isfinite(table["instant"].to_numpy(dtype=float)).all()
         depth = table["depth"].to_numpy(dtype=float)
         assert (np.isfinite(depth) & (depth > 0)).all()
+
+
+FIELD_INSPECTIONS = (b"# outage 2024\ntube_row,tube_column,support,date,technique,depth_pct,"
+                     b"inspected,plugged,wall_thickness\n"
+                     b"1,1,AVB1,2022-05-01,bobbin,32,yes,no,0.00109\n"
+                     b"1,2,AVB1,2022-05-01,bobbin,NDD,yes,no,0.00109\n"
+                     b"1,3,,2022-05-01,bobbin,,no,yes,0.00109\n")
+
+
+@deterministic(80)
+@given(data=mutated(FIELD_INSPECTIONS))
+def test_a_mutated_field_inspection_file_reads_or_says_why(data):
+    """The field reader (issue 26): a result or a fretwear error, never another exception."""
+    from fretwear.assessment import read_field_inspections
+
+    ins, _ = only_fretwear(read_field_inspections, _file(data, ".csv"),
+                           origin_date="2012-01-01")
+    if ins is not None:
+        table = ins.table
+        assert np.isfinite(table["instant"].to_numpy(dtype=float)).all()
+        sized = table["status"] == "sized"
+        depth = table.loc[sized, "depth"].to_numpy(dtype=float)
+        assert (np.isfinite(depth) & (depth > 0)).all()
+        assert table.loc[~sized, "depth"].isna().all()

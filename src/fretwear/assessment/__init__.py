@@ -2,6 +2,8 @@
 
 - :mod:`fretwear.assessment.technique`: an inspection technique's sizing error and its
   probability of detection;
+- :mod:`fretwear.assessment.inspections`: the field's inspection file (sized, NDD, not
+  inspected, plugged; per contact or tube location) with its technique models;
 - :mod:`fretwear.assessment.operational`: the probability that any tube of a bundle exceeds its
   limit over an interval, the longest interval under a target, the preventive-plugging list and
   the inspection sample, from the contacts' probabilities of exceeding the limit.
@@ -10,6 +12,11 @@ The contacts' probabilities come from the depth model of each contact and the ca
 the ``fretwear assess`` command that ties them to a bundle's results is not built yet.
 """
 
+from fretwear.assessment.inspections import (
+    Inspections,
+    Technique,
+    read_field_inspections,
+)
 from fretwear.assessment.operational import (
     BundleRisk,
     bundle_risk,
@@ -17,7 +24,8 @@ from fretwear.assessment.operational import (
     longest_interval,
     plugging_list,
 )
-from fretwear.assessment.technique import LogisticPOD, SizingModel
+from fretwear.assessment.technique import LogisticPOD, LogSizingModel, SizingModel
 
-__all__ = ["BundleRisk", "LogisticPOD", "SizingModel", "bundle_risk", "inspection_sample",
-           "longest_interval", "plugging_list"]
+__all__ = ["BundleRisk", "Inspections", "LogSizingModel", "LogisticPOD", "SizingModel",
+           "Technique", "bundle_risk", "inspection_sample", "longest_interval", "plugging_list",
+           "read_field_inspections"]

@@ -31,7 +31,7 @@ import numpy as np
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
-__all__ = ["LogisticPOD", "SizingModel"]
+__all__ = ["LogSizingModel", "LogisticPOD", "SizingModel"]
 
 
 def _finite(name: str, value, *, positive: bool = False) -> float:
@@ -97,6 +97,49 @@ class SizingModel:
         z = (np.asarray(measured, float) - self.intercept - self.slope * np.asarray(true, float))
         z = z / self.sigma
         return np.exp(-0.5 * z * z) / (self.sigma * math.sqrt(2.0 * math.pi))
+
+
+@dataclass(frozen=True)
+class LogSizingModel:
+    """Sizing error proportional to the depth: ln(measured) = ln(true) + e, e ~ N(0, σ_ln²).
+
+    The error model of :func:`fretwear.uncertainty.calibrate` (``measurement_sigma``); with a
+    depth that is a power law of the factor it keeps the calibration conjugate.
+
+    Parameters
+    ----------
+    sigma_ln : float
+        σ_ln, the standard deviation of ln(measured) [-], > 0 (0.1: about 10 % of the depth).
+
+    Examples
+    --------
+    >>> s = LogSizingModel(sigma_ln=0.1)
+    >>> round(float(s.likelihood(3e-4, 3e-4) * 3e-4), 4)   # 1/(σ√(2π)) on ln m [-]
+    3.9894
+    """
+
+    sigma_ln: float = 0.1
+
+    def __post_init__(self) -> None:
+        _finite("LogSizingModel sigma_ln [-]", self.sigma_ln, positive=True)
+
+    def true_depth(self, measured):
+        """The true depth whose median measurement is ``measured`` [m]."""
+        return np.asarray(measured, dtype=float)
+
+    def likelihood(self, measured, true):
+        """The density of measuring ``measured`` [m] on a flaw of depth ``true`` [m], [1/m].
+
+        Notes
+        -----
+        .. math:: p(m \\mid d) = \\frac{1}{m\\,\\sigma\\sqrt{2\\pi}}
+                  \\exp\\left(-\\frac{(\\ln m - \\ln d)^2}{2\\sigma^2}\\right)
+        """
+        m = np.asarray(measured, float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            z = (np.log(m) - np.log(np.asarray(true, float))) / self.sigma_ln
+            out = np.exp(-0.5 * z * z) / (m * self.sigma_ln * math.sqrt(2.0 * math.pi))
+        return np.where(np.isfinite(out), out, 0.0)
 
 
 @dataclass(frozen=True)

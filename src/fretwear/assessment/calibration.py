@@ -1,0 +1,573 @@
+"""Calibration of a bundle's wear factor on field inspections, with censoring and honest spread.
+
+:func:`calibrate_bundle` learns the factor on the wear coefficients (times the power's error) of
+every contact from an :class:`~fretwear.assessment.inspections.Inspections` campaign:
+
+* a sized indication through the technique's sizing model p(m | d);
+* "no detectable degradation" on an inspected tube through 1 − POD(d);
+* a tube not inspected gives nothing.
+
+The factor is hierarchical (:mod:`fretwear.assessment.posterior`): a bundle-level lognormal, an
+optional level per group (support type or region), and a contact-level scatter, so that one
+contact keeps the spread that inspections of the others cannot remove; the power's own
+log-spread σ_P adds to that scatter (the same power wore the tube before and after the
+inspection). The depth of contact i is its :class:`~fretwear.table.depth.DepthModel`'s, the
+one depth model: d_i(f, t) = ``model.depth(t, factor=f)``.
+
+The forecast (:meth:`BundleCalibration.forecast`) uses the monotonicity of the depth in the
+factor: the probability of exceeding a depth L at T is P(λ_i > λ_L,i) with
+d_i(e^{λ_L,i}, T) = L, one root per contact. For a law linear in time the root is the model's
+own inverse, f_L = (t_L(1) − t_r)/(T − t_r) with t_L(1) = ``model.time_to_depth(L)`` (t_r the
+replacement, else 0); otherwise the crossing of ln d_i on the posterior's grid.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from fretwear._lazy import pandas as pd
+from fretwear.assessment.inspections import Inspections, read_field_inspections
+from fretwear.assessment.posterior import (
+    GridLevels,
+    mass_range,
+    moments_rows,
+    ppf_rows,
+    sf_rows,
+    solve_levels,
+)
+from fretwear.errors import InputError, RangeWarning
+from fretwear.keys import check_probabilities
+from fretwear.table.depth import DepthModel, models_from_table
+from fretwear.uncertainty.distributions import LogNormal
+
+__all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle"]
+
+_PASS1 = 801
+_MAX_POINTS = 1601
+
+
+@dataclass(frozen=True)
+class FactorPrior:
+    """Prior of the hierarchical factor.
+
+    Parameters
+    ----------
+    bundle : LogNormal
+        The bundle-level factor [-] (default median 1, a factor 3 either way at 95 %).
+    group_sigma_ln : float
+        τ_g, the standard deviation of a group's ln-factor around the bundle's [-] (0: no
+        group level).
+    contact_sigma_ln : float
+        s_c, the standard deviation of one contact's ln-factor around its group's [-]
+        (0.35: a factor 2 either way at 95 %; an assumption to state, not a qualified value).
+    """
+
+    bundle: LogNormal = field(default_factory=lambda: LogNormal(1.0, scatter=3.0))
+    group_sigma_ln: float = 0.0
+    contact_sigma_ln: float = 0.35
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.bundle, LogNormal) or self.bundle.median is None \
+                or not self.bundle.sigma_ln or self.bundle.sigma_ln <= 0:
+            raise InputError("FactorPrior.bundle must be a LogNormal with a median and "
+                             "sigma_ln > 0, e.g. LogNormal(1.0, scatter=3.0)")
+        for name in ("group_sigma_ln", "contact_sigma_ln"):
+            v = getattr(self, name)
+            if not (isinstance(v, int | float) and math.isfinite(v) and v >= 0):
+                raise InputError(f"FactorPrior.{name} must be a finite number >= 0 [-], got "
+                                 f"{v!r}")
+
+
+@dataclass(frozen=True, eq=False)
+class BundleCalibration:
+    """The posterior of every contact's factor, and what it predicts.
+
+    Attributes
+    ----------
+    contacts : list of str
+        The contacts, in the order of every per-contact array.
+    models : dict
+        contact -> DepthModel (global depth).
+    groups : list of str
+        Group names; ``group_of[i]`` indexes it.
+    group_of : numpy.ndarray
+        Group index of each contact.
+    scatter : numpy.ndarray
+        s_i = sqrt(s_c² + σ_P,i²) [-] of each contact.
+    levels : GridLevels
+        The posterior densities on the grid of λ = ln f (bundle, groups, contacts).
+    prior : FactorPrior
+    observations : DataFrame
+        The inspections used: the inspection table's columns, ``contact`` resolved, and
+        ``elapsed_s`` [s]; ``prior_depth`` and ``posterior_depth`` [m], the depths at the
+        prior's and the contact posterior's median factor.
+    inspected : numpy.ndarray
+        Whether each contact has a sized or NDD result (bool).
+    """
+
+    contacts: list
+    models: dict
+    groups: list
+    group_of: np.ndarray
+    scatter: np.ndarray
+    levels: GridLevels
+    prior: FactorPrior
+    observations: pd.DataFrame
+    inspected: np.ndarray
+
+    # ------------------------------------------------------------------ the factor
+    def factor_summary(self) -> pd.DataFrame:
+        """Per contact: ``contact``, ``group``, ``inspected``, ``median`` [-] of the factor,
+        ``mean_ln`` and ``sigma_ln`` [-] of its log, ``q05`` and ``q95`` [-]."""
+        g = self.levels
+        mean, sd = moments_rows(g.grid, g.contacts)
+        q = np.exp(ppf_rows(g.grid, g.contacts, [0.05, 0.5, 0.95]))
+        return pd.DataFrame({"contact": self.contacts,
+                             "group": [self.groups[k] for k in self.group_of],
+                             "inspected": self.inspected, "median": q[:, 1], "mean_ln": mean,
+                             "sigma_ln": sd, "q05": q[:, 0], "q95": q[:, 2]})
+
+    def contact_posterior(self, contact: str) -> tuple[np.ndarray, np.ndarray]:
+        """(λ grid, density of λ = ln f) of one contact's factor [-] (the OA's input)."""
+        try:
+            i = self.contacts.index(contact)
+        except ValueError:
+            raise InputError(f"unknown contact {contact!r}") from None
+        return self.levels.grid, self.levels.contacts[i]
+
+    def bundle_factor(self) -> tuple[float, tuple[float, float]]:
+        """Posterior median and central 90 % interval of the bundle-level factor [-]."""
+        q = np.exp(ppf_rows(self.levels.grid, self.levels.bundle, [0.05, 0.5, 0.95])[0])
+        return float(q[1]), (float(q[0]), float(q[2]))
+
+    def group_factor(self, group: str) -> tuple[float, tuple[float, float]]:
+        """Posterior median and central 90 % interval of one group's factor [-]."""
+        k = self.groups.index(group)
+        q = np.exp(ppf_rows(self.levels.grid, self.levels.groups[k], [0.05, 0.5, 0.95])[0])
+        return float(q[1]), (float(q[0]), float(q[2]))
+
+    # ------------------------------------------------------------------ the forecast
+    def limit_log_factor(self, instant: float, limit: float | Sequence[float] | None = None
+                         ) -> np.ndarray:
+        """λ_L,i = ln f_L,i: the log-factor that brings each contact to ``limit`` at
+        ``instant`` [-] (−inf: reached whatever the factor; +inf: never).
+
+        Parameters
+        ----------
+        instant : float
+            [user time unit of the predictions].
+        limit : float or sequence, optional
+            Depth [m] (default each model's depth_limit × wall thickness).
+        """
+        limits = self._limits(limit)
+        out = np.empty(len(self.contacts))
+        for i, contact in enumerate(self.contacts):
+            out[i] = _limit_log_factor(self.models[contact], float(instant), limits[i],
+                                       self.levels.grid)
+        return out
+
+    def node_exceedance(self, instant: float, limit=None) -> tuple[np.ndarray, np.ndarray]:
+        """The exact node decomposition of the bundle's risk for
+        :func:`fretwear.assessment.bundle_risk`: (p, weights).
+
+        With one group, the contacts are independent given its factor c: at node c_k,
+        P(λ_i > λ_L,i | c_k, D_i) = ∫_{λ>λ_L} L_i(λ) N(λ; c_k, s_i²) dλ / M_i(c_k).
+        Returns p of shape (contacts, nodes) and the nodes' weights (summing to 1). With
+        several groups, the nodes are the bundle-level μ and each group's factor is
+        integrated given μ within a contact (contacts of one group then count as
+        independent given μ: an approximation stated here).
+        """
+        from fretwear.assessment.posterior import kernel
+
+        g = self.levels
+        x = self.limit_log_factor(instant, limit)
+        h = g.grid[1] - g.grid[0]
+        above = g.grid[None, :] > x[:, None]
+        top = np.max(g.log_lik, axis=1, keepdims=True)
+        lik = np.exp(g.log_lik - np.where(np.isfinite(top), top, 0.0))
+        p = np.empty((len(self.contacts), g.grid.size))
+        for s in np.unique(self.scatter):
+            rows = self.scatter == s
+            k = kernel(g.grid, float(s))
+            num = (lik[rows] * above[rows]) @ k.T
+            den = lik[rows] @ k.T
+            with np.errstate(invalid="ignore", divide="ignore"):
+                p[rows] = np.where(den > 0, num / den, above[rows][:, -1:] * 1.0)
+        if len(self.groups) == 1:
+            weights = g.groups[0] * h
+        else:
+            weights = g.bundle * h
+        keep = weights > 1e-16 * weights.max()
+        return np.clip(p[:, keep], 0.0, 1.0), weights[keep] / weights[keep].sum()
+
+    def forecast(self, instant: float, *, limit=None,
+                 q: Sequence[float] = (0.05, 0.5, 0.95)) -> pd.DataFrame:
+        """Posterior predictive depth and probability of exceeding the limit of every contact
+        at ``instant`` (vectorised over the contacts: one root each).
+
+        Returns
+        -------
+        DataFrame
+            ``contact``, ``group``, ``inspected``, ``instant``, ``depth_q..`` [m] (posterior
+            quantiles), ``limit`` [m], ``wall_fraction_q50`` [-], ``exceedance`` [-] and
+            ``exceedance_prior`` [-] (the same contact under the prior), ``factor_median``,
+            ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then ``depth_q50``, the worst
+            first.
+        """
+        q = check_probabilities(q, closed=False)
+        g = self.levels
+        limits = self._limits(limit)
+        x = self.limit_log_factor(instant, limits)
+        exceed = sf_rows(g.grid, g.contacts, x)
+        exceed = np.where(np.isneginf(x), 1.0, np.where(np.isposinf(x), 0.0, exceed))
+        prior = self.prior
+        sd0 = np.sqrt(prior.bundle.sigma_ln ** 2 + prior.group_sigma_ln ** 2 + self.scatter ** 2)
+        from scipy.stats import norm
+
+        z = (x - math.log(prior.bundle.median)) / sd0
+        exceed_prior = norm.sf(np.where(np.isfinite(z), z, np.sign(z) * np.inf))
+        lam_q = ppf_rows(g.grid, g.contacts, q)
+        depths = self._depths(float(instant), np.exp(lam_q))
+        mean, sd = moments_rows(g.grid, g.contacts)
+        out = pd.DataFrame({"contact": self.contacts,
+                            "group": [self.groups[k] for k in self.group_of],
+                            "inspected": self.inspected, "instant": float(instant)})
+        for j, level in enumerate(q):
+            out[f"depth_q{100 * level:g}"] = depths[:, j]
+        out["limit"] = limits
+        walls = np.array([self.models[c].wall_thickness or math.nan for c in self.contacts])
+        if "depth_q50" in out:
+            out["wall_fraction_q50"] = out["depth_q50"].to_numpy() / walls
+        out["exceedance"] = exceed
+        out["exceedance_prior"] = exceed_prior
+        out["factor_median"] = np.exp(ppf_rows(g.grid, g.contacts, [0.5])[:, 0])
+        out["factor_sigma_ln"] = sd
+        key = "depth_q50" if "depth_q50" in out else out.columns[4]
+        return out.sort_values(["exceedance", key], ascending=False, kind="stable",
+                               ignore_index=True)
+
+    def _limits(self, limit) -> np.ndarray:
+        if limit is None:
+            values = [self.models[c].limit_depth for c in self.contacts]
+            if any(v is None for v in values):
+                raise InputError("a contact has no wall thickness: give limit= [m]")
+            return np.array(values, dtype=float)
+        arr = np.broadcast_to(np.asarray(limit, dtype=float), (len(self.contacts),)).copy()
+        if not (np.isfinite(arr) & (arr > 0)).all():
+            raise InputError(f"limit must be depths > 0 [m], got {limit!r}")
+        return arr
+
+    def _depths(self, instant: float, factors: np.ndarray) -> np.ndarray:
+        out = np.empty_like(factors)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RangeWarning)
+            for i, c in enumerate(self.contacts):
+                m = self.models[c]
+                out[i] = m.depth(np.full(factors.shape[1], _elapsed(m, instant, c)),
+                                 factor=factors[i], warn=False)
+        return out
+
+
+def _elapsed(model: DepthModel, instant: float, contact: str) -> float:
+    if instant < model.origin:
+        raise InputError(f"instant {instant:g} is before the origin {model.origin:g} of "
+                         f"contact {contact!r}")
+    return (instant - model.origin) * model.time_scale
+
+
+def _limit_log_factor(model: DepthModel, instant: float, limit: float,
+                      grid: np.ndarray) -> float:
+    """ln f with d(f, T) = limit (module docstring)."""
+    elapsed = _elapsed(model, instant, model.name)
+    if elapsed <= 0:
+        return -math.inf if model.depth(0.0, warn=False) >= limit else math.inf
+    if model.law.linear_in_time:
+        start = 0.0 if model.replacement is None else model.replacement
+        if elapsed <= start:
+            return math.inf  # the new tube is not in place yet: the old one's depth is known
+        t_limit = float(model.time_to_depth(limit))
+        if not math.isfinite(t_limit):
+            return math.inf
+        if t_limit <= start:
+            return -math.inf
+        return math.log((t_limit - start) / (elapsed - start))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        d = model.depth(np.full(grid.size, elapsed), factor=np.exp(grid), warn=False)
+    d = np.where(np.isnan(d), np.inf, d)
+    if d[0] >= limit:
+        return -math.inf
+    if d[-1] < limit:
+        return math.inf
+    k = int(np.argmax(d >= limit))
+    lo, hi = math.log(max(d[k - 1], 1e-300)), math.log(d[k]) if math.isfinite(d[k]) else None
+    if hi is None or hi == lo:
+        return float(grid[k])
+    return float(grid[k - 1] + (math.log(limit) - lo) / (hi - lo) * (grid[k] - grid[k - 1]))
+
+
+# ---------------------------------------------------------------------- inputs
+def _models(predictions) -> dict[str, DepthModel]:
+    if not isinstance(predictions, Mapping) or not predictions:
+        raise InputError("predictions must be a mapping of contact name to a DepthModel or a "
+                         "wear table (with its attrs), e.g. bundle_predictions(OUT)[0]")
+    out = {}
+    for name, item in predictions.items():
+        if isinstance(item, DepthModel):
+            out[str(name)] = item
+        elif isinstance(item, pd.DataFrame):
+            out[str(name)] = models_from_table(item, name=str(name))["global"]
+        else:
+            raise InputError(f"prediction {name!r}: give a DepthModel or a wear table, got "
+                             f"{type(item).__name__}")
+    return out
+
+
+def support_type(support: str) -> str:
+    """The support type of a support name: its letters without the number ("AVB3" -> "AVB").
+
+    >>> support_type("AVB3"), support_type("TSP 02"), support_type("")
+    ('AVB', 'TSP', '')
+    """
+    return re.sub(r"[\s\d_\-]+$", "", str(support).strip())
+
+
+def _resolve(table: pd.DataFrame, contacts: list, identity) -> pd.DataFrame:
+    """One row per (inspection, contact): a tube location without support covers its
+    contacts; an unknown contact or location is an InputError naming the line."""
+    index = {c: i for i, c in enumerate(contacts)}
+    rows = []
+    for _, r in table.iterrows():
+        if r["contact"]:
+            if r["contact"] not in index:
+                raise InputError(f"inspections line {r['line']}: unknown contact "
+                                 f"{r['contact']!r} (the predictions have e.g. "
+                                 f"{contacts[:3]})")
+            rows.append({**r, "index": index[r["contact"]]})
+            continue
+        if identity is None:
+            raise InputError(f"inspections line {r['line']}: a tube location needs the bundle's "
+                             "identity table (contact, tube_row, tube_column, support)")
+        hit = identity[(identity["tube_row"] == r["tube_row"])
+                       & (identity["tube_column"] == r["tube_column"])]
+        if r["support"]:
+            hit = hit[hit["support"].astype(str) == r["support"]]
+        hit = hit[hit["contact"].isin(index)]
+        if hit.empty:
+            raise InputError(f"inspections line {r['line']}: no contact at tube row "
+                             f"{r['tube_row']:g}, column {r['tube_column']:g}"
+                             + (f", support {r['support']!r}" if r["support"] else ""))
+        if r["status"] == "sized" and len(hit) > 1:
+            raise InputError(f"inspections line {r['line']}: a sized depth on a tube with "
+                             f"{len(hit)} contacts; name the support")
+        for c in hit["contact"]:
+            rows.append({**r, "contact": c, "index": index[c]})
+    return pd.DataFrame(rows)
+
+
+def _group_index(contacts, groups, identity) -> tuple[list, np.ndarray]:
+    if groups is None:
+        return ["bundle"], np.zeros(len(contacts), int)
+    if groups == "support type":
+        if identity is None:
+            raise InputError("groups='support type' needs the identity table (support)")
+        support = dict(zip(identity["contact"], identity["support"].astype(str), strict=False))
+        groups = {c: support_type(support.get(c, "")) or "other" for c in contacts}
+    if not isinstance(groups, Mapping):
+        raise InputError("groups must be None, 'support type' or a mapping contact -> group")
+    names = sorted({str(groups.get(c, "other")) for c in contacts})
+    return names, np.array([names.index(str(groups.get(c, "other"))) for c in contacts])
+
+
+def _scatter(contacts, prior: FactorPrior, power_sigma_ln) -> np.ndarray:
+    if isinstance(power_sigma_ln, Mapping):
+        sp = np.array([float(power_sigma_ln.get(c, 0.0)) for c in contacts])
+    else:
+        sp = np.full(len(contacts), float(power_sigma_ln or 0.0))
+    if not (np.isfinite(sp) & (sp >= 0)).all():
+        raise InputError("power_sigma_ln must be finite numbers >= 0 [-]")
+    return np.sqrt(prior.contact_sigma_ln ** 2 + sp ** 2)
+
+
+def _check_power_proportional(models, contacts, scatter_power) -> None:
+    """σ_P enters as a factor only where the worn volume is proportional to the power."""
+    for i, c in enumerate(contacts):
+        if scatter_power[i] <= 0:
+            continue
+        m = models[c]
+        t = m.time_scale
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RangeWarning)
+            v2 = m.volumes(t, power=2.0 * m.power)[0]
+            v1 = m.volumes(t, factor=2.0)[0]
+        if not np.allclose(v1, v2, rtol=1e-9):
+            raise InputError(f"contact {c!r}: its {m.law.name} volume is not proportional to "
+                             "the power, so the power's spread is not a factor on it; give "
+                             "power_sigma_ln=0 for it")
+
+
+def _log_likelihood(obs: pd.DataFrame, models, contacts, techniques, grid) -> np.ndarray:
+    """log L_i(λ) on the grid (n, N): the sum over each contact's sized and NDD results."""
+    out = np.zeros((len(contacts), grid.size))
+    f = np.exp(grid)
+    for _, r in obs.iterrows():
+        if r["status"] == "not inspected":
+            continue
+        m = models[r["contact"]]
+        tech = techniques[r["technique"]]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RangeWarning)
+            d = m.depth(np.full(grid.size, r["elapsed_s"]), factor=f, warn=False)
+        d = np.where(np.isnan(d), np.inf, d)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            if r["status"] == "sized":
+                lik = tech.sizing.likelihood(r["depth"], np.where(np.isinf(d), 1e300, d))
+            else:
+                if tech.pod is None:
+                    raise InputError(f"inspections line {r['line']}: NDD with technique "
+                                     f"{r['technique']!r}, which has no POD; give "
+                                     "Technique(sizing, pod=LogisticPOD(...))")
+                lik = tech.pod.miss(np.where(np.isinf(d), 1e300, d))
+            out[r["index"]] += np.log(np.maximum(lik, 0.0))
+    return out
+
+
+def _grid_around(center: float, half: float, n: int) -> np.ndarray:
+    return np.linspace(center - half, center + half, n)
+
+
+def calibrate_bundle(predictions, inspections, *, techniques=None,
+                     prior: FactorPrior | None = None, groups=None, identity=None,
+                     power_sigma_ln=0.0, origin_date=None, time_unit: str = "year"
+                     ) -> BundleCalibration:
+    """The hierarchical posterior of every contact's factor from a field campaign.
+
+    Parameters
+    ----------
+    predictions : mapping of str to DepthModel or wear table
+        Each contact's depth model (a bundle's: ``bundle_predictions(OUT)[0]``).
+    inspections : Inspections, path-like or DataFrame
+        The campaign (:func:`~fretwear.assessment.inspections.read_field_inspections`).
+    techniques : Technique or mapping, optional
+        The technique models, when ``inspections`` is a file or a DataFrame.
+    prior : FactorPrior, optional
+        Bundle prior, group and contact scatter (default :class:`FactorPrior`).
+    groups : None, "support type" or mapping of contact to group name
+        The optional group level (with ``prior.group_sigma_ln`` > 0).
+    identity : DataFrame, optional
+        ``contact, tube_row, tube_column, support`` of the contacts, to place inspections
+        given by tube location and to group by support type.
+    power_sigma_ln : float or mapping of contact to float
+        σ_P, the log-spread of each contact's power [-] (from its confidence interval:
+        ln(1 + half-width/power)/z); adds to the contact scatter.
+    origin_date, time_unit
+        For an inspection file with dates (:func:`read_field_inspections`).
+
+    Returns
+    -------
+    BundleCalibration
+
+    Raises
+    ------
+    InputError
+        An unknown contact or location, an NDD without a POD, an inspection before the
+        origin of its contact's prediction.
+
+    Notes
+    -----
+    The posterior is computed on a uniform grid of λ = ln f in two passes: one over the
+    prior's range (10 standard deviations), then one over the range where any level holds
+    mass, with a spacing of a tenth of the narrowest posterior's standard deviation (at most
+    1601 points). Module docstring of :mod:`fretwear.assessment.posterior`: the levels.
+    """
+    prior = prior or FactorPrior()
+    models = _models(predictions)
+    contacts = list(models)
+    if not isinstance(inspections, Inspections):
+        inspections = read_field_inspections(inspections, techniques, origin_date=origin_date,
+                                             time_unit=time_unit)
+    elif techniques is not None:
+        inspections = Inspections(inspections.table, dict(techniques) if isinstance(
+            techniques, Mapping) else {techniques.name: techniques}, inspections.source)
+    obs = _resolve(inspections.table, contacts, identity)
+    used = set(obs.loc[obs["status"] != "not inspected", "technique"])
+    missing = sorted(t for t in used if t not in inspections.techniques)
+    if missing:
+        raise InputError(f"technique(s) {missing} of the inspections have no model; give "
+                         "techniques={name: Technique(SizingModel(...), LogisticPOD(...))}")
+    obs["elapsed_s"] = [_elapsed(models[c], float(t), c)
+                        for c, t in zip(obs["contact"], obs["instant"], strict=True)]
+    names, group_of = _group_index(contacts, groups, identity)
+    scatter = _scatter(contacts, prior, power_sigma_ln)
+    _check_power_proportional(models, contacts, scatter ** 2 - prior.contact_sigma_ln ** 2)
+    mu0, tau0 = math.log(prior.bundle.median), float(prior.bundle.sigma_ln)
+    tau_g = prior.group_sigma_ln if len(names) > 1 else 0.0
+    half = 10.0 * math.sqrt(tau0 ** 2 + tau_g ** 2 + float(scatter.max()) ** 2)
+    grid = _grid_around(mu0, half, _PASS1)
+    levels = _solve(obs, models, contacts, inspections.techniques, grid, group_of, names,
+                    scatter, mu0, tau0, tau_g)
+    every = np.vstack([levels.bundle, levels.groups, levels.contacts])
+    lo, hi = mass_range(grid, every)
+    _, sd = moments_rows(grid, every)
+    step = max(min(float(sd.min()) / 10.0, (hi - lo) / 200.0), (hi - lo) / (_MAX_POINTS - 1))
+    grid = np.arange(lo, hi + step, step)
+    levels = _solve(obs, models, contacts, inspections.techniques, grid, group_of, names,
+                    scatter, mu0, tau0, tau_g)
+    inspected = np.zeros(len(contacts), bool)
+    inspected[obs.loc[obs["status"] != "not inspected", "index"].to_numpy(int)] = True
+    result = BundleCalibration(contacts=contacts, models=models, groups=names,
+                               group_of=group_of, scatter=scatter, levels=levels, prior=prior,
+                               observations=obs, inspected=inspected)
+    return _with_depths(result)
+
+
+def _solve(obs, models, contacts, techniques, grid, group_of, names, scatter, mu0, tau0,
+           tau_g) -> GridLevels:
+    log_lik = _log_likelihood(obs, models, contacts, techniques, grid)
+    if not np.isfinite(log_lik.max(axis=1)).all():
+        bad = contacts[int(np.flatnonzero(~np.isfinite(log_lik.max(axis=1)))[0])]
+        raise InputError(f"calibration: no factor within {math.exp(grid[0]):.3g}..."
+                         f"{math.exp(grid[-1]):.3g} explains the inspections of contact "
+                         f"{bad!r}; check their units (depth [m], depth_mm [mm])")
+    return solve_levels(grid, log_lik, group_of, len(names), scatter, mu0, tau0, tau_g)
+
+
+def _with_depths(result: BundleCalibration) -> BundleCalibration:
+    obs = result.observations.copy()
+    median = np.exp(ppf_rows(result.levels.grid, result.levels.contacts, [0.5])[:, 0])
+    f0 = float(result.prior.bundle.median)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RangeWarning)
+        obs["prior_depth"] = [float(result.models[c].depth(t, factor=f0, warn=False))
+                              for c, t in zip(obs["contact"], obs["elapsed_s"], strict=True)]
+        obs["posterior_depth"] = [
+            float(result.models[c].depth(t, factor=median[i], warn=False))
+            for c, t, i in zip(obs["contact"], obs["elapsed_s"], obs["index"], strict=True)]
+    return BundleCalibration(**{**result.__dict__, "observations": obs})
+
+
+def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:
+    """Bad news first: contacts and tubes whose median depth is past the limit or through the
+    wall, and the worst contact (the forecast's first row)."""
+    past = forecast["depth_q50"] >= forecast["limit"]
+    wall = forecast["wall_fraction_q50"] >= 1.0 if "wall_fraction_q50" in forecast \
+        else past & False
+    tube = None
+    if identity is not None and {"tube_row", "tube_column"} <= set(identity):
+        where = identity.set_index("contact")
+        tube = [f"R{int(where.loc[c, 'tube_row'])}C{int(where.loc[c, 'tube_column'])}"
+                if c in where.index else c for c in forecast["contact"]]
+    tubes = pd.Series(tube if tube is not None else forecast["contact"].tolist())
+    worst = forecast.iloc[0]
+    return {"contacts_past_limit": int(past.sum()), "tubes_past_limit": int(tubes[past].nunique()),
+            "contacts_through_wall": int(wall.sum()),
+            "tubes_through_wall": int(tubes[wall].nunique()),
+            "worst_contact": str(worst["contact"]), "worst_exceedance": float(worst["exceedance"]),
+            "worst_depth_q50": float(worst["depth_q50"])}
