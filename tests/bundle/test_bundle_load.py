@@ -42,3 +42,20 @@ def test_load_names_what_is_missing(tmp_path):
     with pytest.raises(InputError, match="no finished bundle run"):
         load(tmp_path / "half")
     assert os.listdir(tmp_path / "half") == []
+
+
+def test_report_on_a_bundle_directory_reads_it_back(tmp_path, capsys):
+    from fretwear.cli import main
+
+    manifest, case = write_bundle(tmp_path / "in", oscillator(), count=4,
+                                  extra={"wall_thickness_m": [1e-4] * 4})  # a thin wall
+    out = tmp_path / "out"
+    run_bundle(manifest, case=case, output=out, scheduler="serial")
+    shutil.rmtree(tmp_path / "in" / "histories")
+    assert main(["report", str(out), "-o", str(tmp_path / "r.html")]) == 0
+    html = (tmp_path / "r.html").read_text(encoding="utf-8")
+    worst = load(out).summary().iloc[0]
+    assert html.count("data:image/png;base64,") == 2
+    if worst["depth_fraction"] >= 0.4:  # bad news first, the worst named
+        assert html.index('class="alarm"') < html.index('id="inputs"')
+        assert worst["contact"] in html

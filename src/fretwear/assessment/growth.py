@@ -232,10 +232,16 @@ class GrowthModel:
             p[ndd] = np.where(total > 0, tail / np.where(total > 0, total, 1.0), 0.0)
         return np.clip(p, 0.0, 1.0)
 
-    def end_nominal_times(self, interval: float, q) -> np.ndarray:
+    def _subset(self, rows) -> GrowthModel:
+        """The model of the contacts at positions ``rows`` only."""
+        return GrowthModel(**_subset_fields(self, rows))
+
+    def end_nominal_times(self, interval: float, q, rows=None) -> np.ndarray:
         """Quantiles ``q`` of each contact's nominal-time equivalent at the end of the
         interval [time unit] (the depth's quantiles through the nominal model: depth grows
-        with it), shape (contacts, len(q))."""
+        with it), shape (contacts, len(q)); ``rows``: only these contacts (positions)."""
+        if rows is not None:
+            return self._subset(rows).end_nominal_times(interval, q)
         q = np.atleast_1d(np.asarray(q, float))
         lam, s, w = self.nodes.log_factor, self.nodes.sigma, self.nodes.weights
         g = np.exp(self.nodes.quantiles(q))
@@ -258,6 +264,12 @@ class GrowthModel:
             out[i] = (self.found[i] + interval) * np.exp(
                 _weighted_quantiles(pts, weight, q))
         return out
+
+
+def _pick(kind, rows, which):
+    """Positions, among the contacts of ``which`` kind, of the ``rows`` of that kind."""
+    of_kind = np.flatnonzero(kind == which)
+    return np.searchsorted(of_kind, [r for r in rows if kind[r] == which])
 
 
 def _depth_nodes(mean, sigma, limit):
@@ -295,6 +307,15 @@ def _segments(a, b, m_a, m_b, lam, s):
         mass = _sf((a - shifted) / s) - _sf((b - shifted) / s)
         scale = np.exp(np.minimum(la + c * (lam - a) + 0.5 * (c * s) ** 2, 700.0))
         return np.where(b > a, scale * np.maximum(mass, 0.0), 0.0)
+
+
+def _subset_fields(model: GrowthModel, rows) -> dict:
+    rows = np.asarray(rows, int)
+    sized, ndd = _pick(model.kind, rows, 1), _pick(model.kind, rows, 2)
+    return {"nodes": model.nodes, "found": model.found[rows], "tau_limit": model.tau_limit[rows],
+            "kind": model.kind[rows], "tau_d0": model.tau_d0[sized], "h_d0": model.h_d0[sized],
+            "d0_nodes": model.d0_nodes[sized], "ndd_tail": model.ndd_tail[ndd],
+            "u_grid": model.u_grid[ndd], "ndd_miss": model.ndd_miss[ndd]}
 
 
 def _step_or_sf(c, lam, s):

@@ -79,6 +79,22 @@ class Assessment:
     fit: dict = field(default_factory=dict)
     risk: BundleRisk | None = None
     models: dict = field(default_factory=dict, repr=False)
+    growth: GrowthModel | None = field(default=None, repr=False)
+
+    def fan(self, contact: str, intervals, q=QUANTILES) -> np.ndarray:
+        """Quantiles ``q`` of ``contact``'s depth [m] at the end of each of ``intervals``
+        [time unit] after the outage, shape (len(intervals), len(q))."""
+        live = self.contacts[self.contacts["state"] != "plugged"].reset_index(drop=True)
+        where = np.flatnonzero(live["contact"].to_numpy() == contact)
+        if not where.size:
+            raise InputError(f"contact {contact!r} is not assessed (plugged, or not computed)")
+        model = self.models[contact]
+        out = []
+        for t in np.atleast_1d(intervals):
+            tau = self.growth.end_nominal_times(float(t), q, rows=where)[0]
+            with np.errstate(invalid="ignore"):
+                out.append(model.depth(np.minimum(tau, 1e300) * model.time_scale, warn=False))
+        return np.asarray(out)
 
     def write(self, directory) -> list:
         """Write ``contacts.csv``, ``tubes.csv``, ``condition.csv``, ``predictions.csv``,
@@ -260,7 +276,7 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
               "limit": limit, "nodes": nodes}
     return Assessment(contacts=contacts, tubes=tubes, bundle=bundle_row, curve=curve,
                       condition=cm, predictions=pm, nodes=nodes_, inputs=inputs, fit=pvm,
-                      risk=risk, models=models)
+                      risk=risk, models=models, growth=growth)
 
 
 def _without(risk: BundleRisk, tubes) -> BundleRisk:
