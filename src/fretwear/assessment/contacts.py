@@ -77,8 +77,11 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
     if done.empty:
         raise InputError("the bundle has no computed contact to assess")
     table = result.table
-    last = table.drop_duplicates(["contact", "instant"]).sort_values("instant") \
-        .groupby("contact").tail(1).set_index("contact")
+    last = table.drop_duplicates(["contact", "instant"]).sort_values("instant", kind="stable") \
+        .groupby("contact").tail(1)
+    last = dict(zip(last["contact"].astype(str),
+                    zip(last["instant"].to_numpy(float), last["depth_mobile"].to_numpy(float),
+                        strict=True), strict=True))
     geometries: dict[Any, Any] = {}
     laws: dict[str, Any] = {}
     rows = []
@@ -97,7 +100,7 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
         fraction = float(c.depth_limit if limit is None else limit)
         origin = float(c.origin or 0.0)
         v0 = 0.0
-        info = last.loc[c.contact] if c.contact in last.index else None
+        info = last.get(str(c.contact))
         if origin > 0 and "origin" in table.columns:  # a restart: the volume at its origin
             rows_c = table[(table["contact"] == c.contact) & (table["instant"] == origin)]
             v0 = float(rows_c["volume_mobile"].iloc[0]) if len(rows_c) else 0.0
@@ -113,8 +116,8 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
                      "support": c.support, "model": model, "wall_thickness": float(wall),
                      "limit_depth": fraction * float(wall), "time_unit": c.time_unit,
                      "time_scale": float(c.time_scale), "origin": origin,
-                     "last_instant": np.nan if info is None else float(info["instant"]),
-                     "depth_last": np.nan if info is None else float(info["depth_mobile"])})
+                     "last_instant": np.nan if info is None else info[0],
+                     "depth_last": np.nan if info is None else info[1]})
     out = pd.DataFrame(rows)
     units = out["time_unit"].dropna().unique()
     if len(units) > 1:

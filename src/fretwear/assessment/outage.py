@@ -238,8 +238,11 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
                                nodes_, sizing=sizing, pod=pod)
     unit = str(live["time_unit"].iloc[0]) if len(live) else ""
 
+    codes, names = pd.factorize(live["tube"])  # once: the tube of each contact
+
     def risk_at(t: float) -> BundleRisk:
-        return bundle_risk(growth.probabilities(t), live["tube"], nodes_.weights)
+        r = bundle_risk(growth.probabilities(t), codes, nodes_.weights)
+        return BundleRisk(np.asarray(names, dtype=object)[r.tubes], r.log_survival, r.weights)
 
     risk = risk_at(interval)
     cm = as_found(sized[["contact", "tube", "depth", "limit_depth", "wall_thickness"]], sizing)
@@ -288,12 +291,9 @@ def _contact_rows(table, live, growth, risk, interval, sizing) -> pd.DataFrame:
     p = growth.probabilities(interval) @ risk.weights
     tau = growth.end_nominal_times(interval, QUANTILES)
     g50 = float(np.exp(growth.nodes.quantiles([0.5])[0]))
-    ends = np.full(tau.shape, np.nan)
-    found = np.full(len(live), np.nan)
-    for i, m in enumerate(live["model"]):
-        with np.errstate(invalid="ignore"):
-            ends[i] = m.depth(np.minimum(tau[i], 1e300) * m.time_scale, warn=False)
-            found[i] = m.depth(growth.found[i] * m.time_scale, factor=g50, warn=False)
+    rows = np.arange(len(live))
+    ends = growth.family.depth(tau, rows)
+    found = growth.family.depth((growth.found * g50)[:, None], rows)[:, 0]
     sized = (live["state"] == "sized").to_numpy()
     found[sized] = np.asarray(sizing.true_depth(live["depth"].to_numpy(float)[sized]))
     out = live[["contact", "tube", "tube_row", "tube_column", "support", "state",

@@ -99,7 +99,8 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
                       f"{b['p_any']:.3g} (target {b['target']:g})")
     longest = b["longest_interval"]
     console.print("longest operating interval under the target: "
-                  + (f"{longest:.3g} {unit}" if longest < b["horizon"]
+                  + ("none: the target is missed at the outage already (plug first)"
+                     if longest == 0 else f"{longest:.3g} {unit}" if longest < b["horizon"]
                      else f"over {b['horizon']:g} {unit} (the horizon searched)")
                   + (" with the tubes at the limit plugged" if b["must_plug"] else ""))
     plugs = b["plugging"]
