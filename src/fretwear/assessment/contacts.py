@@ -24,16 +24,6 @@ from fretwear.table.depth import DepthModel
 
 __all__ = ["bundle_models", "field_inspections", "tube_label"]
 
-#: Columns of a field inspection table (:func:`field_inspections`): name -> (unit, meaning).
-FIELD_COLUMNS = {
-    "contact": ("-", "contact (as in the bundle's manifest)"),
-    "instant": ("time unit of the bundle", "instant of the inspection"),
-    "depth": ("m", "sized depth of the tube (or depth_mm [mm]); empty with result NDD"),
-    "result": ("-", "'NDD' (no detectable degradation) or empty (a sized depth)"),
-    "plugged": ("-", "true: the tube is plugged already (out of the assessment)"),
-}
-
-
 def tube_label(row, column) -> str:
     """The tube's name on the tube sheet, ``R<row>C<column>`` (``R4C2``)."""
     def text(v):
@@ -126,72 +116,66 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
     return out
 
 
-def _flag(value) -> bool:
-    if isinstance(value, str):
-        text = value.strip().lower()
-        if text in ("", "0", "false", "no", "n", "nan"):
-            return False
-        if text in ("1", "true", "yes", "y"):
-            return True
-        raise InputError(f"plugged: {value!r} is not a yes/no value (true, false, 1, 0)")
-    return bool(value) and not (isinstance(value, float) and math.isnan(value))
+def field_inspections(source, contacts: pd.DataFrame | None = None) -> pd.DataFrame:
+    """One outage's inspections, read by
+    :func:`fretwear.assessment.inspections.read_field_inspections` (CSV, Parquet or a
+    DataFrame: per contact or tube location, sized depth in m, mm or % through-wall, NDD,
+    inspected, plugged), one row per contact.
 
-
-def field_inspections(source) -> pd.DataFrame:
-    """One outage's inspections (:data:`FIELD_COLUMNS`) from a CSV file or a DataFrame.
-
-    A row with a depth is a sized indication; ``result = NDD`` (or an empty depth) is an
-    inspected contact where nothing was detected; ``plugged = true`` takes the tube out.
-    A contact without a row was not inspected.
+    Parameters
+    ----------
+    source : path-like or DataFrame
+    contacts : DataFrame, optional
+        ``contact``, ``tube_row``, ``tube_column``, ``support`` of the bundle: a row giving a
+        tube location stands for the contacts of that tube (of its support when given).
 
     Returns
     -------
     DataFrame
         ``contact`` (str), ``instant`` [time unit], ``depth`` [m] (NaN for NDD), ``ndd``,
-        ``plugged`` (bools).
+        ``plugged`` (bools); a contact's latest inspection; rows 'not inspected' only mark
+        a tube plugged.
 
     Examples
     --------
     >>> f = field_inspections(pd.DataFrame({"contact": ["a", "b"], "instant": [10, 10],
-    ...                                     "depth_mm": [0.3, None]}))
+    ...                                     "depth_mm": ["0.3", "NDD"]}))
     >>> f["ndd"].tolist(), f["depth"].tolist()[0]
     ([False, True], 0.0003)
     """
-    if isinstance(source, pd.DataFrame):
-        frame, where = source.copy(), "inspections"
-    else:
-        from fretwear.io.text_tables import read_text_table
+    from fretwear.assessment.inspections import read_field_inspections
 
-        frame, where = read_text_table(source, "inspection file"), f"inspection file {source!s}"
-    frame.columns = [str(c).strip() for c in frame.columns]
-    known = set(FIELD_COLUMNS) | {"depth_mm", "measurement_sigma", "sector"}
-    unknown = [c for c in frame.columns if c not in known]
-    if unknown:
-        raise InputError(f"{where}: unknown column(s) {unknown}; the columns are {sorted(known)}")
-    for need in ("contact", "instant"):
-        if need not in frame.columns:
-            raise InputError(f"{where}: the column {need!r} is missing "
-                             f"({FIELD_COLUMNS[need][1]})")
-    scale = 1e-3 if "depth" not in frame.columns and "depth_mm" in frame.columns else 1.0
-    raw = frame.get("depth", frame.get("depth_mm", pd.Series(np.nan, index=frame.index)))
-    depth = pd.to_numeric(raw.replace("", np.nan), errors="coerce").to_numpy(float) * scale
-    result = frame.get("result", pd.Series("", index=frame.index)).fillna("").astype(str)
-    ndd = result.str.strip().str.upper().eq("NDD").to_numpy() | np.isnan(depth)
-    bad = ~ndd & ~(depth > 0)
-    if bad.any():
-        row = int(np.flatnonzero(bad)[0])
-        raise InputError(f"{where}, row {row + 1}: a sized depth must be > 0 (or result NDD "
-                         f"for no detectable degradation), got {raw.iloc[row]!r}")
-    instant = pd.to_numeric(frame["instant"], errors="coerce").to_numpy(float)
-    if not np.isfinite(instant).all():
-        row = int(np.flatnonzero(~np.isfinite(instant))[0])
-        raise InputError(f"{where}, row {row + 1}: instant must be a number, got "
-                         f"{frame['instant'].iloc[row]!r}")
-    plugged = frame.get("plugged", pd.Series(False, index=frame.index))
-    out = pd.DataFrame({"contact": frame["contact"].astype(str).str.strip(),
-                        "instant": instant, "depth": np.where(ndd, np.nan, depth),
-                        "ndd": ndd, "plugged": [_flag(v) for v in plugged]})
-    twice = out["contact"].duplicated(keep=False)
-    if twice.any():  # the latest inspection of a contact is its as-found state
-        out = out.sort_values("instant", kind="stable").drop_duplicates("contact", keep="last")
+    table = read_field_inspections(source).table
+    located = table["contact"].astype(str).str.len() == 0
+    if located.any():
+        if contacts is None:
+            raise InputError("inspections by tube location need the bundle's contacts")
+        ident = contacts[["contact", "tube_row", "tube_column", "support"]].astype(
+            {"contact": str})
+        rows = table[located].drop(columns="contact").reset_index(names="_row")
+        merged = rows.merge(ident, on=["tube_row", "tube_column"], how="left",
+                            suffixes=("", "_bundle"))
+        keep = (merged["support"].astype(str).isin(["", "nan"])
+                | (merged["support"].astype(str) == merged["support_bundle"].astype(str)))
+        merged = merged[keep & merged["contact"].notna()]
+        missing = sorted(set(rows["_row"]) - set(merged["_row"]))
+        if missing:
+            r = rows.set_index("_row").loc[missing[0]]
+            raise InputError(f"inspection line {r['line']}: no contact of the bundle at tube "
+                             f"row {r['tube_row']}, column {r['tube_column']}"
+                             f"{', support ' + str(r['support']) if r['support'] else ''}")
+        table = pd.concat([table[~located], merged[table.columns]], ignore_index=True)
+    status = table["status"].to_numpy()
+    out = pd.DataFrame({"contact": table["contact"].astype(str).to_numpy(),
+                        "instant": table["instant"].to_numpy(float),
+                        "depth": np.where(status == "sized", table["depth"], np.nan),
+                        "ndd": status == "ndd",
+                        "plugged": table["plugged"].astype(bool).to_numpy(),
+                        "inspected": status != "not inspected"})
+    plugged = set(out.loc[out["plugged"], "contact"])
+    out = out[out["inspected"] | out["plugged"]]
+    out = out.sort_values("instant", kind="stable").drop_duplicates("contact", keep="last")
+    out["plugged"] = out["contact"].isin(plugged)
+    uninspected = ~out.pop("inspected")
+    out.loc[uninspected, "instant"] = np.nan  # plugged, not inspected: no as-found state
     return out.reset_index(drop=True)

@@ -146,6 +146,20 @@ class Assessment:
 def _posterior_nodes(posterior, models, sized, sizing, count, contact_sigma, power_sigma):
     if isinstance(posterior, FactorNodes):
         return posterior, {"method": "given nodes"}
+    if hasattr(posterior, "levels") and hasattr(posterior, "scatter"):
+        # the hierarchical calibration (fretwear.assessment.calibration.BundleCalibration):
+        # its bundle-level posterior at nodes, its contact scatter and power spread
+        from fretwear.uncertainty.calibration import GridPosterior
+
+        levels = posterior.levels
+        dist = GridPosterior(log_factor=np.asarray(levels.grid, float),
+                             density=np.asarray(levels.bundle, float).reshape(-1))
+        s_c = float(posterior.prior.contact_sigma_ln)
+        s_p = math.sqrt(max(float(np.median(np.asarray(posterior.scatter) ** 2)) - s_c ** 2,
+                            0.0))
+        return (FactorNodes.from_posterior(dist, count=count, contact_sigma=s_c,
+                                           power_sigma=s_p),
+                {"method": "hierarchical", "factor_median": posterior.bundle_factor()[0]})
     if posterior is not None:  # a CalibrationResult or a distribution of the factor
         dist = getattr(posterior, "posterior", posterior)
         return FactorNodes.from_posterior(dist, count=count, contact_sigma=contact_sigma,
@@ -190,9 +204,12 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
         The technique's probability of detection.
     target : float
         The probability target of P(any tube past its limit) [-] (commonly 0.05).
-    posterior : FactorNodes, CalibrationResult or distribution, optional
-        The calibrated factor; default :func:`fretwear.uncertainty.calibrate` on the sized
-        indications (their true depths, σ_ln = (σ/b)/d).
+    posterior : FactorNodes, BundleCalibration, CalibrationResult or distribution, optional
+        The calibrated factor: nodes, the hierarchical calibration
+        (:func:`fretwear.assessment.calibration.calibrate_bundle`: its bundle-level posterior,
+        contact scatter and power spread; a group level is not carried), a calibration or a
+        distribution; default :func:`fretwear.uncertainty.calibrate` on the sized indications
+        (their true depths, σ_ln = (σ/b)/d).
     contact_sigma, power_sigma : float
         σ_ln of one contact's factor about the bundle's, and of the factor on its power [-].
     share : float
@@ -215,13 +232,16 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
                          f"{interval!r}")
     table = bundle_models(bundle, limit=limit)
     models = dict(zip(table["contact"], table["model"], strict=True))
-    insp = field_inspections(inspections) if inspections is not None else \
-        field_inspections(pd.DataFrame({"contact": [], "instant": []}))
+    insp = field_inspections(inspections, table) if inspections is not None else \
+        pd.DataFrame({"contact": pd.Series(dtype=str), "instant": pd.Series(dtype=float),
+                      "depth": pd.Series(dtype=float), "ndd": pd.Series(dtype=bool),
+                      "plugged": pd.Series(dtype=bool)})
     unknown = sorted(set(insp["contact"]) - set(models))
     if unknown:
         raise InputError(f"inspected contacts not computed in the bundle: {unknown[:5]} "
                          "(names as in the manifest's contact column)")
-    outage = float(insp["instant"].max()) if len(insp) else float(table["last_instant"].max())
+    outage = float(insp["instant"].max()) if insp["instant"].notna().any() \
+        else float(table["last_instant"].max())
     table = table.merge(insp, on="contact", how="left")
     flag = lambda name: table[name].astype("boolean").fillna(False).to_numpy(bool)  # noqa: E731
     plugged_tubes = set(table.loc[flag("plugged"), "tube"])

@@ -18,9 +18,10 @@ _HELP = """The outage decision of a bundle: which tubes to plug, which to inspec
 the generator may run.
 
 BUNDLE_OUT is the output directory of a finished bundle run (fretwear bundle -o); INSPECTIONS
-a CSV of the outage's inspections: contact, instant, depth (m) or depth_mm, result (NDD: no
-detectable degradation), plugged (true: out of service already). A contact without a row was
-not inspected. The technique's sizing error (measured = a + b·true + e, e ~ N(0, σ)) and its
+the outage's inspections (CSV or Parquet): per contact or tube location (tube_row,
+tube_column, support), instant, a depth (depth [m], depth_mm or depth_pct) or NDD (no
+detectable degradation), inspected and plugged (yes/no). A contact without a row was not
+inspected. The technique's sizing error (measured = a + b·true + e, e ~ N(0, σ)) and its
 logistic POD (depths detected 50 % and 90 % of the time) are yours to give: the defaults are
 illustrative, not qualified.
 
