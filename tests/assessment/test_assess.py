@@ -125,3 +125,24 @@ def test_plugged_tubes_leave_the_risk():
     a = _run([0.05, 0.01], insp)
     assert a.bundle["plugged_already"] == ["R1C1"]
     assert "R1C1" not in a.risk.tubes.tolist()
+
+
+def test_the_hierarchical_calibration_feeds_the_nodes():
+    from fretwear.assessment import Technique
+    from fretwear.assessment.calibration import calibrate_bundle
+    from fretwear.assessment.contacts import bundle_models
+
+    bundle = synthetic.bundle([0.05, 0.06, 0.07, 0.08])
+    models = dict(zip(*(bundle_models(bundle)[c] for c in ("contact", "model")), strict=True))
+    insp = pd.DataFrame({"contact": ["c0", "c1", "c2"], "instant": [10.0] * 3,
+                         "depth": ["3e-4", "3.5e-4", "NDD"]})
+    cal = calibrate_bundle(models, insp, techniques=Technique(sizing=SIZING, pod=POD),
+                           power_sigma_ln=0.2)
+    a = assess(bundle, insp, interval=2.0, sizing=SIZING, pod=POD, posterior=cal)
+    assert a.nodes.contact_sigma == cal.prior.contact_sigma_ln
+    assert a.nodes.power_sigma == pytest.approx(0.2, rel=1e-12)
+    # the nodes' distribution is the bundle-level posterior's: its median at the 0.5 quantile
+    # (s = 0 for the check: the nodes alone; a discrete median of 16 nodes, within 10 %)
+    alone = FactorNodes(a.nodes.log_factor, a.nodes.weights)
+    assert math.exp(alone.quantiles([0.5])[0]) == pytest.approx(cal.bundle_factor()[0],
+                                                                rel=0.1)
