@@ -30,6 +30,7 @@ EXTRAS: dict[str, str] = {
     "zarr": "bundle",
     "SALib": "uncertainty",
     "jinja2": "report",
+    "openturns": "openturns",
 }
 
 

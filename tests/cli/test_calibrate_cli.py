@@ -18,7 +18,7 @@ import pytest
 
 from fretwear.cli import main
 from fretwear.table import read_wear_table
-from fretwear.uncertainty import LogNormal, calibrate
+from fretwear.uncertainty import LogNormal
 from fretwear.workflows.case_files import load_case, run_case
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -96,19 +96,25 @@ def test_bundle_calibration(bundle_output, tmp_path, capsys):
     assert main(["calibrate", str(insp), "--bundle", str(out), "--forecast", "30",
                  "--prior-sigma-ln", "0.5", "-o", str(forecast), "--plot", str(plots)]) == 0
     text = capsys.readouterr().out
-    assert "posterior (" in text
     fc = pd.read_csv(forecast)
     assert {"tube_row", "tube_column", "support", "exceedance"} <= set(fc.columns)
     assert set(fc["contact"]) == set(table["contact"])
     assert np.all(np.diff(fc["exceedance"]) <= 0)  # ranked
-    assert {p.name for p in plots.iterdir()} == {"calibration.png", "calibration.svg",
-                                                 "exceedance_map.png", "exceedance_map.svg"}
-    # the same posterior as the library on the contacts' own tables (bundle rows + records)
+    assert {p.name for p in plots.iterdir()} == {"exceedance_map.png", "exceedance_map.svg"}
+    # the same posterior as the library's hierarchical calibration (issue 26) on the contacts'
+    # own tables (bundle rows + records), and bad news first
+    from fretwear.assessment import FactorPrior, LogSizingModel, Technique, calibrate_bundle
     from fretwear.report.predictions import bundle_predictions
 
-    tables, _ = bundle_predictions(out)
-    direct = calibrate(tables, insp, prior=LogNormal(1.0, sigma_ln=0.5))
-    assert f"median {direct.factor_median:.4g}" in text
+    tables, identity = bundle_predictions(out)
+    direct = calibrate_bundle(tables, insp, techniques=Technique(LogSizingModel(0.1)),
+                              prior=FactorPrior(LogNormal(1.0, sigma_ln=0.5)),
+                              identity=identity)
+    median, (low, high) = direct.bundle_factor()
+    assert f"bundle factor: median {median:.4g}, 90 % [{low:.4g}, {high:.4g}]" in text
+    assert text.index("at or past the limit") < text.index("bundle factor")
+    assert f"the 10 worst of {identity.drop_duplicates(['tube_row', 'tube_column']).shape[0]}" \
+        f" tubes" in text
     # the rows of one contact equal the bundle's table
     one = read_wear_table(out / "table.parquet") if (out / "table.parquet").exists() else None
     if one is not None:
@@ -123,4 +129,4 @@ def test_the_readmes_calibrate_line_runs_on_the_shipped_inspections(bundle_outpu
     assert "fretwear calibrate examples/bundle/inspections.csv --bundle build/bundle" in readme
     assert main(["calibrate", str(EXAMPLES / "bundle" / "inspections.csv"), "--bundle",
                  str(out)]) == 0
-    assert "posterior (" in capsys.readouterr().out
+    assert "bundle factor: median" in capsys.readouterr().out

@@ -28,7 +28,6 @@ import re
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
@@ -47,7 +46,7 @@ from fretwear.keys import check_probabilities
 from fretwear.table.depth import DepthModel, models_from_table
 from fretwear.uncertainty.distributions import LogNormal
 
-__all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle"]
+__all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle", "support_type"]
 
 _PASS1 = 801
 _MAX_POINTS = 1601
@@ -110,6 +109,8 @@ class BundleCalibration:
         prior's and the contact posterior's median factor.
     inspected : numpy.ndarray
         Whether each contact has a sized or NDD result (bool).
+    plugged : numpy.ndarray
+        Whether each contact's tube is plugged (an inspection row says so) (bool).
     """
 
     contacts: list
@@ -121,6 +122,7 @@ class BundleCalibration:
     prior: FactorPrior
     observations: pd.DataFrame
     inspected: np.ndarray
+    plugged: np.ndarray
 
     # ------------------------------------------------------------------ the factor
     def factor_summary(self) -> pd.DataFrame:
@@ -189,7 +191,9 @@ class BundleCalibration:
         g = self.levels
         x = self.limit_log_factor(instant, limit)
         h = g.grid[1] - g.grid[0]
-        above = g.grid[None, :] > x[:, None]
+        with np.errstate(invalid="ignore"):  # the cell holding λ_L counted by its share
+            above = np.clip((g.grid[None, :] - x[:, None]) / h + 0.5, 0.0, 1.0)
+        above = np.where(np.isnan(above), (x[:, None] < g.grid[None, :]) * 1.0, above)
         top = np.max(g.log_lik, axis=1, keepdims=True)
         lik = np.exp(g.log_lik - np.where(np.isfinite(top), top, 0.0))
         p = np.empty((len(self.contacts), g.grid.size))
@@ -215,11 +219,11 @@ class BundleCalibration:
         Returns
         -------
         DataFrame
-            ``contact``, ``group``, ``inspected``, ``instant``, ``depth_q..`` [m] (posterior
-            quantiles), ``limit`` [m], ``wall_fraction_q50`` [-], ``exceedance`` [-] and
-            ``exceedance_prior`` [-] (the same contact under the prior), ``factor_median``,
-            ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then ``depth_q50``, the worst
-            first.
+            ``contact``, ``group``, ``inspected``, ``plugged``, ``instant``, ``depth_q..``
+            [m] (posterior quantiles), ``limit`` [m], ``wall_fraction_q50`` [-],
+            ``exceedance`` [-] and ``exceedance_prior`` [-] (the same contact under the
+            prior), ``factor_median``, ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then
+            ``depth_q50``, the worst first.
         """
         q = check_probabilities(q, closed=False)
         g = self.levels
@@ -238,7 +242,8 @@ class BundleCalibration:
         mean, sd = moments_rows(g.grid, g.contacts)
         out = pd.DataFrame({"contact": self.contacts,
                             "group": [self.groups[k] for k in self.group_of],
-                            "inspected": self.inspected, "instant": float(instant)})
+                            "inspected": self.inspected, "plugged": self.plugged,
+                            "instant": float(instant)})
         for j, level in enumerate(q):
             out[f"depth_q{100 * level:g}"] = depths[:, j]
         out["limit"] = limits
@@ -496,6 +501,11 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     elif techniques is not None:
         inspections = Inspections(inspections.table, dict(techniques) if isinstance(
             techniques, Mapping) else {techniques.name: techniques}, inspections.source)
+    sectors = inspections.table["sector"].notna()
+    if sectors.any():
+        raise InputError(f"inspections line {inspections.table.loc[sectors, 'line'].iloc[0]}: "
+                         "a sector depth; calibrate_bundle takes global depths (sector depths: "
+                         "fretwear.uncertainty.calibrate)")
     obs = _resolve(inspections.table, contacts, identity)
     used = set(obs.loc[obs["status"] != "not inspected", "technique"])
     missing = sorted(t for t in used if t not in inspections.techniques)
@@ -522,9 +532,11 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
                     scatter, mu0, tau0, tau_g)
     inspected = np.zeros(len(contacts), bool)
     inspected[obs.loc[obs["status"] != "not inspected", "index"].to_numpy(int)] = True
+    plugged = np.zeros(len(contacts), bool)
+    plugged[obs.loc[obs["plugged"].astype(bool), "index"].to_numpy(int)] = True
     result = BundleCalibration(contacts=contacts, models=models, groups=names,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
-                               observations=obs, inspected=inspected)
+                               observations=obs, inspected=inspected, plugged=plugged)
     return _with_depths(result)
 
 
@@ -551,23 +563,3 @@ def _with_depths(result: BundleCalibration) -> BundleCalibration:
             float(result.models[c].depth(t, factor=median[i], warn=False))
             for c, t, i in zip(obs["contact"], obs["elapsed_s"], obs["index"], strict=True)]
     return BundleCalibration(**{**result.__dict__, "observations": obs})
-
-
-def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:
-    """Bad news first: contacts and tubes whose median depth is past the limit or through the
-    wall, and the worst contact (the forecast's first row)."""
-    past = forecast["depth_q50"] >= forecast["limit"]
-    wall = forecast["wall_fraction_q50"] >= 1.0 if "wall_fraction_q50" in forecast \
-        else past & False
-    tube = None
-    if identity is not None and {"tube_row", "tube_column"} <= set(identity):
-        where = identity.set_index("contact")
-        tube = [f"R{int(where.loc[c, 'tube_row'])}C{int(where.loc[c, 'tube_column'])}"
-                if c in where.index else c for c in forecast["contact"]]
-    tubes = pd.Series(tube if tube is not None else forecast["contact"].tolist())
-    worst = forecast.iloc[0]
-    return {"contacts_past_limit": int(past.sum()), "tubes_past_limit": int(tubes[past].nunique()),
-            "contacts_through_wall": int(wall.sum()),
-            "tubes_through_wall": int(tubes[wall].nunique()),
-            "worst_contact": str(worst["contact"]), "worst_exceedance": float(worst["exceedance"]),
-            "worst_depth_q50": float(worst["depth_q50"])}

@@ -12,7 +12,9 @@ from rich.console import Console
 from rich.table import Table
 
 from fretwear._optional import require
+from fretwear.assessment.inspections import INPUT_COLUMNS
 from fretwear.cli._units import parse_units, units_option, with_history_units
+from fretwear.cli.calibrate_field import calibrate_field, field_options
 from fretwear.io.atomic import atomic_write
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_tube_sheet
@@ -23,9 +25,8 @@ from fretwear.uncertainty import LogNormal, calibrate
 from fretwear.uncertainty.calibration import CALIBRATION_METHODS, INSPECTION_COLUMNS
 
 
-def _columns_help() -> str:
-    return "\n".join(f"  {name} [{unit}]: {meaning}"
-                     for name, (unit, meaning) in INSPECTION_COLUMNS.items())
+def _columns_help(columns=INSPECTION_COLUMNS) -> str:
+    return "\n".join(f"  {name} [{unit}]: {meaning}" for name, (unit, meaning) in columns.items())
 
 
 _HELP = f"""Calibrate the wear coefficients on inspections and forecast every contact.
@@ -37,9 +38,18 @@ updated by the depths (lognormal measurement error --measurement-sigma); prints 
 each inspection against its prediction, and with --forecast the posterior predictive depth and
 probability of exceeding the limit (depth_limit × wall thickness) of every contact.
 
+With --bundle, the field campaign's hierarchical calibration (docs/assessment.md): sized
+results through the sizing model, NDD (no detectable degradation) through 1 - POD, tubes not
+inspected give nothing; a bundle factor, a contact scatter (--contact-sigma-ln) and optionally
+a support-type level; bad news first, the --top worst tubes, every contact to -o.
+
 \b
-Inspection columns:
+Inspection columns (--case):
 {_columns_help()}
+
+\b
+Inspection columns (--bundle):
+{_columns_help(INPUT_COLUMNS)}
 """
 
 
@@ -71,10 +81,11 @@ Inspection columns:
 @click.option("--plot", "plot_dir", type=click.Path(file_okay=False, path_type=Path),
               help="Write the figures (PNG, SVG) into this directory.")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of tables.")
+@field_options
 @units_option
 def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, prior_sigma_ln,
             measurement_sigma, method, forecast, limit_mm, output, plot_dir, as_json,
-            units) -> None:
+            units, **field) -> None:
     if (case_file is None) == (bundle_dir is None):
         raise click.UsageError("give exactly one of --case CASE.toml and --bundle RESULTS")
     if units and bundle_dir is not None:
@@ -90,6 +101,16 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
     identity = None
     if bundle_dir is not None:
         predictions, identity = bundle_predictions(bundle_dir)
+        frame = calibrate_field(predictions, identity, inspections, prior, measurement_sigma,
+                                forecast, limit_mm, **field)
+        if output is not None:
+            with atomic_write(output, encoding="utf-8", newline="") as handle:
+                frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
+        if plot_dir is not None and "exceedance" in frame and frame["tube_row"].notna().any():
+            save_figure(plot_exceedance_map(frame), plot_dir, "exceedance_map", close=True)
+        if as_json:
+            click.echo(frame.to_json(orient="records", indent=2))
+        return
     else:
         predictions = case_predictions(with_history_units(case_file, parse_units(units)))
     result = calibrate(predictions, inspections, prior=prior,

@@ -1,0 +1,76 @@
+"""Bad news first: the counts and the per-tube table of a bundle calibration's forecast.
+
+:func:`summary_counts` gives the contacts and tubes at or past the limit and through the wall
+(median forecast depth) and the worst contact; :func:`tube_summary` one row per tube, the
+worst first (what ``fretwear calibrate --top N`` prints).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from fretwear._lazy import pandas as pd
+
+__all__ = ["summary_counts", "tube_summary"]
+
+
+def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:
+    """Bad news first: the contacts and tubes in service (not plugged) whose median forecast
+    depth is at or past the limit, or through the wall, the worst contact in service (the
+    first such row of the forecast), and the number of plugged tubes left out."""
+    tubes_all = pd.Series(_tubes(forecast["contact"], identity))
+    service = ~forecast["plugged"].to_numpy(bool) if "plugged" in forecast \
+        else np.ones(len(forecast), bool)
+    frame, tubes = forecast[service], tubes_all[service].reset_index(drop=True)
+    past = (frame["depth_q50"] >= frame["limit"]).to_numpy()
+    wall = (frame["wall_fraction_q50"] >= 1.0).to_numpy() \
+        if "wall_fraction_q50" in frame else np.zeros(len(frame), bool)
+    out = {"contacts_past_limit": int(past.sum()),
+           "tubes_past_limit": int(tubes[past].nunique()),
+           "contacts_through_wall": int(wall.sum()),
+           "tubes_through_wall": int(tubes[wall].nunique()),
+           "tubes_plugged": int(tubes_all[~service].nunique())}
+    if len(frame):
+        worst = frame.iloc[0]
+        out.update(worst_contact=str(worst["contact"]), worst_tube=str(tubes.iloc[0]),
+                   worst_exceedance=float(worst["exceedance"]),
+                   worst_depth_q50=float(worst["depth_q50"]))
+    return out
+
+
+def tube_summary(forecast: pd.DataFrame, identity=None) -> pd.DataFrame:
+    """One row per tube of a :meth:`BundleCalibration.forecast`, the worst first: ``tube``,
+    ``contacts``, ``worst_contact``, ``exceedance_max`` [-] (its contacts' largest
+    probability of exceeding the limit), ``depth_q50_max`` [m], ``wall_fraction_q50_max`` [-],
+    ``inspected`` (any contact inspected), ``plugged``."""
+    frame = forecast.copy()
+    frame["tube"] = _tubes(frame["contact"], identity)
+    frame = frame.sort_values(["exceedance", "depth_q50"], ascending=False, kind="stable")
+    grouped = frame.groupby("tube", sort=False)
+    out = pd.DataFrame({"contacts": grouped.size(),
+                        "worst_contact": grouped["contact"].first(),
+                        "exceedance_max": grouped["exceedance"].max(),
+                        "depth_q50_max": grouped["depth_q50"].max(),
+                        "wall_fraction_q50_max": grouped["wall_fraction_q50"].max(),
+                        "inspected": grouped["inspected"].any(),
+                        "plugged": grouped["plugged"].any() if "plugged" in frame
+                        else False}).reset_index()
+    return out.sort_values(["exceedance_max", "depth_q50_max"], ascending=False,
+                           kind="stable", ignore_index=True)
+
+
+def _tubes(contacts: pd.Series, identity) -> list:
+    if identity is None or not {"tube_row", "tube_column"} <= set(identity):
+        return contacts.tolist()
+    where = identity.drop_duplicates("contact").set_index("contact")
+    out = []
+    for c in contacts:
+        r, k = (where.loc[c, "tube_row"], where.loc[c, "tube_column"]) if c in where.index \
+            else (math.nan, math.nan)
+        ok = all(isinstance(v, int | float | np.integer | np.floating) and math.isfinite(v)
+                 for v in (r, k))
+        out.append(f"R{int(r)}C{int(k)}" if ok else str(c))
+    return out

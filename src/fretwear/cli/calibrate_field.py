@@ -1,0 +1,140 @@
+"""``fretwear calibrate INSPECTIONS --bundle RESULTS``: the hierarchical calibration of the
+bundle's factor on a field campaign (sized, NDD, not inspected), bad news first, the worst
+tubes on the terminal (``--top``) and every contact in the file (``-o``)."""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import click
+from rich.console import Console
+from rich.table import Table
+
+from fretwear.assessment import (
+    FactorPrior,
+    LogisticPOD,
+    LogSizingModel,
+    SizingModel,
+    Technique,
+    calibrate_bundle,
+    read_field_inspections,
+)
+from fretwear.assessment.summary import summary_counts, tube_summary
+
+_OPTIONS = [
+    click.option("--sizing-sigma-mm", type=click.FloatRange(min=0, min_open=True),
+                 default=None, help="Sizing error σ [mm] of measured = a + b·true + e "
+                 "(default: a lognormal error of --measurement-sigma)."),
+    click.option("--sizing-intercept-mm", type=float, default=0.0, show_default=True,
+                 help="Sizing intercept a [mm]."),
+    click.option("--sizing-slope", type=click.FloatRange(min=0, min_open=True), default=1.0,
+                 show_default=True, help="Sizing slope b [-]."),
+    click.option("--pod-a50-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+                 help="Depth detected half the time [mm] (logistic POD in ln depth; needed "
+                 "for NDD results)."),
+    click.option("--pod-a90-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+                 help="Depth detected 90 % of the time [mm]."),
+    click.option("--contact-sigma-ln", type=click.FloatRange(min=0), default=0.35,
+                 show_default=True, help="Contact-level scatter of ln(factor) [-]."),
+    click.option("--group-sigma-ln", type=click.FloatRange(min=0), default=0.0,
+                 show_default=True, help="Support-type level of ln(factor) [-] (0: none)."),
+    click.option("--power-sigma-ln", type=click.FloatRange(min=0), default=0.0,
+                 show_default=True, help="Log-spread of each contact's power [-]."),
+    click.option("--origin-date", default=None,
+                 help="Date of the predictions' instant 0, for an inspection file with dates."),
+    click.option("--wall-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+                 help="Tube wall [mm] for depth_pct without a wall_thickness column."),
+    click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
+                 help="Tubes shown on the terminal (every contact goes to -o FILE)."),
+]
+
+
+def field_options(func):
+    """The options of the field campaign (bundle mode)."""
+    return functools.reduce(lambda f, option: option(f), reversed(_OPTIONS), func)
+
+
+def _technique(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm, sizing_slope,
+               pod_a50_mm, pod_a90_mm) -> Technique:
+    sizing = LogSizingModel(measurement_sigma) if sizing_sigma_mm is None else SizingModel(
+        sizing_intercept_mm * 1e-3, sizing_slope, sizing_sigma_mm * 1e-3)
+    if (pod_a50_mm is None) != (pod_a90_mm is None):
+        raise click.UsageError("give both --pod-a50-mm and --pod-a90-mm")
+    pod = None if pod_a50_mm is None else LogisticPOD.from_depths(pod_a50_mm * 1e-3,
+                                                                  pod_a90_mm * 1e-3)
+    return Technique(sizing, pod, name="command line")
+
+
+def calibrate_field(predictions, identity, inspections, prior, measurement_sigma, forecast,
+                    limit_mm, *, sizing_sigma_mm, sizing_intercept_mm, sizing_slope,
+                    pod_a50_mm, pod_a90_mm, contact_sigma_ln, group_sigma_ln,
+                    power_sigma_ln, origin_date, wall_mm, top):
+    """Calibrate, print (bad news first) and return the table for the file."""
+    tech = _technique(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm, sizing_slope,
+                      pod_a50_mm, pod_a90_mm)
+    ins = read_field_inspections(inspections, origin_date=origin_date,
+                                 wall_thickness=None if wall_mm is None else wall_mm * 1e-3)
+    techniques = {name: tech for name in set(ins.table["technique"])}
+    cal = calibrate_bundle(predictions, ins, techniques=techniques,
+                           prior=FactorPrior(prior, group_sigma_ln, contact_sigma_ln),
+                           groups="support type" if group_sigma_ln > 0 else None,
+                           identity=identity, power_sigma_ln=power_sigma_ln)
+    console = Console()
+    if forecast is None:
+        _factor_lines(cal, ins, console)
+        frame = cal.factor_summary()
+        return identity.merge(frame, on="contact", how="right")
+    frame = cal.forecast(forecast, limit=None if limit_mm is None else limit_mm * 1e-3)
+    counts = summary_counts(frame, identity)
+    _bad_news(counts, frame, forecast, console)
+    _factor_lines(cal, ins, console)
+    _tubes(tube_summary(frame, identity), top, forecast, console)
+    return identity.merge(frame, on="contact", how="right")
+
+
+def _say(console: Console, text: str, style: str | None = None) -> None:
+    console.print(text, markup=False, highlight=False, style=style)
+
+
+def _bad_news(c: dict, frame, instant, console: Console) -> None:
+    bad = c["contacts_past_limit"] or c["contacts_through_wall"]
+    plugged = f"; {c['tubes_plugged']} plugged tubes left out" if c["tubes_plugged"] else ""
+    _say(console, f"at instant {instant:g}: {c['contacts_past_limit']} contacts "
+                  f"({c['tubes_past_limit']} tubes) at or past the limit, "
+                  f"{c['contacts_through_wall']} contacts ({c['tubes_through_wall']} tubes) "
+                  f"through the wall (median depth){plugged}", "bold red" if bad else None)
+    if "worst_contact" not in c:
+        return
+    worst = frame[frame["contact"] == c["worst_contact"]].iloc[0]
+    _say(console, f"worst: {c['worst_contact']} (tube {c['worst_tube']}), P(depth > limit) "
+                  f"{c['worst_exceedance']:.3g}, median depth "
+                  f"{c['worst_depth_q50'] * 1e3:.4g} mm "
+                  f"({worst.get('wall_fraction_q50', math.nan) * 100:.0f} % of the wall)")
+
+
+def _factor_lines(cal, ins, console: Console) -> None:
+    median, (low, high) = cal.bundle_factor()
+    _say(console, str(ins))
+    _say(console, f"bundle factor: median {median:.4g}, 90 % [{low:.4g}, {high:.4g}]; "
+                  f"contact scatter sigma_ln {cal.prior.contact_sigma_ln:.3g}")
+    if len(cal.groups) > 1:
+        for g in cal.groups:
+            m, (lo, hi) = cal.group_factor(g)
+            _say(console, f"  {g}: median {m:.4g}, 90 % [{lo:.4g}, {hi:.4g}]")
+
+
+def _tubes(tubes, top: int, instant, console: Console) -> None:
+    if not top:
+        return
+    table = Table(title=f"the {min(top, len(tubes))} worst of {len(tubes)} tubes at "
+                        f"instant {instant:g} (depths in mm)")
+    for col in ("tube", "contacts", "worst contact", "P > limit", "median depth",
+                "% wall", "inspected"):
+        table.add_column(col, justify="right")
+    for _, r in tubes.head(top).iterrows():
+        table.add_row(str(r["tube"]), str(r["contacts"]), str(r["worst_contact"]),
+                      f"{r['exceedance_max']:.3g}", f"{r['depth_q50_max'] * 1e3:.4g}",
+                      f"{r['wall_fraction_q50_max'] * 100:.0f}",
+                      "yes" if r["inspected"] else "no")
+    console.print(table)

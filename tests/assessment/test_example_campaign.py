@@ -1,0 +1,80 @@
+"""The example's inspection campaign (issue 26, point 8): examples/bundle/campaign.csv is what
+examples/bundle/make_inspections.py draws from the example's predictions and a known true
+factor, and the hierarchical calibration recovers that factor within its interval.
+
+Oracle: the truth the campaign was drawn from (bundle factor 1.6, each contact's own factor in
+campaign_truth.csv), not a number fitted to the result.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from fretwear.assessment import FactorPrior, calibrate_bundle, read_field_inspections
+from fretwear.report.predictions import bundle_predictions
+from fretwear.table.depth import models_from_table
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location("make_inspections",
+                                                  EXAMPLE / "make_inspections.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def example(tmp_path_factory):
+    from fretwear.bundle import run_bundle
+
+    out = tmp_path_factory.mktemp("example") / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run_bundle(EXAMPLE / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial",
+                   output=out)
+    tables, identity = bundle_predictions(out)
+    models = {c: models_from_table(t, name=c)["global"] for c, t in tables.items()}
+    return models, identity
+
+
+def test_the_shipped_campaign_is_what_the_script_draws(example):
+    models, identity = example
+    script = _script()
+    campaign, truth = script.draw_campaign(models, identity)
+    shipped = read_field_inspections(EXAMPLE / "campaign.csv",
+                                     origin_date=script.ORIGIN_DATE).table
+    drawn = read_field_inspections(campaign, origin_date=script.ORIGIN_DATE).table
+    assert shipped["status"].tolist() == drawn["status"].tolist()
+    # depths in whole % of the wall: one % either way where a float on another CPU rounds
+    # the other way
+    assert np.allclose(shipped["depth"], drawn["depth"], atol=0.0109e-3, equal_nan=True)
+    stored = pd.read_csv(EXAMPLE / "campaign_truth.csv")
+    assert stored["contact"].tolist() == truth["contact"].tolist()
+    assert np.allclose(stored["true_factor"], truth["true_factor"], rtol=1e-5)
+
+
+def test_calibration_recovers_the_true_factor_within_its_interval(example):
+    models, identity = example
+    script = _script()
+    campaign = read_field_inspections(EXAMPLE / "campaign.csv", script.technique(),
+                                      origin_date=script.ORIGIN_DATE)
+    assert campaign.counts()["ndd"] > 0 and campaign.counts()["not inspected"] > 0
+    cal = calibrate_bundle(models, campaign, identity=identity,
+                           techniques={script.TECHNIQUE: script.technique()},
+                           prior=FactorPrior(contact_sigma_ln=script.CONTACT_SIGMA_LN))
+    median, (low, high) = cal.bundle_factor()
+    assert low < script.TRUE_FACTOR < high, (median, low, high)
+    # every contact's true factor against its own 90 % interval: about 90 % covered
+    truth = pd.read_csv(EXAMPLE / "campaign_truth.csv").set_index("contact")
+    summary = cal.factor_summary().set_index("contact")
+    inside = (summary["q05"] < truth.loc[summary.index, "true_factor"]) \
+        & (truth.loc[summary.index, "true_factor"] < summary["q95"])
+    assert inside.mean() >= 0.75, inside.mean()
