@@ -116,7 +116,8 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
     return out
 
 
-def field_inspections(source, contacts: pd.DataFrame | None = None) -> pd.DataFrame:
+def field_inspections(source, contacts: pd.DataFrame | None = None, *, origin_date=None,
+                      time_unit: str = "year") -> pd.DataFrame:
     """One outage's inspections, read by
     :func:`fretwear.assessment.inspections.read_field_inspections` (CSV, Parquet or a
     DataFrame: per contact or tube location, sized depth in m, mm or % through-wall, NDD,
@@ -128,6 +129,8 @@ def field_inspections(source, contacts: pd.DataFrame | None = None) -> pd.DataFr
     contacts : DataFrame, optional
         ``contact``, ``tube_row``, ``tube_column``, ``support`` of the bundle: a row giving a
         tube location stands for the contacts of that tube (of its support when given).
+    origin_date, time_unit
+        The date of the predictions' instant 0 and their time unit, for a ``date`` column.
 
     Returns
     -------
@@ -145,7 +148,7 @@ def field_inspections(source, contacts: pd.DataFrame | None = None) -> pd.DataFr
     """
     from fretwear.assessment.inspections import read_field_inspections
 
-    table = read_field_inspections(source).table
+    table = read_field_inspections(source, origin_date=origin_date, time_unit=time_unit).table
     located = table["contact"].astype(str).str.len() == 0
     if located.any():
         if contacts is None:

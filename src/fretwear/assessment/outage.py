@@ -186,7 +186,7 @@ def _posterior_nodes(posterior, models, sized, sizing, count, contact_sigma, pow
 def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
            target: float = 0.05, posterior=None, contact_sigma: float = 0.0,
            power_sigma: float = 0.0, share: float = 0.9, limit: float | None = None,
-           horizon: float | None = None, nodes: int = 16) -> Assessment:
+           horizon: float | None = None, nodes: int = 16, origin_date=None) -> Assessment:
     """Condition monitoring and operational assessment of a bundle at an outage.
 
     Parameters
@@ -220,6 +220,8 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
         The longest interval searched [time unit] (default 5 × interval).
     nodes : int
         Quadrature nodes of the factor's posterior.
+    origin_date : str, optional
+        The date of the bundle's instant 0, for inspections dated (ISO 8601).
 
     Returns
     -------
@@ -232,7 +234,10 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
                          f"{interval!r}")
     table = bundle_models(bundle, limit=limit)
     models = dict(zip(table["contact"], table["model"], strict=True))
-    insp = field_inspections(inspections, table) if inspections is not None else \
+    unit = str(table["time_unit"].dropna().iloc[0]) if table["time_unit"].notna().any() \
+        else "year"
+    insp = field_inspections(inspections, table, origin_date=origin_date, time_unit=unit) \
+        if inspections is not None else \
         pd.DataFrame({"contact": pd.Series(dtype=str), "instant": pd.Series(dtype=float),
                       "depth": pd.Series(dtype=float), "ndd": pd.Series(dtype=bool),
                       "plugged": pd.Series(dtype=bool)})

@@ -59,6 +59,8 @@ _ILLUSTRATIVE = {"sizing_sigma_mm": 0.05, "pod_a50_mm": 0.15, "pod_a90_mm": 0.30
               help="σ of ln of the factor on each contact's wear power [-].")
 @click.option("--share", type=click.FloatRange(0, 1, min_open=True), default=0.9,
               show_default=True, help="Share of the bundle's risk the next sample covers.")
+@click.option("--origin-date", default=None,
+              help="Date of the bundle's instant 0 (ISO 8601), for inspections given by date.")
 @click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
               help="Tubes shown on the terminal (all of them in OUT/tubes.csv).")
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
@@ -67,7 +69,7 @@ _ILLUSTRATIVE = {"sizing_sigma_mm": 0.05, "pod_a50_mm": 0.15, "pod_a90_mm": 0.30
               help="Also write OUT/report.html, one self-contained page.")
 def command(bundle_out, inspections, interval, target, limit, sizing_intercept_mm,
             sizing_slope, sizing_sigma_mm, pod_a50_mm, pod_a90_mm, contact_sigma,
-            power_sigma, share, top, output, with_report) -> None:
+            power_sigma, share, origin_date, top, output, with_report) -> None:
     given = {"sizing_sigma_mm": sizing_sigma_mm, "pod_a50_mm": pod_a50_mm,
              "pod_a90_mm": pod_a90_mm}
     defaulted = [k for k, v in given.items() if v is None]
@@ -77,7 +79,7 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
     pod = LogisticPOD.from_depths(values["pod_a50_mm"] * 1e-3, values["pod_a90_mm"] * 1e-3)
     result = assess(load(bundle_out), inspections, interval=interval, sizing=sizing, pod=pod,
                     target=target, contact_sigma=contact_sigma, power_sigma=power_sigma,
-                    share=share, limit=limit)
+                    share=share, limit=limit, origin_date=origin_date)
     result.inputs.update({"bundle": str(bundle_out), "inspections": str(inspections),
                           "illustrative": defaulted})
     result.write(output)

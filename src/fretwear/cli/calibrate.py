@@ -107,7 +107,9 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
             with atomic_write(output, encoding="utf-8", newline="") as handle:
                 frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
         if plot_dir is not None and "exceedance" in frame and frame["tube_row"].notna().any():
-            save_figure(plot_exceedance_map(frame), plot_dir, "exceedance_map", close=True)
+            save_figure(plot_tube_sheet(frame, quantity="probability", column="exceedance",
+                                        title="P(exceeding the limit at the forecast)"),
+                        plot_dir, "exceedance_map", close=True)
         if as_json:
             click.echo(frame.to_json(orient="records", indent=2))
         return
