@@ -37,15 +37,20 @@ def test_workers_with_a_scheduler_names_the_options(tmp_path, capsys):
     assert "--scheduler serial runs in this process: --workers" in capsys.readouterr().err
 
 
-def test_quiet_keeps_only_the_final_line_and_a_skipped_run_starts_no_cluster(tmp_path, capsys):
+def test_quiet_keeps_only_the_bad_news_and_the_final_line_a_skipped_run_starts_no_cluster(
+        tmp_path, capsys):
     out_dir = tmp_path / "out"
     assert main([*ARGS, "--scheduler", "serial", "-o", str(out_dir), "-q"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert len(lines) == 1
-    assert lines[0].startswith("done 24, failed 0, skipped 0 of 24 contacts")
+    # bad news stays with -q, first (issue 26): the two contacts past 40 %, worst named
+    bad = ("PAST THE PLUGGING LIMIT: 2 contact(s) on 2 tube(s) (worst: R4C2-AVB1 49.8 %, "
+           "R4C1-AVB2 44.1 %)")
+    assert lines[:-1] == [bad]
+    assert lines[-1].startswith("done 24, failed 0, skipped 0 of 24 contacts")
     # again: every contact unchanged, nothing computed, no cluster (not "on 1 worker(s)")
     assert main([*ARGS, "-o", str(out_dir), "-q"]) == 0
-    (line,) = capsys.readouterr().out.splitlines()
+    news, line = capsys.readouterr().out.splitlines()
+    assert news == bad
     assert line.startswith("done 0, failed 0, skipped 24 of 24 contacts")
     assert "no cluster started" in line
     said = line.split("; results in ")[0]

@@ -28,16 +28,13 @@ def data():
                      power_scatter=LogNormal(sigma_ln=0.2), samples=512)
     table = wear_table(0.01, **{k: v for k, v in CASE.items() if k != "wall_thickness"})
     cal = calibrate(table, pd.DataFrame({"instant": [5.0, 10.0], "depth": [3e-4, 4.5e-4]}))
-    exceed = pd.DataFrame({"tube_row": [1, 1, 2, 2], "tube_column": [1, 2, 1, 2],
-                           "exceedance": [0.01, 0.3, 0.7, 0.05]})
-    return {"mc": mc, "cal": cal, "map": exceed}
+    return {"mc": mc, "cal": cal}
 
 
 CASES = {
     "plot_fan_chart": (lambda d, ax: figures.plot_fan_chart(d["mc"], ax=ax), 1),
     "plot_sensitivity": (lambda d, ax: figures.plot_sensitivity(d["mc"], ax=ax), 1),
     "plot_calibration": (lambda d, ax: figures.plot_calibration(d["cal"], ax=ax), 2),
-    "plot_exceedance_map": (lambda d, ax: figures.plot_exceedance_map(d["map"], ax=ax), 1),
 }
 
 
@@ -88,8 +85,6 @@ def test_fan_chart_bands_are_the_quantiles(data):
 def test_bad_inputs():
     with pytest.raises(InputError, match="UncertaintyResult"):
         figures.plot_fan_chart(pd.DataFrame())
-    with pytest.raises(InputError, match="tube_row"):
-        figures.plot_exceedance_map(pd.DataFrame({"exceedance": [0.1]}))
     with pytest.raises(InputError, match="'first'"):
         figures.plot_sensitivity(pd.DataFrame({"total": [0.1]}))
 

@@ -6,12 +6,15 @@
   inspected, plugged; per contact or tube location) with its technique models;
 - :mod:`fretwear.assessment.calibration`: the hierarchical calibration of the factor on those
   inspections (censored by the POD), per-contact posteriors and forecasts;
+- :mod:`fretwear.assessment.contacts`, :mod:`~fretwear.assessment.growth`,
+  :mod:`~fretwear.assessment.condition`, :mod:`~fretwear.assessment.outage`: :func:`assess`, the
+  outage decision of a bundle (condition monitoring and operational assessment);
 - :mod:`fretwear.assessment.operational`: the probability that any tube of a bundle exceeds its
   limit over an interval, the longest interval under a target, the preventive-plugging list and
   the inspection sample, from the contacts' probabilities of exceeding the limit.
 
 The contacts' probabilities come from the depth model of each contact and the calibrated factor;
-the ``fretwear assess`` command that ties them to a bundle's results is not built yet.
+``fretwear assess`` ties them to a bundle's results (docs/assessment.md).
 """
 
 from fretwear.assessment.calibration import BundleCalibration, FactorPrior, calibrate_bundle

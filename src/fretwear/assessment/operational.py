@@ -175,12 +175,20 @@ def plugging_list(risk: BundleRisk, target: float, *, always=()) -> list:
     unknown = [t for t in plugged if t not in set(risk.tubes.tolist())]
     if unknown:
         raise InputError(f"tubes to plug that are not in the bundle: {unknown[:5]}")
-    while risk.probability_any(plugged) > target:
-        left = [t for t in risk.tubes.tolist() if t not in plugged]
-        if not left:
-            break
-        best = min(left, key=lambda t: risk.probability_any([*plugged, t]))
-        plugged.append(best)
+    # each step evaluates P_any without every tube left at once (one array operation over
+    # tubes x nodes: 10⁴ tubes in milliseconds a step); the first of equal tubes is taken
+    left = ~np.isin(risk.tubes, np.asarray(plugged, dtype=risk.tubes.dtype))
+    log_q = np.maximum(risk.log_survival, -1e4)  # a sure tube (ln 0) removable: e^-1e4 = 0
+    total = log_q[left].sum(axis=0)
+    while float(np.dot(risk.weights, -np.expm1(total))) > target and left.any():
+        with np.errstate(over="ignore"):  # the tubes plugged already: set to inf below
+            after = -np.expm1(total[None, :] - log_q) @ risk.weights
+        after[~left] = np.inf
+        best = int(np.argmin(after))
+        plugged.append(risk.tubes[best].item() if hasattr(risk.tubes[best], "item")
+                       else risk.tubes[best])
+        left[best] = False
+        total = total - log_q[best]
     return plugged
 
 

@@ -12,7 +12,8 @@ the base case), on a laptop (a local Dask cluster, one worker process per core) 
 - :mod:`fretwear.bundle.cases`: one contact's case (base case + overrides) and its task;
 - :mod:`fretwear.bundle.tasks`: what a worker runs (whole contact, time chunk, merge, finish);
 - :mod:`fretwear.bundle.engine`: :func:`run_bundle` (Dask orchestration, restarts);
-- :mod:`fretwear.bundle.store`: the output directory (parts, final files);
+- :mod:`fretwear.bundle.store`: the output directory (parts, final files), :func:`load`
+  (a finished run's results read back, without its history files);
 - :mod:`fretwear.bundle.result`: :class:`BundleResult` (table, dataset, errors, summary).
 
 Needs the ``bundle`` extra: ``pip install 'fretwear[bundle]'`` (dask.distributed, xarray, zarr).
@@ -23,12 +24,14 @@ from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.engine import run_bundle
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, IDENTITY, Manifest, read_manifest
 from fretwear.bundle.result import BundleResult
+from fretwear.bundle.store import load
 
 __all__ = [
     "BUNDLE_COLUMNS",
     "IDENTITY",
     "BundleResult",
     "ContactTask",
+    "load",
     "Manifest",
     "read_manifest",
     "run_bundle",

@@ -56,3 +56,42 @@ def warning_lines(warnings: pd.DataFrame, order: list[str] | None = None, *,
         lines.append(f"{kind}: {count} (worst: {', '.join(contacts[:worst])}"
                      f"{', ...' if len(contacts) > worst else ''}): {contacts[0]}: {text}")
     return lines
+
+
+def limit_lines(summary: pd.DataFrame, *, worst: int = 3) -> list[str]:
+    """The counts said first: contacts and tubes through the wall, then at or past the
+    plugging limit, at the last instant, the worst named (the summary's order: deepest first).
+
+    Parameters
+    ----------
+    summary : DataFrame
+        :meth:`BundleResult.summary` (``contact``, ``tube_row``, ``tube_column``,
+        ``depth_fraction`` [-], ``limit_depth`` and ``wall_thickness`` [m]).
+
+    Examples
+    --------
+    >>> s = pd.DataFrame({"contact": ["a", "b", "c"], "tube_row": [1, 1, 2],
+    ...                   "tube_column": [1, 1, 1], "depth_fraction": [1.2, 0.5, 0.1],
+    ...                   "limit_depth": [4e-4] * 3, "wall_thickness": [1e-3] * 3})
+    >>> for line in limit_lines(s): print(line)
+    THROUGH THE WALL: 1 contact(s) on 1 tube(s) (worst: a 120.0 %)
+    PAST THE PLUGGING LIMIT: 2 contact(s) on 1 tube(s) (worst: a 120.0 %, b 50.0 %)
+    """
+    need = {"depth_fraction", "limit_depth", "wall_thickness"}
+    if not len(summary) or not need <= set(summary.columns):
+        return []
+    frac = pd.to_numeric(summary["depth_fraction"], errors="coerce")
+    limit = pd.to_numeric(summary["limit_depth"], errors="coerce") \
+        / pd.to_numeric(summary["wall_thickness"], errors="coerce")
+    lines = []
+    for name, hit in (("THROUGH THE WALL", frac >= 1.0),
+                      ("PAST THE PLUGGING LIMIT", frac >= limit)):
+        rows = summary[hit.fillna(False).to_numpy(bool)]
+        if not len(rows):
+            continue
+        tubes = rows[[c for c in ("tube_row", "tube_column") if c in rows.columns]]
+        count = len(tubes.drop_duplicates()) if tubes.shape[1] else len(rows)
+        named = ", ".join(f"{c} {100 * f:.1f} %" for c, f in zip(
+            rows["contact"].head(worst), rows["depth_fraction"].head(worst), strict=True))
+        lines.append(f"{name}: {len(rows)} contact(s) on {count} tube(s) (worst: {named})")
+    return lines

@@ -366,3 +366,103 @@ class OutputDirectory:
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
         return target
+
+
+def _part_records(parts: Path) -> dict[str, dict[str, Any]]:
+    """The latest record of every contact in ``parts/`` (read only: nothing created)."""
+    out: dict[str, dict[str, Any]] = {}
+    for js in sorted(parts.glob("part-*.json")) if parts.is_dir() else ():
+        try:
+            data = json.loads(js.read_text(encoding="utf-8"))
+        except (OSError, json.JSONDecodeError):
+            continue
+        for rec in data.get("contacts", []):
+            out[str(rec["contact"])] = rec
+    return out
+
+
+def _contacts_frame(table: pd.DataFrame, errors: pd.DataFrame,
+                    records: dict[str, dict[str, Any]]) -> pd.DataFrame:
+    """One row per contact as :func:`fretwear.bundle.run_bundle` gives it, from the table's
+    identity columns (the errors' for a contact without rows) and the parts' records."""
+    from fretwear.bundle.manifest import IDENTITY
+
+    ident = [c for c in IDENTITY if c in table.columns]
+    identity = table[ident].drop_duplicates("contact") if len(table) else \
+        pd.DataFrame(columns=ident)
+    if len(errors) and "contact" in errors.columns:
+        extra = errors[[c for c in ident if c in errors.columns]]
+        identity = pd.concat([identity, extra[~extra["contact"].isin(identity["contact"])]],
+                             ignore_index=True)
+    identity = identity.assign(contact=identity["contact"].astype(str))
+    info = []
+    for c in identity["contact"]:
+        rec = records.get(c, {})
+        attrs = rec.get("attrs") or {}
+        info.append({"contact": c, "status": rec.get("status", "done"),
+                     "samples": rec.get("samples", 0), "seconds": rec.get("seconds", 0.0),
+                     "power": (attrs.get("power") or {}).get("total"),
+                     **{k: attrs.get(k) for k in (
+                         "time_unit", "origin", "tube_replacement", "wall_thickness",
+                         "depth_limit", "contact_type", "dimensions", "law",
+                         "coefficients_mobile", "coefficients_obstacle", "time_scale")}})
+    return identity.merge(pd.DataFrame(info, columns=["contact"] + list(info[0]) [1:]
+                                       if info else ["contact"]), on="contact", how="left")
+
+
+def load(path: str | os.PathLike):
+    """A finished bundle's results, read from its output directory without its history files.
+
+    Read only: nothing is written or created in ``path``. The table is ``table.parquet`` (or
+    ``table.csv``), the failures and warnings ``errors.csv`` and ``warnings.csv``, the run's
+    statistics ``run.json``, and each contact's record (status, power [W], law, geometry,
+    wall thickness [m], depth limit [-], time scale [s per unit]) from ``parts/*.json``, so
+    that :meth:`~fretwear.bundle.BundleResult.summary` and the depth models of
+    :func:`fretwear.table.depth.models_from_table` work as on the run's own result.
+
+    Parameters
+    ----------
+    path : path-like
+        The ``output=`` directory of :func:`fretwear.bundle.run_bundle` (``fretwear bundle -o``).
+
+    Returns
+    -------
+    BundleResult
+        ``output`` is ``path``; ``stats`` are the run's (``run.json``).
+
+    Raises
+    ------
+    InputError
+        ``path`` is not a directory, or holds no finished run (no ``run.json`` or no table).
+    """
+    from fretwear.bundle.result import BundleResult
+
+    root = Path(path)
+    if not root.is_dir():
+        raise InputError(f"{str(root)!r} is not a bundle output directory (fretwear bundle -o "
+                         "OUT writes one)")
+    tables = [root / f"table.{fmt}" for fmt in TABLE_FORMATS if (root / f"table.{fmt}").is_file()]
+    if not (root / "run.json").is_file() or not tables:
+        raise InputError(f"{str(root)!r} holds no finished bundle run (no run.json or no "
+                         "table.parquet/table.csv): run fretwear bundle -o into it, or let the "
+                         "interrupted run finish")
+    try:
+        stats = json.loads((root / "run.json").read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise InputError(f"{str(root / 'run.json')!r} is not readable JSON ({exc})") from None
+    table = read_frame(tables[0])
+    table["contact"] = table["contact"].astype(str)
+
+    def optional_csv(name: str, columns: list[str]) -> pd.DataFrame:
+        f = root / name
+        frame = read_frame(f) if f.is_file() else pd.DataFrame(columns=columns)
+        if "contact" in frame.columns:
+            frame["contact"] = frame["contact"].astype(str)
+        return frame
+
+    errors = optional_csv("errors.csv", ["contact", "error", "message", "rows_kept"])
+    warns = optional_csv("warnings.csv", ["contact", "category", "message"])
+    contacts = _contacts_frame(table, errors, _part_records(root / "parts"))
+    stats = {k: v for k, v in stats.items() if k != "outputs"} if isinstance(stats, dict) else {}
+    return BundleResult(table=table, errors=errors, warnings=warns, contacts=contacts,
+                        stats=stats, output=str(root))

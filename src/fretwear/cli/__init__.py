@@ -30,6 +30,7 @@ SUBCOMMANDS: dict[str, str] = {
     "simulate": "A bundle's contact histories from its description (flow to wear), on Dask.",
     "calibrate": "Calibrate the wear coefficients on inspected depths; forecast every contact.",
     "report": "Run a case and write one HTML report with its uncertainty.",
+    "assess": "The outage decision of a bundle: plugging, next inspection, operating interval.",
 }
 
 

@@ -19,7 +19,7 @@ from rich.table import Table
 from rich.text import Text
 
 from fretwear.bundle import run_bundle
-from fretwear.bundle.digest import warning_lines
+from fretwear.bundle.digest import limit_lines, warning_lines
 from fretwear.bundle.engine import BundleInterrupted
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
@@ -171,6 +171,8 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
             raise KeyboardInterrupt(f"{exc}; run the same command again to resume") from exc
     # bad news first: a tube through its wall, units that look wrong (one line per kind)
     summary = result.summary(limit)
+    for line in limit_lines(summary):  # counts past the limit and through the wall first
+        click.echo(line)
     for line in warning_lines(result.warnings, list(summary["contact"].astype(str))):
         click.echo(line)  # shown with -q too
     _summary(summary, console, top, limit)

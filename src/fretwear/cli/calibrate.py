@@ -17,7 +17,8 @@ from fretwear.cli._units import parse_units, units_option, with_history_units
 from fretwear.cli.calibrate_field import calibrate_field, field_options
 from fretwear.io.atomic import atomic_write
 from fretwear.plotting import save_figure
-from fretwear.plotting.uncertainty import plot_calibration, plot_exceedance_map
+from fretwear.plotting.bundle import plot_tube_sheet
+from fretwear.plotting.uncertainty import plot_calibration
 from fretwear.report.predictions import bundle_predictions, case_predictions
 from fretwear.table.schema import FLOAT_FORMAT
 from fretwear.uncertainty import LogNormal, calibrate
@@ -106,7 +107,9 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
             with atomic_write(output, encoding="utf-8", newline="") as handle:
                 frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
         if plot_dir is not None and "exceedance" in frame and frame["tube_row"].notna().any():
-            save_figure(plot_exceedance_map(frame), plot_dir, "exceedance_map", close=True)
+            save_figure(plot_tube_sheet(frame, quantity="probability", column="exceedance",
+                                        title="P(exceeding the limit at the forecast)"),
+                        plot_dir, "exceedance_map", close=True)
         if as_json:
             click.echo(frame.to_json(orient="records", indent=2))
         return
@@ -137,8 +140,10 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
         if identity is not None and result.predictive is not None \
                 and frame.get("tube_row") is not None and frame["tube_row"].notna().any():
             global_rows = frame[frame["sector"].isna()] if "sector" in frame else frame
-            save_figure(plot_exceedance_map(global_rows), plot_dir, "exceedance_map",
-                        close=True)
+            save_figure(plot_tube_sheet(global_rows, quantity="probability",
+                                        column="exceedance",
+                                        title="P(exceeding the limit at the forecast)"),
+                        plot_dir, "exceedance_map", close=True)
 
 
 def _mm(value) -> str:

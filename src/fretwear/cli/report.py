@@ -17,7 +17,9 @@ from fretwear.workflows.inputs import case_inputs
 
 _KEYS = "\n".join(f"  {k}: {d}" for k, (_, d) in UNCERTAINTY_KEYS.items())
 
-_HELP = f"""Run CASE_FILE and write one self-contained HTML report: inputs, every coefficient with
+_HELP = f"""Run CASE_FILE and write one self-contained HTML report (CASE_FILE a finished
+bundle's output directory: its results read back, the bad news, the tube-sheet map and the
+deepest contacts): inputs, every coefficient with
 its source, the fretwear version, warnings, the wear table and its figures, the wear power's
 confidence interval, the Monte Carlo propagation of the wear coefficients' scatter (depth
 quantiles, probability of exceeding the limit, time to reach it, Sobol' indices) and, with
@@ -51,7 +53,7 @@ def report_options(function):
 
 
 @click.command(help=_HELP, context_settings={"max_content_width": 100})
-@click.argument("case_file", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.argument("case_file", type=click.Path(exists=True, path_type=Path))
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
               required=True, help="The HTML file to write.")
 @report_options
@@ -59,6 +61,13 @@ def report_options(function):
 def command(case_file: Path, output: Path, inspections, units, **options) -> None:
     require("jinja2", purpose="fretwear report")
     require("matplotlib.pyplot", purpose="fretwear report")
+    if case_file.is_dir():  # a finished bundle's output directory: read back, not re-run
+        from fretwear.bundle import load
+        from fretwear.report.assessment import write_bundle_report
+
+        written = write_bundle_report(load(case_file), output)
+        Console().print(f"report written to [bold]{written}[/]")
+        return
     case = with_history_units(load_case(case_file), parse_units(units))
     check_outputs({"-o": output}, {**case_inputs(case, case_file), "inspections": inspections})
     analysis = analyse_case(case, inspections=inspections, source=case_file, **options)

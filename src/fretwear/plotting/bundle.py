@@ -136,17 +136,33 @@ def _cell_key(axis: Any, under: Any, entries: list[tuple[str, bool, str]]) -> No
         zorder=6))  # drawn after the colour bar (an inset: zorder 5) has placed its label
 
 
-def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
-    """Tube-sheet map: each tube a cell at (column, row), coloured by its worst contact's depth.
+def plot_tube_sheet(results: Any, *, quantity: str = "auto", column: str | None = None,
+                    limit: float = 0.4, target: float = 0.05, title: str | None = None,
+                    ax: Any = None):
+    """Tube-sheet map: each tube a cell at (column, row), coloured by its worst contact's depth
+    (or probability): the one map of the bundle, the calibration and the assessment.
 
     Parameters
     ----------
-    results : BundleResult or DataFrame
+    results : BundleResult, Assessment or DataFrame
         The bundle's results, or their ``summary()`` (columns ``tube_row``, ``tube_column``
-        (integers), ``depth`` [m], ``depth_fraction``).
+        (integers), ``depth`` [m], ``depth_fraction``), or any table of contacts or tubes with
+        the position and the ``column`` drawn. Optional boolean columns ``inspected`` and
+        ``plugged`` mark the tubes (a ring, a black dot).
     quantity : str
         ``"depth"`` (global tube depth at the last instant [mm]), ``"fraction"`` (depth / wall
-        thickness [%]), or ``"auto"`` (the fraction when every tube's wall is known).
+        thickness [%], in discrete bands: four below the plugging limit, the limit to the wall,
+        through the wall, as the field's maps are drawn), ``"probability"`` (the ``column``, a
+        probability of exceeding the limit, in decade bands up to the target and above it), or
+        ``"auto"`` (the fraction when every tube's wall is known).
+    column : str, optional
+        The column drawn for ``"fraction"`` (default ``depth_fraction``) or ``"probability"``
+        (default ``p_exceed``, else ``exceedance``).
+    limit : float
+        The plugging limit, fraction of the wall [-], the edge of the fraction's bands.
+    target : float
+        The probability target [-], the edge of the probability's top band.
+    title : str, optional
     ax : Axes or Figure, optional
         Where to draw (one panel). The colour bar is an inset of that Axes, outside the map: in
         a figure of several panels, ``layout="constrained"`` leaves it room.
@@ -176,37 +192,54 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
      [-- --]]
     """
     summary = _summary(results)
-    missing = [c for c in ("tube_row", "tube_column") if c not in summary.columns
+    if quantity == "probability":
+        column = column or next((c for c in ("p_exceed", "exceedance") if c in summary.columns),
+                                "p_exceed")
+    missing = [c for c in ("tube_row", "tube_column", *([column] if column else []))
+               if c not in summary.columns
                or summary[c].isna().all()]
     if missing:
-        raise InputError(f"the tube-sheet map needs the manifest's {' and '.join(missing)} "
-                         "columns (position of each tube)")
-    if quantity not in ("auto", "depth", "fraction"):
-        raise InputError(f"quantity {quantity!r}: choose 'depth', 'fraction' or 'auto'")
-    frac = summary.get("depth_fraction", pd.Series(np.nan, index=summary.index))
+        raise InputError(f"the tube-sheet map needs the columns {' and '.join(missing)} "
+                         "(position of each tube, and the value drawn)")
+    if quantity not in ("auto", "depth", "fraction", "probability"):
+        raise InputError(f"quantity {quantity!r}: choose 'depth', 'fraction', 'probability' "
+                         "or 'auto'")
+    frac = summary.get(column if quantity == "fraction" and column else "depth_fraction",
+                       pd.Series(np.nan, index=summary.index))
+    if "depth" not in summary.columns:
+        summary = summary.assign(depth=np.where(frac.notna(), 0.0, np.nan)
+                                 if quantity != "probability" else 0.0)
     if quantity == "auto":
         known = summary["depth"].isna() | frac.notna()
         quantity = "fraction" if known.all() and frac.notna().any() else "depth"
-    values = (frac * 100.0) if quantity == "fraction" else summary["depth"] * 1e3
+    values = ((frac * 100.0) if quantity == "fraction" else summary["depth"] * 1e3
+              if quantity == "depth" else pd.to_numeric(summary[column], errors="coerce"))
+    flags = {k: (summary[k].astype("boolean").fillna(False).to_numpy(bool)
+                 if k in summary.columns else np.zeros(len(summary), bool))
+             for k in ("inspected", "plugged")}
     data = pd.DataFrame({"row": pd.to_numeric(summary["tube_row"], errors="coerce"),
                          "column": pd.to_numeric(summary["tube_column"], errors="coerce"),
                          "value": values.astype(float),
-                         "beyond": summary["depth"].isna()}).dropna(subset=["row", "column"])
+                         "beyond": summary["depth"].isna(), **flags}
+                        ).dropna(subset=["row", "column"])
     worst = data.groupby(["row", "column"], as_index=False).agg(
-        value=("value", "max"), beyond=("beyond", "any"))
+        value=("value", "max"), beyond=("beyond", "any"), inspected=("inspected", "any"),
+        plugged=("plugged", "any"))
     if worst.empty:
         raise InputError("the tube-sheet map needs tube_row and tube_column as numbers (the "
                          "tube's row and column numbers); the results have none: "
                          f"{summary['tube_row'].dropna().astype(str).head(3).tolist()} ...")
-    label = ("global depth / wall [%]" if quantity == "fraction"
-             else "global depth of the tube [mm]")
+    label = {"fraction": "global depth / wall [%]", "depth": "global depth of the tube [mm]",
+             "probability": "P(exceeding the limit) [-]"}[quantity]
+    scale = _scale(quantity, limit, target)
     rows, cols = worst["row"].to_numpy(float), worst["column"].to_numpy(float)
     if ((rows != np.round(rows)) | (cols != np.round(cols))).any():
-        return _marker_map(worst, ax, f"worst contact: {label}")
+        return _marker_map(worst, ax, f"worst contact: {label}", scale)
     grid = _tube_grid(worst)
     status = grid["status"]
     counts = {k: int((status == k).sum()) for k in (1.0, 0.0)}  # beyond; without a value
-    layout = _layout(grid["shape"], sum(n > 0 for n in counts.values()))
+    layout = _layout(grid["shape"], sum(n > 0 for n in counts.values())
+                     + int(worst["inspected"].any()) + int(worst["plugged"].any()))
     # laid out here (a new figure sized to the tube sheet, or the user's empty Figure): the map
     # within margins in inches, its colour bar an inset; else (Axes, a SubFigure) the colour
     # bar takes its room from the user's Axes
@@ -224,9 +257,9 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
     lines = ({"edgecolors": "white", "linewidth": 0.6} if layout["cell"] >= 10.0
              else {"edgecolors": "none"})
     value = np.ma.masked_invalid(grid["value"])
-    art = axis.pcolormesh(col_edges, row_edges, value, cmap="viridis", shading="flat",
-                          rasterized=raster, **lines)
-    if value.count() == 0:
+    art = axis.pcolormesh(col_edges, row_edges, value, shading="flat",
+                          rasterized=raster, **scale, **lines)
+    if value.count() == 0 and "norm" not in scale:
         art.set_clim(0.0, 1.0)  # no value at all: an empty scale rather than a warning
     ringed = False
     if counts[1.0] or counts[0.0]:
@@ -241,27 +274,88 @@ def plot_tube_sheet(results: Any, *, quantity: str = "auto", ax: Any = None):
         cax = _colour_bar(fig, axis, art, horizontal, f"worst contact: {label}")
     else:  # in the user's axes: the colour bar takes its room from them
         cax = fig.colorbar(art, ax=axis, label=f"worst contact: {label}").ax
+    _band_ticks(art, quantity, limit)
     ticker = matplotlib_module("ticker")  # tube numbers only, also for a single row/column
     axis.xaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
     axis.yaxis.set_major_locator(ticker.MaxNLocator(integer=True, min_n_ticks=1))
-    _sheet_labels(axis)
+    _sheet_labels(axis, title)
+    marks = _mark_tubes(axis, worst, layout["cell"])
     entries = [(face, k == 1.0, f"{text} ({counts[k]} tube{'s' * (counts[k] != 1)}"
                 + (", ringed in red" if ringed and k == 1.0 else "") + ")")
                for k, face, text in ((1.0, "black", "beyond the relation's range"),
                                      (0.0, "0.8", "no value (wall thickness unknown)"))
-               if counts[k]]
+               if counts[k]] + marks
     if entries:
         _cell_key(axis, cax.xaxis.label if horizontal else axis.xaxis.label, entries)
     return fig
 
 
-def _sheet_labels(axis: Any) -> None:
+#: Colours of the fraction's bands: four below the limit (light to dark blue-green), the
+#: limit to the wall (orange), through the wall (dark red).
+_FRACTION_COLOURS = ("#e0f3db", "#a8ddb5", "#43a2ca", "#0868ac", "#fd8d3c", "#99000d")
+_PROBABILITY_COLOURS = ("#f7f7f7", "#d9d9d9", "#fee391", "#fec44f", "#fe9929", "#cc4c02",
+                        "#8c2d04")
+
+
+def _scale(quantity: str, limit: float, target: float) -> dict:
+    """``cmap`` and ``norm`` of the map: discrete bands for a fraction of the wall [%] (edges
+    at a quarter, half and three quarters of the limit, the limit, the wall) and for a
+    probability (decades to the target, the target to 1); a continuous scale for a depth."""
+    colors = matplotlib_module("colors")
+    if quantity == "fraction":
+        edges = [0.0, 25 * limit, 50 * limit, 75 * limit, 100 * limit, 100.0, 1e9]
+        return {"cmap": colors.ListedColormap(_FRACTION_COLOURS),
+                "norm": colors.BoundaryNorm(edges, len(_FRACTION_COLOURS))}
+    if quantity == "probability":
+        edges = [0.0, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, target, 1.0 + 1e-12]
+        edges = sorted(set(e for e in edges if e <= target) | {target, 1.0 + 1e-12})
+        cmap = colors.ListedColormap(_PROBABILITY_COLOURS[-(len(edges) - 1):])
+        return {"cmap": cmap, "norm": colors.BoundaryNorm(edges, len(edges) - 1)}
+    return {"cmap": "viridis"}
+
+
+def _band_ticks(art: Any, quantity: str, limit: float) -> None:
+    """The colour bar of the bands: equal steps, ticks at the edges, the top band named."""
+    bar = art.colorbar
+    if bar is None or quantity == "depth":
+        return
+    edges = art.norm.boundaries
+    if quantity == "fraction":
+        bar.set_ticks(edges[:-1])
+        names = {len(edges) - 3: " (limit)", len(edges) - 2: " (wall)"}
+        bar.set_ticklabels([f"{e:g}{names.get(i, '')}" for i, e in enumerate(edges[:-1])])
+    else:
+        bar.set_ticks(edges[:-1])
+        bar.set_ticklabels([f"{e:.0e}" if 0 < e < 1e-2 else f"{e:g}" for e in edges[:-1]])
+    bar.ax.tick_params(labelsize="small")
+
+
+def _mark_tubes(axis: Any, worst: pd.DataFrame, cell: float) -> list:
+    """Rings on the inspected tubes and black dots on the plugged ones; their key entries."""
+    out = []
+    size = float(np.clip(0.5 * cell, 2.0, 12.0)) ** 2
+    seen = worst[worst["inspected"] & ~worst["plugged"]]
+    if len(seen):
+        axis.scatter(seen["column"], seen["row"], s=size, marker="o", facecolors="none",
+                     edgecolors="black", linewidths=0.8, zorder=4)
+        out.append(("white", False, f"ringed: inspected ({len(seen)} tube"
+                                    f"{'s' * (len(seen) != 1)})"))
+    plugged = worst[worst["plugged"]]
+    if len(plugged):
+        axis.scatter(plugged["column"], plugged["row"], s=size, marker="o", color="black",
+                     zorder=4)
+        out.append(("black", False, f"black dot: plugged ({len(plugged)} tube"
+                                    f"{'s' * (len(plugged) != 1)})"))
+    return out
+
+
+def _sheet_labels(axis: Any, title: str | None = None) -> None:
     axis.set_xlabel("tube column")
     axis.set_ylabel("tube row")
-    axis.set_title("tube sheet: worst contact per tube at the last instant")
+    axis.set_title(title or "tube sheet: worst contact per tube at the last instant")
 
 
-def _marker_map(worst: pd.DataFrame, ax: Any, label: str):
+def _marker_map(worst: pd.DataFrame, ax: Any, label: str, scale: dict):
     """The tube sheet as one square marker a tube, for positions that are not a grid of
     integers (a staggered numbering with half columns): :func:`plot_tube_sheet` otherwise."""
     fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(1, 1, 1)],
@@ -269,7 +363,7 @@ def _marker_map(worst: pd.DataFrame, ax: Any, label: str):
     ok, bad = worst[~worst["beyond"]], worst[worst["beyond"]]
     size = float(np.clip(2.0e4 / max(len(worst), 1), 4.0, 250.0))  # squares fill a small map
     art = axis.scatter(ok["column"], ok["row"], c=ok["value"], marker="s", s=size,
-                       cmap="viridis", edgecolors="0.3", linewidths=0.4)
+                       edgecolors="0.3", linewidths=0.4, **scale)
     fig.colorbar(art, ax=axis, label=label)
     if len(bad):
         axis.scatter(bad["column"], bad["row"], c="black", marker="s", s=size)

@@ -5,7 +5,6 @@
 * :func:`plot_sensitivity`: first-order and total Sobol' indices of the inputs;
 * :func:`plot_calibration`: prior and posterior of the wear-coefficient factor, and the
   inspected depths against their predictions;
-* :func:`plot_exceedance_map`: the tube sheet coloured by the probability of exceeding the limit.
 
 Each takes results, accepts ``ax=``, returns the :class:`matplotlib.figure.Figure` and leaves the
 backend alone (:mod:`fretwear.plotting._common`).
@@ -205,52 +204,4 @@ def plot_calibration(result, *, ax: Any = None):
     if own:
         fig.suptitle(f"calibration on {len(obs)} inspection(s)")
         fig.tight_layout()
-    return fig
-
-
-def plot_exceedance_map(data: pd.DataFrame, *, column: str = "exceedance", ax: Any = None):
-    """Tube-sheet map of the probability of exceeding the limit (worst contact per tube).
-
-    Parameters
-    ----------
-    data : DataFrame
-        One row per contact with ``tube_row``, ``tube_column`` and the probability ``column``
-        [-] (e.g. a calibration forecast joined to the bundle's identity columns).
-    column : str
-        The probability column.
-    ax : Axes or Figure, optional
-
-    Returns
-    -------
-    matplotlib.figure.Figure
-        One square per tube (its worst contact), colour = probability; a new figure has a
-        colorbar (in the user's axes, ``fig.colorbar(fig.axes[0].collections[0])`` adds one).
-
-    Examples
-    --------
-    >>> d = pd.DataFrame({"tube_row": [1, 1, 2], "tube_column": [1, 2, 1],
-    ...                   "exceedance": [0.01, 0.2, 0.6]})
-    >>> plot_exceedance_map(d).axes[0].get_xlabel()
-    'tube column'
-    """
-    need = [c for c in ("tube_row", "tube_column", column) if c not in data.columns]
-    if need:
-        raise InputError(f"plot_exceedance_map needs the columns {need} (tube position and "
-                         "probability per contact)")
-    frame = pd.DataFrame({"row": pd.to_numeric(data["tube_row"], errors="coerce"),
-                          "col": pd.to_numeric(data["tube_column"], errors="coerce"),
-                          "p": pd.to_numeric(data[column], errors="coerce")}).dropna()
-    worst = frame.groupby(["row", "col"], as_index=False)["p"].max()
-    fig, (axis,), own = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(7, 6),
-                                        what="plot_exceedance_map")
-    art = axis.scatter(worst["col"], worst["row"], c=worst["p"], vmin=0.0, vmax=1.0,
-                       cmap="magma_r", marker="s", s=70, edgecolors="0.3", linewidths=0.4)
-    if own:  # a colorbar is an Axes of its own: only in a figure laid out here
-        fig.colorbar(art, ax=axis, label="probability of exceeding the limit [-]")
-    axis.set_xlabel("tube column")
-    axis.set_ylabel("tube row")
-    axis.set_aspect("equal", adjustable="datalim")
-    axis.grid(alpha=0.2)
-    if own:
-        axis.set_title("worst contact of each tube")
     return fig

@@ -1,0 +1,138 @@
+"""``fretwear assess BUNDLE_OUT INSPECTIONS --interval T -o OUT``: the outage decision of a
+bundle (condition monitoring and operational assessment), bad news first."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import click
+from rich.console import Console
+from rich.table import Table
+
+from fretwear.assessment import LogisticPOD, SizingModel
+from fretwear.assessment.outage import assess
+from fretwear.bundle import load
+
+_HELP = """The outage decision of a bundle: which tubes to plug, which to inspect next, how long
+the generator may run.
+
+BUNDLE_OUT is the output directory of a finished bundle run (fretwear bundle -o); INSPECTIONS
+the outage's inspections (CSV or Parquet): per contact or tube location (tube_row,
+tube_column, support), instant, a depth (depth [m], depth_mm or depth_pct) or NDD (no
+detectable degradation), inspected and plugged (yes/no). A contact without a row was not
+inspected. The technique's sizing error (measured = a + b·true + e, e ~ N(0, σ)) and its
+logistic POD (depths detected 50 % and 90 % of the time) are yours to give: the defaults are
+illustrative, not qualified.
+
+Prints, bad news first: tubes at or past the plugging limit and through the wall as measured,
+then the probability that any tube exceeds its limit by the end of --interval against
+--target, the longest interval under the target, the tubes to plug and the next inspection's
+sample; writes the tables into -o OUT (and OUT/report.html with --report).
+"""
+
+_ILLUSTRATIVE = {"sizing_sigma_mm": 0.05, "pod_a50_mm": 0.15, "pod_a90_mm": 0.30}
+
+
+@click.command(help=_HELP, context_settings={"max_content_width": 100})
+@click.argument("bundle_out", type=click.Path(exists=True, file_okay=False, path_type=Path))
+@click.argument("inspections", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--interval", type=click.FloatRange(min=0, min_open=True), required=True,
+              help="The next operating interval [the bundle's time unit].")
+@click.option("--target", type=click.FloatRange(0, 1, min_open=True, max_open=True),
+              default=0.05, show_default=True, help="Target of P(any tube past its limit).")
+@click.option("--limit", type=click.FloatRange(0, 1, min_open=True), default=None,
+              help="Plugging limit, fraction of the wall (default each contact's, 0.4).")
+@click.option("--sizing-intercept-mm", type=float, default=0.0, show_default=True,
+              help="Sizing intercept a [mm].")
+@click.option("--sizing-slope", type=click.FloatRange(min=0, min_open=True), default=1.0,
+              show_default=True, help="Sizing slope b [-].")
+@click.option("--sizing-sigma-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Sizing error σ [mm] (illustrative default 0.05).")
+@click.option("--pod-a50-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Depth detected half the time [mm] (illustrative default 0.15).")
+@click.option("--pod-a90-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Depth detected 90 % of the time [mm] (illustrative default 0.30).")
+@click.option("--contact-sigma", type=click.FloatRange(min=0), default=0.3, show_default=True,
+              help="σ of ln of one contact's factor about the bundle's [-].")
+@click.option("--power-sigma", type=click.FloatRange(min=0), default=0.2, show_default=True,
+              help="σ of ln of the factor on each contact's wear power [-].")
+@click.option("--share", type=click.FloatRange(0, 1, min_open=True), default=0.9,
+              show_default=True, help="Share of the bundle's risk the next sample covers.")
+@click.option("--origin-date", default=None,
+              help="Date of the bundle's instant 0 (ISO 8601), for inspections given by date.")
+@click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
+              help="Tubes shown on the terminal (all of them in OUT/tubes.csv).")
+@click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
+              required=True, help="Directory of the tables (created).")
+@click.option("--report", "with_report", is_flag=True,
+              help="Also write OUT/report.html, one self-contained page.")
+def command(bundle_out, inspections, interval, target, limit, sizing_intercept_mm,
+            sizing_slope, sizing_sigma_mm, pod_a50_mm, pod_a90_mm, contact_sigma,
+            power_sigma, share, origin_date, top, output, with_report) -> None:
+    given = {"sizing_sigma_mm": sizing_sigma_mm, "pod_a50_mm": pod_a50_mm,
+             "pod_a90_mm": pod_a90_mm}
+    defaulted = [k for k, v in given.items() if v is None]
+    values = {k: _ILLUSTRATIVE[k] if v is None else v for k, v in given.items()}
+    sizing = SizingModel(sizing_intercept_mm * 1e-3, sizing_slope,
+                         values["sizing_sigma_mm"] * 1e-3)
+    pod = LogisticPOD.from_depths(values["pod_a50_mm"] * 1e-3, values["pod_a90_mm"] * 1e-3)
+    result = assess(load(bundle_out), inspections, interval=interval, sizing=sizing, pod=pod,
+                    target=target, contact_sigma=contact_sigma, power_sigma=power_sigma,
+                    share=share, limit=limit, origin_date=origin_date)
+    result.inputs.update({"bundle": str(bundle_out), "inspections": str(inspections),
+                          "illustrative": defaulted})
+    result.write(output)
+    if with_report:
+        from fretwear.report.assessment import write_assessment_report
+
+        write_assessment_report(result, output / "report.html")
+    _print(result, Console(highlight=False), top, defaulted, output, with_report)
+
+
+def _print(result, console: Console, top: int, defaulted, output, with_report) -> None:
+    b = result.bundle
+    for line in result.bad_news():
+        console.print(f"[bold red]{line}[/]")
+    if not (b["past_limit_tubes"] or b["through_wall_tubes"]):
+        console.print("no tube at or past the plugging limit as measured")
+    unit = b["unit"]
+    if b["p_any"] <= b["target"]:  # else said first, with the bad news
+        console.print(f"P(any tube past its limit by the end of {b['interval']:g} {unit}) = "
+                      f"{b['p_any']:.3g} (target {b['target']:g})")
+    longest = b["longest_interval"]
+    console.print("longest operating interval under the target: "
+                  + ("none: the target is missed at the outage already (plug first)"
+                     if longest == 0 else f"{longest:.3g} {unit}" if longest < b["horizon"]
+                     else f"over {b['horizon']:g} {unit} (the horizon searched)")
+                  + (" with the tubes at the limit plugged" if b["must_plug"] else ""))
+    plugs = b["plugging"]
+    console.print(f"plugging list ({len(plugs)} tube(s)): {', '.join(plugs) or 'none'}; "
+                  f"P(any) after plugging {b['p_any_after_plugging']:.3g}")
+    sample = b["inspection_sample"]
+    console.print(f"next inspection sample ({len(sample)} tube(s), {b['share']:.0%} of the "
+                  f"risk): {', '.join(sample[:20])}{' ...' if len(sample) > 20 else ''}")
+    f = result.fit
+    if f.get("indications"):
+        console.print(f"predicted against measured: {f['indications']} indications, "
+                      f"{f['coverage']:.0%} inside the prediction's {f['level']:.0%} interval")
+    if top:
+        table = Table(title=f"the {min(top, len(result.tubes))} riskiest tubes of "
+                            f"{len(result.tubes)}")
+        for col in ("tube", "worst contact", "as found / wall", "end q50 / wall",
+                    "P(exceed)", "plug", "reason"):
+            table.add_column(col, justify="right" if col != "reason" else "left")
+        for r in result.tubes.head(top).itertuples():
+            table.add_row(r.tube, str(r.worst_contact), _pct(r.as_found_fraction),
+                          _pct(r.end_fraction_q50), f"{r.p_exceed:.3g}",
+                          "yes" if r.plug else "", r.reason)
+        console.print(table)
+    if defaulted:
+        console.print(f"illustrative technique values (not qualified) for {', '.join(defaulted)}"
+                      ": give your technique's")
+    console.print(f"tables in {output}" + (f", report {output / 'report.html'}"
+                                            if with_report else ""))
+
+
+def _pct(x) -> str:
+    return "-" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{100 * x:.1f}%"
