@@ -684,6 +684,7 @@ def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str
         packed.update(store.packed_rows(missing))
     kept = [c for c in order if c in packed]
     table = concat_packed(kept, [packed[c] for c in kept])
+    del packed  # the contacts' rows, now in the table: freed before the identity's merge
     if "sector" in table.columns and table["sector"].isna().any():
         table["sector"] = table["sector"].astype("Int64")
     table = identity.merge(table, on="contact", how="right")
