@@ -10,7 +10,8 @@ replaced on the way. The steps, one function each:
    for a law whose registry entry says it ``needs_history``;
 3. :class:`_Clock`: the elapsed seconds of each instant and the replacement;
 4. :func:`_global_frame` or :func:`_sector_frame` (:mod:`fretwear.table._columns`): cumulated
-   volumes (:func:`_cumulated`) and depths from them (:func:`_depths`; per sector
+   volumes and depths from them by the case's :class:`~fretwear.table.DepthModel`
+   (:func:`~fretwear.table.depth.case_model`; per sector
    :func:`~fretwear.geometry.sector_depth_mobile`), as columns made a DataFrame once;
 5. the initial table's rows in front; with a wall thickness, the depth as a fraction of the wall
    and the instant of reaching the limit (:func:`_wall`, :mod:`fretwear.table._wall`,
@@ -44,6 +45,7 @@ from fretwear.power import wear_power
 from fretwear.table._columns import _frame, _global_frame, _sector_frame
 from fretwear.table._wall import _wall
 from fretwear.table.case import WearCase
+from fretwear.table.depth import case_model
 
 __all__ = ["wear_table_columns", "wear_table_from_case"]
 
@@ -176,20 +178,20 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
     mobile, obstacle, sources = _body_coefficients(case, history, result)
     geometry = case.geometry
     clock = _Clock(case)
+    model = case_model(case, power, result, mobile, obstacle, clock.fresh, geometry)
     head = {"instant": case.origin + clock.durations, "duration": clock.durations,
             "origin": np.full(clock.n, case.origin), "power": np.full(clock.n, power)}
     if case.sectors is None:
-        columns = _global_frame(case, head, power, mobile, obstacle, clock, geometry)
+        columns = _global_frame(model, head, clock)
     else:
-        columns = _sector_frame(case, head, result, mobile, obstacle, clock, geometry)
+        columns = _sector_frame(model, head, clock, edges)
     state = case.initial_state
     frame = None
     if state is not None and len(state.rows):
         frame = _after_rows(state.rows, columns)
     limit = None
     if case.wall_thickness is not None:
-        wall, limit = _wall(case, columns if frame is None else frame, power, result, mobile,
-                            obstacle, clock, geometry)
+        wall, limit = _wall(case, columns if frame is None else frame, model)
         if frame is None:
             columns.update(wall)
         else:

@@ -35,7 +35,13 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.base import ContactGeometry
-from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile, sector_geometry
+from fretwear.geometry.sectors import (
+    SectorGeometry,
+    sector_depth_mobile,
+    sector_depth_obstacle,
+    sector_geometry,
+    sector_volume_mobile,
+)
 from fretwear.laws import get_law
 from fretwear.laws.registry import WearLaw
 from fretwear.table.depth_rows import EarlierRows
@@ -81,6 +87,17 @@ class DepthModel:
         Wall thickness of the mobile (tube) [m].
     depth_limit : float
         Depth limit as a fraction of the wall [-] (plugging criterion, default 0.4).
+    replacement : float, optional
+        Seconds after the origin at which a new tube is put in (TUBE_NEUF) [s].
+    rows : EarlierRows, optional
+        A restart's earlier rows (the global depth's).
+    sector_arcs : tuple of float, optional
+        The angular extent of each term's sector [deg], when the terms are a sector table's
+        sectors (:meth:`sector_table`, :meth:`sector_time_to`).
+    term_initial : (tuple of float, tuple of float), optional
+        Volumes of each term at the origin (mobile, obstacle) [m³] (default: all in the first).
+    sector_rows : tuple of (EarlierRows or None), optional
+        A restart's earlier rows of each sector (its sector depth and cumulated volume).
 
     Examples
     --------
@@ -114,6 +131,9 @@ class DepthModel:
     depth_limit: float = DEFAULT_DEPTH_LIMIT
     replacement: float | None = None
     rows: EarlierRows | None = None
+    sector_arcs: tuple[float, ...] | None = None
+    term_initial: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    sector_rows: tuple[EarlierRows | None, ...] | None = None
 
     def __post_init__(self) -> None:
         n = len(self.powers)
@@ -282,6 +302,104 @@ class DepthModel:
                                          self.sector_arc)
         return np.asarray(dm, dtype=float).reshape(vm.shape)
 
+    # ------------------------------------------------------------------ the wear table
+    def table_columns(self, elapsed_s: np.ndarray) -> dict[str, np.ndarray]:
+        """The wear table's volume and depth columns at ``elapsed_s`` [s] after the origin
+        (one term: a table without sectors), at the nominal inputs.
+
+        ``volume_mobile``, ``volume_obstacle`` [m³]: each body's law at every time from its
+        volume at the origin (:func:`body_volume`; the law's warnings name the body), the
+        tube's from 0 at a :attr:`replacement`; ``depth_mobile``, ``depth_obstacle`` [m]
+        from them (:meth:`body_depths`).
+        """
+        (p,), (cm,), (co,) = self.powers, self.coefficients_mobile, self.coefficients_obstacle
+        vm = body_volume(self.law, p, cm, elapsed_s, self.initial_mobile, self.replacement,
+                         "mobile")
+        vo = body_volume(self.law, p, co, elapsed_s, self.initial_obstacle, None, "obstacle")
+        dm, do = self.body_depths(vm, vo)
+        return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
+                "depth_obstacle": do}
+
+    def body_depths(self, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
+        """(mobile, obstacle) global depths [m] from the cumulated volumes [m³] (theory §6).
+
+        An obstacle without volume has no depth: exactly 0 where the mobile's depth is defined
+        (the split d_o = D − D·V_m/V of a shared trace leaves a rounding residue otherwise).
+        """
+        dm, do = self.geometry.depth_from_volume(volume_mobile, volume_obstacle)
+        shape = volume_mobile.shape
+        dm, do = _float_of_shape(dm, shape), _float_of_shape(do, shape)
+        return dm, np.where((volume_obstacle == 0) & np.isfinite(dm), 0.0, do)
+
+    def sector_table(self, elapsed_s: np.ndarray):
+        """Each sector's cumulated volumes and depths at ``elapsed_s`` [s] (a sector table's
+        terms, :attr:`sector_arcs`; theory §3): arrays (times, sectors).
+
+        Returns
+        -------
+        dict
+            ``volume_mobile``, ``volume_obstacle`` [m³] (V0_j + V(P_j, t), the tube's from 0 at
+            a replacement), ``depth_mobile``, ``depth_obstacle`` [m] (sector depths; the
+            obstacle's NaN where it wears without an ``obstacle_radius``), and ``unradiused``,
+            the sectors (1-based) of that case.
+        """
+        t = np.asarray(elapsed_s, dtype=float)[:, None]
+        v0m, v0o = self._term_initial()
+        powers = np.asarray(self.powers, dtype=float)
+        vm = _terms_volume(self.law, powers, self.coefficients_mobile, t, v0m,
+                           self.replacement, "mobile")
+        vo = _terms_volume(self.law, powers, self.coefficients_obstacle, t, v0o, None,
+                           "obstacle")
+        g, arcs = self.geometry, np.asarray(self.sector_arcs, dtype=float)
+        dm = np.asarray(sector_depth_mobile(vm, g.mobile_radius, g.obstacle_width, arcs))
+        r_o = getattr(g, "obstacle_radius", None)
+        worn = (vo > 0).any(axis=0)
+        if r_o is None:
+            do = np.where(vo == 0, 0.0, np.nan)
+        else:
+            do = np.asarray(sector_depth_obstacle(vo, r_o, g.obstacle_width, arcs), dtype=float)
+        unradiused = (np.flatnonzero(worn) + 1).tolist() if r_o is None else []
+        return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
+                "depth_obstacle": do, "unradiused": unradiused}
+
+    def _term_initial(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each term's (mobile, obstacle) volumes at the origin [m³]."""
+        n = len(self.powers)
+        if self.term_initial is not None:
+            return tuple(np.asarray(v, dtype=float) for v in self.term_initial)
+        out = np.zeros((2, n))
+        out[:, 0] = self.initial_mobile, self.initial_obstacle
+        return out[0], out[1]
+
+    def sector_time_to(self, depth: float) -> np.ndarray:
+        """The instant [user time unit] at which each sector's tube depth first reaches
+        ``depth`` [m]: :meth:`time_to`'s meaning sector by sector (a restart's earlier rows of
+        the sector included, :attr:`sector_rows`; only the new tube after a replacement).
+
+        From the origin, the sector's volume V0_j + r_j·t inverted in closed form through
+        V = l·Δθ·d·(2R − d)/2 (:func:`~fretwear.geometry.sectors.sector_volume_mobile`,
+        theory §3); ``inf`` where the sector does not wear.
+        """
+        g = self.geometry
+        arcs = np.asarray(self.sector_arcs, dtype=float)
+        d = min(float(depth), g.mobile_radius)
+        volume = np.asarray(sector_volume_mobile(d, g.mobile_radius, g.obstacle_width, arcs),
+                            dtype=float)
+        rate = self.term_rates[0]
+        v0 = np.zeros(arcs.size) if self.replacement is not None else self._term_initial()[0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (volume - v0) / rate
+        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        if self.replacement is not None:
+            t = self.replacement + t
+        out = self.origin + t / self.time_scale
+        if self.sector_rows is not None and self.replacement is None:
+            for j, rows in enumerate(self.sector_rows):
+                if rows is not None:
+                    found = rows.times([float(depth)], SectorRelation(g, float(arcs[j])))
+                    out[j] = found.get(float(depth), out[j])
+        return out
+
     def time_to(self, depth, *, factor=1.0, power=None, coefficients=None,
                 obstacle_coefficients=None, rtol: float = 1e-12):
         """The instant [user time unit] at which the tube in place first reaches ``depth`` [m].
@@ -403,8 +521,8 @@ class DepthModel:
         g = self.geometry
         if self.sector_arc is not None:  # V = l·Δθ·d·(2R − d)/2 (theory §3)
             d = np.minimum(target, g.mobile_radius)
-            return g.obstacle_width * np.radians(self.sector_arc) * d \
-                * (2.0 * g.mobile_radius - d) / 2.0
+            return np.asarray(sector_volume_mobile(d, g.mobile_radius, g.obstacle_width,
+                                                   self.sector_arc), dtype=float)
         return g.mobile_volume(target)  # the targets are > 0 and finite (_broadcast)
 
     def _solved(self, target, kw, rtol: float) -> np.ndarray:
@@ -419,6 +537,94 @@ def _linear_volume(t, v0, rate):
     """V0 + r·t [m³] (exactly r·t where V0 = 0)."""
     v = rate * t
     return v if v0 == 0.0 else v0 + v
+
+
+def _float_of_shape(values, shape) -> np.ndarray:
+    """A float copy of ``values`` broadcast to ``shape`` (a plain copy when they have that
+    shape already)."""
+    if type(values) is np.ndarray and values.shape == shape:
+        return values.astype(float)
+    return np.broadcast_to(values, shape).astype(float)
+
+
+def _relabelled(caught, body: str, stacklevel: int) -> None:
+    """The law's warnings ``caught`` again, naming the body."""
+    for w in caught:
+        warnings.warn(f"{body}: {w.message}", w.category, stacklevel=stacklevel + 1)
+
+
+def body_volume(law, power: float, coefficients, elapsed_s: np.ndarray, previous: float,
+                fresh_s: float | None, body: str, stacklevel: int = 6) -> np.ndarray:
+    """Cumulated volume of one body at ``elapsed_s`` seconds after the origin [m³].
+
+    ``previous`` is the body's volume at the origin [m³]; a linear law adds ``V(P, Δt)``,
+    another law continues from its equivalent time (theory §7). ``fresh_s`` (a replacement,
+    seconds after the origin) restarts the body from zero there. ``coefficients`` None: the
+    body does not wear. The law's warnings name the body.
+    """
+    if coefficients is None:  # this body does not wear
+        out = np.full(elapsed_s.shape, float(previous))
+        if fresh_s is not None:
+            out[elapsed_s >= fresh_s] = 0.0
+        return out
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if previous == 0.0:
+            out = np.asarray(law.volume(power, elapsed_s, **coefficients), dtype=float)
+        else:  # linear: V0 + V(Δt); otherwise from the equivalent time of V0 (theory §7)
+            out = np.asarray(law.cumulated_volume(previous, power, elapsed_s, **coefficients),
+                             dtype=float)
+        out = np.broadcast_to(out, elapsed_s.shape).copy()
+        if fresh_s is not None:
+            new = elapsed_s >= fresh_s
+            out[new] = np.asarray(law.volume(power, elapsed_s[new] - fresh_s,
+                                             **coefficients), dtype=float)
+    _relabelled(caught, body, stacklevel)
+    return out
+
+
+def _terms_volume(law, powers, coefficients, t, previous, fresh_s, body) -> np.ndarray:
+    """(times, terms) cumulated volumes [m³] of a law linear in time: V0_j + V(P_j, t) (exactly
+    V where V0_j = 0), restarted from zero at ``fresh_s``; ``t`` a column of times [s]."""
+    m = powers.size
+    if all(c is None for c in coefficients):  # this body does not wear
+        return np.ascontiguousarray(np.broadcast_to(previous, (t.shape[0], m)), dtype=float)
+    if any(c is None for c in coefficients) or len({tuple(sorted(c)) for c in coefficients}) > 1:
+        raise InputError(f"the {body}'s terms wear in some sectors only, or with coefficients "
+                         "of other names: give every sector the same coefficients' names")
+    k = {name: np.array([c[name] for c in coefficients], dtype=float)
+         for name in coefficients[0]}
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if not previous.any():  # V0 = 0 (or -0) in every term: V itself
+            out = np.broadcast_to(np.asarray(law.volume(powers, t, **k), dtype=float),
+                                  (t.shape[0], m)).copy()
+        else:  # V0 + V (V0 + V = V where V0 = 0); the law checks V0
+            out = np.broadcast_to(np.asarray(law.cumulated_volume(previous, powers, t, **k),
+                                             dtype=float), (t.shape[0], m)).copy()
+        if fresh_s is not None:
+            new = t[:, 0] >= fresh_s
+            out[new] = np.asarray(law.volume(powers, t[new] - fresh_s, **k), dtype=float)
+    _relabelled(caught, body, 6)
+    return np.ascontiguousarray(out, dtype=float)
+
+
+class SectorRelation:
+    """The tube's depth-volume relation of one sector (theory §3), as
+    :func:`~fretwear.table.depth_rows.earlier_rows_time` asks of a geometry: the tube's depth
+    is a function of its own volume, V = l·Δθ·d·(2R − d)/2."""
+
+    mobile_depth_alone = True
+    contact_type = "sector"
+
+    def __init__(self, geometry, arc_deg: float):
+        self.radius, self.width, self.arc = geometry.mobile_radius, geometry.obstacle_width, \
+            arc_deg
+
+    def volume_from_depth(self, depth_mobile, depth_obstacle=0.0):
+        """(tube volume [m³], 0) of the sector depth ``depth_mobile`` [m]."""
+        v = sector_volume_mobile(depth_mobile, self.radius, self.width, self.arc)
+        return np.asarray(v, dtype=float), 0.0
 
 
 def _rates(law, powers, coefficients) -> np.ndarray:
@@ -449,6 +655,71 @@ def given_names(law: WearLaw, given: Mapping[str, Any]) -> list[str]:
     """Native names of the coefficients in ``given`` (Code_Aster keywords translated)."""
     by_keyword = {kw: p for p, kw in law.aster_keywords.items()}
     return [by_keyword.get(k, k) for k in given]
+
+
+# ---------------------------------------------------------------------- from a wear case
+def case_model(case, power: float, result, mobile, obstacle, fresh: float | None,
+               geometry) -> DepthModel:
+    """The :class:`DepthModel` of a wear case (the model the wear table's columns and limits
+    are computed by): at its power [W] (``result``'s sector powers in sector mode: one term a
+    sector), the bodies' coefficients ``mobile`` and ``obstacle`` (native names; None: it does
+    not wear), a tube replaced ``fresh`` seconds after the origin (None: not), the case's
+    ``geometry``; a restart's earlier rows and volumes at the origin from its initial state.
+    """
+    law, state = case.wear_law, case.initial_state
+    sectors = {}
+    if case.sectors is None:
+        powers = (float(power),)
+        coefs_m, coefs_o = (mobile,), (obstacle,)
+        v0_m = 0.0 if state is None else state.volume_mobile
+        v0_o = 0.0 if state is None else state.volume_obstacle
+    else:
+        key = law.parameters[0]
+        powers = tuple(np.asarray(result.sectors, dtype=float).tolist())
+        m = len(powers)
+        k_m, k_o = _case_sector_coefficients(case, m, mobile, obstacle)
+        coefs_m = tuple({key: k} for k in k_m)
+        coefs_o = (None,) * m if k_o is None else tuple({key: k} for k in k_o)
+        pm = np.zeros(m) if state is None else np.asarray(state.sector_volume_mobile, float)
+        po = np.zeros(m) if state is None else np.asarray(state.sector_volume_obstacle, float)
+        v0_m, v0_o = float(np.sum(pm)), float(np.sum(po))
+        sectors = {"sector_arcs": tuple(np.diff(np.asarray(result.sector_edges, dtype=float))
+                                        .tolist()),
+                   "term_initial": (tuple(pm.tolist()), tuple(po.tolist()))}
+        if state is not None and len(state.rows):
+            sectors["sector_rows"] = tuple(EarlierRows.from_rows(
+                _sector_rows(state.rows, j + 1), case.origin, column="depth_mobile_sector",
+                volumes=("volume_mobile_cumulated", None)) for j in range(m))
+    rows = None
+    if state is not None and len(state.rows):
+        rows = EarlierRows.from_rows(state.rows, case.origin)
+    return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
+                      coefficients_obstacle=coefs_o, time_scale=case.time_scale,
+                      origin=case.origin, initial_mobile=v0_m, initial_obstacle=v0_o,
+                      wall_thickness=case.wall_thickness, depth_limit=case.depth_limit,
+                      replacement=fresh, rows=rows, **sectors)
+
+
+def _sector_rows(rows, sector: int):
+    """The rows of one sector (1-based) of a table's rows; none without sector rows."""
+    if "sector" not in rows.columns or "depth_mobile_sector" not in rows.columns:
+        return rows.iloc[:0]
+    return rows[np.asarray(rows["sector"], dtype=float) == sector]
+
+
+def _case_sector_coefficients(case, m: int, mobile, obstacle):
+    """(mobile [m], obstacle [m] or None) Archard coefficients [1/Pa] of the ``m`` sectors:
+    the case's sector coefficients (a missing obstacle one is 0 when others wear), else the
+    law's coefficient in every sector."""
+    key = case.wear_law.parameters[0]
+    if case.sector_coefficients is None:
+        k_o = None if obstacle is None else obstacle.get(key)
+        return np.full(m, mobile[key]), (None if k_o is None else np.full(m, k_o))
+    km = np.array([p[0] for p in case.sector_coefficients])
+    ko = np.array([np.nan if p[1] is None else p[1] for p in case.sector_coefficients])
+    if np.isnan(ko).all():
+        return km, None
+    return km, np.nan_to_num(ko, nan=0.0)
 
 
 # ---------------------------------------------------------------------- from a wear table

@@ -7,9 +7,10 @@ global depth and for every sector depth (docs/uncertainty.md §1):
 * ``wall_fraction`` (``wall_fraction_sector``): the depth of the mobile over the wall [-];
 * ``limit_instant`` (``limit_instant_sector``): the instant [user time unit] at which the tube
   in place first reaches ``depth_limit × wall_thickness``: the global depth's by
-  :meth:`fretwear.table.DepthModel.time_to` (the one meaning of the time to a limit,
+  :meth:`fretwear.table.DepthModel.time_to`, each sector's by
+  :meth:`fretwear.table.DepthModel.sector_time_to` (the one meaning of the time to a limit,
   docs/uncertainty.md §1: a restart's earlier rows included, only the new tube after a
-  replacement), each sector's depth of a law linear in time inverted in closed form;
+  replacement);
   ``inf`` when the law never gets there (no wear).
 
 A depth beyond the wall (fraction > 1) is named by a :class:`~fretwear.errors.PerforationWarning`.
@@ -26,7 +27,7 @@ import numpy as np
 from fretwear.errors import InputError, PerforationWarning
 from fretwear.geometry import solve_monotone
 
-__all__ = ["DEFAULT_DEPTH_LIMIT", "check_wall", "first_times", "time_to_depth", "wall_columns"]
+__all__ = ["DEFAULT_DEPTH_LIMIT", "check_wall", "time_to_depth", "wall_columns"]
 
 #: The depth limit of a tube by default, as a fraction of its wall [-]: the common plugging
 #: criterion, 40 % through-wall.
@@ -147,35 +148,9 @@ def _past_wall(fraction) -> np.ndarray:
     return np.isnan(f) | (f > 1.0)
 
 
-def first_times(old: Callable, new: Callable | None, targets, fresh: float | None,
-                first_guess: float) -> np.ndarray:
-    """Seconds after the origin [s] at which the tube in place first reaches ``targets`` [m],
-    element-wise (e.g. the sectors of a table).
-
-    ``old(t)`` and ``new(τ)`` map an array of times (one per element) to the array of depths of
-    the elements [m]: ``old`` of the tube in place at the origin, ``new`` of a tube put in
-    ``fresh`` seconds after the origin (TUBE_NEUF), τ seconds after its replacement. After a
-    replacement only the new tube counts (docs/uncertainty.md §1). A function with a
-    ``time_to(targets)`` method (its inverse in closed form) is inverted by it instead of the
-    bracketed solver (:func:`time_to_depth`).
-    """
-    goal = np.asarray(targets, dtype=float)
-
-    def solve(depth_of_time):  # in closed form when the function knows its inverse
-        if hasattr(depth_of_time, "time_to"):
-            return np.asarray(depth_of_time.time_to(goal), dtype=float)
-        return np.asarray(time_to_depth(depth_of_time, goal, first_guess=first_guess),
-                          dtype=float)
-
-    if fresh is None or new is None:
-        return solve(old)
-    return fresh + solve(new)
-
-
 def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
                  depth_mobile_sector: np.ndarray | None, *, wall: float, depth_limit: float,
-                 origin: float, time_scale: float, fresh: float | None, global_depth,
-                 sector_depths=None, unit: str | None = None,
+                 global_depth, sector_depths=None, unit: str | None = None,
                  stacklevel: int = 3) -> tuple[dict, dict]:
     """The wall columns of a wear table from its depth columns, and the limit's metadata.
 
@@ -189,18 +164,12 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
         Wall thickness of the mobile [m].
     depth_limit : float
         Depth limit as a fraction of the wall [-].
-    origin : float
-        Origin of the run [user time unit].
-    time_scale : float
-        Seconds per user time unit [s].
-    fresh : float or None
-        Seconds after the origin of a tube replacement (None: none) [s].
     global_depth : DepthModel or None
         The global depth's model (None: no global depth): its
         :meth:`~fretwear.table.DepthModel.time_to` gives the limit and through-wall instants.
-    sector_depths : (callable, callable), optional
-        ``(old, new)`` depth functions of all the sectors at once (sector mode; arrays of one
-        time, one depth per sector: :func:`first_times`).
+    sector_depths : DepthModel, optional
+        The model of the sectors (sector mode): its
+        :meth:`~fretwear.table.DepthModel.sector_time_to` gives each sector's instants.
     unit : str, optional
         Name of the user time unit, for the warning.
 
@@ -213,10 +182,6 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
     """
     limit = depth_limit * wall
     depth_mobile = np.asarray(depth_mobile, dtype=float)
-
-    def sector_instants(targets):  # vectorised over the sectors
-        t = first_times(sector_depths[0], sector_depths[1], targets, fresh, time_scale)
-        return origin + t / time_scale
 
     fraction = depth_mobile / wall
     past = global_depth is not None and _past_wall(fraction).any()
@@ -235,11 +200,11 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
         sector = np.asarray(sector, dtype=int)
         fraction_sector = np.asarray(depth_mobile_sector, dtype=float) / wall
         columns["wall_fraction_sector"] = fraction_sector
-        instants = sector_instants(np.full(sector.max(initial=0), limit))
+        instants = np.asarray(sector_depths.sector_time_to(limit), dtype=float)
         columns["limit_instant_sector"] = instants[sector - 1]
         info["limit_instant_sector"] = instants.tolist()
         deep = sorted(set(sector[_past_wall(fraction_sector)].tolist()))
-        walls = sector_instants(np.full(instants.size, wall)) if deep else None
+        walls = sector_depths.sector_time_to(wall) if deep else None
         for j in deep:
             t = walls[j - 1]
             info["through_wall"][f"sector {j}"] = t
