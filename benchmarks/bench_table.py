@@ -93,8 +93,9 @@ def _time(fn, number: int, repeat: int) -> list[float]:
 
 def _child(name: str, number: int, repeat: int) -> dict:
     """The medians [s] of one example in this process (``--child``), and the DataFrame floor."""
-    import fretwear
     import pandas as pd
+
+    import fretwear
     history = _history()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

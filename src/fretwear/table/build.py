@@ -176,7 +176,7 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
                                name=case.name or "")
     case, edges = _with_run_sectors(case, result)
     mobile, obstacle, sources = _body_coefficients(case, history, result)
-    geometry = case.geometry
+    geometry = _geometry(case)
     clock = _Clock(case)
     model = case_model(case, power, result, mobile, obstacle, clock.fresh, geometry)
     head = {"instant": case.origin + clock.durations, "duration": clock.durations,
@@ -200,6 +200,25 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
     if limit is not None:
         attrs.update(limit)
     return (columns if frame is None else None), frame, attrs
+
+
+#: Geometries by (contact type, dimensions), at most _GEOMETRIES_KEPT (:func:`_geometry`).
+_GEOMETRIES: dict = {}
+_GEOMETRIES_KEPT = 256
+
+
+def _geometry(case: WearCase):
+    """The case's geometry (:attr:`WearCase.geometry`: validated when the case was built), one
+    per distinct contact type and dimensions: a geometry is immutable, its constants computed
+    once for every table of the same contact (a bundle's contacts share them)."""
+    key = (case.contact_type, tuple(case.dimensions.items()))
+    found = _GEOMETRIES.get(key)
+    if found is None:
+        found = case.geometry
+        if len(_GEOMETRIES) >= _GEOMETRIES_KEPT:
+            _GEOMETRIES.clear()
+        _GEOMETRIES[key] = found
+    return found
 
 
 # --------------------------------------------------------------------------- 1. the power

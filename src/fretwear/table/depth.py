@@ -307,15 +307,22 @@ class DepthModel:
         """The wear table's volume and depth columns at ``elapsed_s`` [s] after the origin
         (one term: a table without sectors), at the nominal inputs.
 
-        ``volume_mobile``, ``volume_obstacle`` [m³]: each body's law at every time from its
-        volume at the origin (:func:`body_volume`; the law's warnings name the body), the
-        tube's from 0 at a :attr:`replacement`; ``depth_mobile``, ``depth_obstacle`` [m]
-        from them (:meth:`body_depths`).
+        ``volume_mobile``, ``volume_obstacle`` [m³]: V₀ + r·t for a law linear in time
+        (:meth:`volumes`, the rates :attr:`rates` computed once: the law's V(P, t) = r·t),
+        otherwise each body's law at every time from its volume at the origin
+        (:func:`body_volume`; the law's warnings name the body); the tube's from 0 at a
+        :attr:`replacement`. ``depth_mobile``, ``depth_obstacle`` [m] from them
+        (:meth:`body_depths`).
         """
-        (p,), (cm,), (co,) = self.powers, self.coefficients_mobile, self.coefficients_obstacle
-        vm = body_volume(self.law, p, cm, elapsed_s, self.initial_mobile, self.replacement,
-                         "mobile")
-        vo = body_volume(self.law, p, co, elapsed_s, self.initial_obstacle, None, "obstacle")
+        if self.law.linear_in_time:
+            vm, vo = self.volumes(elapsed_s)
+        else:
+            (p,), (cm,), (co,) = self.powers, self.coefficients_mobile, \
+                self.coefficients_obstacle
+            vm = body_volume(self.law, p, cm, elapsed_s, self.initial_mobile, self.replacement,
+                             "mobile")
+            vo = body_volume(self.law, p, co, elapsed_s, self.initial_obstacle, None,
+                             "obstacle")
         dm, do = self.body_depths(vm, vo)
         return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
                 "depth_obstacle": do}
@@ -345,11 +352,16 @@ class DepthModel:
         """
         t = np.asarray(elapsed_s, dtype=float)[:, None]
         v0m, v0o = self._term_initial()
-        powers = np.asarray(self.powers, dtype=float)
-        vm = _terms_volume(self.law, powers, self.coefficients_mobile, t, v0m,
-                           self.replacement, "mobile")
-        vo = _terms_volume(self.law, powers, self.coefficients_obstacle, t, v0o, None,
-                           "obstacle")
+        for name, v0 in (("mobile", v0m), ("obstacle", v0o)):
+            if not (np.isfinite(v0) & (v0 >= 0)).all():
+                raise InputError(f"the initial state's sector volumes of the {name} must be "
+                                 f"finite and >= 0 [m³], got {v0.tolist()}")
+        rate_m, rate_o = self.term_rates  # V_j = V0_j + r_j·t: the law's V(P_j, t) = r_j·t
+        vm = v0m + rate_m * t
+        if self.replacement is not None:  # the new tube from its replacement on
+            new = t[:, 0] >= self.replacement
+            vm[new] = rate_m * (t[new] - self.replacement)
+        vo = v0o + rate_o * t
         g, arcs = self.geometry, np.asarray(self.sector_arcs, dtype=float)
         dm = np.asarray(sector_depth_mobile(vm, g.mobile_radius, g.obstacle_width, arcs))
         r_o = getattr(g, "obstacle_radius", None)
@@ -371,18 +383,20 @@ class DepthModel:
         out[:, 0] = self.initial_mobile, self.initial_obstacle
         return out[0], out[1]
 
-    def sector_time_to(self, depth: float) -> np.ndarray:
+    def sector_time_to(self, depth) -> np.ndarray:
         """The instant [user time unit] at which each sector's tube depth first reaches
         ``depth`` [m]: :meth:`time_to`'s meaning sector by sector (a restart's earlier rows of
         the sector included, :attr:`sector_rows`; only the new tube after a replacement).
 
         From the origin, the sector's volume V0_j + r_j·t inverted in closed form through
         V = l·Δθ·d·(2R − d)/2 (:func:`~fretwear.geometry.sectors.sector_volume_mobile`,
-        theory §3); ``inf`` where the sector does not wear.
+        theory §3); ``inf`` where the sector does not wear. ``depth`` a float: one instant a
+        sector (m,); an array of k depths: (k, m).
         """
         g = self.geometry
         arcs = np.asarray(self.sector_arcs, dtype=float)
-        d = min(float(depth), g.mobile_radius)
+        target = np.asarray(depth, dtype=float)
+        d = np.minimum(target, g.mobile_radius)[..., None]
         volume = np.asarray(sector_volume_mobile(d, g.mobile_radius, g.obstacle_width, arcs),
                             dtype=float)
         rate = self.term_rates[0]
@@ -394,10 +408,13 @@ class DepthModel:
             t = self.replacement + t
         out = self.origin + t / self.time_scale
         if self.sector_rows is not None and self.replacement is None:
+            flat = out.reshape(-1, arcs.size)
+            targets = np.atleast_1d(target).tolist()
             for j, rows in enumerate(self.sector_rows):
                 if rows is not None:
-                    found = rows.times([float(depth)], SectorRelation(g, float(arcs[j])))
-                    out[j] = found.get(float(depth), out[j])
+                    found = rows.times(targets, SectorRelation(g, float(arcs[j])))
+                    for i, value in enumerate(targets):
+                        flat[i, j] = found.get(value, flat[i, j])
         return out
 
     def time_to(self, depth, *, factor=1.0, power=None, coefficients=None,
@@ -581,32 +598,6 @@ def body_volume(law, power: float, coefficients, elapsed_s: np.ndarray, previous
                                              **coefficients), dtype=float)
     _relabelled(caught, body, stacklevel)
     return out
-
-
-def _terms_volume(law, powers, coefficients, t, previous, fresh_s, body) -> np.ndarray:
-    """(times, terms) cumulated volumes [m³] of a law linear in time: V0_j + V(P_j, t) (exactly
-    V where V0_j = 0), restarted from zero at ``fresh_s``; ``t`` a column of times [s]."""
-    m = powers.size
-    if all(c is None for c in coefficients):  # this body does not wear
-        return np.ascontiguousarray(np.broadcast_to(previous, (t.shape[0], m)), dtype=float)
-    if any(c is None for c in coefficients) or len({tuple(sorted(c)) for c in coefficients}) > 1:
-        raise InputError(f"the {body}'s terms wear in some sectors only, or with coefficients "
-                         "of other names: give every sector the same coefficients' names")
-    k = {name: np.array([c[name] for c in coefficients], dtype=float)
-         for name in coefficients[0]}
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
-        if not previous.any():  # V0 = 0 (or -0) in every term: V itself
-            out = np.broadcast_to(np.asarray(law.volume(powers, t, **k), dtype=float),
-                                  (t.shape[0], m)).copy()
-        else:  # V0 + V (V0 + V = V where V0 = 0); the law checks V0
-            out = np.broadcast_to(np.asarray(law.cumulated_volume(previous, powers, t, **k),
-                                             dtype=float), (t.shape[0], m)).copy()
-        if fresh_s is not None:
-            new = t[:, 0] >= fresh_s
-            out[new] = np.asarray(law.volume(powers, t[new] - fresh_s, **k), dtype=float)
-    _relabelled(caught, body, 6)
-    return np.ascontiguousarray(out, dtype=float)
 
 
 class SectorRelation:

@@ -78,7 +78,8 @@ _GROWTH, _STEPS = 16.0, 80
 
 
 def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
-                  first_guess: float = 1.0, rtol: float = 1e-12) -> np.ndarray:
+                  first_guess: float = 1.0, rtol: float = 1e-12,
+                  narrow: str = "compiled") -> np.ndarray:
     """Times t ≥ 0 [s] at which a non-decreasing depth(t) reaches ``target`` [m]; vectorised.
 
     Parameters
@@ -93,6 +94,11 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
         A time scale to start the bracket from [s] (e.g. the user's time unit).
     rtol : float
         Relative tolerance on t.
+    narrow : {"compiled", "scipy"}
+        The solver that narrows the bracket: fretwear's Chandrupatla step compiled by numba
+        (:func:`fretwear.geometry.solve_monotone`, the default: about twice as fast on Monte
+        Carlo arrays, ``benchmarks/bench_time_to.py``), or
+        ``scipy.optimize.elementwise.find_root`` (the same method).
 
     Returns
     -------
@@ -101,43 +107,68 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
 
     Notes
     -----
-    The bracket [lo, hi] grows by ×16 from ``first_guess`` until depth(hi) ≥ target, then
-    Chandrupatla's method (:func:`fretwear.geometry.solve_monotone`) narrows it to
-    ``rtol``. A NaN depth counts as above the target.
+    ``scipy.optimize.elementwise.bracket_root`` [1]_ grows the bracket [0, first_guess] by ×16
+    (at most 80 times) until depth(hi) ≥ target, each element on its own; Chandrupatla's
+    method narrows it to ``rtol`` on t (``narrow``). ``depth_of_time`` is called with the
+    full shape (the other elements at a time of theirs). A NaN depth counts as above the
+    target.
+
+    References
+    ----------
+    .. [1] SciPy, ``scipy.optimize.elementwise`` (SciPy >= 1.15).
 
     Examples
     --------
     >>> round(float(time_to_depth(lambda t: 1e-6 * np.sqrt(t), 1e-3)), 6)  # (1e-3/1e-6)²
     1000000.0
     """
+    from scipy.optimize import elementwise
+
+    if narrow not in ("compiled", "scipy"):
+        raise InputError(f"narrow is 'compiled' or 'scipy', got {narrow!r}")
     goal = np.asarray(target, dtype=float)
     if not (np.isfinite(goal) & (goal > 0)).all():
         raise InputError(f"the depth to reach must be finite and > 0 [m], got {target!r}")
     shape = goal.shape
     above = 2.0 * goal + 1.0  # stands for "beyond the relation's range"
+    flat_goal, flat_above = goal.ravel(), above.ravel()
+    t_full = np.zeros(goal.size)  # the times of every element (converged ones keep theirs)
 
-    def g(t):
-        d = np.asarray(depth_of_time(t), dtype=float)
-        return np.where(np.isnan(d), above, np.broadcast_to(d, shape))
+    def excess(t, at):  # depth(t) − target of the elements ``at`` (scipy's active ones)
+        t_full[at] = t
+        d = np.broadcast_to(np.asarray(depth_of_time(t_full.reshape(shape)), dtype=float),
+                            shape).ravel()[at]
+        return np.where(np.isnan(d), flat_above[at], d) - flat_goal[at]
 
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")  # range and law warnings of trial times
-        done = g(np.zeros(shape)) >= goal
-        lo = np.zeros(shape)
-        hi = np.full(shape, float(first_guess))
-        below = ~done & (g(hi) < goal)
-        for _ in range(_STEPS):
-            if not below.any():
-                break
-            lo = np.where(below, hi, lo)
-            hi = np.where(below, hi * _GROWTH, hi)
-            below = below & (g(hi) < goal)
-        active = ~done & ~below
+        index = np.arange(goal.size)
+        done = excess(np.zeros(goal.size), index) >= 0
         out = np.where(done, 0.0, np.inf)
-        if active.any():
-            solved = solve_monotone(g, np.where(active, goal, 0.0), np.where(active, lo, 0.0),
-                                    np.where(active, hi, 0.0), rtol=rtol)
-            out = np.where(active, solved, out)
+        active = np.flatnonzero(~done)
+        if active.size:
+            t_full[:] = 0.0
+            bracket = elementwise.bracket_root(
+                excess, np.zeros(active.size), np.full(active.size, float(first_guess)),
+                xmin=0.0, factor=_GROWTH, args=(active,), maxiter=_STEPS)
+            found = bracket.success
+            active = active[found]
+            if active.size and narrow == "scipy":
+                t_full[:] = 0.0
+                root = elementwise.find_root(
+                    excess, (bracket.bracket[0][found], bracket.bracket[1][found]),
+                    args=(active,), tolerances={"xrtol": rtol, "xatol": 0.0})
+                out[active] = root.x
+            elif active.size:
+                lo = np.zeros(goal.size)
+                hi = np.zeros(goal.size)
+                lo[active], hi[active] = bracket.bracket[0][found], bracket.bracket[1][found]
+                every = np.arange(goal.size)
+                solved = solve_monotone(lambda t: excess(t.ravel(), every).reshape(shape),
+                                        np.zeros(shape), lo.reshape(shape), hi.reshape(shape),
+                                        rtol=rtol).ravel()
+                out[active] = solved[active]
+    out = out.reshape(shape)
     return out if out.ndim else float(out)
 
 
@@ -200,11 +231,12 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
         sector = np.asarray(sector, dtype=int)
         fraction_sector = np.asarray(depth_mobile_sector, dtype=float) / wall
         columns["wall_fraction_sector"] = fraction_sector
-        instants = np.asarray(sector_depths.sector_time_to(limit), dtype=float)
+        both = np.asarray(sector_depths.sector_time_to(np.array([limit, wall])), dtype=float)
+        instants = both[0]
         columns["limit_instant_sector"] = instants[sector - 1]
         info["limit_instant_sector"] = instants.tolist()
         deep = sorted(set(sector[_past_wall(fraction_sector)].tolist()))
-        walls = sector_depths.sector_time_to(wall) if deep else None
+        walls = both[1]
         for j in deep:
             t = walls[j - 1]
             info["through_wall"][f"sector {j}"] = t
