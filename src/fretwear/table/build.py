@@ -45,7 +45,7 @@ from fretwear.power import wear_power
 from fretwear.table._columns import _frame, _global_frame, _sector_frame
 from fretwear.table._wall import _wall
 from fretwear.table.case import WearCase
-from fretwear.table.depth import case_model
+from fretwear.table.depth_build import case_model
 
 __all__ = ["wear_table_columns", "wear_table_from_case"]
 
