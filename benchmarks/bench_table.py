@@ -81,13 +81,19 @@ def _ms(values: list[float]) -> str:
     return f"{1e3 * np.median(values):6.3f} ({1e3 * min(values):.2f}-{1e3 * max(values):.2f})"
 
 
+#: The clock of the timings: wall time, or the process's CPU time (``--clock cpu``: less
+#: disturbed by other processes on a loaded machine, where a process waits for a core).
+_CLOCK = {"wall": time.perf_counter, "cpu": time.process_time}
+_clock = time.perf_counter
+
+
 def _time(fn, number: int, repeat: int) -> list[float]:
     out = []
     for _ in range(repeat):
-        start = time.perf_counter()
+        start = _clock()
         for _ in range(number):
             fn()
-        out.append((time.perf_counter() - start) / number)
+        out.append((_clock() - start) / number)
     return out
 
 
@@ -114,13 +120,13 @@ def _child(name: str, number: int, repeat: int) -> dict:
             "rows": len(table), "columns": table.shape[1]}
 
 
-def _run_child(name: str, src: str | None, number: int, repeat: int) -> dict:
+def _run_child(name: str, src: str | None, number: int, repeat: int, clock: str) -> dict:
     env = dict(os.environ)
     if src is not None:
         env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
     out = subprocess.run([sys.executable, __file__, "--child", name, "--number", str(number),
-                          "--repeat", str(repeat)], env=env, capture_output=True, text=True,
-                         check=True)
+                          "--repeat", str(repeat), "--clock", clock], env=env,
+                         capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -129,22 +135,23 @@ def _best_of(rounds: list[dict]) -> dict:
                             for k in ("wear_table", "from_case", "frame")}}
 
 
-def compare(base: str, number: int, repeat: int, rounds: int = 3) -> None:
+def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "wall") -> None:
     """Every example timed in child processes taking turns (``rounds`` times each): ``base``'s
     fretwear, this one's; the best of every timing (the least disturbed by other load)."""
     src = str(Path(base).resolve() / "src")
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} "
           f"{os.getloadavg()[2]:.2f}; before = {src}, after = {ROOT / 'src'}")
-    print(f"per-contact wear table [ms], best of {rounds} rounds x {repeat} x {number} tables "
-          "(the processes taking turns); DataFrame floor: pd.DataFrame of the table's columns")
+    print(f"per-contact wear table [ms of {clock} time], best of {rounds} rounds x {repeat} x "
+          f"{number} tables (the processes taking turns); DataFrame floor: pd.DataFrame of the "
+          "table's columns")
     print(f"{'example':>14} {'rows x cols':>11} {'wear_table before':>18} {'after':>7} "
           f"{'ratio':>6} {'from_case before':>17} {'after':>7} {'ratio':>6} "
           f"{'DataFrame floor':>15}")
     for name in EXAMPLES:
         olds, news = [], []
         for _ in range(rounds):
-            olds.append(_run_child(name, src, number, repeat))
-            news.append(_run_child(name, str(ROOT / "src"), number, repeat))
+            olds.append(_run_child(name, src, number, repeat, clock))
+            news.append(_run_child(name, str(ROOT / "src"), number, repeat, clock))
         old, new = _best_of(olds), _best_of(news)
         assert old["module"].startswith(src) and new["module"].startswith(str(ROOT)), (old, new)
         print(f"{name:>14} {new['rows']:>5} x {new['columns']:<3} "
@@ -162,13 +169,17 @@ def main(argv=None) -> None:
     p.add_argument("--repeat", type=int, default=7, help="timings; the median is printed")
     p.add_argument("--base", help="a checkout of the code before (its src/): before and after")
     p.add_argument("--rounds", type=int, default=3, help="turns of each side with --base")
+    p.add_argument("--clock", choices=sorted(_CLOCK), default="wall",
+                   help="wall time, or the process's CPU time (a loaded machine)")
     p.add_argument("--child", help=argparse.SUPPRESS)
     args = p.parse_args(argv)
+    global _clock
+    _clock = _CLOCK[args.clock]
     if args.child:
         print(json.dumps(_child(args.child, args.number, args.repeat)))
         return
     if args.base:
-        compare(args.base, args.number, args.repeat, args.rounds)
+        compare(args.base, args.number, args.repeat, args.rounds, args.clock)
         return
     history = _history()
     print(f"per-contact wear table [ms], median of {args.repeat} x {args.number} tables "

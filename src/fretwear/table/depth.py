@@ -253,7 +253,7 @@ class DepthModel:
         else:
             vm, vo = self._volumes(t, f, power, coefficients, obstacle_coefficients)
         shape = np.broadcast_shapes(np.shape(vm), np.shape(vo))
-        return (np.broadcast_to(vm, shape).astype(float), np.broadcast_to(vo, shape).astype(float))
+        return _float_of_shape(vm, shape), _float_of_shape(vo, shape)
 
     def _volumes(self, t, f, power, coefficients, obstacle_coefficients):
         """(V_m, V_o) [m³] of :meth:`volumes` through the law at every time."""
@@ -623,6 +623,8 @@ def _rates(law, powers, coefficients) -> np.ndarray:
         warnings.simplefilter("ignore")  # the table's own volumes already warned
         if all(c is None for c in coefficients):
             return np.zeros(len(powers))
+        if len(powers) == 1:  # one term (a table without sectors)
+            return np.array([float(np.asarray(law.volume(powers[0], 1.0, **coefficients[0])))])
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
         if len(names) == 1 and all(c is not None for c in coefficients):
             given = {k: np.array([c[k] for c in coefficients]) for k in next(iter(names))}
