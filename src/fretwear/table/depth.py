@@ -87,15 +87,17 @@ class DepthModel:
         Depth limit as a fraction of the wall [-] (plugging criterion, default 0.4).
     replacement : float, optional
         Seconds after the origin at which a new tube is put in (TUBE_NEUF) [s].
-    rows : EarlierRows, optional
-        A restart's earlier rows (the global depth's).
+    rows : EarlierRows or callable, optional
+        A restart's earlier rows (the global depth's), or a function that makes them at their
+        first use (:attr:`earlier`).
     sector_arcs : tuple of float, optional
         The angular extent of each term's sector [deg], when the terms are a sector table's
         sectors (:meth:`sector_table`, :meth:`sector_time_to`).
     term_initial : (tuple of float, tuple of float), optional
         Volumes of each term at the origin (mobile, obstacle) [m³] (default: all in the first).
-    sector_rows : tuple of (EarlierRows or None), optional
-        A restart's earlier rows of each sector (its sector depth and cumulated volume).
+    sector_rows : tuple of (EarlierRows or None), or callable, optional
+        A restart's earlier rows of each sector (its sector depth and cumulated volume), or a
+        function that makes them at their first use (:attr:`earlier_sectors`).
 
     Examples
     --------
@@ -149,6 +151,17 @@ class DepthModel:
         wall, limit = check_wall(self.wall_thickness, self.depth_limit)
         object.__setattr__(self, "wall_thickness", wall)
         object.__setattr__(self, "depth_limit", limit)
+
+    @functools.cached_property
+    def earlier(self) -> EarlierRows | None:
+        """:attr:`rows`, made at the first use where it was given as a function that makes
+        them (the wear table's model: read from the rows only for a time to a depth)."""
+        return self.rows() if callable(self.rows) else self.rows
+
+    @functools.cached_property
+    def earlier_sectors(self) -> tuple[EarlierRows | None, ...] | None:
+        """:attr:`sector_rows`, made at the first use (as :attr:`earlier`)."""
+        return self.sector_rows() if callable(self.sector_rows) else self.sector_rows
 
     # ------------------------------------------------------------------ nominal values
     @property
@@ -405,10 +418,10 @@ class DepthModel:
         if self.replacement is not None:
             t = self.replacement + t
         out = self.origin + t / self.time_scale
-        if self.sector_rows is not None and self.replacement is None:
+        if self.earlier_sectors is not None and self.replacement is None:
             flat = out.reshape(-1, arcs.size)
             targets = np.atleast_1d(target).tolist()
-            for j, rows in enumerate(self.sector_rows):
+            for j, rows in enumerate(self.earlier_sectors):
                 if rows is not None:
                     found = rows.times(targets, SectorRelation(g, float(arcs[j])))
                     for i, value in enumerate(targets):
@@ -469,8 +482,8 @@ class DepthModel:
         if elapsed is None:
             elapsed = self._solved(target, kw, rtol)
         out = self.origin + elapsed / self.time_scale
-        if self.rows is not None and self.replacement is None:
-            found = self.rows.times(np.unique(target), self.geometry)
+        if self.earlier is not None and self.replacement is None:
+            found = self.earlier.times(np.unique(target), self.geometry)
             for value, instant in found.items():
                 out = np.where(target == value, instant, out)
         return out if out.ndim else float(out)

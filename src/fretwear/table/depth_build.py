@@ -6,6 +6,8 @@ calibration of tables read back). The few places that read a case or a table int
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from fretwear._lazy import pandas as pd
@@ -49,18 +51,25 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
         sectors = {"sector_arcs": tuple(np.diff(np.asarray(result.sector_edges, dtype=float))
                                         .tolist()),
                    "term_initial": (tuple(pm.tolist()), tuple(po.tolist()))}
-        if state is not None and len(state.rows):
-            sectors["sector_rows"] = tuple(EarlierRows.from_rows(
-                _sector_rows(state.rows, j + 1), case.origin, column="depth_mobile_sector",
-                volumes=("volume_mobile_cumulated", None)) for j in range(m))
+        if state is not None and len(state.rows):  # read at their first use (a limit)
+            sectors["sector_rows"] = functools.partial(_earlier_sectors, state.rows,
+                                                       case.origin, m)
     rows = None
-    if state is not None and len(state.rows):
-        rows = EarlierRows.from_rows(state.rows, case.origin)
+    if state is not None and len(state.rows):  # read at their first use (a limit)
+        rows = functools.partial(EarlierRows.from_rows, state.rows, case.origin)
     return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
                       coefficients_obstacle=coefs_o, time_scale=case.time_scale,
                       origin=case.origin, initial_mobile=v0_m, initial_obstacle=v0_o,
                       wall_thickness=case.wall_thickness, depth_limit=case.depth_limit,
                       replacement=fresh, rows=rows, **sectors)
+
+
+def _earlier_sectors(rows, origin: float, m: int) -> tuple:
+    """The earlier rows of each of the ``m`` sectors of a restart's rows."""
+    return tuple(EarlierRows.from_rows(_sector_rows(rows, j + 1), origin,
+                                       column="depth_mobile_sector",
+                                       volumes=("volume_mobile_cumulated", None))
+                 for j in range(m))
 
 
 def _sector_rows(rows, sector: int):
