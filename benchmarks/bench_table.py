@@ -15,15 +15,26 @@ A line after the table gives both costs of that example: the same file every cal
 and a new file of new content every call (a copy with one more title line: read and parsed
 each time, the first-read cost).
 
+Before and after in one run: ``--base DIR`` times every example twice more, in child processes
+taking turns, one importing fretwear from ``DIR/src`` (e.g. a worktree of the base commit:
+``git worktree add /tmp/base HEAD``), the other this checkout's; it prints both and their
+ratio (after / before), then the cost of a DataFrame of each table's size and columns (the
+floor a table can reach: one ``pandas.DataFrame`` construction).
+
 Usage::
 
     .venv/bin/python benchmarks/bench_table.py
     .venv/bin/python benchmarks/bench_table.py --number 50 --repeat 5
+    .venv/bin/python benchmarks/bench_table.py --base /tmp/base
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
+import subprocess
+import sys
 import tempfile
 import time
 import warnings
@@ -70,21 +81,106 @@ def _ms(values: list[float]) -> str:
     return f"{1e3 * np.median(values):6.3f} ({1e3 * min(values):.2f}-{1e3 * max(values):.2f})"
 
 
+#: The clock of the timings: wall time, or the process's CPU time (``--clock cpu``: less
+#: disturbed by other processes on a loaded machine, where a process waits for a core).
+_CLOCK = {"wall": time.perf_counter, "cpu": time.process_time}
+_clock = time.perf_counter
+
+
 def _time(fn, number: int, repeat: int) -> list[float]:
     out = []
     for _ in range(repeat):
-        start = time.perf_counter()
+        start = _clock()
         for _ in range(number):
             fn()
-        out.append((time.perf_counter() - start) / number)
+        out.append((_clock() - start) / number)
     return out
+
+
+def _child(name: str, number: int, repeat: int) -> dict:
+    """The medians [s] of one example in this process (``--child``), and the DataFrame floor."""
+    import pandas as pd
+
+    import fretwear
+    history = _history()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        kw = _keywords(name)
+        case = WearCase.from_keywords(**kw)
+        power = wear_power(history, sectors=kw.get("sectors"), blocks=kw.get("blocks", 1),
+                           kwu=(kw.get("force_max"), kw.get("speed_max"))
+                           if case.wear_law.needs_history else None)
+        table = wear_table(power, **kw)
+        a = _time(lambda: wear_table(power, **kw), number, repeat)
+        b = _time(lambda: wear_table_from_case(case, power), number, repeat)
+        columns = {c: table[c].to_numpy() for c in table.columns}
+        floor = _time(lambda: pd.DataFrame(columns), number, repeat)
+    return {"module": fretwear.__file__, "wear_table": min(a), "from_case": min(b),
+            "frame": min(floor),
+            "rows": len(table), "columns": table.shape[1]}
+
+
+def _run_child(name: str, src: str | None, number: int, repeat: int, clock: str) -> dict:
+    env = dict(os.environ)
+    if src is not None:
+        env["PYTHONPATH"] = src + os.pathsep + env.get("PYTHONPATH", "")
+    out = subprocess.run([sys.executable, __file__, "--child", name, "--number", str(number),
+                          "--repeat", str(repeat), "--clock", clock], env=env,
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def _best_of(rounds: list[dict]) -> dict:
+    return {**rounds[0], **{k: min(r[k] for r in rounds)
+                            for k in ("wear_table", "from_case", "frame")}}
+
+
+def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "wall") -> None:
+    """Every example timed in child processes taking turns (``rounds`` times each): ``base``'s
+    fretwear, this one's; the best of every timing (the least disturbed by other load)."""
+    src = str(Path(base).resolve() / "src")
+    print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} "
+          f"{os.getloadavg()[2]:.2f}; before = {src}, after = {ROOT / 'src'}")
+    print(f"per-contact wear table [ms of {clock} time], best of {rounds} rounds x {repeat} x "
+          f"{number} tables (the processes taking turns); DataFrame floor: pd.DataFrame of the "
+          "table's columns")
+    print(f"{'example':>14} {'rows x cols':>11} {'wear_table before':>18} {'after':>7} "
+          f"{'ratio':>6} {'from_case before':>17} {'after':>7} {'ratio':>6} "
+          f"{'DataFrame floor':>15}")
+    for name in EXAMPLES:
+        olds, news = [], []
+        for _ in range(rounds):
+            olds.append(_run_child(name, src, number, repeat, clock))
+            news.append(_run_child(name, str(ROOT / "src"), number, repeat, clock))
+        old, new = _best_of(olds), _best_of(news)
+        assert old["module"].startswith(src) and new["module"].startswith(str(ROOT)), (old, new)
+        print(f"{name:>14} {new['rows']:>5} x {new['columns']:<3} "
+              f"{1e3 * old['wear_table']:>18.3f} {1e3 * new['wear_table']:>7.3f} "
+              f"{new['wear_table'] / old['wear_table']:>6.2f} "
+              f"{1e3 * old['from_case']:>17.3f} {1e3 * new['from_case']:>7.3f} "
+              f"{new['from_case'] / old['from_case']:>6.2f} {1e3 * new['frame']:>15.3f}",
+              flush=True)
+    print(f"load average after {os.getloadavg()[0]:.2f}")
 
 
 def main(argv=None) -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--number", type=int, default=200, help="tables per timing")
     p.add_argument("--repeat", type=int, default=7, help="timings; the median is printed")
+    p.add_argument("--base", help="a checkout of the code before (its src/): before and after")
+    p.add_argument("--rounds", type=int, default=3, help="turns of each side with --base")
+    p.add_argument("--clock", choices=sorted(_CLOCK), default="wall",
+                   help="wall time, or the process's CPU time (a loaded machine)")
+    p.add_argument("--child", help=argparse.SUPPRESS)
     args = p.parse_args(argv)
+    global _clock
+    _clock = _CLOCK[args.clock]
+    if args.child:
+        print(json.dumps(_child(args.child, args.number, args.repeat)))
+        return
+    if args.base:
+        compare(args.base, args.number, args.repeat, args.rounds, args.clock)
+        return
     history = _history()
     print(f"per-contact wear table [ms], median of {args.repeat} x {args.number} tables "
           "(min-max)")

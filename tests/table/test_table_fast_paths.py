@@ -6,8 +6,8 @@
   form (DepthModel.time_to), against the bracketed solver on depth(t)
   (fretwear.table.limit.time_to_depth) and against the geometry's forward relation: the depth
   of the volume K·P·t at the found t is the target;
-* the sector columns of every sector at once (_columns._sector_columns) against the
-  sector-by-sector loop they replace (bit for bit, restarts and replacements included);
+* the sector columns of every sector at once (DepthModel.sector_table) against Archard sector
+  by sector (restarts and replacements included);
 * the limit and through-wall instants solved together (obstacle worn, trace shared: TUBE_BAV)
   against the closed form of docs/theory.md §6 inverted by hand; the geometries'
   ``mobile_depth_alone`` against their relations.
@@ -21,7 +21,7 @@ import pandas as pd
 import pytest
 
 from fretwear.errors import PerforationWarning, RangeWarning
-from fretwear.geometry import CONTACT_TYPES, contact_geometry
+from fretwear.geometry import CONTACT_TYPES, contact_geometry, sector_depth_mobile
 from fretwear.history import ContactHistory
 from fretwear.laws import get_law
 from fretwear.table import _columns, wear_table
@@ -228,33 +228,53 @@ SECTOR_CASES = {
 }
 
 
+def _sector_pairs(kw: dict) -> list:
+    """(mobile, obstacle) Archard coefficients [1/Pa] of each sector as the case gives them: a
+    missing obstacle one is 0 when another sector's obstacle wears (docs/theory.md §3)."""
+    m = kw["sectors"]
+    obstacle = kw.get("obstacle_coefficients", {}).get("coefficient")
+    pairs = kw.get("sector_coefficients") or [(kw["coefficients"]["coefficient"], obstacle)] * m
+    wears = any(p[1] is not None for p in pairs)
+    return [(p[0], (0.0 if p[1] is None else p[1]) if wears else None) for p in pairs]
+
+
 @pytest.mark.parametrize("name", sorted(SECTOR_CASES))
-def test_every_sector_at_once_is_the_sector_loop_bit_for_bit(name, monkeypatch):
-    """The vectorised sector columns against the sector-by-sector loop (the code before it),
-    first run and restart from the first run's table."""
+def test_every_sector_at_once_is_archard_sector_by_sector(name):
+    """The sector columns (every sector at once, by the case's DepthModel) against Archard
+    computed here sector by sector: V_j(t) = V0_j + k_j·P_j·t (docs/theory.md §3), the tube's
+    from 0 at its replacement, V0_j the restarted table's last row of the sector; the sector
+    depth of V_j (fretwear.geometry.sector_depth_mobile, checked in tests/geometry); first run
+    and a restart of it."""
     kw = {"instants": [0.5, 1.0, 3.0], "time_scale": YEAR, "wall_thickness": WALL,
           **SECTOR_CASES[name]}
     history = _sector_history()
-    made = []
-
-    def spy(*args, **kwargs):  # the vectorised path is the one taken
-        made.append(fast_path(*args, **kwargs))
-        return made[-1]
-
-    fast_path = _columns._sector_columns
-    monkeypatch.setattr(_columns, "_sector_columns", spy)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        fast = wear_table(history, **kw)
-        again = wear_table(history, initial_state=fast, **{**kw, "tube_replacement": None})
-        assert len(made) == 2 and all(m is not None for m in made)
-        monkeypatch.setattr(_columns, "_sector_columns", lambda *a, **k: None)
-        loop = wear_table(history, **kw)
-        loop_again = wear_table(history, initial_state=loop, **{**kw, "tube_replacement": None})
-    for a, b in ((fast, loop), (again, loop_again)):
-        pd.testing.assert_frame_equal(a, b, check_exact=True)
-        for column in a.columns:
-            assert np.array_equal(a[column].to_numpy(), b[column].to_numpy(), equal_nan=True)
+        first = wear_table(history, **kw)
+        again = wear_table(history, initial_state=first, **{**kw, "tube_replacement": None})
+    pairs = _sector_pairs(kw)
+    m, width = kw["sectors"], kw["dimensions"]["obstacle_width"]
+    last = first[first["instant"] == first["instant"].max()].set_index("sector")
+    for table, restart in ((first, False), (again, True)):
+        run = table[table["origin"] == table["origin"].iloc[-1]]
+        for j in range(1, m + 1):
+            rows = run[run["sector"] == j]
+            t = rows["duration"].to_numpy() * YEAR
+            p = rows["sector_power"].to_numpy()
+            k_m, k_o = pairs[j - 1]
+            v0m = last.at[j, "volume_mobile_cumulated"] if restart else 0.0
+            v0o = last.at[j, "volume_obstacle_cumulated"] if restart else 0.0
+            vm = v0m + k_m * p * t
+            replaced = kw.get("tube_replacement")
+            if replaced is not None and not restart:
+                vm = np.where(t >= replaced * YEAR, k_m * p * (t - replaced * YEAR), vm)
+            vo = v0o + (0.0 if k_o is None else k_o * p * t)
+            assert rows["volume_mobile_cumulated"].to_numpy() == pytest.approx(vm, rel=1e-14)
+            assert rows["volume_obstacle_cumulated"].to_numpy() == pytest.approx(vo, rel=1e-14,
+                                                                                  abs=0.0)
+            arc = rows["angle_end"].iloc[0] - rows["angle_start"].iloc[0]
+            assert rows["depth_mobile_sector"].to_numpy() == pytest.approx(
+                sector_depth_mobile(vm, R, width, arc), rel=1e-13)
 
 
 def test_sector_loop_keeps_its_warning_naming_the_sectors():

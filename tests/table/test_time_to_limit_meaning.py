@@ -113,3 +113,48 @@ def test_after_a_replacement_only_the_new_tube_counts():
         warnings.simplefilter("ignore")
         t = wear_table(P, instants=[1.0, 3.0, 6.0], tube_replacement=2.0, **CASE)
     assert t["limit_instant"].iloc[0] == pytest.approx(2.0 + _expected(0.4), rel=1e-12)
+
+
+def _sector_history():
+    """A contact whose angle sweeps ±170° (every sector of four worn, unevenly) [SI]."""
+    from fretwear.history import ContactHistory
+    time = np.linspace(0.0, 2.0, 4001)
+    angle = np.radians(170.0 * np.sin(2.1 * time))
+    return ContactHistory(time=time, normal_force=np.full(time.size, 3.0),
+                          vt1=np.full(time.size, 0.05), vt2=np.zeros(time.size),
+                          dy=1e-4 * np.cos(angle), dz=1e-4 * np.sin(angle))
+
+
+def test_sector_limits_look_at_a_restart_earlier_rows():
+    """Each sector's ``limit_instant_sector`` on a restart has the global meaning: the first
+    instant the tube's sector depth reaches the limit, over every row (the earlier 8 years
+    included), not the restart's origin. Reference: the earlier run is Archard at the sector's
+    constant power P_j, V_j = K·P_j·t, and the sector depth d is reached at
+    t = V(d)/(K·P_j), V(d) = l·Δθ·d·(2R − d)/2 (docs/theory.md §3;
+    fretwear.geometry.sector_volume_mobile, checked in tests/geometry)."""
+    from fretwear.geometry import sector_volume_mobile
+    k = 2e-14  # [1/Pa]: the sectors cross 20-60 % of the wall between 1 and 17 years
+    case = {**CASE, "coefficients": {"COEF_USURE": k}, "sectors": 4}
+    history = _sector_history()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        first = wear_table(history, instants=np.arange(1.0, 9.0), **case)
+        restarts = {f: wear_table(history, instants=[1.0, 2.0, 40.0], initial_state=first,
+                                  depth_limit=f, **case) for f in LIMITS}
+    rows = first[first["instant"] == 1.0].set_index("sector")
+    inside = 0
+    for f, table in restarts.items():
+        found = table.attrs["limit_instant_sector"]
+        for j in range(1, 5):
+            arc = rows.at[j, "angle_end"] - rows.at[j, "angle_start"]
+            volume = sector_volume_mobile(f * WALL, DIMENSIONS["mobile_radius"],
+                                          DIMENSIONS["obstacle_width"], arc)
+            expected = volume / (k * rows.at[j, "sector_power"]) / YEAR
+            assert found[j - 1] == pytest.approx(expected, rel=1e-12), (f, j)
+            inside += expected < 8.0
+        at = table["limit_instant_sector"].to_numpy()
+        assert np.array_equal(at, np.asarray(found)[table["sector"].to_numpy() - 1])
+    assert 0 < inside < len(LIMITS) * 4  # some reached among the earlier rows, some after
+    for j in range(4):  # non-decreasing in the limit
+        assert np.all(np.diff([restarts[f].attrs["limit_instant_sector"][j]
+                               for f in LIMITS]) >= 0)

@@ -21,7 +21,8 @@ from scipy import stats
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.history import ContactHistory
 from fretwear.table import wear_table
-from fretwear.table.depth import DepthModel, model_from_table
+from fretwear.table.depth import DepthModel
+from fretwear.table.depth_build import model_from_table
 from fretwear.uncertainty import LogNormal, monte_carlo
 
 R, L_BAR = 9.525e-3, 12.7e-3

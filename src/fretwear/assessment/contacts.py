@@ -82,8 +82,8 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
                              "the assessment's growth needs Archard or KWU-EPRI")
         wall = c.wall_thickness
         if wall is None or not math.isfinite(float(wall)):
-            raise InputError(f"contact {c.contact!r} has no wall thickness: give the manifest's "
-                             "wall_thickness_m (or the case's wall_thickness) to assess it")
+            raise InputError(f"contact {c.contact!r} has no wall thickness: give the case's "
+                             "wall_thickness_m [m] to assess it")
         key = (c.contact_type, tuple(sorted(dict(c.dimensions).items())))
         if key not in geometries:
             geometries[key] = contact_geometry(c.contact_type, **dict(c.dimensions))

@@ -24,7 +24,8 @@ from fretwear.table.build import wear_table_columns, wear_table_from_case
 from fretwear.table.case import Coefficient, WearCase
 from fretwear.table.case_values import PowerWindow, Restart, Wall
 from fretwear.table.core import wear_table
-from fretwear.table.depth import DepthModel, model_from_table, models_from_table
+from fretwear.table.depth import DepthModel
+from fretwear.table.depth_build import model_from_table, models_from_table
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.files import (
     read_profile_table,

@@ -10,7 +10,8 @@ replaced on the way. The steps, one function each:
    for a law whose registry entry says it ``needs_history``;
 3. :class:`_Clock`: the elapsed seconds of each instant and the replacement;
 4. :func:`_global_frame` or :func:`_sector_frame` (:mod:`fretwear.table._columns`): cumulated
-   volumes (:func:`_cumulated`) and depths from them (:func:`_depths`; per sector
+   volumes and depths from them by the case's :class:`~fretwear.table.DepthModel`
+   (:func:`~fretwear.table.depth.case_model`; per sector
    :func:`~fretwear.geometry.sector_depth_mobile`), as columns made a DataFrame once;
 5. the initial table's rows in front; with a wall thickness, the depth as a fraction of the wall
    and the instant of reaching the limit (:func:`_wall`, :mod:`fretwear.table._wall`,
@@ -44,6 +45,7 @@ from fretwear.power import wear_power
 from fretwear.table._columns import _frame, _global_frame, _sector_frame
 from fretwear.table._wall import _wall
 from fretwear.table.case import WearCase
+from fretwear.table.depth_build import case_model
 
 __all__ = ["wear_table_columns", "wear_table_from_case"]
 
@@ -174,22 +176,22 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
                                name=case.name or "")
     case, edges = _with_run_sectors(case, result)
     mobile, obstacle, sources = _body_coefficients(case, history, result)
-    geometry = case.geometry
+    geometry = _geometry(case)
     clock = _Clock(case)
+    model = case_model(case, power, result, mobile, obstacle, clock.fresh, geometry)
     head = {"instant": case.origin + clock.durations, "duration": clock.durations,
             "origin": np.full(clock.n, case.origin), "power": np.full(clock.n, power)}
     if case.sectors is None:
-        columns = _global_frame(case, head, power, mobile, obstacle, clock, geometry)
+        columns = _global_frame(model, head, clock)
     else:
-        columns = _sector_frame(case, head, result, mobile, obstacle, clock, geometry)
+        columns = _sector_frame(model, head, clock, edges)
     state = case.restart.table
     frame = None
     if state is not None and len(state.rows):
         frame = _after_rows(state.rows, columns)
     limit = None
     if case.wall.thickness is not None:
-        wall, limit = _wall(case, columns if frame is None else frame, power, result, mobile,
-                            obstacle, clock, geometry)
+        wall, limit = _wall(case, columns if frame is None else frame, model)
         if frame is None:
             columns.update(wall)
         else:
@@ -198,6 +200,25 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
     if limit is not None:
         attrs.update(limit)
     return (columns if frame is None else None), frame, attrs
+
+
+#: Geometries by (contact type, dimensions), at most _GEOMETRIES_KEPT (:func:`_geometry`).
+_GEOMETRIES: dict = {}
+_GEOMETRIES_KEPT = 256
+
+
+def _geometry(case: WearCase):
+    """The case's geometry (:attr:`WearCase.geometry`: validated when the case was built), one
+    per distinct contact type and dimensions: a geometry is immutable, its constants computed
+    once for every table of the same contact (a bundle's contacts share them)."""
+    key = (case.contact_type, tuple(case.dimensions.items()))
+    found = _GEOMETRIES.get(key)
+    if found is None:
+        found = case.geometry
+        if len(_GEOMETRIES) >= _GEOMETRIES_KEPT:
+            _GEOMETRIES.clear()
+        _GEOMETRIES[key] = found
+    return found
 
 
 # --------------------------------------------------------------------------- 1. the power

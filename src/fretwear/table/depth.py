@@ -31,17 +31,21 @@ from typing import Any
 
 import numpy as np
 
-from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.base import ContactGeometry
-from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile, sector_geometry
-from fretwear.laws import get_law
+from fretwear.geometry.sectors import (
+    SectorGeometry,
+    sector_depth_mobile,
+    sector_depth_obstacle,
+    sector_geometry,
+    sector_volume_mobile,
+)
 from fretwear.laws.registry import WearLaw
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT, check_wall, time_to_depth
 
-__all__ = ["DepthModel", "model_from_table", "models_from_table"]
+__all__ = ["DepthModel", "SectorRelation", "body_volume", "given_names"]
 
 _TIME_TOL = 1e-9
 
@@ -81,6 +85,19 @@ class DepthModel:
         Wall thickness of the mobile (tube) [m].
     depth_limit : float
         Depth limit as a fraction of the wall [-] (plugging criterion, default 0.4).
+    replacement : float, optional
+        Seconds after the origin at which a new tube is put in (TUBE_NEUF) [s].
+    rows : EarlierRows or callable, optional
+        A restart's earlier rows (the global depth's), or a function that makes them at their
+        first use (:attr:`earlier`).
+    sector_arcs : tuple of float, optional
+        The angular extent of each term's sector [deg], when the terms are a sector table's
+        sectors (:meth:`sector_table`, :meth:`sector_time_to`).
+    term_initial : (tuple of float, tuple of float), optional
+        Volumes of each term at the origin (mobile, obstacle) [m³] (default: all in the first).
+    sector_rows : tuple of (EarlierRows or None), or callable, optional
+        A restart's earlier rows of each sector (its sector depth and cumulated volume), or a
+        function that makes them at their first use (:attr:`earlier_sectors`).
 
     Examples
     --------
@@ -114,6 +131,9 @@ class DepthModel:
     depth_limit: float = DEFAULT_DEPTH_LIMIT
     replacement: float | None = None
     rows: EarlierRows | None = None
+    sector_arcs: tuple[float, ...] | None = None
+    term_initial: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    sector_rows: tuple[EarlierRows | None, ...] | None = None
 
     def __post_init__(self) -> None:
         n = len(self.powers)
@@ -131,6 +151,17 @@ class DepthModel:
         wall, limit = check_wall(self.wall_thickness, self.depth_limit)
         object.__setattr__(self, "wall_thickness", wall)
         object.__setattr__(self, "depth_limit", limit)
+
+    @functools.cached_property
+    def earlier(self) -> EarlierRows | None:
+        """:attr:`rows`, made at the first use where it was given as a function that makes
+        them (the wear table's model: read from the rows only for a time to a depth)."""
+        return self.rows() if callable(self.rows) else self.rows
+
+    @functools.cached_property
+    def earlier_sectors(self) -> tuple[EarlierRows | None, ...] | None:
+        """:attr:`sector_rows`, made at the first use (as :attr:`earlier`)."""
+        return self.sector_rows() if callable(self.sector_rows) else self.sector_rows
 
     # ------------------------------------------------------------------ nominal values
     @property
@@ -235,7 +266,7 @@ class DepthModel:
         else:
             vm, vo = self._volumes(t, f, power, coefficients, obstacle_coefficients)
         shape = np.broadcast_shapes(np.shape(vm), np.shape(vo))
-        return (np.broadcast_to(vm, shape).astype(float), np.broadcast_to(vo, shape).astype(float))
+        return _float_of_shape(vm, shape), _float_of_shape(vo, shape)
 
     def _volumes(self, t, f, power, coefficients, obstacle_coefficients):
         """(V_m, V_o) [m³] of :meth:`volumes` through the law at every time."""
@@ -281,6 +312,121 @@ class DepthModel:
                 dm = sector_depth_mobile(vm.ravel(), g.mobile_radius, g.obstacle_width,
                                          self.sector_arc)
         return np.asarray(dm, dtype=float).reshape(vm.shape)
+
+    # ------------------------------------------------------------------ the wear table
+    def table_columns(self, elapsed_s: np.ndarray) -> dict[str, np.ndarray]:
+        """The wear table's volume and depth columns at ``elapsed_s`` [s] after the origin
+        (one term: a table without sectors), at the nominal inputs.
+
+        ``volume_mobile``, ``volume_obstacle`` [m³]: V₀ + r·t for a law linear in time
+        (:meth:`volumes`, the rates :attr:`rates` computed once: the law's V(P, t) = r·t),
+        otherwise each body's law at every time from its volume at the origin
+        (:func:`body_volume`; the law's warnings name the body); the tube's from 0 at a
+        :attr:`replacement`. ``depth_mobile``, ``depth_obstacle`` [m] from them
+        (:meth:`body_depths`).
+        """
+        if self.law.linear_in_time:
+            vm, vo = self.volumes(elapsed_s)
+        else:
+            (p,), (cm,), (co,) = self.powers, self.coefficients_mobile, \
+                self.coefficients_obstacle
+            vm = body_volume(self.law, p, cm, elapsed_s, self.initial_mobile, self.replacement,
+                             "mobile")
+            vo = body_volume(self.law, p, co, elapsed_s, self.initial_obstacle, None,
+                             "obstacle")
+        dm, do = self.body_depths(vm, vo)
+        return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
+                "depth_obstacle": do}
+
+    def body_depths(self, volume_mobile: np.ndarray, volume_obstacle: np.ndarray):
+        """(mobile, obstacle) global depths [m] from the cumulated volumes [m³] (theory §6).
+
+        An obstacle without volume has no depth: exactly 0 where the mobile's depth is defined
+        (the split d_o = D − D·V_m/V of a shared trace leaves a rounding residue otherwise).
+        """
+        dm, do = self.geometry.depth_from_volume(volume_mobile, volume_obstacle)
+        shape = volume_mobile.shape
+        dm, do = _float_of_shape(dm, shape), _float_of_shape(do, shape)
+        return dm, np.where((volume_obstacle == 0) & np.isfinite(dm), 0.0, do)
+
+    def sector_table(self, elapsed_s: np.ndarray):
+        """Each sector's cumulated volumes and depths at ``elapsed_s`` [s] (a sector table's
+        terms, :attr:`sector_arcs`; theory §3): arrays (times, sectors).
+
+        Returns
+        -------
+        dict
+            ``volume_mobile``, ``volume_obstacle`` [m³] (V0_j + V(P_j, t), the tube's from 0 at
+            a replacement), ``depth_mobile``, ``depth_obstacle`` [m] (sector depths; the
+            obstacle's NaN where it wears without an ``obstacle_radius``), and ``unradiused``,
+            the sectors (1-based) of that case.
+        """
+        t = np.asarray(elapsed_s, dtype=float)[:, None]
+        v0m, v0o = self._term_initial()
+        for name, v0 in (("mobile", v0m), ("obstacle", v0o)):
+            if not (np.isfinite(v0) & (v0 >= 0)).all():
+                raise InputError(f"the initial state's sector volumes of the {name} must be "
+                                 f"finite and >= 0 [m³], got {v0.tolist()}")
+        rate_m, rate_o = self.term_rates  # V_j = V0_j + r_j·t: the law's V(P_j, t) = r_j·t
+        vm = v0m + rate_m * t
+        if self.replacement is not None:  # the new tube from its replacement on
+            new = t[:, 0] >= self.replacement
+            vm[new] = rate_m * (t[new] - self.replacement)
+        vo = v0o + rate_o * t
+        g, arcs = self.geometry, np.asarray(self.sector_arcs, dtype=float)
+        dm = np.asarray(sector_depth_mobile(vm, g.mobile_radius, g.obstacle_width, arcs))
+        r_o = getattr(g, "obstacle_radius", None)
+        worn = (vo > 0).any(axis=0)
+        if r_o is None:
+            do = np.where(vo == 0, 0.0, np.nan)
+        else:
+            do = np.asarray(sector_depth_obstacle(vo, r_o, g.obstacle_width, arcs), dtype=float)
+        unradiused = (np.flatnonzero(worn) + 1).tolist() if r_o is None else []
+        return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
+                "depth_obstacle": do, "unradiused": unradiused}
+
+    def _term_initial(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each term's (mobile, obstacle) volumes at the origin [m³]."""
+        n = len(self.powers)
+        if self.term_initial is not None:
+            return tuple(np.asarray(v, dtype=float) for v in self.term_initial)
+        out = np.zeros((2, n))
+        out[:, 0] = self.initial_mobile, self.initial_obstacle
+        return out[0], out[1]
+
+    def sector_time_to(self, depth) -> np.ndarray:
+        """The instant [user time unit] at which each sector's tube depth first reaches
+        ``depth`` [m]: :meth:`time_to`'s meaning sector by sector (a restart's earlier rows of
+        the sector included, :attr:`sector_rows`; only the new tube after a replacement).
+
+        From the origin, the sector's volume V0_j + r_j·t inverted in closed form through
+        V = l·Δθ·d·(2R − d)/2 (:func:`~fretwear.geometry.sectors.sector_volume_mobile`,
+        theory §3); ``inf`` where the sector does not wear. ``depth`` a float: one instant a
+        sector (m,); an array of k depths: (k, m).
+        """
+        g = self.geometry
+        arcs = np.asarray(self.sector_arcs, dtype=float)
+        target = np.asarray(depth, dtype=float)
+        d = np.minimum(target, g.mobile_radius)[..., None]
+        volume = np.asarray(sector_volume_mobile(d, g.mobile_radius, g.obstacle_width, arcs),
+                            dtype=float)
+        rate = self.term_rates[0]
+        v0 = np.zeros(arcs.size) if self.replacement is not None else self._term_initial()[0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (volume - v0) / rate
+        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        if self.replacement is not None:
+            t = self.replacement + t
+        out = self.origin + t / self.time_scale
+        if self.earlier_sectors is not None and self.replacement is None:
+            flat = out.reshape(-1, arcs.size)
+            targets = np.atleast_1d(target).tolist()
+            for j, rows in enumerate(self.earlier_sectors):
+                if rows is not None:
+                    found = rows.times(targets, SectorRelation(g, float(arcs[j])))
+                    for i, value in enumerate(targets):
+                        flat[i, j] = found.get(value, flat[i, j])
+        return out
 
     def time_to(self, depth, *, factor=1.0, power=None, coefficients=None,
                 obstacle_coefficients=None, rtol: float = 1e-12):
@@ -336,8 +482,8 @@ class DepthModel:
         if elapsed is None:
             elapsed = self._solved(target, kw, rtol)
         out = self.origin + elapsed / self.time_scale
-        if self.rows is not None and self.replacement is None:
-            found = self.rows.times(np.unique(target), self.geometry)
+        if self.earlier is not None and self.replacement is None:
+            found = self.earlier.times(np.unique(target), self.geometry)
             for value, instant in found.items():
                 out = np.where(target == value, instant, out)
         return out if out.ndim else float(out)
@@ -403,8 +549,8 @@ class DepthModel:
         g = self.geometry
         if self.sector_arc is not None:  # V = l·Δθ·d·(2R − d)/2 (theory §3)
             d = np.minimum(target, g.mobile_radius)
-            return g.obstacle_width * np.radians(self.sector_arc) * d \
-                * (2.0 * g.mobile_radius - d) / 2.0
+            return np.asarray(sector_volume_mobile(d, g.mobile_radius, g.obstacle_width,
+                                                   self.sector_arc), dtype=float)
         return g.mobile_volume(target)  # the targets are > 0 and finite (_broadcast)
 
     def _solved(self, target, kw, rtol: float) -> np.ndarray:
@@ -421,6 +567,68 @@ def _linear_volume(t, v0, rate):
     return v if v0 == 0.0 else v0 + v
 
 
+def _float_of_shape(values, shape) -> np.ndarray:
+    """A float copy of ``values`` broadcast to ``shape`` (a plain copy when they have that
+    shape already)."""
+    if type(values) is np.ndarray and values.shape == shape:
+        return values.astype(float)
+    return np.broadcast_to(values, shape).astype(float)
+
+
+def _relabelled(caught, body: str, stacklevel: int) -> None:
+    """The law's warnings ``caught`` again, naming the body."""
+    for w in caught:
+        warnings.warn(f"{body}: {w.message}", w.category, stacklevel=stacklevel + 1)
+
+
+def body_volume(law, power: float, coefficients, elapsed_s: np.ndarray, previous: float,
+                fresh_s: float | None, body: str, stacklevel: int = 6) -> np.ndarray:
+    """Cumulated volume of one body at ``elapsed_s`` seconds after the origin [m³].
+
+    ``previous`` is the body's volume at the origin [m³]; a linear law adds ``V(P, Δt)``,
+    another law continues from its equivalent time (theory §7). ``fresh_s`` (a replacement,
+    seconds after the origin) restarts the body from zero there. ``coefficients`` None: the
+    body does not wear. The law's warnings name the body.
+    """
+    if coefficients is None:  # this body does not wear
+        out = np.full(elapsed_s.shape, float(previous))
+        if fresh_s is not None:
+            out[elapsed_s >= fresh_s] = 0.0
+        return out
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        if previous == 0.0:
+            out = np.asarray(law.volume(power, elapsed_s, **coefficients), dtype=float)
+        else:  # linear: V0 + V(Δt); otherwise from the equivalent time of V0 (theory §7)
+            out = np.asarray(law.cumulated_volume(previous, power, elapsed_s, **coefficients),
+                             dtype=float)
+        out = np.broadcast_to(out, elapsed_s.shape).copy()
+        if fresh_s is not None:
+            new = elapsed_s >= fresh_s
+            out[new] = np.asarray(law.volume(power, elapsed_s[new] - fresh_s,
+                                             **coefficients), dtype=float)
+    _relabelled(caught, body, stacklevel)
+    return out
+
+
+class SectorRelation:
+    """The tube's depth-volume relation of one sector (theory §3), as
+    :func:`~fretwear.table.depth_rows.earlier_rows_time` asks of a geometry: the tube's depth
+    is a function of its own volume, V = l·Δθ·d·(2R − d)/2."""
+
+    mobile_depth_alone = True
+    contact_type = "sector"
+
+    def __init__(self, geometry, arc_deg: float):
+        self.radius, self.width, self.arc = geometry.mobile_radius, geometry.obstacle_width, \
+            arc_deg
+
+    def volume_from_depth(self, depth_mobile, depth_obstacle=0.0):
+        """(tube volume [m³], 0) of the sector depth ``depth_mobile`` [m]."""
+        v = sector_volume_mobile(depth_mobile, self.radius, self.width, self.arc)
+        return np.asarray(v, dtype=float), 0.0
+
+
 def _rates(law, powers, coefficients) -> np.ndarray:
     """Volume per second [m³/s] of each term of a law linear in time (0 where the body does
     not wear), every term in one call of the law where their coefficients share names."""
@@ -428,6 +636,8 @@ def _rates(law, powers, coefficients) -> np.ndarray:
         warnings.simplefilter("ignore")  # the table's own volumes already warned
         if all(c is None for c in coefficients):
             return np.zeros(len(powers))
+        if len(powers) == 1:  # one term (a table without sectors)
+            return np.array([float(np.asarray(law.volume(powers[0], 1.0, **coefficients[0])))])
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
         if len(names) == 1 and all(c is not None for c in coefficients):
             given = {k: np.array([c[k] for c in coefficients]) for k in next(iter(names))}
@@ -449,150 +659,3 @@ def given_names(law: WearLaw, given: Mapping[str, Any]) -> list[str]:
     """Native names of the coefficients in ``given`` (Code_Aster keywords translated)."""
     by_keyword = {kw: p for p, kw in law.aster_keywords.items()}
     return [by_keyword.get(k, k) for k in given]
-
-
-# ---------------------------------------------------------------------- from a wear table
-def _attrs(table: pd.DataFrame) -> dict:
-    attrs = dict(getattr(table, "attrs", {}) or {})
-    missing = [k for k in ("contact_type", "dimensions", "law", "coefficients_mobile",
-                           "time_scale") if k not in attrs]
-    if missing:
-        raise InputError(f"the wear table has no run metadata ({', '.join(missing)} missing "
-                         "from DataFrame.attrs): give the table returned by wear_table / "
-                         "run_case, or the case that computes it")
-    return attrs
-
-
-def _origin_rows(table: pd.DataFrame, origin: float) -> pd.DataFrame:
-    tol = _TIME_TOL * max(1.0, abs(origin))
-    at = table[np.asarray(table["instant"], dtype=float) <= origin + tol]
-    if at.empty:
-        return at
-    last = float(at["instant"].iloc[-1])
-    return at[np.abs(np.asarray(at["instant"], dtype=float) - last) <= tol]
-
-
-def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
-                      wall_thickness: float | None = None, depth_limit: float | None = None,
-                      name: str = "") -> dict[str, DepthModel]:
-    """The models of a wear table: ``"global"`` and, in sector mode, ``"sector 1"`` ...
-
-    Parameters
-    ----------
-    table : DataFrame
-        A wear table from :func:`fretwear.table.wear_table` (its ``attrs`` hold the run: law,
-        coefficients, geometry, power, time scale).
-    sector_coefficients : sequence of (float, float or None), optional
-        Archard coefficients (mobile, obstacle) [Pa⁻¹] per sector, as given to wear_table
-        (default ``attrs["sector_coefficients"]``, else the law's coefficients).
-    wall_thickness : float, optional
-        Wall thickness [m] (default ``attrs["wall_thickness"]``).
-    depth_limit : float, optional
-        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or
-        :data:`~fretwear.table.DEFAULT_DEPTH_LIMIT`).
-    name : str
-        Contact name.
-
-    Returns
-    -------
-    dict of str to DepthModel
-
-    Raises
-    ------
-    InputError
-        The table has no metadata, or the tube is replaced after the origin (not modelled).
-    """
-    a = _attrs(table)
-    law = get_law(a["law"])
-    geometry = _geometry(a["contact_type"], a["dimensions"])
-    origin = float(a.get("origin") or 0.0)
-    replacement = a.get("tube_replacement")
-    if replacement is not None and float(replacement) > origin + _TIME_TOL * max(1, origin):
-        raise InputError("the wear table replaces the tube after its origin (TUBE_NEUF): the "
-                         "uncertainty model continues one tube; compute from the replacement on "
-                         "(a restart of replace_tube's table)")
-    wall = wall_thickness if wall_thickness is not None else a.get("wall_thickness")
-    limit = depth_limit if depth_limit is not None else a.get("depth_limit")
-    common = {"law": law, "geometry": geometry, "time_scale": float(a["time_scale"]),
-              "origin": origin, "wall_thickness": None if wall is None else float(wall),
-              "depth_limit": DEFAULT_DEPTH_LIMIT if limit is None else float(limit)}
-    earlier = None
-    if "origin" in table.columns and origin > 0:  # a restart: the initial table's rows first
-        earlier = EarlierRows.from_rows(
-            table[np.asarray(table["origin"], dtype=float) != origin], origin)
-    mobile = _dict(a.get("coefficients_mobile"))
-    obstacle = _dict(a.get("coefficients_obstacle"))
-    power_info = a.get("power") or {}
-    at = _origin_rows(table, origin)
-    edges = a.get("sector_edges")
-    if edges is None:
-        total = float(power_info.get("total", table["power"].iloc[-1]))
-        v0m = float(at["volume_mobile"].iloc[0]) if len(at) else 0.0
-        v0o = float(at["volume_obstacle"].iloc[0]) if len(at) else 0.0
-        return {"global": DepthModel(powers=(total,), coefficients_mobile=(mobile,),
-                                     coefficients_obstacle=(obstacle,), initial_mobile=v0m,
-                                     initial_obstacle=v0o, name=name, rows=earlier, **common)}
-    edges = np.asarray(edges, dtype=float)
-    m = edges.size - 1
-    sector_powers = np.asarray(power_info.get("sectors"), dtype=float)
-    if sector_powers.size != m:
-        raise InputError("the sector table's attrs['power'] lacks the sector powers")
-    pairs = sector_coefficients if sector_coefficients is not None else a.get(
-        "sector_coefficients")
-    key = law.parameters[0]
-    k_m, k_o = _sector_pairs(pairs, m, mobile.get(key),
-                             None if obstacle is None else obstacle.get(key))
-    coefs_m = tuple({key: k} for k in k_m)
-    coefs_o = tuple(None if k is None else {key: k} for k in k_o)
-    v0m_s = np.zeros(m)
-    v0o_s = np.zeros(m)
-    if len(at):
-        by_sector = at.set_index("sector")
-        for j in range(m):
-            if j + 1 in by_sector.index:
-                row = by_sector.loc[j + 1]
-                v0m_s[j] = float(np.atleast_1d(row["volume_mobile_cumulated"])[-1])
-                v0o_s[j] = float(np.atleast_1d(row["volume_obstacle_cumulated"])[-1])
-    out = {"global": DepthModel(powers=tuple(float(p) for p in sector_powers),
-                                  coefficients_mobile=coefs_m, coefficients_obstacle=coefs_o,
-                                  initial_mobile=float(v0m_s.sum()),
-                                  initial_obstacle=float(v0o_s.sum()), name=name,
-                                  rows=earlier, **common)}
-    for j in range(m):
-        out[f"sector {j + 1}"] = DepthModel(
-            powers=(float(sector_powers[j]),), coefficients_mobile=(coefs_m[j],),
-            coefficients_obstacle=(coefs_o[j],), initial_mobile=float(v0m_s[j]),
-            initial_obstacle=float(v0o_s[j]), sector_arc=float(edges[j + 1] - edges[j]),
-            name=f"{name} sector {j + 1}".strip(), sector=j + 1, **common)
-    return out
-
-
-def _sector_pairs(pairs, m: int, mobile, obstacle):
-    """(mobile, obstacle) Archard coefficients [Pa⁻¹] of each of ``m`` sectors: the pairs as
-    wear_table reads them (one pair for all allowed; an obstacle None: it does not wear)."""
-    if pairs is None:
-        return [float(mobile)] * m, [None if obstacle is None else float(obstacle)] * m
-    pairs = list(pairs)
-    if len(pairs) == 1:
-        pairs = pairs * m
-    if len(pairs) != m:
-        raise InputError(f"sector_coefficients has {len(pairs)} entries for {m} sectors")
-    pairs = [(p, None) if np.isscalar(p) else tuple(p) for p in pairs]
-    k_m = [float(p[0]) for p in pairs]
-    k_o = [None if p[1] is None else float(p[1]) for p in pairs]
-    if any(k is not None for k in k_o):  # wear_table: a missing one is 0 when others wear
-        k_o = [0.0 if k is None else k for k in k_o]
-    return k_m, k_o
-
-
-def model_from_table(table: pd.DataFrame, *, sector: int | None = None, **options
-                     ) -> DepthModel:
-    """The model of a wear table's global depth (``sector=None``) or of one sector (1-based).
-
-    Options as :func:`models_from_table`.
-    """
-    models = models_from_table(table, **options)
-    key = "global" if sector is None else f"sector {int(sector)}"
-    if key not in models:
-        raise InputError(f"the wear table has no {key}; it has {sorted(models)}")
-    return models[key]

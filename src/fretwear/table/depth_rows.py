@@ -148,23 +148,27 @@ class EarlierRows:
     from_zero: bool = True
 
     @classmethod
-    def from_rows(cls, rows, origin: float) -> EarlierRows | None:
+    def from_rows(cls, rows, origin: float, *, column: str = "depth_mobile",
+                  volumes=("volume_mobile", "volume_obstacle")) -> EarlierRows | None:
         """The earlier rows of a table's rows (native names) at or before ``origin`` [user time
-        unit] (one per instant: the first of a sector table's); None without a row."""
+        unit] (one per instant: the first of a sector table's, or give one sector's rows);
+        ``column`` the depth, ``volumes`` the tube's and obstacle's volume columns (None: not
+        known). None without a row."""
         if rows is None or len(rows) == 0 or "instant" not in rows.columns:
             return None
         tol = _TIME_TOL * max(1.0, abs(origin))
         keep = rows[np.asarray(rows["instant"], dtype=float) <= origin + tol]
         keep = keep.drop_duplicates("instant", keep="first").sort_values("instant")
-        if keep.empty or "depth_mobile" not in keep.columns:
+        if keep.empty or column not in keep.columns:
             return None
 
-        def column(name):
-            return keep[name].to_numpy(dtype=float) if name in keep.columns else None
+        def values(name):
+            return (keep[name].to_numpy(dtype=float) if name is not None
+                    and name in keep.columns else None)
 
-        first = column("origin")
-        return cls(column("instant"), column("depth_mobile"), column("volume_mobile"),
-                   column("volume_obstacle"), bool(first is None or first[0] == 0))
+        first = values("origin")
+        return cls(values("instant"), values(column), values(volumes[0]), values(volumes[1]),
+                   bool(first is None or first[0] == 0))
 
     def times(self, targets, geometry) -> dict[float, float]:
         """Target depth [m] -> instant [user time unit], for the targets the tube in place

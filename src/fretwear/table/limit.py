@@ -7,9 +7,10 @@ global depth and for every sector depth (docs/uncertainty.md §1):
 * ``wall_fraction`` (``wall_fraction_sector``): the depth of the mobile over the wall [-];
 * ``limit_instant`` (``limit_instant_sector``): the instant [user time unit] at which the tube
   in place first reaches ``depth_limit × wall_thickness``: the global depth's by
-  :meth:`fretwear.table.DepthModel.time_to` (the one meaning of the time to a limit,
+  :meth:`fretwear.table.DepthModel.time_to`, each sector's by
+  :meth:`fretwear.table.DepthModel.sector_time_to` (the one meaning of the time to a limit,
   docs/uncertainty.md §1: a restart's earlier rows included, only the new tube after a
-  replacement), each sector's depth of a law linear in time inverted in closed form;
+  replacement);
   ``inf`` when the law never gets there (no wear).
 
 A depth beyond the wall (fraction > 1) is named by a :class:`~fretwear.errors.PerforationWarning`.
@@ -26,7 +27,7 @@ import numpy as np
 from fretwear.errors import InputError, PerforationWarning
 from fretwear.geometry import solve_monotone
 
-__all__ = ["DEFAULT_DEPTH_LIMIT", "check_wall", "first_times", "time_to_depth", "wall_columns"]
+__all__ = ["DEFAULT_DEPTH_LIMIT", "check_wall", "time_to_depth", "wall_columns"]
 
 #: The depth limit of a tube by default, as a fraction of its wall [-]: the common plugging
 #: criterion, 40 % through-wall.
@@ -77,7 +78,8 @@ _GROWTH, _STEPS = 16.0, 80
 
 
 def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
-                  first_guess: float = 1.0, rtol: float = 1e-12) -> np.ndarray:
+                  first_guess: float = 1.0, rtol: float = 1e-12,
+                  narrow: str = "compiled") -> np.ndarray:
     """Times t ≥ 0 [s] at which a non-decreasing depth(t) reaches ``target`` [m]; vectorised.
 
     Parameters
@@ -92,6 +94,11 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
         A time scale to start the bracket from [s] (e.g. the user's time unit).
     rtol : float
         Relative tolerance on t.
+    narrow : {"compiled", "scipy"}
+        The solver that narrows the bracket: fretwear's Chandrupatla step compiled by numba
+        (:func:`fretwear.geometry.solve_monotone`, the default: about twice as fast on Monte
+        Carlo arrays, ``benchmarks/bench_time_to.py``), or
+        ``scipy.optimize.elementwise.find_root`` (the same method).
 
     Returns
     -------
@@ -100,43 +107,68 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
 
     Notes
     -----
-    The bracket [lo, hi] grows by ×16 from ``first_guess`` until depth(hi) ≥ target, then
-    Chandrupatla's method (:func:`fretwear.geometry.solve_monotone`) narrows it to
-    ``rtol``. A NaN depth counts as above the target.
+    ``scipy.optimize.elementwise.bracket_root`` [1]_ grows the bracket [0, first_guess] by ×16
+    (at most 80 times) until depth(hi) ≥ target, each element on its own; Chandrupatla's
+    method narrows it to ``rtol`` on t (``narrow``). ``depth_of_time`` is called with the
+    full shape (the other elements at a time of theirs). A NaN depth counts as above the
+    target.
+
+    References
+    ----------
+    .. [1] SciPy, ``scipy.optimize.elementwise`` (SciPy >= 1.15).
 
     Examples
     --------
     >>> round(float(time_to_depth(lambda t: 1e-6 * np.sqrt(t), 1e-3)), 6)  # (1e-3/1e-6)²
     1000000.0
     """
+    from scipy.optimize import elementwise
+
+    if narrow not in ("compiled", "scipy"):
+        raise InputError(f"narrow is 'compiled' or 'scipy', got {narrow!r}")
     goal = np.asarray(target, dtype=float)
     if not (np.isfinite(goal) & (goal > 0)).all():
         raise InputError(f"the depth to reach must be finite and > 0 [m], got {target!r}")
     shape = goal.shape
     above = 2.0 * goal + 1.0  # stands for "beyond the relation's range"
+    flat_goal, flat_above = goal.ravel(), above.ravel()
+    t_full = np.zeros(goal.size)  # the times of every element (converged ones keep theirs)
 
-    def g(t):
-        d = np.asarray(depth_of_time(t), dtype=float)
-        return np.where(np.isnan(d), above, np.broadcast_to(d, shape))
+    def excess(t, at):  # depth(t) − target of the elements ``at`` (scipy's active ones)
+        t_full[at] = t
+        d = np.broadcast_to(np.asarray(depth_of_time(t_full.reshape(shape)), dtype=float),
+                            shape).ravel()[at]
+        return np.where(np.isnan(d), flat_above[at], d) - flat_goal[at]
 
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")  # range and law warnings of trial times
-        done = g(np.zeros(shape)) >= goal
-        lo = np.zeros(shape)
-        hi = np.full(shape, float(first_guess))
-        below = ~done & (g(hi) < goal)
-        for _ in range(_STEPS):
-            if not below.any():
-                break
-            lo = np.where(below, hi, lo)
-            hi = np.where(below, hi * _GROWTH, hi)
-            below = below & (g(hi) < goal)
-        active = ~done & ~below
+        index = np.arange(goal.size)
+        done = excess(np.zeros(goal.size), index) >= 0
         out = np.where(done, 0.0, np.inf)
-        if active.any():
-            solved = solve_monotone(g, np.where(active, goal, 0.0), np.where(active, lo, 0.0),
-                                    np.where(active, hi, 0.0), rtol=rtol)
-            out = np.where(active, solved, out)
+        active = np.flatnonzero(~done)
+        if active.size:
+            t_full[:] = 0.0
+            bracket = elementwise.bracket_root(
+                excess, np.zeros(active.size), np.full(active.size, float(first_guess)),
+                xmin=0.0, factor=_GROWTH, args=(active,), maxiter=_STEPS)
+            found = bracket.success
+            active = active[found]
+            if active.size and narrow == "scipy":
+                t_full[:] = 0.0
+                root = elementwise.find_root(
+                    excess, (bracket.bracket[0][found], bracket.bracket[1][found]),
+                    args=(active,), tolerances={"xrtol": rtol, "xatol": 0.0})
+                out[active] = root.x
+            elif active.size:
+                lo = np.zeros(goal.size)
+                hi = np.zeros(goal.size)
+                lo[active], hi[active] = bracket.bracket[0][found], bracket.bracket[1][found]
+                every = np.arange(goal.size)
+                solved = solve_monotone(lambda t: excess(t.ravel(), every).reshape(shape),
+                                        np.zeros(shape), lo.reshape(shape), hi.reshape(shape),
+                                        rtol=rtol).ravel()
+                out[active] = solved[active]
+    out = out.reshape(shape)
     return out if out.ndim else float(out)
 
 
@@ -147,35 +179,9 @@ def _past_wall(fraction) -> np.ndarray:
     return np.isnan(f) | (f > 1.0)
 
 
-def first_times(old: Callable, new: Callable | None, targets, fresh: float | None,
-                first_guess: float) -> np.ndarray:
-    """Seconds after the origin [s] at which the tube in place first reaches ``targets`` [m],
-    element-wise (e.g. the sectors of a table).
-
-    ``old(t)`` and ``new(τ)`` map an array of times (one per element) to the array of depths of
-    the elements [m]: ``old`` of the tube in place at the origin, ``new`` of a tube put in
-    ``fresh`` seconds after the origin (TUBE_NEUF), τ seconds after its replacement. After a
-    replacement only the new tube counts (docs/uncertainty.md §1). A function with a
-    ``time_to(targets)`` method (its inverse in closed form) is inverted by it instead of the
-    bracketed solver (:func:`time_to_depth`).
-    """
-    goal = np.asarray(targets, dtype=float)
-
-    def solve(depth_of_time):  # in closed form when the function knows its inverse
-        if hasattr(depth_of_time, "time_to"):
-            return np.asarray(depth_of_time.time_to(goal), dtype=float)
-        return np.asarray(time_to_depth(depth_of_time, goal, first_guess=first_guess),
-                          dtype=float)
-
-    if fresh is None or new is None:
-        return solve(old)
-    return fresh + solve(new)
-
-
 def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
                  depth_mobile_sector: np.ndarray | None, *, wall: float, depth_limit: float,
-                 origin: float, time_scale: float, fresh: float | None, global_depth,
-                 sector_depths=None, unit: str | None = None,
+                 global_depth, sector_depths=None, unit: str | None = None,
                  stacklevel: int = 3) -> tuple[dict, dict]:
     """The wall columns of a wear table from its depth columns, and the limit's metadata.
 
@@ -189,18 +195,12 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
         Wall thickness of the mobile [m].
     depth_limit : float
         Depth limit as a fraction of the wall [-].
-    origin : float
-        Origin of the run [user time unit].
-    time_scale : float
-        Seconds per user time unit [s].
-    fresh : float or None
-        Seconds after the origin of a tube replacement (None: none) [s].
     global_depth : DepthModel or None
         The global depth's model (None: no global depth): its
         :meth:`~fretwear.table.DepthModel.time_to` gives the limit and through-wall instants.
-    sector_depths : (callable, callable), optional
-        ``(old, new)`` depth functions of all the sectors at once (sector mode; arrays of one
-        time, one depth per sector: :func:`first_times`).
+    sector_depths : DepthModel, optional
+        The model of the sectors (sector mode): its
+        :meth:`~fretwear.table.DepthModel.sector_time_to` gives each sector's instants.
     unit : str, optional
         Name of the user time unit, for the warning.
 
@@ -213,10 +213,6 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
     """
     limit = depth_limit * wall
     depth_mobile = np.asarray(depth_mobile, dtype=float)
-
-    def sector_instants(targets):  # vectorised over the sectors
-        t = first_times(sector_depths[0], sector_depths[1], targets, fresh, time_scale)
-        return origin + t / time_scale
 
     fraction = depth_mobile / wall
     past = global_depth is not None and _past_wall(fraction).any()
@@ -235,11 +231,12 @@ def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
         sector = np.asarray(sector, dtype=int)
         fraction_sector = np.asarray(depth_mobile_sector, dtype=float) / wall
         columns["wall_fraction_sector"] = fraction_sector
-        instants = sector_instants(np.full(sector.max(initial=0), limit))
+        both = np.asarray(sector_depths.sector_time_to(np.array([limit, wall])), dtype=float)
+        instants = both[0]
         columns["limit_instant_sector"] = instants[sector - 1]
         info["limit_instant_sector"] = instants.tolist()
         deep = sorted(set(sector[_past_wall(fraction_sector)].tolist()))
-        walls = sector_instants(np.full(instants.size, wall)) if deep else None
+        walls = both[1]
         for j in deep:
             t = walls[j - 1]
             info["through_wall"][f"sector {j}"] = t

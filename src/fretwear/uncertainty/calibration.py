@@ -36,7 +36,8 @@ from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry import solve_monotone
 from fretwear.io.text_tables import number, read_text_table
 from fretwear.keys import check_level, check_probabilities
-from fretwear.table.depth import DepthModel, models_from_table
+from fretwear.table.depth import DepthModel
+from fretwear.table.depth_build import models_from_table
 from fretwear.uncertainty.cases import prepare_case
 from fretwear.uncertainty.distributions import LogNormal
 

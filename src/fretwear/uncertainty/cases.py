@@ -29,7 +29,8 @@ from fretwear.io import read_history
 from fretwear.power import PowerResult, wear_power
 from fretwear.power.confidence import PowerInterval
 from fretwear.table import WearCase
-from fretwear.table.depth import DepthModel, models_from_table
+from fretwear.table.depth import DepthModel
+from fretwear.table.depth_build import models_from_table
 from fretwear.uncertainty.distributions import is_distribution, median_of
 
 __all__ = ["PreparedCase", "prepare_case"]
