@@ -126,6 +126,29 @@ def _stored_metadata(comments: list[str]) -> tuple[str | None, dict]:
     return name, meta
 
 
+#: Cells parsed per block of a streamed text file, at most (about 8 MB of floats): the blocks
+#: pandas parses are of ``parse_rows`` rows, sliced into the chunks asked for.
+PARSE_CELLS = 1 << 20
+#: Rows parsed per block when the file is narrow (the cells bound is then far away).
+PARSE_ROWS = 1 << 16
+
+
+def parse_rows(size: int, columns: int) -> int:
+    """Rows pandas parses per block for chunks of ``size`` rows of a file of ``columns``
+    columns: at least ``size``, else as many as fit in :data:`PARSE_CELLS` cells, at most
+    :data:`PARSE_ROWS`.
+
+    Each parsed block costs pandas a fixed time per column (a column object): chunks of 2 rows
+    of a file with 2 000 extra columns took 68 s for 250 rows, one block 0.45 s (load 8.5).
+
+    Examples
+    --------
+    >>> parse_rows(2, 2004), parse_rows(2, 4), parse_rows(10**6, 4)
+    (523, 65536, 1000000)
+    """
+    return max(int(size), min(PARSE_ROWS, PARSE_CELLS // max(1, int(columns))))
+
+
 def _read_kwargs(info: dict, positions: list[int]) -> dict:
     # every column is parsed (no usecols): pandas would silently drop the extra cells of a
     # ragged row otherwise; only the columns used must be numbers (a node-name column is fine)
@@ -236,10 +259,13 @@ def open_csv(path: str | os.PathLike, *, delimiter: str | None = None,
         return _columns(frame, positions, path, info)
 
     def iter_blocks(positions: list[int], size: int) -> Iterator[list[np.ndarray]]:
+        rows = parse_rows(size, len(info["names"]))
         try:
-            with pd.read_csv(path, chunksize=size, **_read_kwargs(info, positions)) as reader:
+            with pd.read_csv(path, chunksize=rows, **_read_kwargs(info, positions)) as reader:
                 for frame in reader:
-                    yield _columns(frame, positions, path, info)
+                    arrays = _columns(frame, positions, path, info)
+                    for start in range(0, len(frame), size):
+                        yield [a[start:start + size] for a in arrays]
         except pd.errors.EmptyDataError:  # a header and no data rows: no blocks
             return
         except ValueError as exc:
