@@ -129,10 +129,10 @@ def check_window_length(duration: float, blocks: int, name: str) -> None:
     --------
     >>> check_window_length(1.0, 4, "h")
     >>> try:
-    ...     check_window_length(1e-320, 1, "h")
+    ...     check_window_length(1e-310, 4, "h")
     ... except InputError as exc:
-    ...     print(str(exc)[:62])
-    history 'h': the window of 1e-320 s (1 block of 1e-320 s) is
+    ...     print(str(exc)[:64])
+    history 'h': the window of 1e-310 s (4 blocks of 2.5e-311 s) is
     """
     tiny = float(np.finfo(float).tiny)
     if duration / blocks >= tiny:
