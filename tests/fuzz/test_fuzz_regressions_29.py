@@ -132,3 +132,59 @@ def test_a_wide_csv_streamed_in_tiny_chunks_is_parsed_in_few_blocks(tmp_path, mo
     assert parsed == [n]
     assert len(chunks) == n - 1 and all(len(c) == 2 for c in chunks)
     np.testing.assert_array_equal(np.concatenate([c.time[:1] for c in chunks] + [t[-1:]]), t)
+
+
+# ---- found by the flow and assessment families (tests/fuzz/test_fuzz_flow_assessment.py)
+DESCRIPTION = "examples/bundle/bundle_geometry.toml"
+
+
+@pytest.mark.parametrize("old, new, match", [
+    ('parameters = { long_cor = 3.0, kinematic_viscosity = 1.2e-7 }', 'parameters = ""',
+     r"\[flow\].parameters: expected a table"),                        # TypeError from **
+    ('ends = ["clamped", "clamped"]', "ends = 0508-08-20", r"\[tubes\].ends: expected two"),
+    ("grid_points = 241", "grid_points = " + "4" * 400,                # numpy's MemoryError
+     r"grid_points: expected an integer in \[1, 100000\], got an integer of 400 digits"),
+    ('type = "AVB"                      #', "type = []  #", r"type: \[\]; choose one"),
+    ("span_lengths_m = 1.2", "span_lengths_m = " + "2" * 400,          # OverflowError
+     r"span_lengths_m: expected a finite number, got an integer of 400 digits"),
+    ("duration_s = 0.7", "duration_s = 1e300", r"2e\+303 samples per tube"),
+])
+def test_odd_values_of_a_bundle_description(tmp_path, old, new, match):
+    from fretwear.flow.description import read_description
+
+    text = open(DESCRIPTION, encoding="utf-8").read()
+    assert old in text
+    path = tmp_path / "bundle.toml"
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+    with pytest.raises(InputError, match=match):
+        read_description(path)
+
+
+def test_a_utf16_bundle_description_reads(tmp_path):
+    """A description saved as UTF-16 (a Windows editor): UnicodeDecodeError before."""
+    from fretwear.flow.description import read_description
+
+    text = open(DESCRIPTION, encoding="utf-8").read()
+    path = tmp_path / "bundle.toml"
+    path.write_bytes(text.encode("utf-16"))
+    assert [s.tube for s in read_description(path)] == \
+        [s.tube for s in read_description(DESCRIPTION)]
+
+
+def test_sizing_and_pod_models_at_the_float_range():
+    """A slope of 9e307 overflowed b·d in the likelihood (a numpy RuntimeWarning, inf - inf);
+    a POD slope of 1e308 overflowed β₁·ln d. The slope is now refused (a technique's slope is
+    near 1); the POD saturates at 0 or 1, its exact limit, without a warning."""
+    from fretwear.assessment import LogisticPOD, SizingModel
+
+    with pytest.raises(InputError, match=r"slope = 8.98846567431158e\+307"):
+        SizingModel(intercept=0.0, slope=8.98846567431158e307, sigma=1.0)
+    with pytest.raises(InputError, match=r"sigma = 2.0 \[m\]: outside"):
+        SizingModel(sigma=2.0)   # 2 m: depths not in metres
+    model = SizingModel(intercept=0.0, slope=1.0, sigma=1e-4)
+    pod = LogisticPOD(beta0=0.0, beta1=1e308)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert model.likelihood(1e300, 0.0) == 0.0   # z² = inf: the density's limit, 0
+        assert pod([1e-4, 2.0]).tolist() == [0.0, 1.0]
+        assert pod.miss([1e-4, 2.0]).tolist() == [1.0, 0.0]
