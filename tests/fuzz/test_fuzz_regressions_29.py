@@ -147,7 +147,7 @@ DESCRIPTION = "examples/bundle/bundle_geometry.toml"
     ('type = "AVB"                      #', "type = []  #", r"type: \[\]; choose one"),
     ("span_lengths_m = 1.2", "span_lengths_m = " + "2" * 400,          # OverflowError
      r"span_lengths_m: expected a finite number, got an integer of 400 digits"),
-    ("duration_s = 0.7", "duration_s = 1e300", r"2e\+303 samples per tube"),
+    ("duration_s = 0.7", "duration_s = 1e12", r"2e\+15 samples per tube"),
 ])
 def test_odd_values_of_a_bundle_description(tmp_path, old, new, match):
     from fretwear.flow.description import read_description
@@ -188,3 +188,16 @@ def test_sizing_and_pod_models_at_the_float_range():
         assert model.likelihood(1e300, 0.0) == 0.0   # z² = inf: the density's limit, 0
         assert pod([1e-4, 2.0]).tolist() == [0.0, 1.0]
         assert pod.miss([1e-4, 2.0]).tolist() == [1.0, 0.0]
+
+
+def test_a_tube_diameter_beyond_the_float_range_of_its_fourth_power(tmp_path):
+    """outer_diameter_m = 1.157920892373162e+77 (FRETWEAR_FUZZ_SCALE=20): OverflowError from
+    d**4 in the second moment of area."""
+    from fretwear.flow.description import read_description
+
+    text = open(DESCRIPTION, encoding="utf-8").read()
+    path = tmp_path / "bundle.toml"
+    path.write_text(text.replace("outer_diameter_m = 19.05e-3",
+                                 "outer_diameter_m = 1.157920892373162e+77"), encoding="utf-8")
+    with pytest.raises(InputError, match=r"outer_diameter_m: 1.157920892373162e\+77 is beyond"):
+        read_description(path)

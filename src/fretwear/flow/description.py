@@ -66,6 +66,11 @@ def _table(raw: dict, section: str, where: str) -> dict[str, Any]:
     return out
 
 
+#: The largest magnitude of a number of the description (SI: the stiffest support is 1e9 N/m,
+#: Young's modulus 2e11 Pa): products of a few of them stay in the float range.
+MAGNITUDE_MAX = 1e30
+
+
 def _number(value, where: str, *, positive=False, nonnegative=False) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or (isinstance(value, int) and value.bit_length() > 1000) \
@@ -73,6 +78,9 @@ def _number(value, where: str, *, positive=False, nonnegative=False) -> float:
         shown = f"an integer of {len(str(abs(value)))} digits" if isinstance(value, int) \
             and not isinstance(value, bool) else repr(value)
         raise InputError(f"{where}: expected a finite number, got {shown}")
+    if abs(value) > MAGNITUDE_MAX:   # a diameter of 1e77 m overflowed d**4
+        raise InputError(f"{where}: {value!r} is beyond any physical value in SI units (at "
+                         f"most {MAGNITUDE_MAX:g}); check the units")
     if positive and value <= 0:
         raise InputError(f"{where}: must be > 0, got {value!r}")
     if nonnegative and value < 0:

@@ -126,25 +126,24 @@ def _stored_metadata(comments: list[str]) -> tuple[str | None, dict]:
     return name, meta
 
 
-#: Cells parsed per block of a streamed text file, at most (about 8 MB of floats): the blocks
-#: pandas parses are of ``parse_rows`` rows, sliced into the chunks asked for.
+#: Rows pandas parses per block of a streamed text file, at least: each parsed block costs a
+#: fixed time per column (a column object), so blocks of 2 rows of a file with 2 000 extra
+#: columns took 68 s for 250 rows, one block 0.45 s (load 8.5). The blocks are sliced into the
+#: chunks asked for; memory stays O(chunk) for a chunk of this many rows or more.
+PARSE_ROWS = 256
+#: Cells parsed per block at most when the chunk is smaller than PARSE_ROWS (8 MB of floats).
 PARSE_CELLS = 1 << 20
-#: Rows parsed per block when the file is narrow (the cells bound is then far away).
-PARSE_ROWS = 1 << 16
 
 
 def parse_rows(size: int, columns: int) -> int:
     """Rows pandas parses per block for chunks of ``size`` rows of a file of ``columns``
-    columns: at least ``size``, else as many as fit in :data:`PARSE_CELLS` cells, at most
-    :data:`PARSE_ROWS`.
-
-    Each parsed block costs pandas a fixed time per column (a column object): chunks of 2 rows
-    of a file with 2 000 extra columns took 68 s for 250 rows, one block 0.45 s (load 8.5).
+    columns: ``size``, raised to :data:`PARSE_ROWS` (or as many rows as fit in
+    :data:`PARSE_CELLS` cells, if fewer).
 
     Examples
     --------
-    >>> parse_rows(2, 2004), parse_rows(2, 4), parse_rows(10**6, 4)
-    (523, 65536, 1000000)
+    >>> parse_rows(2, 2004), parse_rows(2, 100_000), parse_rows(5000, 4)
+    (256, 10, 5000)
     """
     return max(int(size), min(PARSE_ROWS, PARSE_CELLS // max(1, int(columns))))
 
