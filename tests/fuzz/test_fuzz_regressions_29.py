@@ -201,3 +201,16 @@ def test_a_tube_diameter_beyond_the_float_range_of_its_fourth_power(tmp_path):
                                  "outer_diameter_m = 1.157920892373162e+77"), encoding="utf-8")
     with pytest.raises(InputError, match=r"outer_diameter_m: 1.157920892373162e\+77 is beyond"):
         read_description(path)
+
+
+@pytest.mark.parametrize("rows", ["{}", "[1.0]", "true"])
+def test_a_flow_region_row_that_is_not_an_integer(tmp_path, rows):
+    """rows = {} (FRETWEAR_FUZZ_SCALE=20): TypeError 'unhashable type: dict'; a row 1.0 was
+    taken for row 1 and failed as a list index; true was taken for row 1."""
+    from fretwear.flow.description import read_description
+
+    text = open(DESCRIPTION, encoding="utf-8").read()
+    path = tmp_path / "bundle.toml"
+    path.write_text(text.replace("rows = [1]\n", f"rows = {rows}\n", 1), encoding="utf-8")
+    with pytest.raises(InputError, match=r"\[\[flow.regions\]\] #1: row .* is not one of"):
+        read_description(path)

@@ -205,7 +205,7 @@ def _regions(flow: dict, rows: int, lengths: list[float]) -> dict[int, list[tupl
         if values[2] >= 1:
             raise InputError(f"{where}: void_fraction must be < 1, got {values[2]}")
         for row in reg["rows"] if isinstance(reg["rows"], list) else [reg["rows"]]:
-            if row not in out:
+            if isinstance(row, bool) or not isinstance(row, int) or row not in out:
                 raise InputError(f"{where}: row {row!r} is not one of the bundle's rows 1..{rows}")
             length = lengths[row - 1]
             item = (span[0] * length, span[1] * length, *values)
