@@ -84,7 +84,10 @@ def test_a_file_in_milliseconds(tmp_path):
                                                   (1e-4, "force_min", "kN")])
 def test_forces_in_other_units(tmp_path, factor, key, likely):
     si = read_history(EXAMPLE)
-    path = write_history(si.replace(normal_force=si.normal_force * factor), tmp_path / "f.csv")
+    # every force of the file in the other unit (a normal force alone in kN beside tangential
+    # forces in N also breaks Coulomb's bound: tests/io/test_plausibility_friction.py)
+    path = write_history(si.replace(normal_force=si.normal_force * factor, ft1=si.ft1 * factor,
+                                    ft2=si.ft2 * factor), tmp_path / "f.csv")
     _, found = _units_warnings(read_history, path)
     assert len(found) == 1 and f"a file in {likely!r} gives this" in found[0]
     assert THRESHOLDS[key].fix in found[0]

@@ -43,7 +43,8 @@ from fretwear.assessment.posterior import (
 )
 from fretwear.errors import InputError, RangeWarning
 from fretwear.keys import check_probabilities
-from fretwear.table.depth import DepthModel, models_from_table
+from fretwear.table.depth import DepthModel
+from fretwear.table.depth_build import models_from_table
 from fretwear.uncertainty.distributions import LogNormal
 
 __all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle", "support_type"]

@@ -74,9 +74,19 @@ class SizingModel:
     sigma: float = 1e-4
 
     def __post_init__(self) -> None:
-        _finite("SizingModel intercept [m]", self.intercept)
-        _finite("SizingModel slope [-]", self.slope, positive=True)
-        _finite("SizingModel sigma [m]", self.sigma, positive=True)
+        a = _finite("SizingModel intercept [m]", self.intercept)
+        b = _finite("SizingModel slope [-]", self.slope, positive=True)
+        sigma = _finite("SizingModel sigma [m]", self.sigma, positive=True)
+        # beyond these no technique sizes a tube's wall (a few mm): depths not in metres, or
+        # a slope that overflows b·d (9e307 did)
+        for name, value, low, high, unit in (("intercept", abs(a), 0.0, 1.0, "m"),
+                                             ("slope", b, 1e-3, 1e3, "-"),
+                                             ("sigma", sigma, 1e-9, 1.0, "m")):
+            if not low <= value <= high:
+                raise InputError(
+                    f"SizingModel {name} = {getattr(self, name)!r} [{unit}]: outside "
+                    f"{'|a| <= 1 m' if name == 'intercept' else f'[{low:g}, {high:g}] {unit}'}"
+                    "; depths are in metres (0.3 mm is 3e-4) and a technique's slope is near 1")
 
     def true_depth(self, measured):
         """The true depth whose expected measurement is ``measured``: (m − a)/b [m]."""
@@ -94,9 +104,11 @@ class SizingModel:
         .. math:: p(m \\mid d) = \\frac{1}{\\sigma\\sqrt{2\\pi}}
                   \\exp\\left(-\\frac{(m - a - b d)^2}{2\\sigma^2}\\right)
         """
-        z = (np.asarray(measured, float) - self.intercept - self.slope * np.asarray(true, float))
-        z = z / self.sigma
-        return np.exp(-0.5 * z * z) / (self.sigma * math.sqrt(2.0 * math.pi))
+        with np.errstate(over="ignore"):   # a depth of 1e300 m: z² = inf, the density 0
+            z = (np.asarray(measured, float) - self.intercept
+                 - self.slope * np.asarray(true, float))
+            z = z / self.sigma
+            return np.exp(-0.5 * z * z) / (self.sigma * math.sqrt(2.0 * math.pi))
 
 
 @dataclass(frozen=True)
@@ -194,15 +206,17 @@ class LogisticPOD:
         with np.errstate(divide="ignore"):
             return np.log(np.where(d > 0, d, 0.0))
 
+    def _z(self, depth):
+        with np.errstate(over="ignore"):   # β₁·x beyond the float range: z = ±inf, tanh ±1
+            return self.beta0 + self.beta1 * self._x(depth)
+
     def __call__(self, depth):
         """POD at ``depth`` [m] (0 at a depth of 0 in the log model) [-]."""
-        z = self.beta0 + self.beta1 * self._x(depth)
-        return 0.5 * (1.0 + np.tanh(0.5 * z))   # 1/(1 + e^{-z}), without overflow
+        return 0.5 * (1.0 + np.tanh(0.5 * self._z(depth)))   # 1/(1 + e^{-z}), no overflow
 
     def miss(self, depth):
         """1 − POD(depth) [-]: the likelihood of 'no detectable degradation' on a flaw."""
-        z = self.beta0 + self.beta1 * self._x(depth)
-        return 0.5 * (1.0 - np.tanh(0.5 * z))
+        return 0.5 * (1.0 - np.tanh(0.5 * self._z(depth)))
 
     def depth_at(self, probability: float) -> float:
         """The depth detected with ``probability`` in (0, 1) [m] (a90 for 0.9)."""

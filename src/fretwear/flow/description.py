@@ -22,6 +22,8 @@ import numpy as np
 
 from fretwear.errors import InputError, KeywordError
 from fretwear.flow.spectra import SPECTRA, make_spectrum
+from fretwear.io.guard import readable_file, reading
+from fretwear.io.text_tables import decode_text
 
 #: Support types: the obstacle family of fretwear.dynamics.Shock each one becomes.
 SUPPORT_TYPES: dict[str, str] = {"AVB": "two_planes", "plate": "circle"}
@@ -65,9 +67,21 @@ def _table(raw: dict, section: str, where: str) -> dict[str, Any]:
     return out
 
 
+#: The largest magnitude of a number of the description (SI: the stiffest support is 1e9 N/m,
+#: Young's modulus 2e11 Pa): products of a few of them stay in the float range.
+MAGNITUDE_MAX = 1e30
+
+
 def _number(value, where: str, *, positive=False, nonnegative=False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise InputError(f"{where}: expected a finite number, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or (isinstance(value, int) and value.bit_length() > 1000) \
+            or not math.isfinite(value):  # a 400-digit integer overflows float()
+        shown = f"an integer of {len(str(abs(value)))} digits" if isinstance(value, int) \
+            and not isinstance(value, bool) else repr(value)
+        raise InputError(f"{where}: expected a finite number, got {shown}")
+    if abs(value) > MAGNITUDE_MAX:   # a diameter of 1e77 m overflowed d**4
+        raise InputError(f"{where}: {value!r} is beyond any physical value in SI units (at "
+                         f"most {MAGNITUDE_MAX:g}); check the units")
     if positive and value <= 0:
         raise InputError(f"{where}: must be > 0, got {value!r}")
     if nonnegative and value < 0:
@@ -167,11 +181,28 @@ def _position(sup: dict, where: str, row: int, length: float, radii, leg: float)
                          f"(0 < s < {length} m)")
     return pos
 
+#: The largest count of each key (a larger one exhausts memory before any work: grid points
+#: of 1e400 raised numpy's 'Maximum allowed size exceeded').
+COUNT_MAX = {"modes": 200, "grid_points": 100_000, "frequency_points": 100_000,
+             "rows": 10_000, "columns": 10_000}
+#: The most samples of one tube's simulation (duration_s / archive_step_s).
+SAMPLES_MAX = 10**8
+
 
 def _count(value, where: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise InputError(f"{where}: expected an integer >= 1, got {value!r}")
+    most = COUNT_MAX.get(where.rsplit(".", 1)[-1], 10**9)
+    if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= most:
+        shown = f"an integer of {len(str(abs(value)))} digits" if isinstance(value, int) \
+            and abs(value) > 10**30 else repr(value)
+        raise InputError(f"{where}: expected an integer in [1, {most}], got {shown}")
     return value
+
+
+def _ends(value, where: str) -> tuple:
+    if not (isinstance(value, list) and len(value) == 2 and all(isinstance(v, str) for v in value)):
+        raise InputError(f"{where}: expected two end conditions, e.g. [\"clamped\", "
+                         f"\"pinned\"], got {value!r}")
+    return tuple(value)
 
 
 @dataclass(frozen=True)
@@ -241,7 +272,7 @@ def _beam(tubes: dict, where: str, rho_external: float, length: float) -> tuple[
                                      positive=True),
             "second_moment": math.pi / 64 * (d**4 - di**4), "mass_per_length": mass,
             "length": length, "n_modes": _count(tubes["modes"], f"{where}.modes"),
-            "ends": tuple(tubes["ends"]),
+            "ends": _ends(tubes["ends"], f"{where}.ends"),
             "damping_ratio": _number(tubes["damping_ratio"], f"{where}.damping_ratio",
                                      nonnegative=True)}
     return beam, mass
@@ -267,7 +298,7 @@ def _regions(flow: dict, rows: int, lengths: list[float]) -> dict[int, list[tupl
         if values[2] >= 1:
             raise InputError(f"{where}: void_fraction must be < 1, got {values[2]}")
         for row in reg["rows"] if isinstance(reg["rows"], list) else [reg["rows"]]:
-            if row not in out:
+            if isinstance(row, bool) or not isinstance(row, int) or row not in out:
                 raise InputError(f"{where}: row {row!r} is not one of the bundle's rows 1..{rows}")
             length = lengths[row - 1]
             item = (span[0] * length, span[1] * length, *values)
@@ -290,9 +321,10 @@ def read_description(path: str | Path) -> list[TubeSpec]:
     >>> len(specs), specs[0].tube, [s["name"] for s in specs[0].supports]
     (12, 'R1C1', ['AVB1', 'AVB2'])
     """
-    path = Path(path)
+    path = readable_file(path, "bundle description")   # a FIFO or a device is refused
     try:
-        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        with reading(path, "TOML", "bundle description"):   # UTF-8 (BOM or not) or UTF-16
+            raw = tomllib.loads(decode_text(path.read_bytes(), f"bundle description {path}"))
     except tomllib.TOMLDecodeError as exc:
         raise InputError(f"{path}: not valid TOML ({exc})") from None
     top = _table(raw, "", str(path))
@@ -307,6 +339,9 @@ def read_description(path: str | Path) -> list[TubeSpec]:
     if flow["spectrum"] not in SPECTRA:
         raise KeywordError(f"[flow].spectrum: unknown {flow['spectrum']!r}; choose one of "
                            f"{list(SPECTRA)}")
+    if not isinstance(flow["parameters"], dict):
+        raise InputError(f"[flow].parameters: expected a table of the spectrum's parameters, "
+                         f"e.g. {{ long_cor = 3.0 }}, got {flow['parameters']!r}")
     make_spectrum(flow["spectrum"], **flow["parameters"])  # parameters checked here
     band = flow["band_hz"]
     if (not isinstance(band, list) or len(band) != 2
@@ -329,7 +364,7 @@ def read_description(path: str | Path) -> list[TubeSpec]:
             for k, s in enumerate(supports, 1):
                 where = f"[[supports]] #{k}"
                 sup = _table(s, "supports", where)
-                if sup["type"] not in SUPPORT_TYPES:
+                if not isinstance(sup["type"], str) or sup["type"] not in SUPPORT_TYPES:
                     raise KeywordError(f"{where}.type: {sup['type']!r}; choose one of "
                                        f"{list(SUPPORT_TYPES)}")
                 pos = _position(sup, where, row, lengths[row - 1], radii, leg)
@@ -359,4 +394,8 @@ def read_description(path: str | Path) -> list[TubeSpec]:
                 seed=seed * 100_003 + 1000 * row + col,
                 extra={} if radii is None else {"u_bend_radius_m": radii[row - 1],
                                                 "straight_leg_m": leg}))
+    samples = specs[0].duration / specs[0].archive_step if specs else 0.0
+    if samples > SAMPLES_MAX:
+        raise InputError(f"[simulation]: duration_s / archive_step_s = {samples:.3g} samples per "
+                         f"tube, more than {SAMPLES_MAX:g}; check the units (seconds)")
     return specs

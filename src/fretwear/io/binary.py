@@ -55,7 +55,12 @@ def _loads(text: str | None) -> dict:
         value = json.loads(text)
     except json.JSONDecodeError:
         return {}
-    return value if isinstance(value, dict) else {}
+    if not isinstance(value, dict):
+        return {}
+    # what the readers take from it, of the right type or dropped (a file written elsewhere
+    # may hold anything under these keys: a list as metadata raised a TypeError)
+    types = {"metadata": dict, "units": dict, "name": str}
+    return {k: v for k, v in value.items() if k not in types or isinstance(v, types[k])}
 
 
 # --------------------------------------------------------------------------- Parquet

@@ -36,6 +36,11 @@ import numpy as np
 from fretwear.errors import UnitsWarning
 from fretwear.history import ContactHistory
 
+#: The largest plausible friction coefficient µ = ‖Ft‖/|Fn| [1]: metal on metal in water or
+#: air is 0.1 to 1 (Inconel 600 on steel, dry, up to about 1); ten leaves a decade of margin,
+#: and a normal force in kN beside tangential forces in N gives a thousand times µ.
+FRICTION_MAX = 10.0
+
 
 class Check(NamedTuple):
     """One plausibility check: ``quantity [unit]`` compared with ``limit``."""
@@ -59,6 +64,8 @@ THRESHOLDS: Mapping[str, Check] = MappingProxyType({
     "time_step": Check("median sampling step", "s", 5e-3, True, "ms", "time = 'ms'"),
     "impact_duration": Check("mean impact duration (3 impacts or more)", "s", 0.5, True, "ms",
                              "time = 'ms'"),
+    "friction_ratio": Check("ratio of mean(‖Ft‖·‖Vt‖) to mean(|Fn|·‖Vt‖)", "[1]",
+                            FRICTION_MAX, True, "kN", "normal_force = 'kN'"),
 })
 
 _WHERE = ("case file: [history] units = {{ {fix} }}; command line: --units {cli}; Python: "
@@ -294,4 +301,55 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
     if durations.size >= 3 and math.isfinite(mean := float(durations.mean())) \
             and mean > THRESHOLDS["impact_duration"].limit:
         warn("impact_duration", "time", mean, _unit(history, "time"))
+    ratio = friction_ratio(history)
+    if ratio > THRESHOLDS["friction_ratio"].limit and "friction_ratio" not in skip:
+        skip.add("friction_ratio")
+        units = (_unit(history, "normal_force"), _unit(history, "ft1"))
+        message = (f"history {name!r}: the friction power mean(‖Ft‖·‖Vt‖) is {ratio:.4g} times "
+                   f"the wear power's integrand mean(|Fn|·‖Vt‖) (forces read in {units[0]!r} "
+                   f"and {units[1]!r}); Coulomb's law ‖Ft‖ ≤ µ·|Fn| bounds it by µ, plausible "
+                   f"up to {FRICTION_MAX:g}: a normal force in 'kN' (or tangential forces in "
+                   f"'mN') beside the other in 'N' gives this, and a wear power 1000 times too "
+                   f"small: if so, give the units: {_fix(THRESHOLDS['friction_ratio'].fix)}")
+        found.append(message)
+        warnings.warn(message, UnitsWarning, stacklevel=2)
     return found
+
+
+def friction_ratio(history: ContactHistory) -> float:
+    """The ratio mean(‖Ft‖·‖Vt‖) / mean(|Fn|·‖Vt‖) [1] over the samples (NaN without ``ft1``).
+
+    Notes
+    -----
+    The wear power (docs/theory.md §2) is the time average of g = |Fn|·‖Vt‖ [W], without the
+    friction coefficient: P ≤ mean(|Fn|·‖Vt‖) (the stick rule only removes intervals), an
+    identity for a power computed from the same force and speed, which no unit of the speed can
+    break (both sides scale alike). The independent bound is Coulomb's: at every sample,
+    ‖Ft‖ ≤ µ·|Fn| (static friction while sticking, kinetic while sliding), hence for any
+    non-negative weights (plain or trapezoid)
+
+    ``mean(‖Ft‖·‖Vt‖) ≤ µ · mean(|Fn|·‖Vt‖)``,
+
+    so the ratio is at most the largest friction coefficient. A ratio of hundreds or thousands
+    is a unit mix between the normal and the tangential forces (``kN`` beside ``N``), which
+    makes the wear power that many times too small.
+
+    Examples
+    --------
+    >>> from fretwear.history import ContactHistory
+    >>> h = ContactHistory(time=[0.0, 1.0, 2.0], normal_force=[0.0, 10.0, 5.0],
+    ...                    vt1=[0.0, 0.2, 0.1], vt2=[0.0, 0.0, 0.0], ft1=[0.0, 3.0, 1.5],
+    ...                    ft2=[0.0, 0.0, 0.0])
+    >>> round(friction_ratio(h), 12)
+    0.3
+    """
+    if history.ft1 is None:
+        return math.nan
+    ft2 = history.ft2 if history.ft2 is not None else 0.0
+    with np.errstate(over="ignore", invalid="ignore"):
+        speed = np.hypot(history.vt1, history.vt2)
+        normal = float(np.sum(np.abs(history.normal_force) * speed))
+        friction = float(np.sum(np.hypot(history.ft1, ft2) * speed))
+    if not (normal > 0 and math.isfinite(normal) and math.isfinite(friction)):
+        return math.nan
+    return friction / normal

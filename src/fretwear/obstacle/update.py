@@ -58,6 +58,23 @@ def _column(frame: pd.DataFrame, native: str, required: bool = True):
     return None
 
 
+def _numbers(frame: pd.DataFrame, native: str, required: bool = True) -> np.ndarray | None:
+    """A column of the wear table as floats [its unit], empty cells NaN; a cell that is not a
+    number (text in a table written by hand or by another tool) is an InputError naming the
+    column, the row and the value."""
+    column = _column(frame, native, required)
+    if column is None:
+        return None
+    values = pd.to_numeric(column, errors="coerce").to_numpy(dtype=float)
+    text = column.notna().to_numpy() & np.isnan(values)
+    if text.any():
+        k = int(np.flatnonzero(text)[0])
+        raise InputError(
+            f"the wear table's column {column.name!r}, row {k + 1}: {column.iloc[k]!r} is not a "
+            "number; give the number (or leave the cell empty)")
+    return values
+
+
 def sector_volumes(table: pd.DataFrame, instant: float | None = None):
     """Sector edges and cumulated sector volumes at one instant of a wear table.
 
@@ -90,13 +107,15 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
     >>> inst, e.tolist(), vm.tolist(), vo.tolist()
     (1.0, [-180.0, 0.0, 180.0], [1e-09, 2e-09], [0.0, 0.0])
     """
-    inst = _column(table, "instant").to_numpy(dtype=float)
-    start = _column(table, "angle_start").to_numpy(dtype=float)
-    end = _column(table, "angle_end").to_numpy(dtype=float)
-    vm_all = _column(table, "volume_mobile_cumulated").to_numpy(dtype=float)
-    vo_col = _column(table, "volume_obstacle_cumulated", required=False)
-    vo_all = np.zeros(len(table)) if vo_col is None else vo_col.to_numpy(dtype=float)
+    inst = _numbers(table, "instant")
+    start = _numbers(table, "angle_start")
+    end = _numbers(table, "angle_end")
+    vm_all = _numbers(table, "volume_mobile_cumulated")
+    vo_all = _numbers(table, "volume_obstacle_cumulated", required=False)
+    vo_all = np.zeros(len(table)) if vo_all is None else vo_all
     sec_col = _column(table, "sector", required=False)
+    if sec_col is not None:
+        sec_col = pd.Series(_numbers(table, "sector"))
     available = np.unique(inst[np.isfinite(inst)])
     if available.size == 0:
         raise InputError("the wear table has no instant (empty table or INST all missing)")
@@ -117,7 +136,7 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
         rows = sector_rows
     order = rows[np.argsort(start[rows], kind="stable")]
     s, e = start[order], end[order]
-    label = (lambda k: f"sector {int(sec_col.iloc[order[k]])}") if sec_col is not None else (
+    label = (lambda k: f"sector {sec_col.iloc[order[k]]:g}") if sec_col is not None else (
         lambda k: f"row {int(order[k])}")
     if not (np.isfinite(s).all() and np.isfinite(e).all()):
         k = int(np.flatnonzero(~(np.isfinite(s) & np.isfinite(e)))[0])

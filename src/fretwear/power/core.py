@@ -40,7 +40,13 @@ from fretwear.io import history_time_range, iter_history_blocks, read_history
 from fretwear.laws import KwuEpriAccumulator, KwuEpriMaxima
 from fretwear.power._kwu import kwu_counts, merge_kwu
 from fretwear.power.kernels import BLOCK_STATS, GROUP_FIELDS, fused
-from fretwear.power.ranges import check_finite_sums, out_of_range, speed_scale
+from fretwear.power.ranges import (
+    check_finite_power,
+    check_finite_sums,
+    check_window_length,
+    out_of_range,
+    speed_scale,
+)
 from fretwear.power.result import PowerResult
 from fretwear.power.statistics import ContactStatistics, finalize_statistics, merge_groups
 from fretwear.sectors import sector_edges as _sector_edges
@@ -347,11 +353,14 @@ class PowerAccumulator:
             raise InputError(f"empty window [{t_start!r}, {t_end!r}] s; give t_start < t_end")
         T = t_end - t_start
         nb = self.blocks
+        check_window_length(T, nb, self.name)
         edges = self._block_edges.copy()
         edges[0], edges[-1] = t_start, t_end
-        block_powers = self.power.sum(axis=1) / (T / nb)
-        total = float(self.power.sum()) / T
-        sectors = None if self.sector_edges is None else self.power.sum(axis=0) / T
+        with np.errstate(over="ignore"):
+            block_powers = self.power.sum(axis=1) / (T / nb)
+            total = float(self.power.sum()) / T
+            sectors = None if self.sector_edges is None else self.power.sum(axis=0) / T
+        check_finite_power(total, block_powers, T, self.name)
         mean = float(block_powers.mean())
         spread = 0.0 if nb == 1 or mean <= 0 else float(
             (block_powers.max() - block_powers.min()) / mean)

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from fretwear.errors import HistoryError
+from fretwear.errors import HistoryError, InputError
 
 #: Speeds [m/s] whose squares stay normal doubles: inside, no scaling (results bit for bit).
 SAFE_SPEEDS = (1e-150, 1e150)
@@ -101,3 +101,61 @@ def check_finite_sums(sums, t, fn, vt1, vt2, name: str) -> None:
         f"contact history {name!r}: the integral of Fn·‖Vt‖ over [{float(t[0])!r}, "
         f"{float(t[-1])!r}] s exceeds the floating-point range (largest force "
         f"{float(np.max(fn)):g} N, largest speed {float(np.max(speed)):g} m/s); {hint}")
+
+
+def check_window_length(duration: float, blocks: int, name: str) -> None:
+    """Refuse a window whose blocks last less than the smallest normal float [s].
+
+    A block of ``duration / blocks`` seconds below ``numpy.finfo(float).tiny`` (2.2e-308 s)
+    is a subnormal number: its sub-intervals and the division by it lose every digit (a power
+    of 0 W or NaN came out of a 1e-323 s window). No contact is sampled that finely: the time
+    channel is not in seconds.
+
+    Parameters
+    ----------
+    duration : float
+        Window length T [s].
+    blocks : int
+        Number of blocks (NB_BLOC).
+    name : str
+        The history's name, for the message.
+
+    Raises
+    ------
+    InputError
+        Naming the window, the block length and the fix.
+
+    Examples
+    --------
+    >>> check_window_length(1.0, 4, "h")
+    >>> try:
+    ...     check_window_length(1e-310, 4, "h")
+    ... except InputError as exc:
+    ...     print(str(exc)[:64])
+    history 'h': the window of 1e-310 s (4 blocks of 2.5e-311 s) is
+    """
+    tiny = float(np.finfo(float).tiny)
+    if duration / blocks >= tiny:
+        return
+    raise InputError(
+        f"history {name!r}: the window of {duration:g} s ({blocks} block"
+        f"{'s' if blocks > 1 else ''} of {duration / blocks:g} s) is shorter than the smallest "
+        f"normal floating-point number {tiny:g} s: its powers would lose every digit. No "
+        "contact is sampled that finely: check the time channel's unit (units = {time = ...})")
+
+
+def check_finite_power(total: float, blocks: np.ndarray, duration: float, name: str) -> None:
+    """Raise a :class:`HistoryError` when the wear power [W] overflows where its integral [J]
+    did not (a power above 1.8e308 W: the division by the window's ``duration`` [s]).
+
+    Examples
+    --------
+    >>> check_finite_power(0.5, np.array([0.4, 0.6]), 2.0, "h")
+    """
+    if math.isfinite(total) and np.isfinite(blocks).all():
+        return
+    raise HistoryError(
+        f"contact history {name!r}: the wear power over a window of {duration:g} s exceeds the "
+        "floating-point range (its integral does not): values this large are never physical: "
+        "check the units and the export of the history (units = {...} in a case file, --units "
+        "on the command line)")

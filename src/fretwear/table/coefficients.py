@@ -8,6 +8,7 @@ class ranges) into each body's coefficients by native name, the law's defaults f
 
 from __future__ import annotations
 
+import numbers
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -78,9 +79,18 @@ def law_coefficients(law, given: Mapping[str, Any] | None, body: str) -> dict[st
     {'coefficient': 1e-13}
     """
     try:
-        return law.resolve(**dict(given or {}))
+        values = law.resolve(**dict(given or {}))
     except KeywordError as exc:
         raise KeywordError(f"{body} coefficients: {exc}") from None
+    for name, value in values.items():
+        if value is not None and (isinstance(value, bool | np.bool_)
+                                  or not isinstance(value, numbers.Real)):
+            keyword = law.aster_keywords.get(name, name)
+            raise KeywordError(
+                f"{body} coefficients: {keyword} = {value!r} is not a number; give one real "
+                f"number [{law.units.get(name, 'SI')}] (per-sector coefficients: [sectors] "
+                "mobile_coefficients_per_Pa, one per sector)")
+    return values
 
 
 def plain(value: Any) -> Any:

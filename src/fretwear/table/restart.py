@@ -14,6 +14,7 @@ import math
 import os
 import stat
 import threading
+import warnings
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -22,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from fretwear._lazy import pandas as pd
-from fretwear.errors import InputError
+from fretwear.errors import FretwearWarning, InputError
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile
 from fretwear.laws import WEAR_LAWS
@@ -86,6 +87,13 @@ def _column(frame: pd.DataFrame, names: Sequence[str], what: str, source: str,
             values = numeric.get(name) if numeric else None
             if values is None:
                 values = pd.to_numeric(frame[name], errors="coerce").to_numpy(dtype=float)
+                text = frame[name].notna().to_numpy() & np.isnan(values)
+                if text.any():  # a text cell was read as 0 (no wear) before
+                    k = int(np.flatnonzero(text)[0])
+                    raise InputError(
+                        f"initial wear table {source}: column {name!r} ({what}), row {k + 1}: "
+                        f"{frame[name].iloc[k]!r} is not a number; give the number (or leave "
+                        "the cell empty)")
             return np.where(np.isnan(values), 0.0, values)
     aster = [COLUMNS[n][0] for n in names if n in COLUMNS]
     raise InputError(f"initial wear table {source}: no column for {what}; expected one of "
@@ -375,6 +383,15 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
         attrs["tube_replacement_depths"] = (
             "the table carries no geometry (attrs contact_type, dimensions): the new tube's "
             "depths after the replacement are NaN; recompute them with the contact geometry")
+        later = sorted(set(inst[after].tolist()))
+        warnings.warn(
+            f"TUBE_NEUF at INST = {at:g}: the new tube's depths at the {len(later)} later "
+            f"instant{'s' if len(later) > 1 else ''} of the table ({later[0]:g} .. "
+            f"{later[-1]:g}) are NaN, not computed: the table carries no contact geometry (a "
+            "Code_Aster table read from its file). Its volumes are right; for the depths, "
+            "replace the tube at the table's last instant and continue with ETAT_INIT, or "
+            "compute the table with tube_replacement= ([time] tube_replacement) and the "
+            "geometry", FretwearWarning, stacklevel=2)
     attrs["tube_replacement"] = at
     out.attrs = attrs
     return to_aster_names(out) if aster else out

@@ -364,10 +364,12 @@ def case_arguments(case: Mapping[str, Any], *, history_elsewhere: bool = False
                            "mobile_coefficients_per_Pa too")
     materials = law.get("materials")
     files = _database_files(case, law.get("database"))
-    wall = geometry.get("wall_thickness_m", case.get("obstacle", {}).get("wall_thickness_m"))
-    if wall != case.get("obstacle", {}).get("wall_thickness_m", wall):
+    given = case.get("obstacle", {}).get("wall_thickness_m")
+    wall = geometry.get("wall_thickness_m", given)
+    # compared as text: a NaN given twice is the same key (its own check names it), not two walls
+    if given is not None and repr(wall) != repr(given) and wall != given:
         raise KeywordError(f"case: [geometry] wall_thickness_m = {wall} and [obstacle] "
-                           f"wall_thickness_m = {case['obstacle']['wall_thickness_m']} differ; "
+                           f"wall_thickness_m = {given} differ; "
                            "give the tube's wall once, in [geometry]")
     # the rules between the keys (materials a pair, database files need materials, sectors
     # Archard only, ...) are the wear case's: fretwear.table.WearCase checks them once

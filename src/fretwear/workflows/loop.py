@@ -184,7 +184,8 @@ def load_iterate_case(case: str | Path | Mapping[str, Any]) -> dict[str, Any]:
     if "obstacle" not in raw:
         raise KeywordError(f"{source}: the loop needs an [obstacle] section (the new obstacle "
                            "and the mobile's wall thickness) for the obstacle update")
-    if "history" in raw or "value_W" in raw.get("power", {}):
+    power = raw.get("power", {})  # a section, or a top-level key validate_case names
+    if "history" in raw or (isinstance(power, Mapping) and "value_W" in power):
         raise KeywordError(f"{source}: [history] file / [power] value_W are not used by the loop "
                            "(the history comes from [dynamics]); remove them")
     out = validate_case(raw, source=source)
