@@ -98,7 +98,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=SEED)
     args = parser.parse_args()
     from fretwear.report.predictions import bundle_predictions
-    from fretwear.table.depth import models_from_table
+    from fretwear.table import models_from_table
 
     tables, identity = bundle_predictions(args.bundle)
     models = {c: models_from_table(t, name=c)["global"] for c, t in tables.items()}

@@ -18,7 +18,7 @@ import pytest
 
 from fretwear.assessment import FactorPrior, calibrate_bundle, read_field_inspections
 from fretwear.report.predictions import bundle_predictions
-from fretwear.table.depth import models_from_table
+from fretwear.table import models_from_table
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
 
