@@ -148,6 +148,8 @@ DESCRIPTION = "examples/bundle/bundle_geometry.toml"
     ("span_lengths_m = 1.2", "span_lengths_m = " + "2" * 400,          # OverflowError
      r"span_lengths_m: expected a finite number, got an integer of 400 digits"),
     ("duration_s = 0.7", "duration_s = 1e12", r"2e\+15 samples per tube"),
+    ('spectrum = "SPEC_LONG_COR_1"', "spectrum = []",                   # unhashable list
+     r"\[flow\].spectrum: unknown \[\]; choose one of"),
 ])
 def test_odd_values_of_a_bundle_description(tmp_path, old, new, match):
     from fretwear.flow.description import read_description

@@ -336,7 +336,7 @@ def read_description(path: str | Path) -> list[TubeSpec]:
     sim = _table(top["simulation"], "simulation", "[simulation]")
     rows, cols = _count(tubes["rows"], "[tubes].rows"), _count(tubes["columns"], "[tubes].columns")
     lengths, radii, leg = _span_lengths(tubes, rows)
-    if flow["spectrum"] not in SPECTRA:
+    if not isinstance(flow["spectrum"], str) or flow["spectrum"] not in SPECTRA:
         raise KeywordError(f"[flow].spectrum: unknown {flow['spectrum']!r}; choose one of "
                            f"{list(SPECTRA)}")
     if not isinstance(flow["parameters"], dict):
