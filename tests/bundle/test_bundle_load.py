@@ -54,6 +54,8 @@ def test_report_on_a_bundle_directory_reads_it_back(tmp_path, capsys):
     shutil.rmtree(tmp_path / "in" / "histories")
     assert main(["report", str(out), "-o", str(tmp_path / "r.html")]) == 0
     html = (tmp_path / "r.html").read_text(encoding="utf-8")
+    assert main(["report", str(out)]) == 0  # without -o: the bundle's own report.html
+    assert (out / "report.html").read_text(encoding="utf-8").count("data:image/png") == 2
     worst = load(out).summary().iloc[0]
     assert html.count("data:image/png;base64,") == 2
     if worst["depth_fraction"] >= 0.4:  # bad news first, the worst named

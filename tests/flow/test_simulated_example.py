@@ -46,3 +46,27 @@ def test_bundle_reads_the_manifest_and_wear_grows_toward_the_fast_rows():
     assert result.errors.empty
     by_row = result.summary().groupby("tube_row")["power"].median()
     assert (np.diff(by_row.to_numpy()) > 0).all(), by_row
+
+
+def test_bundle_terminal_says_the_unstable_tubes_first(tmp_path, capsys):
+    """The tubes whose largest per-mode stability ratio (stability.csv, U_eff/U_c) exceeds
+    the description's margin (1.0) lead fretwear bundle's output; a hand-written manifest
+    with no simulation beside it says nothing of stability."""
+    from fretwear.cli import main
+    from fretwear.flow.bundle import unstable_tubes
+
+    modes = pd.read_csv(SIMULATED / "stability.csv")
+    worst = modes.groupby("tube")["stability_ratio"].max()
+    expected = sorted(worst[worst > 1.0].index)           # the margin of bundle_geometry.toml
+    found = unstable_tubes(SIMULATED / "manifest.csv")
+    assert sorted(found["tube"]) == expected and expected
+    np.testing.assert_allclose(found["max_stability_ratio"], worst[found["tube"]], rtol=1e-5)
+    assert unstable_tubes(EXAMPLE / "manifest.csv") is None
+
+    code = main(["bundle", str(SIMULATED / "manifest.csv"), "--case",
+                 str(EXAMPLE / "bundle.toml"), "--scheduler", "serial",
+                 "-o", str(tmp_path / "out"), "-q"])
+    output = capsys.readouterr().out
+    first = output.splitlines()[0]
+    assert code == 0 and first.startswith("FLUID-ELASTICALLY UNSTABLE: 3 tube(s)"), output
+    assert all(t in first for t in expected) and "NOT valid" in first

@@ -148,6 +148,8 @@ DESCRIPTION = "examples/bundle/bundle_geometry.toml"
     ("span_lengths_m = 1.2", "span_lengths_m = " + "2" * 400,          # OverflowError
      r"span_lengths_m: expected a finite number, got an integer of 400 digits"),
     ("duration_s = 0.7", "duration_s = 1e12", r"2e\+15 samples per tube"),
+    ("duration_s = 0.7", "duration_s = 5e-324",                        # NaN modal forces
+     r"the duration must hold at least two archive steps"),
     ('spectrum = "SPEC_LONG_COR_1"', "spectrum = []",                   # unhashable list
      r"\[flow\].spectrum: unknown \[\]; choose one of"),
 ])

@@ -25,6 +25,7 @@ from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
 from fretwear.errors import InputError
+from fretwear.flow.bundle import unstable_tubes
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 from fretwear.table import DEFAULT_DEPTH_LIMIT
@@ -107,6 +108,20 @@ def _summary(summary, console, top: int, limit: float | None) -> None:
                       markup=False, highlight=False)
 
 
+def instability_lines(tubes) -> list[str]:
+    """The terminal's first line when ``fretwear simulate`` flagged tubes unstable."""
+    if tubes is None or not len(tubes):
+        return []
+    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
+                                                      tubes["max_stability_ratio"][:5],
+                                                      strict=True))
+    more = f" and {len(tubes) - 5} more" if len(tubes) > 5 else ""
+    return [f"FLUID-ELASTICALLY UNSTABLE: {len(tubes)} tube(s) flagged by the simulation "
+            f"(tubes.csv beside the manifest; stability ratio U_eff/U_c): {worst}{more}. "
+            "Above the critical velocity the amplitude is not bounded by the turbulence "
+            "simulated: these tubes' wear and forecasts below are NOT valid."]
+
+
 @click.command(help=_HELP, context_settings={"max_content_width": 100})
 @click.argument("manifest", type=click.Path(exists=True, path_type=Path))
 @click.option("--case", "case_file", type=click.Path(exists=True, dir_okay=False, path_type=Path),
@@ -169,7 +184,10 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
                                 progress=step, limit=limit)
         except BundleInterrupted as exc:  # Ctrl-C: the main entry prints it, exit 130
             raise KeyboardInterrupt(f"{exc}; run the same command again to resume") from exc
-    # bad news first: a tube through its wall, units that look wrong (one line per kind)
+    # bad news first: tubes the simulation found unstable, through the wall, past the limit,
+    # units that look wrong (one line per kind)
+    for line in instability_lines(unstable_tubes(manifest)):
+        click.echo(line)
     summary = result.summary(limit)
     for line in limit_lines(summary):  # counts past the limit and through the wall first
         click.echo(line)

@@ -53,21 +53,25 @@ def report_options(function):
 
 
 @click.command(help=_HELP, context_settings={"max_content_width": 100})
-@click.argument("case_file", type=click.Path(exists=True, path_type=Path))
+@click.argument("case_file", metavar="CASE_FILE|BUNDLE_DIR",
+                type=click.Path(exists=True, path_type=Path))
 @click.option("-o", "--output", type=click.Path(dir_okay=False, path_type=Path),
-              required=True, help="The HTML file to write.")
+              help="The HTML file to write (a bundle directory's default: "
+                   "BUNDLE_DIR/report.html).")
 @report_options
 @units_option
-def command(case_file: Path, output: Path, inspections, units, **options) -> None:
+def command(case_file: Path, output: Path | None, inspections, units, **options) -> None:
     require("jinja2", purpose="fretwear report")
     require("matplotlib.pyplot", purpose="fretwear report")
     if case_file.is_dir():  # a finished bundle's output directory: read back, not re-run
         from fretwear.bundle import load
         from fretwear.report.assessment import write_bundle_report
 
-        written = write_bundle_report(load(case_file), output)
+        written = write_bundle_report(load(case_file), output or case_file / "report.html")
         Console().print(f"report written to [bold]{written}[/]")
         return
+    if output is None:
+        raise click.UsageError("give the HTML file to write: -o report.html")
     case = with_history_units(load_case(case_file), parse_units(units))
     check_outputs({"-o": output}, {**case_inputs(case, case_file), "inspections": inspections})
     analysis = analyse_case(case, inspections=inspections, source=case_file, **options)

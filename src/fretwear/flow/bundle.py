@@ -32,6 +32,7 @@ from fretwear.flow.synthesis import synthesize
 from fretwear.flow.tube import beam_tube_flow
 from fretwear.io import write_history
 from fretwear.io.atomic import atomic_folder, atomic_write
+from fretwear.io.text_tables import number, read_text_table
 
 #: Columns of the manifest written (``fretwear bundle`` reads them as they are).
 MANIFEST_COLUMNS = ("contact", "history", "tube_row", "tube_column", "support",
@@ -249,3 +250,48 @@ def run_simulate(description, output, *, scheduler=None, workers: int | None = N
                             reused)
     _write_tables(result)
     return result
+
+
+#: The columns of ``tubes.csv`` that :func:`simulate_bundle` writes beside its manifest.
+TUBES_COLUMNS = ("tube", "max_stability_ratio", "flagged")
+
+
+def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
+    """The tubes a simulation flagged fluid-elastically unstable, read from the ``tubes.csv``
+    that ``fretwear simulate`` writes beside ``manifest``.
+
+    Above Connors' critical velocity the tube's amplitude is no longer bounded by the
+    turbulence it was simulated under, so a wear forecast computed from its histories is
+    not valid: ``fretwear bundle`` says these tubes first.
+
+    Parameters
+    ----------
+    manifest : path-like
+        The bundle's manifest (``manifest.csv`` of ``fretwear simulate``).
+
+    Returns
+    -------
+    DataFrame or None
+        ``tube`` and ``max_stability_ratio`` [-] (U_eff/U_c, the largest over the tube's
+        modes) of every flagged tube, largest ratio first; empty when none is flagged;
+        None when no ``tubes.csv`` of a simulation sits beside the manifest (a manifest
+        written by hand, or by Code_Aster's results).
+
+    Examples
+    --------
+    >>> tubes = unstable_tubes("examples/bundle/simulated/manifest.csv")
+    >>> list(tubes["tube"]), float(tubes["max_stability_ratio"].iloc[0])
+    (['R4C1', 'R4C2', 'R4C3'], 1.11602)
+    """
+    path = Path(manifest).parent / "tubes.csv"
+    if not path.is_file():
+        return None
+    frame = read_text_table(path, "simulation's tube table")
+    if not set(TUBES_COLUMNS) <= set(frame.columns):
+        return None  # a tubes.csv of another origin: not the simulation's
+    flagged = frame["flagged"].str.lower().isin(("true", "1", "yes"))
+    out = pd.DataFrame({"tube": frame.loc[flagged, "tube"].astype(str),
+                        "max_stability_ratio": [number(v) for v in
+                                                frame.loc[flagged, "max_stability_ratio"]]})
+    return out.sort_values("max_stability_ratio", ascending=False,
+                           kind="stable").reset_index(drop=True)

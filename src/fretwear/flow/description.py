@@ -395,6 +395,10 @@ def read_description(path: str | Path) -> list[TubeSpec]:
                 extra={} if radii is None else {"u_bend_radius_m": radii[row - 1],
                                                 "straight_leg_m": leg}))
     samples = specs[0].duration / specs[0].archive_step if specs else 0.0
+    if specs and not samples >= 2.0:  # a duration of 5e-324 s gave NaN modal forces
+        raise InputError(f"[simulation]: duration_s / archive_step_s = {samples:.3g} samples per "
+                         "tube: the duration must hold at least two archive steps; check the "
+                         "units (seconds)")
     if samples > SAMPLES_MAX:
         raise InputError(f"[simulation]: duration_s / archive_step_s = {samples:.3g} samples per "
                          f"tube, more than {SAMPLES_MAX:g}; check the units (seconds)")
