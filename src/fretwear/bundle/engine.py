@@ -594,7 +594,8 @@ def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
     info = {"contact": contact, "status": rec["status"], "samples": rec.get("samples", 0),
             "seconds": rec.get("seconds", 0.0),
             "power": (attrs.get("power") or {}).get("total"), "time_unit": attrs.get("time_unit")}
-    if case is not None and attrs:
+    carried = case is not None and bool(attrs)
+    if carried:
         info.update(origin=case.origin, tube_replacement=case.restart.tube_replacement,
                     wall_thickness=case.wall.thickness, depth_limit=case.wall.limit,
                     contact_type=case.contact_type, dimensions=dict(case.dimensions),
@@ -606,8 +607,7 @@ def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
     # the geometry and law: the summary's exact time to another limit
     info.update(coefficients_mobile=attrs.get("coefficients_mobile"),
                 coefficients_obstacle=attrs.get("coefficients_obstacle"),
-                time_scale=case.time_scale if case is not None and attrs
-                else attrs.get("time_scale"))
+                time_scale=case.time_scale if carried else attrs.get("time_scale"))
     return info
 
 

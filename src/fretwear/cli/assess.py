@@ -10,9 +10,9 @@ import click
 from rich.console import Console
 from rich.table import Table
 
-from fretwear.assessment import LogisticPOD, SizingModel
 from fretwear.assessment.outage import assess
 from fretwear.bundle import load
+from fretwear.cli.calibrate_field import technique_from_options
 
 _HELP = """The outage decision of a bundle: which tubes to plug, which to inspect next, how long
 the generator may run.
@@ -74,10 +74,10 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
              "pod_a90_mm": pod_a90_mm}
     defaulted = [k for k, v in given.items() if v is None]
     values = {k: _ILLUSTRATIVE[k] if v is None else v for k, v in given.items()}
-    sizing = SizingModel(sizing_intercept_mm * 1e-3, sizing_slope,
-                         values["sizing_sigma_mm"] * 1e-3)
-    pod = LogisticPOD.from_depths(values["pod_a50_mm"] * 1e-3, values["pod_a90_mm"] * 1e-3)
-    result = assess(load(bundle_out), inspections, interval=interval, sizing=sizing, pod=pod,
+    tech = technique_from_options(None, values["sizing_sigma_mm"], sizing_intercept_mm,
+                                  sizing_slope, values["pod_a50_mm"], values["pod_a90_mm"])
+    result = assess(load(bundle_out), inspections, interval=interval, sizing=tech.sizing,
+                    pod=tech.pod,
                     target=target, contact_sigma=contact_sigma, power_sigma=power_sigma,
                     share=share, limit=limit, origin_date=origin_date)
     result.inputs.update({"bundle": str(bundle_out), "inspections": str(inspections),

@@ -55,8 +55,10 @@ def field_options(func):
     return functools.reduce(lambda f, option: option(f), reversed(_OPTIONS), func)
 
 
-def _technique(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm, sizing_slope,
-               pod_a50_mm, pod_a90_mm) -> Technique:
+def technique_from_options(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm,
+                           sizing_slope, pod_a50_mm, pod_a90_mm) -> Technique:
+    """The technique of the command line's options in mm (a lognormal sizing error of
+    ``measurement_sigma`` where no ``sizing_sigma_mm`` is given; no POD where none)."""
     sizing = LogSizingModel(measurement_sigma) if sizing_sigma_mm is None else SizingModel(
         sizing_intercept_mm * 1e-3, sizing_slope, sizing_sigma_mm * 1e-3)
     if (pod_a50_mm is None) != (pod_a90_mm is None):
@@ -71,8 +73,8 @@ def calibrate_field(predictions, identity, inspections, prior, measurement_sigma
                     pod_a50_mm, pod_a90_mm, contact_sigma_ln, group_sigma_ln,
                     power_sigma_ln, origin_date, wall_mm, top):
     """Calibrate, print (bad news first) and return the table for the file."""
-    tech = _technique(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm, sizing_slope,
-                      pod_a50_mm, pod_a90_mm)
+    tech = technique_from_options(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm,
+                                  sizing_slope, pod_a50_mm, pod_a90_mm)
     ins = read_field_inspections(inspections, origin_date=origin_date,
                                  wall_thickness=None if wall_mm is None else wall_mm * 1e-3)
     techniques = {name: tech for name in set(ins.table["technique"])}
