@@ -30,11 +30,9 @@ POWERS = {"R12C40": 0.01, "R30C7": 0.004}
 def _table(power, **extra):
     kw = {"contact_type": "TUBE_BAV", "instants": [0.0, 10.0, 20.0], "time_scale": YEAR,
           "dimensions": {"mobile_radius": R, "obstacle_width": W},
-          "coefficients": {"coefficient": K0}}
+          "coefficients": {"coefficient": K0}, "wall_thickness": 1.09e-3}
     kw.update(extra)
-    table = wear_table(power, **kw)
-    table.attrs["wall_thickness"] = 1.09e-3
-    return table
+    return wear_table(power, **kw)  # the wall is the case's (attrs hold no state, issue 25)
 
 
 INSPECTIONS = pd.DataFrame({

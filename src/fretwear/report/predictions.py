@@ -1,8 +1,10 @@
 """What predicts the inspected contacts: a case file, or the results of a bundle run.
 
-:func:`fretwear.uncertainty.calibrate` takes wear tables with their metadata (``attrs``); a bundle
-keeps each contact's metadata in the JSON records of its output directory
-(:mod:`fretwear.bundle.store`), which :func:`bundle_predictions` joins back to its rows.
+:func:`fretwear.uncertainty.calibrate` takes wear tables that carry their case (``attrs["case"]``,
+or the provenance of a file fretwear wrote); a bundle keeps each contact's run (its power,
+coefficients, geometry, wall) in the JSON records of its output directory
+(:mod:`fretwear.bundle.store`), which :func:`bundle_predictions` joins back to its rows as
+``attrs["bundle_record"]`` (read by :func:`fretwear.table.models_from_table`).
 """
 
 from __future__ import annotations
@@ -68,7 +70,8 @@ def bundle_predictions(results: Any) -> tuple[dict[str, pd.DataFrame], pd.DataFr
     for contact, record in records.items():
         if contact in rows:
             table = rows[contact]
-            table.attrs = dict(record["attrs"])
+            # the run's values its record keeps (it keeps no case): models_from_table reads them
+            table.attrs = {"bundle_record": dict(record["attrs"])}
             tables[contact] = table
     identity = pd.DataFrame({"contact": list(tables)})
     for name in ("table.parquet", "table.csv"):

@@ -6,18 +6,22 @@ calibration of tables read back). The few places that read a case or a table int
 
 from __future__ import annotations
 
+import dataclasses
 import functools
+from typing import Any
 
 import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.laws import get_law
-from fretwear.table.depth import DepthModel, _dict, _geometry
+from fretwear.table.case import WearCase
+from fretwear.table.depth import DepthModel, _geometry
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
+from fretwear.table.provenance import provenance
 
-__all__ = ["case_model", "model_from_table", "models_from_table"]
+__all__ = ["case_model", "model_from_table", "models_from_table", "table_case", "table_record"]
 
 _TIME_TOL = 1e-9
 
@@ -95,15 +99,141 @@ def _case_sector_coefficients(case, m: int, mobile, obstacle):
 
 
 # ---------------------------------------------------------------------- from a wear table
-def _attrs(table: pd.DataFrame) -> dict:
-    attrs = dict(getattr(table, "attrs", {}) or {})
+#: Where a wear table keeps the case it was computed from: ``attrs["case"]`` (the table of
+#: :func:`~fretwear.table.wear_table`), or the provenance of a file fretwear wrote
+#: (``attrs["provenance"]["case"]``, :func:`fretwear.table.read_wear_table`).
+_NO_CASE = ("the wear table carries no wear case (neither attrs['case'], as wear_table "
+            "returns it, nor a 'case' in the provenance of a CSV or Parquet file written by "
+            "fretwear): {what}. Give the case it was computed from, models_from_table(table, "
+            "case=WearCase.from_keywords(...)), or compute the table again with wear_table and "
+            "write it as .parquet or .csv")
+
+
+def table_record(table: pd.DataFrame) -> dict:
+    """The record of the run a wear table carries: its provenance
+    (:func:`fretwear.table.provenance.provenance`), read from the file it came from
+    (``attrs["provenance"]``) or made from the ``attrs`` of :func:`~fretwear.table.wear_table`.
+
+    Holds ``case`` (:meth:`WearCase.to_dict`), ``power`` (``total`` [W], ``sectors`` [W]) and
+    ``coefficients`` (``"<body>.<name>"`` -> ``{"value", "source"}``: resolved, a history's
+    KWU-EPRI intensity included) when the table has them.
+    """
+    attrs = getattr(table, "attrs", None) or {}
+    if "case" in attrs:  # wear_table's own table
+        return provenance(attrs)
+    return dict(attrs.get("provenance") or {})
+
+
+def table_case(table: pd.DataFrame, record: dict | None = None) -> WearCase:
+    """The :class:`WearCase` a wear table was computed from, rebuilt once from its record
+    (:func:`table_record`: ``attrs["case"]``, or the provenance of a file fretwear wrote).
+
+    Raises
+    ------
+    InputError
+        The table carries no case (a Code_Aster table, a file written before the case was
+        kept, a table whose ``attrs`` a pandas operation dropped), naming the fix.
+    """
+    record = table_record(table) if record is None else record
+    data = record.get("case")
+    if not isinstance(data, dict):
+        what = ("it was read from a file whose provenance has no case: a Code_Aster text "
+                "table, or a file written before fretwear kept the case"
+                if record else "its attrs are empty (a Code_Aster table, or attrs dropped by "
+                "a pandas operation)")
+        raise InputError(_NO_CASE.format(what=what))
+    return WearCase.from_dict(data)
+
+
+@dataclasses.dataclass(frozen=True)
+class _Run:
+    """What a table's models are built from: the case's values (law, geometry, time axis,
+    tube replacement, wall, sectors) and the run's outputs the case does not hold (the power
+    [W], per sector too; the coefficients resolved, a history's KWU-EPRI intensity included)."""
+
+    law: Any
+    geometry: Any
+    time_scale: float
+    origin: float
+    replacement: float | None
+    wall: float | None
+    limit: float
+    edges: np.ndarray | None
+    sector_coefficients: Any
+    mobile: dict
+    obstacle: dict | None
+    power: float
+    sector_powers: np.ndarray | None
+
+
+def _run(table: pd.DataFrame, case: WearCase | None) -> _Run:
+    """The :class:`_Run` of a table: from ``case`` or the case the table carries; a bundle's
+    contact table (:func:`fretwear.report.bundle_predictions`) from its record instead."""
+    attrs = getattr(table, "attrs", None) or {}
+    if case is None and _BUNDLE_RECORD in attrs:
+        return _record_run(table, attrs[_BUNDLE_RECORD])
+    record = table_record(table)
+    case = table_case(table, record) if case is None else case
+    if not isinstance(case, WearCase):
+        raise InputError(f"case must be a WearCase, got {type(case).__name__}")
+    resolved = record.get("coefficients") or {}
+    bodies = []
+    for body in ("mobile", "obstacle"):
+        coefs = case.coefficient_values(body)
+        if coefs is not None and case.wear_law.needs_history and coefs.get("intensity") is None:
+            value = (resolved.get(f"{body}.intensity") or {}).get("value")
+            if value is None:
+                raise InputError(f"the wear table has no {body} intensity of the "
+                                 f"{case.law} law (computed from the history): give the "
+                                 "table wear_table returned, or a file fretwear wrote of it")
+            coefs["intensity"] = float(value)
+        bodies.append(coefs)
+    power = record.get("power") or {}
+    sectors = power.get("sectors")
+    return _Run(case.wear_law, _geometry(case.contact_type, case.dimensions),
+                float(case.time_scale), case.origin, case.restart.tube_replacement,
+                case.wall.thickness, case.wall.limit, case.sector_edges,
+                case.sector_coefficients, bodies[0], bodies[1],
+                _total_power(table, power.get("total")),
+                None if sectors is None else np.asarray(sectors, dtype=float))
+
+
+def _total_power(table: pd.DataFrame, total) -> float:
+    """The run's total power [W]: its record's, else the table's power column."""
+    if total is None:
+        if "power" not in table.columns or not len(table):
+            raise InputError("the wear table has neither a power column nor the power in "
+                             "its provenance")
+        total = table["power"].iloc[-1]
+    return float(total)
+
+
+#: The ``attrs`` key of a bundle contact's record (:func:`fretwear.report.bundle_predictions`).
+_BUNDLE_RECORD = "bundle_record"
+
+
+def _record_run(table: pd.DataFrame, record: dict) -> _Run:
+    """The :class:`_Run` of a bundle contact's record (``parts/*.json``: the values of its
+    table's run, :data:`fretwear.bundle.tasks._ATTRS`; the bundle's records keep no case)."""
     missing = [k for k in ("contact_type", "dimensions", "law", "coefficients_mobile",
-                           "time_scale") if k not in attrs]
+                           "time_scale") if record.get(k) is None]
     if missing:
-        raise InputError(f"the wear table has no run metadata ({', '.join(missing)} missing "
-                         "from DataFrame.attrs): give the table returned by wear_table / "
-                         "run_case, or the case that computes it")
-    return attrs
+        raise InputError(f"the bundle contact's record lacks {', '.join(missing)}: run the "
+                         "bundle again (fretwear bundle -o DIR)")
+    power = record.get("power") or {}
+    sectors = power.get("sectors")
+    edges = record.get("sector_edges")
+    limit = record.get("depth_limit")
+    obstacle = record.get("coefficients_obstacle")
+    return _Run(get_law(record["law"]), _geometry(record["contact_type"], record["dimensions"]),
+                float(record["time_scale"]), float(record.get("origin") or 0.0),
+                record.get("tube_replacement"), record.get("wall_thickness"),
+                DEFAULT_DEPTH_LIMIT if limit is None else float(limit),
+                None if edges is None else np.asarray(edges, dtype=float),
+                record.get("sector_coefficients"), dict(record["coefficients_mobile"]),
+                None if obstacle is None else dict(obstacle),
+                _total_power(table, power.get("total")),
+                None if sectors is None else np.asarray(sectors, dtype=float))
 
 
 def _origin_rows(table: pd.DataFrame, origin: float) -> pd.DataFrame:
@@ -115,24 +245,32 @@ def _origin_rows(table: pd.DataFrame, origin: float) -> pd.DataFrame:
     return at[np.abs(np.asarray(at["instant"], dtype=float) - last) <= tol]
 
 
-def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
-                      wall_thickness: float | None = None, depth_limit: float | None = None,
-                      name: str = "") -> dict[str, DepthModel]:
+def models_from_table(table: pd.DataFrame, *, case: WearCase | None = None,
+                      sector_coefficients=None, wall_thickness: float | None = None,
+                      depth_limit: float | None = None, name: str = ""
+                      ) -> dict[str, DepthModel]:
     """The models of a wear table: ``"global"`` and, in sector mode, ``"sector 1"`` ...
+
+    The law, geometry, time axis, wall, sectors and tube replacement are the case's; the
+    volumes at the origin and a restart's earlier rows are the table's rows; the power and the
+    coefficients computed from a history are the run's (:func:`table_record`).
 
     Parameters
     ----------
     table : DataFrame
-        A wear table from :func:`fretwear.table.wear_table` (its ``attrs`` hold the run: law,
-        coefficients, geometry, power, time scale).
+        A wear table from :func:`fretwear.table.wear_table` (``attrs["case"]``), or read back
+        by :func:`fretwear.table.read_wear_table` from a CSV or Parquet file fretwear wrote
+        (the case in its provenance).
+    case : WearCase, optional
+        The case the table was computed from (default: the one it carries, rebuilt once by
+        :meth:`WearCase.from_dict`).
     sector_coefficients : sequence of (float, float or None), optional
         Archard coefficients (mobile, obstacle) [Pa⁻¹] per sector, as given to wear_table
-        (default ``attrs["sector_coefficients"]``, else the law's coefficients).
+        (default the case's, else the law's coefficients).
     wall_thickness : float, optional
-        Wall thickness [m] (default ``attrs["wall_thickness"]``).
+        Wall thickness [m] (default the case's).
     depth_limit : float, optional
-        Depth limit, fraction of the wall [-] (default ``attrs["depth_limit"]`` or
-        :data:`~fretwear.table.DEFAULT_DEPTH_LIMIT`).
+        Depth limit, fraction of the wall [-] (default the case's).
     name : str
         Contact name.
 
@@ -143,45 +281,52 @@ def models_from_table(table: pd.DataFrame, *, sector_coefficients=None,
     Raises
     ------
     InputError
-        The table has no metadata, or the tube is replaced after the origin (not modelled).
+        The table carries no case (:func:`table_case`), or the tube is replaced after the
+        origin (not modelled).
+
+    Examples
+    --------
+    >>> from fretwear.table import wear_table
+    >>> t = wear_table(0.01, contact_type="TUBE_ALESAGE", instants=[1.0, 2.0],
+    ...                dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02},
+    ...                coefficients={"COEF_USURE": 1e-14}, time_scale=3.6e3)
+    >>> m = models_from_table(t)["global"]
+    >>> bool(abs(m.depth(7.2e3)[()] / t["depth_mobile"].iloc[-1] - 1) < 1e-12)
+    True
     """
-    a = _attrs(table)
-    law = get_law(a["law"])
-    geometry = _geometry(a["contact_type"], a["dimensions"])
-    origin = float(a.get("origin") or 0.0)
-    replacement = a.get("tube_replacement")
-    if replacement is not None and float(replacement) > origin + _TIME_TOL * max(1, origin):
+    run = _run(table, case)
+    origin = run.origin
+    if run.replacement is not None and \
+            float(run.replacement) > origin + _TIME_TOL * max(1, origin):
         raise InputError("the wear table replaces the tube after its origin (TUBE_NEUF): the "
                          "uncertainty model continues one tube; compute from the replacement on "
                          "(a restart of replace_tube's table)")
-    wall = wall_thickness if wall_thickness is not None else a.get("wall_thickness")
-    limit = depth_limit if depth_limit is not None else a.get("depth_limit")
-    common = {"law": law, "geometry": geometry, "time_scale": float(a["time_scale"]),
+    wall = run.wall if wall_thickness is None else wall_thickness
+    limit = run.limit if depth_limit is None else depth_limit
+    law = run.law
+    common = {"law": law, "geometry": run.geometry, "time_scale": run.time_scale,
               "origin": origin, "wall_thickness": None if wall is None else float(wall),
               "depth_limit": DEFAULT_DEPTH_LIMIT if limit is None else float(limit)}
     earlier = None
     if "origin" in table.columns and origin > 0:  # a restart: the initial table's rows first
         earlier = EarlierRows.from_rows(
             table[np.asarray(table["origin"], dtype=float) != origin], origin)
-    mobile = _dict(a.get("coefficients_mobile"))
-    obstacle = _dict(a.get("coefficients_obstacle"))
-    power_info = a.get("power") or {}
+    mobile, obstacle = run.mobile, run.obstacle
     at = _origin_rows(table, origin)
-    edges = a.get("sector_edges")
-    if edges is None:
-        total = float(power_info.get("total", table["power"].iloc[-1]))
+    if run.edges is None:
         v0m = float(at["volume_mobile"].iloc[0]) if len(at) else 0.0
         v0o = float(at["volume_obstacle"].iloc[0]) if len(at) else 0.0
-        return {"global": DepthModel(powers=(total,), coefficients_mobile=(mobile,),
+        return {"global": DepthModel(powers=(run.power,), coefficients_mobile=(mobile,),
                                      coefficients_obstacle=(obstacle,), initial_mobile=v0m,
                                      initial_obstacle=v0o, name=name, rows=earlier, **common)}
-    edges = np.asarray(edges, dtype=float)
+    edges = np.asarray(run.edges, dtype=float)
     m = edges.size - 1
-    sector_powers = np.asarray(power_info.get("sectors"), dtype=float)
-    if sector_powers.size != m:
-        raise InputError("the sector table's attrs['power'] lacks the sector powers")
-    pairs = sector_coefficients if sector_coefficients is not None else a.get(
-        "sector_coefficients")
+    sector_powers = run.sector_powers
+    if sector_powers is None or sector_powers.size != m:
+        raise InputError("the sector table's record of the run lacks the sector powers: give "
+                         "the table wear_table returned, or a file fretwear wrote of it")
+    pairs = sector_coefficients if sector_coefficients is not None else \
+        run.sector_coefficients
     key = law.parameters[0]
     k_m, k_o = _sector_pairs(pairs, m, mobile.get(key),
                              None if obstacle is None else obstacle.get(key))

@@ -108,7 +108,11 @@ def write_wear_table(table, path: Path, *, aster_names: bool = False, title: str
     """Write a wear table atomically; the suffix chooses CSV, Parquet or a Code_Aster table.
 
     Every format carries the provenance header (:mod:`fretwear.table.provenance`) and writes
-    reals exactly (text: :data:`~fretwear.table.schema.FLOAT_FORMAT`, ``%.16E``).
+    reals exactly (text: :data:`~fretwear.table.schema.FLOAT_FORMAT`, ``%.16E``). CSV and
+    Parquet also carry the wear case and the power, so that the table read back
+    (:func:`read_wear_table`) is rebuilt into its depth model
+    (:func:`fretwear.table.models_from_table`: Monte Carlo, calibration); a Code_Aster text
+    table does not (its title lines are LIRE_TABLE's).
 
     Parameters
     ----------
@@ -211,8 +215,9 @@ def _format_of(path: Path, aster_format: str) -> str:
 def _write(frame: pd.DataFrame, aster: pd.DataFrame, path: Path, fmt: str, title: str,
            prov: dict) -> Path:
     """Write ``frame`` (CSV, Parquet) or ``aster`` (Code_Aster text) with the provenance."""
-    if fmt in TABLE_FORMATS:
-        lines = [*str(title).splitlines(), *header_lines(prov)]
+    if fmt in TABLE_FORMATS:  # the case (kB of JSON) stays out of LIRE_TABLE's title lines
+        lines = [*str(title).splitlines(),
+                 *header_lines({k: v for k, v in prov.items() if k != "case"})]
         return write_aster_table(aster, path, format=fmt, title="\n".join(lines),
                                  float_format=FLOAT_FORMAT)
     frame = frame.copy()

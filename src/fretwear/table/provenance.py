@@ -47,7 +47,8 @@ def provenance(attrs: Mapping[str, Any] | None, *, kind: str = "wear table",
     ----------
     attrs : mapping or None
         The table's ``attrs``: ``title``, ``contact_type``, ``law``, ``coefficients_mobile``,
-        ``coefficients_obstacle``, ``coefficient_sources``, ``time_unit`` are used when present.
+        ``coefficients_obstacle``, ``coefficient_sources``, ``time_unit``, ``case``, ``power``
+        are used when present.
     kind : str
         What the table is (``"wear table"``, ``"obstacle profile"``).
     **extra
@@ -57,8 +58,11 @@ def provenance(attrs: Mapping[str, Any] | None, *, kind: str = "wear table",
     -------
     dict
         ``kind``, ``version``, ``date`` (UTC, ISO 8601), ``name``, ``contact_type``, ``law``,
-        ``coefficients`` (``"<body>.<name>"`` -> ``{"value", "source"}``), ``time_unit``,
-        ``float_format`` and ``extra``; items without a value are left out.
+        ``coefficients`` (``"<body>.<name>"`` -> ``{"value", "source"}``: resolved, a
+        history's KWU-EPRI intensity included), ``time_unit``, ``float_format``, ``case``
+        (the wear case, :meth:`fretwear.table.WearCase.to_dict`: a table read back from a file
+        is rebuilt into its depth model, :func:`fretwear.table.models_from_table`), ``power``
+        (``total`` and ``sectors`` [W]) and ``extra``; items without a value are left out.
 
     Examples
     --------
@@ -78,8 +82,18 @@ def provenance(attrs: Mapping[str, Any] | None, *, kind: str = "wear table",
            "date": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds"),
            "name": attrs.get("title"), "contact_type": attrs.get("contact_type"),
            "law": attrs.get("law"), "coefficients": coefficients or None,
-           "time_unit": attrs.get("time_unit"), "float_format": FLOAT_FORMAT, **extra}
+           "time_unit": attrs.get("time_unit"), "float_format": FLOAT_FORMAT,
+           "case": attrs.get("case"), "power": _power(attrs.get("power")), **extra}
     return {k: v for k, v in out.items() if v is not None}
+
+
+def _power(power: Mapping[str, Any] | None) -> dict[str, Any] | None:
+    """The run's power a table's models need: ``total`` [W] and ``sectors`` [W] (None: the
+    power was given as a number, it is the table's power column)."""
+    if not power:
+        return None
+    out = {"total": power.get("total"), "sectors": power.get("sectors")}
+    return {k: v for k, v in out.items() if v is not None} or None
 
 
 def header_lines(prov: Mapping[str, Any]) -> list[str]:

@@ -36,6 +36,7 @@ from fretwear.errors import InputError, RangeWarning
 from fretwear.geometry import solve_monotone
 from fretwear.io.text_tables import number, read_text_table
 from fretwear.keys import check_level, check_probabilities
+from fretwear.table.case import WearCase
 from fretwear.table.depth import DepthModel
 from fretwear.table.depth_build import models_from_table
 from fretwear.uncertainty.cases import prepare_case
@@ -222,11 +223,14 @@ def _contact_models(item, name: str) -> dict[str, DepthModel]:
     if isinstance(item, pd.DataFrame):
         return models_from_table(item, name=name)
     table = getattr(item, "table", None)
-    if isinstance(table, pd.DataFrame):
-        return models_from_table(table, name=name)
+    if isinstance(table, pd.DataFrame):  # a result: the case it carries
+        case = getattr(item, "case", None)
+        case = case if isinstance(case, WearCase) else getattr(item, "wear_case", None)
+        return models_from_table(table, case=case if isinstance(case, WearCase) else None,
+                                 name=name)
     if isinstance(item, tuple) and len(item) == 2:
         return prepare_case(item[0], item[1]).models
-    raise InputError(f"prediction {name!r}: give a wear table (with its attrs), a run_case "
+    raise InputError(f"prediction {name!r}: give a wear table (carrying its case), a run_case "
                      f"result, a DepthModel or a (case, power) pair, got "
                      f"{type(item).__name__}")
 
@@ -457,8 +461,9 @@ def calibrate(predictions, inspections, *, prior: LogNormal = DEFAULT_PRIOR,
     ----------
     predictions : wear table, run_case result, DepthModel, (case, power), or a mapping of
         contact name to one of them
-        What predicts each contact's depth (a wear table must carry its metadata, attrs; a
-        bundle's: :func:`fretwear.report.predictions.bundle_predictions`).
+        What predicts each contact's depth (a wear table must carry its case: wear_table's, or
+        read back from a CSV or Parquet file fretwear wrote; a bundle's:
+        :func:`fretwear.report.predictions.bundle_predictions`).
     inspections : DataFrame or path-like
         Measured depths (:func:`read_inspections`): ``contact``, ``sector`` (optional),
         ``instant`` [user time unit], ``depth`` [m] (or ``depth_mm``), ``measurement_sigma``

@@ -2,8 +2,9 @@
 
 A *case* is the description of one contact's wear computation: the keywords of
 :func:`fretwear.table.wear_table` as a mapping (plus ``wall_thickness`` [m] and
-``depth_limit`` [-]), a wear-case object (``fretwear.table.WearCase``), a wear table with its
-metadata (``DataFrame.attrs``), or a :class:`~fretwear.table.depth.DepthModel`. The
+``depth_limit`` [-]), a wear-case object (``fretwear.table.WearCase``), a wear table that
+carries its case (:func:`fretwear.table.wear_table`'s, or read back from a CSV or Parquet file
+fretwear wrote), or a :class:`~fretwear.table.depth.DepthModel`. The
 *power* is a number [W], a :class:`~fretwear.power.PowerResult` (its block powers give the
 interval), a :class:`~fretwear.power.confidence.PowerInterval` (an ensemble of runs), or a
 contact history (object or file) from which the power is computed with the case's window,
@@ -72,8 +73,8 @@ class PreparedCase:
         return self.models["global"]
 
 
-def _durations(table: pd.DataFrame) -> Any:
-    origin = float(table.attrs.get("origin") or 0.0)
+def _durations(table: pd.DataFrame, origin: float) -> Any:
+    """The durations [user time unit] of a table's rows from its ``origin`` on."""
     rows = table[(table["origin"] == origin) & (table["instant"] >= origin)]
     return rows["duration"].drop_duplicates().to_numpy(dtype=float)
 
@@ -137,7 +138,8 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
     if isinstance(case, pd.DataFrame):
         models = models_from_table(case, **options)
         uncertainty = power if _uncertain(power) else None
-        return PreparedCase(models, uncertainty, case, _durations(case))
+        return PreparedCase(models, uncertainty, case,
+                            _durations(case, models["global"].origin))
     if isinstance(case, Mapping):  # the keywords of wear_table, with the wall's
         keywords = dict(case)
         window = {k: keywords[k] for k in ("t_start", "t_end", "blocks", "sectors",
@@ -156,7 +158,7 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
     for key in WALL_KEYS:
         if options[key] is None:
             options[key] = given[key]
-    models = models_from_table(table, sector_coefficients=case.sector_coefficients, **options)
+    models = models_from_table(table, case=case, **options)
     result = source if isinstance(source, PowerResult) else None
     return PreparedCase(models, uncertainty, table, np.asarray(case.instants, dtype=float),
                         case, result)
