@@ -33,7 +33,7 @@ from fretwear.obstacle.profiles import (
     write_discret,
 )
 from fretwear.sectors import sector_edges
-from fretwear.table import read_wear_table
+from fretwear.table import carried_case, read_wear_table
 from fretwear.table.files import write_profile_table
 from fretwear.table.schema import COLUMNS, PROFILE_COLUMNS
 
@@ -166,13 +166,12 @@ def sector_volumes(table: pd.DataFrame, instant: float | None = None):
     return chosen, edges, vm, vo
 
 
-def _attr_dimension(table: pd.DataFrame, name: str):
-    attrs = getattr(table, "attrs", {}) or {}
-    dims = attrs.get("dimensions") or {}
-    for source in (dims, attrs):
-        if isinstance(source, dict) and source.get(name) is not None:
-            return float(source[name])
-    return None
+def _case_dimension(table: pd.DataFrame, name: str) -> float | None:
+    """A dimension [m] of the wear case the table carries (:func:`fretwear.table.carried_case`:
+    wear_table's, or a file's fretwear wrote), None without a case or that dimension."""
+    case = carried_case(table)
+    value = None if case is None else case.dimensions.get(name)
+    return None if value is None else float(value)
 
 
 @dataclass(frozen=True)
@@ -462,7 +461,8 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     instant : float, optional
         Instant to read [user time unit] (default the last).
     width : float, optional
-        Obstacle width [m]; default ``table.attrs['dimensions']['obstacle_width']``.
+        Obstacle width [m]; default the ``obstacle_width`` of the wear case the table carries
+        (:func:`fretwear.table.carried_case`).
     **options
         ``shape``, ``perforation``, ``step``, ``resolution`` of :func:`update_obstacle`.
 
@@ -485,7 +485,7 @@ def update_obstacle_from_table(table, obstacle, mobile: Mobile, *, instant: floa
     frame = table if isinstance(table, pd.DataFrame) else read_wear_table(table)  # native names
     inst, edges, vm, vo = sector_volumes(frame, instant)
     if width is None:
-        width = _attr_dimension(frame, "obstacle_width")
+        width = _case_dimension(frame, "obstacle_width")
         if width is None:
             raise InputError("the obstacle width is needed: width= [m] (CLI --width, case "
                              "[obstacle] width_m or [geometry] obstacle_width_m); the wear "

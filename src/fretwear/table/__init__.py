@@ -25,7 +25,12 @@ from fretwear.table.case import Coefficient, WearCase
 from fretwear.table.case_values import PowerWindow, Restart, Wall
 from fretwear.table.core import wear_table
 from fretwear.table.depth import DepthModel
-from fretwear.table.depth_build import model_from_table, models_from_table
+from fretwear.table.depth_build import (
+    carried_case,
+    model_from_table,
+    models_from_table,
+    table_case,
+)
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.files import (
     read_profile_table,
@@ -66,6 +71,7 @@ __all__ = [
     "Restart",
     "Wall",
     "WearCase",
+    "carried_case",
     "from_aster_names",
     "initial_state",
     "model_from_table",
@@ -73,6 +79,7 @@ __all__ = [
     "read_profile_table",
     "read_wear_table",
     "replace_tube",
+    "table_case",
     "to_aster_names",
     "wear_table",
     "wear_table_columns",

@@ -21,7 +21,8 @@ from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.provenance import provenance
 
-__all__ = ["case_model", "model_from_table", "models_from_table", "table_case", "table_record"]
+__all__ = ["carried_case", "case_model", "model_from_table", "models_from_table", "table_case",
+           "table_record"]
 
 _TIME_TOL = 1e-9
 
@@ -122,6 +123,13 @@ def table_record(table: pd.DataFrame) -> dict:
     if "case" in attrs:  # wear_table's own table
         return provenance(attrs)
     return dict(attrs.get("provenance") or {})
+
+
+def carried_case(table: pd.DataFrame) -> WearCase | None:
+    """The :class:`WearCase` a wear table carries (:func:`table_case`), or None where it
+    carries none (a Code_Aster table, a file written before the case was kept)."""
+    record = table_record(table)
+    return table_case(table, record) if isinstance(record.get("case"), dict) else None
 
 
 def table_case(table: pd.DataFrame, record: dict | None = None) -> WearCase:

@@ -24,9 +24,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import FretwearWarning, InputError
-from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_depth_mobile
-from fretwear.laws import WEAR_LAWS
 from fretwear.sectors import sector_edges as _validated_edges
 from fretwear.table.files import read_aster_wear_table, read_wear_table
 from fretwear.table.schema import _TIME_TOL, COLUMNS, from_aster_names, to_aster_names
@@ -304,7 +302,8 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
     (zero at ``instant``, then what the new tube wears since, for a law linear in time), the
     volume worn in a sector by the tube in place (``volume_mobile_sector``) is the new tube's
     cumulated volume, and the depths are computed again from those volumes with the table's
-    geometry (``attrs`` ``contact_type`` and ``dimensions``; sector depths theory §3). The
+    geometry (of the case the table carries, :func:`fretwear.table.carried_case`; sector
+    depths theory §3). The
     obstacle's volumes are kept. Code_Aster's TUBE_NEUF keeps the later rows too, but sets the
     tube's values to zero on every one of them (``motubn``): a tube that no longer wears.
 
@@ -345,6 +344,9 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
     aster = "INST" in table.columns
     native = from_aster_names(table)
     attrs = dict(table.attrs)
+    from fretwear.table.depth_build import carried_case  # (depth_build reads restarts)
+
+    case = carried_case(table)  # the case it was computed from, rebuilt once; None: none
     inst = _column(native, ["instant"], "the instant (INST)", "(DataFrame)")
     if instant is not None and len(inst) and not np.any(
             np.abs(inst - float(instant)) <= _TIME_TOL * max(1.0, float(np.abs(inst).max()))):
@@ -358,7 +360,7 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
     at = state.origin
     tol = _TIME_TOL * max(1.0, abs(at))
     on, after = np.abs(inst - at) <= tol, inst > at + tol
-    law = WEAR_LAWS.get(str(attrs.get("law", "")).upper())
+    law = None if case is None else case.wear_law
     if after.any() and law is not None and not law.linear_in_time:
         raise InputError(f"TUBE_NEUF at {at:g} before the table's last instant with "
                          f"LOI_USURE='{law.name}': the new tube's wear is not the old one's "
@@ -377,12 +379,13 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
         else:
             out["volume_mobile_sector"] = _restarted(native["volume_mobile_sector"], keys, inst,
                                                      at, tol, new)
-    geometry = _geometry(attrs)
+    geometry = None if case is None else _geometry(case)
     _restarted_depths(out, new, on, geometry, keys)
     if geometry is None and after.any():
         attrs["tube_replacement_depths"] = (
-            "the table carries no geometry (attrs contact_type, dimensions): the new tube's "
-            "depths after the replacement are NaN; recompute them with the contact geometry")
+            "the table carries no geometry (no wear case: attrs['case'], or its file's "
+            "provenance): the new tube's depths after the replacement are NaN; recompute them "
+            "with the contact geometry")
         later = sorted(set(inst[after].tolist()))
         warnings.warn(
             f"TUBE_NEUF at INST = {at:g}: the new tube's depths at the {len(later)} later "
@@ -393,6 +396,10 @@ def replace_tube(table: pd.DataFrame | str | os.PathLike, instant: float | None 
             "compute the table with tube_replacement= ([time] tube_replacement) and the "
             "geometry", FretwearWarning, stacklevel=2)
     attrs["tube_replacement"] = at
+    if case is not None and at >= case.origin:  # the case that computes the table now
+        attrs["case"] = case.replace(tube_replacement=at).to_dict()
+    else:  # replaced among a restart's earlier rows: no case computes this table
+        attrs.pop("case", None)
     out.attrs = attrs
     return to_aster_names(out) if aster else out
 
@@ -418,15 +425,12 @@ def _restarted(values: pd.Series, keys: np.ndarray, inst: np.ndarray, at: float,
     return out
 
 
-def _geometry(attrs: dict):
-    """The table's geometry from its attrs (contact type and native dimensions), or None."""
-    dims = attrs.get("dimensions")
-    if not isinstance(dims, dict) or "contact_type" not in attrs:
-        return None
-    if attrs["contact_type"] is None:
-        return SectorGeometry(**{k: v for k, v in dims.items() if k in
+def _geometry(case):
+    """The geometry of a table's wear case: its contact's, or the sector dimensions alone."""
+    if case.contact_type is None:
+        return SectorGeometry(**{k: v for k, v in case.dimensions.items() if k in
                                  ("mobile_radius", "obstacle_width", "obstacle_radius")})
-    return contact_geometry(attrs["contact_type"], **dims)
+    return case.geometry
 
 
 def _restarted_depths(out: pd.DataFrame, new: np.ndarray, on: np.ndarray, geometry,
