@@ -11,7 +11,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.plotting._common import figure_and_axes
-from fretwear.table import DEFAULT_DEPTH_LIMIT, from_aster_names
+from fretwear.table import carried_case, from_aster_names
 from fretwear.timeunits import TIME_UNITS
 
 #: quantity -> (column prefix, scale from SI, axis label)
@@ -19,30 +19,32 @@ _QUANTITIES = {"volume": ("volume", 1e9, "cumulated worn volume [mm³]"),
                "depth": ("depth", 1e3, "global worn depth [mm]")}
 
 
-def _unit(table: pd.DataFrame) -> str:
-    """The table's time unit: its ``time_unit``, else the first name of its ``time_scale`` in
-    :data:`fretwear.timeunits.TIME_UNITS`, else the scale in seconds."""
-    if table.attrs.get("time_unit"):
-        return str(table.attrs["time_unit"])
-    scale = float(table.attrs.get("time_scale", 1.0))
-    return next((name for name, s in TIME_UNITS.items() if s == scale), f"× {scale:g} s")
+def _unit(table: pd.DataFrame, case) -> str:
+    """The table's time unit: its case's ``time_unit``, else its ``time_scale`` in seconds;
+    without a case (a Code_Aster table) the first name of 1 s in
+    :data:`fretwear.timeunits.TIME_UNITS`."""
+    if case is not None:
+        return case.time_unit or f"{case.time_scale:g} s"
+    return next((name for name, s in TIME_UNITS.items() if s == 1.0), "1 s")
 
 
-def _title(table: pd.DataFrame) -> str:
-    title = table.attrs.get("title") or "wear table"
-    return (f"{title}: {table.attrs.get('contact_type', '')} "
-            f"{table.attrs.get('law', '')}").strip()
+def _title(table: pd.DataFrame, case) -> str:
+    """The case's name, contact type and law (without a case, the file's title)."""
+    if case is None:
+        return str(table.attrs.get("title") or "wear table")  # provenance, display only
+    return f"{case.name or 'wear table'}: {case.contact_type or ''} {case.law}".strip()
 
 
-def _draw_history(ax, table: pd.DataFrame, quantity: str) -> None:
-    """Draw one quantity (volume or depth) of tube and obstacle against the instants."""
+def _draw_history(ax, table: pd.DataFrame, quantity: str, case) -> None:
+    """Draw one quantity (volume or depth) of tube and obstacle against the instants; the
+    restart, the tube replacement and the wall are the table's ``case``'s (None: none)."""
     if quantity not in _QUANTITIES:
         raise InputError(f"quantity={quantity!r}: choose one of {list(_QUANTITIES)}")
     column, scale, label = _QUANTITIES[quantity]
     glob = table.drop_duplicates("instant", keep="last").sort_values("instant")
     t = glob["instant"].to_numpy(dtype=float)
-    replaced = table.attrs.get("tube_replacement")
-    origin = table.attrs.get("origin") or 0.0
+    replaced = None if case is None else case.restart.tube_replacement
+    origin = 0.0 if case is None else case.origin
     # the tube's curve is broken at a replacement (the old and the new tube are two bodies)
     new_tube = np.zeros(t.shape, bool) if replaced is None else t >= float(replaced)
     mobile = glob[f"{column}_mobile"].to_numpy(dtype=float) * scale
@@ -57,16 +59,16 @@ def _draw_history(ax, table: pd.DataFrame, quantity: str) -> None:
         ax.axvline(float(origin), color="0.6", ls="-.", lw=1)
         ax.annotate("restart", (float(origin), 1.0), xycoords=("data", "axes fraction"),
                     xytext=(3, -24), textcoords="offset points", fontsize="small")
-    wall = table.attrs.get("wall_thickness")
+    wall = None if case is None else case.wall.thickness
     if quantity == "depth" and wall:
-        limit = float(table.attrs.get("depth_limit", DEFAULT_DEPTH_LIMIT)) * float(wall)
+        limit = case.wall.limit_depth
         ax.axhline(limit * scale, color="C3", ls="--", lw=1,
                    label=f"limit {100 * limit / wall:g} % of the wall")
         if np.nanmax(glob["depth_mobile"], initial=0.0) > wall:
             ax.axhline(float(wall) * scale, color="k", lw=1.2, label="wall (through)")
     ax.grid(alpha=0.3)
     ax.set_ylabel(label)
-    ax.set_xlabel(f"instant [{_unit(table)}]")
+    ax.set_xlabel(f"instant [{_unit(table, case)}]")
     ax.legend()
 
 
@@ -99,11 +101,12 @@ def plot_wear_history(table: pd.DataFrame, quantity: str = "depth", *, ax=None):
     'global worn depth [mm]'
     """
     table = from_aster_names(table)
+    case = carried_case(table)
     fig, (axis,), own = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(7, 4),
                                         what="plot_wear_history")
-    _draw_history(axis, table, quantity)
+    _draw_history(axis, table, quantity, case)
     if own:
-        axis.set_title(_title(table))
+        axis.set_title(_title(table, case))
     return fig
 
 
@@ -142,12 +145,13 @@ def plot_wear_table(table: pd.DataFrame, *, ax=None):
 
     fig, (ax_v, ax_d), own = figure_and_axes(ax, 2, layout, figsize=(7, 6.5),
                                              what="plot_wear_table")
-    _draw_history(ax_v, table, "volume")
-    _draw_history(ax_d, table, "depth")
+    case = carried_case(table)
+    _draw_history(ax_v, table, "volume", case)
+    _draw_history(ax_d, table, "depth", case)
     if own:
         ax_v.set_xlabel("")
         ax_v.tick_params(labelbottom=False)
-        fig.suptitle(_title(table))
+        fig.suptitle(_title(table, case))
     return fig
 
 
@@ -183,7 +187,7 @@ def plot_sector_wear(table: pd.DataFrame, *, ax=None):
     if "sector" not in table.columns or not table["sector"].notna().any():
         raise InputError("plot_sector_wear needs a sector wear table (column 'sector'); "
                          "this table has no sectors")
-    unit = _unit(table)
+    unit = _unit(table, carried_case(table))
     last = table[table["instant"] == table["instant"].max()].sort_values("sector")
     start = np.radians(last["angle_start"].to_numpy(dtype=float))
     width = np.radians(last["angle_end"].to_numpy(dtype=float)) - start

@@ -88,8 +88,7 @@ def _unit_label(column: str, time_unit: str | None = None) -> str:
     return f"{column}{scale}" if scale else (f"{column} [{unit}]" if unit else column)
 
 
-def _wear_tables(table: pd.DataFrame) -> dict[str, Any]:
-    time_unit = table.attrs.get("time_unit")
+def _wear_tables(table: pd.DataFrame, time_unit: str) -> dict[str, Any]:
     label = lambda c: _unit_label(c, time_unit)  # noqa: E731
     scales = {c: (1e3, ".4g") for c, (_, u, _) in COLUMNS.items() if u == "m"}
     scales.update({c: (1e9, ".4g") for c, (_, u, _) in COLUMNS.items() if u == "m³"})
@@ -243,7 +242,7 @@ def render_report(analysis: Analysis, *, title: str | None = None) -> str:
         "sector_intervals": [{"name": iv.name, "estimate": _num(iv.estimate),
                               "half": _num(iv.half_width, ".2g")}
                              for iv in analysis.sector_intervals],
-        "tables": _wear_tables(table), "figures": figures,
+        "tables": _wear_tables(table, unit), "figures": figures,
         "uncertainty": _uncertainty(analysis, unit),
         "calibration": _calibration(analysis),
         "options": analysis.options,
