@@ -21,7 +21,8 @@ from fretwear.io import delimited, iter_history_chunks, read_history
 from fretwear.obstacle.update import sector_volumes
 from fretwear.power import wear_power
 from fretwear.table import WearCase
-from fretwear.table.restart import initial_state, replace_tube
+from fretwear.table.replace import replace_tube
+from fretwear.table.restart import initial_state
 from fretwear.table.schema import to_aster_names
 from fretwear.workflows.case_files import run_case
 from fretwear.workflows.loop import load_iterate_case

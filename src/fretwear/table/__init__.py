@@ -40,7 +40,8 @@ from fretwear.table.files import (
 )
 from fretwear.table.keywords import KEYWORDS
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
-from fretwear.table.restart import InitialState, initial_state, replace_tube
+from fretwear.table.replace import replace_tube
+from fretwear.table.restart import InitialState, initial_state
 from fretwear.table.schema import (
     COLUMNS,
     FLOAT_FORMAT,
