@@ -22,7 +22,6 @@ from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear._version import __version__
 from fretwear.io.atomic import atomic_write
-from fretwear.laws import get_law
 from fretwear.plotting import plot_sector_wear, plot_wear_table
 from fretwear.plotting.uncertainty import plot_calibration, plot_fan_chart, plot_sensitivity
 from fretwear.report.analysis import Analysis
@@ -113,9 +112,10 @@ def _wear_tables(table: pd.DataFrame, time_unit: str) -> dict[str, Any]:
     return out
 
 
-def _coefficients(attrs: dict) -> list[dict[str, str]]:
-    """Every coefficient of both bodies with its value, unit and source."""
-    law = get_law(attrs.get("law", "ARCHARD"))
+def _coefficients(attrs: dict, case) -> list[dict[str, str]]:
+    """Every coefficient of both bodies with its value, unit and source (as the run resolved
+    them: ``attrs``, provenance), and the ``case``'s sector coefficients."""
+    law = case.wear_law
     sources = attrs.get("coefficient_sources") or {}
     rows = []
     for body in ("mobile", "obstacle"):
@@ -127,7 +127,7 @@ def _coefficients(attrs: dict) -> list[dict[str, str]]:
                          "keyword": law.aster_keywords.get(name, ""),
                          "value": _num(value, ".6g"), "unit": law.units.get(name, ""),
                          "source": str(sources.get(f"{body}.{name}", "user"))})
-    for j, pair in enumerate(attrs.get("sector_coefficients") or [], start=1):
+    for j, pair in enumerate(case.sector_coefficients or [], start=1):
         rows.append({"body": f"sector {j}", "name": "coefficient (mobile, obstacle)",
                      "keyword": "COEF_USUR_MOBILE/OBST", "unit": "Pa⁻¹", "source": "user",
                      "value": ", ".join(_num(v, ".6g") for v in pair)})
@@ -234,7 +234,7 @@ def render_report(analysis: Analysis, *, title: str | None = None) -> str:
         "limit_instant": _num(table["limit_instant"].iloc[-1])
         if "limit_instant" in table.columns else None,
         "through_wall": {k: _num(v) for k, v in (attrs.get("through_wall") or {}).items()},
-        "inputs": _inputs(analysis), "coefficients": _coefficients(attrs),
+        "inputs": _inputs(analysis), "coefficients": _coefficients(attrs, case),
         "power": _num(result.total_power, ".6g"),
         "interval": None if analysis.interval is None else str(analysis.interval),
         "interval_obj": analysis.interval,
