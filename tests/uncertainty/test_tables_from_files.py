@@ -128,6 +128,8 @@ def test_monte_carlo_on_the_file_equals_the_table_in_memory(tables, key):
     np.testing.assert_allclose(runs[1].nominal_depth, runs[0].nominal_depth, rtol=RTOL)
     np.testing.assert_allclose(runs[1].time_to_limit(), runs[0].time_to_limit(), rtol=RTOL)
     np.testing.assert_allclose(runs[1].instants, runs[0].instants, rtol=RTOL)
+    # the result carries the table's case, on both paths
+    assert runs[0].case == runs[1].case == WearCase.from_dict(table.attrs["case"])
 
 
 @pytest.mark.parametrize("key", KEYS, ids=["-".join(k) for k in KEYS])

@@ -31,7 +31,7 @@ from fretwear.power import PowerResult, wear_power
 from fretwear.power.confidence import PowerInterval
 from fretwear.table import WearCase
 from fretwear.table.depth import DepthModel
-from fretwear.table.depth_build import models_from_table
+from fretwear.table.depth_build import carried_case, models_from_table
 from fretwear.uncertainty.distributions import is_distribution, median_of
 
 __all__ = ["PreparedCase", "prepare_case"]
@@ -55,7 +55,8 @@ class PreparedCase:
     durations : numpy.ndarray
         Instants of the case after the origin [user time unit].
     case : WearCase or None
-        The wear case the models were computed from (None: given a wear table or a model).
+        The wear case the models were computed from (a wear table's: the case it carries; None:
+        given a model).
     power_result : PowerResult or None
         The power computation of the case (None: a power given as a number or a distribution).
     """
@@ -136,10 +137,11 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
         uncertainty = power if _uncertain(power) else None
         return PreparedCase({"global": model}, uncertainty, None, None)
     if isinstance(case, pd.DataFrame):
-        models = models_from_table(case, **options)
+        carried = carried_case(case)  # rebuilt once, carried by the result
+        models = models_from_table(case, case=carried, **options)
         uncertainty = power if _uncertain(power) else None
         return PreparedCase(models, uncertainty, case,
-                            _durations(case, models["global"].origin))
+                            _durations(case, models["global"].origin), carried)
     if isinstance(case, Mapping):  # the keywords of wear_table, with the wall's
         keywords = dict(case)
         window = {k: keywords[k] for k in ("t_start", "t_end", "blocks", "sectors",

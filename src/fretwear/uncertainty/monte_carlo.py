@@ -161,7 +161,8 @@ class UncertaintyResult:
         ``depth_mobile``, from the total volume) or ``"sector j"`` (``depth_mobile_sector`` of
         sector j, its volume spread over its arc).
     case : WearCase or None
-        The wear case the samples were computed from (None: given a wear table or a model).
+        The wear case the samples were computed from (a wear table's: the case it carries;
+        None: given a model).
     power_result : PowerResult or None
         The power computation of the case (None: a power given as a number or a distribution).
     """
