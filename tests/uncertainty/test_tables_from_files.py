@@ -179,3 +179,25 @@ def test_a_table_whose_attrs_were_dropped_says_so():
     bare.attrs = {}
     with pytest.raises(InputError, match="attrs are empty"):
         models_from_table(bare)
+
+
+def test_a_case_without_sectors_and_a_power_with_sectors_keeps_the_sector_models():
+    """A WearCase without sectors run on a PowerResult computed with sectors makes a sector
+    table (the run's sectors): its sector models come from the case the table carries."""
+    from fretwear.power import wear_power
+    from fretwear.table import wear_table_from_case
+
+    power = wear_power(_sector_history(), sectors=4, blocks=4)
+    case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0, 10.0],
+                                  coefficients={"COEF_USURE": K0}, **BASE)
+    assert case.sectors is None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the synthetic history's notes
+        table = wear_table_from_case(case, power)
+        runs = [monte_carlo(source, *extra, factor=LogNormal(1.0, sigma_ln=0.3), samples=64,
+                            seed=1, sector=2, power_scatter="fixed")
+                for source, *extra in ((case, power), (table,))]
+    last = table[(table["instant"] == 10.0) & (table["sector"] == 2)]
+    assert runs[0].nominal_depth[-1] == pytest.approx(last["depth_mobile_sector"].iloc[0],
+                                                      rel=RTOL)
+    np.testing.assert_allclose(runs[0].depth, runs[1].depth, rtol=RTOL)

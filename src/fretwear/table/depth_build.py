@@ -181,9 +181,12 @@ def _run(table: pd.DataFrame, case: WearCase | None) -> _Run:
     if case is None and _BUNDLE_RECORD in attrs:
         return _record_run(table, attrs[_BUNDLE_RECORD])
     record = table_record(table)
-    case = table_case(table, record) if case is None else case
-    if not isinstance(case, WearCase):
+    if case is not None and not isinstance(case, WearCase):
         raise InputError(f"case must be a WearCase, got {type(case).__name__}")
+    carried = record.get("case")
+    if case is None or (case.sectors is None and isinstance(carried, dict)
+                        and carried.get("sectors") is not None):
+        case = table_case(table, record)  # (the run's sectors: a PowerResult with sectors)
     resolved = record.get("coefficients") or {}
     bodies = []
     for body in ("mobile", "obstacle"):
