@@ -43,8 +43,8 @@ def test_quiet_keeps_only_the_bad_news_and_the_final_line_a_skipped_run_starts_n
     assert main([*ARGS, "--scheduler", "serial", "-o", str(out_dir), "-q"]) == 0
     lines = capsys.readouterr().out.splitlines()
     # bad news stays with -q, first (issue 26): the two contacts past 40 %, worst named
-    bad = ("PAST THE PLUGGING LIMIT: 2 contact(s) on 2 tube(s) (worst: R4C2-AVB1 49.8 %, "
-           "R4C1-AVB2 44.1 %)")
+    bad = ("PAST THE PLUGGING LIMIT at 40 year: 2 contact(s) on 2 tube(s) (worst: "
+           "R4C2-AVB1 49.8 %, R4C1-AVB2 44.1 %)")
     assert lines[:-1] == [bad]
     assert lines[-1].startswith("done 24, failed 0, skipped 0 of 24 contacts")
     # again: every contact unchanged, nothing computed, no cluster (not "on 1 worker(s)")

@@ -70,3 +70,29 @@ def test_bundle_terminal_says_the_unstable_tubes_first(tmp_path, capsys):
     first = output.splitlines()[0]
     assert code == 0 and first.startswith("FLUID-ELASTICALLY UNSTABLE: 3 tube(s)"), output
     assert all(t in first for t in expected) and "NOT valid" in first
+
+
+def test_the_ranking_marks_the_unstable_tubes_rows(tmp_path, capsys):
+    """Every row of the terminal's ranking whose tube (tube_row, tube_column of the manifest)
+    the simulation flagged (tubes.csv: flagged) says UNSTABLE, and no other row does (a new
+    user read a flagged tube's forecast in the ranking with no mark beside it)."""
+    from fretwear.cli import main
+
+    tubes = pd.read_csv(SIMULATED / "tubes.csv")
+    flagged = {f"R{r}C{c}" for r, c, f in zip(tubes["row"], tubes["column"], tubes["flagged"],
+                                               strict=True) if f}
+    assert flagged
+    assert main(["bundle", str(SIMULATED / "manifest.csv"), "--case",
+                 str(EXAMPLE / "bundle.toml"), "--scheduler", "serial", "--top", "24",
+                 "-o", str(tmp_path / "out")]) == 0
+    out = capsys.readouterr().out
+    manifest = pd.read_csv(SIMULATED / "manifest.csv")
+    rows = [line for line in out.splitlines()
+            if any(f" {c} " in line for c in manifest["contact"].astype(str))
+            and "UNSTABLE:" not in line]
+    assert len(rows) == len(manifest)
+    for line in rows:
+        contact = next(c for c in manifest["contact"].astype(str) if f" {c} " in line)
+        tube = manifest.loc[manifest["contact"] == contact].iloc[0]
+        name = f"R{tube['tube_row']}C{tube['tube_column']}"
+        assert ("UNSTABLE" in line) == (name in flagged), line

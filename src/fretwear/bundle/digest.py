@@ -60,7 +60,9 @@ def warning_lines(warnings: pd.DataFrame, order: list[str] | None = None, *,
 
 def limit_lines(summary: pd.DataFrame, *, worst: int = 3) -> list[str]:
     """The counts said first: contacts and tubes through the wall, then at or past the
-    plugging limit, at the last instant, the worst named (the summary's order: deepest first).
+    plugging limit, at the last instant, the worst named (the summary's order: deepest first),
+    and when: "at 40 year" (the contacts' last instant and its unit, where the summary has
+    ``instant`` and ``time_unit``; a range where the contacts' last instants differ).
 
     Parameters
     ----------
@@ -76,6 +78,9 @@ def limit_lines(summary: pd.DataFrame, *, worst: int = 3) -> list[str]:
     >>> for line in limit_lines(s): print(line)
     THROUGH THE WALL: 1 contact(s) on 1 tube(s) (worst: a 120.0 %)
     PAST THE PLUGGING LIMIT: 2 contact(s) on 1 tube(s) (worst: a 120.0 %, b 50.0 %)
+    >>> s["instant"], s["time_unit"] = 40.0, "year"
+    >>> print(limit_lines(s)[0])
+    THROUGH THE WALL at 40 year: 1 contact(s) on 1 tube(s) (worst: a 120.0 %)
     """
     need = {"depth_fraction", "limit_depth", "wall_thickness"}
     if not len(summary) or not need <= set(summary.columns):
@@ -93,5 +98,20 @@ def limit_lines(summary: pd.DataFrame, *, worst: int = 3) -> list[str]:
         count = len(tubes.drop_duplicates()) if tubes.shape[1] else len(rows)
         named = ", ".join(f"{c} {100 * f:.1f} %" for c, f in zip(
             rows["contact"].head(worst), rows["depth_fraction"].head(worst), strict=True))
-        lines.append(f"{name}: {len(rows)} contact(s) on {count} tube(s) (worst: {named})")
+        lines.append(f"{name}{_when(rows)}: {len(rows)} contact(s) on {count} tube(s) "
+                     f"(worst: {named})")
     return lines
+
+
+def _when(rows: pd.DataFrame) -> str:
+    """" at 40 year" (the rows' last instant and unit), "" where the summary has neither."""
+    if "instant" not in rows.columns:
+        return ""
+    t = pd.to_numeric(rows["instant"], errors="coerce").dropna()
+    if not len(t):
+        return ""
+    units = rows["time_unit"].dropna().astype(str).unique() if "time_unit" in rows.columns \
+        else []
+    unit = f" {units[0]}" if len(units) == 1 else ""
+    lo, hi = float(t.min()), float(t.max())
+    return f" at {lo:.4g}{unit}" if lo == hi else f" at {lo:.4g}-{hi:.4g}{unit} (last instants)"

@@ -64,9 +64,13 @@ the contacts finished are written to OUT, and the same command resumes from them
 """
 
 
-def _summary(summary, console, top: int, limit: float | None) -> None:
+def _summary(summary, console, top: int, limit: float | None, unstable=None) -> None:
+    """The ranking table; a tube the simulation flagged unstable (``unstable``, of
+    :func:`unstable_tubes`) is marked UNSTABLE on its rows."""
     if not len(summary):
         return
+    flagged = set() if unstable is None or not len(unstable) else set(zip(
+        unstable["tube_row"], unstable["tube_column"], strict=True))
     shown = "each case's depth_limit" if limit is None else f"{limit:.0%} of the wall"
     shown_count = min(top, len(summary))
     what = "the deepest contact" if shown_count == 1 else f"the {shown_count} deepest contacts"
@@ -80,7 +84,8 @@ def _summary(summary, console, top: int, limit: float | None) -> None:
     forecasts = bool(summary["limit_forecast"].notna().any())
     forecast_header = "forecast" + (f" [{one_unit}]" if one_unit else "")
     for col in ("rank", "contact", "row", "col", "support", "P [W]", "global depth [mm]",
-                "depth/wall", time_header, *([forecast_header] if forecasts else [])):
+                "depth/wall", time_header, *([forecast_header] if forecasts else []),
+                *(["stability"] if flagged else [])):
         table.add_column(Text(col), justify="right")  # Text: "[mm]" is not rich markup
 
     def text(v, fmt="{}"):
@@ -96,7 +101,8 @@ def _summary(summary, console, top: int, limit: float | None) -> None:
         cells = (str(r.rank), str(r.contact), text(getattr(r, "tube_row", None)),
                  text(getattr(r, "tube_column", None)), text(getattr(r, "support", None)),
                  f"{r.power:.4g}", depth, text(r.depth_fraction, "{:.1%}"), t_lim,
-                 *([forecast] if forecasts else []))
+                 *([forecast] if forecasts else []),
+                 *([_stability(r, flagged)] if flagged else []))
         table.add_row(*(Text(c) for c in cells))
     console.print(table)
     if summary["time_to_limit"].notna().any():
@@ -106,6 +112,15 @@ def _summary(summary, console, top: int, limit: float | None) -> None:
         console.print("forecast: when the wear table's law and geometry, at the history's "
                       "power, reach the limit, also beyond the last instant", style="dim",
                       markup=False, highlight=False)
+
+
+def _stability(row, flagged: set) -> str:
+    """"UNSTABLE" where the row's tube is among the flagged (row, column) pairs."""
+    try:
+        key = (int(row.tube_row), int(row.tube_column))
+    except (AttributeError, TypeError, ValueError):
+        return ""
+    return "UNSTABLE" if key in flagged else ""
 
 
 def instability_lines(tubes) -> list[str]:
@@ -186,14 +201,15 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
             raise KeyboardInterrupt(f"{exc}; run the same command again to resume") from exc
     # bad news first: tubes the simulation found unstable, through the wall, past the limit,
     # units that look wrong (one line per kind)
-    for line in instability_lines(unstable_tubes(manifest)):
+    unstable = unstable_tubes(manifest)
+    for line in instability_lines(unstable):
         click.echo(line)
     summary = result.summary(limit)
     for line in limit_lines(summary):  # counts past the limit and through the wall first
         click.echo(line)
     for line in warning_lines(result.warnings, list(summary["contact"].astype(str))):
         click.echo(line)  # shown with -q too
-    _summary(summary, console, top, limit)
+    _summary(summary, console, top, limit, unstable)
     s = result.stats
     errors = result.errors
     if len(errors):

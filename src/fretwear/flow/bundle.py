@@ -272,8 +272,9 @@ def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
     Returns
     -------
     DataFrame or None
-        ``tube`` and ``max_stability_ratio`` [-] (U_eff/U_c, the largest over the tube's
-        modes) of every flagged tube, largest ratio first; empty when none is flagged;
+        ``tube``, ``tube_row``, ``tube_column`` (the manifest's identity columns) and
+        ``max_stability_ratio`` [-] (U_eff/U_c, the largest over the tube's modes) of every
+        flagged tube, largest ratio first; empty when none is flagged;
         None when no ``tubes.csv`` of a simulation sits beside the manifest (a manifest
         written by hand, or by Code_Aster's results).
 
@@ -291,6 +292,8 @@ def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
         return None  # a tubes.csv of another origin: not the simulation's
     flagged = frame["flagged"].str.lower().isin(("true", "1", "yes"))
     out = pd.DataFrame({"tube": frame.loc[flagged, "tube"].astype(str),
+                        "tube_row": [int(number(v)) for v in frame.loc[flagged, "row"]],
+                        "tube_column": [int(number(v)) for v in frame.loc[flagged, "column"]],
                         "max_stability_ratio": [number(v) for v in
                                                 frame.loc[flagged, "max_stability_ratio"]]})
     return out.sort_values("max_stability_ratio", ascending=False,
