@@ -96,3 +96,21 @@ def test_the_ranking_marks_the_unstable_tubes_rows(tmp_path, capsys):
         tube = manifest.loc[manifest["contact"] == contact].iloc[0]
         name = f"R{tube['tube_row']}C{tube['tube_column']}"
         assert ("UNSTABLE" in line) == (name in flagged), line
+
+
+def test_the_bundle_output_keeps_the_unstable_tubes(tmp_path):
+    """fretwear bundle keeps the flagged tubes in OUT/unstable_tubes.csv (what assess and
+    calibrate --bundle read without the manifest): the same tubes and ratios as
+    unstable_tubes of the manifest; a header-only file reads back as an empty list."""
+    from fretwear.cli import main
+    from fretwear.flow.bundle import record_unstable, recorded_unstable, unstable_tubes
+
+    out = tmp_path / "out"
+    assert main(["bundle", str(SIMULATED / "manifest.csv"), "--case",
+                 str(EXAMPLE / "bundle.toml"), "--scheduler", "serial", "-o", str(out),
+                 "-q"]) == 0
+    kept = recorded_unstable(out)
+    pd.testing.assert_frame_equal(kept, unstable_tubes(SIMULATED / "manifest.csv"),
+                                  check_exact=False, rtol=1e-12)
+    record_unstable(out, kept.iloc[:0])
+    assert recorded_unstable(out).empty

@@ -25,7 +25,7 @@ from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
 from fretwear.errors import InputError
-from fretwear.flow.bundle import unstable_tubes
+from fretwear.flow.bundle import record_unstable, unstable_tubes
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 from fretwear.table import DEFAULT_DEPTH_LIMIT
@@ -202,6 +202,7 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
     # bad news first: tubes the simulation found unstable, through the wall, past the limit,
     # units that look wrong (one line per kind)
     unstable = unstable_tubes(manifest)
+    record_unstable(output, unstable)  # for fretwear assess and calibrate --bundle
     for line in instability_lines(unstable):
         click.echo(line)
     summary = result.summary(limit)

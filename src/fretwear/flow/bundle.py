@@ -298,3 +298,68 @@ def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
                                                 frame.loc[flagged, "max_stability_ratio"]]})
     return out.sort_values("max_stability_ratio", ascending=False,
                            kind="stable").reset_index(drop=True)
+
+
+UNSTABLE_FILE = "unstable_tubes.csv"
+"""The flagged tubes, kept in a bundle's output directory by ``fretwear bundle`` so that
+``fretwear assess`` and ``fretwear calibrate --bundle`` say them first without the manifest."""
+
+
+def record_unstable(output: str | Path, tubes: pd.DataFrame | None) -> Path | None:
+    """Keep the tubes a simulation flagged unstable in a bundle's output directory.
+
+    Parameters
+    ----------
+    output : path-like
+        The bundle's output directory (``fretwear bundle -o OUT``).
+    tubes : DataFrame or None
+        :func:`unstable_tubes` of the bundle's manifest. None (no simulation beside the
+        manifest) writes nothing; an empty frame writes the header only, so that a rerun on
+        a manifest whose tubes are now stable replaces an earlier list.
+
+    Returns
+    -------
+    Path or None
+        ``OUT/unstable_tubes.csv`` (written atomically), or None.
+    """
+    if tubes is None:
+        return None
+    path = Path(output) / UNSTABLE_FILE
+    with atomic_write(path, newline="") as f:
+        tubes.to_csv(f, index=False)
+    return path
+
+
+def recorded_unstable(output: str | Path) -> pd.DataFrame | None:
+    """The flagged tubes :func:`record_unstable` kept in a bundle's output directory.
+
+    Returns
+    -------
+    DataFrame or None
+        ``tube``, ``tube_row``, ``tube_column``, ``max_stability_ratio`` [-], largest ratio
+        first (empty when none is flagged); None where the bundle was not simulated by
+        ``fretwear simulate`` (no ``unstable_tubes.csv``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> out = tempfile.mkdtemp()
+    >>> _ = record_unstable(out, unstable_tubes("examples/bundle/simulated/manifest.csv"))
+    >>> list(recorded_unstable(out)["tube"])
+    ['R4C1', 'R4C2', 'R4C3']
+    >>> recorded_unstable(tempfile.mkdtemp()) is None
+    True
+    """
+    path = Path(output) / UNSTABLE_FILE
+    if not path.is_file():
+        return None
+    frame = read_text_table(path, "bundle's unstable tubes")
+    need = ("tube", "tube_row", "tube_column", "max_stability_ratio")
+    if not set(need) <= set(frame.columns):
+        raise InputError(f"{path}: not the unstable tubes fretwear bundle writes (columns "
+                         f"{', '.join(need)}); remove the file, or rerun fretwear bundle")
+    return pd.DataFrame({"tube": frame["tube"].astype(str),
+                         "tube_row": [int(number(v)) for v in frame["tube_row"]],
+                         "tube_column": [int(number(v)) for v in frame["tube_column"]],
+                         "max_stability_ratio": [number(v) for v in
+                                                 frame["max_stability_ratio"]]})
