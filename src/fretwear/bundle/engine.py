@@ -37,7 +37,7 @@ from fretwear.bundle.cluster import (
 )
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import IDENTITY, Manifest, read_manifest
-from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, check_limit
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, build_dataset, check_limit
 from fretwear.bundle.store import (
     DATASET_FORMATS,
     TABLE_FORMATS,
@@ -450,7 +450,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                         buffer.append(rec)
                         now = time.perf_counter()
                         if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
-                            store.write_part(buffer)
+                            _flush(store, buffer)
                             buffer, last_flush = [], now
                     if progress is not None:
                         progress(done_count, total, rec)
@@ -460,7 +460,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 buffer += [r for r in records.values() if r["status"] == "failed"
                            and "part" not in r and id(r) not in queued]
                 if buffer:
-                    store.write_part(buffer)
+                    _flush(store, buffer)
             workers_used = engine.workers
         finally:
             engine.close()
@@ -469,6 +469,15 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         raise _interrupted(store, records, buffer, total, previous, man,
                            {t.contact for t in pending}) from exc
+
+
+def _flush(store: OutputDirectory, buffer: list[dict[str, Any]]) -> None:
+    """Write the records of ``buffer`` as a part, then drop their rows from the client: the
+    part file holds them, and the final table is assembled from the parts (issue 28: the
+    client held every contact's rows until the end, some 12 kB a contact)."""
+    store.write_part(buffer)
+    for rec in buffer:
+        rec["table"] = rec["state"] = None
 
 
 class BundleInterrupted(KeyboardInterrupt):
@@ -640,7 +649,11 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
         write_frame(result.warnings, store.path / "warnings.csv", "csv")
         write_frame(result.summary(limit), store.path / "summary.csv", "csv")
         if len(result.table):
-            store.write_dataset(result.dataset, dataset_format)
+            # built, written and dropped: not kept on the result beside its table (the client's
+            # memory at the end, issue 28); BundleResult.dataset builds it again when asked
+            dataset = build_dataset(result.table, result.contacts)
+            store.write_dataset(dataset, dataset_format)
+            del dataset
         else:
             store.drop_dataset()
         outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
@@ -676,6 +689,13 @@ def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str
            store: OutputDirectory | None) -> pd.DataFrame:
     """The bundle's table from the records' rows (this run's, and the skipped or stale
     contacts' read back from the parts), identity columns in front."""
+    if store is not None and all(records[c].get("table") is None for c in order):
+        # every contact's rows in the parts (written as they arrived, then dropped): read
+        # from there in one pass (store.ordered_rows), never held a contact at a time
+        kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
+        table = store.ordered_rows(kept, order) if kept else None
+        if table is not None:
+            return _with_identity(table, identity)
     packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
                                          if records[c].get("table") is not None}
     missing = [records[c] for c in order if c not in packed and records[c]["status"]
@@ -685,10 +705,21 @@ def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str
     kept = [c for c in order if c in packed]
     table = concat_packed(kept, [packed[c] for c in kept])
     del packed  # the contacts' rows, now in the table: freed before the identity's merge
+    return _with_identity(table, identity)
+
+
+def _with_identity(table: pd.DataFrame, identity: pd.DataFrame) -> pd.DataFrame:
+    """The table with the identity columns in front (``sector`` as Int64 where it has gaps)."""
     if "sector" in table.columns and table["sector"].isna().any():
         table["sector"] = table["sector"].astype("Int64")
-    table = identity.merge(table, on="contact", how="right")
-    return table[list(IDENTITY) + [c for c in table.columns if c not in IDENTITY]]
+    # the identity columns put in front, each contact's values taken to its rows: what
+    # ``identity.merge(table, on="contact", how="right")`` gives, without the merge's copies
+    # of the whole table (a merge, then the columns' reorder: the table held three times)
+    where = pd.Index(identity["contact"]).get_indexer(table["contact"])
+    for k, name in enumerate(IDENTITY):
+        if name != "contact":
+            table.insert(k, name, identity[name].take(where).set_axis(table.index))
+    return table
 
 
 def _saved_table(store: OutputDirectory, order: list[str]) -> pd.DataFrame | None:
