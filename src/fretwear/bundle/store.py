@@ -211,7 +211,7 @@ class OutputDirectory:
 
     def unchanged(self, digest: str) -> bool:
         """Whether the final files an earlier run recorded in its run.json are those of
-        ``digest`` (:func:`fretwear.bundle.engine.outputs_digest`: the same records, manifest
+        ``digest`` (:func:`fretwear.bundle.outputs.outputs_digest`: the same records, manifest
         identity and output options) and every one is still there as written (its stamp
         recorded beside it: a file removed, replaced or edited since is written again)."""
         try:
