@@ -1,0 +1,246 @@
+"""The end of a bundle run: its result and final files from every contact's latest record.
+
+:func:`assemble` builds the :class:`~fretwear.bundle.result.BundleResult` (the table, the
+per-contact information, the failures and warnings, the statistics) and writes the output
+directory's final files (``table``, ``dataset``, ``errors.csv``, ``warnings.csv``,
+``summary.csv``, ``run.json``). With an output directory the contacts' rows are in the parts,
+written as they arrived: the table is read from them in one pass
+(:meth:`~fretwear.bundle.store.OutputDirectory.ordered_rows`). A restart that changes nothing
+(:func:`outputs_digest` unchanged, the files as recorded) writes only ``run.json``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import time
+from typing import Any
+
+from fretwear._lazy import pandas as pd
+from fretwear._optional import optional
+from fretwear._version import __version__
+from fretwear.bundle.manifest import IDENTITY, Manifest
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, build_dataset
+from fretwear.bundle.store import OutputDirectory, read_frame, write_frame
+from fretwear.bundle.tasks import concat_packed
+from fretwear.geometry.base import GLOBAL_RANGE
+from fretwear.io.atomic import atomic_write
+
+
+def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
+              times: tuple[float, float], workers: int, dataset_format: str | None,
+              limit: float | None = None, built: dict[str, Any] | None = None) -> BundleResult:
+    """The BundleResult (and the output files) from every contact's latest record and the
+    wear cases ``built`` (contact -> WearCase) of this run."""
+    order = [r.contact for r in man.rows]
+    identity = man.identity_frame()
+    identity["contact"] = identity["contact"].astype(str)
+    # a restart that skips every contact into a directory whose final files are those of the
+    # same records (outputs_digest, recorded in run.json with the files' stamps): the files
+    # are not written again, the table is read back from its file (issue 28: a restart of
+    # 10^5 contacts rewrote 4 final files, 88 s)
+    digest = None if store is None else outputs_digest(
+        identity, order, records, store.table_format, dataset_format or "default", limit)
+    unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
+                 and store.unchanged(digest))
+    table = _saved_table(store, order) if unchanged else None
+    if table is None:
+        table = _table(order, identity, records, store)
+    # the case of each contact whose rows are its (done, or skipped: done before with the same
+    # inputs); a failed contact has none, a stale one the rows of an earlier case
+    cases = {c: (built or {})[c] for c in order
+             if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
+    info = [_contact_info(c, records[c], cases.get(c)) for c in order]
+    contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
+    errors = []
+    warns = []
+    for c in order:
+        rec = records[c]
+        for category, message in rec.get("warnings") or []:
+            warns.append({"contact": c, "category": category, "message": message})
+        if rec["status"] == "failed":
+            errors.append({"contact": c, "error": rec["error"][0], "message": rec["error"][1],
+                           "rows_kept": False})
+        elif rec["status"] == "stale":  # failed this run, its earlier run's rows kept
+            errors.append({"contact": c, "error": rec["error"][0],
+                           "message": f"{rec['error'][1]} (this run could not recompute it: "
+                                      f"its rows are the earlier run's, {rec['part']})",
+                           "rows_kept": True})
+        elif rec["status"] in ("done", "skipped"):
+            ranged = [m for cat, m in rec.get("warnings") or [] if cat == "RangeWarning"]
+            if ranged:  # the global depth's warning (the summary ranks by it), else a sector's
+                message = next((m for m in ranged if GLOBAL_RANGE in m), ranged[0])
+                errors.append({"contact": c, "error": "RangeWarning", "message": message,
+                               "rows_kept": True})
+    errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
+    errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
+                                      how="left")
+    statuses = contacts["status"].value_counts()
+    computed = [records[c] for c in order if records[c]["status"] in ("done", "failed")]
+    samples = int(sum(r.get("samples", 0) for r in computed))
+    started, startup = times
+    stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
+             "failed": int(statuses.get("failed", 0)),
+             "skipped": int(statuses.get("skipped", 0)),
+             "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
+             "startup_seconds": startup, "contacts_per_s": math.nan, "samples": samples,
+             "samples_per_s": math.nan, "workers": workers, "manifest": man.source,
+             # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
+             "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
+    result = BundleResult(table=table, errors=errors_frame,
+                          warnings=pd.DataFrame(warns, columns=["contact", "category",
+                                                                "message"]),
+                          contacts=contacts, stats=stats,
+                          output=None if store is None else str(store.path), cases=cases)
+    if store is not None:
+        _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit,
+                       digest, unchanged)
+    else:
+        _times(result.stats, started, len(computed))
+    return result
+
+
+def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
+    """A contact's row of ``BundleResult.contacts``: its record's status and computed values
+    (power, resolved coefficients), and what its wear case says (the carried ``case``; the
+    record's metadata for a contact whose rows are an earlier run's)."""
+    attrs = rec.get("attrs") or {}
+    info = {"contact": contact, "status": rec["status"], "samples": rec.get("samples", 0),
+            "seconds": rec.get("seconds", 0.0),
+            "power": (attrs.get("power") or {}).get("total"), "time_unit": attrs.get("time_unit")}
+    carried = case is not None and bool(attrs)
+    if carried:
+        info.update(origin=case.origin, tube_replacement=case.restart.tube_replacement,
+                    wall_thickness=case.wall.thickness, depth_limit=case.wall.limit,
+                    contact_type=case.contact_type, dimensions=dict(case.dimensions),
+                    law=case.law)
+    else:
+        info.update({k: attrs.get(k) for k in ("origin", "tube_replacement", "wall_thickness",
+                                               "depth_limit", "contact_type", "dimensions",
+                                               "law")})
+    # the geometry and law: the summary's exact time to another limit
+    info.update(coefficients_mobile=attrs.get("coefficients_mobile"),
+                coefficients_obstacle=attrs.get("coefficients_obstacle"),
+                time_scale=case.time_scale if carried else attrs.get("time_scale"))
+    return info
+
+
+def _times(stats: dict[str, Any], started: float, count: int) -> None:
+    """The run's wall time [s] from the call to now (the results assembled, the files but
+    run.json written) and its throughput without the cluster's start [1/s]."""
+    elapsed = time.perf_counter() - started
+    busy = elapsed - stats["startup_seconds"]
+    stats["seconds"] = elapsed
+    stats["contacts_per_s"] = count / busy if busy > 0 else math.nan
+    stats["samples_per_s"] = stats["samples"] / busy if busy > 0 else math.nan
+
+
+def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format,
+                   clock: tuple[float, int], limit: float | None, digest: str,
+                   unchanged: bool = False):
+    """The final files; ``summary.csv`` is ``result.summary(limit)``, and ``run.json`` records
+    ``limit`` (None: each contact's depth_limit), the ``digest`` of what the files hold
+    (:func:`outputs_digest`) and their stamps. ``unchanged``: the files of an earlier run are
+    those of ``digest`` and still as written: only ``run.json`` is written (this run's stats)."""
+    if unchanged:
+        order = ("table.parquet", "table.csv", "dataset.zarr", "dataset.nc", "errors.csv",
+                 "warnings.csv", "summary.csv")
+        outputs = [o for o in order if o in store.written_before]
+    else:
+        if dataset_format is None:
+            dataset_format = "netcdf" if optional("zarr") is None else "zarr"
+        store.write_table(result.table)
+        write_frame(result.errors, store.path / "errors.csv", "csv")
+        write_frame(result.warnings, store.path / "warnings.csv", "csv")
+        write_frame(result.summary(limit), store.path / "summary.csv", "csv")
+        if len(result.table):
+            # built, written and dropped: not kept on the result beside its table (the client's
+            # memory at the end, issue 28); BundleResult.dataset builds it again when asked
+            dataset = build_dataset(result.table, result.contacts)
+            store.write_dataset(dataset, dataset_format)
+            del dataset
+        else:
+            store.drop_dataset()
+        outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
+    # the final files written, so that a later run in another format removes only those
+    stamps = store.stamps(outputs)
+    _times(result.stats, *clock)
+    with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
+        json.dump({**result.stats, "limit": limit, "outputs": [*outputs, "run.json"],
+                   "digest": digest, "stamps": stamps}, handle, indent=1, default=str)
+    store.cleanup(r.get("part") for r in records.values() if r.get("part"))
+
+
+def outputs_digest(identity: pd.DataFrame, order: list[str], records: dict[str, dict],
+                   table_format: str, dataset_format: str, limit: float | None) -> str:
+    """What a bundle's final files hold, as a hash: fretwear's version, the output options,
+    the manifest's identity columns, and each contact's record: its input key, status and the
+    part holding its rows (a part is never rewritten: a new run writes new parts; a skipped
+    contact counts as the done one it was). Two runs of the same digest write the same
+    files."""
+    h = hashlib.blake2b(digest_size=16)
+    h.update(json.dumps([__version__, table_format, dataset_format, limit,
+                         list(identity.columns)], default=str).encode())
+    h.update(pd.util.hash_pandas_object(identity.astype(str), index=False).to_numpy().tobytes())
+    skipped = {"skipped": "done"}  # a skipped contact's record is its earlier done one
+    h.update(json.dumps([[c, records[c].get("key"),
+                          skipped.get(records[c]["status"], records[c]["status"]),
+                          records[c].get("part"), records[c].get("rows_file")] for c in order],
+                        default=str).encode())
+    return h.hexdigest()
+
+
+def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str, Any]],
+           store: OutputDirectory | None) -> pd.DataFrame:
+    """The bundle's table from the records' rows (this run's, and the skipped or stale
+    contacts' read back from the parts), identity columns in front."""
+    if store is not None and all(records[c].get("table") is None for c in order):
+        # every contact's rows in the parts (written as they arrived, then dropped): read
+        # from there in one pass (store.ordered_rows), never held a contact at a time
+        kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
+        table = store.ordered_rows(kept, order) if kept else None
+        if table is not None:
+            return _with_identity(table, identity)
+    packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
+                                         if records[c].get("table") is not None}
+    missing = [records[c] for c in order if c not in packed and records[c]["status"]
+               in ("done", "skipped", "stale")]
+    if missing and store is not None:  # a restart: the rows of skipped contacts from the parts
+        packed.update(store.packed_rows(missing))
+    kept = [c for c in order if c in packed]
+    table = concat_packed(kept, [packed[c] for c in kept])
+    del packed  # the contacts' rows, now in the table: freed before the identity's merge
+    return _with_identity(table, identity)
+
+
+def _with_identity(table: pd.DataFrame, identity: pd.DataFrame) -> pd.DataFrame:
+    """The table with the identity columns in front (``sector`` as Int64 where it has gaps)."""
+    if "sector" in table.columns and table["sector"].isna().any():
+        table["sector"] = table["sector"].astype("Int64")
+    # the identity columns put in front, each contact's values taken to its rows: what
+    # ``identity.merge(table, on="contact", how="right")`` gives, without the merge's copies
+    # of the whole table (a merge, then the columns' reorder: the table held three times)
+    where = pd.Index(identity["contact"]).get_indexer(table["contact"])
+    for k, name in enumerate(IDENTITY):
+        if name != "contact":
+            table.insert(k, name, identity[name].take(where).set_axis(table.index))
+    return table
+
+
+def _saved_table(store: OutputDirectory, order: list[str]) -> pd.DataFrame | None:
+    """The table an earlier run wrote as Parquet, read back (Parquet keeps every column's
+    dtype: the table :func:`_table` assembles; a CSV table is assembled again), or None when
+    it cannot be read or its contacts are not ``order``'s."""
+    path = store.path / "table.parquet"
+    if store.table_format != "parquet" or not path.is_file():
+        return None
+    try:
+        table = read_frame(path)
+    except Exception:  # noqa: BLE001 - unreadable: assembled from the parts, written again
+        return None
+    ids = pd.unique(table["contact"].astype(str)) if "contact" in table.columns else []
+    wanted = set(order)
+    if not all(c in wanted for c in ids):
+        return None
+    return table
