@@ -38,8 +38,9 @@ def test_assess_prints_the_librarys_numbers_bad_news_first(bundle_out, tmp_path,
     text = capsys.readouterr().out
     assert code == 0
     assert text.splitlines()[0].startswith("1 contact(s) on 1 tube(s) AT OR PAST")
+    # the command's defaults are the library's (one default per option)
     lib = assess(load(bundle_out), insp, interval=2.0, sizing=SizingModel(0.0, 1.0, 5e-5),
-                 pod=LogisticPOD.from_depths(1e-4, 2e-4), contact_sigma=0.3, power_sigma=0.2)
+                 pod=LogisticPOD.from_depths(1e-4, 2e-4))
     written = json.loads((out / "assessment.json").read_text(encoding="utf-8"))["bundle"]
     # same process and machine: the same floats
     assert written["p_any"] == lib.bundle["p_any"]

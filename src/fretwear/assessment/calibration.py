@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fretwear._lazy import pandas as pd
+from fretwear.assessment.growth import depths_at_factors
 from fretwear.assessment.inspections import Inspections, read_field_inspections
 from fretwear.assessment.posterior import (
     GridLevels,
@@ -350,7 +351,7 @@ def _resolve(table: pd.DataFrame, contacts: list, identity) -> pd.DataFrame:
     contacts; an unknown contact or location is an InputError naming the line."""
     index = {c: i for i, c in enumerate(contacts)}
     rows = []
-    for _, r in table.iterrows():
+    for r in table.to_dict("records"):
         if r["contact"]:
             if r["contact"] not in index:
                 raise InputError(f"inspections line {r['line']}: unknown contact "
@@ -403,11 +404,20 @@ def _scatter(contacts, prior: FactorPrior, power_sigma_ln) -> np.ndarray:
 
 
 def _check_power_proportional(models, contacts, scatter_power) -> None:
-    """σ_P enters as a factor only where the worn volume is proportional to the power."""
+    """σ_P enters as a factor only where the worn volume is proportional to the power (checked
+    once per law, coefficients and geometry: the property of the law, not of the power)."""
+    seen = set()
     for i, c in enumerate(contacts):
         if scatter_power[i] <= 0:
             continue
         m = models[c]
+        if not m.power:  # no wear: a factor on it changes nothing
+            continue
+        key = (id(m.law), id(m.geometry), repr(m.coefficients_mobile),
+               repr(m.coefficients_obstacle), len(m.powers), m.sector_arc is None)
+        if key in seen:
+            continue
+        seen.add(key)
         t = m.time_scale
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RangeWarning)
@@ -420,28 +430,35 @@ def _check_power_proportional(models, contacts, scatter_power) -> None:
 
 
 def _log_likelihood(obs: pd.DataFrame, models, contacts, techniques, grid) -> np.ndarray:
-    """log L_i(λ) on the grid (n, N): the sum over each contact's sized and NDD results."""
+    """log L_i(λ) on the grid (n, N): the sum over each contact's sized and NDD results (the
+    depths of every result at every factor in one :func:`depths_at_factors` call)."""
     out = np.zeros((len(contacts), grid.size))
-    f = np.exp(grid)
-    for _, r in obs.iterrows():
-        if r["status"] == "not inspected":
-            continue
-        m = models[r["contact"]]
-        tech = techniques[r["technique"]]
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RangeWarning)
-            d = m.depth(np.full(grid.size, r["elapsed_s"]), factor=f, warn=False)
-        d = np.where(np.isnan(d), np.inf, d)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            if r["status"] == "sized":
-                lik = tech.sizing.likelihood(r["depth"], np.where(np.isinf(d), 1e300, d))
-            else:
-                if tech.pod is None:
-                    raise InputError(f"inspections line {r['line']}: NDD with technique "
-                                     f"{r['technique']!r}, which has no POD; give "
-                                     "Technique(sizing, pod=LogisticPOD(...))")
-                lik = tech.pod.miss(np.where(np.isinf(d), 1e300, d))
-            out[r["index"]] += np.log(np.maximum(lik, 0.0))
+    used = obs[obs["status"] != "not inspected"]
+    if used.empty:
+        return out
+    for name in set(used.loc[used["status"] == "ndd", "technique"]):
+        if techniques[name].pod is None:
+            line = used.loc[(used["status"] == "ndd") & (used["technique"] == name),
+                            "line"].iloc[0]
+            raise InputError(f"inspections line {line}: NDD with technique {name!r}, which "
+                             "has no POD; give Technique(sizing, pod=LogisticPOD(...))")
+    d = depths_at_factors([models[c] for c in used["contact"]], used["elapsed_s"].to_numpy(),
+                          np.exp(grid))
+    d = np.where(np.isnan(d), 1e300, d)  # beyond the geometry: through everything
+    log_lik = np.empty(d.shape)
+    status, technique = used["status"].to_numpy(), used["technique"].to_numpy()
+    measured = used["depth"].to_numpy(float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for name in set(technique):
+            tech = techniques[name]
+            for sized in (True, False):
+                rows = (technique == name) & ((status == "sized") == sized)
+                if not rows.any():
+                    continue
+                lik = tech.sizing.likelihood(measured[rows, None], d[rows]) if sized \
+                    else tech.pod.miss(d[rows])
+                log_lik[rows] = np.log(np.maximum(lik, 0.0))
+    np.add.at(out, used["index"].to_numpy(int), log_lik)
     return out
 
 
@@ -519,7 +536,7 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     scatter = _scatter(contacts, prior, power_sigma_ln)
     _check_power_proportional(models, contacts, scatter ** 2 - prior.contact_sigma_ln ** 2)
     mu0, tau0 = math.log(prior.bundle.median), float(prior.bundle.sigma_ln)
-    tau_g = prior.group_sigma_ln if len(names) > 1 else 0.0
+    tau_g = prior.group_sigma_ln if groups is not None else 0.0
     half = 10.0 * math.sqrt(tau0 ** 2 + tau_g ** 2 + float(scatter.max()) ** 2)
     grid = _grid_around(mu0, half, _PASS1)
     levels = _solve(obs, models, contacts, inspections.techniques, grid, group_of, names,
@@ -556,11 +573,11 @@ def _with_depths(result: BundleCalibration) -> BundleCalibration:
     obs = result.observations.copy()
     median = np.exp(ppf_rows(result.levels.grid, result.levels.contacts, [0.5])[:, 0])
     f0 = float(result.prior.bundle.median)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        obs["prior_depth"] = [float(result.models[c].depth(t, factor=f0, warn=False))
-                              for c, t in zip(obs["contact"], obs["elapsed_s"], strict=True)]
-        obs["posterior_depth"] = [
-            float(result.models[c].depth(t, factor=median[i], warn=False))
-            for c, t, i in zip(obs["contact"], obs["elapsed_s"], obs["index"], strict=True)]
+    factors = np.column_stack([np.full(len(obs), f0),
+                               median[obs["index"].to_numpy(int)] if len(obs) else []])
+    d = depths_at_factors([result.models[c] for c in obs["contact"]],
+                          obs["elapsed_s"].to_numpy(float), factors) if len(obs) \
+        else np.empty((0, 2))
+    obs["prior_depth"] = d[:, 0]
+    obs["posterior_depth"] = d[:, 1]
     return BundleCalibration(**{**result.__dict__, "observations": obs})
