@@ -211,6 +211,7 @@ class BundleCalibration:
         else:
             weights = g.bundle * h
         keep = weights > 1e-16 * weights.max()
+        p[self.plugged] = 0.0  # out of service: no part in the bundle's risk
         return np.clip(p[:, keep], 0.0, 1.0), weights[keep] / weights[keep].sum()
 
     def forecast(self, instant: float, *, limit=None,
@@ -225,7 +226,8 @@ class BundleCalibration:
             [m] (posterior quantiles), ``limit`` [m], ``wall_fraction_q50`` [-],
             ``exceedance`` [-] and ``exceedance_prior`` [-] (the same contact under the
             prior), ``factor_median``, ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then
-            ``depth_q50``, the worst first.
+            ``depth_q50``, the worst first. A plugged contact (its tube plugged) is listed
+            with ``plugged`` True, no depth (NaN) and exceedances 0: it is not in service.
         """
         q = check_probabilities(q, closed=False)
         g = self.levels
@@ -252,8 +254,10 @@ class BundleCalibration:
         walls = np.array([self.models[c].wall_thickness or math.nan for c in self.contacts])
         if "depth_q50" in out:
             out["wall_fraction_q50"] = out["depth_q50"].to_numpy() / walls
-        out["exceedance"] = exceed
-        out["exceedance_prior"] = exceed_prior
+        out["exceedance"] = np.where(self.plugged, 0.0, exceed)
+        out["exceedance_prior"] = np.where(self.plugged, 0.0, exceed_prior)
+        gone = [c for c in out.columns if c.startswith("depth_q") or c == "wall_fraction_q50"]
+        out.loc[self.plugged, gone] = np.nan
         out["factor_median"] = np.exp(ppf_rows(g.grid, g.contacts, [0.5])[:, 0])
         out["factor_sigma_ln"] = sd
         key = "depth_q50" if "depth_q50" in out else out.columns[4]
@@ -552,6 +556,12 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     inspected[obs.loc[obs["status"] != "not inspected", "index"].to_numpy(int)] = True
     plugged = np.zeros(len(contacts), bool)
     plugged[obs.loc[obs["plugged"].astype(bool), "index"].to_numpy(int)] = True
+    if identity is not None and plugged.any():  # a plugged tube: every contact of it
+        where = identity.drop_duplicates("contact").set_index("contact")
+        spot = [(where.at[c, "tube_row"], where.at[c, "tube_column"]) if c in where.index
+                else (c, None) for c in contacts]
+        gone = {spot[i] for i in np.flatnonzero(plugged)}
+        plugged |= np.array([t in gone for t in spot])
     result = BundleCalibration(contacts=contacts, models=models, groups=names,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
                                observations=obs, inspected=inspected, plugged=plugged)
