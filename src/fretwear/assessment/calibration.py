@@ -472,8 +472,8 @@ def _grid_around(center: float, half: float, n: int) -> np.ndarray:
 
 def calibrate_bundle(predictions, inspections, *, techniques=None,
                      prior: FactorPrior | None = None, groups=None, identity=None,
-                     power_sigma_ln=0.0, origin_date=None, time_unit: str = "year"
-                     ) -> BundleCalibration:
+                     power_sigma_ln=0.0, origin_date=None, time_unit: str = "year",
+                     levels_only: bool = False) -> BundleCalibration:
     """The hierarchical posterior of every contact's factor from a field campaign.
 
     Parameters
@@ -496,6 +496,10 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
         ln(1 + half-width/power)/z); adds to the contact scatter.
     origin_date, time_unit
         For an inspection file with dates (:func:`read_field_inspections`).
+    levels_only : bool
+        True: the bundle and group levels and each contact's evidence only, what
+        :func:`fretwear.assessment.outage.assess` reads (no per-contact posterior: the
+        forecast and the factor summary then need a full calibration).
 
     Returns
     -------
@@ -551,7 +555,7 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     step = max(min(float(sd.min()) / 10.0, (hi - lo) / 200.0), (hi - lo) / (_MAX_POINTS - 1))
     grid = np.arange(lo, hi + step, step)
     levels = _solve(obs, models, contacts, inspections.techniques, grid, group_of, names,
-                    scatter, mu0, tau0, tau_g)
+                    scatter, mu0, tau0, tau_g, posteriors=not levels_only)
     inspected = np.zeros(len(contacts), bool)
     inspected[obs.loc[obs["status"] != "not inspected", "index"].to_numpy(int)] = True
     plugged = np.zeros(len(contacts), bool)
@@ -565,18 +569,19 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     result = BundleCalibration(contacts=contacts, models=models, groups=names,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
                                observations=obs, inspected=inspected, plugged=plugged)
-    return _with_depths(result)
+    return result if levels_only else _with_depths(result)
 
 
 def _solve(obs, models, contacts, techniques, grid, group_of, names, scatter, mu0, tau0,
-           tau_g) -> GridLevels:
+           tau_g, posteriors: bool = True) -> GridLevels:
     log_lik = _log_likelihood(obs, models, contacts, techniques, grid)
     if not np.isfinite(log_lik.max(axis=1)).all():
         bad = contacts[int(np.flatnonzero(~np.isfinite(log_lik.max(axis=1)))[0])]
         raise InputError(f"calibration: no factor within {math.exp(grid[0]):.3g}..."
                          f"{math.exp(grid[-1]):.3g} explains the inspections of contact "
                          f"{bad!r}; check their units (depth [m], depth_mm [mm])")
-    return solve_levels(grid, log_lik, group_of, len(names), scatter, mu0, tau0, tau_g)
+    return solve_levels(grid, log_lik, group_of, len(names), scatter, mu0, tau0, tau_g,
+                        contacts=posteriors)
 
 
 def _with_depths(result: BundleCalibration) -> BundleCalibration:

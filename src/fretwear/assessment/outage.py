@@ -191,7 +191,7 @@ def _calibrated(table, ins, sizing, pod, prior, names, power_sigma_ln):
                             groups=None if mapping is None else
                             {c: mapping[c] for c in keep},
                             identity=table[["contact", "tube_row", "tube_column", "support"]],
-                            power_sigma_ln=power_sigma_ln)
+                            power_sigma_ln=power_sigma_ln, levels_only=True)
 
 
 def _factor_nodes(posterior, table, ins, sizing, pod, count, prior, groups, power_sigma_ln):
@@ -356,13 +356,13 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     plugs = plugging_list(risk, target, always=must)
     sample = inspection_sample(risk, share)
     upper = 5 * interval if horizon is None else float(horizon)
-    after = _longest(risk_at, plugs, target, upper)
-    before = _longest(risk_at, must, target, upper)
     grid = np.linspace(0.0, upper, 41)
     risks = [risk_at(t) for t in grid]
     curve = pd.DataFrame({"interval": grid,
                           "p_any": [r.probability_any(plugs) for r in risks],
                           "p_any_before_plugging": [r.probability_any(must) for r in risks]})
+    after = _longest(risk_at, plugs, target, grid, curve["p_any"].to_numpy())
+    before = _longest(risk_at, must, target, grid, curve["p_any_before_plugging"].to_numpy())
     pm, pvm = predicted_vs_measured(models, sized, nodes_, sizing, group_of=None if group_of
                                     is None else dict(zip(table["contact"], group_of,
                                                           strict=True)))
@@ -389,13 +389,17 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
                       risk=risk, models=models, growth=growth)
 
 
-def _longest(risk_at, plugged, target, upper) -> float:
-    """The longest interval under ``target`` with the tubes ``plugged`` out of service."""
-    try:
-        return longest_interval(lambda t: _without(risk_at(t), plugged), target, upper=upper,
-                                xtol=1e-6 * upper)
-    except InputError:
+def _longest(risk_at, plugged, target, grid, curve) -> float:
+    """The longest interval under ``target`` with the tubes ``plugged`` out of service: Brent's
+    root in the cell of ``grid`` where the (non-decreasing) ``curve`` of P(any) crosses it."""
+    past = np.flatnonzero(curve > target)
+    if not past.size:
+        return float(grid[-1])
+    if past[0] == 0:
         return 0.0
+    return longest_interval(lambda t: _without(risk_at(t), plugged), target,
+                            lower=float(grid[past[0] - 1]), upper=float(grid[past[0]]),
+                            xtol=1e-6 * float(grid[-1]))
 
 
 def _without(risk: BundleRisk, tubes) -> BundleRisk:
