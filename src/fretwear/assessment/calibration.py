@@ -462,7 +462,10 @@ def _log_likelihood(obs: pd.DataFrame, models, contacts, techniques, grid) -> np
                 lik = tech.sizing.likelihood(measured[rows, None], d[rows]) if sized \
                     else tech.pod.miss(d[rows])
                 log_lik[rows] = np.log(np.maximum(lik, 0.0))
-    np.add.at(out, used["index"].to_numpy(int), log_lik)
+    index = used["index"].to_numpy(int)
+    order = np.argsort(index, kind="stable")  # each contact's results summed (reduceat)
+    first = np.flatnonzero(np.r_[True, np.diff(index[order]) != 0])
+    out[index[order][first]] = np.add.reduceat(log_lik[order], first, axis=0)
     return out
 
 

@@ -320,13 +320,51 @@ def depths_at_factors(models, elapsed_s, factors, *, chunk: int = 2048) -> np.nd
         for i in np.flatnonzero(~fast):
             out[i] = models[i].depth(np.full(f.shape[1], t[i]), factor=f[i], warn=False)
         rows = np.flatnonzero(fast)
-        if rows.size:
+        if rows.size and np.ndim(factors) == 1:  # one grid of factors: a shift in ln
+            family = Family.of([models[i] for i in rows])
+            scale = np.array([models[i].time_scale for i in rows], float)
+            for g in np.unique(family.group):
+                mine = np.flatnonzero(family.group == g)
+                out[rows[mine]] = _shifted_depths(family.reps[g], t[rows[mine]] / scale[mine]
+                                                  * family.ratio[mine], f[0], chunk)
+        elif rows.size:
             family = Family.of([models[i] for i in rows])
             scale = np.array([models[i].time_scale for i in rows], float)
             for start in range(0, rows.size, chunk):
                 part = np.arange(start, min(start + chunk, rows.size))
                 tau = (t[rows[part]] / scale[part])[:, None] * f[rows[part]]
                 out[rows[part]] = family.depth(tau, part)
+    return out
+
+
+_LN_STEP = 2e-4  # the step of ln(f·τ) of the shifted depths' table [-]
+
+
+def _shifted_depths(rep, tau, factors, chunk) -> np.ndarray:
+    """D(f_j·τ_i) [m] with D the representative's depth at the nominal time f·τ [time unit]:
+    ln D tabulated once on a uniform grid of v = ln(f·τ) (step 2e-4) and read linearly at
+    v = ln f_j + ln τ_i (an error of step²/8·|(ln D)''|, 0 for the power-law depths of
+    TUBE_BAV and TUBE_ALESAGE), instead of a geometry call per row and factor."""
+    out = np.full((tau.size, factors.size), np.nan)
+    with np.errstate(divide="ignore"):
+        ln_tau, ln_f = np.log(tau), np.log(factors)
+    worn = np.isfinite(ln_tau)  # τ = 0: unworn at every factor
+    out[~worn] = 0.0
+    if not worn.any():
+        return out
+    lo = float(ln_f.min() + ln_tau[worn].min())
+    hi = float(ln_f.max() + ln_tau[worn].max())
+    v = lo + _LN_STEP * np.arange(int(math.ceil((hi - lo) / _LN_STEP)) + 2)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        ln_d = np.log(rep.depth(np.minimum(np.exp(v), 1e300) * rep.time_scale, warn=False))
+    ln_d = np.where(np.isneginf(ln_d), -745.0, ln_d)  # depth 0: e^-745 = 0
+    for start in range(0, tau.size, chunk):
+        part = np.flatnonzero(worn)[start:start + chunk]
+        pos = (ln_tau[part, None] + ln_f[None, :] - lo) / _LN_STEP
+        k = np.clip(pos.astype(int), 0, v.size - 2)
+        w = pos - k
+        ln = (1.0 - w) * ln_d[k] + w * ln_d[k + 1]
+        out[part] = np.where(ln < -700.0, 0.0, np.exp(ln))  # unworn: 0
     return out
 
 
