@@ -56,12 +56,14 @@ class Assessment:
         ``p_exceed`` [-], ``plugged`` (already), ``plug`` (recommended), ``reason``,
         ``inspect`` (in the next sample).
     bundle : dict
-        ``p_any``, ``target``, ``interval``, ``longest_interval`` [time unit],
-        ``p_any_after_plugging``, ``plugging`` (tubes), ``must_plug`` (at or past the limit
-        as measured), ``inspection_sample``, ``share``, counts of contacts and tubes past the
-        limit and through the wall, ``worst_tube``.
+        ``p_any``, ``target``, ``interval``, ``longest_interval`` [time unit] (the plugging
+        list plugged), ``longest_interval_before_plugging`` [time unit] (only the tubes at the
+        limit as measured plugged), ``p_any_after_plugging``, ``plugging`` (tubes),
+        ``must_plug`` (at or past the limit as measured), ``inspection_sample``, ``share``,
+        counts of contacts and tubes past the limit and through the wall, ``worst_tube``.
     curve : DataFrame
-        ``interval`` [time unit] and ``p_any`` [-] (the tubes at the limit as measured plugged).
+        ``interval`` [time unit], ``p_any`` [-] (the plugging list plugged) and
+        ``p_any_before_plugging`` [-] (only the tubes at the limit as measured plugged).
     condition : DataFrame
         The as-found sized indications (:func:`fretwear.assessment.condition.as_found`).
     predictions : DataFrame
