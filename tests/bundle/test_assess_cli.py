@@ -59,3 +59,23 @@ def test_assess_says_the_technique_defaults_are_illustrative(bundle_out, tmp_pat
                  str(tmp_path / "oa")])
     assert code == 0
     assert "illustrative technique values (not qualified)" in capsys.readouterr().out
+
+
+def test_assess_and_calibrate_share_one_set_of_factor_options():
+    """Issue 26: the same quantities under one name and one default in both commands (the old
+    --contact-sigma/--power-sigma of assess are gone)."""
+    import re
+
+    from click.testing import CliRunner
+
+    from fretwear.cli import cli
+
+    texts = [CliRunner().invoke(cli, [name, "--help"], terminal_width=200).output
+             for name in ("assess", "calibrate")]
+    for text in texts:
+        flat = re.sub(r"\s+", " ", text)
+        for option, default in (("--contact-sigma-ln", "0.35"), ("--power-sigma-ln", "0.2"),
+                                ("--group-sigma-ln", "0.0")):
+            assert re.search(re.escape(option) + r" FLOAT RANGE .*?\[default: "
+                             + re.escape(default) + r";", flat), option
+        assert not re.search(r"--(contact|power)-sigma\b(?!-)", flat)
