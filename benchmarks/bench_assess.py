@@ -88,8 +88,8 @@ def main() -> None:
     floor = time.perf_counter() - t0
     t0, cpu0 = time.perf_counter(), time.process_time()
     result = assess(bundle, insp, interval=2.0, sizing=SizingModel(0.0, 1.0, 5e-5),
-                    pod=LogisticPOD.from_depths(1.5e-4, 3e-4), contact_sigma=0.3,
-                    power_sigma=0.2, target=0.05)
+                    pod=LogisticPOD.from_depths(1.5e-4, 3e-4), contact_sigma_ln=0.3,
+                    power_sigma_ln=0.2, target=0.05)
     wall, cpu = time.perf_counter() - t0, time.process_time() - cpu0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024 ** 2  # [GB] (Linux: kB)
     b = result.bundle
@@ -100,7 +100,10 @@ def main() -> None:
           f"{peak:.2f} GB (goal < 4 GB)")
     print(f"floor (one DepthModel.time_to per contact): {floor:.1f} s; assess / floor = "
           f"{wall / floor:.1f}")
-    print(f"P(any) {b['p_any']:.3g}, longest interval {b['longest_interval']:.3g} year, "
+    print(f"calibration: {result.inputs['calibration'].get('method')}, bundle factor "
+          f"{result.inputs['calibration'].get('factor_median', float('nan')):.3g}")
+    print(f"P(any) {b['p_any']:.3g}, longest interval {b['longest_interval']:.3g} year after "
+          f"plugging ({b['longest_interval_before_plugging']:.3g} before), "
           f"plugging {len(b['plugging'])} tube(s), sample {len(b['inspection_sample'])} tube(s)")
     print(f"uptime: {load}")
 

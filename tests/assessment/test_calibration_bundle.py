@@ -196,10 +196,39 @@ def test_bad_news_counts_leave_plugged_tubes_out():
     campaign = _sized_campaign().assign(plugged=["", "", "", "yes"])
     cal = calibrate_bundle(models, campaign, techniques=Technique(LogSizingModel(0.1)))
     fc = cal.forecast(40.0, limit=4e-4)
-    assert fc["contact"].iloc[0] == "D" and fc["plugged"].iloc[0]
+    assert fc["contact"].iloc[-1] == "D" and fc["plugged"].iloc[-1]  # not in service: last
     counts = summary_counts(fc)
     past = fc[~fc["plugged"] & (fc["depth_q50"] >= 4e-4)]
     assert counts["contacts_past_limit"] == len(past) > 0
     assert counts["tubes_plugged"] == 1
     assert counts["worst_contact"] == fc[~fc["plugged"]]["contact"].iloc[0]
     assert tube_summary(fc).set_index("tube").loc["D", "plugged"]
+
+
+def test_plugged_contacts_are_listed_not_forecast_and_leave_the_bundle_risk():
+    """Issue 26: a plugged tube is out of service. Its contacts (every contact of the tube,
+    a row naming one of them suffices) are listed as plugged with no depth and probability 0,
+    and their rows of the node decomposition are 0, so P(any) = the in-service contacts'
+    (1 - sum_k w_k prod_i (1 - p_ik) computed here without them)."""
+    models = {c: _model(p, c) for c, p in POWERS.items()}
+    identity = pd.DataFrame({"contact": list(POWERS), "tube_row": [1, 1, 2, 3],
+                             "tube_column": [1, 1, 2, 3], "support": "AVB1"})  # A, B: one tube
+    campaign = _sized_campaign().assign(plugged=["yes", "", "", ""])
+    cal = calibrate_bundle(models, campaign, techniques=Technique(LogSizingModel(0.1)),
+                           identity=identity)
+    assert cal.plugged.tolist() == [True, True, False, False]
+    fc = cal.forecast(40.0, limit=4e-4).set_index("contact")
+    for c in ("A", "B"):
+        assert fc.loc[c, "plugged"] and fc.loc[c, "exceedance"] == 0.0
+        assert fc.loc[c, "exceedance_prior"] == 0.0 and np.isnan(fc.loc[c, "depth_q50"])
+    assert (fc.loc[["C", "D"], "exceedance"] > 0).all()
+    p, w = cal.node_exceedance(40.0, limit=4e-4)
+    assert not p[:2].any()
+    # the same posterior with A and B unplugged: their rows were > 0, C and D's unchanged
+    free = calibrate_bundle(models, _sized_campaign(), techniques=Technique(LogSizingModel(0.1)),
+                            identity=identity)
+    p_free, w_free = free.node_exceedance(40.0, limit=4e-4)
+    assert p_free[:2].any()
+    np.testing.assert_array_equal(p[2:], p_free[2:])  # same process: the same floats
+    np.testing.assert_array_equal(w, w_free)
+

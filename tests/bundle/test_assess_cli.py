@@ -38,8 +38,9 @@ def test_assess_prints_the_librarys_numbers_bad_news_first(bundle_out, tmp_path,
     text = capsys.readouterr().out
     assert code == 0
     assert text.splitlines()[0].startswith("1 contact(s) on 1 tube(s) AT OR PAST")
+    # the command's defaults are the library's (one default per option)
     lib = assess(load(bundle_out), insp, interval=2.0, sizing=SizingModel(0.0, 1.0, 5e-5),
-                 pod=LogisticPOD.from_depths(1e-4, 2e-4), contact_sigma=0.3, power_sigma=0.2)
+                 pod=LogisticPOD.from_depths(1e-4, 2e-4))
     written = json.loads((out / "assessment.json").read_text(encoding="utf-8"))["bundle"]
     # same process and machine: the same floats
     assert written["p_any"] == lib.bundle["p_any"]
@@ -58,3 +59,23 @@ def test_assess_says_the_technique_defaults_are_illustrative(bundle_out, tmp_pat
                  str(tmp_path / "oa")])
     assert code == 0
     assert "illustrative technique values (not qualified)" in capsys.readouterr().out
+
+
+def test_assess_and_calibrate_share_one_set_of_factor_options():
+    """Issue 26: the same quantities under one name and one default in both commands (the old
+    --contact-sigma/--power-sigma of assess are gone)."""
+    import re
+
+    from click.testing import CliRunner
+
+    from fretwear.cli import cli
+
+    texts = [CliRunner().invoke(cli, [name, "--help"], terminal_width=200).output
+             for name in ("assess", "calibrate")]
+    for text in texts:
+        flat = re.sub(r"\s+", " ", text)
+        for option, default in (("--contact-sigma-ln", "0.35"), ("--power-sigma-ln", "0.2"),
+                                ("--group-sigma-ln", "0.0")):
+            assert re.search(re.escape(option) + r" FLOAT RANGE .*?\[default: "
+                             + re.escape(default) + r";", flat), option
+        assert not re.search(r"--(contact|power)-sigma\b(?!-)", flat)

@@ -109,7 +109,7 @@ def test_bundle_calibration(bundle_output, tmp_path, capsys):
     tables, identity = bundle_predictions(out)
     direct = calibrate_bundle(tables, insp, techniques=Technique(LogSizingModel(0.1)),
                               prior=FactorPrior(LogNormal(1.0, sigma_ln=0.5)),
-                              identity=identity)
+                              identity=identity, power_sigma_ln=0.2)  # the option's default
     median, (low, high) = direct.bundle_factor()
     assert f"bundle factor: median {median:.4g}, 90 % [{low:.4g}, {high:.4g}]" in text
     assert text.index("at or past the limit") < text.index("bundle factor")

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fretwear._lazy import pandas as pd
+from fretwear.assessment.growth import depths_at_factors
 from fretwear.assessment.inspections import Inspections, read_field_inspections
 from fretwear.assessment.posterior import (
     GridLevels,
@@ -210,6 +211,7 @@ class BundleCalibration:
         else:
             weights = g.bundle * h
         keep = weights > 1e-16 * weights.max()
+        p[self.plugged] = 0.0  # out of service: no part in the bundle's risk
         return np.clip(p[:, keep], 0.0, 1.0), weights[keep] / weights[keep].sum()
 
     def forecast(self, instant: float, *, limit=None,
@@ -224,7 +226,8 @@ class BundleCalibration:
             [m] (posterior quantiles), ``limit`` [m], ``wall_fraction_q50`` [-],
             ``exceedance`` [-] and ``exceedance_prior`` [-] (the same contact under the
             prior), ``factor_median``, ``factor_sigma_ln`` [-]; sorted by ``exceedance`` then
-            ``depth_q50``, the worst first.
+            ``depth_q50``, the worst first. A plugged contact (its tube plugged) is listed
+            with ``plugged`` True, no depth (NaN) and exceedances 0: it is not in service.
         """
         q = check_probabilities(q, closed=False)
         g = self.levels
@@ -251,8 +254,10 @@ class BundleCalibration:
         walls = np.array([self.models[c].wall_thickness or math.nan for c in self.contacts])
         if "depth_q50" in out:
             out["wall_fraction_q50"] = out["depth_q50"].to_numpy() / walls
-        out["exceedance"] = exceed
-        out["exceedance_prior"] = exceed_prior
+        out["exceedance"] = np.where(self.plugged, 0.0, exceed)
+        out["exceedance_prior"] = np.where(self.plugged, 0.0, exceed_prior)
+        gone = [c for c in out.columns if c.startswith("depth_q") or c == "wall_fraction_q50"]
+        out.loc[self.plugged, gone] = np.nan
         out["factor_median"] = np.exp(ppf_rows(g.grid, g.contacts, [0.5])[:, 0])
         out["factor_sigma_ln"] = sd
         key = "depth_q50" if "depth_q50" in out else out.columns[4]
@@ -350,7 +355,7 @@ def _resolve(table: pd.DataFrame, contacts: list, identity) -> pd.DataFrame:
     contacts; an unknown contact or location is an InputError naming the line."""
     index = {c: i for i, c in enumerate(contacts)}
     rows = []
-    for _, r in table.iterrows():
+    for r in table.to_dict("records"):
         if r["contact"]:
             if r["contact"] not in index:
                 raise InputError(f"inspections line {r['line']}: unknown contact "
@@ -403,11 +408,20 @@ def _scatter(contacts, prior: FactorPrior, power_sigma_ln) -> np.ndarray:
 
 
 def _check_power_proportional(models, contacts, scatter_power) -> None:
-    """σ_P enters as a factor only where the worn volume is proportional to the power."""
+    """σ_P enters as a factor only where the worn volume is proportional to the power (checked
+    once per law, coefficients and geometry: the property of the law, not of the power)."""
+    seen = set()
     for i, c in enumerate(contacts):
         if scatter_power[i] <= 0:
             continue
         m = models[c]
+        if not m.power:  # no wear: a factor on it changes nothing
+            continue
+        key = (id(m.law), id(m.geometry), repr(m.coefficients_mobile),
+               repr(m.coefficients_obstacle), len(m.powers), m.sector_arc is None)
+        if key in seen:
+            continue
+        seen.add(key)
         t = m.time_scale
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RangeWarning)
@@ -420,28 +434,38 @@ def _check_power_proportional(models, contacts, scatter_power) -> None:
 
 
 def _log_likelihood(obs: pd.DataFrame, models, contacts, techniques, grid) -> np.ndarray:
-    """log L_i(λ) on the grid (n, N): the sum over each contact's sized and NDD results."""
+    """log L_i(λ) on the grid (n, N): the sum over each contact's sized and NDD results (the
+    depths of every result at every factor in one :func:`depths_at_factors` call)."""
     out = np.zeros((len(contacts), grid.size))
-    f = np.exp(grid)
-    for _, r in obs.iterrows():
-        if r["status"] == "not inspected":
-            continue
-        m = models[r["contact"]]
-        tech = techniques[r["technique"]]
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RangeWarning)
-            d = m.depth(np.full(grid.size, r["elapsed_s"]), factor=f, warn=False)
-        d = np.where(np.isnan(d), np.inf, d)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            if r["status"] == "sized":
-                lik = tech.sizing.likelihood(r["depth"], np.where(np.isinf(d), 1e300, d))
-            else:
-                if tech.pod is None:
-                    raise InputError(f"inspections line {r['line']}: NDD with technique "
-                                     f"{r['technique']!r}, which has no POD; give "
-                                     "Technique(sizing, pod=LogisticPOD(...))")
-                lik = tech.pod.miss(np.where(np.isinf(d), 1e300, d))
-            out[r["index"]] += np.log(np.maximum(lik, 0.0))
+    used = obs[obs["status"] != "not inspected"]
+    if used.empty:
+        return out
+    for name in set(used.loc[used["status"] == "ndd", "technique"]):
+        if techniques[name].pod is None:
+            line = used.loc[(used["status"] == "ndd") & (used["technique"] == name),
+                            "line"].iloc[0]
+            raise InputError(f"inspections line {line}: NDD with technique {name!r}, which "
+                             "has no POD; give Technique(sizing, pod=LogisticPOD(...))")
+    d = depths_at_factors([models[c] for c in used["contact"]], used["elapsed_s"].to_numpy(),
+                          np.exp(grid))
+    d = np.where(np.isnan(d), 1e300, d)  # beyond the geometry: through everything
+    log_lik = np.empty(d.shape)
+    status, technique = used["status"].to_numpy(), used["technique"].to_numpy()
+    measured = used["depth"].to_numpy(float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for name in set(technique):
+            tech = techniques[name]
+            for sized in (True, False):
+                rows = (technique == name) & ((status == "sized") == sized)
+                if not rows.any():
+                    continue
+                lik = tech.sizing.likelihood(measured[rows, None], d[rows]) if sized \
+                    else tech.pod.miss(d[rows])
+                log_lik[rows] = np.log(np.maximum(lik, 0.0))
+    index = used["index"].to_numpy(int)
+    order = np.argsort(index, kind="stable")  # each contact's results summed (reduceat)
+    first = np.flatnonzero(np.r_[True, np.diff(index[order]) != 0])
+    out[index[order][first]] = np.add.reduceat(log_lik[order], first, axis=0)
     return out
 
 
@@ -451,8 +475,8 @@ def _grid_around(center: float, half: float, n: int) -> np.ndarray:
 
 def calibrate_bundle(predictions, inspections, *, techniques=None,
                      prior: FactorPrior | None = None, groups=None, identity=None,
-                     power_sigma_ln=0.0, origin_date=None, time_unit: str = "year"
-                     ) -> BundleCalibration:
+                     power_sigma_ln=0.0, origin_date=None, time_unit: str = "year",
+                     levels_only: bool = False) -> BundleCalibration:
     """The hierarchical posterior of every contact's factor from a field campaign.
 
     Parameters
@@ -475,6 +499,10 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
         ln(1 + half-width/power)/z); adds to the contact scatter.
     origin_date, time_unit
         For an inspection file with dates (:func:`read_field_inspections`).
+    levels_only : bool
+        True: the bundle and group levels and each contact's evidence only, what
+        :func:`fretwear.assessment.outage.assess` reads (no per-contact posterior: the
+        forecast and the factor summary then need a full calibration).
 
     Returns
     -------
@@ -519,7 +547,7 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     scatter = _scatter(contacts, prior, power_sigma_ln)
     _check_power_proportional(models, contacts, scatter ** 2 - prior.contact_sigma_ln ** 2)
     mu0, tau0 = math.log(prior.bundle.median), float(prior.bundle.sigma_ln)
-    tau_g = prior.group_sigma_ln if len(names) > 1 else 0.0
+    tau_g = prior.group_sigma_ln if groups is not None else 0.0
     half = 10.0 * math.sqrt(tau0 ** 2 + tau_g ** 2 + float(scatter.max()) ** 2)
     grid = _grid_around(mu0, half, _PASS1)
     levels = _solve(obs, models, contacts, inspections.techniques, grid, group_of, names,
@@ -530,37 +558,44 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     step = max(min(float(sd.min()) / 10.0, (hi - lo) / 200.0), (hi - lo) / (_MAX_POINTS - 1))
     grid = np.arange(lo, hi + step, step)
     levels = _solve(obs, models, contacts, inspections.techniques, grid, group_of, names,
-                    scatter, mu0, tau0, tau_g)
+                    scatter, mu0, tau0, tau_g, posteriors=not levels_only)
     inspected = np.zeros(len(contacts), bool)
     inspected[obs.loc[obs["status"] != "not inspected", "index"].to_numpy(int)] = True
     plugged = np.zeros(len(contacts), bool)
     plugged[obs.loc[obs["plugged"].astype(bool), "index"].to_numpy(int)] = True
+    if identity is not None and plugged.any():  # a plugged tube: every contact of it
+        where = identity.drop_duplicates("contact").set_index("contact")
+        spot = [(where.at[c, "tube_row"], where.at[c, "tube_column"]) if c in where.index
+                else (c, None) for c in contacts]
+        gone = {spot[i] for i in np.flatnonzero(plugged)}
+        plugged |= np.array([t in gone for t in spot])
     result = BundleCalibration(contacts=contacts, models=models, groups=names,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
                                observations=obs, inspected=inspected, plugged=plugged)
-    return _with_depths(result)
+    return result if levels_only else _with_depths(result)
 
 
 def _solve(obs, models, contacts, techniques, grid, group_of, names, scatter, mu0, tau0,
-           tau_g) -> GridLevels:
+           tau_g, posteriors: bool = True) -> GridLevels:
     log_lik = _log_likelihood(obs, models, contacts, techniques, grid)
     if not np.isfinite(log_lik.max(axis=1)).all():
         bad = contacts[int(np.flatnonzero(~np.isfinite(log_lik.max(axis=1)))[0])]
         raise InputError(f"calibration: no factor within {math.exp(grid[0]):.3g}..."
                          f"{math.exp(grid[-1]):.3g} explains the inspections of contact "
                          f"{bad!r}; check their units (depth [m], depth_mm [mm])")
-    return solve_levels(grid, log_lik, group_of, len(names), scatter, mu0, tau0, tau_g)
+    return solve_levels(grid, log_lik, group_of, len(names), scatter, mu0, tau0, tau_g,
+                        contacts=posteriors)
 
 
 def _with_depths(result: BundleCalibration) -> BundleCalibration:
     obs = result.observations.copy()
     median = np.exp(ppf_rows(result.levels.grid, result.levels.contacts, [0.5])[:, 0])
     f0 = float(result.prior.bundle.median)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RangeWarning)
-        obs["prior_depth"] = [float(result.models[c].depth(t, factor=f0, warn=False))
-                              for c, t in zip(obs["contact"], obs["elapsed_s"], strict=True)]
-        obs["posterior_depth"] = [
-            float(result.models[c].depth(t, factor=median[i], warn=False))
-            for c, t, i in zip(obs["contact"], obs["elapsed_s"], obs["index"], strict=True)]
+    factors = np.column_stack([np.full(len(obs), f0),
+                               median[obs["index"].to_numpy(int)] if len(obs) else []])
+    d = depths_at_factors([result.models[c] for c in obs["contact"]],
+                          obs["elapsed_s"].to_numpy(float), factors) if len(obs) \
+        else np.empty((0, 2))
+    obs["prior_depth"] = d[:, 0]
+    obs["posterior_depth"] = d[:, 1]
     return BundleCalibration(**{**result.__dict__, "observations": obs})

@@ -65,7 +65,7 @@ def as_found(sized: pd.DataFrame, sizing) -> pd.DataFrame:
 
 
 def predicted_vs_measured(models, sized: pd.DataFrame, nodes, sizing, *,
-                          level: float = 0.90) -> tuple[pd.DataFrame, dict]:
+                          level: float = 0.90, group_of=None) -> tuple[pd.DataFrame, dict]:
     """The prediction of every sized indication against its measurement.
 
     Parameters
@@ -78,6 +78,8 @@ def predicted_vs_measured(models, sized: pd.DataFrame, nodes, sizing, *,
     sizing : SizingModel
     level : float
         The central interval's probability [-].
+    group_of : mapping of contact to int, optional
+        Each contact's row of ``nodes.table`` (nodes with a group level).
 
     Returns
     -------
@@ -88,12 +90,13 @@ def predicted_vs_measured(models, sized: pd.DataFrame, nodes, sizing, *,
     """
     z, hz = np.polynomial.hermite_e.hermegauss(24)
     hz = hz / hz.sum()
-    lam, w, s = nodes.log_factor, nodes.weights, nodes.sigma
-    g = np.exp(lam[:, None] + s * z[None, :]).ravel()
+    table, w, s = nodes.table, nodes.weights, nodes.sigma
+    growth = np.exp(table[:, :, None] + s * z[None, None, :]).reshape(table.shape[0], -1)
     wg = (w[:, None] * hz[None, :]).ravel()
     rows = []
     for r in sized.itertuples(index=False):
         m = models[r.contact]
+        g = growth[0 if group_of is None else group_of[r.contact]]
         elapsed = (float(r.instant) - m.origin) * m.time_scale
         d = np.nan_to_num(m.depth(elapsed, factor=g, warn=False), nan=m.geometry.mobile_radius)
         mean = sizing.intercept + sizing.slope * d

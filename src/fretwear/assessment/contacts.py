@@ -146,9 +146,10 @@ def field_inspections(source, contacts: pd.DataFrame | None = None, *, origin_da
     >>> f["ndd"].tolist(), f["depth"].tolist()[0]
     ([False, True], 0.0003)
     """
-    from fretwear.assessment.inspections import read_field_inspections
+    from fretwear.assessment.inspections import Inspections, read_field_inspections
 
-    table = read_field_inspections(source, origin_date=origin_date, time_unit=time_unit).table
+    table = source.table if isinstance(source, Inspections) else \
+        read_field_inspections(source, origin_date=origin_date, time_unit=time_unit).table
     located = table["contact"].astype(str).str.len() == 0
     if located.any():
         if contacts is None:

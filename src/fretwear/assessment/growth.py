@@ -27,6 +27,7 @@ sampling. With s = 0 (no contact scatter, no power interval), Φ̄ is the step 1
 
 from __future__ import annotations
 
+import itertools
 import math
 import warnings
 from dataclasses import dataclass
@@ -36,7 +37,7 @@ from scipy import special
 
 from fretwear.errors import InputError
 
-__all__ = ["FactorNodes", "GrowthModel"]
+__all__ = ["FactorNodes", "GrowthModel", "depths_at_factors", "scalable"]
 
 _U_HALF = 8.0     # the NDD grid of u = ln g spans λ ± 8 s around the nodes
 _U_POINTS = 129
@@ -56,7 +57,9 @@ class FactorNodes:
     Attributes
     ----------
     log_factor : numpy.ndarray
-        λ_k = ln f at the nodes [-].
+        λ_k = ln f at the nodes [-], shape (nodes,); or (groups, nodes) with a group level
+        (support type, region): λ_gk, group g's log-factor at the joint node k, each
+        contact taking its group's row (:meth:`GrowthModel.build`'s ``group_of``).
     weights : numpy.ndarray
         w_k [-], summing to 1.
     contact_sigma : float
@@ -73,14 +76,21 @@ class FactorNodes:
     def __post_init__(self) -> None:
         lam = np.atleast_1d(np.asarray(self.log_factor, float))
         w = np.atleast_1d(np.asarray(self.weights, float))
-        if lam.shape != w.shape or not np.isfinite(lam).all() or (w < 0).any() or w.sum() <= 0:
-            raise InputError("FactorNodes: one finite log-factor and one weight >= 0 per node")
+        if lam.ndim not in (1, 2) or lam.shape[-1:] != w.shape or not np.isfinite(lam).all() \
+                or (w < 0).any() or w.sum() <= 0:
+            raise InputError("FactorNodes: one finite log-factor (per group) and one weight "
+                             ">= 0 per node")
         for name in ("contact_sigma", "power_sigma"):
             v = getattr(self, name)
             if not (math.isfinite(v) and v >= 0):
                 raise InputError(f"{name} must be a standard deviation of ln >= 0, got {v!r}")
         object.__setattr__(self, "log_factor", lam)
         object.__setattr__(self, "weights", w / w.sum())
+
+    @property
+    def table(self) -> np.ndarray:
+        """λ_gk, shape (groups, nodes) [-] (one row without a group level)."""
+        return np.atleast_2d(self.log_factor)
 
     @property
     def sigma(self) -> float:
@@ -106,11 +116,81 @@ class FactorNodes:
         lam = np.log(np.asarray(posterior.ppf(u), float))
         return cls(lam, w, contact_sigma=float(contact_sigma), power_sigma=float(power_sigma))
 
-    def quantiles(self, q) -> np.ndarray:
-        """Quantiles of ln g, the mixture Σ w_k N(λ_k, s²) [-]."""
+    @classmethod
+    def from_levels(cls, grid, bundle, log_groups=None, group_sigma: float = 0.0, *,
+                    count: int = 16, per_group: int | None = None, contact_sigma: float = 0.0,
+                    power_sigma: float = 0.0) -> FactorNodes:
+        """Nodes of a hierarchical posterior on a grid of λ = ln f
+        (:mod:`fretwear.assessment.posterior`).
+
+        The bundle level μ is taken at ``count`` nodes, λ = F⁻¹(Φ(x_k)) at the probabilists'
+        Gauss-Hermite nodes x_k. With a group level (``log_groups``, τ_g = ``group_sigma`` > 0)
+        the groups are independent given μ, each with the posterior
+
+        .. math:: p(c_g \\mid \\mu, D) \\propto N(c_g; \\mu, \\tau_g^2)\\,
+                  \\prod_{i \\in g} M_i(c_g)
+
+        (M_i a contact's evidence, ``GridLevels.log_evidence``; a group with no inspected
+        contact keeps N(μ, τ_g²), taken in closed form), at ``per_group`` nodes given each μ
+        node: the joint nodes are their tensor product, count·per_group^G of them, so that
+        contacts of one group share their group's factor at every node (the dependence
+        P(any) needs). Default per_group: 8 for one group, 5 for two, 3 beyond.
+
+        Parameters
+        ----------
+        grid : array_like
+            Uniform grid of λ [-], shape (N,).
+        bundle : array_like
+            Density of μ on the grid, shape (N,).
+        log_groups : array_like, optional
+            log Π_{i∈g} M_i(c) of each group on the grid, shape (G, N) (zeros: no data).
+        group_sigma : float
+            τ_g [-].
+        count, per_group : int
+            Nodes of μ, and of each group's factor given μ.
+        contact_sigma, power_sigma : float
+            σ_c and σ_P [-] (the class's attributes).
+
+        Examples
+        --------
+        >>> grid = np.linspace(-6, 6, 2401)
+        >>> n = FactorNodes.from_levels(grid, np.exp(-0.5 * (grid / 0.5) ** 2),
+        ...                             np.zeros((2, grid.size)), 0.3, count=8)
+        >>> n.table.shape, round(float(n.weights @ n.table[1] ** 2), 3)   # 0.5² + 0.3²
+        ((2, 200), 0.34)
+        """
+        from fretwear.assessment.posterior import ppf_rows
+
+        grid = np.asarray(grid, float)
+        x, w = np.polynomial.hermite_e.hermegauss(int(count))
+        u = np.clip(0.5 * special.erfc(-x / math.sqrt(2.0)), 1e-300, 1 - 1e-16)
+        mu = ppf_rows(grid, np.asarray(bundle, float), u)[0]
+        sig = {"contact_sigma": float(contact_sigma), "power_sigma": float(power_sigma)}
+        if log_groups is None or not group_sigma > 0:
+            return cls(mu, w, **sig)
+        log_groups = np.atleast_2d(np.asarray(log_groups, float))
+        groups = log_groups.shape[0]
+        m = int(per_group or (8 if groups == 1 else 5 if groups == 2 else 3))
+        xm, wm = np.polynomial.hermite_e.hermegauss(m)
+        um = 0.5 * special.erfc(-xm / math.sqrt(2.0))
+        cond = np.empty((groups, mu.size, m))
+        for g in range(groups):
+            if not np.any(log_groups[g]):
+                cond[g] = mu[:, None] + group_sigma * xm[None, :]
+                continue
+            log_p = -0.5 * ((grid[None, :] - mu[:, None]) / group_sigma) ** 2 + log_groups[g]
+            top = np.max(log_p, axis=1, keepdims=True)
+            cond[g] = ppf_rows(grid, np.exp(log_p - np.where(np.isfinite(top), top, 0.0)), um)
+        pick = np.array(list(itertools.product(range(m), repeat=groups))).reshape(-1, groups)
+        table = np.stack([cond[g][:, pick[:, g]].ravel() for g in range(groups)])
+        weights = (w[:, None] * np.prod((wm / wm.sum())[pick], axis=1)[None, :]).ravel()
+        return cls(table, weights, **sig)
+
+    def quantiles(self, q, group: int = 0) -> np.ndarray:
+        """Quantiles of ln g, the mixture Σ w_k N(λ_gk, s²) [-] (of ``group``'s contacts)."""
         from scipy.optimize import brentq
 
-        s, lam, w = self.sigma, self.log_factor, self.weights
+        s, lam, w = self.sigma, self.table[group], self.weights
         out = []
         for level in np.atleast_1d(q):
             if s == 0:
@@ -144,9 +224,7 @@ class Family:
         members: list[list[int]] = []
         group = np.zeros(len(models), int)
         for i, m in enumerate(models):
-            alike = (len(m.powers) == 1 and m.sector_arc is None and m.rows is None
-                     and m.replacement is None and m.initial_mobile == 0
-                     and m.initial_obstacle == 0 and m.law.linear_in_time)
+            alike = scalable(m)
             key = (id(m.law), id(m.geometry), _items(m.coefficients_mobile[0]),
                    _items(m.coefficients_obstacle[0]), m.limit_depth, m.time_scale,
                    m.origin) if alike else ("own", i)
@@ -206,6 +284,90 @@ class Family:
         return out
 
 
+def scalable(model) -> bool:
+    """Whether ``model``'s depth at the factor f after t is its nominal depth after f·t (a law
+    linear in time, one power term, unworn at its origin, no sector, restart or replacement)."""
+    m = model
+    return (len(m.powers) == 1 and m.sector_arc is None and m.rows is None
+            and m.replacement is None and m.initial_mobile == 0 and m.initial_obstacle == 0
+            and m.law.linear_in_time)
+
+
+def depths_at_factors(models, elapsed_s, factors, *, chunk: int = 2048) -> np.ndarray:
+    """``models[i].depth(elapsed_s[i], factor=factors[i])`` [m] for every row i, shape
+    (rows, k); NaN beyond a geometry's range.
+
+    The rows of :func:`scalable` models are computed a :class:`Family` group at a time (the
+    depth at f after t is the nominal one after f·t: 10⁴ rows × 10³ factors in a few calls,
+    ``chunk`` rows at once), the others one model call each.
+
+    Parameters
+    ----------
+    models : sequence of DepthModel
+        One per row (repeats allowed).
+    elapsed_s : array_like
+        Time since each row's model's origin [s], shape (rows,).
+    factors : array_like
+        Factors f > 0 [-], shape (rows, k) or (k,) (the same for every row).
+    """
+    n = len(models)
+    t = np.asarray(elapsed_s, float).reshape(n)
+    f = np.broadcast_to(np.asarray(factors, float), (n, np.shape(factors)[-1]))
+    out = np.empty(f.shape)
+    fast = np.array([scalable(m) for m in models], bool)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for i in np.flatnonzero(~fast):
+            out[i] = models[i].depth(np.full(f.shape[1], t[i]), factor=f[i], warn=False)
+        rows = np.flatnonzero(fast)
+        if rows.size and np.ndim(factors) == 1:  # one grid of factors: a shift in ln
+            family = Family.of([models[i] for i in rows])
+            scale = np.array([models[i].time_scale for i in rows], float)
+            for g in np.unique(family.group):
+                mine = np.flatnonzero(family.group == g)
+                out[rows[mine]] = _shifted_depths(family.reps[g], t[rows[mine]] / scale[mine]
+                                                  * family.ratio[mine], f[0], chunk)
+        elif rows.size:
+            family = Family.of([models[i] for i in rows])
+            scale = np.array([models[i].time_scale for i in rows], float)
+            for start in range(0, rows.size, chunk):
+                part = np.arange(start, min(start + chunk, rows.size))
+                tau = (t[rows[part]] / scale[part])[:, None] * f[rows[part]]
+                out[rows[part]] = family.depth(tau, part)
+    return out
+
+
+_LN_STEP = 2e-4  # the step of ln(f·τ) of the shifted depths' table [-]
+
+
+def _shifted_depths(rep, tau, factors, chunk) -> np.ndarray:
+    """D(f_j·τ_i) [m] with D the representative's depth at the nominal time f·τ [time unit]:
+    ln D tabulated once on a uniform grid of v = ln(f·τ) (step 2e-4) and read linearly at
+    v = ln f_j + ln τ_i (an error of step²/8·|(ln D)''|, 0 for the power-law depths of
+    TUBE_BAV and TUBE_ALESAGE), instead of a geometry call per row and factor."""
+    out = np.full((tau.size, factors.size), np.nan)
+    with np.errstate(divide="ignore"):
+        ln_tau, ln_f = np.log(tau), np.log(factors)
+    worn = np.isfinite(ln_tau)  # τ = 0: unworn at every factor
+    out[~worn] = 0.0
+    if not worn.any():
+        return out
+    lo = float(ln_f.min() + ln_tau[worn].min())
+    hi = float(ln_f.max() + ln_tau[worn].max())
+    v = lo + _LN_STEP * np.arange(int(math.ceil((hi - lo) / _LN_STEP)) + 2)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        ln_d = np.log(rep.depth(np.minimum(np.exp(v), 1e300) * rep.time_scale, warn=False))
+    ln_d = np.where(np.isneginf(ln_d), -745.0, ln_d)  # depth 0: e^-745 = 0
+    for start in range(0, tau.size, chunk):
+        part = np.flatnonzero(worn)[start:start + chunk]
+        pos = (ln_tau[part, None] + ln_f[None, :] - lo) / _LN_STEP
+        k = np.clip(pos.astype(int), 0, v.size - 2)
+        w = pos - k
+        ln = (1.0 - w) * ln_d[k] + w * ln_d[k + 1]
+        out[part] = np.where(ln < -700.0, 0.0, np.exp(ln))  # unworn: 0
+    return out
+
+
 def _items(coefficients):
     return None if coefficients is None else tuple(sorted(coefficients.items()))
 
@@ -229,10 +391,26 @@ class GrowthModel:
     u_grid: np.ndarray      # (ndd, U)
     ndd_miss: np.ndarray    # (ndd, U) 1 − POD of the depth at the inspection, on the grid
     family: Family | None = None
+    group_of: np.ndarray | None = None  # each contact's row of nodes.table (None: row 0)
+
+    def log_factors(self, rows=None) -> np.ndarray:
+        """λ of the contacts at positions ``rows`` (all: None) at every node, shape
+        (contacts, nodes), or (1, nodes) when every contact shares it [-]."""
+        table = self.nodes.table
+        if table.shape[0] == 1 or self.group_of is None:
+            return table[:1]
+        return table[self.group_of if rows is None else self.group_of[rows]]
+
+    def factor_quantile(self, q: float) -> np.ndarray:
+        """The quantile ``q`` of each contact's growth factor g [-] (its group's mixture)."""
+        per_group = np.exp([self.nodes.quantiles([q], group=k)[0]
+                            for k in range(self.nodes.table.shape[0])])
+        return per_group[self.group_of] if self.group_of is not None and per_group.size > 1 \
+            else np.full(self.found.size, per_group[0])
 
     @classmethod
-    def build(cls, models, found, kind, measured, nodes: FactorNodes, *, sizing, pod
-              ) -> GrowthModel:
+    def build(cls, models, found, kind, measured, nodes: FactorNodes, *, sizing, pod,
+              group_of=None) -> GrowthModel:
         """Precompute τ_L, τ(d₀) and the NDD posteriors.
 
         Parameters
@@ -248,8 +426,18 @@ class GrowthModel:
         nodes : FactorNodes
         sizing : SizingModel
         pod : LogisticPOD
+        group_of : array_like of int, optional
+            Each contact's group, its row of ``nodes.table`` (with a group level).
         """
         kind = np.asarray(kind, int)
+        if nodes.table.shape[0] > 1:
+            group_of = np.asarray(group_of, int) if group_of is not None else None
+            if group_of is None or group_of.shape != kind.shape or group_of.min() < 0 \
+                    or group_of.max() >= nodes.table.shape[0]:
+                raise InputError("nodes with a group level need each contact's group "
+                                 f"(group_of, integers in [0, {nodes.table.shape[0]}))")
+        else:
+            group_of = None
         family = Family.of(models)
         a = np.asarray(found, float) - family.origin
         if (a < 0).any():
@@ -262,8 +450,9 @@ class GrowthModel:
                              sizing.true_depth_sigma(), limits_all[sized])
         tau_d0 = family.nominal_time(d0, sized)  # τ(d₀) = 0 for d₀ <= 0 (unworn)
         ndd = np.flatnonzero(kind == 2)
-        s, lam = nodes.sigma, nodes.log_factor
-        tails = np.zeros((ndd.size, lam.size, _U_POINTS))
+        s, lam = nodes.sigma, nodes.table
+        lam_ndd = lam[:1] if group_of is None else lam[group_of[ndd]]
+        tails = np.zeros((ndd.size, lam.shape[1], _U_POINTS))
         grids = np.zeros((ndd.size, _U_POINTS))
         misses = np.zeros((ndd.size, _U_POINTS))
         if s > 0 and ndd.size:
@@ -272,11 +461,11 @@ class GrowthModel:
             misses = pod.miss(np.where(np.isnan(depth), np.inf, depth))
             grids = np.broadcast_to(u, misses.shape).copy()
             seg = _segments(grids[:, None, :-1], grids[:, None, 1:], misses[:, None, :-1],
-                            misses[:, None, 1:], lam[None, :, None], s)
+                            misses[:, None, 1:], lam_ndd[:, :, None], s)
             tails[:, :, :-1] = np.cumsum(seg[:, :, ::-1], axis=2)[:, :, ::-1]
         return cls(nodes=nodes, found=a, tau_limit=tau_l, kind=kind, tau_d0=tau_d0,
                    h_d0=h, d0_nodes=d0, ndd_tail=tails, u_grid=grids, ndd_miss=misses,
-                   family=family)
+                   family=family, group_of=group_of)
 
     def probabilities(self, interval: float) -> np.ndarray:
         """p_ik, the probability that contact i exceeds its limit by the end of ``interval``
@@ -284,17 +473,17 @@ class GrowthModel:
         T = float(interval)
         if not (math.isfinite(T) and T >= 0):
             raise InputError(f"the interval must be a time >= 0, got {interval!r}")
-        lam, s = self.nodes.log_factor, self.nodes.sigma
+        s = self.nodes.sigma
         with np.errstate(divide="ignore", invalid="ignore"):
             c = np.log(self.tau_limit / (self.found + T))  # ln of the g that reaches L
-        p = _step_or_sf(c[:, None], lam[None, :], s)
+        p = _step_or_sf(c[:, None], self.log_factors(), s)
         sized = np.flatnonzero(self.kind == 1)
         if sized.size:
             with np.errstate(divide="ignore", invalid="ignore"):
                 gap = (self.tau_limit[sized, None] - self.tau_d0) / T if T > 0 else \
                     np.where(self.tau_limit[sized, None] > self.tau_d0, np.inf, -np.inf)
                 cj = np.where(gap > 0, np.log(gap), -np.inf)
-            pj = _step_or_sf(cj[:, :, None], lam[None, None, :], s)
+            pj = _step_or_sf(cj[:, :, None], self.log_factors(sized)[:, None, :], s)
             p[sized] = np.einsum("ij,ijk->ik", self.h_d0, pj)
         ndd = np.flatnonzero(self.kind == 2)
         if ndd.size and s > 0:  # the tail from the cut: its partial segment, then whole ones
@@ -309,7 +498,7 @@ class GrowthModel:
                 m_cut = np.exp(np.log(np.maximum(m0, 1e-300)) + (cut - u0) / step
                                * (np.log(np.maximum(m1, 1e-300)) - np.log(np.maximum(m0, 1e-300))))
             part = _segments(cut[:, None], u1[:, None], m_cut[:, None], m1[:, None],
-                             lam[None, :], s)
+                             self.log_factors(ndd), s)
             total = self.ndd_tail[:, :, 0]
             tail = part + self.ndd_tail[rows, :, j + 1]
             p[ndd] = np.where(total > 0, tail / np.where(total > 0, total, 1.0), 0.0)
@@ -326,15 +515,16 @@ class GrowthModel:
         if rows is not None:
             return self._subset(rows).end_nominal_times(interval, q)
         q = np.atleast_1d(np.asarray(q, float))
-        lam, s, w = self.nodes.log_factor, self.nodes.sigma, self.nodes.weights
-        g = np.exp(self.nodes.quantiles(q))
-        out = (self.found + interval)[:, None] * g[None, :]
+        table, s, w = self.nodes.table, self.nodes.sigma, self.nodes.weights
+        g = np.exp([self.nodes.quantiles(q, group=k) for k in range(table.shape[0])])
+        own = np.zeros(self.found.size, int) if self.group_of is None else self.group_of
+        out = (self.found + interval)[:, None] * g[own]
         z, hz = np.polynomial.hermite_e.hermegauss(16)
         hz = hz / hz.sum()
-        growth = np.exp(lam[:, None] + s * z[None, :]).ravel()       # (K·Z,)
-        wg = (w[:, None] * hz[None, :]).ravel()
+        growth = np.exp(table[:, :, None] + s * z[None, None, :]).reshape(table.shape[0], -1)
+        wg = (w[:, None] * hz[None, :]).ravel()                       # (K·Z,)
         for row, i in enumerate(np.flatnonzero(self.kind == 1)):
-            tau = self.tau_d0[row][:, None] + interval * growth[None, :]
+            tau = self.tau_d0[row][:, None] + interval * growth[own[i]][None, :]
             out[i] = _weighted_quantiles(tau.ravel(), np.outer(self.h_d0[row], wg).ravel(), q)
         for row, i in enumerate(np.flatnonzero(self.kind == 2)):
             if s == 0:
@@ -399,7 +589,8 @@ def _subset_fields(model: GrowthModel, rows) -> dict:
             "kind": model.kind[rows], "tau_d0": model.tau_d0[sized], "h_d0": model.h_d0[sized],
             "d0_nodes": model.d0_nodes[sized], "ndd_tail": model.ndd_tail[ndd],
             "u_grid": model.u_grid[ndd], "ndd_miss": model.ndd_miss[ndd],
-            "family": None if model.family is None else model.family.subset(rows)}
+            "family": None if model.family is None else model.family.subset(rows),
+            "group_of": None if model.group_of is None else model.group_of[rows]}
 
 
 def _step_or_sf(c, lam, s):

@@ -247,8 +247,8 @@ def _depth(value: float, column: str, wall: float, where: str) -> float:
     return value * (1e-3 if column == "depth_mm" else 1.0)
 
 
-def _row(frame, i: int, where: str, depth_col: str | None, wall: float) -> dict[str, Any]:
-    cell = {c: frame[c].iloc[i] for c in frame.columns}
+def _row(cols, i: int, where: str, depth_col: str | None, wall: float) -> dict[str, Any]:
+    cell = {c: column[i] for c, column in cols.items()}
     inspected = _flag(cell.get("inspected"), True, where, "inspected")
     plugged = _flag(cell.get("plugged"), False, where, "plugged")
     raw = cell.get(depth_col) if depth_col else None
@@ -293,18 +293,18 @@ def _instant(cell_instant, cell_date, where: str, origin, seconds: float) -> tup
     return (date - origin).total_seconds() / seconds, date
 
 
-def _location(frame, i: int, where: str) -> dict[str, Any]:
-    out: dict[str, Any] = {"contact": _text(frame["contact"].iloc[i]) if "contact" in frame
+def _location(cols, i: int, where: str) -> dict[str, Any]:
+    out: dict[str, Any] = {"contact": _text(cols["contact"][i]) if "contact" in cols
                            else ""}
     for name in ("tube_row", "tube_column", "sector"):
-        value = number(frame[name].iloc[i]) if name in frame and \
-            _text(frame[name].iloc[i]) else math.nan
+        value = number(cols[name][i]) if name in cols and \
+            _text(cols[name][i]) else math.nan
         if not math.isnan(value) and not (math.isfinite(value) and value == int(value)
                                           and (value >= 1 or name != "sector")):
             raise InputError(f"{where}: {name} must be an integer, got "
-                             f"{_short(frame[name].iloc[i])!r}")
+                             f"{_short(cols[name][i])!r}")
         out[name] = value
-    out["support"] = _text(frame["support"].iloc[i]) if "support" in frame else ""
+    out["support"] = _text(cols["support"][i]) if "support" in cols else ""
     if not out["contact"] and (math.isnan(out["tube_row"]) or math.isnan(out["tube_column"])):
         raise InputError(f"{where}: no contact and no tube location (tube_row, tube_column); "
                          "give one")
@@ -379,14 +379,15 @@ def read_field_inspections(source, techniques=None, *, origin_date=None,
     wall = math.nan if wall_thickness is None else float(wall_thickness)
     depth_col = next((c for c in ("depth", "depth_mm", "depth_pct") if c in frame), None)
     rows = []
+    cols = {c: frame[c].to_numpy() for c in frame.columns}  # read once, not a cell at a time
     for i in range(len(frame)):
         where = _where(label, lines, i)
-        row = _location(frame, i, where)
+        row = _location(cols, i, where)
         row["instant"], row["date"] = _instant(
-            frame["instant"].iloc[i] if "instant" in frame else None,
-            frame["date"].iloc[i] if "date" in frame else None, where, origin, TIME_UNITS[unit])
-        row["technique"] = _text(frame["technique"].iloc[i]) if "technique" in frame else ""
-        row.update(_row(frame, i, where, depth_col, wall))
+            cols["instant"][i] if "instant" in cols else None,
+            cols["date"][i] if "date" in cols else None, where, origin, TIME_UNITS[unit])
+        row["technique"] = _text(cols["technique"][i]) if "technique" in cols else ""
+        row.update(_row(cols, i, where, depth_col, wall))
         row["line"] = lines[i] if lines else i + 1
         rows.append(row)
     table = pd.DataFrame(rows)[list(FIELD_COLUMNS)]

@@ -11,15 +11,18 @@ users' terms.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from fretwear._lazy import pandas as pd
+from fretwear.assessment.calibration import BundleCalibration, FactorPrior, support_type
 from fretwear.assessment.condition import as_found, predicted_vs_measured
 from fretwear.assessment.contacts import bundle_models, field_inspections
 from fretwear.assessment.growth import FactorNodes, GrowthModel
+from fretwear.assessment.inspections import Inspections, read_field_inspections
 from fretwear.assessment.operational import (
     BundleRisk,
     bundle_risk,
@@ -53,12 +56,14 @@ class Assessment:
         ``p_exceed`` [-], ``plugged`` (already), ``plug`` (recommended), ``reason``,
         ``inspect`` (in the next sample).
     bundle : dict
-        ``p_any``, ``target``, ``interval``, ``longest_interval`` [time unit],
-        ``p_any_after_plugging``, ``plugging`` (tubes), ``must_plug`` (at or past the limit
-        as measured), ``inspection_sample``, ``share``, counts of contacts and tubes past the
-        limit and through the wall, ``worst_tube``.
+        ``p_any``, ``target``, ``interval``, ``longest_interval`` [time unit] (the plugging
+        list plugged), ``longest_interval_before_plugging`` [time unit] (only the tubes at the
+        limit as measured plugged), ``p_any_after_plugging``, ``plugging`` (tubes),
+        ``must_plug`` (at or past the limit as measured), ``inspection_sample``, ``share``,
+        counts of contacts and tubes past the limit and through the wall, ``worst_tube``.
     curve : DataFrame
-        ``interval`` [time unit] and ``p_any`` [-] (the tubes at the limit as measured plugged).
+        ``interval`` [time unit], ``p_any`` [-] (the plugging list plugged) and
+        ``p_any_before_plugging`` [-] (only the tubes at the limit as measured plugged).
     condition : DataFrame
         The as-found sized indications (:func:`fretwear.assessment.condition.as_found`).
     predictions : DataFrame
@@ -143,49 +148,107 @@ class Assessment:
         return lines
 
 
-def _posterior_nodes(posterior, models, sized, sizing, count, contact_sigma, power_sigma):
+def _group_names(table, groups) -> list | None:
+    """Each contact's group name (None: no group level)."""
+    if groups is None:
+        return None
+    if isinstance(groups, str):
+        if groups != "support type":
+            raise InputError(f"groups must be None, 'support type' or a mapping of contact to "
+                             f"group, got {groups!r}")
+        return [support_type(s) or "other" for s in table["support"].astype(str)]
+    if not isinstance(groups, Mapping):
+        raise InputError("groups must be None, 'support type' or a mapping of contact to group")
+    return [str(groups.get(c, "other")) for c in table["contact"]]
+
+
+def _inspected_contacts(ins, table) -> list:
+    """The contacts an inspection row names or locates (the others give the calibration
+    nothing: leaving them out changes no level's posterior)."""
+    t = ins.table
+    named = set(t.loc[t["contact"].astype(str) != "", "contact"].astype(str))
+    located = t[t["contact"].astype(str) == ""]
+    if len(located):
+        spots = set(zip(located["tube_row"].astype(float), located["tube_column"].astype(float),
+                        strict=True))
+        where = [(float(r), float(c)) in spots for r, c in zip(table["tube_row"],
+                                                               table["tube_column"], strict=True)]
+        named |= set(table.loc[where, "contact"])
+    return [c for c in table["contact"] if c in named]
+
+
+def _calibrated(table, ins, sizing, pod, prior, names, power_sigma_ln):
+    """The hierarchical calibration of the inspected contacts (None: nothing inspected)."""
+    from fretwear.assessment.calibration import calibrate_bundle
+    from fretwear.assessment.inspections import Technique
+
+    if ins is None or not (ins.table["status"] != "not inspected").any():
+        return None
+    keep = _inspected_contacts(ins, table)
+    models = dict(zip(table["contact"], table["model"], strict=True))
+    tech = Technique(sizing, pod, name="assess")
+    ins = Inspections(ins.table, {n: tech for n in set(ins.table["technique"])}, ins.source)
+    mapping = None if names is None else dict(zip(table["contact"], names, strict=True))
+    return calibrate_bundle({c: models[c] for c in keep}, ins, prior=prior,
+                            groups=None if mapping is None else
+                            {c: mapping[c] for c in keep},
+                            identity=table[["contact", "tube_row", "tube_column", "support"]],
+                            power_sigma_ln=power_sigma_ln, levels_only=True)
+
+
+def _factor_nodes(posterior, table, ins, sizing, pod, count, prior, groups, power_sigma_ln):
+    """(FactorNodes, each contact's group index or None, what was fitted)."""
     if isinstance(posterior, FactorNodes):
-        return posterior, {"method": "given nodes"}
-    if hasattr(posterior, "levels") and hasattr(posterior, "scatter"):
-        # the hierarchical calibration (fretwear.assessment.calibration.BundleCalibration):
-        # its bundle-level posterior at nodes, its contact scatter and power spread
-        from fretwear.uncertainty.calibration import GridPosterior
-
-        levels = posterior.levels
-        dist = GridPosterior(log_factor=np.asarray(levels.grid, float),
-                             density=np.asarray(levels.bundle, float).reshape(-1))
-        s_c = float(posterior.prior.contact_sigma_ln)
-        s_p = math.sqrt(max(float(np.median(np.asarray(posterior.scatter) ** 2)) - s_c ** 2,
-                            0.0))
-        return (FactorNodes.from_posterior(dist, count=count, contact_sigma=s_c,
-                                           power_sigma=s_p),
-                {"method": "hierarchical", "factor_median": posterior.bundle_factor()[0]})
-    if posterior is not None:  # a CalibrationResult or a distribution of the factor
-        dist = getattr(posterior, "posterior", posterior)
-        return FactorNodes.from_posterior(dist, count=count, contact_sigma=contact_sigma,
-                                          power_sigma=power_sigma), {"method": "given"}
-    from fretwear.uncertainty.calibration import DEFAULT_PRIOR, calibrate
-
-    if sized.empty:
-        return FactorNodes.from_posterior(DEFAULT_PRIOR, count=count,
-                                          contact_sigma=contact_sigma,
-                                          power_sigma=power_sigma), {"method": "prior"}
-    true = np.asarray(sizing.true_depth(sized["depth"].to_numpy(float)))
-    keep = true > 0
-    rows = pd.DataFrame({"contact": sized["contact"].to_numpy()[keep],
-                         "instant": sized["instant"].to_numpy(float)[keep],
-                         "depth": true[keep],
-                         "measurement_sigma": sizing.true_depth_sigma() / true[keep]})
-    cal = calibrate({c: models[c] for c in rows["contact"]}, rows)
-    return (FactorNodes.from_posterior(cal.posterior, count=count, contact_sigma=contact_sigma,
-                                       power_sigma=power_sigma),
-            {"method": cal.method, "factor_median": cal.factor_median,
-             "factor_interval_95": cal.factor_interval(0.95)})
+        return posterior, None, {"method": "given nodes"}
+    if posterior is not None and not isinstance(posterior, BundleCalibration):
+        dist = getattr(posterior, "posterior", posterior)  # a single factor's posterior
+        return FactorNodes.from_posterior(dist, count=count, contact_sigma=prior.contact_sigma_ln,
+                                          power_sigma=power_sigma_ln), None, {"method": "given"}
+    names = _group_names(table, groups)
+    cal = _calibrated(table, ins, sizing, pod, prior, names, power_sigma_ln) \
+        if posterior is None else posterior
+    if cal is not None:
+        prior = cal.prior
+        s_c = float(prior.contact_sigma_ln)
+        s_p = math.sqrt(max(float(np.median(np.asarray(cal.scatter) ** 2)) - s_c ** 2, 0.0))
+        grid, bundle = cal.levels.grid, cal.levels.bundle
+        if names is None and len(cal.groups) > 1:  # a given calibration's own groups
+            own = dict(zip(cal.contacts, (cal.groups[k] for k in cal.group_of), strict=True))
+            names = [own.get(c) or support_type(s) or "other"
+                     for c, s in zip(table["contact"], table["support"].astype(str),
+                                     strict=True)]
+    else:
+        s_c, s_p = float(prior.contact_sigma_ln), float(power_sigma_ln)
+        half = 12.0 * math.hypot(prior.bundle.sigma_ln, prior.group_sigma_ln)
+        grid = math.log(prior.bundle.median) + np.linspace(-half, half, 2401)
+        bundle = np.exp(-0.5 * ((grid - math.log(prior.bundle.median))
+                                / prior.bundle.sigma_ln) ** 2)
+    tau_g = float(prior.group_sigma_ln)
+    if names is None or tau_g == 0:
+        nodes = FactorNodes.from_levels(grid, bundle, count=count, contact_sigma=s_c,
+                                        power_sigma=s_p)
+        group_of, labels = None, []
+    else:
+        labels = sorted(set(names))
+        group_of = np.array([labels.index(n) for n in names])
+        log_groups = np.zeros((len(labels), grid.size))
+        if cal is not None:  # Σ_{i∈g} log M_i(c) of the calibrated contacts
+            where = dict(zip(table["contact"], group_of, strict=True))
+            np.add.at(log_groups, [where[c] for c in cal.contacts], cal.levels.log_evidence)
+        nodes = FactorNodes.from_levels(grid, bundle, log_groups, tau_g,
+                                        count=max(count // 2, 4), contact_sigma=s_c,
+                                        power_sigma=s_p)
+    fit = {"method": "hierarchical" if cal is not None else "prior", "groups": labels}
+    if cal is not None:
+        median, interval = cal.bundle_factor()
+        fit.update(factor_median=median, factor_interval_90=interval)
+    return nodes, group_of, fit
 
 
 def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
-           target: float = 0.05, posterior=None, contact_sigma: float = 0.0,
-           power_sigma: float = 0.0, share: float = 0.9, limit: float | None = None,
+           target: float = 0.05, posterior=None, contact_sigma_ln: float = 0.35,
+           power_sigma_ln: float = 0.2, group_sigma_ln: float = 0.0, groups=None,
+           prior=None, share: float = 0.9, limit: float | None = None,
            horizon: float | None = None, nodes: int = 16, origin_date=None) -> Assessment:
     """Condition monitoring and operational assessment of a bundle at an outage.
 
@@ -193,8 +256,8 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     ----------
     bundle : BundleResult
         A finished bundle run (:func:`fretwear.bundle.run_bundle` or :func:`fretwear.bundle.load`).
-    inspections : path-like or DataFrame, optional
-        The outage's inspections (:func:`fretwear.assessment.contacts.field_inspections`);
+    inspections : path-like, DataFrame or Inspections, optional
+        The outage's inspections (:func:`fretwear.assessment.inspections.read_field_inspections`);
         None: nothing inspected (the outage at the bundle's last instant).
     interval : float
         The next operating interval [the bundle's time unit], > 0.
@@ -204,14 +267,24 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
         The technique's probability of detection.
     target : float
         The probability target of P(any tube past its limit) [-] (commonly 0.05).
-    posterior : FactorNodes, BundleCalibration, CalibrationResult or distribution, optional
-        The calibrated factor: nodes, the hierarchical calibration
-        (:func:`fretwear.assessment.calibration.calibrate_bundle`: its bundle-level posterior,
-        contact scatter and power spread; a group level is not carried), a calibration or a
-        distribution; default :func:`fretwear.uncertainty.calibrate` on the sized indications
-        (their true depths, σ_ln = (σ/b)/d).
-    contact_sigma, power_sigma : float
-        σ_ln of one contact's factor about the bundle's, and of the factor on its power [-].
+    posterior : BundleCalibration, FactorNodes, CalibrationResult or distribution, optional
+        The calibrated factor. Default: the hierarchical censored calibration
+        (:func:`fretwear.assessment.calibration.calibrate_bundle`) of these inspections, sized
+        results through ``sizing``, NDD through 1 − ``pod``, uninspected contacts giving
+        nothing, with ``prior`` (its bundle level), ``contact_sigma_ln``, ``group_sigma_ln``
+        and ``power_sigma_ln``. A single factor's posterior
+        (:func:`fretwear.uncertainty.calibrate`'s result, or a distribution) is also taken,
+        with ``contact_sigma_ln`` and ``power_sigma_ln`` about it.
+    contact_sigma_ln, power_sigma_ln, group_sigma_ln : float
+        σ of ln of one contact's factor about its group's, of the factor on each contact's
+        power, and of a group's factor about the bundle's [-] (0: no group level).
+    groups : None, "support type" or mapping of contact to group name
+        The group level (default "support type" when ``group_sigma_ln`` > 0): the contacts
+        of a group share its factor at every node of the assessment
+        (:meth:`FactorNodes.from_levels`).
+    prior : FactorPrior, optional
+        The calibration's prior; default the bundle level of :class:`FactorPrior` (median 1,
+        scatter 3) with the three σ above.
     share : float
         The share of the bundle's risk the next inspection's sample covers [-].
     limit : float, optional
@@ -219,7 +292,7 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     horizon : float, optional
         The longest interval searched [time unit] (default 5 × interval).
     nodes : int
-        Quadrature nodes of the factor's posterior.
+        Quadrature nodes of the bundle level's posterior.
     origin_date : str, optional
         The date of the bundle's instant 0, for inspections dated (ISO 8601).
 
@@ -232,21 +305,30 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     if not (math.isfinite(interval) and interval > 0):
         raise InputError(f"interval must be a time > 0 [the bundle's time unit], got "
                          f"{interval!r}")
+    if prior is None:
+        prior = FactorPrior(contact_sigma_ln=contact_sigma_ln, group_sigma_ln=group_sigma_ln)
+    if groups is None and prior.group_sigma_ln > 0:
+        groups = "support type"
     table = bundle_models(bundle, limit=limit)
-    models = dict(zip(table["contact"], table["model"], strict=True))
     unit = str(table["time_unit"].dropna().iloc[0]) if table["time_unit"].notna().any() \
         else "year"
-    insp = field_inspections(inspections, table, origin_date=origin_date, time_unit=unit) \
-        if inspections is not None else \
+    ins = None
+    if inspections is not None:
+        ins = inspections if isinstance(inspections, Inspections) else \
+            read_field_inspections(inspections, origin_date=origin_date, time_unit=unit)
+    insp = field_inspections(ins, table) if ins is not None else \
         pd.DataFrame({"contact": pd.Series(dtype=str), "instant": pd.Series(dtype=float),
                       "depth": pd.Series(dtype=float), "ndd": pd.Series(dtype=bool),
                       "plugged": pd.Series(dtype=bool)})
+    models = dict(zip(table["contact"], table["model"], strict=True))
     unknown = sorted(set(insp["contact"]) - set(models))
     if unknown:
         raise InputError(f"inspected contacts not computed in the bundle: {unknown[:5]} "
                          "(names as in the manifest's contact column)")
     outage = float(insp["instant"].max()) if insp["instant"].notna().any() \
         else float(table["last_instant"].max())
+    nodes_, group_of, fit = _factor_nodes(posterior, table, ins, sizing, pod, nodes, prior,
+                                          groups, power_sigma_ln)
     table = table.merge(insp, on="contact", how="left")
     flag = lambda name: table[name].astype("boolean").fillna(False).to_numpy(bool)  # noqa: E731
     plugged_tubes = set(table.loc[flag("plugged"), "tube"])
@@ -255,12 +337,12 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
                                        np.where(flag("ndd"), "NDD", "sized")))
     table["found_at"] = table["instant"].fillna(outage)
     sized = table[table["state"] == "sized"]
-    nodes_, fit = _posterior_nodes(posterior, models, sized, sizing, nodes, contact_sigma,
-                                   power_sigma)
-    live = table[table["state"] != "plugged"].reset_index(drop=True)
+    service = (table["state"] != "plugged").to_numpy()
+    live = table[service].reset_index(drop=True)
     kind = live["state"].map({"not inspected": 0, "sized": 1, "NDD": 2}).to_numpy()
     growth = GrowthModel.build(list(live["model"]), live["found_at"], kind, live["depth"],
-                               nodes_, sizing=sizing, pod=pod)
+                               nodes_, sizing=sizing, pod=pod,
+                               group_of=None if group_of is None else group_of[service])
     unit = str(live["time_unit"].iloc[0]) if len(live) else ""
 
     codes, names = pd.factorize(live["tube"])  # once: the tube of each contact
@@ -276,21 +358,22 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     plugs = plugging_list(risk, target, always=must)
     sample = inspection_sample(risk, share)
     upper = 5 * interval if horizon is None else float(horizon)
-    with_must = lambda t: _without(risk_at(t), must)  # noqa: E731
-    try:
-        longest = longest_interval(with_must, target, upper=upper, xtol=1e-6 * upper)
-    except InputError:
-        longest = 0.0
     grid = np.linspace(0.0, upper, 41)
+    risks = [risk_at(t) for t in grid]
     curve = pd.DataFrame({"interval": grid,
-                          "p_any": [with_must(t).probability_any() for t in grid]})
-    pm, pvm = predicted_vs_measured(models, sized, nodes_, sizing)
+                          "p_any": [r.probability_any(plugs) for r in risks],
+                          "p_any_before_plugging": [r.probability_any(must) for r in risks]})
+    after = _longest(risk_at, plugs, target, grid, curve["p_any"].to_numpy())
+    before = _longest(risk_at, must, target, grid, curve["p_any_before_plugging"].to_numpy())
+    pm, pvm = predicted_vs_measured(models, sized, nodes_, sizing, group_of=None if group_of
+                                    is None else dict(zip(table["contact"], group_of,
+                                                          strict=True)))
     contacts = _contact_rows(table, live, growth, risk, interval, sizing)
     tubes = _tube_rows(contacts, risk, plugs, must, sample, plugged_tubes)
     bundle_row = {
         "p_any": risk.probability_any(), "target": target, "interval": interval, "unit": unit,
-        "outage": outage, "longest_interval": longest, "horizon": upper,
-        "plugging": plugs, "must_plug": must, "p_any_after_plugging":
+        "outage": outage, "longest_interval": after, "longest_interval_before_plugging": before,
+        "horizon": upper, "plugging": plugs, "must_plug": must, "p_any_after_plugging":
             risk.probability_any(plugs), "inspection_sample": sample, "share": share,
         "past_limit_contacts": int(cm["past_limit"].sum()),
         "past_limit_tubes": int(cm.loc[cm["past_limit"], "tube"].nunique()),
@@ -300,11 +383,25 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
         "contacts": len(table), "tubes": int(table["tube"].nunique()),
         "plugged_already": sorted(plugged_tubes), **{f"fit_{k}": v for k, v in pvm.items()}}
     inputs = {"bundle": getattr(bundle, "output", None), "sizing": sizing, "pod": pod,
-              "calibration": fit, "contact_sigma": contact_sigma, "power_sigma": power_sigma,
+              "calibration": fit, "contact_sigma_ln": prior.contact_sigma_ln,
+              "power_sigma_ln": power_sigma_ln, "group_sigma_ln": prior.group_sigma_ln,
               "limit": limit, "nodes": nodes}
     return Assessment(contacts=contacts, tubes=tubes, bundle=bundle_row, curve=curve,
                       condition=cm, predictions=pm, nodes=nodes_, inputs=inputs, fit=pvm,
                       risk=risk, models=models, growth=growth)
+
+
+def _longest(risk_at, plugged, target, grid, curve) -> float:
+    """The longest interval under ``target`` with the tubes ``plugged`` out of service: Brent's
+    root in the cell of ``grid`` where the (non-decreasing) ``curve`` of P(any) crosses it."""
+    past = np.flatnonzero(curve > target)
+    if not past.size:
+        return float(grid[-1])
+    if past[0] == 0:
+        return 0.0
+    return longest_interval(lambda t: _without(risk_at(t), plugged), target,
+                            lower=float(grid[past[0] - 1]), upper=float(grid[past[0]]),
+                            xtol=1e-6 * float(grid[-1]))
 
 
 def _without(risk: BundleRisk, tubes) -> BundleRisk:
@@ -315,7 +412,7 @@ def _without(risk: BundleRisk, tubes) -> BundleRisk:
 def _contact_rows(table, live, growth, risk, interval, sizing) -> pd.DataFrame:
     p = growth.probabilities(interval) @ risk.weights
     tau = growth.end_nominal_times(interval, QUANTILES)
-    g50 = float(np.exp(growth.nodes.quantiles([0.5])[0]))
+    g50 = growth.factor_quantile(0.5)
     rows = np.arange(len(live))
     ends = growth.family.depth(tau, rows)
     found = growth.family.depth((growth.found * g50)[:, None], rows)[:, 0]

@@ -72,8 +72,8 @@ class GridLevels:
         Density of μ, shape (N,).
     groups : numpy.ndarray
         Density of c_g, shape (G, N).
-    contacts : numpy.ndarray
-        Density of λ_i, shape (n, N).
+    contacts : numpy.ndarray or None
+        Density of λ_i, shape (n, N) (None: not computed, ``solve_levels(contacts=False)``).
     log_lik : numpy.ndarray
         log L_i(λ) of each contact, shape (n, N).
     log_evidence : numpy.ndarray
@@ -112,8 +112,8 @@ def _smoothed(log_lik, kernels, which):
 
 
 def solve_levels(grid: np.ndarray, log_lik: np.ndarray, group_of: np.ndarray, n_groups: int,
-                 scatter: np.ndarray, mu0: float, tau0: float, tau_group: float
-                 ) -> GridLevels:
+                 scatter: np.ndarray, mu0: float, tau0: float, tau_group: float,
+                 *, contacts: bool = True) -> GridLevels:
     """The posterior of every level (module docstring) on ``grid``.
 
     Parameters
@@ -132,6 +132,9 @@ def solve_levels(grid: np.ndarray, log_lik: np.ndarray, group_of: np.ndarray, n_
         Prior of μ: mean and standard deviation of ln f [-] (τ₀ > 0).
     tau_group : float
         τ_g [-], ≥ 0 (0: every group's factor is the bundle's).
+    contacts : bool
+        False: the bundle and group levels only (``GridLevels.contacts`` None), all the
+        operational assessment reads.
     """
     h = float(grid[1] - grid[0])
     values, which = np.unique(np.round(scatter, 12), return_inverse=True)
@@ -151,6 +154,9 @@ def solve_levels(grid: np.ndarray, log_lik: np.ndarray, group_of: np.ndarray, n_
     with np.errstate(divide="ignore"):
         log_c = log_group + np.log(np.maximum(ratio @ k_group, _TINY))
     groups = _normalise(log_c, h)
+    if not contacts:
+        return GridLevels(grid=grid, bundle=bundle, groups=groups, contacts=None,
+                          log_lik=log_lik, log_evidence=log_m)
     # p(λ_i|D) = L_i(λ) · Σ_c K_i(c, λ) p(c)/M_i(c)
     with np.errstate(over="ignore", invalid="ignore"):
         top = np.max(np.where(np.isfinite(log_m), log_m, -np.inf), axis=1, keepdims=True)

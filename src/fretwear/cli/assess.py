@@ -12,7 +12,12 @@ from rich.table import Table
 
 from fretwear.assessment.outage import assess
 from fretwear.bundle import load
-from fretwear.cli.calibrate_field import technique_from_options
+from fretwear.cli.calibrate_field import (
+    campaign_options,
+    factor_options,
+    technique_from_options,
+    technique_options,
+)
 
 _HELP = """The outage decision of a bundle: which tubes to plug, which to inspect next, how long
 the generator may run.
@@ -22,13 +27,21 @@ the outage's inspections (CSV or Parquet): per contact or tube location (tube_ro
 tube_column, support), instant, a depth (depth [m], depth_mm or depth_pct) or NDD (no
 detectable degradation), inspected and plugged (yes/no). A contact without a row was not
 inspected. The technique's sizing error (measured = a + b·true + e, e ~ N(0, σ)) and its
-logistic POD (depths detected 50 % and 90 % of the time) are yours to give: the defaults are
-illustrative, not qualified.
+logistic POD (depths detected 50 % and 90 % of the time) are yours to give: without them,
+illustrative values, not qualified (--sizing-sigma-mm 0.05, --pod-a50-mm 0.15, --pod-a90-mm
+0.30).
+
+The wear factor is calibrated on these inspections by the hierarchical censored calibration
+(as fretwear calibrate --bundle, docs/assessment.md): sized results through the sizing model,
+NDD through 1 - POD, uninspected tubes giving nothing; a bundle factor, a contact scatter
+(--contact-sigma-ln), the power's spread (--power-sigma-ln) and, with --group-sigma-ln > 0,
+a factor per support type shared by its contacts in the assessment.
 
 Prints, bad news first: tubes at or past the plugging limit and through the wall as measured,
 then the probability that any tube exceeds its limit by the end of --interval against
---target, the longest interval under the target, the tubes to plug and the next inspection's
-sample; writes the tables into -o OUT (and OUT/report.html with --report).
+--target, the tubes to plug, the longest interval under the target once they are plugged (and
+with only the tubes at the limit plugged), and the next inspection's sample; writes the tables
+into -o OUT (and OUT/report.html with --report).
 """
 
 _ILLUSTRATIVE = {"sizing_sigma_mm": 0.05, "pod_a50_mm": 0.15, "pod_a90_mm": 0.30}
@@ -43,33 +56,19 @@ _ILLUSTRATIVE = {"sizing_sigma_mm": 0.05, "pod_a50_mm": 0.15, "pod_a90_mm": 0.30
               default=0.05, show_default=True, help="Target of P(any tube past its limit).")
 @click.option("--limit", type=click.FloatRange(0, 1, min_open=True), default=None,
               help="Plugging limit, fraction of the wall (default each contact's, 0.4).")
-@click.option("--sizing-intercept-mm", type=float, default=0.0, show_default=True,
-              help="Sizing intercept a [mm].")
-@click.option("--sizing-slope", type=click.FloatRange(min=0, min_open=True), default=1.0,
-              show_default=True, help="Sizing slope b [-].")
-@click.option("--sizing-sigma-mm", type=click.FloatRange(min=0, min_open=True), default=None,
-              help="Sizing error σ [mm] (illustrative default 0.05).")
-@click.option("--pod-a50-mm", type=click.FloatRange(min=0, min_open=True), default=None,
-              help="Depth detected half the time [mm] (illustrative default 0.15).")
-@click.option("--pod-a90-mm", type=click.FloatRange(min=0, min_open=True), default=None,
-              help="Depth detected 90 % of the time [mm] (illustrative default 0.30).")
-@click.option("--contact-sigma", type=click.FloatRange(min=0), default=0.3, show_default=True,
-              help="σ of ln of one contact's factor about the bundle's [-].")
-@click.option("--power-sigma", type=click.FloatRange(min=0), default=0.2, show_default=True,
-              help="σ of ln of the factor on each contact's wear power [-].")
+@technique_options
+@factor_options
 @click.option("--share", type=click.FloatRange(0, 1, min_open=True), default=0.9,
               show_default=True, help="Share of the bundle's risk the next sample covers.")
-@click.option("--origin-date", default=None,
-              help="Date of the bundle's instant 0 (ISO 8601), for inspections given by date.")
-@click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
-              help="Tubes shown on the terminal (all of them in OUT/tubes.csv).")
+@campaign_options
 @click.option("-o", "--output", type=click.Path(file_okay=False, path_type=Path),
               required=True, help="Directory of the tables (created).")
 @click.option("--report", "with_report", is_flag=True,
               help="Also write OUT/report.html, one self-contained page.")
 def command(bundle_out, inspections, interval, target, limit, sizing_intercept_mm,
-            sizing_slope, sizing_sigma_mm, pod_a50_mm, pod_a90_mm, contact_sigma,
-            power_sigma, share, origin_date, top, output, with_report) -> None:
+            sizing_slope, sizing_sigma_mm, pod_a50_mm, pod_a90_mm, contact_sigma_ln,
+            power_sigma_ln, group_sigma_ln, share, origin_date, top, output,
+            with_report) -> None:
     given = {"sizing_sigma_mm": sizing_sigma_mm, "pod_a50_mm": pod_a50_mm,
              "pod_a90_mm": pod_a90_mm}
     defaulted = [k for k, v in given.items() if v is None]
@@ -77,8 +76,8 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
     tech = technique_from_options(None, values["sizing_sigma_mm"], sizing_intercept_mm,
                                   sizing_slope, values["pod_a50_mm"], values["pod_a90_mm"])
     result = assess(load(bundle_out), inspections, interval=interval, sizing=tech.sizing,
-                    pod=tech.pod,
-                    target=target, contact_sigma=contact_sigma, power_sigma=power_sigma,
+                    pod=tech.pod, target=target, contact_sigma_ln=contact_sigma_ln,
+                    power_sigma_ln=power_sigma_ln, group_sigma_ln=group_sigma_ln,
                     share=share, limit=limit, origin_date=origin_date)
     result.inputs.update({"bundle": str(bundle_out), "inspections": str(inspections),
                           "illustrative": defaulted})
@@ -100,15 +99,20 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
     if b["p_any"] <= b["target"]:  # else said first, with the bad news
         console.print(f"P(any tube past its limit by the end of {b['interval']:g} {unit}) = "
                       f"{b['p_any']:.3g} (target {b['target']:g})")
-    longest = b["longest_interval"]
-    console.print("longest operating interval under the target: "
-                  + ("none: the target is missed at the outage already (plug first)"
-                     if longest == 0 else f"{longest:.3g} {unit}" if longest < b["horizon"]
-                     else f"over {b['horizon']:g} {unit} (the horizon searched)")
-                  + (" with the tubes at the limit plugged" if b["must_plug"] else ""))
     plugs = b["plugging"]
     console.print(f"plugging list ({len(plugs)} tube(s)): {', '.join(plugs) or 'none'}; "
                   f"P(any) after plugging {b['p_any_after_plugging']:.3g}")
+    console.print("longest operating interval under the target: "
+                  + _interval(b["longest_interval"], b) + " with the plugging list plugged; "
+                  + _interval(b["longest_interval_before_plugging"], b)
+                  + (" with only the tubes at the limit plugged" if b["must_plug"]
+                     else " with none plugged"))
+    fit = result.inputs.get("calibration", {})
+    if fit.get("method") == "hierarchical":
+        low, high = fit["factor_interval_90"]
+        console.print(f"calibrated bundle factor (hierarchical, NDD censored): median "
+                      f"{fit['factor_median']:.3g}, 90 % [{low:.3g}, {high:.3g}]"
+                      + (f"; groups {', '.join(fit['groups'])}" if fit.get("groups") else ""))
     sample = b["inspection_sample"]
     console.print(f"next inspection sample ({len(sample)} tube(s), {b['share']:.0%} of the "
                   f"risk): {', '.join(sample[:20])}{' ...' if len(sample) > 20 else ''}")
@@ -132,6 +136,14 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
                       ": give your technique's")
     console.print(f"tables in {output}" + (f", report {output / 'report.html'}"
                                             if with_report else ""))
+
+
+def _interval(value: float, b: dict) -> str:
+    if value == 0:
+        return "none (the target is missed at the outage already)"
+    if value >= b["horizon"]:
+        return f"over {b['horizon']:g} {b['unit']} (the horizon searched)"
+    return f"{value:.3g} {b['unit']}"
 
 
 def _pct(x) -> str:

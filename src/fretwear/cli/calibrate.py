@@ -40,8 +40,11 @@ probability of exceeding the limit (depth_limit × wall thickness) of every cont
 
 With --bundle, the field campaign's hierarchical calibration (docs/assessment.md): sized
 results through the sizing model, NDD (no detectable degradation) through 1 - POD, tubes not
-inspected give nothing; a bundle factor, a contact scatter (--contact-sigma-ln) and optionally
-a support-type level; bad news first, the --top worst tubes, every contact to -o.
+inspected give nothing; a bundle factor, a contact scatter (--contact-sigma-ln), the power's
+spread (--power-sigma-ln) and, with --group-sigma-ln > 0, a support-type level (the same
+options and defaults as fretwear assess); bad news first, the --top worst tubes, every
+contact to -o. Without --sizing-sigma-mm the sizing error is lognormal of
+--measurement-sigma; without --pod-a50-mm and --pod-a90-mm there is no POD (NDD needs one).
 
 \b
 Inspection columns (--case):

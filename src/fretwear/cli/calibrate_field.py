@@ -22,37 +22,58 @@ from fretwear.assessment import (
 )
 from fretwear.assessment.summary import summary_counts, tube_summary
 
-_OPTIONS = [
+_TECHNIQUE = [
     click.option("--sizing-sigma-mm", type=click.FloatRange(min=0, min_open=True),
                  default=None, help="Sizing error σ [mm] of measured = a + b·true + e "
-                 "(default: a lognormal error of --measurement-sigma)."),
+                 "(default: the command's, above)."),
     click.option("--sizing-intercept-mm", type=float, default=0.0, show_default=True,
                  help="Sizing intercept a [mm]."),
     click.option("--sizing-slope", type=click.FloatRange(min=0, min_open=True), default=1.0,
                  show_default=True, help="Sizing slope b [-]."),
     click.option("--pod-a50-mm", type=click.FloatRange(min=0, min_open=True), default=None,
-                 help="Depth detected half the time [mm] (logistic POD in ln depth; needed "
-                 "for NDD results)."),
+                 help="Depth detected half the time [mm] (logistic POD in ln depth; default: "
+                 "the command's, above)."),
     click.option("--pod-a90-mm", type=click.FloatRange(min=0, min_open=True), default=None,
                  help="Depth detected 90 % of the time [mm]."),
+]
+_FACTOR = [
     click.option("--contact-sigma-ln", type=click.FloatRange(min=0), default=0.35,
-                 show_default=True, help="Contact-level scatter of ln(factor) [-]."),
+                 show_default=True, help="σ of ln of one contact's factor about its group's "
+                 "(the contact scatter inspections of the others cannot remove) [-]."),
+    click.option("--power-sigma-ln", type=click.FloatRange(min=0), default=0.2,
+                 show_default=True, help="σ of ln of the factor on each contact's wear power "
+                 "(its confidence interval) [-]."),
     click.option("--group-sigma-ln", type=click.FloatRange(min=0), default=0.0,
-                 show_default=True, help="Support-type level of ln(factor) [-] (0: none)."),
-    click.option("--power-sigma-ln", type=click.FloatRange(min=0), default=0.0,
-                 show_default=True, help="Log-spread of each contact's power [-]."),
+                 show_default=True, help="σ of ln of a support type's factor about the "
+                 "bundle's [-] (> 0: one level per support type, AVB, TSP...; 0: none)."),
+]
+_CAMPAIGN = [
     click.option("--origin-date", default=None,
-                 help="Date of the predictions' instant 0, for an inspection file with dates."),
-    click.option("--wall-mm", type=click.FloatRange(min=0, min_open=True), default=None,
-                 help="Tube wall [mm] for depth_pct without a wall_thickness column."),
+                 help="Date of the predictions' instant 0 (ISO 8601), for inspections given "
+                 "by date."),
     click.option("--top", type=click.IntRange(min=0), default=10, show_default=True,
-                 help="Tubes shown on the terminal (every contact goes to -o FILE)."),
+                 help="Tubes shown on the terminal (every row goes to the file)."),
 ]
 
 
+def _apply(options):
+    return lambda func: functools.reduce(lambda f, option: option(f), reversed(options), func)
+
+
+technique_options = _apply(_TECHNIQUE)
+"""The technique's options in mm, shared by ``fretwear assess`` and ``calibrate --bundle``."""
+factor_options = _apply(_FACTOR)
+"""The hierarchical factor's σ options, one name and one default for both commands."""
+campaign_options = _apply(_CAMPAIGN)
+"""--origin-date and --top, shared."""
+
+
 def field_options(func):
-    """The options of the field campaign (bundle mode)."""
-    return functools.reduce(lambda f, option: option(f), reversed(_OPTIONS), func)
+    """The options of the field campaign (``fretwear calibrate --bundle``)."""
+    func = campaign_options(factor_options(technique_options(func)))
+    return click.option("--wall-mm", type=click.FloatRange(min=0, min_open=True), default=None,
+                        help="Tube wall [mm] for depth_pct without a wall_thickness column."
+                        )(func)
 
 
 def technique_from_options(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm,

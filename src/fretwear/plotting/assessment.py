@@ -79,14 +79,18 @@ def plot_predicted_vs_measured(result: Any, *, ax: Any = None):
 
 
 def plot_bundle_probability(result: Any, *, ax: Any = None):
-    """P(any tube past its limit) against the operating interval, the target, the asked
-    interval and the longest interval under the target (tubes at the limit as measured
-    plugged)."""
+    """P(any tube past its limit) against the operating interval, after the plugging list
+    (solid) and with only the tubes at the limit as measured plugged (dashed), the target, the
+    asked interval and the longest interval under the target after plugging."""
     _check(result)
     b, curve = result.bundle, result.curve
     fig, (axis,), _ = figure_and_axes(ax, 1, lambda f: [f.add_subplot(1, 1, 1)],
                                       figsize=(7, 4.5), what="plot_bundle_probability")
-    axis.plot(curve["interval"], curve["p_any"], color="C0", lw=2, label="P(any tube past limit)")
+    axis.plot(curve["interval"], curve["p_any"], color="C0", lw=2,
+              label="P(any tube past limit), plugging list plugged")
+    if "p_any_before_plugging" in curve:
+        axis.plot(curve["interval"], curve["p_any_before_plugging"], color="C0", lw=1,
+                  ls="--", label="before plugging")
     axis.axhline(b["target"], color="C3", ls="--", label=f"target {b['target']:g}")
     axis.axvline(b["interval"], color="0.4", ls=":", label=f"asked {b['interval']:g} {b['unit']}")
     if 0 < b["longest_interval"] < b["horizon"]:
@@ -94,7 +98,7 @@ def plot_bundle_probability(result: Any, *, ax: Any = None):
                      label=f"longest {b['longest_interval']:.3g} {b['unit']}")
     axis.set_yscale("log")
     low = max(float(curve["p_any"][curve["p_any"] > 0].min()) if (curve["p_any"] > 0).any()
-              else 1e-6, 1e-12)
+              else 1e-6, 1e-12)  # the plugged curve lies under the other
     axis.set_ylim(low / 2, 1.0)
     axis.set_xlabel(f"operating interval after the outage [{b['unit']}]")
     axis.set_ylabel("probability [-]")
