@@ -8,6 +8,8 @@ interpreter; measured:
 * **wall** [s]: the command from start to exit (interpreter start, imports and the compiled
   kernels' cache load included, about 1 s);
 * **peak RSS** [MB]: the process's ``ru_maxrss``;
+* **CPU** [s]: the process's user + system time, all threads (on a shared machine the wall
+  also holds the time spent waiting for a core; the CPU time does not);
 * **passes**: how many times the file's data were read (calls of pyarrow's
   ``ParquetFile.iter_batches`` and ``read_table``);
 * **ratio**: wall / the wall of a plain pyarrow read of the same columns (record batches of 2²⁰
@@ -16,13 +18,19 @@ interpreter; measured:
 Commands: the pyarrow read; ``fretwear power FILE --blocks 4 --sectors 10`` (the streaming
 ratio); ``fretwear run`` of a case per law on the file: ARCHARD (10 sectors, 4 blocks),
 KWU_EPRI without FNOR_MAXI/VTAN_MAXI (the class counts need the window's maxima: two passes),
-KWU_EPRI with them (one pass), EDF_MZ. Each ``--runs`` times (median printed, with the
-min-max of the wall: the machine may be shared).
+KWU_EPRI with them (one pass), EDF_MZ. Each ``--runs`` times, the commands taking turns
+within a run (median printed, with the min-max of the wall: the machine may be shared; the load
+average is printed before and after).
+
+Before and after in one run: ``--base DIR`` adds ``fretwear power`` run by the fretwear of
+``DIR/src`` (e.g. a clone of the base commit), taking its turn with the others; its ratio to
+the pyarrow read is printed beside this checkout's.
 
 Usage::
 
     .venv/bin/python benchmarks/bench_run.py                     # 1e8 samples (5.6 GB file)
     .venv/bin/python benchmarks/bench_run.py --samples 1e7 --runs 1
+    .venv/bin/python benchmarks/bench_run.py --laws --base /tmp/base   # fretwear power only
 """
 
 from __future__ import annotations
@@ -73,8 +81,9 @@ _CHILD = textwrap.dedent("""
         from fretwear.cli import main
         code = main(args)
     inner = time.perf_counter() - start
-    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print("BENCH " + json.dumps({"passes": passes[0], "rss_mb": rss, "inner": inner,
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    print("BENCH " + json.dumps({"passes": passes[0], "rss_mb": usage.ru_maxrss / 1024,
+                                 "inner": inner, "cpu": usage.ru_utime + usage.ru_stime,
                                  "code": code}), file=sys.stderr)
 """)
 
@@ -115,11 +124,15 @@ def case_text(path: Path, law: str) -> str:
             f"obstacle_width_m = 20e-3\n{sectors}[time]\ninstants = [1, 10]\nunit = \"year\"\n")
 
 
-def measure(args: list[str]) -> dict:
-    """Run one command in a fresh interpreter; wall [s] and the child's report."""
+def measure(args: list[str], src: Path | None = None) -> dict:
+    """Run one command in a fresh interpreter (importing fretwear from ``src`` when given);
+    wall [s] and the child's report."""
+    env = dict(os.environ)
+    if src is not None:
+        env["PYTHONPATH"] = os.pathsep.join([str(src), env.get("PYTHONPATH", "")])
     start = time.perf_counter()
     proc = subprocess.run([sys.executable, "-c", _CHILD, json.dumps(args)],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, env=env)
     wall = time.perf_counter() - start
     lines = [x for x in proc.stderr.splitlines() if x.startswith("BENCH ")]
     if proc.returncode or not lines:
@@ -136,8 +149,10 @@ def main(argv=None) -> None:
     p.add_argument("--dir", type=Path, default=Path(tempfile.gettempdir()),
                    help="where the Parquet file is written once and kept")
     p.add_argument("--runs", type=int, default=3)
-    p.add_argument("--laws", nargs="+",
+    p.add_argument("--laws", nargs="*",
                    default=["ARCHARD", "KWU_EPRI", "KWU_EPRI_MAXI", "EDF_MZ"])
+    p.add_argument("--base", type=Path, default=None,
+                   help="a checkout whose src/ gives the 'before' of fretwear power")
     args = p.parse_args(argv)
     n = int(args.samples)
     path = args.dir / f"fretwear_bench_run_{n}.parquet"
@@ -153,20 +168,33 @@ def main(argv=None) -> None:
             case.write_text(case_text(path, law))
             commands[f"run {law}"] = ["run", str(case), "-o", str(Path(tmp) / f"{law}.csv"),
                                       "--quiet"]
-        measure(commands["fretwear power"])  # warm the page cache and the numba cache
-        results = {name: [measure(cmd) for _ in range(args.runs)]
-                   for name, cmd in commands.items()}
+        srcs = {name: None for name in commands}
+        if args.base is not None:
+            commands["power (base)"] = commands["fretwear power"]
+            srcs["power (base)"] = args.base.resolve() / "src"
+        load = os.getloadavg()
+        for name in ("fretwear power", "power (base)"):  # warm the page and numba caches
+            if name in commands:
+                measure(commands[name], srcs[name])
+        results = {name: [] for name in commands}
+        for _ in range(args.runs):  # the commands take turns: a change of load hits all
+            for name, cmd in commands.items():
+                results[name].append(measure(cmd, srcs[name]))
     base = float(np.median([r["wall"] for r in results["pyarrow read"]]))
+    base_cpu = float(np.median([r["cpu"] for r in results["pyarrow read"]]))
     print(f"{n:.0e} samples, {len(COLUMNS)} columns, {size:.2f} GB, page cache warm; medians "
-          f"of {args.runs} runs (wall min-max)")
+          f"of {args.runs} runs (wall min-max); load average (1, 5, 15 min) "
+          f"{'/'.join(f'{x:.1f}' for x in load)} before, "
+          f"{'/'.join(f'{x:.1f}' for x in os.getloadavg())} after")
     print(f"{'command':>22} {'wall [s]':>9} {'min-max':>13} {'ratio':>6} {'peak RSS [MB]':>14} "
-          f"{'passes':>7}")
+          f"{'passes':>7} {'CPU [s]':>8} {'ratio':>6}")
     for name, runs in results.items():
         wall = float(np.median([r["wall"] for r in runs]))
         lo, hi = min(r["wall"] for r in runs), max(r["wall"] for r in runs)
         rss = float(np.median([r["rss_mb"] for r in runs]))
+        cpu = float(np.median([r["cpu"] for r in runs]))
         print(f"{name:>22} {wall:>9.2f} {lo:>6.2f}-{hi:<6.2f} {wall / base:>6.2f} "
-              f"{rss:>14.0f} {runs[0]['passes']:>7d}")
+              f"{rss:>14.0f} {runs[0]['passes']:>7d} {cpu:>8.2f} {cpu / base_cpu:>6.2f}")
 
 
 if __name__ == "__main__":

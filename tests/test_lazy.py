@@ -63,3 +63,15 @@ def test_geometry_imports_numba_only_when_a_kernel_is_asked():
         [sys.executable, "-c", "import sys\nfrom fretwear.geometry._shapes import _lens_kernels\n"
          "_lens_kernels()\nprint('numba' in sys.modules)"],
         capture_output=True, text=True, check=True).stdout.strip()
+
+
+def test_power_command_imports_neither_the_wear_table_nor_scipy_stats():
+    """``fretwear power FILE`` never builds a table: importing its command leaves out
+    fretwear.table (scipy.interpolate, scipy.optimize: about 1 s of start-up, issue 28) and
+    scipy.stats (0.6-0.9 s); a case given to another command still loads (cli._units)."""
+    out = subprocess.run(
+        [sys.executable, "-c", "import sys, fretwear.cli.power\n"
+         "print(sorted(m for m in ('fretwear.table', 'fretwear.workflows.case_files',\n"
+         "                         'scipy.stats', 'scipy.interpolate') if m in sys.modules))"],
+        capture_output=True, text=True, check=True).stdout.strip()
+    assert out == "[]"

@@ -291,3 +291,19 @@ def test_sectors_need_a_contact_type_with_an_obstacle_width():
     with pytest.warns(fretwear.errors.UnusedKeywordWarning, match="obstacle_width"):
         WearCase.from_keywords(contact_type="TUBE_TUBE", dimensions=dimensions, law="ARCHARD",
                  coefficients={"COEF_USURE": 1e-17}, instants=[1.0])
+
+
+def test_sector_edges_made_once_per_case_read_only_and_remade_on_replace():
+    """Every table of a case reads its sector edges [deg] (issue 28: validation once, where
+    the case is built): the same read-only array each time; a replaced case has its own; a
+    pickled case (a bundle's worker) carries none and makes them again."""
+    case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0], sectors=4,
+                                  dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02},
+                                  coefficients={"COEF_USURE": 1e-14})
+    edges = case.sector_edges
+    assert edges is case.sector_edges and edges.tolist() == [-180.0, -90.0, 0.0, 90.0, 180.0]
+    with pytest.raises(ValueError, match="read-only"):
+        edges[0] = 0.0
+    assert case.replace(sectors=2).sector_edges.tolist() == [-180.0, 0.0, 180.0]
+    assert "sector_edges" not in pickle.loads(pickle.dumps(case)).__dict__
+    assert case.replace(sectors=None).sector_edges is None

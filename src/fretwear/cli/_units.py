@@ -14,7 +14,14 @@ from typing import Any
 import click
 
 from fretwear.history import CHANNELS
-from fretwear.workflows.case_files import load_case
+
+
+def load_case(case):
+    """``fretwear.workflows.case_files.load_case``, imported when a case is given: it imports
+    the wear table and scipy (about 1 s), which ``fretwear power FILE`` never needs."""
+    from fretwear.workflows.case_files import load_case as load
+
+    return load(case)
 
 #: Help of ``--units`` (the same on every command).
 UNITS_HELP = ("Units of the history file's values, converted to SI: per quantity (length=mm, "

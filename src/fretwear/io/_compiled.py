@@ -1,4 +1,7 @@
-"""The compiled (numba) pass of the plausibility checks (:mod:`fretwear.io.plausibility`).
+"""The compiled (numba) pass of the plausibility checks (:mod:`fretwear.io.plausibility`), and
+the checks of a streamed block (:func:`fretwear.io.channels.fast_history`: :func:`finite`,
+:func:`increasing`, :func:`nonnegative_max`, :func:`flags`, one pass a channel; the numpy
+expressions there remain the reference, used without numba).
 
 Imported by :func:`fretwear.io.plausibility.check_plausibility` only when numba is installed
 and the history is long (``plausibility._KERNEL_SAMPLES``). The numpy expressions of
@@ -65,3 +68,58 @@ def statistics(t, fn, vt1, vt2, dy, dz, step_limit):  # pragma: no cover - compi
             count += 1
         was_on = on
     return speed2, radial2, fmax, above, durations[:count]
+
+
+# ----------------------------------------------------------------------- a block's checks
+# The checks of fretwear.io.channels.fast_history on one streamed block, one pass a channel
+# (numpy's expressions take two to three passes and a temporary each). Finiteness is read from
+# the bits (the exponent all ones: inf or NaN) and the largest force from the bits of
+# non-negative floats (ordered as their values), so that the loops reduce integers: no
+# floating-point reduction to keep in order, the compiler vectorises them.
+_EXPONENT = np.uint64(0x7FF0000000000000)
+_MAGNITUDE = np.uint64(0x7FFFFFFFFFFFFFFF)
+_NEGATIVE_ZERO = np.uint64(0x8000000000000000)
+
+
+@njit(cache=True, nogil=True)
+def finite(a):  # pragma: no cover - compiled
+    """Whether every value of the contiguous float64 array ``a`` is finite."""
+    bits = a.view(np.uint64)
+    bad = False
+    for i in range(bits.size):
+        bad |= (bits[i] & _EXPONENT) == _EXPONENT
+    return not bad
+
+
+@njit(cache=True, nogil=True)
+def increasing(t):  # pragma: no cover - compiled
+    """Whether the contiguous float64 array ``t`` is finite and strictly increasing."""
+    bits = t.view(np.uint64)
+    bad = (bits[0] & _EXPONENT) == _EXPONENT
+    for i in range(1, bits.size):
+        bad |= ((bits[i] & _EXPONENT) == _EXPONENT) | (not t[i] > t[i - 1])
+    return not bad
+
+
+@njit(cache=True, nogil=True)
+def nonnegative_max(fn):  # pragma: no cover - compiled
+    """``(ok, largest)``: whether the contiguous float64 array ``fn`` is finite and >= 0 (-0.0
+    counts as 0), and its largest value [its unit] when it is (a largest zero may be 0.0 where
+    numpy gives -0.0: no comparison tells them apart)."""
+    bits = fn.view(np.uint64)
+    bad = False
+    top = np.uint64(0)
+    for i in range(bits.size):
+        b = bits[i]
+        bad |= ((b & _EXPONENT) == _EXPONENT) | (b > _NEGATIVE_ZERO)
+        top = max(top, b & _MAGNITUDE)
+    return not bad, np.array([top]).view(np.float64)[0]
+
+
+@njit(cache=True, nogil=True)
+def flags(s):  # pragma: no cover - compiled
+    """Whether every value of the contiguous float64 array ``s`` is 0.0 or 1.0 (-0.0 counts)."""
+    bad = False
+    for i in range(s.size):
+        bad |= not ((s[i] == 0.0) | (s[i] == 1.0))
+    return not bad

@@ -471,6 +471,41 @@ def build_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
         raise HistoryError(f"{label}: {exc} [columns used: {used}]") from None
 
 
+def _checks(data: Mapping[str, np.ndarray]) -> tuple[bool, float]:
+    """Whether the 1-D channels of equal length ``data`` pass the checks of a history (finite
+    values, strictly increasing time, Fn >= 0, stick flags 0/1), and the largest force [N].
+
+    One compiled pass a channel when numba is installed and the arrays are contiguous
+    (:mod:`fretwear.io._compiled`; a 2**20-row block of 7 channels: 1-2 ms against 7-11 ms),
+    else numpy's expressions, the reference.
+
+    Examples
+    --------
+    >>> t = np.array([0.0, 1.0, 2.0])
+    >>> _checks({"time": t, "normal_force": np.array([0.0, 2.0, 1.0])})
+    (True, 2.0)
+    >>> _checks({"time": t[::-1].copy(), "normal_force": np.zeros(3)})[0]
+    False
+    """
+    from fretwear._numba import HAVE_NUMBA  # numba, imported by the stream's first block
+
+    t, fn = data["time"], data["normal_force"]
+    if HAVE_NUMBA and all(a.flags.c_contiguous for a in data.values()):
+        from fretwear.io import _compiled
+
+        ok, fmax = _compiled.nonnegative_max(fn)
+        ok = (ok and _compiled.increasing(t)
+              and all(_compiled.flags(a) if ch == "stick" else _compiled.finite(a)
+                      for ch, a in data.items() if ch not in ("time", "normal_force")))
+        return bool(ok), float(fmax)
+    ok = (all(bool(np.isfinite(a).all()) for a in data.values())
+          and bool((t[1:] > t[:-1]).all()) and float(fn.min()) >= 0.0)
+    if ok and "stick" in data:
+        s = data["stick"]
+        ok = bool(((s == 0.0) | (s == 1.0)).all())
+    return ok, float(fn.max()) if ok else float("nan")
+
+
 def fast_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
                  mapping: Mapping[str, int], factors: Mapping[str, float], label: str,
                  name: str, metadata: Mapping[str, Any], first_row: int = 0) -> ContactHistory:
@@ -500,17 +535,13 @@ def fast_history(arrays: Mapping[str, np.ndarray], *, columns: Sequence[str],
         data[channel] = arr * factor if factor != 1.0 else arr
     sizes = {a.shape for a in data.values()}
     t = data["time"]
-    fn = data["normal_force"]
-    ok = (len(sizes) == 1 and t.ndim == 1 and t.size >= 2 and ("dy" in data) == ("dz" in data)
-          and all(bool(np.isfinite(a).all()) for a in data.values())
-          and bool((t[1:] > t[:-1]).all()) and float(fn.min()) >= 0.0)
-    if ok and "stick" in data:
-        s = data["stick"]
-        ok = bool(((s == 0.0) | (s == 1.0)).all())
+    ok = (len(sizes) == 1 and t.ndim == 1 and t.size >= 2 and ("dy" in data) == ("dz" in data))
+    if ok:
+        ok, fmax = _checks(data)
     if not ok:
         return build_history(arrays, columns=columns, mapping=mapping, factors=factors,
                              label=label, name=name, metadata=metadata, first_row=first_row)
-    tolerance = max(1e-12, 1e-9 * float(fn.max()))
+    tolerance = max(1e-12, 1e-9 * fmax)
     return ContactHistory._checked_elsewhere(data, name=name, metadata=metadata,
                                              force_tolerance=tolerance)
 

@@ -18,6 +18,7 @@ JSON-ready (floats written by ``json`` round-trip exactly).
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import math
 import os
@@ -437,10 +438,15 @@ class WearCase:
         """ORIG_INST of the new rows [user time unit]: 0, or the restart state's origin."""
         return self.restart.origin
 
-    @property
+    @functools.cached_property
     def sector_edges(self) -> np.ndarray | None:
-        """The sector edges [deg], or None without sectors."""
-        return None if self.sectors is None else sector_edges(self.sectors)
+        """The sector edges [deg], or None without sectors: computed once per case (every
+        table of a bundle's contact reads them), read-only."""
+        if self.sectors is None:
+            return None
+        edges = sector_edges(self.sectors)
+        edges.flags.writeable = False
+        return edges
 
     def coefficient_values(self, body: str = "mobile") -> dict[str, Any] | None:
         """The coefficients of ``body`` (``"mobile"`` or ``"obstacle"``) as a plain dict of
@@ -535,6 +541,7 @@ class WearCase:
         state = dict(self.__dict__)  # pickled without the dict of to_dict (made again)
         state.pop("_as_dict", None)
         state.pop("_dict_made", None)
+        state.pop("sector_edges", None)  # made again, read-only
         return state
 
     @classmethod
