@@ -320,7 +320,7 @@ def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
 
     Examples
     --------
-    >>> tubes = unstable_tubes("examples/bundle/simulated/manifest.csv")
+    >>> tubes = unstable_tubes("examples/bundle/manifest.csv")
     >>> list(tubes["tube"]), float(tubes["max_stability_ratio"].iloc[0])
     (['R4C1', 'R4C2', 'R4C3'], 1.11602)
     """
