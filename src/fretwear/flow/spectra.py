@@ -392,8 +392,10 @@ class SpecCorrConv1(_Convected):
     -----
     S_p(f) = K²(ρU²)²D_h³ for f·D_h/U ≤ f_c,red, 0 above (dspprs) [Pa²·m³], so the modal matrix
     is in Pa²·m⁵ with GENERALE and CORCOS, integrated along the tube's axis (Code_Aster
-    integrates over a surface interface: docs/flow.md), and in Pa²·m⁷ with AU_YANG, integrated
-    over the tube's outer surface (:func:`~fretwear.flow.surface.au_yang_acceptance`).
+    integrates over a surface interface: docs/flow.md), and in Pa²·m⁷ with AU_YANG, or with
+    GENERALE given ``circumferential_points``, integrated over the tube's outer surface
+    (:func:`~fretwear.flow.surface.au_yang_acceptance`,
+    :func:`~fretwear.flow.surface.generale_surface_acceptance`).
 
     Examples
     --------
