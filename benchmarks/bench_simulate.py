@@ -10,12 +10,17 @@ cluster started beforehand (its start time is printed apart) and recomputes ever
 (``force=True``). Printed: tube-seconds per second of both and their ratio (2 is the ideal on 2
 idle cores; the machine's other load and the per-task overhead lower it), with the machine's
 load average (as ``uptime``) before and after: the two figures are comparable only under the
-same load.
+same load. Then where the time goes: a tube's time in a worker against in this process, the
+workers' busy fraction, and the CPU time per tube of both (CPU time does not depend on the other
+processes' load, so 2 x its ratio estimates the speed-up on 2 idle cores; measured at load 8-12
+on a 2-core machine, where the wall-clock ratio says only how many cores the run obtained).
 
 Usage::
 
     .venv/bin/python benchmarks/bench_simulate.py
     .venv/bin/python benchmarks/bench_simulate.py --duration 2 --tubes 6
+    .venv/bin/python benchmarks/bench_simulate.py --duration 20 --tubes 48   # the example's
+                                                                              # tubes 4 times
 """
 
 from __future__ import annotations
@@ -39,16 +44,21 @@ def main() -> None:
     ap.add_argument("--duration", type=float, default=4.0, help="seconds per tube (default 4)")
     ap.add_argument("--tubes", type=int, default=12, help="tubes (default 12, the example's)")
     args = ap.parse_args()
-    specs = [dataclasses.replace(s, duration=args.duration)
-             for s in read_description(EXAMPLE)][:args.tubes]
+    base = read_description(EXAMPLE)
+    # more tubes than the example's 12: its tubes again, renamed (the same work per tube)
+    specs = [dataclasses.replace(base[k % len(base)], duration=args.duration,
+                                 tube=base[k % len(base)].tube + (f"_{k // len(base)}"
+                                                                  if k >= len(base) else ""))
+             for k in range(args.tubes)]
     work = len(specs) * args.duration
     load_before = os.getloadavg()
     with tempfile.TemporaryDirectory() as tmp:
         simulate_tube(specs[0], Path(tmp) / "warmup")
-        t = time.perf_counter()
-        for s in specs:
-            simulate_tube(s, Path(tmp) / "serial" / "tubes" / s.tube)
+        t, cpu = time.perf_counter(), time.process_time()
+        serial_tasks = [simulate_tube(s, Path(tmp) / "serial" / "tubes" / s.tube)["elapsed_s"]
+                        for s in specs]
         single = work / (time.perf_counter() - t)
+        serial_cpu = time.process_time() - cpu
 
         import dask
         import distributed
@@ -61,9 +71,14 @@ def main() -> None:
         start = time.perf_counter() - t
         try:
             client.run(simulate_tube, specs[0], str(Path(tmp) / "warm_worker"))  # numba caches
+            before = client.run(time.process_time)
             t = time.perf_counter()
-            run_simulate(specs, Path(tmp) / "bundle", scheduler=client, force=True)
-            bundle = work / (time.perf_counter() - t)
+            result = run_simulate(specs, Path(tmp) / "bundle", scheduler=client, force=True)
+            wall = time.perf_counter() - t
+            after = client.run(time.process_time)
+            worker_cpu = sum(after[w] - before[w] for w in after)
+            bundle = work / wall
+            worker_tasks = [r["elapsed_s"] for r in result.records]
         finally:
             client.close()
             cluster.close()
@@ -75,6 +90,22 @@ def main() -> None:
     print(f"fretwear simulate, 2 workers:         {bundle:8.2f} tube-s/s "
           f"(cluster start {start:.1f} s, not counted)")
     print(f"ratio 2 workers / single: {bundle / single:.2f} (ideal 2.00)")
+    # where the time goes (robust to the load's level, not to its changes): a tube's own time
+    # inside a worker against in this process (> 1: the workers' cores are shared, by each
+    # other's memory traffic or by other processes), and the workers' busy fraction of the wall
+    # time (< 1: per-task overhead, scheduling, the parent's writing of the tables)
+    n = len(specs)
+    print(f"per tube: {sum(serial_tasks) / n * 1e3:.1f} ms in this process, "
+          f"{sum(worker_tasks) / n * 1e3:.1f} ms in a worker "
+          f"(x{sum(worker_tasks) / sum(serial_tasks):.2f}); workers busy "
+          f"{sum(worker_tasks) / (2 * wall):.0%} of the wall time; "
+          f"other time per tube {(2 * wall - sum(worker_tasks)) / n * 1e3:.1f} ms")
+    # CPU time does not depend on the other processes' load: the ratio on 2 idle cores would
+    # be 2 x (CPU per tube in this process) / (CPU per tube in the workers, Dask included)
+    print(f"CPU per tube: {serial_cpu / n * 1e3:.1f} ms in this process, "
+          f"{worker_cpu / n * 1e3:.1f} ms in the workers (Dask's own work included); the "
+          f"workers got {worker_cpu / wall:.2f} of the 2 cores (the rest: the machine's load); "
+          f"ratio on 2 idle cores, from CPU time: {2 * serial_cpu / worker_cpu:.2f}")
 
 
 if __name__ == "__main__":

@@ -1,23 +1,22 @@
-"""The shipped example bundle (examples/bundle): small, complete, and physically sensible."""
+"""The shipped example bundle (examples/bundle): small, complete, and physically sensible.
+
+It is the output of ``fretwear simulate examples/bundle/bundle_geometry.toml -o examples/bundle``
+(docs/flow.md §5); tests/flow/test_simulated_example.py checks the stability side.
+"""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from fretwear.bundle import read_manifest, run_bundle
+from fretwear.flow.bundle import run_simulate
+from fretwear.flow.description import read_description
+from fretwear.io import read_history
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
-
-
-def _script():
-    spec = importlib.util.spec_from_file_location("make_bundle", EXAMPLE / "make_bundle.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def test_shipped_example_is_small_and_complete():
@@ -33,31 +32,30 @@ def test_example_runs_and_wear_grows_toward_the_u_bend_rows():
     assert result.errors.empty
     assert result.warnings.empty, result.warnings
     s = result.summary()
-    # the forcing PSD grows as the velocity ratio to the 4th power toward the outer rows: the
-    # median wear power of the contacts of a row grows with the row
+    # the SPEC_LONG_COR_1 force spectrum grows as ρ²Ū³ at a reduced frequency, and the velocity
+    # grows toward the outer rows: the median wear power of a row's contacts grows with the row
     by_row = s.groupby("tube_row")["power"].median()
     assert (np.diff(by_row.to_numpy()) > 0).all(), by_row
-    # the gaps are drawn from the documented lognormal distribution (median 40 µm)
-    gaps = pd.read_csv(EXAMPLE / "gaps.csv")
-    module = _script()
-    rng = np.random.default_rng(2026)
-    drawn = [module.GAP_MEDIAN * np.exp(module.GAP_SIGMA_LN * rng.standard_normal())
-             for _ in range(24)]
-    np.testing.assert_allclose(gaps["gap_m"], drawn, rtol=1e-5)  # written with 6 digits
+    # the gaps written are those the description draws (its seeded lognormal), contact by contact
+    gaps = pd.read_csv(EXAMPLE / "gaps.csv").set_index("contact")["gap_m"]
+    drawn = {f"{spec.tube}-{sup['name']}": sup["gap_m"]
+             for spec in read_description(EXAMPLE / "bundle_geometry.toml")
+             for sup in spec.supports}
+    assert sorted(gaps.index) == sorted(drawn)
+    np.testing.assert_allclose(gaps[list(drawn)], list(drawn.values()),
+                               rtol=1e-5)  # written with 6 digits
 
 
-def test_make_bundle_writes_a_manifest_the_runner_reads(tmp_path, monkeypatch):
-    module = _script()
-    monkeypatch.setattr(module, "ROWS", 1)
-    monkeypatch.setattr(module, "COLUMNS", 1)
-    manifest = module.build(tmp_path)
-    assert manifest["contact"].tolist() == ["R1C1-AVB1", "R1C1-AVB2"]
-    result = run_bundle(tmp_path / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial")
-    assert result.errors.empty
-    # same seed, same first tube: the shipped histories of R1C1 again
-    shipped = run_bundle(EXAMPLE / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial")
-    a = result.contacts.set_index("contact")["power"]
-    b = shipped.contacts.set_index("contact")["power"]
-    # bit for bit on one machine; another CPU's rounding, amplified by the rattling, may move
-    # the power slightly
-    np.testing.assert_allclose(a, b.loc[a.index], rtol=2e-2)
+def test_simulate_rebuilds_the_shipped_histories(tmp_path):
+    """Same description, same seed, same first tube: fretwear simulate writes R1C1's shipped
+    histories again (bit for bit on the machine that wrote them; another CPU's rounding,
+    amplified by the rattling, may move them: compared at a tolerance of the motion)."""
+    spec = read_description(EXAMPLE / "bundle_geometry.toml")[0]
+    result = run_simulate([spec], tmp_path, scheduler="serial")
+    assert not result.errors and result.manifest()["contact"].tolist() == ["R1C1-AVB1",
+                                                                           "R1C1-AVB2"]
+    for history in result.manifest()["history"]:
+        new, shipped = read_history(tmp_path / history), read_history(EXAMPLE / history)
+        scale = np.max(np.abs(shipped.dy))
+        np.testing.assert_allclose(new.time, shipped.time, rtol=1e-12)
+        np.testing.assert_allclose(new.dy, shipped.dy, atol=0.05 * scale)

@@ -1,8 +1,9 @@
 """Wording of ``fretwear bundle`` on the shipped example bundle (examples/bundle, 24 contacts,
 run serially): --top's range and singular, the options named in the --workers/--scheduler
-error, what -q leaves (the final line, as its help says), and a run with nothing to compute
-saying that no cluster was started. Expected values: the option values given and the
-example's 24 contacts."""
+error, what -q leaves (the bad news and the final line, as its help says), and a run with
+nothing to compute saying that no cluster was started. Expected values: the option values
+given, the example's 24 contacts, and the bad news computed from the files (tubes.csv's flags,
+summary.csv's depths against the limit)."""
 
 from __future__ import annotations
 
@@ -42,14 +43,26 @@ def test_quiet_keeps_only_the_bad_news_and_the_final_line_a_skipped_run_starts_n
     out_dir = tmp_path / "out"
     assert main([*ARGS, "--scheduler", "serial", "-o", str(out_dir), "-q"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    # bad news stays with -q, first (issue 26): the two contacts past 40 %, worst named
-    bad = ("PAST THE PLUGGING LIMIT at 40 year: 2 contact(s) on 2 tube(s) (worst: "
-           "R4C2-AVB1 49.8 %, R4C1-AVB2 44.1 %)")
-    assert lines[:-1] == [bad]
+    # bad news stays with -q, first (issue 26): the tubes the simulation flagged unstable
+    # (tubes.csv beside the manifest), then any contact past the limit (summary.csv's depth
+    # fraction against the limit)
+    import pandas as pd
+
+    from fretwear.flow.bundle import unstable_tubes
+
+    unstable = unstable_tubes(EXAMPLE / "manifest.csv")
+    summary = pd.read_csv(out_dir / "summary.csv")
+    past = int((summary["depth"] >= summary["limit_depth"]).sum())
+    bad = lines[:-1]
+    assert len(bad) == (len(unstable) > 0) + (past > 0), lines
+    assert bad[0].startswith(f"FLUID-ELASTICALLY UNSTABLE: {len(unstable)} tube(s)"), lines
+    assert all(t in bad[0] for t in unstable["tube"])
+    assert any(b.startswith("PAST THE PLUGGING LIMIT at ") and f": {past} contact" in b
+               for b in bad) == (past > 0)
     assert lines[-1].startswith("done 24, failed 0, skipped 0 of 24 contacts")
     # again: every contact unchanged, nothing computed, no cluster (not "on 1 worker(s)")
     assert main([*ARGS, "-o", str(out_dir), "-q"]) == 0
-    news, line = capsys.readouterr().out.splitlines()
+    *news, line = capsys.readouterr().out.splitlines()
     assert news == bad
     assert line.startswith("done 0, failed 0, skipped 24 of 24 contacts")
     assert "no cluster started" in line
@@ -59,14 +72,23 @@ def test_quiet_keeps_only_the_bad_news_and_the_final_line_a_skipped_run_starts_n
 
 def test_the_forecast_column_shows_for_the_contacts_own_limit_only(tmp_path, capsys):
     """The terminal table's forecast (the summary's limit_forecast) for the case's own limit:
-    R1C3-AVB1, at 1.6 % of the wall after 40 years, has no time to limit and a forecast of
-    about 4 870 years (tests/bundle/test_bundle_time_to_limit.py checks the value); with another
-    --limit there is no forecast, and no empty column."""
+    the shallowest contact that wears, its limit not reached by the last instant, has no time
+    to limit and its forecast printed as summary.csv has it (4 significant digits;
+    tests/bundle/test_bundle_time_to_limit.py checks the value); with another --limit there is
+    no forecast, and no empty column."""
+    import math
+
+    import pandas as pd
+
     assert main([*ARGS, "--scheduler", "serial", "-o", str(tmp_path / "a"), "--top", "24"]) == 0
     out = capsys.readouterr().out
     assert "forecast [year]" in out
-    line = next(x for x in out.splitlines() if "R1C3-AVB1" in x)
-    assert "4870" in line
+    summary = pd.read_csv(tmp_path / "a" / "summary.csv")
+    worn = summary[summary["power"] > 0]
+    shallow = worn.loc[worn["depth"].idxmin()]
+    assert math.isnan(shallow["time_to_limit"]) and shallow["limit_forecast"] > 40
+    line = next(x for x in out.splitlines() if f" {shallow['contact']} " in x)
+    assert f"{shallow['limit_forecast']:.4g}" in line, line
     assert main([*ARGS, "--scheduler", "serial", "-o", str(tmp_path / "b"), "--limit", "0.3"]) \
         == 0
     out = capsys.readouterr().out

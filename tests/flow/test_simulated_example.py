@@ -1,5 +1,5 @@
-"""The shipped simulated bundle (examples/bundle/simulated): the output of
-``fretwear simulate examples/bundle/bundle_geometry.toml -o examples/bundle/simulated``.
+"""The shipped example bundle (examples/bundle): the output of
+``fretwear simulate examples/bundle/bundle_geometry.toml -o examples/bundle``.
 
 Checked: it is the output of the shipped description as it reads today (every tube's inputs'
 signature in its tube.json), ``fretwear bundle`` reads its manifest as it is, the contacts' wear
@@ -20,7 +20,7 @@ from fretwear.bundle import run_bundle
 from fretwear.flow.description import read_description
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
-SIMULATED = EXAMPLE / "simulated"
+SIMULATED = EXAMPLE  # the simulation writes into the example directory itself
 VELOCITY = {1: 2.0, 2: 2.5, 3: 3.0, 4: 3.5}   # bundle_geometry.toml's [[flow.regions]]
 
 
@@ -29,8 +29,8 @@ def test_shipped_outputs_are_those_of_the_shipped_description():
     for spec in specs:
         record = json.loads((SIMULATED / "tubes" / spec.tube / "tube.json").read_text())
         assert record["signature"] == spec.signature(), (
-            f"{spec.tube}: examples/bundle/simulated is stale; rerun fretwear simulate "
-            "examples/bundle/bundle_geometry.toml -o examples/bundle/simulated --force")
+            f"{spec.tube}: examples/bundle is stale; rerun fretwear simulate "
+            "examples/bundle/bundle_geometry.toml -o examples/bundle --force")
     assert pd.read_csv(SIMULATED / "errors.csv").empty
 
 
@@ -61,7 +61,10 @@ def test_bundle_terminal_says_the_unstable_tubes_first(tmp_path, capsys):
     found = unstable_tubes(SIMULATED / "manifest.csv")
     assert sorted(found["tube"]) == expected and expected
     np.testing.assert_allclose(found["max_stability_ratio"], worst[found["tube"]], rtol=1e-5)
-    assert unstable_tubes(EXAMPLE / "manifest.csv") is None
+    hand = tmp_path / "hand"
+    hand.mkdir()
+    pd.read_csv(EXAMPLE / "manifest.csv").to_csv(hand / "manifest.csv", index=False)
+    assert unstable_tubes(hand / "manifest.csv") is None  # no tubes.csv beside it
 
     code = main(["bundle", str(SIMULATED / "manifest.csv"), "--case",
                  str(EXAMPLE / "bundle.toml"), "--scheduler", "serial",

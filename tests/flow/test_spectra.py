@@ -64,6 +64,11 @@ VARIANTS = {
     "SPEC_CORR_CONV_2/AU_YANG": ("SPEC_CORR_CONV_2", {
         **PARAMETERS["SPEC_CORR_CONV_2"], "method": "AU_YANG", "long_cor_2": 0.004,
         "coef_vite_flui_a": 0.65, "coef_vite_flui_o": 0.55}),
+    # on the surface the points must resolve the convected wavelength U_c/f (here ≥ 43 mm
+    # against 6 mm steps); 2 m/s would alias it (4 mm at 300 Hz) into indefinite matrices
+    "SPEC_CORR_CONV_1/GENERALE on the surface": ("SPEC_CORR_CONV_1", {
+        **PARAMETERS["SPEC_CORR_CONV_1"], "velocity": 20.0, "circumferential_points": 8,
+        "axial_points": 201}),
 }
 CASES = {**{name: (name, parameters) for name, parameters in PARAMETERS.items()}, **VARIANTS}
 

@@ -63,6 +63,50 @@ def tube_forces(spec: TubeSpec):
     return model, tube, t, forces
 
 
+def modal_loads(model, tube, times, forces) -> tuple:
+    """The model driven by its generalised forces, each along its own mode's plane.
+
+    Every mode r of a straight tube bends in one transverse plane, y or z (its largest shape
+    component on the grid); its synthesised generalised force Q_r(t) [N] (the turbulence of
+    both transverse directions projected onto it, :mod:`fretwear.flow.spectra`) is applied at a
+    forcing point ``mode<r>`` whose shape is 1 on mode r alone, along that plane.
+
+    Parameters
+    ----------
+    model : ModalModel
+        The tube's modes (n of them).
+    tube : TubeFlow
+        Its shapes along y and z on the grid [-] (to find each mode's plane).
+    times : ndarray, shape (N,)
+        [s].
+    forces : ndarray, shape (N, n)
+        Generalised forces Q_r(t) [N].
+
+    Returns
+    -------
+    (ModalModel, list of NodalForce)
+        The model with one forcing point per mode, and one load per mode.
+
+    Examples
+    --------
+    >>> from fretwear.flow.tube import beam_tube_flow
+    >>> m, tube = beam_tube_flow(young_modulus=2e11, second_moment=1e-8, mass_per_length=1.0,
+    ...                          length=1.0, n_modes=1, shock_positions=[0.5], diameter=0.02)
+    >>> driven, loads = modal_loads(m, tube, np.array([0.0, 1.0]), np.ones((2, 2)))
+    >>> [(ld.point, ld.direction) for ld in loads]
+    [('mode1', 'y'), ('mode2', 'z')]
+    """
+    n = model.n_modes
+    plane = np.argmax(np.max(np.abs(tube.shapes), axis=0), axis=0)  # (n,): 0 = y, 1 = z
+    shapes = np.zeros((n, 2, n))
+    shapes[np.arange(n), plane, np.arange(n)] = 1.0
+    names = tuple(f"mode{r + 1}" for r in range(n))
+    driven = dataclasses.replace(model, forcing_shapes=shapes, forcing_names=names)
+    loads = [NodalForce(names[r], "yz"[plane[r]],
+                        Signal("table", times=times, values=forces[:, r])) for r in range(n)]
+    return driven, loads
+
+
 def simulate_tube(spec: TubeSpec, folder: str | Path) -> dict:
     """Run one tube and write its histories and ``tube.json`` into ``folder`` (atomically).
 
@@ -75,10 +119,7 @@ def simulate_tube(spec: TubeSpec, folder: str | Path) -> dict:
     """
     start = time.perf_counter()
     model, tube, t, forces = tube_forces(spec)
-    n = model.n_modes
-    driven = dataclasses.replace(model, forcing_shapes=np.eye(n)[:, None, :] * [[1.0], [0.0]],
-                                 forcing_names=tuple(f"mode{r + 1}" for r in range(n)))
-    loads = [NodalForce(r, "y", Signal("table", times=t, values=forces[:, r])) for r in range(n)]
+    driven, loads = modal_loads(model, tube, t, forces)
     shocks = [Shock(point=s["name"], obstacle=s["obstacle"], gap=s["gap_m"],
                     normal_stiffness=s["normal_stiffness_n_m"],
                     normal_damping=s["normal_damping_n_s_m"],
@@ -280,7 +321,7 @@ def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
 
     Examples
     --------
-    >>> tubes = unstable_tubes("examples/bundle/simulated/manifest.csv")
+    >>> tubes = unstable_tubes("examples/bundle/manifest.csv")
     >>> list(tubes["tube"]), float(tubes["max_stability_ratio"].iloc[0])
     (['R4C1', 'R4C2', 'R4C3'], 1.11602)
     """

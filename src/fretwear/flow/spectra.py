@@ -28,7 +28,12 @@ from fretwear.flow.projection import (
     exponential_acceptance,
     positive_frequencies,
 )
-from fretwear.flow.surface import SpecCorrConv3, au_yang_acceptance, au_yang_parameters
+from fretwear.flow.surface import (
+    SpecCorrConv3,
+    au_yang_acceptance,
+    au_yang_parameters,
+    generale_surface_acceptance,
+)
 from fretwear.flow.tube import TubeFlow
 
 
@@ -332,6 +337,17 @@ class _Convected:
             return out
         length = self.long_cor_1 if self.method == "GENERALE" else 1.0
         check_positive(self.name, long_cor_1=length)
+        if self.circumferential_points is not None:  # on the surface, as Code_Aster's accept
+            if self.method != "GENERALE":
+                raise InputError(f"{self.name}: circumferential_points integrates GENERALE on "
+                                 f"the tube's surface; METHODE {self.method!r} stays along the "
+                                 "axis (leave circumferential_points out) or use AU_YANG")
+            if live.any():
+                out[live] = sp[live, None, None] * generale_surface_acceptance(
+                    tube, f[live], velocity=self.velocity, length=length,
+                    circumferential_points=self.circumferential_points,
+                    axial_points=self.axial_points)
+            return out
         if live.any():
             acc = convected_acceptance(
                 tube, f[live],
@@ -366,13 +382,20 @@ class SpecCorrConv1(_Convected):
     coef_vite_flui_a, coef_vite_flui_o : float, optional
         AU_YANG's axial and circumferential convection velocities over U [-]
         (COEF_VITE_FLUI_A, COEF_VITE_FLUI_O; sfifj).
+    circumferential_points, axial_points : int, optional
+        With GENERALE: integrate on the tube's outer surface as Code_Aster's accept does
+        (:func:`~fretwear.flow.surface.generale_surface_acceptance`; the coherence of the
+        distance in space between the two points) with these points around and along (default
+        along: the tube's grid), the modal matrix then in Pa²·m⁷; without, along the axis.
 
     Notes
     -----
     S_p(f) = K²(ρU²)²D_h³ for f·D_h/U ≤ f_c,red, 0 above (dspprs) [Pa²·m³], so the modal matrix
     is in Pa²·m⁵ with GENERALE and CORCOS, integrated along the tube's axis (Code_Aster
-    integrates over a surface interface: docs/flow.md), and in Pa²·m⁷ with AU_YANG, integrated
-    over the tube's outer surface (:func:`~fretwear.flow.surface.au_yang_acceptance`).
+    integrates over a surface interface: docs/flow.md), and in Pa²·m⁷ with AU_YANG, or with
+    GENERALE given ``circumferential_points``, integrated over the tube's outer surface
+    (:func:`~fretwear.flow.surface.au_yang_acceptance`,
+    :func:`~fretwear.flow.surface.generale_surface_acceptance`).
 
     Examples
     --------
@@ -392,6 +415,8 @@ class SpecCorrConv1(_Convected):
     long_cor_2: float | None = None
     coef_vite_flui_a: float | None = None
     coef_vite_flui_o: float | None = None
+    circumferential_points: int | None = None
+    axial_points: int | None = None
 
     def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:
         check_positive(self.name, density=self.density, hydraulic_diameter=self.hydraulic_diameter)
@@ -421,6 +446,8 @@ class SpecCorrConv2(_Convected):
     long_cor_2, coef_vite_flui_a, coef_vite_flui_o : float, optional
         AU_YANG's parameters, as SPEC_CORR_CONV_1 (Code_Aster's sfifj leaves U_c and U_ct unset
         for SPEC_CORR_CONV_2 with AU_YANG; fretwear asks for them).
+    circumferential_points, axial_points : int, optional
+        GENERALE on the tube's surface, as SPEC_CORR_CONV_1 (the result then × m⁴).
 
     Examples
     --------
@@ -438,6 +465,8 @@ class SpecCorrConv2(_Convected):
     long_cor_2: float | None = None
     coef_vite_flui_a: float | None = None
     coef_vite_flui_o: float | None = None
+    circumferential_points: int | None = None
+    axial_points: int | None = None
 
     def point_spectrum(self, frequencies: np.ndarray) -> np.ndarray:
         if not callable(self.function):

@@ -269,3 +269,55 @@ def au_yang_parameters(owner: str, velocity: float, coef_a, coef_o, long_1, long
     return {"axial_velocity": coef_a * abs(velocity),
             "circumferential_velocity": coef_o * abs(velocity),
             "axial_length": long_1, "circumferential_length": long_2}
+
+
+def generale_surface_coherence(s1, theta1, s2, theta2, frequency: float, *, radius: float,
+                               velocity: float, length: float) -> np.ndarray:
+    """GENERALE's coherence between two points of the tube's surface [-] (coegen, accept).
+
+    Parameters
+    ----------
+    s1, theta1, s2, theta2 : array_like
+        The points' abscissae s [m] and angles θ [rad] (broadcast together).
+    frequency : float
+        f [Hz].
+    radius : float
+        R [m].
+    velocity : float
+        Flow velocity U [m/s]; the convection velocity is U_c = 0.65 U (accept.F90).
+    length : float
+        L [m] (LONG_COR_1).
+
+    Notes
+    -----
+    C = e^{−d/L} cos(ωd/U_c) with d the distance in space between the two points,
+    d² = (s₁ − s₂)² + (2R sin((θ₁ − θ₂)/2))² (coegen's √(Δx² + Δy² + Δz²) between the
+    interface's Gauss points).
+
+    Examples
+    --------
+    >>> float(generale_surface_coherence(0.0, 0.0, 0.0, np.pi, 0.0, radius=0.01, velocity=1.0,
+    ...                                  length=0.02))   # across the diameter: e^{-0.02/0.02}
+    0.36787944117144233
+    """
+    chord = 2.0 * radius * np.sin(0.5 * (np.asarray(theta1) - np.asarray(theta2)))
+    d = np.sqrt((np.asarray(s1) - np.asarray(s2)) ** 2 + chord**2)
+    return np.exp(-d / length) * np.cos(2.0 * np.pi * frequency * d / (0.65 * velocity))
+
+
+def generale_surface_acceptance(tube: TubeFlow, frequencies, *, velocity: float, length: float,
+                                circumferential_points: int, axial_points: int | None = None
+                                ) -> np.ndarray:
+    """Σ_p Σ_q w_i(p) C(p, q, f) w_j(q) a_p a_q [m⁴] with GENERALE's surface coherence
+    (:func:`generale_surface_coherence`), shape (n_f, n_modes, n_modes): the modal matrix per
+    unit wall-pressure spectrum, as Code_Aster's accept integrates it over the interface.
+    Points as :class:`SpecCorrConv3` (``circumferential_points`` midpoints around,
+    ``axial_points`` or the tube's grid along)."""
+    radius = 0.5 * tube.diameter
+
+    def kernel(s1, t1, s2, t2, f):
+        return generale_surface_coherence(s1, t1, s2, t2, f, radius=radius, velocity=velocity,
+                                          length=length)
+
+    return SpecCorrConv3(function=kernel, circumferential_points=circumferential_points,
+                         axial_points=axial_points).modal_spectrum(frequencies, tube)
