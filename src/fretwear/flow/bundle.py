@@ -385,7 +385,7 @@ def recorded_unstable(output: str | Path) -> pd.DataFrame | None:
     --------
     >>> import tempfile
     >>> out = tempfile.mkdtemp()
-    >>> _ = record_unstable(out, unstable_tubes("examples/bundle/simulated/manifest.csv"))
+    >>> _ = record_unstable(out, unstable_tubes("examples/bundle/manifest.csv"))
     >>> list(recorded_unstable(out)["tube"])
     ['R4C1', 'R4C2', 'R4C3']
     >>> recorded_unstable(tempfile.mkdtemp()) is None
