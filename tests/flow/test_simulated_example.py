@@ -117,3 +117,37 @@ def test_the_bundle_output_keeps_the_unstable_tubes(tmp_path):
                                   check_exact=False, rtol=1e-12)
     record_unstable(out, kept.iloc[:0])
     assert recorded_unstable(out).empty
+
+
+def test_assess_calibrate_and_reports_say_the_unstable_tubes_first(tmp_path, capsys):
+    """The tubes fretwear bundle kept in OUT/unstable_tubes.csv lead fretwear assess (terminal,
+    assessment.json, report.html), fretwear calibrate --bundle and fretwear report OUT (a new
+    user saw a normal outage decision on a bundle with 3 unstable tubes and no word of it)."""
+    import json
+
+    from fretwear.cli import main
+    from fretwear.flow.bundle import unstable_tubes
+
+    expected = list(unstable_tubes(SIMULATED / "manifest.csv")["tube"])
+    assert expected
+    out = tmp_path / "out"
+    assert main(["bundle", str(SIMULATED / "manifest.csv"), "--case",
+                 str(EXAMPLE / "bundle.toml"), "--scheduler", "serial", "-o", str(out),
+                 "-q"]) == 0
+    capsys.readouterr()
+    oa = tmp_path / "oa"
+    assert main(["assess", str(out), str(EXAMPLE / "inspections.csv"), "--interval", "4",
+                 "-o", str(oa), "--report"]) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert first.startswith("FLUID-ELASTICALLY UNSTABLE: 3 tube(s)") and "NOT valid" in first
+    assert all(t in first for t in expected)
+    kept = json.loads((oa / "assessment.json").read_text(encoding="utf-8"))
+    assert [t["tube"] for t in kept["inputs"]["unstable_tubes"]] == expected
+    page = (oa / "report.html").read_text(encoding="utf-8")
+    assert "FLUID-ELASTICALLY UNSTABLE" in page
+    assert page.index("FLUID-ELASTICALLY UNSTABLE") < page.index("P(any")
+    assert main(["calibrate", str(EXAMPLE / "inspections.csv"), "--bundle", str(out),
+                 "--pod-a50-mm", "0.15", "--pod-a90-mm", "0.3"]) == 0
+    assert capsys.readouterr().out.splitlines()[0].startswith("FLUID-ELASTICALLY UNSTABLE")
+    assert main(["report", str(out)]) == 0
+    assert "FLUID-ELASTICALLY UNSTABLE" in (out / "report.html").read_text(encoding="utf-8")

@@ -30,6 +30,7 @@ from fretwear.assessment.operational import (
     longest_interval,
     plugging_list,
 )
+from fretwear.assessment.summary import factor_line
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
@@ -132,7 +133,9 @@ class Assessment:
         return written
 
     def bad_news(self) -> list[str]:
-        """The lines said first: contacts and tubes past the limit and through the wall."""
+        """The lines said first: contacts and tubes past the limit and through the wall, the
+        bundle's probability above the target, a calibrated factor beyond [1/10, 10]
+        (:func:`~fretwear.assessment.summary.factor_line`)."""
         b = self.bundle
         lines = []
         if b["through_wall_tubes"]:
@@ -145,7 +148,9 @@ class Assessment:
         if b["p_any"] > b["target"]:
             lines.append(f"P(any tube past its limit by the end of {b['interval']:g} "
                          f"{b['unit']}) = {b['p_any']:.3g} > target {b['target']:g}")
-        return lines
+        implausible = factor_line(self.inputs.get("calibration", {}).get("factor_median",
+                                                                          math.nan))
+        return lines + ([implausible] if implausible else [])
 
 
 def _group_names(table, groups) -> list | None:

@@ -14,7 +14,46 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 
-__all__ = ["summary_counts", "tube_summary"]
+__all__ = ["FACTOR_PLAUSIBLE", "factor_line", "summary_counts", "tube_summary"]
+
+FACTOR_PLAUSIBLE = 10.0
+"""A calibrated bundle factor beyond [1/10, 10] [-] is said with the bad news."""
+
+
+def factor_line(median: float, bound: float = FACTOR_PLAUSIBLE) -> str | None:
+    """The warning said with the bad news when the inspections put the model off by more
+    than an order of magnitude.
+
+    Parameters
+    ----------
+    median : float
+        The calibrated bundle factor's median [-] (measured wear / predicted wear).
+    bound : float
+        The largest plausible factor [-] (and 1/bound the smallest); default 10. A wear
+        coefficient's published scatter is a factor of 3-5 (docs/uncertainty.md); beyond 10
+        the units of the inspection depths, the wear coefficients or the operating time are
+        the likelier cause, and the forecasts rest on a model the inspections reject.
+
+    Returns
+    -------
+    str or None
+        The line, or None when the factor is within [1/bound, bound].
+
+    Examples
+    --------
+    >>> factor_line(1.6) is None
+    True
+    >>> print(factor_line(274.0))  # doctest: +NORMALIZE_WHITESPACE
+    CALIBRATED FACTOR 274 (outside [0.1, 10]): the inspections and the model disagree by
+    more than an order of magnitude; check the inspection depths' units (depth [m], depth_mm,
+    depth_pct), the wear coefficients and the operating time before using the forecasts
+    """
+    if not math.isfinite(median) or 1.0 / bound <= median <= bound:
+        return None
+    return (f"CALIBRATED FACTOR {median:.3g} (outside [{1 / bound:g}, {bound:g}]): the "
+            "inspections and the model disagree by more than an order of magnitude; check the "
+            "inspection depths' units (depth [m], depth_mm, depth_pct), the wear coefficients "
+            "and the operating time before using the forecasts")
 
 
 def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:

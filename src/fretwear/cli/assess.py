@@ -10,6 +10,7 @@ import click
 from rich.console import Console
 from rich.table import Table
 
+from fretwear._lazy import pandas as pd
 from fretwear.assessment.outage import assess
 from fretwear.bundle import load
 from fretwear.cli.calibrate_field import (
@@ -18,6 +19,7 @@ from fretwear.cli.calibrate_field import (
     technique_from_options,
     technique_options,
 )
+from fretwear.flow.bundle import instability_lines, recorded_unstable
 
 _HELP = """The outage decision of a bundle: which tubes to plug, which to inspect next, how long
 the generator may run.
@@ -81,6 +83,9 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
                     share=share, limit=limit, origin_date=origin_date)
     result.inputs.update({"bundle": str(bundle_out), "inspections": str(inspections),
                           "illustrative": defaulted})
+    unstable = recorded_unstable(bundle_out)
+    if unstable is not None and len(unstable):  # said first, kept in assessment.json
+        result.inputs["unstable_tubes"] = unstable.to_dict("records")
     result.write(output)
     if with_report:
         from fretwear.report.assessment import write_assessment_report
@@ -91,6 +96,8 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
 
 def _print(result, console: Console, top: int, defaulted, output, with_report) -> None:
     b = result.bundle
+    for line in instability_lines(pd.DataFrame(result.inputs.get("unstable_tubes", []))):
+        console.print(line, style="bold red", markup=False, soft_wrap=True)
     for line in result.bad_news():
         console.print(f"[bold red]{line}[/]")
     if not (b["past_limit_tubes"] or b["through_wall_tubes"]):

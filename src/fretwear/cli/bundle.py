@@ -25,7 +25,7 @@ from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
 from fretwear.errors import InputError
-from fretwear.flow.bundle import record_unstable, unstable_tubes
+from fretwear.flow.bundle import instability_lines, record_unstable, unstable_tubes
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 from fretwear.table import DEFAULT_DEPTH_LIMIT
@@ -121,20 +121,6 @@ def _stability(row, flagged: set) -> str:
     except (AttributeError, TypeError, ValueError):
         return ""
     return "UNSTABLE" if key in flagged else ""
-
-
-def instability_lines(tubes) -> list[str]:
-    """The terminal's first line when ``fretwear simulate`` flagged tubes unstable."""
-    if tubes is None or not len(tubes):
-        return []
-    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
-                                                      tubes["max_stability_ratio"][:5],
-                                                      strict=True))
-    more = f" and {len(tubes) - 5} more" if len(tubes) > 5 else ""
-    return [f"FLUID-ELASTICALLY UNSTABLE: {len(tubes)} tube(s) flagged by the simulation "
-            f"(tubes.csv beside the manifest; stability ratio U_eff/U_c): {worst}{more}. "
-            "Above the critical velocity the amplitude is not bounded by the turbulence "
-            "simulated: these tubes' wear and forecasts below are NOT valid."]
 
 
 @click.command(help=_HELP, context_settings={"max_content_width": 100})

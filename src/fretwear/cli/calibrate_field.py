@@ -20,7 +20,7 @@ from fretwear.assessment import (
     calibrate_bundle,
     read_field_inspections,
 )
-from fretwear.assessment.summary import summary_counts, tube_summary
+from fretwear.assessment.summary import factor_line, summary_counts, tube_summary
 
 _TECHNIQUE = [
     click.option("--sizing-sigma-mm", type=click.FloatRange(min=0, min_open=True),
@@ -138,6 +138,9 @@ def _bad_news(c: dict, frame, instant, console: Console) -> None:
 
 def _factor_lines(cal, ins, console: Console) -> None:
     median, (low, high) = cal.bundle_factor()
+    implausible = factor_line(median)
+    if implausible:
+        _say(console, implausible, "bold red")
     _say(console, str(ins))
     _say(console, f"bundle factor: median {median:.4g}, 90 % [{low:.4g}, {high:.4g}]; "
                   f"contact scatter sigma_ln {cal.prior.contact_sigma_ln:.3g}")

@@ -404,3 +404,19 @@ def recorded_unstable(output: str | Path) -> pd.DataFrame | None:
                          "tube_column": [int(number(v)) for v in frame["tube_column"]],
                          "max_stability_ratio": [number(v) for v in
                                                  frame["max_stability_ratio"]]})
+
+
+def instability_lines(tubes) -> list[str]:
+    """The first line of ``fretwear bundle``, ``assess``, ``calibrate --bundle`` and the
+    bundle's reports when ``fretwear simulate`` flagged tubes unstable (``tubes``: of
+    :func:`unstable_tubes` or :func:`recorded_unstable`; None or empty: no line)."""
+    if tubes is None or not len(tubes):
+        return []
+    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
+                                                      tubes["max_stability_ratio"][:5],
+                                                      strict=True))
+    more = f" and {len(tubes) - 5} more" if len(tubes) > 5 else ""
+    return [f"FLUID-ELASTICALLY UNSTABLE: {len(tubes)} tube(s) flagged by the simulation "
+            f"(tubes.csv beside the manifest; stability ratio U_eff/U_c): {worst}{more}. "
+            "Above the critical velocity the amplitude is not bounded by the turbulence "
+            "simulated: these tubes' wear and forecasts below are NOT valid."]

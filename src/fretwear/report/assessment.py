@@ -19,6 +19,7 @@ from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear._version import __version__
 from fretwear.bundle.digest import limit_lines
+from fretwear.flow.bundle import instability_lines, recorded_unstable
 from fretwear.io.atomic import atomic_write
 from fretwear.report.html import TEMPLATES, _table_html, figure_data_uri
 
@@ -84,7 +85,9 @@ def render_assessment_report(result, *, title: str | None = None) -> str:
          "uri": figure_data_uri(plot_fan_charts(result))}]
     inputs = [{"name": k, "value": str(v)} for k, v in result.inputs.items()]
     context = {**_meta(), "title": title or "fretwear: outage assessment", "kind": "assessment",
-               "bad_news": result.bad_news(), "b": b,
+               "bad_news": instability_lines(pd.DataFrame(result.inputs.get("unstable_tubes",
+                                                                             [])))
+               + result.bad_news(), "b": b,
                "p_any": f"{b['p_any']:.3g}", "longest": f"{b['longest_interval']:.3g}",
                "after": f"{b['p_any_after_plugging']:.3g}", "inputs": inputs,
                "figures": figures, "fit": result.fit,
@@ -110,7 +113,8 @@ def render_bundle_report(bundle, *, title: str | None = None) -> str:
 
     env = _env()
     summary = bundle.summary()
-    news = limit_lines(summary)
+    news = (instability_lines(recorded_unstable(bundle.output)) if bundle.output is not None
+            else []) + limit_lines(summary)
     figures = [{"id": "map", "title": "Tube sheet: worst contact per tube at the last instant",
                 "uri": figure_data_uri(plot_tube_sheet(summary))},
                {"id": "worst", "title": "Depth against time of the deepest contacts",
