@@ -84,9 +84,17 @@ def test_iterate_says_where_it_writes_even_with_q(tmp_path, monkeypatch, capsys)
                                                  "power_change": [float("nan")]}),
                            directory=tmp_path / "loop_out",
                            intervals=[batch_means_interval([1.0, 1.1] * 5)],
-                           convergence=("one cycle", "one cycle: no change to judge"))
+                           convergence=("one cycle", "one cycle: no change to judge"),
+                           tables=[pd.DataFrame()])
+    fake.tables[0].attrs["time_unit"] = "year"
     monkeypatch.setattr(iterate_cli, "iterate_case", lambda *a, **k: fake)
     case = tmp_path / "c.toml"
     case.write_text("")
     assert main(["iterate", str(case), "-q"]) == 0
     assert f"outputs written to {tmp_path / 'loop_out'}" in capsys.readouterr().out
+    # every column of the terminal table says its unit: the instant's is the case's time unit
+    monkeypatch.setenv("COLUMNS", "400")
+    assert main(["iterate", str(case)]) == 0
+    out = capsys.readouterr().out
+    for label in ("instant [year]", "global depth tube [mm]", "gap min [mm]", "gap max [mm]"):
+        assert label in out, label

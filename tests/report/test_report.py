@@ -102,7 +102,11 @@ def test_calibration_section_and_cli(tmp_path, capsys):
     assert text.count("data:image/png;base64,") == 5
     run_out = tmp_path / "run.html"
     assert main(["run", str(EXAMPLES / "tube_tube.toml"), "-q", "--report", str(run_out)]) == 0
-    assert "THROUGH THE WALL" in run_out.read_text(encoding="utf-8")
+    html = run_out.read_text(encoding="utf-8")
+    assert "THROUGH THE WALL" in html
+    # bad news first: the alarm opens the summary, before the wear power and the limit
+    summary = html[html.index('id="summary"'):]
+    assert summary.index("THROUGH THE WALL") < summary.index("Wear power") < summary.index("Limit:")
 
 
 def test_write_is_atomic_and_returns_the_path(analysis, tmp_path):

@@ -67,3 +67,22 @@ def test_the_case_is_grouped_and_its_flat_keys_kept():
     # a wall thicker than the tube (mm typed for m): refused by the case, naming the key
     with pytest.raises(InputError, match="wall_thickness .*at least the tube's outer radius"):
         case.replace(wall_thickness=1.0)
+
+
+def test_every_length_in_mm_is_refused():
+    """Issue 29 (a new user): radius 9.525, width 12.7, wall 1.09 all in mm passed the
+    wall-vs-radius check (consistently wrong) and ran to a 3.4e9-year forecast. A steam-generator
+    tube of 9.525 mm radius (19.05 mm OD, 1.09 mm wall: the reference document's tube) is the
+    source of the right values."""
+    base = dict(contact_type="TUBE_ALESAGE", instants=[1.0], coefficients={"COEF_USURE": 1e-14})
+    ok = {"mobile_radius": 9.525e-3, "obstacle_width": 12.7e-3}
+    WearCase.from_keywords(dimensions=ok, wall_thickness=1.09e-3, **base)
+    mm = {"mobile_radius": 9.525, "obstacle_width": 12.7}
+    with pytest.raises(InputError, match=r"mobile_radius = 9.525 m is implausible.*in mm\? "
+                                         r"Give metres: mobile_radius = 0.009525"):
+        WearCase.from_keywords(dimensions=mm, wall_thickness=1.09, **base)
+    with pytest.raises(InputError, match=r"obstacle_width = 12.7 m .*= 0.0127"):
+        WearCase.from_keywords(dimensions={**ok, "obstacle_width": 12.7}, **base)
+    with pytest.raises(InputError, match=r"wall_thickness = 0.2 m is implausible"):
+        WearCase.from_keywords(dimensions={"mobile_radius": 0.4, "obstacle_width": 0.01},
+                               wall_thickness=0.2, **base)

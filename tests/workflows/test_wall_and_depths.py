@@ -46,6 +46,8 @@ def test_run_summary_prints_the_limit_and_through_wall(capsys):
     assert "THROUGH THE WALL: the tube's global depth passes the 1.09 mm wall at instant " \
            f"{_tube_tube_limit(WALL):.4g} [year]" in text
     assert "129 THROUGH" in text  # the % wall column
+    # bad news first: through the wall is said before the (less serious) limit
+    assert text.index("THROUGH THE WALL: the tube's global") < text.index("limit: 60 % of the")
 
 
 def test_run_wall_option_and_sector_limits(tmp_path, capsys):

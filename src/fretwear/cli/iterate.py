@@ -6,6 +6,7 @@ from pathlib import Path
 
 import click
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from fretwear.dynamics.config import keys_help as dynamics_keys
@@ -58,7 +59,8 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
                                 if result.stopped == "max_depth" else "")
     table = Table(title=f"fretwear iterate: {case_file.name} (stopped: {stopped})")
     level = result.intervals[0].level if result.intervals else 0.95
-    columns = (("cycle", "cycle", 1.0), ("instant", "instant", 1.0),
+    unit = (result.tables[-1].attrs.get("time_unit") if result.tables else None) or "case unit"
+    columns = (("cycle", "cycle", 1.0), ("instant", f"instant [{unit}]", 1.0),
                ("depth_global_mobile", "global depth tube [mm]", 1e3),
                ("depth_sector_mobile_max", "max sector depth tube [mm]", 1e3),
                ("depth_mobile_max", "profile depth tube [mm]", 1e3),
@@ -66,11 +68,11 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
                ("clearance_min", "gap min [mm]", 1e3), ("clearance_max", "gap max [mm]", 1e3),
                ("contact_fraction", "in contact [-]", 1.0))
     for _, label, _ in columns[:2]:
-        table.add_column(label, justify="right")
+        table.add_column(escape(label), justify="right")  # rich ate '[mm]' as markup
     table.add_column(f"wear power ({100 * level:.3g} % interval)", justify="right")
     table.add_column("change from the previous cycle", justify="right")
     for _, label, _ in columns[2:]:
-        table.add_column(label, justify="right")
+        table.add_column(escape(label), justify="right")  # rich ate '[mm]' as markup
     for row, interval in zip(result.summary.to_dict(orient="records"), result.intervals,
                              strict=True):
         cells = [f"{row[c] * scale:.4g}" for c, _, scale in columns]

@@ -160,7 +160,8 @@ def _percent_of_wall(fraction: float) -> str:
 
 
 def _limit_lines(table, case) -> list[tuple[str, str | None]]:
-    """Lines on the wall and the limit of ``case`` (empty without a wall thickness)."""
+    """Lines on the wall and the limit of ``case``, through the wall first (bad news first; empty
+    without a wall thickness)."""
     wall = case.wall.thickness
     if wall is None or "limit_instant" not in table.columns:
         return []
@@ -174,9 +175,9 @@ def _limit_lines(table, case) -> list[tuple[str, str | None]]:
         first = last.loc[last["limit_instant_sector"].idxmin()]
         out.append((f"the first sector to reach it: sector {int(first['sector'])} at instant "
                     f"{_instant(first['limit_instant_sector'])} [{unit}]", "bold"))
-    for where, instant in (table.attrs.get("through_wall") or {}).items():
+    for where, instant in reversed(list((table.attrs.get("through_wall") or {}).items())):
         depth = "global depth" if where == "global" else f"{where} depth"
-        out.append((f"THROUGH THE WALL: the tube's {depth} passes the {wall * 1e3:.4g} mm wall "
+        out.insert(0, (f"THROUGH THE WALL: the tube's {depth} passes the {wall * 1e3:.4g} mm wall "
                     f"at instant {instant:.4g} [{unit}]", "bold red"))
     return out
 

@@ -80,6 +80,51 @@ def check_wall_thickness(wall: float | None, radius: float | None, *,
         f"metres: {key} = {wall * scale:g}")
 
 
+#: The largest plausible absolute sizes [m] of a fretting contact (steam-generator tubes of
+#: 5-15 mm radius and about 1 mm wall, bars and plates 5-50 mm wide, control rods of about 5 mm
+#: radius): ten to a hundred times these, so that no real contact is refused and a length typed
+#: in mm (1000× too large in metres) always is.
+SIZE_BOUNDS = {"mobile_radius": 0.5, "obstacle_width": 1.0}
+#: The largest plausible wall thickness [m] (a tube wall of about 1 mm: a hundred times it).
+WALL_BOUND = 0.1
+
+
+def check_absolute_sizes(dimensions: dict, wall: float | None = None) -> None:
+    """Refuse a tube radius, obstacle width [m] or wall [m] of a metre's order.
+
+    A case with every length in mm passes :func:`check_wall_thickness` (the wall stays thinner
+    than the tube); the absolute bounds :data:`SIZE_BOUNDS` and :data:`WALL_BOUND` [m] catch it.
+
+    Parameters
+    ----------
+    dimensions : dict
+        The contact's dimensions [m] (``mobile_radius``, ``obstacle_width`` checked when given).
+    wall : float or None
+        Wall thickness of the tube [m].
+
+    Raises
+    ------
+    InputError
+        Naming the first implausible value and its value in metres if it was in mm.
+
+    Examples
+    --------
+    >>> check_absolute_sizes({"mobile_radius": 0.009525, "obstacle_width": 0.0127}, 0.00109)
+    >>> try:
+    ...     check_absolute_sizes({"mobile_radius": 9.525}, 1.09)
+    ... except InputError as exc:
+    ...     print(str(exc)[:56])
+    mobile_radius = 9.525 m is implausible for a fretting co
+    """
+    values = [(k, dimensions.get(k), b) for k, b in SIZE_BOUNDS.items()]
+    for key, value, bound in values + [("wall_thickness", wall, WALL_BOUND)]:
+        if value is not None and value > bound:
+            raise InputError(
+                f"{key} = {value:g} m is implausible for a fretting contact (above {bound:g} m): "
+                f"a value in mm? Give metres: {key} = {value * 1e-3:g} (every length of a case "
+                f"file or manifest is in metres: *_m keys)")
+
+
 def _orbit(history) -> float:
     """Half the largest peak-to-peak of ``dy`` and ``dz`` [m] (0 without them)."""
     if history.dy is None:

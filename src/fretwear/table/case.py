@@ -32,7 +32,7 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import check_sector_contact, contact_geometry
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry
-from fretwear.io.geometry_units import check_wall_thickness
+from fretwear.io.geometry_units import check_absolute_sizes, check_wall_thickness
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
 from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
@@ -396,6 +396,7 @@ class WearCase:
         mm typed into a metre key is thicker than the tube (issue 29)."""
         check_wall_thickness(self.wall.thickness, self.dimensions.get("mobile_radius"),
                              key="wall_thickness (wall_thickness_m in a case file or manifest)")
+        check_absolute_sizes(self.dimensions, self.wall.thickness)
 
     # ----------------------------------------------------------------------- derived values
     @property
