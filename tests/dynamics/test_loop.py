@@ -412,7 +412,10 @@ def test_cli_prints_each_cycle_power_with_its_interval(tmp_path):
 
     toml = tmp_path / "loop.toml"
     toml.write_text(LOOP_TOML, encoding="utf-8")
-    out = CliRunner().invoke(cli, ["iterate", str(toml), "--cycles", "2", "--no-plot"])
+    # a terminal wide enough for the 11 columns with their units (on 80 columns rich wraps
+    # each row over several lines)
+    out = CliRunner().invoke(cli, ["iterate", str(toml), "--cycles", "2", "--no-plot"],
+                             env={"COLUMNS": "320"})
     assert out.exit_code == 0, out.output
     import re
 
