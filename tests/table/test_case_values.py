@@ -5,11 +5,12 @@ Expected values: limit depth = limit × thickness and fraction = depth / thickne
 definitions of docs/uncertainty.md §1), with the default limit 0.4 (DEFAULT_DEPTH_LIMIT)."""
 
 import math
+import warnings
 
 import numpy as np
 import pytest
 
-from fretwear.errors import InputError, KeywordError
+from fretwear.errors import InputError, KeywordError, UnitsWarning
 from fretwear.table import DEFAULT_DEPTH_LIMIT, PowerWindow, Restart, Wall, WearCase
 
 DIMS = {"mobile_radius": 0.01, "obstacle_width": 0.02}
@@ -73,16 +74,22 @@ def test_every_length_in_mm_is_refused():
     """Issue 29 (a new user): radius 9.525, width 12.7, wall 1.09 all in mm passed the
     wall-vs-radius check (consistently wrong) and ran to a 3.4e9-year forecast. A steam-generator
     tube of 9.525 mm radius (19.05 mm OD, 1.09 mm wall: the reference document's tube) is the
-    source of the right values."""
+    source of the right values. A wall in mm is refused; a radius or width alone is warned of,
+    since Code_Aster's own POST_USURE test cases use RAYON_MOBILE=1., LARGEUR_OBST=10.
+    (tests/workflows/test_aster_pasted_calls.py computes them)."""
     base = dict(contact_type="TUBE_ALESAGE", instants=[1.0], coefficients={"COEF_USURE": 1e-14})
     ok = {"mobile_radius": 9.525e-3, "obstacle_width": 12.7e-3}
-    WearCase.from_keywords(dimensions=ok, wall_thickness=1.09e-3, **base)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UnitsWarning)
+        WearCase.from_keywords(dimensions=ok, wall_thickness=1.09e-3, **base)
     mm = {"mobile_radius": 9.525, "obstacle_width": 12.7}
-    with pytest.raises(InputError, match=r"mobile_radius = 9.525 m is implausible.*in mm\? "
-                                         r"Give metres: mobile_radius = 0.009525"):
+    with pytest.raises(InputError, match=r"wall_thickness = 1.09 m is implausible.*in mm\? "
+                                         r"Give metres: wall_thickness = 0.00109"):
         WearCase.from_keywords(dimensions=mm, wall_thickness=1.09, **base)
-    with pytest.raises(InputError, match=r"obstacle_width = 12.7 m .*= 0.0127"):
+    with pytest.warns(UnitsWarning, match=r"obstacle_width = 12.7 m .*= 0.0127"):
         WearCase.from_keywords(dimensions={**ok, "obstacle_width": 12.7}, **base)
+    with pytest.warns(UnitsWarning, match=r"mobile_radius = 9.525 m is implausible"):
+        WearCase.from_keywords(dimensions={**mm, "obstacle_width": 0.0127}, **base)
     with pytest.raises(InputError, match=r"wall_thickness = 0.2 m is implausible"):
         WearCase.from_keywords(dimensions={"mobile_radius": 0.4, "obstacle_width": 0.01},
                                wall_thickness=0.2, **base)

@@ -90,10 +90,14 @@ WALL_BOUND = 0.1
 
 
 def check_absolute_sizes(dimensions: dict, wall: float | None = None) -> None:
-    """Refuse a tube radius, obstacle width [m] or wall [m] of a metre's order.
+    """Catch a case whose every length was typed in mm: a wall [m] of a metre's order is
+    refused, a tube radius or obstacle width [m] of a metre's order is warned of.
 
     A case with every length in mm passes :func:`check_wall_thickness` (the wall stays thinner
     than the tube); the absolute bounds :data:`SIZE_BOUNDS` and :data:`WALL_BOUND` [m] catch it.
+    A wall is a steam-generator tube's, so a wall above :data:`WALL_BOUND` is an error. A radius
+    or width alone is only warned of: Code_Aster's own POST_USURE test cases use a unit radius
+    and a 10 m obstacle width (RAYON_MOBILE=1., LARGEUR_OBST=10.), which must compute as there.
 
     Parameters
     ----------
@@ -105,7 +109,12 @@ def check_absolute_sizes(dimensions: dict, wall: float | None = None) -> None:
     Raises
     ------
     InputError
-        Naming the first implausible value and its value in metres if it was in mm.
+        A wall above :data:`WALL_BOUND`, with its value in metres if it was in mm.
+
+    Warns
+    -----
+    UnitsWarning
+        A radius or width above its bound in :data:`SIZE_BOUNDS`.
 
     Examples
     --------
@@ -113,16 +122,21 @@ def check_absolute_sizes(dimensions: dict, wall: float | None = None) -> None:
     >>> try:
     ...     check_absolute_sizes({"mobile_radius": 9.525}, 1.09)
     ... except InputError as exc:
-    ...     print(str(exc)[:56])
-    mobile_radius = 9.525 m is implausible for a fretting co
+    ...     print(str(exc)[:57])
+    wall_thickness = 1.09 m is implausible for a fretting con
     """
-    values = [(k, dimensions.get(k), b) for k, b in SIZE_BOUNDS.items()]
-    for key, value, bound in values + [("wall_thickness", wall, WALL_BOUND)]:
+    if wall is not None and wall > WALL_BOUND:
+        raise InputError(_implausible("wall_thickness", wall, WALL_BOUND))
+    for key, bound in SIZE_BOUNDS.items():
+        value = dimensions.get(key)
         if value is not None and value > bound:
-            raise InputError(
-                f"{key} = {value:g} m is implausible for a fretting contact (above {bound:g} m): "
-                f"a value in mm? Give metres: {key} = {value * 1e-3:g} (every length of a case "
-                f"file or manifest is in metres: *_m keys)")
+            warnings.warn(_implausible(key, value, bound), UnitsWarning, stacklevel=3)
+
+
+def _implausible(key: str, value: float, bound: float) -> str:
+    return (f"{key} = {value:g} m is implausible for a fretting contact (above {bound:g} m): "
+            f"a value in mm? Give metres: {key} = {value * 1e-3:g} (every length of a case "
+            f"file or manifest is in metres: *_m keys)")
 
 
 def _orbit(history) -> float:
