@@ -46,6 +46,7 @@ SIZING_SIGMA = 3e-5   # [m]
 POD_A50, POD_A90 = 5e-5, 1e-4   # [m]
 TUBES_INSPECTED = 9
 TECHNIQUE = "bobbin (illustrative)"
+PCT_DECIMALS = 0   # the depths are written in whole % of the wall, as a field report gives them
 
 
 def technique():
@@ -82,7 +83,9 @@ def draw_campaign(models: dict, identity: pd.DataFrame, seed: int = SEED
             row["inspected"] = "no"
         elif detect < float(tech.pod(depth)):
             measured = depth + SIZING_SIGMA * noise
-            row["depth_pct"] = f"{max(round(100 * measured / wall), 1):d}"
+            step = 10.0 ** -PCT_DECIMALS
+            pct = max(round(100 * measured / wall, PCT_DECIMALS), step)
+            row["depth_pct"] = f"{pct:.{PCT_DECIMALS}f}"
         else:
             row["depth_pct"] = "NDD"
         rows.append(row)
