@@ -16,15 +16,22 @@ from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY
 from fretwear.errors import InputError, KeywordError
 from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
+from fretwear.table.depth_build import record_model
 from fretwear.table.depth_rows import (
+    FROM_MODEL,
     FROM_TABLE,
     INTERPOLATED,
     METHODS,
     ContactModels,
-    exact_method,
-    time_to_limit,
+    rows_time,
 )
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
+
+#: The columns of :attr:`BundleResult.contacts` a contact's depth model is built from
+#: (:func:`fretwear.table.depth_build.record_model`).
+RECORD_KEYS = ("contact_type", "dimensions", "law", "coefficients_mobile",
+               "coefficients_obstacle", "time_scale", "origin", "tube_replacement",
+               "wall_thickness", "depth_limit", "sector_coefficients")
 
 #: Columns of :attr:`BundleResult.errors`.
 ERROR_COLUMNS = ("contact", "error", "message", "rows_kept")
@@ -208,15 +215,13 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     owns = _lookup(contacts, info, "depth_limit", per.names)
     replacements = _lookup(contacts, info, "tube_replacement", per.names)
     units = _lookup(contacts, info, "time_unit", per.names)
-    # each contact's geometry and law (its record's), for the exact time to another limit
+    # each contact's record (its wear case's values): the depth model of its table
     models = ContactModels()
     geometries = [models.geometry(c, d) for c, d in zip(
         _lookup(contacts, info, "contact_type", per.names),
         _lookup(contacts, info, "dimensions", per.names), strict=True)]
-    laws = [models.law(name) for name in _lookup(contacts, info, "law", per.names)]
-    coefficients = _lookup(contacts, info, "coefficients_mobile", per.names)
-    obstacle_coefficients = _lookup(contacts, info, "coefficients_obstacle", per.names)
-    scales = _lookup(contacts, info, "time_scale", per.names)
+    records = [dict(zip(RECORD_KEYS, values, strict=True)) for values in zip(
+        *(_lookup(contacts, info, key, per.names) for key in RECORD_KEYS), strict=True)]
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
@@ -252,21 +257,8 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            scale = None if scales[k] is None or pd.isna(scales[k]) else float(scales[k])
-            other = obstacle_coefficients[k]
-            model = {"geometry": geometries[k], "law": laws[k], "time_scale": scale,
-                     "coefficients": coefficients[k] if isinstance(coefficients[k], dict)
-                     else None,
-                     "obstacle_coefficients": other if isinstance(other, dict) else None}
-            if reached[k]:
-                t_lim, method = per.time_to(k, target, replaced_at[k], model)
-            else:  # not reached by the last instant: the method it would take
-                t_lim = math.nan
-                method = exact_method(geometries[k], laws[k], sectors=per.sectored[k],
-                                      volumes=per.vm is not None, time_scale=scale,
-                                      obstacle_wears=per.obstacle_wears(k),
-                                      obstacle_coefficients=model["obstacle_coefficients"]
-                                      ) or INTERPOLATED
+            t_lim, method = per.time_to(k, target, replaced_at[k], bool(reached[k]),
+                                        records[k], geometries[k])
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
@@ -340,6 +332,7 @@ class _Contacts:
         self.table, self.codes = table, codes
         self.instant, self.power, self.depth, self.sector_max = [], [], [], []
         self.first_nan, self.has_limit, self.limit_instant = [], [], []
+        self._models: dict = {}  # contact -> its DepthModel or None (:meth:`model`)
         if n == 0:
             return
         valid = codes >= 0
@@ -434,19 +427,72 @@ class _Contacts:
             return False
         return bool(np.nan_to_num(self.vo[self.start[k]:self.end[k]]).any())
 
-    def time_to(self, k: int, target: float, replaced: float | None,
-                model: dict) -> tuple[float, str]:
-        """:func:`~fretwear.table.depth_rows.time_to_limit` on contact ``k``'s global rows
-        (``model``: its ``geometry``, ``law``, ``coefficients``, ``time_scale``)."""
+    def time_to(self, k: int, target: float, replaced: float | None, reached: bool,
+                record: dict, geometry) -> tuple[float, str]:
+        """The instant [table time unit] at which contact ``k``'s tube reaches ``target`` [m]
+        (NaN where its rows do not reach it by the last instant), and the method: its depth
+        model's :meth:`~fretwear.table.DepthModel.time_to` (:data:`FROM_MODEL`), built once
+        from its ``record`` and global rows (:func:`~fretwear.table.depth_build.record_model`);
+        where the law or the geometry is not known, its rows interpolated
+        (:func:`~fretwear.table.depth_rows.rows_time`, :data:`INTERPOLATED`)."""
+        model = self.model(k, record, geometry)
+        if not reached:
+            return math.nan, INTERPOLATED if model is None else FROM_MODEL
+        if model is not None:
+            found = float(model.time_to(target))
+            if math.isfinite(found):
+                return found, FROM_MODEL
         s = slice(self.start[k], self.end[k])
+        return rows_time(self.t[s], self.d[s], target,
+                         origins=None if self.origin is None else self.origin[s],
+                         replaced=replaced,
+                         volume_mobile=None if self.vm is None else self.vm[s]), INTERPOLATED
 
-        def rows(values):
-            return None if values is None else values[s]
+    def model(self, k: int, record: dict, geometry):
+        """Contact ``k``'s :class:`~fretwear.table.DepthModel` (made once), None where its
+        law or geometry is not known (or its record cannot make one: a law not linear in time
+        with sectors)."""
+        if k in self._models:
+            return self._models[k]
+        model = None
+        plain = {key: _plain(value) for key, value in record.items()}
+        if geometry is not None and ContactModels.law(plain.get("law")) is not None \
+                and self.vm is not None:
+            s = slice(self.start[k], self.end[k])
+            sectors = self._sector_powers(k) if self.sectored[k] else None
+            try:
+                if self.sectored[k] and sectors is None:
+                    raise InputError("no sector powers")
+                model = record_model(
+                    plain, instants=self.t[s], depths=self.d[s],
+                    origins=None if self.origin is None else self.origin[s],
+                    volume_mobile=self.vm[s],
+                    volume_obstacle=None if self.vo is None else self.vo[s],
+                    power=self.power[k], geometry=geometry,
+                    sector_powers=sectors)
+            except (InputError, KeywordError, TypeError, ValueError):
+                model = None
+        self._models[k] = model
+        return model
 
-        return time_to_limit(self.t[s], self.d[s], target, origins=rows(self.origin),
-                             replaced=replaced, volume_mobile=rows(self.vm),
-                             volume_obstacle=rows(self.vo), powers=rows(self.p),
-                             sectors=self.sectored[k], **model)
+    def _sector_powers(self, k: int):
+        """Each sector's wear power [W] at contact ``k``'s last instant (``sector_power``),
+        by sector; None without them."""
+        table = self.table
+        if "sector_power" not in table.columns:
+            return None
+        at = np.flatnonzero((self.codes == k) & table["sector"].notna().to_numpy()
+                            & (table["instant"].to_numpy(dtype=float) == self.instant[k]))
+        order = np.argsort(table["sector"].to_numpy(dtype=float)[at], kind="stable")
+        powers = table["sector_power"].to_numpy(dtype=float)[at[order]]
+        return powers if powers.size and np.isfinite(powers).all() else None
+
+
+def _plain(value):
+    """A record's value: None for a missing one (None, NaN)."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return None
+    return value
 
 
 # ----------------------------------------------------------------------------- dataset
