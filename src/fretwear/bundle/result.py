@@ -438,6 +438,8 @@ class _Contacts:
         model = self.model(k, record, geometry)
         if not reached:
             return math.nan, INTERPOLATED if model is None else FROM_MODEL
+        if target <= 0:  # reached at once: the start of the tube in place
+            return self._start(k, replaced), INTERPOLATED if model is None else FROM_MODEL
         if model is not None:
             found = float(model.time_to(target))
             if math.isfinite(found):
@@ -447,6 +449,15 @@ class _Contacts:
                          origins=None if self.origin is None else self.origin[s],
                          replaced=replaced,
                          volume_mobile=None if self.vm is None else self.vm[s]), INTERPOLATED
+
+    def _start(self, k: int, replaced: float | None) -> float:
+        """The first instant of contact ``k``'s tube in place [table time unit]: its
+        replacement, 0 for a new tube, else its first row's instant."""
+        if replaced is not None:
+            return float(replaced)
+        first = self.start[k]
+        new = self.origin is None or self.origin[first] == 0
+        return 0.0 if new else float(self.t[first])
 
     def model(self, k: int, record: dict, geometry):
         """Contact ``k``'s :class:`~fretwear.table.DepthModel` (made once), None where its

@@ -230,7 +230,10 @@ def rows_time(instants, depths, target: float, *, origins, replaced: float | Non
         d = np.where(t == replaced, 0.0, d)  # the new tube, unworn at its replacement
         return interpolated_time(t, d, target,
                                  from_zero=bool(origins.size == 0 or origins[0] == 0))
-    return _interpolated(t, d, vm, target, bool(origins.size == 0 or origins[0] == 0))
+    from_zero = bool(origins.size == 0 or origins[0] == 0)
+    if origins.size and origins[-1] > 0 and origins[0] != origins[-1]:  # a restart's rows:
+        return _interpolated(t, d, vm, target, from_zero)  # the tube in place's
+    return interpolated_time(t, d, target, from_zero=from_zero)
 
 
 def earlier_rows_time(t, d, vm, vo, target: float, geometry, from_zero: bool
