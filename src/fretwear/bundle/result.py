@@ -141,12 +141,11 @@ class BundleResult:
             ``limit_forecast`` (in ``time_unit``) is that instant wherever it lies, also beyond
             the last instant (the wear table's ``limit_instant``: the law and geometry inverted
             at the history's power, inf if never reached), NaN for another limit. Any other
-            limit: exact, the limit depth inverted through the contact's geometry to a worn
-            volume, reached linearly in time between the table's instants for a law linear in
-            time (through the law's equivalent time for EDF-MZ), from the tube's volume at its
-            origin or replacement (:mod:`fretwear.table.depth_rows`); among a restart's
-            initial-table rows, through the geometry with the volume linear between them;
-            where the geometry or the law is not known, depth(t) interpolated between the
+            limit: the contact's depth model's :meth:`~fretwear.table.DepthModel.time_to` (the
+            one meaning of the time to a limit, docs/uncertainty.md §1: the first instant the
+            tube in place reaches it, a restart's earlier rows included; built once from the
+            contact's record and rows, :func:`fretwear.table.depth_build.record_model`); where
+            the contact's law or geometry is not known, depth(t) interpolated between the
             instants (monotone cubic) and inverted.
             ``time_to_limit_method`` says which per contact, ``attrs["time_to_limit"]`` lists
             them.
@@ -197,8 +196,8 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     """The ranking of :meth:`BundleResult.summary`.
 
     The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
-    :func:`~fretwear.table.depth_rows.time_to_limit` is called only for the contacts whose depth
-    reaches the limit.
+    a contact's depth model (:meth:`_Contacts.time_to`) is inverted only for the contacts
+    whose depth reaches the limit.
     """
     if limit is not None and limit_m is not None:
         raise KeywordError(f"limit={limit!r} (a fraction of the wall) and limit_m={limit_m!r} "
@@ -404,7 +403,7 @@ class _Contacts:
 
     def reaches(self, targets: list, replaced: list) -> np.ndarray:
         """Whether a time can be found for each contact's target depth [m] (False where
-        :func:`~fretwear.table.depth_rows.time_to_limit` would return NaN: its deepest depth
+        :meth:`time_to` returns NaN: its deepest depth
         since a replacement is below a positive target; a NaN depth of a finite volume is
         beyond the relation's range, deeper than any target)."""
         n = len(self.names)

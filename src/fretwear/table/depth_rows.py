@@ -37,11 +37,6 @@ FROM_TABLE = ("the wear table's limit_instant (the contact's depth model inverte
 FROM_MODEL = ("the contact's depth model (DepthModel.time_to: the law and the geometry at the "
               "run's power, from the tube's volume at its origin or replacement; a restart's "
               "earlier rows through the geometry, the volume linear in time between them)")
-INITIAL_ROWS = ("among a restart's initial-table rows (their law not known to this run): the "
-                "limit depth inverted through the contact's geometry to a worn volume, the "
-                "volume linear in time between those rows (exact when the earlier run's law "
-                "was linear in time at constant power; after a tube replaced among them, from "
-                "their last row before the replacement, the earliest it can be)")
 #: The methods named in ``summary().attrs["time_to_limit"]``.
 METHODS = (FROM_TABLE, FROM_MODEL, INTERPOLATED)
 
@@ -158,7 +153,7 @@ class EarlierRows:
                                       geometry if hasattr(geometry, "contact_type")
                                       and geometry.contact_type else None, self.from_zero)
             if found is not None:
-                out[value] = found[0]
+                out[value] = found
         return out
 
 
@@ -237,10 +232,10 @@ def rows_time(instants, depths, target: float, *, origins, replaced: float | Non
 
 
 def earlier_rows_time(t, d, vm, vo, target: float, geometry, from_zero: bool
-                      ) -> tuple[float, str] | None:
+                      ) -> float | None:
     """The instant [table time unit] at which the tube in place reaches ``target`` [m] among a
-    restart's initial-table rows (their law not known to this run), and the method; None
-    where its depth there stays below ``target``.
+    restart's initial-table rows (their law not known to this run); None where its depth
+    there stays below ``target``.
 
     Parameters
     ----------
@@ -254,11 +249,12 @@ def earlier_rows_time(t, d, vm, vo, target: float, geometry, from_zero: bool
 
     Returns
     -------
-    (float, str) or None
-        Through the geometry with the volume linear in time between the rows
-        (:data:`INITIAL_ROWS`), after a tube replaced among them from their last row before
-        the replacement; where the geometry or the volumes are not known, the depth
-        interpolated between the rows (:data:`INTERPOLATED`).
+    float or None
+        Through the geometry with the volume linear in time between the two rows that bracket
+        ``target`` (exact when the earlier run's law was linear in time at constant power),
+        after a tube replaced among them from their last row before the replacement (the
+        earliest it can be); where the geometry or the volumes are not known, the depth
+        interpolated between the rows (:func:`interpolated_time`).
     """
     t, d = np.asarray(t, dtype=float), np.asarray(d, dtype=float)
     vm = None if vm is None else np.asarray(vm, dtype=float)
@@ -268,9 +264,7 @@ def earlier_rows_time(t, d, vm, vo, target: float, geometry, from_zero: bool
     found = None
     if geometry is not None and vm is not None:
         found = _through_volume(t, d, vm, vo, target, from_zero, geometry)
-    if found is not None:
-        return found, INITIAL_ROWS
-    return _interpolated(t, d, vm, target, from_zero), INTERPOLATED
+    return found if found is not None else _interpolated(t, d, vm, target, from_zero)
 
 
 def _tube_start(d, vm, end: int) -> int:
