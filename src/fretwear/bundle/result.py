@@ -332,6 +332,7 @@ class _Contacts:
         self.instant, self.power, self.depth, self.sector_max = [], [], [], []
         self.first_nan, self.has_limit, self.limit_instant = [], [], []
         self._models: dict = {}  # contact -> its DepthModel or None (:meth:`model`)
+        self._sector_rows = None  # (sector powers, first, end) of every contact's last instant
         if n == 0:
             return
         valid = codes >= 0
@@ -465,7 +466,8 @@ class _Contacts:
         if k in self._models:
             return self._models[k]
         model = None
-        plain = {key: _plain(value) for key, value in record.items()}
+        plain = {key: None if isinstance(value, float) and math.isnan(value) else value
+                 for key, value in record.items()}  # a missing value: None
         if geometry is not None and ContactModels.law(plain.get("law")) is not None \
                 and self.vm is not None:
             s = slice(self.start[k], self.end[k])
@@ -487,22 +489,21 @@ class _Contacts:
 
     def _sector_powers(self, k: int):
         """Each sector's wear power [W] at contact ``k``'s last instant (``sector_power``),
-        by sector; None without them."""
-        table = self.table
-        if "sector_power" not in table.columns:
-            return None
-        at = np.flatnonzero((self.codes == k) & table["sector"].notna().to_numpy()
-                            & (table["instant"].to_numpy(dtype=float) == self.instant[k]))
-        order = np.argsort(table["sector"].to_numpy(dtype=float)[at], kind="stable")
-        powers = table["sector_power"].to_numpy(dtype=float)[at[order]]
-        return powers if powers.size and np.isfinite(powers).all() else None
-
-
-def _plain(value):
-    """A record's value: None for a missing one (None, NaN)."""
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return None
-    return value
+        by sector; None without them. The rows of every contact are found once."""
+        if self._sector_rows is None:
+            table, n = self.table, len(self.names)
+            valid = (self.codes >= 0) & table["sector"].notna().to_numpy()
+            codes = np.where(valid, self.codes, 0)
+            last = np.asarray(self.instant, dtype=float)[codes]
+            at = np.flatnonzero(valid & (table["instant"].to_numpy(dtype=float) == last))
+            at = at[np.lexsort((table["sector"].to_numpy(dtype=float)[at], codes[at]))]
+            powers = (table["sector_power"].to_numpy(dtype=float)[at]
+                      if "sector_power" in table.columns else np.full(at.size, np.nan))
+            self._sector_rows = (powers, np.searchsorted(codes[at], np.arange(n)),
+                                 np.searchsorted(codes[at], np.arange(n), side="right"))
+        powers, start, end = self._sector_rows
+        mine = powers[start[k]:end[k]]
+        return mine if mine.size and np.isfinite(mine).all() else None
 
 
 # ----------------------------------------------------------------------------- dataset
