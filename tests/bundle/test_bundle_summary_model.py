@@ -73,3 +73,36 @@ def test_time_to_limit_is_the_case_models_time_to(tmp_path):
             times.append(row["time_to_limit"])
         assert np.all(np.diff(times) >= 0), times  # non-decreasing in the limit
         assert not any(math.isnan(t) for t in times)
+
+
+def test_sector_coefficients_of_the_case_are_the_models(tmp_path):
+    """A sector case whose sectors wear with their own Archard coefficients: the global depth
+    sums the sectors' volumes K_j·P_j·t, so the summary's time (its model from the contact's
+    record, sector_coefficients included) is the case's model's (case_model with the sector
+    powers of the table), to 1e-12 relative; with the law's one coefficient in every sector
+    (a contacts frame without sector_coefficients) it comes out 2.5 % late here (Σ K_j P_j
+    against K Σ P_j, measured)."""
+    from types import SimpleNamespace
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    case.write_text(BASE_CASE.replace(
+        "[sectors]\ncount = 4\n",
+        "[sectors]\ncount = 4\nmobile_coefficients_per_Pa = [9.2e-15, 5e-15, 2e-14, 1e-14]\n"))
+    result = run_bundle(manifest, case, scheduler="serial")
+    assert result.stats["failed"] == 0, result.errors
+    table = result.table
+    for contact in result.contacts["contact"]:
+        rows = table[(table["contact"] == contact) & table["sector"].notna()]
+        last = rows[rows["instant"] == rows["instant"].max()].sort_values("sector")
+        target = 0.5 * float(last["depth_mobile"].iloc[0])
+        got = result.summary(limit_m=target).set_index("contact").loc[contact]
+        wear_case = result.cases[contact]
+        assert wear_case.sector_coefficients is not None
+        power = SimpleNamespace(sectors=last["sector_power"].to_numpy(),
+                                sector_edges=wear_case.sector_edges)
+        model = case_model(wear_case, float(last["power"].iloc[0]), power,
+                           wear_case.coefficient_values("mobile"),
+                           wear_case.coefficient_values("obstacle"), None, wear_case.geometry)
+        assert got["time_to_limit_method"] == FROM_MODEL
+        assert got["time_to_limit"] == pytest.approx(float(model.time_to(target)), rel=1e-12,
+                                                     abs=0)
