@@ -27,7 +27,7 @@ from fretwear.errors import StationarityWarning
 from fretwear.io import iter_history_chunks, write_history
 from fretwear.power import PowerAccumulator
 from fretwear.table import wear_table
-from fretwear.table.depth_rows import interpolated_time
+from fretwear.table.depth_rows import FROM_MODEL, interpolated_time
 from fretwear.workflows.case_files import case_arguments, load_case
 
 YEAR = 31536000.0
@@ -240,11 +240,11 @@ def test_summary_time_to_limit_against_archard_on_a_flat_bar(tmp_path):
     assert math.isnan(s.loc["c", "time_to_limit"])  # no wall given
     s_m = result.summary(limit_m=0.4 * wall).set_index("contact")
     assert s_m.loc["c", "time_to_limit"] > 40 or math.isnan(s_m.loc["c", "time_to_limit"])
-    # an explicit limit other than the case's own goes through the geometry and the volume,
+    # an explicit limit other than the case's own goes through the contact's depth model,
     # exact (the same closed form at 0.3 of the wall); 0.4, the case's own, gives the table's
     # limit_instant as the default does
     other = result.summary(0.3).set_index("contact")
-    assert other.attrs["time_to_limit"].startswith("exact: the limit depth inverted")
+    assert other.attrs["time_to_limit"] == FROM_MODEL
     for name, p in zip("ab", powers, strict=False):
         exact = (4 * width / 3) * (0.3 * wall) ** 1.5 * math.sqrt(2 * R) / (K * p) / YEAR
         assert other.loc[name, "time_to_limit"] == pytest.approx(exact, rel=1e-9), name

@@ -10,9 +10,10 @@ The reference follows the summary's rules as they change: since the fix of the d
 the limit (the table's limit_instant only where reached by the last instant, and for an explicit
 limit equal to the contact's own too), its FROM_TABLE branch says so; since the exact time to
 another limit (through the contact's geometry and worn volume), it hands each contact's rows,
-taken here group by group, to fretwear.table.depth_rows.time_to_limit where the contact's geometry
-and law are known (that inversion is checked against independent computations in
-test_bundle_time_to_other_limit.py), the monotone cubic otherwise; the rest is the old loop."""
+taken here group by group, to the contact's DepthModel (fretwear.table.depth_build.
+record_model) where its geometry and law are known (that inversion is checked against
+independent computations in test_bundle_time_to_other_limit.py), the monotone cubic
+otherwise; the rest is the old loop."""
 
 from __future__ import annotations
 
@@ -25,17 +26,16 @@ from bundle_helpers import BASE_CASE, oscillator, write_bundle
 
 from fretwear.bundle import run_bundle
 from fretwear.bundle.manifest import IDENTITY
-from fretwear.bundle.result import check_limit, summarize
+from fretwear.bundle.result import RECORD_KEYS, check_limit, summarize
 from fretwear.errors import InputError
+from fretwear.table.depth_build import record_model
 from fretwear.table.depth_rows import (
+    FROM_MODEL,
     FROM_TABLE,
-    FROM_VOLUME,
     INTERPOLATED,
     METHODS,
     ContactModels,
-    exact_method,
     interpolated_time,
-    time_to_limit,
 )
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 
@@ -116,13 +116,18 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
                     isinstance(value, float) and math.isnan(value)) else value
 
             geometry = MODELS.geometry(get("contact_type"), get("dimensions"))
-            law = MODELS.law(get("law"))
             sectored = "sector" in group.columns and bool(group["sector"].notna().any())
-            model = exact_method(geometry, law, sectors=sectored, time_scale=get("time_scale"))
+            model = _reference_model(glob, group, info, contact, geometry, sectored)
             since = glob if replaced is None else glob[glob["instant"] >= replaced]
             deepest = _deepest(since)
+            label = INTERPOLATED if model is None else FROM_MODEL
             if not (target <= 0 or deepest >= target):
-                t_lim, method = math.nan, model or INTERPOLATED
+                t_lim, method = math.nan, label
+            elif target <= 0:  # reached at once: the start of the tube in place
+                method = label
+                t_lim = (replaced if replaced is not None
+                         else 0.0 if float(glob["origin"].iloc[0]) == 0
+                         else float(glob["instant"].iloc[0]))
             elif model is None:
                 sel = since
                 origin = (float(sel["origin"].iloc[0]) if "origin" in sel.columns and len(sel)
@@ -131,13 +136,9 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
                                       sel["depth_mobile"].to_numpy(dtype=float), target,
                                       from_zero=origin == 0)
                 method = INTERPOLATED
-            else:
-                t_lim, method = time_to_limit(
-                    glob["instant"], glob["depth_mobile"], target, origins=glob["origin"],
-                    replaced=replaced, volume_mobile=glob["volume_mobile"],
-                    volume_obstacle=glob["volume_obstacle"], powers=glob["power"],
-                    geometry=geometry, law=law, coefficients=get("coefficients_mobile"),
-                    time_scale=get("time_scale"), sectors=sectored)
+            else:  # the contact's depth model (its inversion checked against independent
+                # computations in test_bundle_time_to_other_limit.py)
+                t_lim, method = float(model.time_to(target)), FROM_MODEL
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         unit = (info.at[contact, "time_unit"] if "time_unit" in info.columns
@@ -172,6 +173,33 @@ def reference_summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: f
 
 
 MODELS = ContactModels()
+
+
+def _reference_model(glob, group, info, contact, geometry, sectored):
+    """The contact's DepthModel from its record (the contacts frame's values) and global
+    rows, sector powers at the last instant; None where the law or geometry is not known."""
+    if geometry is None or "volume_mobile" not in glob.columns:
+        return None
+    record = {}
+    for key in RECORD_KEYS:
+        value = info.at[contact, key] if key in info.columns and contact in info.index else None
+        record[key] = None if isinstance(value, float) and math.isnan(value) else value
+    if MODELS.law(record["law"]) is None:
+        return None
+    sectors = None
+    if sectored:
+        last = group[(group["instant"] == glob["instant"].iloc[-1]) & group["sector"].notna()]
+        sectors = last.sort_values("sector", kind="stable")["sector_power"].to_numpy(float)
+    try:
+        return record_model(record, instants=glob["instant"].to_numpy(float),
+                            origins=glob["origin"].to_numpy(float),
+                            depths=glob["depth_mobile"].to_numpy(float),
+                            volume_mobile=glob["volume_mobile"].to_numpy(float),
+                            volume_obstacle=glob["volume_obstacle"].to_numpy(float),
+                            power=float(glob["power"].iloc[-1]), geometry=geometry,
+                            sector_powers=sectors)
+    except (InputError, ValueError, TypeError):
+        return None
 
 
 # ------------------------------------------------------------------ the bundles
@@ -263,7 +291,7 @@ def _interpolated(summaries) -> int:
     volume, not a table instant)."""
     count = 0
     for s in summaries:
-        t = s.loc[s["time_to_limit_method"] == FROM_VOLUME, "time_to_limit"].dropna()
+        t = s.loc[s["time_to_limit_method"] == FROM_MODEL, "time_to_limit"].dropna()
         count += int((t % 0.5 != 0).sum())
     return count
 
@@ -280,7 +308,9 @@ def test_summary_equals_the_per_contact_loop(bundles, name):
     exact = [{"limit_m": float(depth.max())}, {"limit_m": float(depth.iloc[len(depth) // 2])},
              {"wall_thickness": -1e-3}]
     reached = assert_same(table, contacts, exact)
-    assert (reached[0]["time_to_limit"] == reached[0]["instant"]).any()
+    # (the depth model inverted: the instant to 1e-12 relative, not bit for bit)
+    assert np.isclose(reached[0]["time_to_limit"], reached[0]["instant"], rtol=1e-12,
+                      atol=0).any()
     assert _interpolated(summaries) > 0  # the inversion through the volume was exercised
     if name.startswith("deep"):
         assert summaries[0]["contact"].iloc[0] == "deep"
@@ -293,8 +323,8 @@ def test_summary_equals_the_per_contact_loop(bundles, name):
         # limit=0.4: R1C1's own limit (its table's instant), R2C1's is 0.5 (through the volume)
         s = summaries[1].set_index("contact")
         assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
-        assert s.loc["R2C1-AVB", "time_to_limit_method"] == FROM_VOLUME
-        assert summaries[2].attrs["time_to_limit"] == FROM_VOLUME  # limit=0.03
+        assert s.loc["R2C1-AVB", "time_to_limit_method"] == FROM_MODEL
+        assert summaries[2].attrs["time_to_limit"] == FROM_MODEL  # limit=0.03
 
 
 def test_summary_of_reshaped_tables(bundles):

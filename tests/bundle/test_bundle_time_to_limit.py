@@ -9,7 +9,7 @@ lies in the interval of instants where the depth crosses the limit, at or before
 linear interpolation of the depth there (the depth of a flat worn into a cylinder grows as the
 volume to the 2/3, and Archard's volume linearly in time: depth(t) is concave, so its chord lies
 below it and reaches the limit later). Another limit than the case's (0.3) is found through the
-geometry and the worn volume (FROM_VOLUME; its values are checked against independent
+geometry and the worn volume (FROM_MODEL; its values are checked against independent
 computations in test_bundle_time_to_other_limit.py): one the two deepest contacts cross, chosen
 from the data (0.9 × the second-deepest's last depth), so that the test does not depend on the
 example's particular values. The default limit and the same limit
@@ -27,7 +27,7 @@ import pytest
 pytest.importorskip("xarray")
 
 from fretwear.bundle import run_bundle  # noqa: E402
-from fretwear.table.depth_rows import FROM_TABLE, FROM_VOLUME  # noqa: E402
+from fretwear.table.depth_rows import FROM_MODEL, FROM_TABLE  # noqa: E402
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
 
@@ -79,7 +79,7 @@ def test_time_to_limit_is_reached_within_the_instants(result, limit):
         assert row.time_to_limit <= linear * (1 + 1e-12), row.contact
     if fraction != 0.4:
         assert reached >= 2  # the limit is crossed between two instants by some contacts
-    expected = FROM_TABLE if fraction == 0.4 else FROM_VOLUME
+    expected = FROM_TABLE if fraction == 0.4 else FROM_MODEL
     assert summary.attrs["time_to_limit"] == expected
 
 

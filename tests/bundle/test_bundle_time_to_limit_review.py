@@ -22,15 +22,8 @@ import pytest
 
 from fretwear.bundle.result import summarize
 from fretwear.geometry import contact_geometry
-from fretwear.laws import WEAR_LAWS
 from fretwear.table import wear_table
-from fretwear.table.depth_rows import (
-    FROM_LAW,
-    FROM_VOLUME,
-    INITIAL_ROWS,
-    INTERPOLATED,
-    time_to_limit,
-)
+from fretwear.table.depth_rows import FROM_MODEL
 
 YEAR = 365 * 86400.0  # [s]
 K = 9.2e-15  # [1/Pa]
@@ -95,7 +88,7 @@ def test_a_restart_with_a_replacement_in_the_run_counts_the_new_tube(replaced):
     table = _table(0.05, **BAV, initial_state=earlier, tube_replacement=replaced)
     for target in (2e-4, 5e-4):
         got, method = _summary(table, target)
-        assert method == FROM_VOLUME
+        assert method == FROM_MODEL
         assert got == pytest.approx(_archard_flat(0.05, target, replaced), rel=1e-12)
 
 
@@ -106,7 +99,7 @@ def test_a_replacement_at_the_restarts_origin_starts_unworn():
     table = _table(0.05, **BAV, initial_state=earlier, tube_replacement=5.0)
     for target in (1e-4, 1.9e-4):
         got, method = _summary(table, target)
-        assert method == FROM_VOLUME
+        assert method == FROM_MODEL
         assert got == pytest.approx(_archard_flat(0.05, target, 5.0), rel=1e-12)
 
 
@@ -127,7 +120,7 @@ def test_a_depth_falling_without_a_replacement_is_not_one():
         got, method = _summary(table, target)
         expected = _forward(0.05, kw, target, 0.0, 10.0)
         k = int(np.searchsorted(t, expected))
-        assert method == INITIAL_ROWS
+        assert method == FROM_MODEL
         assert t[k - 1] < got <= t[k], (target, got, expected)
 
 
@@ -143,7 +136,7 @@ def test_edf_mz_obstacle_at_a_replacement_between_rows_follows_its_law():
     last = float(table.drop_duplicates("instant")["depth_mobile"].iloc[-1])
     for fraction in (0.02, 0.3):
         got, method = _summary(table, fraction * last)
-        assert method == FROM_LAW
+        assert method == FROM_MODEL
         expected = _forward(0.05, kw, fraction * last, 3.0, 5.0)
         assert got - 3.0 == pytest.approx(expected - 3.0, rel=1e-9)
 
@@ -157,22 +150,15 @@ def test_a_limit_passed_before_a_depth_beyond_the_relation_is_found():
     assert math.isnan(table["depth_mobile"].iloc[-1])
     got, method = _summary(table, limit=0.6, wall=1.09e-3)
     single = _table(0.2, **{**kw, "depth_limit": 0.6})
-    assert method == FROM_VOLUME
+    assert method == FROM_MODEL
     assert got == pytest.approx(float(single["limit_instant"].iloc[-1]), rel=1e-12)
 
 
-def test_a_law_not_linear_in_time_without_the_power_is_not_called_exact():
-    """Without the run's power, EDF-MZ cannot be continued (it was evaluated at 0 W and
-    clamped to the row's instant, 0.5 against 0.332, and called exact, a review)."""
+def test_a_law_not_linear_in_time_follows_its_law_at_the_runs_power():
+    """EDF-MZ continued at the run's power (the table's power column; it was evaluated at 0 W
+    and clamped to the row's instant, 0.5 against 0.332, a review): against the forward
+    single-contact table, bisected."""
     kw = {**BAV, "law": "EDF_MZ", "coefficients": {"COEF_USURE": K, "COEF_S": 1e-19}}
-    table = _table(0.05, **kw).drop_duplicates("instant")
-    common = dict(origins=table["origin"].to_numpy(), replaced=None,
-                  volume_mobile=table["volume_mobile"].to_numpy(), geometry=BAR,
-                  law=WEAR_LAWS["EDF_MZ"], coefficients=table.attrs["coefficients_mobile"],
-                  time_scale=YEAR)
-    t, d = table["instant"].to_numpy(), table["depth_mobile"].to_numpy()
-    _, method = time_to_limit(t, d, 1e-4, powers=None, **common)
-    assert method == INTERPOLATED
-    got, method = time_to_limit(t, d, 1e-4, powers=table["power"].to_numpy(), **common)
-    assert method == FROM_LAW
+    got, method = _summary(_table(0.05, **kw), 1e-4)
+    assert method == FROM_MODEL
     assert got == pytest.approx(_forward(0.05, kw, 1e-4, 0.0, 5.0), rel=1e-9)

@@ -30,15 +30,11 @@ from bundle_helpers import BASE_CASE, oscillator, reference, write_bundle
 
 from fretwear.bundle import run_bundle
 from fretwear.bundle.result import summarize
+from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.table import write_wear_table
-from fretwear.table.depth_rows import (
-    FROM_LAW,
-    FROM_VOLUME,
-    INITIAL_ROWS,
-    INTERPOLATED,
-    interpolated_time,
-)
+from fretwear.table.depth_build import record_model
+from fretwear.table.depth_rows import FROM_MODEL, INTERPOLATED, interpolated_time
 
 pytest.importorskip("xarray")
 # the walls are made thin to put the limits where wanted: worn through by the last instant
@@ -121,7 +117,7 @@ def test_archard_against_the_bisection_of_k_p_t(tmp_path):
         target = LIMIT * walls[k]
         row = s.loc[contact]
         assert row["limit_depth"] == pytest.approx(target, rel=1e-15)
-        assert row["time_to_limit_method"] == FROM_VOLUME
+        assert row["time_to_limit_method"] == FROM_MODEL
         if k == 2:
             assert math.isnan(row["time_to_limit"])
             continue
@@ -140,13 +136,13 @@ def test_archard_against_the_bisection_of_k_p_t(tmp_path):
         assert old.loc[contact, "time_to_limit"] == cubic
         if k == 0:
             assert cubic > 1.1 * hi
-    assert s.attrs["time_to_limit"] == FROM_VOLUME
+    assert s.attrs["time_to_limit"] == FROM_MODEL
 
 
 def test_sectors_against_the_single_contact_table(tmp_path):
     _, _, walls = _walls(tmp_path / "a", BASE_CASE)
     result = _run_with_walls(tmp_path / "b", BASE_CASE, walls)
-    _check_against_single(tmp_path / "b", result, BASE_CASE, walls, FROM_VOLUME)
+    _check_against_single(tmp_path / "b", result, BASE_CASE, walls, FROM_MODEL)
 
 
 def test_a_replaced_tube_against_the_single_contact_table(tmp_path):
@@ -156,8 +152,8 @@ def test_a_replaced_tube_against_the_single_contact_table(tmp_path):
     _, _, walls = _walls(tmp_path / "a", NO_SECTORS, extra, replaced=True)
     result = _run_with_walls(tmp_path / "b", NO_SECTORS, walls, extra)
     keys = [{}, {"time": "tube_replacement = 1.5"}, {}]
-    s = _check_against_single(tmp_path / "b", result, NO_SECTORS, walls, FROM_VOLUME, keys)
-    assert s.iloc[0]["time_to_limit_method"] == FROM_VOLUME
+    s = _check_against_single(tmp_path / "b", result, NO_SECTORS, walls, FROM_MODEL, keys)
+    assert s.iloc[0]["time_to_limit_method"] == FROM_MODEL
     replaced = s.loc[result.contacts["contact"].iloc[1], "time_to_limit"]
     assert 2.0 < replaced < 5.0
 
@@ -174,7 +170,7 @@ def test_edf_mz_against_the_single_contact_table(tmp_path):
     assert "COEF_S" in case_text
     _, _, walls = _walls(tmp_path / "a", case_text)
     result = _run_with_walls(tmp_path / "b", case_text, walls)
-    _check_against_single(tmp_path / "b", result, case_text, walls, FROM_LAW)
+    _check_against_single(tmp_path / "b", result, case_text, walls, FROM_MODEL)
 
 
 def _restarted(directory, case_text):
@@ -201,7 +197,7 @@ def test_a_restart_from_an_earlier_table_starts_from_its_volume(tmp_path):
     s = result.summary(LIMIT).set_index("contact")
     for k, contact in enumerate(result.contacts["contact"]):
         expected = _single(directory, f"histories/t{k}.parquet", restarted, walls[k])
-        assert s.loc[contact, "time_to_limit_method"] == FROM_VOLUME
+        assert s.loc[contact, "time_to_limit_method"] == FROM_MODEL
         assert s.loc[contact, "time_to_limit"] == pytest.approx(expected, rel=1e-12)
     assert 5.0 < s.loc[result.contacts["contact"].iloc[0], "time_to_limit"] < 5.5
 
@@ -220,7 +216,7 @@ def test_edf_mz_with_a_wearing_obstacle_against_the_single_contact_table(tmp_pat
     _, _, walls = _walls(tmp_path / "a", case_text)
     result = _run_with_walls(tmp_path / "b", case_text, walls)
     assert (_global(result, result.contacts["contact"][0])["volume_obstacle"] > 0).all()
-    _check_against_single(tmp_path / "b", result, case_text, walls, FROM_LAW)
+    _check_against_single(tmp_path / "b", result, case_text, walls, FROM_MODEL)
 
 
 def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_path):
@@ -228,8 +224,8 @@ def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_pa
     law (here an Archard table continued with EDF-MZ): a limit reached among them is not this
     run's law's to invert (it used to be, giving the next instant and calling it exact: up to
     74 % late, a review); it is found among those rows, the volume linear in time between them
-    (INITIAL_ROWS: exact for the Archard table, checked against its own single-contact
-    table). A limit after the origin stays exact (FROM_LAW, against the single-contact
+    (FROM_MODEL: exact for the Archard table, checked against its own single-contact
+    table). A limit after the origin stays exact (FROM_MODEL, against the single-contact
     table)."""
     directory = tmp_path / "r"
     edf = NO_SECTORS.replace("[law]\nmobile = { COEF_USURE = 9.2e-15 }\n", EDF_MZ)
@@ -244,12 +240,24 @@ def test_a_limit_reached_in_the_initial_tables_rows_is_interpolated_there(tmp_pa
     # among the initial (Archard) table's rows: its volume linear in time, exact for it, so
     # the single-contact Archard table of the same history gives the instant
     expected = _single(directory, "histories/t0.parquet", NO_SECTORS, walls[0])
-    assert s.loc[c0, "time_to_limit_method"] == INITIAL_ROWS
+    assert s.loc[c0, "time_to_limit_method"] == FROM_MODEL
     assert s.loc[c0, "time_to_limit"] == pytest.approx(expected, rel=1e-12)
     assert 1.0 < s.loc[c0, "time_to_limit"] < 2.0
-    assert s.loc[c1, "time_to_limit_method"] == FROM_LAW
+    assert s.loc[c1, "time_to_limit_method"] == FROM_MODEL
     single = _single(directory, "histories/t1.parquet", restarted, walls[1])
     assert s.loc[c1, "time_to_limit"] == pytest.approx(single, rel=1e-12)
+
+
+def _bar_model(t, vm, origins, rate):
+    """The bundle contact's depth model (record_model) of rows on the flat bar: Archard from
+    the origin at ``rate`` [m³ per year] (K·P·year = rate at P = 0.01 W)."""
+    record = {"contact_type": "TUBE_BAV", "dimensions": BAR.dimensions(), "law": "ARCHARD",
+              "coefficients_mobile": {"coefficient": rate / (0.01 * YEAR)},
+              "coefficients_obstacle": None, "time_scale": YEAR,
+              "origin": float(origins[-1])}
+    d = np.asarray(BAR.depth_from_volume(vm)[0])
+    return record_model(record, instants=t, origins=origins, depths=d, volume_mobile=vm,
+                        volume_obstacle=None, power=0.01, geometry=BAR)
 
 
 def test_a_limit_after_a_replacement_inside_the_initial_table_is_not_called_exact():
@@ -258,21 +266,15 @@ def test_a_limit_after_a_replacement_inside_the_initial_table_is_not_called_exac
     earliest the replacement can be, so the time is never late (it was the first row after the
     drop, called exact, a review); a limit the old tube had reached before it was replaced
     does not count (the tube in place is the new one, as for a replacement in this run)."""
-    from fretwear.laws import WEAR_LAWS
-    from fretwear.table.depth_rows import time_to_limit
-
     t = np.array([0.5, 1.0, 2.0, 5.0, 6.0, 7.0])
     vm = 1e-9 * np.array([4.0, 8.0, 4.0, 16.0, 20.0, 24.0])  # replaced between 1 and 2
-    d = np.asarray(BAR.depth_from_volume(vm)[0])
-    origins = np.array([0.0, 0.0, 0.0, 0.0, 5.0, 5.0])
-    common = dict(origins=origins, replaced=None, volume_mobile=vm, powers=np.full(6, 0.01),
-                  geometry=BAR, law=WEAR_LAWS["ARCHARD"], time_scale=YEAR)
+    model = _bar_model(t, vm, np.array([0.0, 0.0, 0.0, 0.0, 5.0, 5.0]), 4e-9)
     # the new tube's 4e-9 m³ at 2 counted from 1, its earliest replacement: 2e-9 m³ at 1.5
-    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(2e-9)[0]), **common)
-    assert method == INITIAL_ROWS and got == pytest.approx(1.5, rel=1e-12)
-    # after the origin: exact, the volume linear between 6 and 7 (22e-9 m³ at 6.5)
-    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(22e-9)[0]), **common)
-    assert method == FROM_VOLUME and got == pytest.approx(6.5, rel=1e-12)
+    got = model.time_to(float(BAR.depth_from_volume(2e-9)[0]))
+    assert got == pytest.approx(1.5, rel=1e-12)
+    # after the origin: the law from the origin's 16e-9 m³, 4e-9 m³ a year (22e-9 m³ at 6.5)
+    got = model.time_to(float(BAR.depth_from_volume(22e-9)[0]))
+    assert got == pytest.approx(6.5, rel=1e-12)
 
 
 def test_a_contact_without_its_geometry_keeps_the_cubic_and_says_so(tmp_path):
@@ -284,30 +286,19 @@ def test_a_contact_without_its_geometry_keeps_the_cubic_and_says_so(tmp_path):
     s = s.set_index("contact")
     a, b = contacts["contact"]
     assert s.loc[a, "time_to_limit_method"] == INTERPOLATED
-    assert s.loc[b, "time_to_limit_method"] == FROM_VOLUME
-    assert s.attrs["time_to_limit"] in (f"{FROM_VOLUME}; {INTERPOLATED}",
-                                        f"{INTERPOLATED}; {FROM_VOLUME}")
+    assert s.loc[b, "time_to_limit_method"] == FROM_MODEL
+    assert s.attrs["time_to_limit"] in (f"{FROM_MODEL}; {INTERPOLATED}",
+                                        f"{INTERPOLATED}; {FROM_MODEL}")
     rows = _global(result, a)
     assert s.loc[a, "time_to_limit"] == interpolated_time(rows["instant"], rows["depth_mobile"],
                                                       1e-6)
 
 
-def test_an_initial_table_without_a_row_at_the_origin():
-    """A restart from an instant the initial table does not hold (INST_INIT between its rows):
-    a limit reached between its last row and this run's first is found across them (the
-    volume linear between them); a limit after this run's first row is exact from that row on
-    (its volume is this run's)."""
-    from fretwear.laws import WEAR_LAWS
-    from fretwear.table.depth_rows import time_to_limit
-
+def test_an_initial_table_without_a_row_at_the_origin_is_refused():
+    """A restart's origin is an instant of its initial table (INST_INIT: restart._state
+    refuses another); rows whose earlier part ends before the origin do not give the volume
+    at the origin, so no model is made of them (the summary then interpolates the rows)."""
     t = np.array([1.0, 2.0, 3.0, 4.0])  # the initial table's 1 and 2; this run's origin 2.5
     vm = 1e-9 * np.array([2.0, 4.0, 6.0, 8.0])
-    d = np.asarray(BAR.depth_from_volume(vm)[0])
-    common = dict(origins=np.array([0.0, 0.0, 2.5, 2.5]), replaced=None, volume_mobile=vm,
-                  powers=np.full(4, 0.01), geometry=BAR, law=WEAR_LAWS["ARCHARD"],
-                  time_scale=YEAR)
-    # between the initial table's last row (4e-9 m³ at 2) and this run's first (6e-9 at 3)
-    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(5e-9)[0]), **common)
-    assert method == INITIAL_ROWS and got == pytest.approx(2.5, rel=1e-12)
-    got, method = time_to_limit(t, d, float(BAR.depth_from_volume(7e-9)[0]), **common)
-    assert method == FROM_VOLUME and got == pytest.approx(3.5, rel=1e-12)
+    with pytest.raises(InputError, match="origin"):
+        _bar_model(t, vm, np.array([0.0, 0.0, 2.5, 2.5]), 2e-9)

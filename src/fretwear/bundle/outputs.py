@@ -122,7 +122,8 @@ def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
     # the geometry and law: the summary's exact time to another limit
     info.update(coefficients_mobile=attrs.get("coefficients_mobile"),
                 coefficients_obstacle=attrs.get("coefficients_obstacle"),
-                time_scale=case.time_scale if carried else attrs.get("time_scale"))
+                time_scale=case.time_scale if carried else attrs.get("time_scale"),
+                sector_coefficients=attrs.get("sector_coefficients"))
     return info
 
 

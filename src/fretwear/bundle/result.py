@@ -16,15 +16,22 @@ from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY
 from fretwear.errors import InputError, KeywordError
 from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
+from fretwear.table.depth_build import record_model
 from fretwear.table.depth_rows import (
+    FROM_MODEL,
     FROM_TABLE,
     INTERPOLATED,
     METHODS,
     ContactModels,
-    exact_method,
-    time_to_limit,
+    rows_time,
 )
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
+
+#: The columns of :attr:`BundleResult.contacts` a contact's depth model is built from
+#: (:func:`fretwear.table.depth_build.record_model`).
+RECORD_KEYS = ("contact_type", "dimensions", "law", "coefficients_mobile",
+               "coefficients_obstacle", "time_scale", "origin", "tube_replacement",
+               "wall_thickness", "depth_limit", "sector_coefficients")
 
 #: Columns of :attr:`BundleResult.errors`.
 ERROR_COLUMNS = ("contact", "error", "message", "rows_kept")
@@ -134,12 +141,11 @@ class BundleResult:
             ``limit_forecast`` (in ``time_unit``) is that instant wherever it lies, also beyond
             the last instant (the wear table's ``limit_instant``: the law and geometry inverted
             at the history's power, inf if never reached), NaN for another limit. Any other
-            limit: exact, the limit depth inverted through the contact's geometry to a worn
-            volume, reached linearly in time between the table's instants for a law linear in
-            time (through the law's equivalent time for EDF-MZ), from the tube's volume at its
-            origin or replacement (:mod:`fretwear.table.depth_rows`); among a restart's
-            initial-table rows, through the geometry with the volume linear between them;
-            where the geometry or the law is not known, depth(t) interpolated between the
+            limit: the contact's depth model's :meth:`~fretwear.table.DepthModel.time_to` (the
+            one meaning of the time to a limit, docs/uncertainty.md §1: the first instant the
+            tube in place reaches it, a restart's earlier rows included; built once from the
+            contact's record and rows, :func:`fretwear.table.depth_build.record_model`); where
+            the contact's law or geometry is not known, depth(t) interpolated between the
             instants (monotone cubic) and inverted.
             ``time_to_limit_method`` says which per contact, ``attrs["time_to_limit"]`` lists
             them.
@@ -190,8 +196,8 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     """The ranking of :meth:`BundleResult.summary`.
 
     The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
-    :func:`~fretwear.table.depth_rows.time_to_limit` is called only for the contacts whose depth
-    reaches the limit.
+    a contact's depth model (:meth:`_Contacts.time_to`) is inverted only for the contacts
+    whose depth reaches the limit.
     """
     if limit is not None and limit_m is not None:
         raise KeywordError(f"limit={limit!r} (a fraction of the wall) and limit_m={limit_m!r} "
@@ -208,15 +214,13 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     owns = _lookup(contacts, info, "depth_limit", per.names)
     replacements = _lookup(contacts, info, "tube_replacement", per.names)
     units = _lookup(contacts, info, "time_unit", per.names)
-    # each contact's geometry and law (its record's), for the exact time to another limit
+    # each contact's record (its wear case's values): the depth model of its table
     models = ContactModels()
     geometries = [models.geometry(c, d) for c, d in zip(
         _lookup(contacts, info, "contact_type", per.names),
         _lookup(contacts, info, "dimensions", per.names), strict=True)]
-    laws = [models.law(name) for name in _lookup(contacts, info, "law", per.names)]
-    coefficients = _lookup(contacts, info, "coefficients_mobile", per.names)
-    obstacle_coefficients = _lookup(contacts, info, "coefficients_obstacle", per.names)
-    scales = _lookup(contacts, info, "time_scale", per.names)
+    records = [dict(zip(RECORD_KEYS, values, strict=True)) for values in zip(
+        *(_lookup(contacts, info, key, per.names) for key in RECORD_KEYS), strict=True)]
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
@@ -252,21 +256,8 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            scale = None if scales[k] is None or pd.isna(scales[k]) else float(scales[k])
-            other = obstacle_coefficients[k]
-            model = {"geometry": geometries[k], "law": laws[k], "time_scale": scale,
-                     "coefficients": coefficients[k] if isinstance(coefficients[k], dict)
-                     else None,
-                     "obstacle_coefficients": other if isinstance(other, dict) else None}
-            if reached[k]:
-                t_lim, method = per.time_to(k, target, replaced_at[k], model)
-            else:  # not reached by the last instant: the method it would take
-                t_lim = math.nan
-                method = exact_method(geometries[k], laws[k], sectors=per.sectored[k],
-                                      volumes=per.vm is not None, time_scale=scale,
-                                      obstacle_wears=per.obstacle_wears(k),
-                                      obstacle_coefficients=model["obstacle_coefficients"]
-                                      ) or INTERPOLATED
+            t_lim, method = per.time_to(k, target, replaced_at[k], bool(reached[k]),
+                                        records[k], geometries[k])
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
@@ -340,6 +331,8 @@ class _Contacts:
         self.table, self.codes = table, codes
         self.instant, self.power, self.depth, self.sector_max = [], [], [], []
         self.first_nan, self.has_limit, self.limit_instant = [], [], []
+        self._models: dict = {}  # contact -> its DepthModel or None (:meth:`model`)
+        self._sector_rows = None  # (sector powers, first, end) of every contact's last instant
         if n == 0:
             return
         valid = codes >= 0
@@ -411,7 +404,7 @@ class _Contacts:
 
     def reaches(self, targets: list, replaced: list) -> np.ndarray:
         """Whether a time can be found for each contact's target depth [m] (False where
-        :func:`~fretwear.table.depth_rows.time_to_limit` would return NaN: its deepest depth
+        :meth:`time_to` returns NaN: its deepest depth
         since a replacement is below a positive target; a NaN depth of a finite volume is
         beyond the relation's range, deeper than any target)."""
         n = len(self.names)
@@ -434,19 +427,83 @@ class _Contacts:
             return False
         return bool(np.nan_to_num(self.vo[self.start[k]:self.end[k]]).any())
 
-    def time_to(self, k: int, target: float, replaced: float | None,
-                model: dict) -> tuple[float, str]:
-        """:func:`~fretwear.table.depth_rows.time_to_limit` on contact ``k``'s global rows
-        (``model``: its ``geometry``, ``law``, ``coefficients``, ``time_scale``)."""
+    def time_to(self, k: int, target: float, replaced: float | None, reached: bool,
+                record: dict, geometry) -> tuple[float, str]:
+        """The instant [table time unit] at which contact ``k``'s tube reaches ``target`` [m]
+        (NaN where its rows do not reach it by the last instant), and the method: its depth
+        model's :meth:`~fretwear.table.DepthModel.time_to` (:data:`FROM_MODEL`), built once
+        from its ``record`` and global rows (:func:`~fretwear.table.depth_build.record_model`);
+        where the law or the geometry is not known, its rows interpolated
+        (:func:`~fretwear.table.depth_rows.rows_time`, :data:`INTERPOLATED`)."""
+        model = self.model(k, record, geometry)
+        if not reached:
+            return math.nan, INTERPOLATED if model is None else FROM_MODEL
+        if target <= 0:  # reached at once: the start of the tube in place
+            return self._start(k, replaced), INTERPOLATED if model is None else FROM_MODEL
+        if model is not None:
+            found = float(model.time_to(target))
+            if math.isfinite(found):
+                return found, FROM_MODEL
         s = slice(self.start[k], self.end[k])
+        return rows_time(self.t[s], self.d[s], target,
+                         origins=None if self.origin is None else self.origin[s],
+                         replaced=replaced,
+                         volume_mobile=None if self.vm is None else self.vm[s]), INTERPOLATED
 
-        def rows(values):
-            return None if values is None else values[s]
+    def _start(self, k: int, replaced: float | None) -> float:
+        """The first instant of contact ``k``'s tube in place [table time unit]: its
+        replacement, 0 for a new tube, else its first row's instant."""
+        if replaced is not None:
+            return float(replaced)
+        first = self.start[k]
+        new = self.origin is None or self.origin[first] == 0
+        return 0.0 if new else float(self.t[first])
 
-        return time_to_limit(self.t[s], self.d[s], target, origins=rows(self.origin),
-                             replaced=replaced, volume_mobile=rows(self.vm),
-                             volume_obstacle=rows(self.vo), powers=rows(self.p),
-                             sectors=self.sectored[k], **model)
+    def model(self, k: int, record: dict, geometry):
+        """Contact ``k``'s :class:`~fretwear.table.DepthModel` (made once), None where its
+        law or geometry is not known (or its record cannot make one: a law not linear in time
+        with sectors)."""
+        if k in self._models:
+            return self._models[k]
+        model = None
+        plain = {key: None if isinstance(value, float) and math.isnan(value) else value
+                 for key, value in record.items()}  # a missing value: None
+        if geometry is not None and ContactModels.law(plain.get("law")) is not None \
+                and self.vm is not None:
+            s = slice(self.start[k], self.end[k])
+            sectors = self._sector_powers(k) if self.sectored[k] else None
+            try:
+                if self.sectored[k] and sectors is None:
+                    raise InputError("no sector powers")
+                model = record_model(
+                    plain, instants=self.t[s], depths=self.d[s],
+                    origins=None if self.origin is None else self.origin[s],
+                    volume_mobile=self.vm[s],
+                    volume_obstacle=None if self.vo is None else self.vo[s],
+                    power=self.power[k], geometry=geometry,
+                    sector_powers=sectors)
+            except (InputError, KeywordError, TypeError, ValueError):
+                model = None
+        self._models[k] = model
+        return model
+
+    def _sector_powers(self, k: int):
+        """Each sector's wear power [W] at contact ``k``'s last instant (``sector_power``),
+        by sector; None without them. The rows of every contact are found once."""
+        if self._sector_rows is None:
+            table, n = self.table, len(self.names)
+            valid = (self.codes >= 0) & table["sector"].notna().to_numpy()
+            codes = np.where(valid, self.codes, 0)
+            last = np.asarray(self.instant, dtype=float)[codes]
+            at = np.flatnonzero(valid & (table["instant"].to_numpy(dtype=float) == last))
+            at = at[np.lexsort((table["sector"].to_numpy(dtype=float)[at], codes[at]))]
+            powers = (table["sector_power"].to_numpy(dtype=float)[at]
+                      if "sector_power" in table.columns else np.full(at.size, np.nan))
+            self._sector_rows = (powers, np.searchsorted(codes[at], np.arange(n)),
+                                 np.searchsorted(codes[at], np.arange(n), side="right"))
+        powers, start, end = self._sector_rows
+        mine = powers[start[k]:end[k]]
+        return mine if mine.size and np.isfinite(mine).all() else None
 
 
 # ----------------------------------------------------------------------------- dataset

@@ -452,7 +452,8 @@ def _contacts_frame(table: pd.DataFrame, errors: pd.DataFrame,
                      **{k: attrs.get(k) for k in (
                          "time_unit", "origin", "tube_replacement", "wall_thickness",
                          "depth_limit", "contact_type", "dimensions", "law",
-                         "coefficients_mobile", "coefficients_obstacle", "time_scale")}})
+                         "coefficients_mobile", "coefficients_obstacle", "time_scale",
+                         "sector_coefficients")}})
     return identity.merge(pd.DataFrame(info, columns=["contact"] + list(info[0]) [1:]
                                        if info else ["contact"]), on="contact", how="left")
 

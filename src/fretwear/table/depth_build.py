@@ -21,8 +21,8 @@ from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.provenance import provenance
 
-__all__ = ["carried_case", "case_model", "model_from_table", "models_from_table", "table_case",
-           "table_record"]
+__all__ = ["carried_case", "case_model", "model_from_table", "models_from_table", "record_model",
+           "table_case", "table_record"]
 
 _TIME_TOL = 1e-9
 
@@ -395,3 +395,96 @@ def model_from_table(table: pd.DataFrame, *, sector: int | None = None, **option
     if key not in models:
         raise InputError(f"the wear table has no {key}; it has {sorted(models)}")
     return models[key]
+
+
+# ---------------------------------------------------------------------- from a bundle record
+def record_model(record: dict, *, instants, origins, depths, volume_mobile, volume_obstacle,
+                 power: float, sector_powers=None, geometry=None) -> DepthModel:
+    """The global :class:`DepthModel` of one bundle contact, from its record (the values of
+    its wear case in :attr:`fretwear.bundle.BundleResult.contacts`, or ``parts/*.json`` read
+    back by :func:`fretwear.bundle.load`) and its table's global rows: the model its table
+    was computed by (:func:`case_model`), so that the summary's time to a limit is
+    :meth:`DepthModel.time_to` (docs/uncertainty.md §1).
+
+    Parameters
+    ----------
+    record : dict
+        ``contact_type``, ``dimensions`` (lengths [m], angles [deg]), ``law``,
+        ``coefficients_mobile``, ``coefficients_obstacle`` (None: it does not wear; native
+        names, resolved: a history's KWU-EPRI intensity included), ``time_scale`` [s per
+        unit]; optional ``origin`` and ``tube_replacement`` [user time unit],
+        ``wall_thickness`` [m], ``depth_limit`` [-], ``sector_coefficients`` (pairs [Pa⁻¹]).
+    instants, origins, depths, volume_mobile, volume_obstacle : array
+        The contact's global rows, one per instant, increasing: ``instant`` and ``origin``
+        [user time unit] (``origins`` None: 0), ``depth_mobile`` [m], the cumulated worn
+        volumes [m³] (the obstacle's None: 0). A restart's rows before its origin are its
+        earlier rows (:class:`~fretwear.table.depth_rows.EarlierRows`); its volumes at the
+        origin are the last of them.
+    power : float
+        The run's total wear power [W].
+    sector_powers : array, optional
+        Each sector's wear power [W] (a sector table: one volume term a sector, a law linear
+        in time).
+    geometry : ContactGeometry, optional
+        The record's geometry, when the caller built it already.
+
+    Raises
+    ------
+    InputError
+        The record lacks what the model needs (:func:`_record_run`'s message), or its law is
+        not linear in time with sectors.
+    """
+    if geometry is None:
+        geometry = _geometry(record.get("contact_type"), record.get("dimensions") or {})
+    missing = [k for k in ("law", "coefficients_mobile", "time_scale")
+               if record.get(k) is None]
+    if missing:
+        raise InputError(f"the bundle contact's record lacks {', '.join(missing)}: run the "
+                         "bundle again (fretwear bundle -o DIR)")
+    law = get_law(record["law"])
+    scale = float(record["time_scale"])
+    t = np.asarray(instants, dtype=float)
+    starts = np.zeros_like(t) if origins is None else np.asarray(origins, dtype=float)
+    given = record.get("origin")
+    origin = float(given) if given is not None and np.isfinite(given) else (
+        float(starts[-1]) if starts.size else 0.0)
+    vm = np.asarray(volume_mobile, dtype=float)
+    vo = (np.zeros_like(t) if volume_obstacle is None
+          else np.nan_to_num(np.asarray(volume_obstacle, dtype=float)))
+    earlier = (starts != origin) if origin > 0 else np.zeros(t.size, dtype=bool)
+    rows, v0m, v0o = None, 0.0, 0.0
+    if earlier.any():  # a restart: the initial table's rows, then this run's
+        keep = np.flatnonzero(earlier)
+        if t[keep[-1]] < origin - _TIME_TOL * max(1.0, abs(origin)):
+            raise InputError(f"the restart's earlier rows end at {t[keep[-1]]:g}, before its "
+                             f"origin {origin:g}: its volumes at the origin are not known "
+                             "(INST_INIT is an instant of the initial table)")
+        rows = EarlierRows(t[keep], np.asarray(depths, dtype=float)[keep], vm[keep], vo[keep],
+                           bool(starts[0] == 0))
+        v0m, v0o = float(vm[keep[-1]]), float(vo[keep[-1]])
+    mobile = dict(record["coefficients_mobile"])
+    other = record.get("coefficients_obstacle")
+    obstacle = None if other is None else dict(other)
+    replaced = record.get("tube_replacement")
+    fresh = (None if replaced is None or not np.isfinite(replaced)
+             else (float(replaced) - origin) * scale)
+    if sector_powers is None:
+        powers, coefs_m, coefs_o = (float(power),), (mobile,), (obstacle,)
+    else:
+        powers = tuple(np.asarray(sector_powers, dtype=float).tolist())
+        key = law.parameters[0]
+        k_m, k_o = _sector_pairs(record.get("sector_coefficients"), len(powers),
+                                 mobile.get(key), None if obstacle is None
+                                 else obstacle.get(key))
+        coefs_m = tuple({key: k} for k in k_m)
+        coefs_o = tuple(None if k is None else {key: k} for k in k_o)
+    limit = record.get("depth_limit")
+    wall = record.get("wall_thickness")
+    return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
+                      coefficients_obstacle=coefs_o, time_scale=scale, origin=origin,
+                      initial_mobile=v0m, initial_obstacle=v0o,
+                      wall_thickness=None if wall is None or not np.isfinite(wall)
+                      else float(wall),
+                      depth_limit=DEFAULT_DEPTH_LIMIT if limit is None
+                      or not np.isfinite(limit) else float(limit),
+                      replacement=fresh, rows=rows)
