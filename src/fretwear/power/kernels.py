@@ -235,6 +235,14 @@ def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
             None if stick is None else stick[start:], None if sec is None else sec[start:],
             float(lo), float(hi), block_edges, st.scale, st.base, st.edge, st.exact, st.q_edges,
             float(threshold), float(min_rest), p, bs, g, dfi, dfk, dfw, out)
+        if status != 0 and int(out[2]) == 0:
+            # one sample spans more blocks than the deferral buffer holds (far more blocks
+            # than samples): nothing was completed, so this pass is dropped and repeated
+            # with a buffer twice as large (it looped forever before)
+            cap *= 2
+            dfi, dfk, dfw = (np.empty(cap, dtype=np.int64), np.empty(cap, dtype=np.int64),
+                             np.empty(cap))
+            continue
         nd = int(out[1])
         if nd:  # the ambiguous samples, by the reference rule
             rows = dfi[:nd] + start
