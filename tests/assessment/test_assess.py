@@ -106,6 +106,17 @@ def test_greedy_plugging_matches_brute_force_with_a_shared_factor():
     brute = plugging_list_brute_force(a.risk, 0.01)
     assert len(a.bundle["plugging"]) == len(brute) > 0
     assert a.risk.probability_any(a.bundle["plugging"]) <= 0.01
+    # the next inspection's sample leaves the plugged tubes out (a new user saw R4C2 both to be
+    # plugged and to be inspected): the fewest of the other tubes covering the share of their
+    # own risk, by brute force over the tubes in service
+    plugged = set(a.bundle["plugging"])
+    sample = a.bundle["inspection_sample"]
+    assert plugged.isdisjoint(sample)
+    p = dict(zip(a.risk.tubes, a.risk.tube_probabilities(), strict=True))
+    live = sorted((v for t, v in p.items() if t not in plugged), reverse=True)
+    need = a.bundle["share"] * sum(live) * (1 - 1e-12)
+    fewest = next(k for k in range(1, len(live) + 1) if sum(live[:k]) >= need)
+    assert len(sample) == fewest
 
 
 def test_a_tube_past_the_limit_as_measured_is_plugged_and_said_first():

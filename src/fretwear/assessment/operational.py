@@ -206,16 +206,21 @@ def plugging_list_brute_force(risk: BundleRisk, target: float) -> list:
     return names
 
 
-def inspection_sample(risk: BundleRisk, share: float) -> list:
+def inspection_sample(risk: BundleRisk, share: float, exclude=()) -> list:
     """The fewest tubes whose probabilities of exceeding the limit add up to ``share`` of the
     bundle's total (the tubes in decreasing order of p_t: a sum is covered by its largest terms
     first, so the list is the shortest).
+
+    ``exclude``: tubes plugged (by the plugging list): out of service, they carry no risk and
+    are not inspected; the share is of the other tubes' total.
 
     Examples
     --------
     >>> r = bundle_risk([0.3, 0.01, 0.2, 0.001], tubes=["A", "B", "C", "D"])
     >>> inspection_sample(r, 0.9)
     ['A', 'C']
+    >>> inspection_sample(r, 0.9, exclude=["A"])
+    ['C']
     """
     try:
         share = float(share)
@@ -225,6 +230,7 @@ def inspection_sample(risk: BundleRisk, share: float) -> list:
         raise InputError(f"share must be a fraction in (0, 1] of the bundle's risk (e.g. 0.9), "
                          f"got {share!r}")
     p = risk.tube_probabilities()
+    p = np.where(np.isin(risk.tubes, list(exclude)), 0.0, p) if len(exclude) else p
     order = np.argsort(-p, kind="stable")
     total = float(p.sum())
     if total <= 0:

@@ -361,7 +361,7 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     must = list(dict.fromkeys(cm.loc[cm["past_limit"], "tube"]))
     must = [t for t in must if t in set(risk.tubes.tolist())]
     plugs = plugging_list(risk, target, always=must)
-    sample = inspection_sample(risk, share)
+    sample = inspection_sample(risk, share, exclude=plugs)  # a plugged tube is not inspected
     upper = 5 * interval if horizon is None else float(horizon)
     grid = np.linspace(0.0, upper, 41)
     risks = [risk_at(t) for t in grid]
