@@ -180,7 +180,9 @@ def test_censored_likelihood_matches_an_independent_quadrature():
 def test_ndd_needs_a_pod_and_unknown_contacts_are_named():
     models = {"A": _model(4e-3, "A")}
     ndd = pd.DataFrame({"contact": ["A"], "instant": [10.0], "depth_mm": ["NDD"]})
-    with pytest.raises(InputError, match="no POD"):
+    # the fix named for both entry points (a new user on the command line read only Python)
+    with pytest.raises(InputError, match=r"no POD.*--pod-a50-mm and --pod-a90-mm.*"
+                                         r"LogisticPOD\.from_depths"):
         calibrate_bundle(models, ndd, techniques=Technique(SizingModel()))
     with pytest.raises(InputError, match="unknown contact 'Z'"):
         calibrate_bundle(models, ndd.assign(contact="Z"),

@@ -183,6 +183,10 @@ def test_text_named_like_a_binary_format_says_so_when_its_columns_fail(tmp_path,
     with pytest.raises(FormatError, match="no column for the required channel") as err:
         read_history(plain)
     assert "holds text" not in str(err.value)
+    # the mapping's fix in the three ways a user gives it (Python, command line, case file)
+    assert "columns={'<column>': 'time'}" in str(err.value)
+    assert "--column '<column>=time'" in str(err.value)
+    assert "[history] columns = { '<column>' = 'time' }" in str(err.value)
 
 
 # --------------------------------------------------------------------------- text files

@@ -445,7 +445,9 @@ def _log_likelihood(obs: pd.DataFrame, models, contacts, techniques, grid) -> np
             line = used.loc[(used["status"] == "ndd") & (used["technique"] == name),
                             "line"].iloc[0]
             raise InputError(f"inspections line {line}: NDD with technique {name!r}, which "
-                             "has no POD; give Technique(sizing, pod=LogisticPOD(...))")
+                             "has no POD: give the technique's probability of detection "
+                             "(command line --pod-a50-mm and --pod-a90-mm; Python "
+                             "Technique(sizing, pod=LogisticPOD.from_depths(a50, a90)))")
     d = depths_at_factors([models[c] for c in used["contact"]], used["elapsed_s"].to_numpy(),
                           np.exp(grid))
     d = np.where(np.isnan(d), 1e300, d)  # beyond the geometry: through everything

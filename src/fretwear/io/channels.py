@@ -298,7 +298,9 @@ def resolve_columns(columns: Sequence[str], overrides: Mapping[Any, str | None] 
         raise FormatError(
             f"{label}: no column for the required channel(s) {missing}; columns found: "
             f"{list(columns)}; accepted names (case-insensitive): {accepted}; or map a column "
-            f"with columns={{'<column>': '{missing[0]}'}}{hint}")
+            f"to it: Python columns={{'<column>': '{missing[0]}'}}, fretwear power --column "
+            f"'<column>={missing[0]}', case file [history] columns = {{ '<column>' = "
+            f"'{missing[0]}' }}{hint}")
     return mapping
 
 
