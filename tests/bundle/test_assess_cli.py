@@ -45,6 +45,10 @@ def test_assess_prints_the_librarys_numbers_bad_news_first(bundle_out, tmp_path,
     # same process and machine: the same floats
     assert written["p_any"] == lib.bundle["p_any"]
     assert f"{lib.bundle['p_any']:.3g}" in text
+    # the interval is counted from the outage, the inspections' last instant (5): said so
+    # (a new user read "by the end of 4 year" on a bundle inspected at year 10)
+    assert lib.probability_line() in text
+    assert f"within 2 {lib.bundle['unit']} after the outage at 5 " in lib.probability_line()
     assert written["must_plug"] == lib.bundle["must_plug"] and len(lib.bundle["must_plug"]) == 1
     assert lib.bundle["must_plug"][0] in text.splitlines()[0]
     tubes = pd.read_csv(out / "tubes.csv")

@@ -132,6 +132,16 @@ class Assessment:
         written.append(root / "assessment.json")
         return written
 
+    def probability_line(self) -> str:
+        """P(any), the interval counted from the outage (the inspections' last instant), and
+        the target: the one wording of the terminal, the summary and the report."""
+        b = self.bundle
+        at = "" if b.get("outage") is None else f" at {b['outage']:g} {b['unit']}"
+        compare = (f"> target {b['target']:g}" if b["p_any"] > b["target"]
+                   else f"(target {b['target']:g})")
+        return (f"P(any tube past its limit within {b['interval']:g} {b['unit']} after the "
+                f"outage{at}) = {b['p_any']:.3g} {compare}")
+
     def bad_news(self) -> list[str]:
         """The lines said first: contacts and tubes past the limit and through the wall, the
         bundle's probability above the target, a calibrated factor beyond [1/10, 10]
@@ -146,8 +156,7 @@ class Assessment:
                          f"tube(s) AT OR PAST THE PLUGGING LIMIT as measured: "
                          f"{', '.join(b['must_plug'][:10])}")
         if b["p_any"] > b["target"]:
-            lines.append(f"P(any tube past its limit by the end of {b['interval']:g} "
-                         f"{b['unit']}) = {b['p_any']:.3g} > target {b['target']:g}")
+            lines.append(self.probability_line())
         implausible = factor_line(self.inputs.get("calibration", {}).get("factor_median",
                                                                           math.nan))
         return lines + ([implausible] if implausible else [])

@@ -102,10 +102,8 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
         console.print(f"[bold red]{line}[/]")
     if not (b["past_limit_tubes"] or b["through_wall_tubes"]):
         console.print("no tube at or past the plugging limit as measured")
-    unit = b["unit"]
     if b["p_any"] <= b["target"]:  # else said first, with the bad news
-        console.print(f"P(any tube past its limit by the end of {b['interval']:g} {unit}) = "
-                      f"{b['p_any']:.3g} (target {b['target']:g})")
+        console.print(result.probability_line())
     plugs = b["plugging"]
     console.print(f"plugging list ({len(plugs)} tube(s)): {', '.join(plugs) or 'none'}; "
                   f"P(any) after plugging {b['p_any_after_plugging']:.3g}")

@@ -88,7 +88,8 @@ def render_assessment_report(result, *, title: str | None = None) -> str:
                "bad_news": instability_lines(pd.DataFrame(result.inputs.get("unstable_tubes",
                                                                              [])))
                + result.bad_news(), "b": b,
-               "p_any": f"{b['p_any']:.3g}", "longest": f"{b['longest_interval']:.3g}",
+               "p_any": f"{b['p_any']:.3g}", "probability_line": result.probability_line(),
+               "longest": f"{b['longest_interval']:.3g}",
                "after": f"{b['p_any_after_plugging']:.3g}", "inputs": inputs,
                "figures": figures, "fit": result.fit,
                "plugging": _tubes_table(result.tubes, b["plugging"]),
