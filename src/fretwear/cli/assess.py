@@ -10,7 +10,6 @@ import click
 from rich.console import Console
 from rich.table import Table
 
-from fretwear._lazy import pandas as pd
 from fretwear.assessment.outage import assess
 from fretwear.bundle import load
 from fretwear.cli.calibrate_field import (
@@ -96,7 +95,7 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
 
 def _print(result, console: Console, top: int, defaulted, output, with_report) -> None:
     b = result.bundle
-    for line in instability_lines(pd.DataFrame(result.inputs.get("unstable_tubes", []))):
+    for line in instability_lines(result.inputs.get("unstable_tubes")):
         console.print(line, style="bold red", markup=False, soft_wrap=True)
     for line in result.bad_news():
         console.print(f"[bold red]{line}[/]")

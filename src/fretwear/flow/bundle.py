@@ -409,9 +409,11 @@ def recorded_unstable(output: str | Path) -> pd.DataFrame | None:
 def instability_lines(tubes) -> list[str]:
     """The first line of ``fretwear bundle``, ``assess``, ``calibrate --bundle`` and the
     bundle's reports when ``fretwear simulate`` flagged tubes unstable (``tubes``: of
-    :func:`unstable_tubes` or :func:`recorded_unstable`; None or empty: no line)."""
+    :func:`unstable_tubes` or :func:`recorded_unstable`, or its records as an assessment's
+    ``inputs["unstable_tubes"]`` keeps them; None or empty: no line)."""
     if tubes is None or not len(tubes):
         return []
+    tubes = pd.DataFrame(tubes)
     worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
                                                       tubes["max_stability_ratio"][:5],
                                                       strict=True))

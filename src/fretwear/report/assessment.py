@@ -85,8 +85,7 @@ def render_assessment_report(result, *, title: str | None = None) -> str:
          "uri": figure_data_uri(plot_fan_charts(result))}]
     inputs = [{"name": k, "value": str(v)} for k, v in result.inputs.items()]
     context = {**_meta(), "title": title or "fretwear: outage assessment", "kind": "assessment",
-               "bad_news": instability_lines(pd.DataFrame(result.inputs.get("unstable_tubes",
-                                                                             [])))
+               "bad_news": instability_lines(result.inputs.get("unstable_tubes"))
                + result.bad_news(), "b": b,
                "p_any": f"{b['p_any']:.3g}", "probability_line": result.probability_line(),
                "longest": f"{b['longest_interval']:.3g}",
