@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["TIME_UNITS", "describe_time_units", "time_unit_name"]
+__all__ = ["TIME_UNITS", "describe_time_units", "time_unit_name", "unit_seconds"]
 
 #: Named time units -> seconds per unit (a year is 365 days, Code_Aster users' 31 536 000 s).
 TIME_UNITS: dict[str, float] = {
@@ -26,6 +26,29 @@ def time_unit_name(name: str) -> str:
         if candidate.endswith("s") and candidate[:-1] in TIME_UNITS and len(candidate) > 2:
             return candidate[:-1]
     return text
+
+
+def unit_seconds(label) -> float | None:
+    """Seconds per unit [s] of a table's time-unit label: a name of :data:`TIME_UNITS` (any
+    spelling :func:`time_unit_name` takes) or ``"<number> s"`` (a wear table's label of a case
+    given by its scale alone); None for anything else (no label, or one not understood).
+
+    >>> [unit_seconds(u) for u in ("year", "Hours", "3600 s", "fortnight", None)]
+    [31536000.0, 3600.0, 3600.0, None, None]
+    """
+    if not isinstance(label, str):
+        return None
+    name = time_unit_name(label)
+    if name in TIME_UNITS:
+        return TIME_UNITS[name]
+    number, _, unit = name.partition(" ")
+    if unit.strip() != "s":
+        return None
+    try:
+        seconds = float(number)
+    except ValueError:
+        return None
+    return seconds if seconds > 0 and seconds < float("inf") else None
 
 
 def describe_time_units() -> str:

@@ -119,3 +119,30 @@ def test_obstacle_profile_uses_the_same_writer(tmp_path, suffix, fmt):
 def test_profile_format_errors_name_the_choices(tmp_path):
     with pytest.raises(Exception, match="csv, parquet, TABLEAU or ASTER"):
         write_profile_table(pd.DataFrame({"angle": [0.0]}), tmp_path / "p.x", format="xls")
+
+
+@pytest.mark.parametrize("suffix, options", FORMATS)
+def test_restart_in_another_time_unit_is_refused_naming_both_units(table, tmp_path, suffix,
+                                                                   options):
+    """A table whose header counts time in years, continued by a case in hours, would have its
+    instants read as hours (a new user's trial: 20 year became 20 h and the limit 1.458e5 h
+    instead of about 3.2e5 h). The units are compared, the error names both and the fix; the
+    same unit by another spelling ("years", its scale in seconds) continues."""
+    path = write_wear_table(table, tmp_path / f"u{suffix}", **options)
+    kw = dict(contact_type="TUBE_BAV", instants=[2.0],
+              dimensions={"mobile_radius": 0.0111, "obstacle_width": 0.0127}, law="EDF_MZ",
+              coefficients={"COEF_USURE": 1.1e-13})
+    assert table.attrs["time_unit"] == "year"
+    with pytest.raises(fretwear.InputError, match=r"'year' \(3\.1536e\+07 s.*'h' \(3600 s\).*"
+                                                  r"unit = \"year\" in a case file's \[time\], "
+                                                  r"time_scale=3\.1536e\+07 in Python"):
+        wear_table(0.0123456789, initial_state=path, time_scale=3600.0, time_unit="h", **kw)
+    with pytest.raises(fretwear.InputError, match=r"'86400 s'.*unit = \"year\""):  # by scale
+        wear_table(0.0123456789, initial_state=path, time_scale=86400.0, **kw)
+    again = wear_table(0.0123456789, initial_state=path, time_scale=31_536_000.0, **kw)
+    assert again["instant"].iloc[-1] > table["instant"].iloc[-1]
+    with pytest.raises(fretwear.InputError, match=r"counts time in 'year'"):  # in memory too
+        wear_table(0.0123456789, initial_state=table, time_scale=3600.0, time_unit="h", **kw)
+    hours = wear_table(0.0123456789, time_scale=3600.0, **kw)  # no unit name
+    with pytest.raises(fretwear.InputError, match=r"'3600 s'.*seconds_per_unit = 3600 in a case"):
+        wear_table(0.0123456789, initial_state=hours, time_scale=1.0, **{**kw, "instants": [3.0]})

@@ -231,7 +231,8 @@ def test_state_to_dict_of_mixed_rows_and_case_round_trips(tmp_path):
     path = sector_table(tmp_path)
     case = WearCase.from_keywords(contact_type="TUBE_ALESAGE", instants=[1.0], sectors=4,
                                   dimensions={**BAV, "obstacle_radius": 0.0115},
-                                  coefficients={"COEF_USURE": 1.1e-13}, initial_state=path)
+                                  coefficients={"COEF_USURE": 1.1e-13}, initial_state=path,
+                                  time_scale=3.6e3)  # the table's unit
     again = WearCase.from_json(case.to_json())
     assert again == case
     pd.testing.assert_frame_equal(again.restart.table.rows, case.restart.table.rows,

@@ -269,7 +269,7 @@ def test_sector_restart_chain_equals_long_run_and_count_must_match():
     with pytest.raises(InputError, match="4 sectors and this run has 2"):
         sector_table([1.0], initial_state=first, sectors=2, sector_coefficients=[(1e-13, None)])
     with pytest.raises(InputError, match="4 sectors and this run has none"):
-        archard_table([1.0], initial_state=first)
+        archard_table([1.0], initial_state=first, time_scale=3600.0)  # first's unit
 
 
 # --------------------------------------------------------------------------- database

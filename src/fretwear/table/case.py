@@ -51,6 +51,7 @@ from fretwear.table.coefficients import (
 from fretwear.table.keywords import KEYWORDS, check_keywords, keywords_doc
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _read_initial_state
+from fretwear.timeunits import TIME_UNITS, time_unit_name, unit_seconds
 
 __all__ = ["Coefficient", "PowerWindow", "Restart", "Wall", "WearCase", "law_coefficients"]
 
@@ -299,6 +300,7 @@ class WearCase:
         state = self.restart.table
         put("instants", _instants(self.instants, state is not None))
         self._check_time()
+        self._check_restart_unit(state)
         self._check_materials()
         self._check_history_keywords(law)
         self._check_sectors(law, geometry, state)
@@ -315,6 +317,23 @@ class WearCase:
         object.__setattr__(self, "time_scale", scale)
         if self.time_unit is not None and not isinstance(self.time_unit, str):
             raise InputError(f"time_unit must be the name of the unit, got {self.time_unit!r}")
+
+    def _check_restart_unit(self, state: InitialState | None) -> None:
+        """A restart's table counts time in the case's unit (its header's ``time_unit``)."""
+        seconds = None if state is None else unit_seconds(state.time_unit)
+        if seconds is None or math.isclose(seconds, self.time_scale, rel_tol=1e-9):
+            return
+        here = self.time_unit or f"{self.time_scale:g} s"
+        table = f" {self.restart.source}" if self.restart.source else ""
+        name = time_unit_name(state.time_unit)
+        key = (f'unit = "{name}"' if name in TIME_UNITS
+               else f"seconds_per_unit = {seconds:g}")
+        raise InputError(
+            f"the initial wear table{table} counts time in {state.time_unit!r} ({seconds:g} s, "
+            f"its header's time_unit) and this case in {here!r} ({self.time_scale:g} s): its "
+            "instants would be read in the wrong unit. Give the case the table's unit "
+            f"({key} in a case file's [time], time_scale={seconds:g} in Python), or restart "
+            "from a table written in the case's unit")
 
     def _check_materials(self) -> None:
         if self.materials is not None:

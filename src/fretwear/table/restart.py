@@ -11,6 +11,7 @@ the tube (its volumes and depths restart from zero, the obstacle's are kept). Us
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import os
 import stat
@@ -47,6 +48,10 @@ class InitialState:
         Sector edges of the table [deg].
     rows : DataFrame
         The table's rows up to the origin (native names), kept at the head of the new table.
+    time_unit : str or None
+        The time unit the table's header declares (its provenance's ``time_unit``: a name of
+        :data:`fretwear.timeunits.TIME_UNITS` or ``"<number> s"``); None when it declares none
+        (a Code_Aster table). A case continuing the table must count time in the same unit.
     """
 
     origin: float
@@ -56,6 +61,7 @@ class InitialState:
     sector_volume_obstacle: np.ndarray | None
     edges: np.ndarray | None
     rows: pd.DataFrame
+    time_unit: str | None = None
 
     @property
     def sector_count(self) -> int:
@@ -212,7 +218,8 @@ def _handed_out(state: InitialState, attrs: dict) -> InitialState:
     rows.attrs = _copied(attrs)
     arrays = [None if a is None else a.copy() for a in
               (state.sector_volume_mobile, state.sector_volume_obstacle, state.edges)]
-    return InitialState(state.origin, state.volume_mobile, state.volume_obstacle, *arrays, rows)
+    return InitialState(state.origin, state.volume_mobile, state.volume_obstacle, *arrays, rows,
+                        state.time_unit)
 
 
 def _copied(value):
@@ -239,6 +246,10 @@ def _own_state(table: pd.DataFrame, initial_instant, source: str) -> InitialStat
     table.attrs = {}
     state = _state(table, initial_instant, source)
     state.rows.attrs = attrs
+    provenance = attrs.get("provenance")  # a file's header, or a table of this session
+    unit = (provenance if isinstance(provenance, dict) else attrs).get("time_unit")
+    if isinstance(unit, str) and unit.strip():
+        state = dataclasses.replace(state, time_unit=unit.strip())
     return state
 
 
