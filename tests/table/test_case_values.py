@@ -93,3 +93,20 @@ def test_every_length_in_mm_is_refused():
     with pytest.raises(InputError, match=r"wall_thickness = 0.2 m is implausible"):
         WearCase.from_keywords(dimensions={"mobile_radius": 0.4, "obstacle_width": 0.01},
                                wall_thickness=0.2, **base)
+
+
+def test_a_radius_in_mm_beside_a_wall_in_metres_is_refused():
+    """A new user's trial (session 4): mobile_radius_m = 9.525 with wall_thickness_m = 1.09e-3
+    was only warned of, at the end of the output, and the life came out 1159 year instead of
+    36.6 (the depth of a volume falls with the radius). A tube's radius is 8-25 walls (the
+    reference document's tube: 9.525 mm on 1.09 mm, ratio 8.7); a hundred walls is refused with
+    the value in metres, and 25 walls (a thin-walled tube) is not."""
+    base = dict(contact_type="TUBE_ALESAGE", instants=[1.0], coefficients={"COEF_USURE": 1e-14})
+    with pytest.raises(InputError, match=r"mobile_radius = 9.525 m is 8739 times the wall "
+                                         r"0.00109 m .*mobile_radius = 0.009525"):
+        WearCase.from_keywords(dimensions={"mobile_radius": 9.525, "obstacle_width": 0.0127},
+                               wall_thickness=1.09e-3, **base)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", UnitsWarning)
+        WearCase.from_keywords(dimensions={"mobile_radius": 0.0125, "obstacle_width": 0.0127},
+                               wall_thickness=0.5e-3, **base)

@@ -43,9 +43,18 @@ def _fix(key: str, unit: str) -> str:
     return _FIX.format(entry=f"{key} = '{unit}'", cli=f"{key}={unit}", key=key, unit=unit)
 
 
+#: The largest plausible ratio of a tube's outer radius to its wall: steam-generator tubes are
+#: 8-25 (9.525 mm on 1.09 mm, 11.1 mm on 0.5 mm), fuel and control rods about 10; a hundred
+#: leaves a margin of four and still catches a radius typed in mm beside a wall in metres (a
+#: ratio in the thousands).
+RADIUS_WALL_RATIO = 100.0
+
+
 def check_wall_thickness(wall: float | None, radius: float | None, *,
                          key: str = "wall_thickness") -> None:
-    """Refuse a wall [m] at least as thick as the tube's outer radius [m].
+    """Refuse a wall [m] at least as thick as the tube's outer radius [m], or a radius more than
+    :data:`RADIUS_WALL_RATIO` times the wall (a radius typed in mm: the depth of a given volume
+    falls with the radius, so the life came out about 30 times too long).
 
     Parameters
     ----------
@@ -69,8 +78,20 @@ def check_wall_thickness(wall: float | None, radius: float | None, *,
     ... except InputError as exc:
     ...     print(str(exc)[:73])
     wall_thickness_m = 1.09 m is at least the tube's outer radius 0.009525 m
+    >>> try:
+    ...     check_wall_thickness(0.00109, 9.525)
+    ... except InputError as exc:
+    ...     print(str(exc)[:71])
+    mobile_radius = 9.525 m is 8739 times the wall 0.00109 m (1.09 mm): a t
     """
-    if wall is None or radius is None or not (wall >= radius > 0):
+    if wall is None or radius is None or not wall > 0:
+        return
+    if radius > RADIUS_WALL_RATIO * wall:
+        raise InputError(
+            f"mobile_radius = {radius:g} m is {radius / wall:.0f} times the wall {wall:g} m "
+            f"({wall * 1e3:.4g} mm): a tube's radius is 8 to 25 walls. A radius in mm? Give "
+            f"it in metres: mobile_radius = {radius * 1e-3:g} (case file: mobile_radius_m)")
+    if not wall >= radius > 0:
         return
     unit, scale = next(((u, s) for u, s in (("mm", 1e-3), ("µm", 1e-6)) if wall * s < radius),
                         ("mm", 1e-3))
