@@ -69,6 +69,11 @@ class UnitsWarning(FretwearWarning):
     the message names the channel, the value, the likely unit and the ``units`` option."""
 
 
+class ResolutionWarning(FretwearWarning):
+    """A history's sampling is too coarse for what it records: its impacts last only a few
+    samples, so the wear power computed from the samples is off (docs/code_aster.md §5)."""
+
+
 class WholeReadWarning(FretwearWarning):
     """A large file is read whole while streaming was asked: its format cannot be streamed
     (NPZ, Code_Aster text); the message says how to convert it."""

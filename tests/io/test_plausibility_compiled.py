@@ -121,7 +121,9 @@ def test_every_message_is_the_same_on_both_paths(monkeypatch, factors):
         assert [str(w.message) for w in caught] == messages
         found.append(messages)
     assert found[0] == found[1]
-    assert bool(found[0]) == bool(factors)
+    # (the synthetic contacts last about one sample: said by ResolutionWarning, not a unit)
+    units = [m for m in found[0] if "samples on average" not in m]
+    assert bool(units) == bool(factors)
     if factors.get("time") == 1e5:
         assert any("mean impact duration" in m for m in found[0])
 

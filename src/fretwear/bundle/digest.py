@@ -4,7 +4,8 @@ A bundle's warnings are captured per contact (:attr:`BundleResult.warnings`, ``w
 the kinds that change what a number means reach the terminal here: a tube worn through its wall
 (:class:`~fretwear.errors.PerforationWarning`) first, then a history whose units look wrong
 (:class:`~fretwear.errors.UnitsWarning`: the cause of a loud mm export, whose consequence, a
-:class:`~fretwear.errors.RangeWarning`, is listed among the errors). One line per kind: how many
+:class:`~fretwear.errors.RangeWarning`, is listed among the errors), then histories sampled too coarsely for their
+impacts (:class:`~fretwear.errors.ResolutionWarning`: the power itself is off). One line per kind: how many
 contacts, the worst ones (in the summary's order: deepest first) and the first one's message.
 """
 
@@ -13,7 +14,7 @@ from __future__ import annotations
 from fretwear._lazy import pandas as pd
 
 #: The kinds said on the terminal, in this order (bad news first).
-TERMINAL_KINDS = ("PerforationWarning", "UnitsWarning")
+TERMINAL_KINDS = ("PerforationWarning", "UnitsWarning", "ResolutionWarning")
 
 
 def warning_lines(warnings: pd.DataFrame, order: list[str] | None = None, *,
