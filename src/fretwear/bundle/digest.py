@@ -4,9 +4,10 @@ A bundle's warnings are captured per contact (:attr:`BundleResult.warnings`, ``w
 the kinds that change what a number means reach the terminal here: a tube worn through its wall
 (:class:`~fretwear.errors.PerforationWarning`) first, then a history whose units look wrong
 (:class:`~fretwear.errors.UnitsWarning`: the cause of a loud mm export, whose consequence, a
-:class:`~fretwear.errors.RangeWarning`, is listed among the errors), then histories sampled too coarsely for their
-impacts (:class:`~fretwear.errors.ResolutionWarning`: the power itself is off). One line per kind: how many
-contacts, the worst ones (in the summary's order: deepest first) and the first one's message.
+:class:`~fretwear.errors.RangeWarning`, is listed among the errors), then histories sampled
+too coarsely for their impacts (:class:`~fretwear.errors.ResolutionWarning`: the power itself
+is off). One line per kind: how many contacts, the worst ones (in the summary's order: deepest
+first) and the first one's message.
 """
 
 from __future__ import annotations
