@@ -24,6 +24,7 @@ import pandas as pd
 from fretwear.assessment import LogisticPOD, SizingModel, Technique, calibrate_bundle
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
+from fretwear.table import Wall
 from fretwear.table.depth import DepthModel
 
 YEAR = 31536000.0
@@ -35,7 +36,7 @@ def bundle(n: int, inspected: int, seed: int = 26):
     models = {f"C{i}": DepthModel(law=get_law("ARCHARD"), geometry=g, powers=(float(p),),
                                   coefficients_mobile=({"coefficient": 1e-14},),
                                   coefficients_obstacle=(None,), time_scale=YEAR,
-                                  name=f"C{i}", wall_thickness=1.09e-3)
+                                  name=f"C{i}", wall=Wall(1.09e-3))
               for i, p in enumerate(rng.lognormal(np.log(5e-3), 0.8, n))}
     pod = LogisticPOD.from_depths(1.5e-4, 3e-4)
     sizing = SizingModel(0.0, 1.0, 5e-5)

@@ -28,7 +28,7 @@ import numpy as np
 
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
-from fretwear.table import depth, limit
+from fretwear.table import Wall, depth, limit
 from fretwear.table.depth import DepthModel
 
 YEAR = 3.15576e7  # [s]
@@ -41,7 +41,7 @@ def _model() -> DepthModel:
     return DepthModel(law=get_law("EDF_MZ"), geometry=g, powers=(0.05,),
                       coefficients_mobile=(dict(COEFFICIENTS, rate_coefficient=2.6e-15),),
                       coefficients_obstacle=(dict(COEFFICIENTS, rate_coefficient=3.7e-15),),
-                      time_scale=YEAR, wall_thickness=1.07e-3)
+                      time_scale=YEAR, wall=Wall(1.07e-3))
 
 
 def _best(fn, repeat: int) -> float:
@@ -63,7 +63,7 @@ def main(argv=None) -> None:
     base = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(base)
     model = _model()
-    target = 0.4 * model.wall_thickness
+    target = 0.4 * model.wall.thickness
     print(f"load average {os.getloadavg()[0]:.2f}; EDF_MZ, TUBE_BAV, depth 0.4 x wall")
     print(f"{'samples':>8} {'before [ms]':>12} {'after [ms]':>11} {'ratio':>6} "
           f"{'max rel diff':>13} {'all scipy [ms]':>15} {'ratio':>6} {'max rel diff':>13}")

@@ -74,7 +74,7 @@ def draw_campaign(models: dict, identity: pd.DataFrame, seed: int = SEED
         depth = float(model.depth((years - model.origin) * model.time_scale, factor=factor))
         detect, noise = rng.random(), rng.standard_normal()
         tube = (int(ident.loc[contact, "tube_row"]), int(ident.loc[contact, "tube_column"]))
-        wall = float(model.wall_thickness)
+        wall = float(model.wall.thickness)
         row = {"tube_row": tube[0], "tube_column": tube[1],
                "support": ident.loc[contact, "support"], "date": OUTAGE_DATE,
                "technique": TECHNIQUE, "depth_pct": "", "inspected": "yes",

@@ -23,6 +23,7 @@ from fretwear.assessment.calibration import FactorPrior, calibrate_bundle
 from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
+from fretwear.table import Wall
 from fretwear.table.depth import DepthModel
 from fretwear.uncertainty import LogNormal, calibrate
 
@@ -34,7 +35,7 @@ GEOMETRY = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=L_BAR)
 def _model(power: float, name: str) -> DepthModel:
     return DepthModel(law=get_law("ARCHARD"), geometry=GEOMETRY, powers=(power,),
                       coefficients_mobile=({"coefficient": K},), coefficients_obstacle=(None,),
-                      time_scale=YEAR, name=name, wall_thickness=1.09e-3)
+                      time_scale=YEAR, name=name, wall=Wall(1.09e-3))
 
 
 def _depth(power: float, years: float, f):

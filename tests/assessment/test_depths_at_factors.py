@@ -13,6 +13,7 @@ import numpy as np
 from fretwear.assessment.growth import depths_at_factors, scalable
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
+from fretwear.table import Wall
 from fretwear.table.depth import DepthModel
 
 YEAR = 31536000.0
@@ -24,7 +25,7 @@ def _model(power, name, tilt=0.0, replacement=None):
     return DepthModel(law=get_law("ARCHARD"), geometry=geometry, powers=(power,),
                       coefficients_mobile=({"coefficient": 4e-16},),
                       coefficients_obstacle=(None,), time_scale=YEAR, name=name,
-                      wall_thickness=1.09e-3, replacement=replacement)
+                      wall=Wall(1.09e-3), replacement=replacement)
 
 
 def test_the_shifted_table_reads_the_models_depths():

@@ -106,3 +106,21 @@ def test_sector_coefficients_of_the_case_are_the_models(tmp_path):
         assert got["time_to_limit_method"] == FROM_MODEL
         assert got["time_to_limit"] == pytest.approx(float(model.time_to(target)), rel=1e-12,
                                                      abs=0)
+
+
+def test_the_assessment_models_carry_the_bundles_wall(tmp_path):
+    """The assessment's models (:func:`fretwear.assessment.contacts.bundle_models`) take each
+    contact's wall as the bundle built it (``BundleResult.cases[c].wall``, the same object,
+    checked once there); another limit is a new Wall of that thickness."""
+    from fretwear.assessment.contacts import bundle_models
+
+    result, wall = _restart_bundle(tmp_path)
+    own = bundle_models(result).set_index("contact")
+    other = bundle_models(result, limit=0.5).set_index("contact")
+    for contact in result.contacts["contact"]:
+        case_wall = result.cases[contact].wall
+        assert own.at[contact, "model"].wall is case_wall
+        assert own.at[contact, "limit_depth"] == pytest.approx(0.4 * wall, rel=1e-15)
+        changed = other.at[contact, "model"].wall
+        assert (changed.thickness, changed.limit) == (wall, 0.5)
+        assert other.at[contact, "model"].limit_depth == pytest.approx(0.5 * wall, rel=1e-15)

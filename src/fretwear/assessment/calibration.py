@@ -251,7 +251,7 @@ class BundleCalibration:
         for j, level in enumerate(q):
             out[f"depth_q{100 * level:g}"] = depths[:, j]
         out["limit"] = limits
-        walls = np.array([self.models[c].wall_thickness or math.nan for c in self.contacts])
+        walls = np.array([self.models[c].wall.thickness or math.nan for c in self.contacts])
         if "depth_q50" in out:
             out["wall_fraction_q50"] = out["depth_q50"].to_numpy() / walls
         out["exceedance"] = np.where(self.plugged, 0.0, exceed)

@@ -20,6 +20,7 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
+from fretwear.table.case_values import Wall
 from fretwear.table.depth import DepthModel
 
 __all__ = ["bundle_models", "field_inspections", "tube_label"]
@@ -74,6 +75,7 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
                         strict=True), strict=True))
     geometries: dict[Any, Any] = {}
     laws: dict[str, Any] = {}
+    cases = getattr(result, "cases", None) or {}
     rows = []
     for c in done.itertuples(index=False):
         law = laws.get(c.law) or laws.setdefault(c.law, get_law(c.law))
@@ -88,6 +90,10 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
         if key not in geometries:
             geometries[key] = contact_geometry(c.contact_type, **dict(c.dimensions))
         fraction = float(c.depth_limit if limit is None else limit)
+        case = cases.get(str(c.contact))
+        # the case's wall as the bundle built it (checked there), else one from the record
+        its = case.wall if case is not None and case.wall.thickness == float(wall) \
+            and case.wall.limit == fraction else Wall(float(wall), fraction)
         origin = float(c.origin or 0.0)
         v0 = 0.0
         info = last.get(str(c.contact))
@@ -100,7 +106,7 @@ def bundle_models(result: Any, *, limit: float | None = None) -> pd.DataFrame:
                                                   else dict(c.coefficients_obstacle),),
                            time_scale=float(c.time_scale), origin=origin,
                            initial_mobile=v0, name=str(c.contact),
-                           wall_thickness=float(wall), depth_limit=fraction)
+                           wall=its)
         rows.append({"contact": str(c.contact), "tube": tube_label(c.tube_row, c.tube_column),
                      "tube_row": c.tube_row, "tube_column": c.tube_column,
                      "support": c.support, "model": model, "wall_thickness": float(wall),

@@ -38,6 +38,7 @@ from fretwear.geometry.sectors import (
     sector_volume_mobile,
 )
 from fretwear.laws.registry import WearLaw
+from fretwear.table.case_values import Wall
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.depth_terms import (
     SectorRelation,
@@ -49,7 +50,7 @@ from fretwear.table.depth_terms import (
     body_volume,
     given_names,
 )
-from fretwear.table.limit import DEFAULT_DEPTH_LIMIT, check_wall, time_to_depth
+from fretwear.table.limit import time_to_depth
 
 __all__ = ["DepthModel", "SectorRelation", "body_volume", "given_names"]
 
@@ -83,10 +84,10 @@ class DepthModel:
         Contact name (and sector) for messages.
     sector : int, optional
         1-based sector number.
-    wall_thickness : float, optional
-        Wall thickness of the mobile (tube) [m].
-    depth_limit : float
-        Depth limit as a fraction of the wall [-] (plugging criterion, default 0.4).
+    wall : Wall
+        The tube's wall: its thickness [m] (None: not known) and depth limit [-] (a fraction
+        of the wall, default 0.4), as the case carries it (:attr:`WearCase.wall`, checked once
+        where it was built; not checked again here).
     replacement : float, optional
         Seconds after the origin at which a new tube is put in (TUBE_NEUF) [s].
     rows : EarlierRows or callable, optional
@@ -129,8 +130,7 @@ class DepthModel:
     sector_arc: float | None = None
     name: str = ""
     sector: int | None = None
-    wall_thickness: float | None = None
-    depth_limit: float = DEFAULT_DEPTH_LIMIT
+    wall: Wall = Wall()
     replacement: float | None = None
     rows: EarlierRows | None = None
     sector_arcs: tuple[float, ...] | None = None
@@ -143,16 +143,17 @@ class DepthModel:
             raise InputError("DepthModel: give one power and one coefficient set per term")
         if n > 1 and not self.law.linear_in_time:
             raise KeywordError(f"several volume terms (sectors) need a law linear in time, not "
-                               f"{self.law.name}")
+                               f"{self.law.name}: a wear case's sectors are Archard's, V_j = "
+                               f"k_j·P_j·t (docs/theory.md §3); give one term")
         if not (math.isfinite(self.time_scale) and self.time_scale > 0):
             raise InputError(f"time_scale must be > 0 [s per unit], got {self.time_scale!r}")
         if self.replacement is not None and not (math.isfinite(self.replacement)
                                                  and self.replacement >= 0):
             raise InputError(f"replacement is the seconds after the origin of a tube "
                              f"replacement, >= 0 [s], got {self.replacement!r}")
-        wall, limit = check_wall(self.wall_thickness, self.depth_limit)
-        object.__setattr__(self, "wall_thickness", wall)
-        object.__setattr__(self, "depth_limit", limit)
+        if not isinstance(self.wall, Wall):
+            raise InputError(f"wall must be a Wall (fretwear.table.Wall(thickness [m], limit "
+                             f"[-]), or a case's WearCase.wall), got {type(self.wall).__name__}")
 
     @functools.cached_property
     def earlier(self) -> EarlierRows | None:
@@ -173,8 +174,9 @@ class DepthModel:
 
     @property
     def limit_depth(self) -> float | None:
-        """The depth limit [m] = depth_limit × wall_thickness, None without a wall."""
-        return None if self.wall_thickness is None else self.depth_limit * self.wall_thickness
+        """The depth limit [m] of the :attr:`wall` (limit × thickness), None without a
+        thickness."""
+        return self.wall.limit_depth
 
     def nominal(self, name: str, body: str = "mobile") -> float | None:
         """Nominal value of a law coefficient of ``body`` (one term only), None if absent."""

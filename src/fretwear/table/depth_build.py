@@ -16,13 +16,14 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.laws import get_law
 from fretwear.table.case import WearCase
+from fretwear.table.case_values import Wall
 from fretwear.table.depth import DepthModel, _geometry
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 from fretwear.table.provenance import provenance
 
 __all__ = ["carried_case", "case_model", "model_from_table", "models_from_table", "record_model",
-           "table_case", "table_record"]
+           "record_wall", "table_case", "table_record"]
 
 _TIME_TOL = 1e-9
 
@@ -65,8 +66,7 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
     return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
                       coefficients_obstacle=coefs_o, time_scale=case.time_scale,
                       origin=case.origin, initial_mobile=v0_m, initial_obstacle=v0_o,
-                      wall_thickness=case.wall.thickness, depth_limit=case.wall.limit,
-                      replacement=fresh, rows=rows, **sectors)
+                      wall=case.wall, replacement=fresh, rows=rows, **sectors)
 
 
 def _earlier_sectors(rows, origin: float, m: int) -> tuple:
@@ -164,8 +164,7 @@ class _Run:
     time_scale: float
     origin: float
     replacement: float | None
-    wall: float | None
-    limit: float
+    wall: Wall
     edges: np.ndarray | None
     sector_coefficients: Any
     mobile: dict
@@ -203,7 +202,7 @@ def _run(table: pd.DataFrame, case: WearCase | None) -> _Run:
     sectors = power.get("sectors")
     return _Run(case.wear_law, _geometry(case.contact_type, case.dimensions),
                 float(case.time_scale), case.origin, case.restart.tube_replacement,
-                case.wall.thickness, case.wall.limit, case.sector_edges,
+                case.wall, case.sector_edges,
                 case.sector_coefficients, bodies[0], bodies[1],
                 _total_power(table, power.get("total")),
                 None if sectors is None else np.asarray(sectors, dtype=float))
@@ -234,12 +233,10 @@ def _record_run(table: pd.DataFrame, record: dict) -> _Run:
     power = record.get("power") or {}
     sectors = power.get("sectors")
     edges = record.get("sector_edges")
-    limit = record.get("depth_limit")
     obstacle = record.get("coefficients_obstacle")
     return _Run(get_law(record["law"]), _geometry(record["contact_type"], record["dimensions"]),
                 float(record["time_scale"]), float(record.get("origin") or 0.0),
-                record.get("tube_replacement"), record.get("wall_thickness"),
-                DEFAULT_DEPTH_LIMIT if limit is None else float(limit),
+                record.get("tube_replacement"), record_wall(record),
                 None if edges is None else np.asarray(edges, dtype=float),
                 record.get("sector_coefficients"), dict(record["coefficients_mobile"]),
                 None if obstacle is None else dict(obstacle),
@@ -257,8 +254,7 @@ def _origin_rows(table: pd.DataFrame, origin: float) -> pd.DataFrame:
 
 
 def models_from_table(table: pd.DataFrame, *, case: WearCase | None = None,
-                      sector_coefficients=None, wall_thickness: float | None = None,
-                      depth_limit: float | None = None, name: str = ""
+                      sector_coefficients=None, wall: Wall | None = None, name: str = ""
                       ) -> dict[str, DepthModel]:
     """The models of a wear table: ``"global"`` and, in sector mode, ``"sector 1"`` ...
 
@@ -278,10 +274,8 @@ def models_from_table(table: pd.DataFrame, *, case: WearCase | None = None,
     sector_coefficients : sequence of (float, float or None), optional
         Archard coefficients (mobile, obstacle) [Pa⁻¹] per sector, as given to wear_table
         (default the case's, else the law's coefficients).
-    wall_thickness : float, optional
-        Wall thickness [m] (default the case's).
-    depth_limit : float, optional
-        Depth limit, fraction of the wall [-] (default the case's).
+    wall : Wall, optional
+        The tube's wall (thickness [m], limit [-]; default the case's, as it carries it).
     name : str
         Contact name.
 
@@ -312,12 +306,9 @@ def models_from_table(table: pd.DataFrame, *, case: WearCase | None = None,
         raise InputError("the wear table replaces the tube after its origin (TUBE_NEUF): the "
                          "uncertainty model continues one tube; compute from the replacement on "
                          "(a restart of replace_tube's table)")
-    wall = run.wall if wall_thickness is None else wall_thickness
-    limit = run.limit if depth_limit is None else depth_limit
     law = run.law
     common = {"law": law, "geometry": run.geometry, "time_scale": run.time_scale,
-              "origin": origin, "wall_thickness": None if wall is None else float(wall),
-              "depth_limit": DEFAULT_DEPTH_LIMIT if limit is None else float(limit)}
+              "origin": origin, "wall": run.wall if wall is None else wall}
     earlier = None
     if "origin" in table.columns and origin > 0:  # a restart: the initial table's rows first
         earlier = EarlierRows.from_rows(
@@ -399,7 +390,8 @@ def model_from_table(table: pd.DataFrame, *, sector: int | None = None, **option
 
 # ---------------------------------------------------------------------- from a bundle record
 def record_model(record: dict, *, instants, origins, depths, volume_mobile, volume_obstacle,
-                 power: float, sector_powers=None, geometry=None) -> DepthModel:
+                 power: float, sector_powers=None, geometry=None,
+                 wall: Wall | None = None) -> DepthModel:
     """The global :class:`DepthModel` of one bundle contact, from its record (the values of
     its wear case in :attr:`fretwear.bundle.BundleResult.contacts`, or ``parts/*.json`` read
     back by :func:`fretwear.bundle.load`) and its table's global rows: the model its table
@@ -427,6 +419,9 @@ def record_model(record: dict, *, instants, origins, depths, volume_mobile, volu
         in time).
     geometry : ContactGeometry, optional
         The record's geometry, when the caller built it already.
+    wall : Wall, optional
+        The contact's wall, when the caller holds its case's (``WearCase.wall``): default the
+        record's ``wall_thickness`` and ``depth_limit`` (:func:`record_wall`, checked there).
 
     Raises
     ------
@@ -478,13 +473,18 @@ def record_model(record: dict, *, instants, origins, depths, volume_mobile, volu
                                  else obstacle.get(key))
         coefs_m = tuple({key: k} for k in k_m)
         coefs_o = tuple(None if k is None else {key: k} for k in k_o)
-    limit = record.get("depth_limit")
-    wall = record.get("wall_thickness")
     return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
                       coefficients_obstacle=coefs_o, time_scale=scale, origin=origin,
                       initial_mobile=v0m, initial_obstacle=v0o,
-                      wall_thickness=None if wall is None or not np.isfinite(wall)
-                      else float(wall),
-                      depth_limit=DEFAULT_DEPTH_LIMIT if limit is None
-                      or not np.isfinite(limit) else float(limit),
+                      wall=record_wall(record) if wall is None else wall,
                       replacement=fresh, rows=rows)
+
+
+def record_wall(record: dict) -> Wall:
+    """The :class:`Wall` of a bundle contact's record (``wall_thickness`` [m], ``depth_limit``
+    [-]; missing or NaN: no thickness, the default limit): the one check of a wall read back
+    from plain values (``parts/*.json``, the contacts frame)."""
+    wall, limit = record.get("wall_thickness"), record.get("depth_limit")
+    return Wall(None if wall is None or not np.isfinite(wall) else float(wall),
+                DEFAULT_DEPTH_LIMIT if limit is None or not np.isfinite(limit)
+                else float(limit))

@@ -445,8 +445,8 @@ def _forecast_row(contact, model: DepthModel, instant, limit, q, prior, posterio
             row["exceedance"] = _exceed(model, elapsed, value, posterior, lo, hi)
         else:
             row["exceedance_prior"] = row["exceedance"] = math.nan
-        if model.wall_thickness is not None:
-            row["wall_fraction_q50"] = row["depth_q50"] / model.wall_thickness \
+        if model.wall.thickness is not None:
+            row["wall_fraction_q50"] = row["depth_q50"] / model.wall.thickness \
                 if "depth_q50" in row else math.nan
     return row
 

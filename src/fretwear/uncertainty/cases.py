@@ -29,15 +29,12 @@ from fretwear.history import ContactHistory
 from fretwear.io import read_history
 from fretwear.power import PowerResult, wear_power
 from fretwear.power.confidence import PowerInterval
-from fretwear.table import WearCase
+from fretwear.table import Wall, WearCase
 from fretwear.table.depth import DepthModel
 from fretwear.table.depth_build import carried_case, models_from_table
 from fretwear.uncertainty.distributions import is_distribution, median_of
 
 __all__ = ["PreparedCase", "prepare_case"]
-
-#: Case keys that describe the wall, not the wear computation (fretwear.uncertainty).
-WALL_KEYS = ("wall_thickness", "depth_limit")
 
 
 @dataclass(frozen=True, eq=False)
@@ -111,6 +108,15 @@ def _source(power, keywords: dict[str, Any]):
     return power, None
 
 
+def _wall(wall: Wall, thickness: float | None, limit: float | None) -> Wall:
+    """The case's ``wall`` as it carries it (checked where it was built), or a new
+    :class:`Wall` of the thickness [m] and limit [-] given in its place (checked once)."""
+    if thickness is None and limit is None:
+        return wall
+    return Wall(wall.thickness if thickness is None else thickness,
+                wall.limit if limit is None else limit)
+
+
 def prepare_case(case, power=None, *, wall_thickness: float | None = None,
                  depth_limit: float | None = None) -> PreparedCase:
     """The contact models and the power's uncertainty of ``case`` with ``power``.
@@ -130,15 +136,17 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
     -------
     PreparedCase
     """
-    options = {"wall_thickness": wall_thickness, "depth_limit": depth_limit}
     if isinstance(case, DepthModel):
-        changes = {k: v for k, v in options.items() if v is not None}
-        model = dataclasses.replace(case, **changes) if changes else case
+        wall = _wall(case.wall, wall_thickness, depth_limit)
+        model = case if wall is case.wall else dataclasses.replace(case, wall=wall)
         uncertainty = power if _uncertain(power) else None
         return PreparedCase({"global": model}, uncertainty, None, None)
     if isinstance(case, pd.DataFrame):
         carried = carried_case(case)  # rebuilt once, carried by the result
-        models = models_from_table(case, case=carried, **options)
+        models = models_from_table(case, case=carried)
+        wall = _wall(models["global"].wall, wall_thickness, depth_limit)
+        if wall is not models["global"].wall:
+            models = {k: dataclasses.replace(m, wall=wall) for k, m in models.items()}
         uncertainty = power if _uncertain(power) else None
         return PreparedCase(models, uncertainty, case,
                             _durations(case, models["global"].origin), carried)
@@ -156,11 +164,8 @@ def prepare_case(case, power=None, *, wall_thickness: float | None = None,
                          f"wear table or a DepthModel, got {type(case).__name__}")
     source, uncertainty = _source(power, window)
     table = fretwear_table.wear_table_from_case(case, source, history=window.get("history"))
-    given = {"wall_thickness": case.wall.thickness, "depth_limit": case.wall.limit}
-    for key in WALL_KEYS:
-        if options[key] is None:
-            options[key] = given[key]
-    models = models_from_table(table, case=case, **options)
+    models = models_from_table(table, case=case,
+                               wall=_wall(case.wall, wall_thickness, depth_limit))
     result = source if isinstance(source, PowerResult) else None
     return PreparedCase(models, uncertainty, table, np.asarray(case.instants, dtype=float),
                         case, result)

@@ -588,8 +588,8 @@ def monte_carlo(case, power=None, *, coefficients: Mapping[str, Any] | None = No
     return UncertaintyResult(
         instants=model.origin + durations, depth=depth, inputs=inputs,
         variables=tuple(variables), nominal_depth=nominal, method=method, seed=seed,
-        time_scale=model.time_scale, origin=model.origin, wall_thickness=model.wall_thickness,
-        depth_limit=model.depth_limit, name=name or model.name, depth_of=key,
+        time_scale=model.time_scale, origin=model.origin, wall_thickness=model.wall.thickness,
+        depth_limit=model.wall.limit, name=name or model.name, depth_of=key,
         case=prepared.case, power_result=prepared.power_result, _propagation=prop,
         _second=second)
 
