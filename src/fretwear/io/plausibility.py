@@ -215,8 +215,8 @@ def _check_resolution(history: ContactHistory, name: str, mean: float, count: in
     message = (f"history {name!r}: its {count} impacts last {mean / step:.3g} samples on average "
                f"(mean impact duration {mean:.3g} s, sampling step {step:.3g} s): the wear power "
                "of impacts this coarsely sampled may be off by 15 % or more "
-               "(docs/code_aster.md §5: +2.9 % at 12 samples an impact, +14.5 % at 5). Archive at least 20 samples an "
-               "impact: a step below "
+               "(docs/code_aster.md §5: +2.9 % at 12 samples an impact, +14.5 % at 5). "
+               "Archive at least 20 samples an impact: a step below "
                f"{mean / 20:.2g} s (Code_Aster: DYNA_VIBRA ARCHIVAGE=_F(PAS_ARCH=...); fretwear "
                "simulate: archive_step_s)")
     found.append(message)
