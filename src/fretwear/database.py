@@ -429,8 +429,10 @@ def lookup(contact_type: str, mobile_material: str, obstacle_material: str, law:
                "antagonists of the tubes)" if ct.startswith("TUBE") else "")
         raise DatabaseError(
             f"no obstacle coefficient for {ct} / {lw}, {m1} on {m2}{why}; pairs of {ct}/{lw} with "
-            f"obstacle values: {_pairs_text(with_obstacle)}. Give the obstacle coefficient "
-            "explicitly or leave the obstacle unworn")
+            f"obstacle values: {_pairs_text(with_obstacle)}. Leave the obstacle unworn (no "
+            "USURE_OBST / obstacle_wear), or give both bodies' coefficients instead of the "
+            "materials (POST_USURE: MOBILE=_F(...) and OBSTACLE=_F(...) without MATER_USURE; case "
+            "file: [law] coefficients and obstacle_coefficients without materials)")
 
     def as_dict(rows: pd.DataFrame) -> dict[str, float]:
         return {r.parameter: float(r.value) for r in rows.itertuples()}

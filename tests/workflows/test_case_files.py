@@ -303,3 +303,20 @@ def test_law_database_errors(tmp_path):
     with pytest.raises(KeywordError, match="materials"):
         run_case({**POWER_CASE, "_directory": str(tmp_path),
                   "law": {"mobile": {"COEF_USURE": 1e-14}, "database": ["a.csv"]}})
+
+
+def test_a_law_or_contact_type_typo_names_the_file_the_key_and_the_closest_name():
+    """A new user's trial (session 4): "unknown wear law 'ARCHAD'" named neither the file nor
+    the key, where a typo'd key does ("did you mean")."""
+    from fretwear.errors import KeywordError
+    from fretwear.workflows.case_files import validate_case
+
+    case = {"law": {"name": "archad"}, "geometry": {"contact_type": "TUBE_BAVE"}}
+    with pytest.raises(KeywordError) as info:
+        validate_case(case, source="c.toml")
+    law, geometry = str(info.value).splitlines()
+    assert law.startswith("c.toml: [law] name = 'archad' is not a wear law") \
+        and "did you mean 'ARCHARD'" in law
+    assert geometry.startswith("c.toml: [geometry] contact_type = 'TUBE_BAVE'") \
+        and "did you mean 'TUBE_BAV'" in geometry
+    assert validate_case({"law": {"name": " kwu_epri "}})  # any case and spaces, as get_law

@@ -56,7 +56,7 @@ def test_run_wall_option_and_sector_limits(tmp_path, capsys):
                  "-o", str(out)]) == 0
     text = capsys.readouterr().out
     assert "limit: 40 % of the 0.9 mm wall = 0.36 mm" in text
-    assert "the first sector to reach it: sector 5" in text
+    assert "the first sector to reach it is sector 5" in text
     table = pd.read_csv(out, comment="#")
     assert {"wall_fraction", "limit_instant", "wall_fraction_sector",
             "limit_instant_sector"} <= set(table.columns)

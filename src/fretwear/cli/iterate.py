@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 from pathlib import Path
 
 import click
@@ -90,7 +92,8 @@ def command(case_file: Path, output: Path | None, cycles: int | None, no_plot: b
         console.print("[yellow]warnings:[/]")
         for w in result.warnings:
             console.print(f"  - {w}", markup=False, highlight=False, style="yellow")
-    click.echo(f"outputs written to {result.directory}")  # where it writes, even with -q
+    # where it writes, even with -q ("examples/../build" said as "build")
+    click.echo(f"outputs written to {os.path.normpath(result.directory)}")
 
 
 def _change(row) -> str:

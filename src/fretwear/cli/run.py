@@ -173,7 +173,9 @@ def _limit_lines(table, case) -> list[tuple[str, str | None]]:
     if "limit_instant_sector" in table.columns:
         last = table[table["instant"] == table["instant"].iloc[-1]]
         first = last.loc[last["limit_instant_sector"].idxmin()]
-        out.append((f"the first sector to reach it: sector {int(first['sector'])} at instant "
+        out.append((f"by the sector depths (each sector's own volume spread over its arc, "
+                    f"theory §3, not the contact type's global depth): the first sector to "
+                    f"reach it is sector {int(first['sector'])}, at instant "
                     f"{_instant(first['limit_instant_sector'])} [{unit}]", "bold"))
     for where, instant in reversed(list((table.attrs.get("through_wall") or {}).items())):
         depth = "global depth" if where == "global" else f"{where} depth"

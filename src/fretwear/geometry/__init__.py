@@ -26,6 +26,7 @@ from fretwear.geometry.grappe_notch import Grappe1Enco, Grappe2Enco
 from fretwear.geometry.sectors import (
     sector_depth_mobile,
     sector_depth_obstacle,
+    sector_geometry,
     sector_volume_mobile,
     sector_volume_obstacle,
 )
@@ -59,6 +60,34 @@ CONTACT_TYPES: dict[str, type[ContactGeometry]] = {
 }
 
 _FROM_ASTER = {keyword: name for name, keyword in ASTER_KEYWORDS.items()}
+
+
+def sector_obstacle_radius(contact_type: str, dimensions) -> tuple[dict, float | None]:
+    """(the dimensions the contact type takes, the obstacle radius [m] kept for the sectors).
+
+    Theory §3: a sector's depth of the obstacle needs the bore radius ``obstacle_radius``
+    (RAYON_OBST) whatever the contact type; a type whose global depth does not use it (a flat
+    bar, TUBE_BAV) would drop it with an :class:`~fretwear.errors.UnusedKeywordWarning`. With
+    sectors it is taken out here, checked like the sector geometry's, and kept for them.
+    Names may be native or Code_Aster's, any case.
+
+    >>> dims, r = sector_obstacle_radius("TUBE_BAV", {"RAYON_MOBILE": 0.0095,
+    ...                                   "LARGEUR_OBST": 0.02, "RAYON_OBST": 0.00975})
+    >>> sorted(dims), r
+    (['LARGEUR_OBST', 'RAYON_MOBILE'], 0.00975)
+    >>> sector_obstacle_radius("TUBE_ALESAGE", {"obstacle_radius": 0.0115})[1] is None
+    True
+    """
+    cls = CONTACT_TYPES.get(str(contact_type).strip().upper())
+    dims = dict(dimensions)
+    if cls is None or "obstacle_radius" in cls.required + cls.optional:
+        return dims, None
+    names = [k for k in dims if _FROM_ASTER.get(str(k).upper(), k) == "obstacle_radius"]
+    if len(names) != 1 or dims[names[0]] is None:
+        return dims, None
+    radius = dims.pop(names[0])
+    sector_geometry(mobile_radius=1.0, obstacle_width=1.0, obstacle_radius=radius)  # checked
+    return dims, float(radius)
 
 
 def check_sector_contact(contact_type: str) -> None:

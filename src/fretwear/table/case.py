@@ -30,7 +30,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
-from fretwear.geometry import check_sector_contact, contact_geometry
+from fretwear.geometry import check_sector_contact, contact_geometry, sector_obstacle_radius
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry
 from fretwear.io.geometry_units import check_absolute_sizes, check_wall_thickness
 from fretwear.laws import WEAR_LAWS, get_law
@@ -276,6 +276,7 @@ class WearCase:
             raise InputError(f"name must be a string, got {self.name!r}")
         law = get_law(self.law)
         put("law", law.name)
+        sector_radius = None
         if self.contact_type is None:
             if self.sectors is None:
                 raise KeywordError("contact_type (CONTACT) is required: the depths need the "
@@ -285,11 +286,16 @@ class WearCase:
                                    "database is keyed by it")
             geometry = sector_geometry(**dict(self.dimensions or {}))
         else:
+            dims = dict(self.dimensions or {})
             if self.sectors is not None:
                 check_sector_contact(self.contact_type)
-            geometry = contact_geometry(self.contact_type, **dict(self.dimensions or {}))
+                dims, sector_radius = sector_obstacle_radius(self.contact_type, dims)
+            geometry = contact_geometry(self.contact_type, **dims)
         put("contact_type", geometry.contact_type)
-        put("dimensions", FrozenMap(geometry.dimensions()))
+        dims = geometry.dimensions()
+        if self.contact_type is not None and sector_radius is not None:
+            dims["obstacle_radius"] = sector_radius  # the sectors' (theory §3), not the type's
+        put("dimensions", FrozenMap(dims))
         put("coefficients", _coefficient_map(self.coefficients, "mobile"))
         if self.obstacle_coefficients is not None:
             put("obstacle_coefficients", _coefficient_map(self.obstacle_coefficients, "obstacle"))
@@ -430,7 +436,8 @@ class WearCase:
         SectorGeometry`)."""
         if self.contact_type is None:
             return SectorGeometry(**self.dimensions)
-        return contact_geometry(self.contact_type, **self.dimensions)
+        dims, _ = sector_obstacle_radius(self.contact_type, self.dimensions)
+        return contact_geometry(self.contact_type, **dims)
 
     @property
     def power_options(self) -> dict[str, Any]:

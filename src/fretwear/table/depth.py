@@ -101,6 +101,9 @@ class DepthModel:
     sector_rows : tuple of (EarlierRows or None), or callable, optional
         A restart's earlier rows of each sector (its sector depth and cumulated volume), or a
         function that makes them at their first use (:attr:`earlier_sectors`).
+    sector_obstacle_radius : float, optional
+        Bore radius of the obstacle for the sector depths [m] (RAYON_OBST, theory §3), when the
+        contact type's geometry has none (a flat bar); default the geometry's.
 
     Examples
     --------
@@ -136,6 +139,7 @@ class DepthModel:
     sector_arcs: tuple[float, ...] | None = None
     term_initial: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     sector_rows: tuple[EarlierRows | None, ...] | None = None
+    sector_obstacle_radius: float | None = None
 
     def __post_init__(self) -> None:
         n = len(self.powers)
@@ -379,7 +383,9 @@ class DepthModel:
         vo = v0o + rate_o * t
         g, arcs = self.geometry, np.asarray(self.sector_arcs, dtype=float)
         dm = np.asarray(sector_depth_mobile(vm, g.mobile_radius, g.obstacle_width, arcs))
-        r_o = getattr(g, "obstacle_radius", None)
+        r_o = self.sector_obstacle_radius
+        if r_o is None:
+            r_o = getattr(g, "obstacle_radius", None)
         worn = (vo > 0).any(axis=0)
         if r_o is None:
             do = np.where(vo == 0, 0.0, np.nan)

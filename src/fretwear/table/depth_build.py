@@ -56,7 +56,9 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
         v0_m, v0_o = float(np.sum(pm)), float(np.sum(po))
         sectors = {"sector_arcs": tuple(np.diff(np.asarray(result.sector_edges, dtype=float))
                                         .tolist()),
-                   "term_initial": (tuple(pm.tolist()), tuple(po.tolist()))}
+                   "term_initial": (tuple(pm.tolist()), tuple(po.tolist())),
+                   # the bore radius of the sectors, also beside a type that has none (§3)
+                   "sector_obstacle_radius": case.dimensions.get("obstacle_radius")}
         if state is not None and len(state.rows):  # read at their first use (a limit)
             sectors["sector_rows"] = functools.partial(_earlier_sectors, state.rows,
                                                        case.origin, m)

@@ -191,9 +191,25 @@ def validate_case(case: Mapping[str, Any], source: str = "case") -> dict[str, An
         else:
             out[name] = value
             _collect(problems, check_keys, {name: value}, KEYS[""], source)
+    problems += _named_values(out, source)
     if problems:
         raise KeywordError("\n".join(problems))
     return out
+
+
+def _named_values(case: Mapping[str, Any], source: str) -> list[str]:
+    """A wear law or contact type not in its registry, named with its file, key and the closest
+    name (the registries' own errors say neither file nor key)."""
+    problems = []
+    for section, key, names, what in (("law", "name", list(WEAR_LAWS), "wear law (LOI_USURE)"),
+                                      ("geometry", "contact_type", list(CONTACT_TYPES),
+                                       "contact type (CONTACT)")):
+        value = (case.get(section) or {}).get(key)
+        if isinstance(value, str) and value.strip().upper() not in names:
+            problems.append(f"{source}: [{section}] {key} = {value!r} is not a {what}"
+                            f"{keyword_hint(value.strip().upper(), names)}; choose one of "
+                            f"{', '.join(names)}")
+    return problems
 
 
 def _collect(problems: list[str], check, *args, **keywords) -> None:
