@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from fretwear.geometry.sectors import sector_depth_obstacle
-from fretwear.workflows.aster import POST_USURE, _F
+from fretwear.workflows.aster import _F, POST_USURE
 
 DATA = Path(__file__).resolve().parents[2] / "examples" / "data" / "shock_N12.tab"
 CALL = dict(RESU_GENE=str(DATA), NOEUD="N12", LOI_USURE="ARCHARD", RAYON_MOBILE=9.525e-3,
