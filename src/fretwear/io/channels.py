@@ -293,6 +293,10 @@ def resolve_columns(columns: Sequence[str], overrides: Mapping[Any, str | None] 
                 f"columns={{{col!r}: None}} or columns={{{columns[other]!r}: None}}")
         mapping[channel] = pos
     missing = [ch for ch in REQUIRED if ch not in mapping]
+    if missing and (kind := _not_a_history(label, columns)):
+        raise FormatError(f"{label} is {kind}, not a contact history (no column for "
+                          f"{missing}; columns found: {list(columns)[:8]}...). A contact "
+                          "history has time, normal force and sliding velocities")
     if missing:
         accepted = "; ".join(f"{ch}: {', '.join(ALIASES[ch])}" for ch in missing)
         raise FormatError(
@@ -302,6 +306,18 @@ def resolve_columns(columns: Sequence[str], overrides: Mapping[Any, str | None] 
             f"'<column>={missing[0]}', case file [history] columns = {{ '<column>' = "
             f"'{missing[0]}' }}{hint}")
     return mapping
+
+
+def _not_a_history(label: str, columns) -> str | None:
+    """What a file given as a history is instead, when it is one of fretwear's own kinds: a
+    wear table (INST and V_USUR_TUBE, POST_USURE's columns) or a TOML case file."""
+    names = {str(c).strip().upper() for c in columns}
+    if {"INST", "V_USUR_TUBE"} <= names or {"INSTANT", "VOLUME_MOBILE"} <= names:
+        return ("a wear table (POST_USURE's output; continue it with a case's [restart] "
+                "table, or update an obstacle with fretwear obstacle)")
+    if str(label).lower().rstrip("'\"").endswith(".toml"):
+        return "a TOML file (a case file? run it with fretwear run CASE.toml)"
+    return None
 
 
 #: The quantities a ``units`` option may name (besides channels).
