@@ -39,7 +39,11 @@ from fretwear.assessment.calibration_inputs import (
     resolve_inspections,
 )
 from fretwear.assessment.family import depths_at_factors
-from fretwear.assessment.inspections import Inspections, read_field_inspections
+from fretwear.assessment.inspections import (
+    Inspections,
+    check_depths_within_walls,
+    read_field_inspections,
+)
 from fretwear.assessment.posterior import (
     GridLevels,
     mass_range,
@@ -441,12 +445,14 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
                                              time_unit=time_unit)
     elif techniques is not None:
         inspections = Inspections(inspections.table, dict(techniques) if isinstance(
-            techniques, Mapping) else {techniques.name: techniques}, inspections.source)
+            techniques, Mapping) else {techniques.name: techniques}, inspections.source,
+            inspections.depth_column)
     sectors = inspections.table["sector"].notna()
     if sectors.any():
         raise InputError(f"inspections line {inspections.table.loc[sectors, 'line'].iloc[0]}: "
                          "a sector depth; calibrate_bundle takes global depths (sector depths: "
                          "fretwear.uncertainty.calibrate)")
+    check_depths_within_walls(inspections, _walls(models, identity))
     obs = resolve_inspections(inspections.table, contacts, identity)
     used = set(obs.loc[obs["status"] != "not inspected", "technique"])
     missing = sorted(t for t in used if t not in inspections.techniques)
@@ -485,6 +491,18 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
                                observations=obs, inspected=inspected, plugged=plugged)
     return result if levels_only else _with_depths(result)
+
+
+def _walls(models, identity) -> pd.DataFrame:
+    """``contact``, ``wall_thickness`` [m] (NaN without a wall) and, with the identity table,
+    ``tube_row``, ``tube_column`` of every contact."""
+    walls = pd.DataFrame({"contact": list(models), "wall_thickness": [
+        math.nan if m.wall_thickness is None else float(m.wall_thickness)
+        for m in models.values()]})
+    if identity is None or not {"tube_row", "tube_column"} <= set(identity):
+        return walls
+    spots = identity.drop_duplicates("contact")[["contact", "tube_row", "tube_column"]]
+    return walls.merge(spots, on="contact", how="left")
 
 
 def _solve(obs, models, contacts, techniques, grid, group_of, names, scatter, mu0, tau0,

@@ -28,7 +28,11 @@ from fretwear.assessment.calibration_inputs import support_type
 from fretwear.assessment.condition import as_found, predicted_vs_measured
 from fretwear.assessment.contacts import bundle_models, field_inspections
 from fretwear.assessment.growth import FactorNodes, GrowthModel
-from fretwear.assessment.inspections import Inspections, read_field_inspections
+from fretwear.assessment.inspections import (
+    Inspections,
+    check_depths_within_walls,
+    read_field_inspections,
+)
 from fretwear.assessment.operational import (
     BundleRisk,
     bundle_risk,
@@ -211,7 +215,8 @@ def _calibrated(table, ins, sizing, pod, prior, names, power_sigma_ln):
     keep = _inspected_contacts(ins, table)
     models = dict(zip(table["contact"], table["model"], strict=True))
     tech = Technique(sizing, pod, name="assess")
-    ins = Inspections(ins.table, {n: tech for n in set(ins.table["technique"])}, ins.source)
+    ins = Inspections(ins.table, {n: tech for n in set(ins.table["technique"])}, ins.source,
+                      ins.depth_column)
     mapping = None if names is None else dict(zip(table["contact"], names, strict=True))
     return calibrate_bundle({c: models[c] for c in keep}, ins, prior=prior,
                             groups=None if mapping is None else
@@ -342,6 +347,7 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     if inspections is not None:
         ins = inspections if isinstance(inspections, Inspections) else \
             read_field_inspections(inspections, origin_date=origin_date, time_unit=unit)
+        check_depths_within_walls(ins, table)  # a value in mm in a metres column
     insp = field_inspections(ins, table) if ins is not None else \
         pd.DataFrame({"contact": pd.Series(dtype=str), "instant": pd.Series(dtype=float),
                       "depth": pd.Series(dtype=float), "ndd": pd.Series(dtype=bool),
