@@ -9,7 +9,6 @@ campaign_truth.csv), not a number fitted to the result.
 from __future__ import annotations
 
 import importlib.util
-import warnings
 from pathlib import Path
 
 import numpy as np
@@ -32,15 +31,8 @@ def _script():
 
 
 @pytest.fixture(scope="module")
-def example(tmp_path_factory):
-    from fretwear.bundle import run_bundle
-
-    out = tmp_path_factory.mktemp("example") / "out"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        run_bundle(EXAMPLE / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial",
-                   output=out)
-    tables, identity = bundle_predictions(out)
+def example(example_bundle_out):
+    tables, identity = bundle_predictions(example_bundle_out)
     models = {c: models_from_table(t, name=c)["global"] for c, t in tables.items()}
     return models, identity
 

@@ -50,19 +50,7 @@ def test_coverage_line_numbers_of_its_docstring():
     assert coverage_line(0, 1) is None and coverage_line(0, 0) is None
 
 
-@pytest.fixture(scope="module")
-def example_out(tmp_path_factory):
-    from fretwear.bundle import run_bundle
-
-    out = tmp_path_factory.mktemp("example") / "out"
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        run_bundle(EXAMPLE / "manifest.csv", EXAMPLE / "bundle.toml", scheduler="serial",
-                   output=out)
-    return out
-
-
-def test_poor_coverage_on_the_shipped_inspections_is_bad_news(example_out):
+def test_poor_coverage_on_the_shipped_inspections_is_bad_news(example_bundle_out):
     """The shipped scars are 20-30x the simulated wear: under the command's illustrative
     technique the calibrated factor's median is within [1/10, 10] (the factor's line is
     silent) yet none of the four indications is inside its 90 % interval."""
@@ -70,7 +58,7 @@ def test_poor_coverage_on_the_shipped_inspections_is_bad_news(example_out):
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        result = assess(load(example_out), EXAMPLE / "inspections.csv", interval=4.0,
+        result = assess(load(example_bundle_out), EXAMPLE / "inspections.csv", interval=4.0,
                         sizing=SizingModel(0.0, 1.0, 5e-5),
                         pod=LogisticPOD.from_depths(1.5e-4, 3e-4))
     fit = result.fit
