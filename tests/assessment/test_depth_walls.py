@@ -1,11 +1,11 @@
-"""A measured depth deeper than two walls is refused (a new user's trial, closing2.md: 0.5 m
+"""A measured depth deeper than five walls is refused (a new user's trial, closing2.md: 0.5 m
 typed for 0.5 mm on a 1.09 mm wall was said as THROUGH THE WALL, not questioned).
 
-The rule (fretwear.assessment.inspections.DEPTH_WALLS_MAX): up to two walls a depth is kept
-(a tube worn through reads about one wall plus its sizing error, and a scar goes on past the
-wall in the depth model's geometry); beyond, an InputError naming the file, the line, the
-column and the likely unit. Oracle: the walls and depths written in each test, their ratio
-computed here.
+The rule (fretwear.assessment.inspections.DEPTH_WALLS_MAX): up to five walls a depth is kept
+(a tube worn through reads about one wall plus its sizing error, and a campaign drawn from the
+depth model reads past the wall; a unit slip is 1000x); beyond, an InputError naming the file,
+the line, the column and the likely unit. Oracle: the walls and depths written in each test,
+their ratio computed here.
 """
 
 from __future__ import annotations
@@ -51,16 +51,20 @@ def test_metres_for_mm_with_the_wall_in_the_file_is_refused(tmp_path):
     assert "a value in mm? (0.5 mm is 0.0005 m; or give the column depth_mm)" in text
 
 
-def test_micrometres_for_mm_is_refused_and_two_walls_are_kept(tmp_path):
+def test_micrometres_for_mm_is_refused_and_five_walls_are_kept(tmp_path):
     path = _csv(tmp_path, "contact,instant,depth_mm,wall_thickness\nb,10,300,1.09e-3\n")
     with pytest.raises(InputError, match=re.escape("a value in µm? (300 µm is 0.3 mm)")):
         read_field_inspections(path)
-    at_two = DEPTH_WALLS_MAX * WALL * 1e3  # 2.18 mm: a tube worn through, kept
+    assert DEPTH_WALLS_MAX == 5.0
+    at_most = 5 * WALL * 1e3  # 5.45 mm: past the wall, kept
     path = _csv(tmp_path, f"contact,instant,depth_mm,wall_thickness\n"
-                          f"a,10,{at_two:.6g},1.09e-3\nb,10,1.5,1.09e-3\n")
+                          f"a,10,{at_most:.6g},1.09e-3\nb,10,1.5,1.09e-3\n")
     table = read_field_inspections(path).table
     assert table["status"].tolist() == ["sized", "sized"]
-    assert table["depth"].tolist() == pytest.approx([2 * WALL, 1.5e-3], rel=1e-12)
+    assert table["depth"].tolist() == pytest.approx([5 * WALL, 1.5e-3], rel=1e-12)
+    path = _csv(tmp_path, "contact,instant,depth_mm,wall_thickness\na,10,5.46,1.09e-3\n")
+    with pytest.raises(InputError, match="is 5.01 walls of 1.09 mm"):
+        read_field_inspections(path)  # 5.46 / 1.09 = 5.009
 
 
 def _model(name: str) -> DepthModel:

@@ -36,8 +36,10 @@ def test_a_wall_in_mm_is_one_error_naming_the_column(tmp_path, capsys):
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
 
 
-def test_a_negative_wall_and_a_good_column(tmp_path):
-    with pytest.raises(InputError, match="on 1 of 2 rows \\(first: contact 'c1'\\): a wall is > 0"):
-        read_manifest(_manifest(tmp_path, [0.00109, -0.00109]))
-    rows = read_manifest(_manifest(tmp_path, [0.00109, None])).rows  # empty: the case's wall
-    assert [r.contact for r in rows] == ["c0", "c1"]
+def test_a_negative_column_and_one_bad_row(tmp_path):
+    with pytest.raises(InputError, match="on 2 of 2 rows \\(first: contact 'c0'\\): a wall is > 0"):
+        read_manifest(_manifest(tmp_path, [-0.00109, 0.0]))
+    # one good wall: the column is not refused, the bad row fails its contact alone (as
+    # tests/bundle/test_bundle_carries_cases.py checks); an empty cell is the case's wall
+    rows = read_manifest(_manifest(tmp_path, [0.00109, 1.09, None])).rows
+    assert [r.contact for r in rows] == ["c0", "c1", "c2"]

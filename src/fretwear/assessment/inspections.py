@@ -35,13 +35,15 @@ from fretwear.timeunits import TIME_UNITS, time_unit_name
 __all__ = ["DEPTH_WALLS_MAX", "FIELD_COLUMNS", "INPUT_COLUMNS", "Inspections", "Technique",
            "check_depths_within_walls", "read_field_inspections"]
 
-DEPTH_WALLS_MAX = 2.0
-"""The deepest measured depth taken as a real one, in walls [-]. A tube worn through reads about
-one wall (100 % through-wall) plus its sizing error; a scar can go on past the wall in the
-depth model's geometry (a bundle's forecast reports 130 %), so up to two walls the depth is
-kept and said first, THROUGH THE WALL. Beyond two walls it is no tube's depth: a value in mm in
-a metres column (0.5 for 0.5 mm) or in µm in a mm column is the likelier cause, and it is
-refused with the line, the column and that guess."""
+DEPTH_WALLS_MAX = 5.0
+"""The deepest measured depth taken as a real one, in walls [-]. The check is for a unit slip:
+a value in mm in a metres column, or in µm in a mm column, is 1000 times too deep, so any
+indication deeper than 5.5 µm (every technique's threshold is far above) typed so lands beyond
+five walls of 1.09 mm. Below, a depth is kept, and past one wall said first, THROUGH THE WALL:
+a tube worn through reads about one wall plus its sizing error, and a campaign drawn from the
+depth model (whose scar goes on past the wall, into the tube: a bundle's forecast reports
+130 %) reads more. Beyond five walls the depth is refused with the line, the column and the
+likely unit."""
 
 #: Columns of an inspection file: name -> (unit, meaning). A row names its contact (``contact``)
 #: or its tube location (``tube_row``, ``tube_column``, optional ``support``); gives
@@ -302,7 +304,7 @@ def check_depths_within_walls(inspections: Inspections, contacts: pd.DataFrame) 
     Traceback (most recent call last):
     ...
     fretwear.errors.InputError: inspections (DataFrame), line 1: depth = 0.5 [m] is 459 walls
-    of 1.09 mm, deeper than any tube's wear (up to 2 walls is taken as through the wall):
+    of 1.09 mm, deeper than any tube's wear (up to 5 walls is taken as through the wall):
     a value in mm? (0.5 mm is 0.0005 m; or give the column depth_mm)
     """
     t = inspections.table

@@ -233,8 +233,9 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
 def check_wall_column(columns: Mapping[str, Any], meaning: Mapping[str, Any], source: str,
                       contacts=None, noun: str = "column") -> None:
     """One error up front for a wall column no contact can use (instead of one per contact
-    when the bundle runs): a wall [m] that is a number but not > 0, or above
-    :data:`~fretwear.io.geometry_units.WALL_BOUND` (0.1 m: a value in mm).
+    when the bundle runs): every wall [m] given is a number not > 0, or above
+    :data:`~fretwear.io.geometry_units.WALL_BOUND` (0.1 m: a value in mm). With one good wall
+    in the column the bad rows are left to fail their own contacts.
 
     ``columns`` maps each column (or variable) name to its values, ``meaning`` to its key
     (:func:`column_meanings`); ``contacts`` names the rows in the message.
@@ -254,11 +255,13 @@ def check_wall_column(columns: Mapping[str, Any], meaning: Mapping[str, Any], so
     for name, key in meaning.items():
         if key != ("geometry", "wall_thickness_m"):
             continue
-        raw = np.asarray(columns[name], dtype=object)
-        values = pd.to_numeric(pd.Series(raw), errors="coerce").to_numpy(float)
-        bad = np.isfinite(values) & ((values <= 0) | (values > WALL_BOUND))
-        if not bad.any():
-            continue
+        values = np.array([float(v) if isinstance(v, int | float | np.number) and not isinstance(
+            v, bool | np.bool_) and abs(v) <= 1e308 else math.nan for v in columns[name]])
+        # NaN: a text, a list, a date, a bool: the contact's own check says what is wrong
+        given = np.isfinite(values)
+        bad = given & ((values <= 0) | (values > WALL_BOUND))
+        if not bad.any() or bad.sum() < given.sum():
+            continue  # a good wall somewhere: the bad rows fail their contacts alone
         i = int(np.flatnonzero(bad)[0])
         first = f"contact {contacts[i]!r}" if contacts is not None \
             and not _missing(contacts[i]) else f"row {i + 1}"
