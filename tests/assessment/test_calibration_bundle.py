@@ -81,7 +81,8 @@ def test_no_scatter_matches_the_conjugate_update_of_calibrate():
     models = {c: _model(p, c) for c, p in POWERS.items()}
     tech = Technique(LogSizingModel(0.1))
     prior = FactorPrior(LogNormal(1.0, sigma_ln=0.5), contact_sigma_ln=0.0)
-    cal = calibrate_bundle(models, _sized_campaign(), techniques=tech, prior=prior)
+    cal = calibrate_bundle(models, _sized_campaign(), techniques=tech, prior=prior,
+                           power_sigma_ln=0.0)
     old = calibrate(models, _sized_campaign(), prior=LogNormal(1.0, sigma_ln=0.5),
                     measurement_sigma=0.1, method="conjugate")
     mean, sd = _bundle_moments(cal)
@@ -97,7 +98,7 @@ def test_contact_scatter_and_groups_match_the_normal_normal_closed_form(s, tau_g
     groups = {"A": "AVB", "B": "AVB", "C": "TSP", "D": "TSP"} if tau_g else None
     prior = FactorPrior(LogNormal(1.0, sigma_ln=0.6), contact_sigma_ln=s, group_sigma_ln=tau_g)
     cal = calibrate_bundle(models, _sized_campaign(), techniques=Technique(LogSizingModel(0.1)),
-                           prior=prior, groups=groups)
+                           prior=prior, groups=groups, power_sigma_ln=0.0)
     mean, sd = _bundle_moments(cal)
     expected = _normal_normal(0.1, s, 0.6, groups=groups, tau_g=tau_g)
     assert mean == pytest.approx(expected[0], abs=5e-4)
@@ -110,7 +111,7 @@ def test_a_contact_not_inspected_keeps_its_scatter_and_its_forecast_is_exact():
     s = 0.35
     prior = FactorPrior(LogNormal(1.0, sigma_ln=0.6), contact_sigma_ln=s)
     cal = calibrate_bundle(models, _sized_campaign(), techniques=Technique(LogSizingModel(0.1)),
-                           prior=prior)
+                           prior=prior, power_sigma_ln=0.0)
     mu, tau = _normal_normal(0.1, s, 0.6)
     summary = cal.factor_summary().set_index("contact")
     # E: λ ~ N(μ_post, τ_post² + s²): the others' inspections cannot remove s
@@ -141,7 +142,7 @@ def test_censored_likelihood_matches_an_independent_quadrature():
     mu0, tau0, s = 0.2, 0.5, 0.3
     cal = calibrate_bundle(models, campaign, techniques=Technique(sizing, pod),
                            prior=FactorPrior(LogNormal(math.exp(mu0), sigma_ln=tau0),
-                                             contact_sigma_ln=s))
+                                             contact_sigma_ln=s), power_sigma_ln=0.0)
 
     def lik_a(lam):     # sized 0.25 mm: N(m; a + b·D, σ²)
         return stats.norm.pdf(2.5e-4, 2e-5 + 0.9 * _depth(POWERS["A"], 10, np.exp(lam)), 6e-5)
@@ -197,7 +198,8 @@ def test_bad_news_counts_leave_plugged_tubes_out():
 
     models = {c: _model(p, c) for c, p in POWERS.items()}
     campaign = _sized_campaign().assign(plugged=["", "", "", "yes"])
-    cal = calibrate_bundle(models, campaign, techniques=Technique(LogSizingModel(0.1)))
+    cal = calibrate_bundle(models, campaign, techniques=Technique(LogSizingModel(0.1)),
+                           power_sigma_ln=0.0)
     fc = cal.forecast(40.0, limit=4e-4)
     assert fc["contact"].iloc[-1] == "D" and fc["plugged"].iloc[-1]  # not in service: last
     counts = summary_counts(fc)
@@ -218,7 +220,7 @@ def test_plugged_contacts_are_listed_not_forecast_and_leave_the_bundle_risk():
                              "tube_column": [1, 1, 2, 3], "support": "AVB1"})  # A, B: one tube
     campaign = _sized_campaign().assign(plugged=["yes", "", "", ""])
     cal = calibrate_bundle(models, campaign, techniques=Technique(LogSizingModel(0.1)),
-                           identity=identity)
+                           identity=identity, power_sigma_ln=0.0)
     assert cal.plugged.tolist() == [True, True, False, False]
     fc = cal.forecast(40.0, limit=4e-4).set_index("contact")
     for c in ("A", "B"):
@@ -229,7 +231,7 @@ def test_plugged_contacts_are_listed_not_forecast_and_leave_the_bundle_risk():
     assert not p[:2].any()
     # the same posterior with A and B unplugged: their rows were > 0, C and D's unchanged
     free = calibrate_bundle(models, _sized_campaign(), techniques=Technique(LogSizingModel(0.1)),
-                            identity=identity)
+                            identity=identity, power_sigma_ln=0.0)
     p_free, w_free = free.node_exceedance(40.0, limit=4e-4)
     assert p_free[:2].any()
     np.testing.assert_array_equal(p[2:], p_free[2:])  # same process: the same floats

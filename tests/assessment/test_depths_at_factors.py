@@ -10,7 +10,7 @@ import warnings
 
 import numpy as np
 
-from fretwear.assessment.growth import depths_at_factors, scalable
+from fretwear.assessment.family import depths_at_factors, scalable
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
 from fretwear.table import Wall

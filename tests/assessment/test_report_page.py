@@ -64,6 +64,16 @@ def test_key_numbers_and_no_network(result):
     assert "<link" not in html
 
 
+def test_provenance_gives_the_technique_in_engineering_units(result):
+    """A new user read SizingModel(sigma=5e-05) in metres and the POD as beta0/beta1: the
+    page gives the sizing error and a50/a90 in mm, units named (fails before). Oracle: the
+    fixture's inputs, 5e-5 m, 1.5e-4 m and 3e-4 m, are 0.05, 0.15 and 0.3 mm."""
+    html = render_assessment_report(result)
+    assert "sizing error σ = 0.05 mm" in html
+    assert "a50 = 0.15 mm, a90 = 0.3 mm" in html
+    assert "SizingModel(" not in html and "beta0" not in html
+
+
 def _overlaps(boxes):
     out = []
     for i, a in enumerate(boxes):

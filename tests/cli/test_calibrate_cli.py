@@ -58,6 +58,23 @@ def test_case_calibration_matches_the_closed_form(case_file, tmp_path, capsys):
     assert forecast["depth_q50"].iloc[0] == pytest.approx(d1[2.0] * f50 ** 0.4, rel=1e-9)
 
 
+
+@pytest.mark.parametrize("content", ["instant,depth_mm\n0.5,0.6\n1.0,NDD\n",
+                                     "instant,depth,result\n0.5,6e-4,sized\n1.0,,NDD\n"])
+def test_case_with_an_ndd_row_names_bundle(case_file, tmp_path, capsys, content):
+    """A new user's trial: --case with an NDD row said only that the depth must be > 0 (or
+    that 'result' is unknown); the message now names the fix, --bundle with a POD (fails
+    before, passes after)."""
+    insp = tmp_path / "insp.csv"
+    insp.write_text(content, encoding="utf-8")
+    assert main(["calibrate", str(insp), "--case", str(case_file)]) == 2
+    err = " ".join(capsys.readouterr().err.split())
+    assert "NDD (no detectable degradation)" in err
+    assert "--bundle RESULTS" in err and "--pod-a50-mm and --pod-a90-mm" in err
+    insp.write_text("instant,depth_um\n0.5,600\n", encoding="utf-8")  # no NDD: no hint
+    assert main(["calibrate", str(insp), "--case", str(case_file)]) == 2
+    assert "--bundle" not in capsys.readouterr().err
+
 def test_errors(case_file, tmp_path, capsys):
     insp = tmp_path / "insp.csv"
     insp.write_text("instant,depth_mm\n0.5,0.6\n")

@@ -24,7 +24,6 @@ replacement, else 0); otherwise the crossing of ln d_i on the posterior's grid.
 from __future__ import annotations
 
 import math
-import re
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -32,8 +31,19 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from fretwear._lazy import pandas as pd
-from fretwear.assessment.growth import depths_at_factors
-from fretwear.assessment.inspections import Inspections, read_field_inspections
+from fretwear.assessment.calibration_inputs import (
+    check_power_proportional,
+    contact_scatter,
+    group_index,
+    prediction_models,
+    resolve_inspections,
+)
+from fretwear.assessment.family import depths_at_factors
+from fretwear.assessment.inspections import (
+    Inspections,
+    check_depths_within_walls,
+    read_field_inspections,
+)
 from fretwear.assessment.posterior import (
     GridLevels,
     mass_range,
@@ -45,10 +55,21 @@ from fretwear.assessment.posterior import (
 from fretwear.errors import InputError, RangeWarning
 from fretwear.keys import check_probabilities
 from fretwear.table.depth import DepthModel
-from fretwear.table.depth_build import models_from_table
 from fretwear.uncertainty.distributions import LogNormal
 
-__all__ = ["BundleCalibration", "FactorPrior", "calibrate_bundle", "support_type"]
+__all__ = ["CONTACT_SIGMA_LN", "POWER_SIGMA_LN", "BundleCalibration", "FactorPrior",
+           "calibrate_bundle"]
+
+CONTACT_SIGMA_LN = 0.35
+"""The default σ of ln of one contact's factor about its group's [-] (a factor 2 either way at
+95 %; an assumption to state, not a qualified value): :class:`FactorPrior`,
+:func:`~fretwear.assessment.outage.assess` and the commands' ``--contact-sigma-ln``."""
+
+POWER_SIGMA_LN = 0.2
+"""The default σ_P, the log-spread of each contact's wear power [-] (about ±40 % at 90 %, a
+power from a stationary vibration record of ordinary length; an assumption to state, not a
+qualified value): :func:`calibrate_bundle`, :func:`~fretwear.assessment.outage.assess` and the
+commands' ``--power-sigma-ln``. 0 takes the power as exact."""
 
 _PASS1 = 801
 _MAX_POINTS = 1601
@@ -67,12 +88,13 @@ class FactorPrior:
         group level).
     contact_sigma_ln : float
         s_c, the standard deviation of one contact's ln-factor around its group's [-]
-        (0.35: a factor 2 either way at 95 %; an assumption to state, not a qualified value).
+        (default :data:`CONTACT_SIGMA_LN`, 0.35: a factor 2 either way at 95 %; an assumption
+        to state, not a qualified value).
     """
 
     bundle: LogNormal = field(default_factory=lambda: LogNormal(1.0, scatter=3.0))
     group_sigma_ln: float = 0.0
-    contact_sigma_ln: float = 0.35
+    contact_sigma_ln: float = CONTACT_SIGMA_LN
 
     def __post_init__(self) -> None:
         if not isinstance(self.bundle, LogNormal) or self.bundle.median is None \
@@ -324,115 +346,6 @@ def _limit_log_factor(model: DepthModel, instant: float, limit: float,
     return float(grid[k - 1] + (math.log(limit) - lo) / (hi - lo) * (grid[k] - grid[k - 1]))
 
 
-# ---------------------------------------------------------------------- inputs
-def _models(predictions) -> dict[str, DepthModel]:
-    if not isinstance(predictions, Mapping) or not predictions:
-        raise InputError("predictions must be a mapping of contact name to a DepthModel or a "
-                         "wear table (with its attrs), e.g. bundle_predictions(OUT)[0]")
-    out = {}
-    for name, item in predictions.items():
-        if isinstance(item, DepthModel):
-            out[str(name)] = item
-        elif isinstance(item, pd.DataFrame):
-            out[str(name)] = models_from_table(item, name=str(name))["global"]
-        else:
-            raise InputError(f"prediction {name!r}: give a DepthModel or a wear table, got "
-                             f"{type(item).__name__}")
-    return out
-
-
-def support_type(support: str) -> str:
-    """The support type of a support name: its letters without the number ("AVB3" -> "AVB").
-
-    >>> support_type("AVB3"), support_type("TSP 02"), support_type("")
-    ('AVB', 'TSP', '')
-    """
-    return re.sub(r"[\s\d_\-]+$", "", str(support).strip())
-
-
-def _resolve(table: pd.DataFrame, contacts: list, identity) -> pd.DataFrame:
-    """One row per (inspection, contact): a tube location without support covers its
-    contacts; an unknown contact or location is an InputError naming the line."""
-    index = {c: i for i, c in enumerate(contacts)}
-    rows = []
-    for r in table.to_dict("records"):
-        if r["contact"]:
-            if r["contact"] not in index:
-                raise InputError(f"inspections line {r['line']}: unknown contact "
-                                 f"{r['contact']!r} (the predictions have e.g. "
-                                 f"{contacts[:3]})")
-            rows.append({**r, "index": index[r["contact"]]})
-            continue
-        if identity is None:
-            raise InputError(f"inspections line {r['line']}: a tube location needs the bundle's "
-                             "identity table (contact, tube_row, tube_column, support)")
-        hit = identity[(identity["tube_row"] == r["tube_row"])
-                       & (identity["tube_column"] == r["tube_column"])]
-        if r["support"]:
-            hit = hit[hit["support"].astype(str) == r["support"]]
-        hit = hit[hit["contact"].isin(index)]
-        if hit.empty:
-            raise InputError(f"inspections line {r['line']}: no contact at tube row "
-                             f"{r['tube_row']:g}, column {r['tube_column']:g}"
-                             + (f", support {r['support']!r}" if r["support"] else ""))
-        if r["status"] == "sized" and len(hit) > 1:
-            raise InputError(f"inspections line {r['line']}: a sized depth on a tube with "
-                             f"{len(hit)} contacts; name the support")
-        for c in hit["contact"]:
-            rows.append({**r, "contact": c, "index": index[c]})
-    return pd.DataFrame(rows)
-
-
-def _group_index(contacts, groups, identity) -> tuple[list, np.ndarray]:
-    if groups is None:
-        return ["bundle"], np.zeros(len(contacts), int)
-    if groups == "support type":
-        if identity is None:
-            raise InputError("groups='support type' needs the identity table (support)")
-        support = dict(zip(identity["contact"], identity["support"].astype(str), strict=False))
-        groups = {c: support_type(support.get(c, "")) or "other" for c in contacts}
-    if not isinstance(groups, Mapping):
-        raise InputError("groups must be None, 'support type' or a mapping contact -> group")
-    names = sorted({str(groups.get(c, "other")) for c in contacts})
-    return names, np.array([names.index(str(groups.get(c, "other"))) for c in contacts])
-
-
-def _scatter(contacts, prior: FactorPrior, power_sigma_ln) -> np.ndarray:
-    if isinstance(power_sigma_ln, Mapping):
-        sp = np.array([float(power_sigma_ln.get(c, 0.0)) for c in contacts])
-    else:
-        sp = np.full(len(contacts), float(power_sigma_ln or 0.0))
-    if not (np.isfinite(sp) & (sp >= 0)).all():
-        raise InputError("power_sigma_ln must be finite numbers >= 0 [-]")
-    return np.sqrt(prior.contact_sigma_ln ** 2 + sp ** 2)
-
-
-def _check_power_proportional(models, contacts, scatter_power) -> None:
-    """σ_P enters as a factor only where the worn volume is proportional to the power (checked
-    once per law, coefficients and geometry: the property of the law, not of the power)."""
-    seen = set()
-    for i, c in enumerate(contacts):
-        if scatter_power[i] <= 0:
-            continue
-        m = models[c]
-        if not m.power:  # no wear: a factor on it changes nothing
-            continue
-        key = (id(m.law), id(m.geometry), repr(m.coefficients_mobile),
-               repr(m.coefficients_obstacle), len(m.powers), m.sector_arc is None)
-        if key in seen:
-            continue
-        seen.add(key)
-        t = m.time_scale
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RangeWarning)
-            v2 = m.volumes(t, power=2.0 * m.power)[0]
-            v1 = m.volumes(t, factor=2.0)[0]
-        if not np.allclose(v1, v2, rtol=1e-9):
-            raise InputError(f"contact {c!r}: its {m.law.name} volume is not proportional to "
-                             "the power, so the power's spread is not a factor on it; give "
-                             "power_sigma_ln=0 for it")
-
-
 def _log_likelihood(obs: pd.DataFrame, models, contacts, techniques, grid) -> np.ndarray:
     """log L_i(λ) on the grid (n, N): the sum over each contact's sized and NDD results (the
     depths of every result at every factor in one :func:`depths_at_factors` call)."""
@@ -477,7 +390,7 @@ def _grid_around(center: float, half: float, n: int) -> np.ndarray:
 
 def calibrate_bundle(predictions, inspections, *, techniques=None,
                      prior: FactorPrior | None = None, groups=None, identity=None,
-                     power_sigma_ln=0.0, origin_date=None, time_unit: str = "year",
+                     power_sigma_ln=POWER_SIGMA_LN, origin_date=None, time_unit: str = "year",
                      levels_only: bool = False) -> BundleCalibration:
     """The hierarchical posterior of every contact's factor from a field campaign.
 
@@ -498,7 +411,8 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
         given by tube location and to group by support type.
     power_sigma_ln : float or mapping of contact to float
         σ_P, the log-spread of each contact's power [-] (from its confidence interval:
-        ln(1 + half-width/power)/z); adds to the contact scatter.
+        ln(1 + half-width/power)/z); adds to the contact scatter. Default
+        :data:`POWER_SIGMA_LN` (0.2), the commands' too; 0 takes the power as exact.
     origin_date, time_unit
         For an inspection file with dates (:func:`read_field_inspections`).
     levels_only : bool
@@ -524,20 +438,22 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
     1601 points). Module docstring of :mod:`fretwear.assessment.posterior`: the levels.
     """
     prior = prior or FactorPrior()
-    models = _models(predictions)
+    models = prediction_models(predictions)
     contacts = list(models)
     if not isinstance(inspections, Inspections):
         inspections = read_field_inspections(inspections, techniques, origin_date=origin_date,
                                              time_unit=time_unit)
     elif techniques is not None:
         inspections = Inspections(inspections.table, dict(techniques) if isinstance(
-            techniques, Mapping) else {techniques.name: techniques}, inspections.source)
+            techniques, Mapping) else {techniques.name: techniques}, inspections.source,
+            inspections.depth_column)
     sectors = inspections.table["sector"].notna()
     if sectors.any():
         raise InputError(f"inspections line {inspections.table.loc[sectors, 'line'].iloc[0]}: "
                          "a sector depth; calibrate_bundle takes global depths (sector depths: "
                          "fretwear.uncertainty.calibrate)")
-    obs = _resolve(inspections.table, contacts, identity)
+    check_depths_within_walls(inspections, _walls(models, identity))
+    obs = resolve_inspections(inspections.table, contacts, identity)
     used = set(obs.loc[obs["status"] != "not inspected", "technique"])
     missing = sorted(t for t in used if t not in inspections.techniques)
     if missing:
@@ -545,9 +461,9 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
                          "techniques={name: Technique(SizingModel(...), LogisticPOD(...))}")
     obs["elapsed_s"] = [_elapsed(models[c], float(t), c)
                         for c, t in zip(obs["contact"], obs["instant"], strict=True)]
-    names, group_of = _group_index(contacts, groups, identity)
-    scatter = _scatter(contacts, prior, power_sigma_ln)
-    _check_power_proportional(models, contacts, scatter ** 2 - prior.contact_sigma_ln ** 2)
+    names, group_of = group_index(contacts, groups, identity)
+    scatter = contact_scatter(contacts, prior.contact_sigma_ln, power_sigma_ln)
+    check_power_proportional(models, contacts, scatter ** 2 - prior.contact_sigma_ln ** 2)
     mu0, tau0 = math.log(prior.bundle.median), float(prior.bundle.sigma_ln)
     tau_g = prior.group_sigma_ln if groups is not None else 0.0
     half = 10.0 * math.sqrt(tau0 ** 2 + tau_g ** 2 + float(scatter.max()) ** 2)
@@ -575,6 +491,18 @@ def calibrate_bundle(predictions, inspections, *, techniques=None,
                                group_of=group_of, scatter=scatter, levels=levels, prior=prior,
                                observations=obs, inspected=inspected, plugged=plugged)
     return result if levels_only else _with_depths(result)
+
+
+def _walls(models, identity) -> pd.DataFrame:
+    """``contact``, ``wall_thickness`` [m] (NaN without a wall) and, with the identity table,
+    ``tube_row``, ``tube_column`` of every contact."""
+    walls = pd.DataFrame({"contact": list(models), "wall_thickness": [
+        math.nan if m.wall_thickness is None else float(m.wall_thickness)
+        for m in models.values()]})
+    if identity is None or not {"tube_row", "tube_column"} <= set(identity):
+        return walls
+    spots = identity.drop_duplicates("contact")[["contact", "tube_row", "tube_column"]]
+    return walls.merge(spots, on="contact", how="left")
 
 
 def _solve(obs, models, contacts, techniques, grid, group_of, names, scatter, mu0, tau0,

@@ -32,8 +32,18 @@ from fretwear.io.guard import readable_file, reading
 from fretwear.io.text_tables import number, read_text_table
 from fretwear.timeunits import TIME_UNITS, time_unit_name
 
-__all__ = ["FIELD_COLUMNS", "INPUT_COLUMNS", "Inspections", "Technique",
-           "read_field_inspections"]
+__all__ = ["DEPTH_WALLS_MAX", "FIELD_COLUMNS", "INPUT_COLUMNS", "Inspections", "Technique",
+           "check_depths_within_walls", "read_field_inspections"]
+
+DEPTH_WALLS_MAX = 5.0
+"""The deepest measured depth taken as a real one, in walls [-]. The check is for a unit slip:
+a value in mm in a metres column, or in µm in a mm column, is 1000 times too deep, so any
+indication deeper than 5.5 µm (every technique's threshold is far above) typed so lands beyond
+five walls of 1.09 mm. Below, a depth is kept, and past one wall said first, THROUGH THE WALL:
+a tube worn through reads about one wall plus its sizing error, and a campaign drawn from the
+depth model (whose scar goes on past the wall, into the tube: a bundle's forecast reports
+130 %) reads more. Beyond five walls the depth is refused with the line, the column and the
+likely unit."""
 
 #: Columns of an inspection file: name -> (unit, meaning). A row names its contact (``contact``)
 #: or its tube location (``tube_row``, ``tube_column``, optional ``support``); gives
@@ -121,11 +131,14 @@ class Inspections:
         Technique name -> :class:`Technique` (every name in ``table['technique']`` is a key).
     source : str
         Where the table came from (a file name, or ``"DataFrame"``).
+    depth_column : str
+        The column the depths were read from (``depth`` [m], ``depth_mm``, ``depth_pct``).
     """
 
     table: pd.DataFrame
     techniques: Mapping[str, Technique] = field(default_factory=dict)
     source: str = "DataFrame"
+    depth_column: str = "depth"
 
     def rows(self, status: str) -> pd.DataFrame:
         """The rows of one ``status`` ('sized', 'ndd' or 'not inspected')."""
@@ -244,7 +257,77 @@ def _depth(value: float, column: str, wall: float, where: str) -> float:
     if not (math.isfinite(value) and value > 0):
         raise InputError(f"{where}: {column} must be a finite number > 0 [{unit}], got "
                          f"{value!r}; write NDD for no detectable degradation")
-    return value * (1e-3 if column == "depth_mm" else 1.0)
+    depth = value * (1e-3 if column == "depth_mm" else 1.0)
+    if math.isfinite(wall) and wall > 0:
+        _within_walls(depth, value, column, wall, where)
+    return depth
+
+
+def _within_walls(depth: float, value, column: str, wall: float, where: str) -> None:
+    """Refuse a depth [m] beyond :data:`DEPTH_WALLS_MAX` walls ``wall`` [m], guessing the
+    unit."""
+    if depth <= DEPTH_WALLS_MAX * wall:
+        return
+    guess = {"depth": f"a value in mm? ({value:g} mm is {value * 1e-3:g} m; or give the "
+                      "column depth_mm)",
+             "depth_mm": f"a value in µm? ({value:g} µm is {value * 1e-3:g} mm)"}[column]
+    raise InputError(f"{where}: {column} = {value:g} [{'m' if column == 'depth' else 'mm'}] "
+                     f"is {depth / wall:.3g} walls of {wall * 1e3:.4g} mm, deeper than any "
+                     f"tube's wear (up to {DEPTH_WALLS_MAX:g} walls is taken as through the "
+                     f"wall): {guess}")
+
+
+def check_depths_within_walls(inspections: Inspections, contacts: pd.DataFrame) -> None:
+    """Refuse a sized depth deeper than :data:`DEPTH_WALLS_MAX` walls of its tube.
+
+    Parameters
+    ----------
+    inspections : Inspections
+        The campaign (its depths [m], lines and source).
+    contacts : DataFrame
+        ``contact``, ``wall_thickness`` [m] and, for rows given by tube location,
+        ``tube_row`` and ``tube_column`` (the tube's thinnest wall is used).
+
+    Raises
+    ------
+    InputError
+        Naming the file, the line, the column and the likely unit (a value in mm in a metres
+        column). Rows whose contact or tube is not among ``contacts`` are left to the
+        caller's own check.
+
+    Examples
+    --------
+    >>> ins = read_field_inspections(pd.DataFrame({"contact": ["a"], "instant": [10],
+    ...                                            "depth": [0.5]}))
+    >>> check_depths_within_walls(ins, pd.DataFrame({"contact": ["a"],
+    ...                                              "wall_thickness": [1.09e-3]}))
+    Traceback (most recent call last):
+    ...
+    fretwear.errors.InputError: inspections (DataFrame), line 1: depth = 0.5 [m] is 459 walls
+    of 1.09 mm, deeper than any tube's wear (up to 5 walls is taken as through the wall):
+    a value in mm? (0.5 mm is 0.0005 m; or give the column depth_mm)
+    """
+    t = inspections.table
+    sized = t[(t["status"] == "sized") & t["depth"].notna()]
+    if sized.empty or inspections.depth_column == "depth_pct":
+        return  # % through-wall is bounded by 100 when read
+    walls = contacts.drop_duplicates("contact").set_index("contact")["wall_thickness"]
+    by_tube = (contacts.groupby(["tube_row", "tube_column"])["wall_thickness"].min()
+               if {"tube_row", "tube_column"} <= set(contacts) else None)
+    label = inspections.source if inspections.source != "DataFrame" \
+        else "inspections (DataFrame)"
+    scale = 1e3 if inspections.depth_column == "depth_mm" else 1.0
+    for r in sized.itertuples(index=False):
+        if r.contact:
+            wall = walls.get(r.contact, math.nan)
+        elif by_tube is not None:
+            wall = by_tube.get((r.tube_row, r.tube_column), math.nan)
+        else:
+            continue
+        wall = float(wall) if wall is not None else math.nan
+        if math.isfinite(wall) and wall > 0:
+            _within_walls(float(r.depth), float(r.depth) * scale, inspections.depth_column,
+                          wall, f"{label}, line {r.line}")
 
 
 def _row(cols, i: int, where: str, depth_col: str | None, wall: float) -> dict[str, Any]:
@@ -399,4 +482,5 @@ def read_field_inspections(source, techniques=None, *, origin_date=None,
         only = next(iter(models))
         table["technique"] = only
     return Inspections(table=table, techniques=models,
-                       source=label if not isinstance(source, pd.DataFrame) else "DataFrame")
+                       source=label if not isinstance(source, pd.DataFrame) else "DataFrame",
+                       depth_column=depth_col or "depth")

@@ -18,11 +18,21 @@ from typing import Any
 import numpy as np
 
 from fretwear._lazy import pandas as pd
-from fretwear.assessment.calibration import BundleCalibration, FactorPrior, support_type
+from fretwear.assessment.calibration import (
+    CONTACT_SIGMA_LN,
+    POWER_SIGMA_LN,
+    BundleCalibration,
+    FactorPrior,
+)
+from fretwear.assessment.calibration_inputs import support_type
 from fretwear.assessment.condition import as_found, predicted_vs_measured
 from fretwear.assessment.contacts import bundle_models, field_inspections
 from fretwear.assessment.growth import FactorNodes, GrowthModel
-from fretwear.assessment.inspections import Inspections, read_field_inspections
+from fretwear.assessment.inspections import (
+    Inspections,
+    check_depths_within_walls,
+    read_field_inspections,
+)
 from fretwear.assessment.operational import (
     BundleRisk,
     bundle_risk,
@@ -30,7 +40,7 @@ from fretwear.assessment.operational import (
     longest_interval,
     plugging_list,
 )
-from fretwear.assessment.summary import factor_line
+from fretwear.assessment.summary import coverage_line, factor_line
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
@@ -145,7 +155,8 @@ class Assessment:
     def bad_news(self) -> list[str]:
         """The lines said first: contacts and tubes past the limit and through the wall, the
         bundle's probability above the target, a calibrated factor beyond [1/10, 10]
-        (:func:`~fretwear.assessment.summary.factor_line`)."""
+        (:func:`~fretwear.assessment.summary.factor_line`), too few sized indications inside
+        their predicted interval (:func:`~fretwear.assessment.summary.coverage_line`)."""
         b = self.bundle
         lines = []
         if b["through_wall_tubes"]:
@@ -159,7 +170,10 @@ class Assessment:
             lines.append(self.probability_line())
         implausible = factor_line(self.inputs.get("calibration", {}).get("factor_median",
                                                                           math.nan))
-        return lines + ([implausible] if implausible else [])
+        n = int(self.fit.get("indications", 0) or 0)
+        poor = coverage_line(round(self.fit["coverage"] * n), n, self.fit["level"]) if n \
+            else None
+        return lines + [line for line in (implausible, poor) if line]
 
 
 def _group_names(table, groups) -> list | None:
@@ -201,7 +215,8 @@ def _calibrated(table, ins, sizing, pod, prior, names, power_sigma_ln):
     keep = _inspected_contacts(ins, table)
     models = dict(zip(table["contact"], table["model"], strict=True))
     tech = Technique(sizing, pod, name="assess")
-    ins = Inspections(ins.table, {n: tech for n in set(ins.table["technique"])}, ins.source)
+    ins = Inspections(ins.table, {n: tech for n in set(ins.table["technique"])}, ins.source,
+                      ins.depth_column)
     mapping = None if names is None else dict(zip(table["contact"], names, strict=True))
     return calibrate_bundle({c: models[c] for c in keep}, ins, prior=prior,
                             groups=None if mapping is None else
@@ -260,8 +275,8 @@ def _factor_nodes(posterior, table, ins, sizing, pod, count, prior, groups, powe
 
 
 def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
-           target: float = 0.05, posterior=None, contact_sigma_ln: float = 0.35,
-           power_sigma_ln: float = 0.2, group_sigma_ln: float = 0.0, groups=None,
+           target: float = 0.05, posterior=None, contact_sigma_ln: float = CONTACT_SIGMA_LN,
+           power_sigma_ln: float = POWER_SIGMA_LN, group_sigma_ln: float = 0.0, groups=None,
            prior=None, share: float = 0.9, limit: float | None = None,
            horizon: float | None = None, nodes: int = 16, origin_date=None) -> Assessment:
     """Condition monitoring and operational assessment of a bundle at an outage.
@@ -291,7 +306,9 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
         with ``contact_sigma_ln`` and ``power_sigma_ln`` about it.
     contact_sigma_ln, power_sigma_ln, group_sigma_ln : float
         σ of ln of one contact's factor about its group's, of the factor on each contact's
-        power, and of a group's factor about the bundle's [-] (0: no group level).
+        power, and of a group's factor about the bundle's [-] (0: no group level); defaults
+        :data:`~fretwear.assessment.calibration.CONTACT_SIGMA_LN` and
+        :data:`~fretwear.assessment.calibration.POWER_SIGMA_LN`, the commands' too.
     groups : None, "support type" or mapping of contact to group name
         The group level (default "support type" when ``group_sigma_ln`` > 0): the contacts
         of a group share its factor at every node of the assessment
@@ -330,6 +347,7 @@ def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,
     if inspections is not None:
         ins = inspections if isinstance(inspections, Inspections) else \
             read_field_inspections(inspections, origin_date=origin_date, time_unit=unit)
+        check_depths_within_walls(ins, table)  # a value in mm in a metres column
     insp = field_inspections(ins, table) if ins is not None else \
         pd.DataFrame({"contact": pd.Series(dtype=str), "instant": pd.Series(dtype=float),
                       "depth": pd.Series(dtype=float), "ndd": pd.Series(dtype=bool),

@@ -14,7 +14,8 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 
-__all__ = ["FACTOR_PLAUSIBLE", "factor_line", "summary_counts", "tube_summary"]
+__all__ = ["COVERAGE_SIGNIFICANCE", "FACTOR_PLAUSIBLE", "coverage_line", "factor_line",
+           "summary_counts", "tube_summary"]
 
 FACTOR_PLAUSIBLE = 10.0
 """A calibrated bundle factor beyond [1/10, 10] [-] is said with the bad news."""
@@ -54,6 +55,69 @@ def factor_line(median: float, bound: float = FACTOR_PLAUSIBLE) -> str | None:
             "inspections and the model disagree by more than an order of magnitude; check the "
             "inspection depths' units (depth [m], depth_mm, depth_pct), the wear coefficients "
             "and the operating time before using the forecasts")
+
+
+COVERAGE_SIGNIFICANCE = 0.01
+"""A predicted-against-measured coverage as low as one a right model gives with a probability
+below this [-] is said with the bad news."""
+
+
+def coverage_line(inside: int, indications: int, level: float = 0.90,
+                  significance: float = COVERAGE_SIGNIFICANCE) -> str | None:
+    """The warning said with the bad news when too few sized indications fall inside their
+    prediction's central interval.
+
+    If the calibrated model were right, each indication would fall inside its ``level``
+    interval with the probability ``level``, and the count inside would be binomial
+    B(n, level) (taking the indications as independent). The line is said when a count as
+    low as the one seen has a probability below ``significance`` (a one-sided binomial test):
+    0 of 4 at 90 % has 1e-4, 1 of 4 3.7e-3 (both said), 2 of 4 0.052 (not said); one
+    indication alone is never enough (0 of 1 has 0.1). It catches what the factor's median
+    alone does not: a posterior split between the prior and the data, its median in between
+    and near neither.
+
+    Parameters
+    ----------
+    inside : int
+        The indications inside their interval [-].
+    indications : int
+        The sized indications compared [-].
+    level : float
+        The interval's probability [-] (0.90).
+    significance : float
+        The largest probability of so few inside that is said [-] (default 0.01).
+
+    Returns
+    -------
+    str or None
+
+    Notes
+    -----
+    .. math:: P(K \\le k) = \\sum_{j=0}^{k} \\binom{n}{j} \\ell^j (1 - \\ell)^{n-j}
+
+    Examples
+    --------
+    >>> coverage_line(2, 4) is None
+    True
+    >>> print(coverage_line(0, 4))  # doctest: +NORMALIZE_WHITESPACE
+    PREDICTED AGAINST MEASURED: 0 of 4 sized indications inside their 90 % interval (3.6
+    expected; as few has probability 0.0001 if the model were right): the calibrated model
+    does not explain the inspections (a prior in conflict with the data, the depths' units,
+    the wear coefficients or the operating time); check before using the forecasts
+    """
+    from scipy import stats
+
+    n, k = int(indications), int(inside)
+    if n <= 0:
+        return None
+    p = float(stats.binom.cdf(k, n, level))
+    if p >= significance:
+        return None
+    return (f"PREDICTED AGAINST MEASURED: {k} of {n} sized indications inside their "
+            f"{level * 100:g} % interval ({n * level:.3g} expected; as few has probability "
+            f"{p:.2g} if the model were right): the calibrated model does not explain the "
+            "inspections (a prior in conflict with the data, the depths' units, the wear "
+            "coefficients or the operating time); check before using the forecasts")
 
 
 def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:

@@ -88,6 +88,15 @@ class SizingModel:
                     f"{'|a| <= 1 m' if name == 'intercept' else f'[{low:g}, {high:g}] {unit}'}"
                     "; depths are in metres (0.3 mm is 3e-4) and a technique's slope is near 1")
 
+    def describe(self) -> str:
+        """The model in engineering units, with the units named (for reports and terminals).
+
+        >>> print(SizingModel(intercept=5e-5, slope=1.0, sigma=1e-4).describe())
+        sizing: measured = 0.05 mm + 1 × true + e, sizing error σ = 0.1 mm
+        """
+        return (f"sizing: measured = {self.intercept * 1e3:.4g} mm + {self.slope:.4g} × true "
+                f"+ e, sizing error σ = {self.sigma * 1e3:.4g} mm")
+
     def true_depth(self, measured):
         """The true depth whose expected measurement is ``measured``: (m − a)/b [m]."""
         return (np.asarray(measured, dtype=float) - self.intercept) / self.slope
@@ -134,6 +143,15 @@ class LogSizingModel:
 
     def __post_init__(self) -> None:
         _finite("LogSizingModel sigma_ln [-]", self.sigma_ln, positive=True)
+
+    def describe(self) -> str:
+        """The model with its units named.
+
+        >>> print(LogSizingModel(0.1).describe())
+        sizing: ln(measured) = ln(true) + e, σ_ln = 0.1 (about 11 % of the depth)
+        """
+        return (f"sizing: ln(measured) = ln(true) + e, σ_ln = {self.sigma_ln:.4g} (about "
+                f"{100 * math.expm1(self.sigma_ln):.2g} % of the depth)")
 
     def true_depth(self, measured):
         """The true depth whose median measurement is ``measured`` [m]."""
@@ -198,6 +216,16 @@ class LogisticPOD:
         g = math.log if log_depth else (lambda x: x)
         beta1 = math.log(9.0) / (g(a90) - g(a50))      # logit(0.9) = ln 9
         return cls(beta0=-beta1 * g(a50), beta1=beta1, log_depth=log_depth)
+
+    def describe(self) -> str:
+        """The POD in engineering units: its depths of 50 % and 90 % detection in mm.
+
+        >>> print(LogisticPOD.from_depths(a50=2e-4, a90=4e-4).describe())
+        POD: logistic in ln depth, a50 = 0.2 mm, a90 = 0.4 mm (detected 50 %, 90 % of the time)
+        """
+        return (f"POD: logistic in {'ln depth' if self.log_depth else 'depth'}, "
+                f"a50 = {self.depth_at(0.5) * 1e3:.4g} mm, a90 = {self.depth_at(0.9) * 1e3:.4g}"
+                " mm (detected 50 %, 90 % of the time)")
 
     def _x(self, depth):
         d = np.asarray(depth, dtype=float)

@@ -201,6 +201,8 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
     if frame.empty:
         return []  # read_manifest says the manifest has no contacts
     meaning = column_meanings(columns, source, noun=noun)
+    check_wall_column({c: frame[c].to_numpy() for c in frame.columns}, meaning, source,
+                      frame["contact"].to_numpy() if "contact" in frame else None, noun)
     if "contact" not in columns:
         raise KeywordError(f"{source}: the manifest needs a 'contact' column (unique id of each "
                            f"contact); columns found: {columns}")
@@ -226,6 +228,52 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
         rows.append(ContactRow(cid, ref, identity, overrides, labels))
     _check_unique([r.contact for r in rows], source)
     return rows
+
+
+def check_wall_column(columns: Mapping[str, Any], meaning: Mapping[str, Any], source: str,
+                      contacts=None, noun: str = "column") -> None:
+    """One error up front for a wall column no contact can use (instead of one per contact
+    when the bundle runs): every wall [m] given is a number not > 0, or above
+    :data:`~fretwear.io.geometry_units.WALL_BOUND` (0.1 m: a value in mm). With one good wall
+    in the column the bad rows are left to fail their own contacts.
+
+    ``columns`` maps each column (or variable) name to its values, ``meaning`` to its key
+    (:func:`column_meanings`); ``contacts`` names the rows in the message.
+
+    Examples
+    --------
+    >>> check_wall_column({"wall_thickness_m": [1.09, 1.09]},
+    ...                   {"wall_thickness_m": ("geometry", "wall_thickness_m")}, "m.csv")
+    Traceback (most recent call last):
+    ...
+    fretwear.errors.InputError: m.csv: column wall_thickness_m = 1.09 [m] on 2 of 2 rows (first:
+    row 1) is implausible for a tube's wall (above 0.1 m): a value in mm? Give metres:
+    wall_thickness_m = 0.00109 (every length of a manifest is in metres)
+    """
+    from fretwear.io.geometry_units import WALL_BOUND
+
+    for name, key in meaning.items():
+        if key != ("geometry", "wall_thickness_m"):
+            continue
+        values = np.array([float(v) if isinstance(v, int | float | np.number) and not isinstance(
+            v, bool | np.bool_) and abs(v) <= 1e308 else math.nan for v in columns[name]])
+        # NaN: a text, a list, a date, a bool: the contact's own check says what is wrong
+        given = np.isfinite(values)
+        bad = given & ((values <= 0) | (values > WALL_BOUND))
+        if not bad.any() or bad.sum() < given.sum():
+            continue  # a good wall somewhere: the bad rows fail their contacts alone
+        i = int(np.flatnonzero(bad)[0])
+        first = f"contact {contacts[i]!r}" if contacts is not None \
+            and not _missing(contacts[i]) else f"row {i + 1}"
+        x = float(values[i])
+        where = (f"{source}: {noun} {name} = {x:g} [m] on {int(bad.sum())} of {len(values)} "
+                 f"rows (first: {first})")
+        if x <= 0:
+            raise InputError(f"{where}: a wall is > 0 [m]; give each tube's wall in metres "
+                             "(1.09 mm is 0.00109) or leave the cell empty for the case's")
+        raise InputError(f"{where} is implausible for a tube's wall (above {WALL_BOUND:g} m): "
+                         f"a value in mm? Give metres: {name} = {x * 1e-3:g} (every length "
+                         "of a manifest is in metres)")
 
 
 def _cells(cells, contact: str, source: str, directory: Path, noun: str = "column"
@@ -516,6 +564,7 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
             continue
         columns[str(name)] = var.values
     meaning = column_meanings(list(columns), label)
+    check_wall_column(columns, meaning, label, ids, "variable")
     # an empty units attribute (xarray and netCDF writers leave units="") declares nothing
     units = {c: _declared(ds[c]) for c in channels if _declared(ds[c])}
     if "time" in ds.coords and ds["time"].dims == (tdim,) and "time" not in channels:

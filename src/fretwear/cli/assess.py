@@ -97,8 +97,8 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
     b = result.bundle
     for line in instability_lines(result.inputs.get("unstable_tubes")):
         console.print(line, style="bold red", markup=False, soft_wrap=True)
-    for line in result.bad_news():
-        console.print(f"[bold red]{line}[/]")
+    for line in result.bad_news():  # not markup: a line may hold [0.1, 10]
+        console.print(line, style="bold red", markup=False, soft_wrap=True)
     if not (b["past_limit_tubes"] or b["through_wall_tubes"]):
         console.print("no tube at or past the plugging limit as measured")
     if b["p_any"] <= b["target"]:  # else said first, with the bad news

@@ -15,7 +15,9 @@ from fretwear._optional import require
 from fretwear.assessment.inspections import INPUT_COLUMNS
 from fretwear.cli._units import parse_units, units_option, with_history_units
 from fretwear.cli.calibrate_field import calibrate_field, field_options
+from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_write
+from fretwear.io.text_tables import read_text_table
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_tube_sheet
 from fretwear.plotting.uncertainty import plot_calibration
@@ -122,9 +124,15 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
         return
     else:
         predictions = case_predictions(with_history_units(case_file, parse_units(units)))
-    result = calibrate(predictions, inspections, prior=prior,
-                       measurement_sigma=measurement_sigma, method=method, forecast=forecast,
-                       limit=None if limit_mm is None else limit_mm * 1e-3)
+    try:
+        result = calibrate(predictions, inspections, prior=prior,
+                           measurement_sigma=measurement_sigma, method=method,
+                           forecast=forecast, limit=None if limit_mm is None else limit_mm * 1e-3)
+    except InputError as err:
+        field = _field_campaign(inspections)
+        if field is None:
+            raise
+        raise InputError(f"{err}\n{field}") from err
     frame = result.predictive if result.predictive is not None else result.observations
     if identity is not None and result.predictive is not None:
         frame = identity.merge(frame, on="contact", how="right")
@@ -151,6 +159,32 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
                                         column="exceedance",
                                         title="P(exceeding the limit at the forecast)"),
                         plot_dir, "exceedance_map", close=True)
+
+
+_FIELD_ONLY = ("result", "inspected", "plugged", "depth_pct", "wall_thickness", "tube_row",
+               "tube_column", "support", "date", "technique")
+
+
+def _field_campaign(path) -> str | None:
+    """What --case cannot read in a field campaign (NDD rows, the campaign's own columns), and
+    the fix: --bundle; None when the file holds neither."""
+    try:
+        frame = read_text_table(path, "inspection file")
+    except InputError:
+        return None
+    frame.columns = [str(c).strip() for c in frame.columns]
+    ndd = [c for c in ("depth", "depth_mm", "result") if c in frame
+           and frame[c].astype(str).str.strip().str.upper().eq("NDD").any()]
+    extra = [c for c in _FIELD_ONLY if c in frame and c != "result"]
+    if not ndd and not extra:
+        return None
+    what = ("an NDD (no detectable degradation) row" if ndd else
+            f"a field campaign's column(s) {extra}")
+    return (f"the file holds {what}: --case calibrates one contact on sized depths only; "
+            "NDD, tube locations and the campaign's columns are read by the hierarchical "
+            "calibration of a bundle: fretwear calibrate INSPECTIONS --bundle RESULTS (with the "
+            "technique's POD, --pod-a50-mm and --pod-a90-mm), or leave the NDD rows out "
+            "for --case")
 
 
 def _mm(value) -> str:

@@ -20,6 +20,7 @@ from fretwear.assessment import (
     calibrate_bundle,
     read_field_inspections,
 )
+from fretwear.assessment.calibration import CONTACT_SIGMA_LN, POWER_SIGMA_LN
 from fretwear.assessment.summary import factor_line, summary_counts, tube_summary
 
 _TECHNIQUE = [
@@ -37,10 +38,10 @@ _TECHNIQUE = [
                  help="Depth detected 90 % of the time [mm]."),
 ]
 _FACTOR = [
-    click.option("--contact-sigma-ln", type=click.FloatRange(min=0), default=0.35,
+    click.option("--contact-sigma-ln", type=click.FloatRange(min=0), default=CONTACT_SIGMA_LN,
                  show_default=True, help="σ of ln of one contact's factor about its group's "
                  "(the contact scatter inspections of the others cannot remove) [-]."),
-    click.option("--power-sigma-ln", type=click.FloatRange(min=0), default=0.2,
+    click.option("--power-sigma-ln", type=click.FloatRange(min=0), default=POWER_SIGMA_LN,
                  show_default=True, help="σ of ln of the factor on each contact's wear power "
                  "(its confidence interval) [-]."),
     click.option("--group-sigma-ln", type=click.FloatRange(min=0), default=0.0,

@@ -54,6 +54,13 @@ def _tubes_table(tubes: pd.DataFrame, names) -> dict[str, Any]:
                                "P(exceed) [-]": (1.0, ".3g")})
 
 
+def _described(value) -> str:
+    """An input as the report shows it: a technique's model in engineering units, with its
+    units named (``describe()``: sizing error in mm, the POD as a50/a90 in mm), else str."""
+    describe = getattr(value, "describe", None)
+    return describe() if callable(describe) else str(value)
+
+
 def render_assessment_report(result, *, title: str | None = None) -> str:
     """The HTML text of the report of an :class:`~fretwear.assessment.outage.Assessment`."""
     from fretwear.plotting.assessment import (
@@ -83,7 +90,7 @@ def render_assessment_report(result, *, title: str | None = None) -> str:
          "uri": figure_data_uri(plot_bundle_probability(result))},
         {"id": "fans", "title": "The riskiest tubes' worst contacts: depth after the outage",
          "uri": figure_data_uri(plot_fan_charts(result))}]
-    inputs = [{"name": k, "value": str(v)} for k, v in result.inputs.items()]
+    inputs = [{"name": k, "value": _described(v)} for k, v in result.inputs.items()]
     context = {**_meta(), "title": title or "fretwear: outage assessment", "kind": "assessment",
                "bad_news": instability_lines(result.inputs.get("unstable_tubes"))
                + result.bad_news(), "b": b,
