@@ -204,7 +204,8 @@ def _named_values(case: Mapping[str, Any], source: str) -> list[str]:
     for section, key, names, what in (("law", "name", list(WEAR_LAWS), "wear law (LOI_USURE)"),
                                       ("geometry", "contact_type", list(CONTACT_TYPES),
                                        "contact type (CONTACT)")):
-        value = (case.get(section) or {}).get(key)
+        part = case.get(section)
+        value = part.get(key) if isinstance(part, Mapping) else None
         if isinstance(value, str) and value.strip().upper() not in names:
             problems.append(f"{source}: [{section}] {key} = {value!r} is not a {what}"
                             f"{keyword_hint(value.strip().upper(), names)}; choose one of "
