@@ -215,3 +215,22 @@ def test_plausibility_checked_on_the_first_block(tmp_path):
     frame.to_csv(path, index=False)
     with pytest.warns(fio.plausibility.UnitsWarning):
         list(iter_history_blocks(path, chunk_size=1000))
+
+
+@pytest.mark.parametrize("fmt", ["parquet", "csv"])
+def test_first_block_is_given_the_readers_first_block_before_the_reduction(files, fmt):
+    """``first_block`` sees the first block a file's reader gives (the file's first 4 096 rows:
+    the history written, read back bit for bit in this process, float64 in both formats'
+    round trip as test_blocks_are_the_file_without_overlap asserts) once, and the power is the
+    one computed without it (same process: bit for bit); an in-memory history is its own first
+    block."""
+    h, paths = files
+    seen = []
+    got = wear_power(paths[fmt], chunk_size=4096, first_block=seen.append)
+    assert len(seen) == 1 and len(seen[0]) == 4096
+    for ch in h.channels:
+        np.testing.assert_array_equal(getattr(seen[0], ch), getattr(h, ch)[:4096])
+    assert got.total == wear_power(paths[fmt], chunk_size=4096).total
+    whole = []
+    wear_power(h, first_block=whole.append)
+    assert whole == [h]

@@ -389,10 +389,16 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     if row.history.kind == "memory":
         samples = int(len(next(iter(row.history.arrays.values()), [])))
     unit = wear.time_unit
-    return ContactTask(contact=row.contact, history=row.history, case=payload,
+    task = ContactTask(contact=row.contact, history=row.history, case=payload,
                        read_options=options,
                        time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
                        samples=samples, power=power, warnings=[list(w) for w in caught])
+    if cache is not None:  # the rows sharing a case share its WearCase (wear_case's own)
+        shared = cache.get(("built", signature))
+        if shared is None:
+            shared = cache[("built", signature)] = task.wear_case()
+        task.__dict__["_built"] = shared
+    return task
 
 
 def _task_key(ident_case: Any, signature: str, cache: dict | None, rest: dict) -> str:

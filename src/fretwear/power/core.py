@@ -410,6 +410,7 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
                minimum_rest_time: float = 0.0, chunk_size: int = DEFAULT_CHUNK_SIZE,
                backend: str = "auto", kwu: tuple[float | None, float | None] | None = None,
                progress: Callable[[int], Any] | None = None,
+               first_block: Callable[[ContactHistory], Any] | None = None,
                **read_options: Any) -> PowerResult:
     """Wear power of a contact history over a window, per block and per angular sector.
 
@@ -446,6 +447,11 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         ContactHistory or a file; an iterable of chunks gets the maxima only).
     progress : callable, optional
         Called with the number of samples read so far after each block of a file.
+    first_block : callable, optional
+        Called with the first block (a ContactHistory in SI) before it is reduced: a check of
+        the record's first samples without a second read of a file (a bundle's units against
+        the contact's geometry). A file's first block is its reader's (at most
+        ``chunk_size`` samples); an in-memory history is its own first block.
     **read_options
         Passed to the reader of a file or file set: ``format``, ``units`` (e.g.
         ``{"length": "mm", "force": "kN"}``), ``columns``, ``name`` and the format's own options
@@ -522,6 +528,8 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         if opts["t_end"] is None:
             opts["t_end"] = float(history.time[-1])
         acc = PowerAccumulator(**opts)
+        if first_block is not None:
+            first_block(history)
         acc.update(history)
         chunks = lambda: (history,)  # noqa: E731 - the second pass of the KWU counts
     elif isinstance(history, str | os.PathLike):
@@ -536,9 +544,11 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         acc = PowerAccumulator(**opts)
         read = 0
         for chunk in iter_history_blocks(history, chunk_size, **read_options):
+            if first_block is not None and read == 0:
+                first_block(chunk)
             acc.update(chunk)
+            read += len(chunk)
             if progress is not None:
-                read += len(chunk)
                 progress(read)
         path = history
         chunks = lambda: iter_history_blocks(path, chunk_size, **read_options)  # noqa: E731
@@ -546,7 +556,9 @@ def wear_power(history: ContactHistory | str | os.PathLike, *, t_start: float | 
         if read_options:
             raise KeywordError(f"unknown keyword(s) {sorted(read_options)} for chunks")
         acc = PowerAccumulator(**opts)
-        for chunk in history:
+        for k, chunk in enumerate(history):
+            if first_block is not None and k == 0:
+                first_block(chunk)
             acc.update(chunk)
         chunks = None
     else:
