@@ -107,3 +107,20 @@ unit = "h"
 def grappe_case():
     """:func:`write_grappe_case`, for tests in any folder."""
     return write_grappe_case
+
+
+@pytest.fixture(scope="session")
+def example_bundle_out(tmp_path_factory) -> Path:
+    """The shipped examples/bundle run once (serial), its output directory (the assessment's
+    campaign and coverage tests share it)."""
+    import warnings
+
+    from fretwear.bundle import run_bundle
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "bundle"
+    out = tmp_path_factory.mktemp("example") / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        run_bundle(example / "manifest.csv", example / "bundle.toml", scheduler="serial",
+                   output=out)
+    return out

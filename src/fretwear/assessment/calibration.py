@@ -497,7 +497,7 @@ def _walls(models, identity) -> pd.DataFrame:
     """``contact``, ``wall_thickness`` [m] (NaN without a wall) and, with the identity table,
     ``tube_row``, ``tube_column`` of every contact."""
     walls = pd.DataFrame({"contact": list(models), "wall_thickness": [
-        math.nan if m.wall_thickness is None else float(m.wall_thickness)
+        math.nan if m.wall.thickness is None else float(m.wall.thickness)
         for m in models.values()]})
     if identity is None or not {"tube_row", "tube_column"} <= set(identity):
         return walls
