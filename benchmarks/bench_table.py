@@ -18,8 +18,10 @@ each time, the first-read cost).
 Before and after in one run: ``--base DIR`` times every example twice more, in child processes
 taking turns, one importing fretwear from ``DIR/src`` (e.g. a worktree of the base commit:
 ``git worktree add /tmp/base HEAD``), the other this checkout's; it prints both and their
-ratio (after / before), then the cost of a DataFrame of each table's size and columns (the
-floor a table can reach: one ``pandas.DataFrame`` construction).
+ratio (after / before), then three floors, each call alone: a DataFrame of each table's
+size and columns (one ``pandas.DataFrame`` construction), the geometry's global depths of the
+table's volumes (``depth_from_volume``: a root solve for a lunule or a broached hole) and the
+law's volume at the table's instants. A table makes each of these calls at least once.
 
 Usage::
 
@@ -115,9 +117,29 @@ def _child(name: str, number: int, repeat: int) -> dict:
         b = _time(lambda: wear_table_from_case(case, power), number, repeat)
         columns = {c: table[c].to_numpy() for c in table.columns}
         floor = _time(lambda: pd.DataFrame(columns), number, repeat)
+        depth, law = _floors(case, table, number, repeat)
     return {"module": fretwear.__file__, "wear_table": min(a), "from_case": min(b),
-            "frame": min(floor),
+            "frame": min(floor), "depth": min(depth), "law": min(law),
             "rows": len(table), "columns": table.shape[1]}
+
+
+def _floors(case, table, number: int, repeat: int) -> tuple[list[float], list[float]]:
+    """Timings [s] of two calls every table makes once, whatever the code around them: the
+    geometry's global depths of the table's volumes (``geometry.depth_from_volume``: for a
+    lunule or a broached hole a root solve) and the law's volume at the table's instants
+    (``law.volume``, the tube's coefficients of the table's ``attrs``)."""
+    geometry, law = case.geometry, case.wear_law
+    start = np.isin(np.arange(len(table)), np.flatnonzero(table["instant"] > case.origin))
+    rows = table[start]  # the run's rows (a restart's earlier rows left out)
+    if "sector" in rows.columns:
+        rows = rows[rows["sector"] == 1]
+    vm, vo = (rows[c].to_numpy() for c in ("volume_mobile", "volume_obstacle"))
+    elapsed = np.asarray(case.instants, dtype=float) * case.time_scale
+    power = float(table["power"].iloc[-1])
+    coefficients = table.attrs["coefficients_mobile"]
+    depth = _time(lambda: geometry.depth_from_volume(vm, vo), number, repeat)
+    volume = _time(lambda: law.volume(power, elapsed, **coefficients), number, repeat)
+    return depth, volume
 
 
 def _run_child(name: str, src: str | None, number: int, repeat: int, clock: str) -> dict:
@@ -132,7 +154,7 @@ def _run_child(name: str, src: str | None, number: int, repeat: int, clock: str)
 
 def _best_of(rounds: list[dict]) -> dict:
     return {**rounds[0], **{k: min(r[k] for r in rounds)
-                            for k in ("wear_table", "from_case", "frame")}}
+                            for k in ("wear_table", "from_case", "frame", "depth", "law")}}
 
 
 def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "wall") -> None:
@@ -142,11 +164,12 @@ def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "
     print(f"load average {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} "
           f"{os.getloadavg()[2]:.2f}; before = {src}, after = {ROOT / 'src'}")
     print(f"per-contact wear table [ms of {clock} time], best of {rounds} rounds x {repeat} x "
-          f"{number} tables (the processes taking turns); DataFrame floor: pd.DataFrame of the "
-          "table's columns")
+          f"{number} tables (the processes taking turns); floors, each call alone (this "
+          "checkout): pd.DataFrame of the table's columns, the geometry's global depths of the "
+          "table's volumes (depth_from_volume), the law's volume at its instants")
     print(f"{'example':>14} {'rows x cols':>11} {'wear_table before':>18} {'after':>7} "
           f"{'ratio':>6} {'from_case before':>17} {'after':>7} {'ratio':>6} "
-          f"{'DataFrame floor':>15}")
+          f"{'DataFrame':>9} {'depths':>7} {'law':>6}")
     for name in EXAMPLES:
         olds, news = [], []
         for _ in range(rounds):
@@ -158,8 +181,8 @@ def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "
               f"{1e3 * old['wear_table']:>18.3f} {1e3 * new['wear_table']:>7.3f} "
               f"{new['wear_table'] / old['wear_table']:>6.2f} "
               f"{1e3 * old['from_case']:>17.3f} {1e3 * new['from_case']:>7.3f} "
-              f"{new['from_case'] / old['from_case']:>6.2f} {1e3 * new['frame']:>15.3f}",
-              flush=True)
+              f"{new['from_case'] / old['from_case']:>6.2f} {1e3 * new['frame']:>9.3f} "
+              f"{1e3 * new['depth']:>7.3f} {1e3 * new['law']:>6.3f}", flush=True)
     print(f"load average after {os.getloadavg()[0]:.2f}")
 
 

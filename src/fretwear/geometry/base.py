@@ -109,6 +109,12 @@ def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndar
     return mobile_array.astype(float, copy=True), obstacle_array.astype(float, copy=True)
 
 
+#: :meth:`ContactGeometry.mobile_volume` keeps the volumes of at most this many depth arrays of
+#: at most _KEPT_DEPTHS_SIZE depths per geometry (a case's depth limit and wall thickness: the
+#: wear table's time to the limit asks them of every table of the same geometry).
+_KEPT_VOLUMES = 16
+_KEPT_DEPTHS_SIZE = 4
+
 #: Lengths [m] a contact dimension may take: beyond them the formulas of theory §6 overflow or
 #: underflow (a width of 5e-324 m divided into a volume is inf) and no real contact is that size.
 LENGTH_RANGE = (1e-9, 1e3)
@@ -204,9 +210,13 @@ class ContactGeometry:
         return 0.0 if value is None else math.radians(value)
 
     def dimensions(self) -> dict[str, float]:
-        """The dimensions given (native names, SI lengths [m], angles [deg])."""
-        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)
-                if getattr(self, f.name) is not None}
+        """The dimensions given (native names, SI lengths [m], angles [deg]): a new dict."""
+        kept = self.__dict__.get("_dimensions")  # immutable: its dimensions found once
+        if kept is None:
+            kept = tuple((f.name, getattr(self, f.name)) for f in dataclasses.fields(self)
+                         if getattr(self, f.name) is not None)
+            object.__setattr__(self, "_dimensions", kept)
+        return dict(kept)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready description: contact type and dimensions.
@@ -256,7 +266,23 @@ class ContactGeometry:
         True
         """
         depth = np.asarray(depth_mobile, dtype=float)
-        return np.asarray(self._volume_from_depth(depth, np.zeros_like(depth))[0], dtype=float)
+        small = depth.size <= _KEPT_DEPTHS_SIZE  # a limit and the wall: kept per geometry
+        if small:
+            kept = self.__dict__.get("_mobile_volumes")
+            if kept is None:
+                kept = {}
+                object.__setattr__(self, "_mobile_volumes", kept)  # immutable: one cache
+            key = (depth.shape, depth.tobytes())
+            found = kept.get(key)
+            if found is not None:
+                return found.copy()
+        volume = np.asarray(self._volume_from_depth(depth, np.zeros_like(depth))[0],
+                            dtype=float)
+        if small:
+            if len(kept) >= _KEPT_VOLUMES:
+                kept.clear()
+            kept[key] = volume.copy()
+        return volume
 
     def _apply(self, relation, kind: str, mobile, obstacle):
         """``relation`` on the validated pair of ``kind`` ("volume"/"depth"): NaN inputs give

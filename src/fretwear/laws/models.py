@@ -8,6 +8,7 @@ caller passed is modified. SI units: power [W], duration [s], volume [m³].
 from __future__ import annotations
 
 import warnings
+from contextvars import ContextVar
 
 import numpy as np
 
@@ -21,6 +22,24 @@ EDF_MZ_DEFAULTS = {
     "decay_constant": 2.44e-8,     # n [1/s]
     "asymptotic_rate": 1.14e-16,   # S [m³/s]
 }
+
+#: The LawWarnings of the law functions while a :class:`~fretwear.laws.WearLaw` method runs
+#: (a list of messages, :func:`fretwear.laws.registry._warning_once` issues each once at its
+#: caller's line); None otherwise: the functions warn themselves. A context variable, not
+#: ``warnings.catch_warnings`` (which swaps the process's filters: a cost on every call and a
+#: race between threads).
+_collected: ContextVar[list[str] | None] = ContextVar("fretwear_law_warnings", default=None)
+
+
+def _law_warning(message: str, stacklevel: int) -> None:
+    """A LawWarning at ``stacklevel`` of the function calling this one, or kept in
+    :data:`_collected` when a WearLaw method collects them."""
+    kept = _collected.get()
+    if kept is None:
+        warnings.warn(message, LawWarning, stacklevel=stacklevel + 1)
+    else:
+        kept.append(message)
+
 
 # Below this value of x = n·t the functions psi1, psi2 use their Taylor series.
 _SERIES_LIMIT = 0.5
@@ -208,11 +227,11 @@ def _warn_rising(initial_rate: np.ndarray, s: np.ndarray, stacklevel: int = 3) -
         i = np.argwhere(rising)[0] if rising.ndim else ()
         s0 = float(np.broadcast_to(initial_rate, rising.shape)[tuple(i)])
         ss = float(np.broadcast_to(s, rising.shape)[tuple(i)])
-        warnings.warn(
+        _law_warning(
             f"EDF_MZ: the asymptotic rate S = {ss:.6g} m³/s exceeds the initial rate A·P^b = "
             f"{s0:.6g} m³/s for {int(rising.sum())} of {rising.size} value(s): the wear rate rises "
             "with time instead of slowing down (the formula still holds); check A, b, S and the "
-            "power", LawWarning, stacklevel=stacklevel)
+            "power", stacklevel=stacklevel)
 
 
 def edf_mz(power, duration, rate_coefficient=1e-13, power_exponent=1.2, decay_constant=2.44e-8,
@@ -349,10 +368,10 @@ def edf_mz_equivalent_time(volume, power, rate_coefficient=1e-13, power_exponent
     unreachable = (v > 0) & (v >= ceiling)
     if unreachable.any():
         out[unreachable] = np.inf
-        warnings.warn(
+        _law_warning(
             f"EDF_MZ: {int(unreachable.sum())} volume(s) can never be reached by the law (S = 0 "
             "and V >= A·P^b/n, or A·P^b = S = 0): equivalent time set to inf, so the volume "
-            "stays where it is", LawWarning, stacklevel=2)
+            "stays where it is", stacklevel=2)
     todo = (v > 0) & ~unreachable
     if not todo.any():
         return out
@@ -428,8 +447,8 @@ def linear_equivalent_time(volume, volume_rate) -> np.ndarray:
     v, q = np.broadcast_arrays(v, q)
     never = (v > 0) & (q == 0)
     if never.any():
-        warnings.warn(
+        _law_warning(
             f"{int(never.sum())} volume(s) > 0 with a zero wear rate (K·P = 0): equivalent time "
-            "set to inf, the volume stays where it is", LawWarning, stacklevel=2)
+            "set to inf, the volume stays where it is", stacklevel=2)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(v == 0, 0.0, np.where(never, np.inf, v / np.where(q > 0, q, 1.0)))

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from fretwear.errors import KeywordError
+from fretwear.errors import KeywordError, LawWarning
 from fretwear.laws import models
 from fretwear.laws.kwu_statistics import (
     DEFAULT_CHUNK_SIZE,
@@ -85,6 +85,10 @@ class WearLaw:
         object.__setattr__(self, "units", MappingProxyType(dict(self.units)))
         object.__setattr__(self, "aster_keywords", MappingProxyType(dict(self.aster_keywords)))
         object.__setattr__(self, "symbols", MappingProxyType(dict(self.symbols)))
+        # made once (resolve runs at every volume): keyword -> name, and the accepted names
+        object.__setattr__(self, "_by_keyword",
+                           {kw: p for p, kw in self.aster_keywords.items()})
+        object.__setattr__(self, "_accepted", frozenset(self.accepted))
 
     @property
     def accepted(self) -> tuple[str, ...]:
@@ -110,12 +114,12 @@ class WearLaw:
         >>> WEAR_LAWS["EDF_MZ"].resolve(COEF_B=1.0)["power_exponent"]
         1.0
         """
-        by_keyword = {kw: p for p, kw in self.aster_keywords.items()}
+        by_keyword = self._by_keyword
         out: dict[str, Any] = {}
         origin: dict[str, str] = {}
         for key, value in coefficients.items():
             name = by_keyword.get(key, key)
-            if name not in self.accepted:
+            if name not in self._accepted:
                 listing = ", ".join(
                     f"{p} ({self.aster_keywords[p]})" if p in self.aster_keywords else p
                     for p in self.accepted)
@@ -206,20 +210,22 @@ class WearLaw:
 
 
 def _warning_once(compute: Callable[[], np.ndarray]) -> np.ndarray:
-    """``compute()``, its warnings issued once each and attributed to the caller's caller.
+    """``compute()``, its LawWarnings issued once each and attributed to the caller's caller.
 
     A method of :class:`WearLaw` calls the law's functions several times (a restart: equivalent
     time, then two volumes); the user should see one LawWarning, pointing at their own line.
+    The law functions keep their messages in a context variable while ``compute`` runs
+    (:data:`fretwear.laws.models._collected`): no ``warnings.catch_warnings``, whose swap of the
+    process's filters cost every call and is not safe between threads.
     """
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always")
+    token = models._collected.set([])
+    try:
         result = compute()
-    seen: set[tuple[type, str]] = set()
-    for w in caught:
-        key = (w.category, str(w.message))
-        if key not in seen:
-            seen.add(key)
-            warnings.warn(str(w.message), w.category, stacklevel=3)
+    finally:
+        caught = models._collected.get()
+        models._collected.reset(token)
+    for message in dict.fromkeys(caught):  # once each, in their order
+        warnings.warn(message, LawWarning, stacklevel=3)
     return result
 
 

@@ -88,6 +88,13 @@ def _index(names: tuple[str, ...]) -> pd.Index:
 
 
 @functools.lru_cache(maxsize=64)
+def _rows(n: int) -> pd.RangeIndex:
+    """The rows' index of a table of ``n`` rows (each table gets a view: a name set on one
+    table's index stays with it)."""
+    return pd.RangeIndex(n)
+
+
+@functools.lru_cache(maxsize=64)
 def _layout(names: tuple[str, ...], dtypes: tuple) -> tuple | None:
     """The blocks ``pd.DataFrame(columns)`` makes of columns of these names and numpy dtypes:
     one per dtype, its columns' places in order ((dtype, places), float64 first); None unless
@@ -133,8 +140,9 @@ def _frame(columns: dict) -> pd.DataFrame:
         return _frame_inserted(columns)
     blocks = [(np.stack([arrays[at] for at in places]), np.array(places, dtype=np.intp))
               for _, places in layout]
-    # a copy of the cached index per table: its data shared (immutable), its name its own
-    return make(blocks, index=pd.RangeIndex(arrays[0].shape[0]), columns=_index(names).copy())
+    # a view of the cached indexes per table: their data shared (immutable), their names their
+    # own (Index.view: 2 µs, Index.copy: 14 µs)
+    return make(blocks, index=_rows(arrays[0].shape[0]).view(), columns=_index(names).view())
 
 
 def _frame_inserted(columns: dict) -> pd.DataFrame:

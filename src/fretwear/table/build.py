@@ -32,6 +32,7 @@ Conventions of the table (one row per instant, or per instant and sector):
 
 from __future__ import annotations
 
+import functools
 import os
 from dataclasses import dataclass
 
@@ -334,15 +335,16 @@ class _Clock:
 
     case: WearCase
 
-    @property
+    @functools.cached_property
     def durations(self) -> np.ndarray:
+        """The instants' durations since the origin [user unit] (made once a table)."""
         return np.asarray(self.case.instants, dtype=float)
 
     @property
     def n(self) -> int:
         return len(self.case.instants)
 
-    @property
+    @functools.cached_property
     def elapsed(self) -> np.ndarray:
         """Seconds since the origin at each instant [s]."""
         return self.durations * self.case.time_scale
