@@ -23,6 +23,7 @@ from fretwear.assessment.outage import assess
 from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.laws import get_law
+from fretwear.table import Wall
 from fretwear.table.depth import DepthModel
 
 WALL = 1.09e-3
@@ -73,7 +74,7 @@ def _model(name: str) -> DepthModel:
                                                 obstacle_width=12.7e-3),
                       powers=(5e-3,), coefficients_mobile=({"coefficient": 1e-14},),
                       coefficients_obstacle=(None,), time_scale=31536000.0, name=name,
-                      wall_thickness=WALL)
+                      wall=Wall(WALL))
 
 
 def test_calibrate_bundle_checks_the_contacts_walls(tmp_path):

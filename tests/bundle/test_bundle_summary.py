@@ -238,7 +238,7 @@ def bundles(tmp_path_factory):
     run("no_sectors", NO_SECTORS)
     # a wall per contact (the tables get limit_instant; NaN where no wall), a case limit and a
     # tube replaced at 1.5 and 1 year (the depth restarts from zero)
-    run("walls", BASE_CASE, extra={"wall_thickness_m": [1.1e-3, None, 1e-6, 6e-5],
+    run("walls", BASE_CASE, extra={"wall_thickness_m": [1.1e-3, None, 1e-5, 6e-5],
                                    "tube_replacement": [None, 1.5, None, 1.0],
                                    "depth_limit": [None, 0.3, 0.5, None]})
     run("replaced_no_sectors", NO_SECTORS, extra={"tube_replacement": [None, 1.5, 0.5, 1.0],
@@ -319,7 +319,7 @@ def test_summary_equals_the_per_contact_loop(bundles, name):
         s = summaries[0].set_index("contact")
         assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE
         assert s.loc["R1C2-AVB", "time_to_limit_method"].startswith("no limit")
-        assert s.loc["R2C1-AVB", "limit_depth"] == 0.5 * 1e-6
+        assert s.loc["R2C1-AVB", "limit_depth"] == 0.5 * 1e-5
         # limit=0.4: R1C1's own limit (its table's instant), R2C1's is 0.5 (through the volume)
         s = summaries[1].set_index("contact")
         assert s.loc["R1C1-AVB", "time_to_limit_method"] == FROM_TABLE

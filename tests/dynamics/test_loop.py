@@ -471,11 +471,11 @@ def test_ensemble_needs_a_random_signal(tmp_path):
 
 def test_cli_says_perforation_first(tmp_path):
     """Bad news first: a tube worn through its wall is the first line printed, before the
-    table (a 1 µm wall: perforated in the first cycle)."""
+    table (a 10 µm wall: perforated in the first cycle)."""
     from fretwear.cli import cli
 
     toml = tmp_path / "loop.toml"
-    toml.write_text(LOOP_TOML.replace("wall_thickness_m = 1.1e-3", "wall_thickness_m = 1e-6"),
+    toml.write_text(LOOP_TOML.replace("wall_thickness_m = 1.1e-3", "wall_thickness_m = 1e-5"),
                     encoding="utf-8")
     out = CliRunner().invoke(cli, ["iterate", str(toml), "--cycles", "2", "--no-plot"])
     assert out.exit_code == 0, out.output

@@ -99,8 +99,8 @@ def test_a_radius_in_mm_beside_a_wall_in_metres_is_refused():
     """A new user's trial (session 4): mobile_radius_m = 9.525 with wall_thickness_m = 1.09e-3
     was only warned of, at the end of the output, and the life came out 1159 year instead of
     36.6 (the depth of a volume falls with the radius). A tube's radius is 8-25 walls (the
-    reference document's tube: 9.525 mm on 1.09 mm, ratio 8.7); a hundred walls is refused with
-    the value in metres, and 25 walls (a thin-walled tube) is not."""
+    reference document's tube: 9.525 mm on 1.09 mm, ratio 8.7, so 8 700 in the slip); a thousand
+    walls is refused with the value in metres, and 25 or 950 walls is not."""
     base = dict(contact_type="TUBE_ALESAGE", instants=[1.0], coefficients={"COEF_USURE": 1e-14})
     with pytest.raises(InputError, match=r"mobile_radius = 9.525 m is 8739 times the wall "
                                          r"0.00109 m .*mobile_radius = 0.009525"):
@@ -110,3 +110,5 @@ def test_a_radius_in_mm_beside_a_wall_in_metres_is_refused():
         warnings.simplefilter("error", UnitsWarning)
         WearCase.from_keywords(dimensions={"mobile_radius": 0.0125, "obstacle_width": 0.0127},
                                wall_thickness=0.5e-3, **base)
+        WearCase.from_keywords(dimensions={"mobile_radius": 0.0095, "obstacle_width": 0.0127},
+                               wall_thickness=1e-5, **base)

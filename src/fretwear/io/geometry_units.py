@@ -43,11 +43,12 @@ def _fix(key: str, unit: str) -> str:
     return _FIX.format(entry=f"{key} = '{unit}'", cli=f"{key}={unit}", key=key, unit=unit)
 
 
-#: The largest plausible ratio of a tube's outer radius to its wall: steam-generator tubes are
-#: 8-25 (9.525 mm on 1.09 mm, 11.1 mm on 0.5 mm), fuel and control rods about 10; a hundred
-#: leaves a margin of four and still catches a radius typed in mm beside a wall in metres (a
-#: ratio in the thousands).
-RADIUS_WALL_RATIO = 100.0
+#: The largest ratio of a tube's outer radius to its wall accepted: steam-generator tubes are
+#: 8-25 (9.525 mm on 1.09 mm, 11.1 mm on 0.5 mm), fuel and control rods about 10, so a radius
+#: typed in mm beside a wall in metres gives 8 000 or more; a thousand catches every such slip
+#: and leaves studies room for thin walls (a 10 µm wall on a 9.5 mm tube to reach perforation
+#: in a test).
+RADIUS_WALL_RATIO = 1000.0
 
 
 def check_wall_thickness(wall: float | None, radius: float | None, *,
