@@ -29,9 +29,9 @@ from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY
 from fretwear.io.atomic import atomic_path
 
-#: Rows of a bucket, the table's row group (a bucket's Arrow and pandas copies: some 100 MB
+#: Rows of a bucket, the table's row group (a bucket's Arrow and pandas copies: some 50 MB
 #: at the benchmark's 250 bytes a row).
-ROWS_PER_GROUP = 1 << 18
+ROWS_PER_GROUP = 1 << 17
 
 #: The table's columns :func:`fretwear.bundle.result.summarize` reads.
 SUMMARY_COLUMNS = ("contact", "instant", "sector", "depth_mobile", "power",
