@@ -24,7 +24,7 @@ from fretwear.bundle.manifest import Manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.store import OutputDirectory, write_frame
-from fretwear.bundle.table_file import read_columns, with_identity
+from fretwear.bundle.table_file import with_identity
 from fretwear.bundle.tasks import concat_packed
 from fretwear.geometry.base import GLOBAL_RANGE
 from fretwear.io.atomic import atomic_write
@@ -239,10 +239,11 @@ def _saved_table(store: OutputDirectory, order: list[str]) -> bool:
     if store.table_format != "parquet" or not path.is_file():
         return False
     try:
-        ids = read_columns(path, ["contact"])
-    except Exception:  # noqa: BLE001 - unreadable: assembled from the parts, written again
-        return False
-    if "contact" not in ids.columns:
+        import pyarrow.compute as pc
+        import pyarrow.parquet as pq
+
+        ids = pc.unique(pq.read_table(path, columns=["contact"]).column("contact"))
+    except Exception:  # noqa: BLE001 - unreadable, no contact: assembled again, written again
         return False
     wanted = set(order)
-    return all(str(c) in wanted for c in pd.unique(ids["contact"]))
+    return all(str(c) in wanted for c in ids.to_pylist())

@@ -277,17 +277,15 @@ class OutputDirectory:
         return stem
 
     def compact(self, attrs: dict | None) -> dict | None:
-        """A record's table metadata as the client keeps it once in a part (the part holds it
-        whole): the power's ``total`` [W] alone, and every other dict or list shared with the
-        equal ones of other contacts (the geometry, coefficients, sector edges of a bundle's
-        few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated)."""
+        """A record's table metadata as the client keeps it once in a part: every dict or list
+        but the power (each contact's own; its sector powers build the depth models) shared
+        with the equal ones of other contacts (the geometry, coefficients, sector edges of a
+        bundle's few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated)."""
         if not isinstance(attrs, dict):
             return attrs
         out = {}
         for key, value in attrs.items():
-            if key == "power" and isinstance(value, dict):
-                value = {"total": value.get("total")}
-            elif isinstance(value, dict | list):
+            if key != "power" and isinstance(value, dict | list):
                 value = self._shared.setdefault((key, repr(value)), value)
             out[key] = value
         return out
