@@ -5,7 +5,8 @@ Runs ``--contacts`` contacts of ``--samples`` samples (the bundle of
 and samples this process's resident memory (psutil, every 20 ms; the process holds the client,
 the local cluster's scheduler and their event loop). The phases are marked by wrapping the
 engine's steps: the run (tasks built, results arriving, parts written), the final table's
-assembly (``outputs._table``), the summary, the dataset's build and the final files. Prints, for
+assembly (``outputs._table``) or its streaming from the parts (``stream_table``), the summary,
+the dataset's build (or its writing by groups of contacts) and the final files. Prints, for
 each phase in order, the memory at its start and its peak over the memory before the run, in
 kB a contact (the table itself is printed beside them for scale).
 
@@ -79,9 +80,11 @@ def main(argv: list[str] | None = None) -> None:
     for module, name, label in [
             (engine, "open_engine", "run: tasks submitted, results arriving, parts written"),
             (outputs, "_table", "final table assembled"),
+            (store.OutputDirectory, "stream_table", "table.parquet written from the parts"),
             (result, "summarize", "summary"),
             (outputs, "build_dataset", "dataset built"),
             (store.OutputDirectory, "write_dataset", "dataset written"),
+            (store.OutputDirectory, "write_zarr_by_regions", "dataset written by groups"),
             (store.OutputDirectory, "write_table", "table written")]:
         if hasattr(module, name):
             phases.wrap(module, name, label, "between phases")
@@ -99,8 +102,8 @@ def main(argv: list[str] | None = None) -> None:
             base, t0 = phases.marks[0][2], phases.marks[0][1]
             res = run_bundle(manifest, case, scheduler=client, output=directory / "out")
             phases.mark("returned")
-            table = res.table.memory_usage(deep=True).sum()
         phases.stop.set()
+        table = res.table.memory_usage(deep=True).sum()  # read after: not in the peak
         print(f"{n} contacts of {args.samples} samples: {res.stats['done']} done; memory before "
               f"the run {base / 2**20:.0f} MiB; the table {table / n / 1e3:.1f} kB a contact")
         for name, t, start, peak in phases.marks:

@@ -610,7 +610,7 @@ def test_every_dataset_cell_is_the_tables_value(tmp_path):
     variable from the contact's first row at that instant, each sector variable from the row of
     that sector, the sector bounds from the contact's rows), located here by a plain loop over
     the table's rows: the independent reading of build_dataset's pandas → xarray path."""
-    from fretwear.bundle.result import _SECTOR_ONLY, _sector_columns
+    from fretwear.bundle.result_dataset import _SECTOR_ONLY, _sector_columns
 
     manifest, case = write_bundle(tmp_path, oscillator(), 3)
     result = run_bundle(manifest, case, scheduler="serial")

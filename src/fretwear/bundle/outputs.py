@@ -20,9 +20,11 @@ from typing import Any
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
-from fretwear.bundle.manifest import IDENTITY, Manifest
-from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, build_dataset
-from fretwear.bundle.store import OutputDirectory, read_frame, write_frame
+from fretwear.bundle.manifest import Manifest
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
+from fretwear.bundle.result_dataset import build_dataset
+from fretwear.bundle.store import OutputDirectory, write_frame
+from fretwear.bundle.table_file import with_identity
 from fretwear.bundle.tasks import concat_packed
 from fretwear.geometry.base import GLOBAL_RANGE
 from fretwear.io.atomic import atomic_write
@@ -44,8 +46,16 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
         identity, order, records, store.table_format, dataset_format or "default", limit)
     unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
                  and store.unchanged(digest))
-    table = _saved_table(store, order) if unchanged else None
-    if table is None:
+    # with Parquet parts, table.parquet is written from them by buckets (table_file.
+    # stream_table) and the result reads it on demand: the client never holds the whole table
+    # (issue 28: 1.3 GB at 10^5 contacts, then its copies); an unchanged restart reads nothing
+    table = None
+    streamed = unchanged and _saved_table(store, order)
+    if not streamed and store is not None and not any(
+            records[c].get("table") is not None for c in order):
+        kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
+        streamed = bool(kept) and store.stream_table(kept, order, identity)
+    if not streamed:
         table = _table(order, identity, records, store)
     # the case of each contact whose rows are its (done, or skipped: done before with the same
     # inputs); a failed contact has none, a stale one the rows of an earlier case
@@ -88,7 +98,8 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
              "samples_per_s": math.nan, "workers": workers, "manifest": man.source,
              # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
              "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
-    result = BundleResult(table=table, errors=errors_frame,
+    result = BundleResult(table=table, table_file=store.table_path() if streamed else None,
+                          errors=errors_frame,
                           warnings=pd.DataFrame(warns, columns=["contact", "category",
                                                                 "message"]),
                           contacts=contacts, stats=stats,
@@ -151,11 +162,15 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
     else:
         if dataset_format is None:
             dataset_format = "netcdf" if optional("zarr") is None else "zarr"
-        store.write_table(result.table)
+        if result.table_file is None:  # else written from the parts already
+            store.write_table(result.table)
         write_frame(result.errors, store.path / "errors.csv", "csv")
         write_frame(result.warnings, store.path / "warnings.csv", "csv")
         write_frame(result.summary(limit), store.path / "summary.csv", "csv")
-        if len(result.table):
+        if result.table_file is not None and dataset_format == "zarr" \
+                and store.write_zarr_by_regions(result.contacts):
+            pass  # from the written table, a group of contacts at a time (issue 28)
+        elif len(result.table):
             # built, written and dropped: not kept on the result beside its table (the client's
             # memory at the end, issue 28); BundleResult.dataset builds it again when asked
             dataset = build_dataset(result.table, result.contacts)
@@ -202,7 +217,7 @@ def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str
         kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
         table = store.ordered_rows(kept, order) if kept else None
         if table is not None:
-            return _with_identity(table, identity)
+            return with_identity(table, identity)
     packed: dict[str, dict[str, Any]] = {c: records[c]["table"] for c in order
                                          if records[c].get("table") is not None}
     missing = [records[c] for c in order if c not in packed and records[c]["status"]
@@ -212,36 +227,23 @@ def _table(order: list[str], identity: pd.DataFrame, records: dict[str, dict[str
     kept = [c for c in order if c in packed]
     table = concat_packed(kept, [packed[c] for c in kept])
     del packed  # the contacts' rows, now in the table: freed before the identity's merge
-    return _with_identity(table, identity)
+    return with_identity(table, identity)
 
 
-def _with_identity(table: pd.DataFrame, identity: pd.DataFrame) -> pd.DataFrame:
-    """The table with the identity columns in front (``sector`` as Int64 where it has gaps)."""
-    if "sector" in table.columns and table["sector"].isna().any():
-        table["sector"] = table["sector"].astype("Int64")
-    # the identity columns put in front, each contact's values taken to its rows: what
-    # ``identity.merge(table, on="contact", how="right")`` gives, without the merge's copies
-    # of the whole table (a merge, then the columns' reorder: the table held three times)
-    where = pd.Index(identity["contact"]).get_indexer(table["contact"])
-    for k, name in enumerate(IDENTITY):
-        if name != "contact":
-            table.insert(k, name, identity[name].take(where).set_axis(table.index))
-    return table
-
-
-def _saved_table(store: OutputDirectory, order: list[str]) -> pd.DataFrame | None:
-    """The table an earlier run wrote as Parquet, read back (Parquet keeps every column's
-    dtype: the table :func:`_table` assembles; a CSV table is assembled again), or None when
-    it cannot be read or its contacts are not ``order``'s."""
-    path = store.path / "table.parquet"
+def _saved_table(store: OutputDirectory, order: list[str]) -> bool:
+    """Whether the table an earlier run wrote as Parquet can be the result's, read on demand
+    (Parquet keeps every column's dtype: the table :func:`_table` assembles; a CSV table is
+    assembled again): readable, and its contacts ``order``'s (its ``contact`` column read
+    alone)."""
+    path = store.table_path()
     if store.table_format != "parquet" or not path.is_file():
-        return None
+        return False
     try:
-        table = read_frame(path)
-    except Exception:  # noqa: BLE001 - unreadable: assembled from the parts, written again
-        return None
-    ids = pd.unique(table["contact"].astype(str)) if "contact" in table.columns else []
+        import pyarrow.compute as pc
+        import pyarrow.parquet as pq
+
+        ids = pc.unique(pq.read_table(path, columns=["contact"]).column("contact"))
+    except Exception:  # noqa: BLE001 - unreadable, no contact: assembled again, written again
+        return False
     wanted = set(order)
-    if not all(c in wanted for c in ids):
-        return None
-    return table
+    return all(str(c) in wanted for c in ids.to_pylist())

@@ -6,16 +6,16 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from fretwear._lazy import pandas as pd
-from fretwear._version import __version__
-from fretwear.bundle.datasets import require
 from fretwear.bundle.manifest import IDENTITY
+from fretwear.bundle.result_dataset import build_dataset
+from fretwear.bundle.table_file import SUMMARY_COLUMNS, read_columns
 from fretwear.errors import InputError, KeywordError
-from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
 from fretwear.table.depth_build import record_model
 from fretwear.table.depth_rows import (
     FROM_MODEL,
@@ -46,7 +46,8 @@ class BundleResult:
     table : DataFrame
         Every contact's wear table (columns of :func:`fretwear.table.wear_table`, units in
         :data:`fretwear.table.COLUMNS`), the identity columns ``contact, tube_row, tube_column,
-        support, node, history`` in front, contacts in manifest order.
+        support, node, history`` in front, contacts in manifest order. With an output directory
+        of Parquet tables, read from ``table_file`` when first asked for (then kept).
     errors : DataFrame
         One row per contact that failed (``error`` = the error class, ``message``,
         ``rows_kept`` False), failed this run but keeps an earlier run's rows (status
@@ -79,15 +80,20 @@ class BundleResult:
         The wear case of every contact whose rows are in the table as computed from it (done
         this run, or skipped: done by an earlier run with the same inputs), as the bundle
         built it once from the manifest: its wall (``cases[c].wall``), window, restart.
+    table_file : str or None
+        The Parquet file ``table`` is read from on demand (``table=None``): the client never
+        holds a bundle's whole table unless asked (issue 28); :meth:`summary` reads only the
+        columns it needs from it.
     """
 
-    table: pd.DataFrame
+    table: pd.DataFrame | None = field(repr=False)
     errors: pd.DataFrame
     warnings: pd.DataFrame
     contacts: pd.DataFrame
     stats: dict[str, Any] = field(default_factory=dict)
     output: str | None = None
     cases: dict[str, Any] = field(default_factory=dict, repr=False)
+    table_file: str | None = field(default=None, repr=False)
     _dataset: Any = field(default=None, repr=False)
     #: ``summary()``'s rankings, one per ``(limit, limit_m, wall_thickness)``: a result is
     #: never changed once built, so a ranking is computed once and read after (issue 28).
@@ -163,13 +169,38 @@ class BundleResult:
         try:
             ranking = self._summaries.get(key)
         except TypeError:  # an unhashable argument: summarize says what is wrong with it
-            return summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
-                             wall_thickness=wall_thickness)
+            return summarize(self._summary_rows(), self.contacts, limit=limit,
+                             limit_m=limit_m, wall_thickness=wall_thickness)
         if ranking is None:
-            ranking = summarize(self.table, self.contacts, limit=limit, limit_m=limit_m,
-                                wall_thickness=wall_thickness)
+            ranking = summarize(self._summary_rows(), self.contacts, limit=limit,
+                                limit_m=limit_m, wall_thickness=wall_thickness)
             self._summaries[key] = ranking
         return ranking.copy()
+
+
+    def _summary_rows(self) -> pd.DataFrame:
+        """The table, or the columns :func:`summarize` reads from ``table_file`` when the
+        table is not read (read for this call, not kept)."""
+        if self._table is None and self.table_file is not None:
+            return read_columns(Path(self.table_file), SUMMARY_COLUMNS)
+        return self.table
+
+
+def _get_table(self) -> pd.DataFrame:
+    if self._table is None and self.table_file is not None:
+        self._table = read_columns(Path(self.table_file))
+        self._table["contact"] = self._table["contact"].astype(str)
+    return self._table
+
+
+def _set_table(self, table) -> None:
+    self._table = table
+
+
+# the field ``table`` (given to the constructor, compared, copied by dataclasses.replace) kept
+# as ``_table``, read from ``table_file`` on first use
+BundleResult.table = property(_get_table, _set_table, doc=BundleResult.__doc__ and
+                              "Every contact's wear table (see the class' attributes).")
 
 
 def _global_rows(rows: pd.DataFrame) -> pd.DataFrame:
@@ -504,107 +535,3 @@ class _Contacts:
         powers, start, end = self._sector_rows
         mine = powers[start[k]:end[k]]
         return mine if mine.size and np.isfinite(mine).all() else None
-
-
-# ----------------------------------------------------------------------------- dataset
-_CONTACT_VARS = ("power",)
-_SECTOR_ONLY = ("angle_start", "angle_end")
-
-
-#: Identity columns of numbers (all missing: NaN, not text).
-_NUMBER_COORDINATES = ("tube_row", "tube_column", "wall_thickness")
-#: Columns along ``contact`` made coordinates, every one whether given or not.
-_CONTACT_COORDINATES = ("tube_row", "tube_column", "support", "node", "history", "time_unit",
-                        "wall_thickness", "status")
-
-
-def _coordinate(values: pd.Series, name: str) -> np.ndarray:
-    """A column along ``contact`` -> a NetCDF/Zarr-friendly array.
-
-    Numbers as int64 where every value is given and whole (tube rows and columns; not
-    ``wall_thickness`` [m]), else float64 with NaN where missing; anything else as text, ""
-    where missing. A column without any value: NaN for ``tube_row``, ``tube_column`` and
-    ``wall_thickness``, "" for the text columns.
-    """
-    given = values.notna().to_numpy()
-    if not given.any():
-        return (np.full(len(values), np.nan) if name in _NUMBER_COORDINATES
-                else np.full(len(values), "", dtype=object))
-    numeric = pd.to_numeric(values, errors="coerce")
-    if numeric.notna().sum() == given.sum():
-        number = numeric.to_numpy(dtype=float)
-        if (name != "wall_thickness" and given.all() and np.isfinite(number).all()
-                and (number == np.round(number)).all() and (np.abs(number) < 2.0**53).all()):
-            return number.astype(np.int64)
-        return number
-    return values.fillna("").astype(str).to_numpy(dtype=object)
-
-
-def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
-    """The bundle's wear tables as an xarray Dataset (see :attr:`BundleResult.dataset`)."""
-    xr = require("xarray")
-    done = (contacts[contacts["status"].isin(["done", "skipped", "stale"])] if len(contacts)
-            else contacts)
-    ids = [c for c in done["contact"].astype(str)] if len(done) else []
-    sector_mode = "sector" in table.columns and table["sector"].notna().any()
-    wear = [c for c in table.columns if c in COLUMNS and c not in ("instant", "sector")]
-    global_cols = [c for c in wear if c not in _sector_columns()]
-    data = {}
-    if len(table):
-        # each variable group's columns taken before indexing: set_index copies every column
-        # it is given (the whole table, three times, made the peak 5x the dataset at 20 000
-        # contacts)
-        keys = ["contact", "instant"]
-        glob = table[keys + global_cols].drop_duplicates(keys, keep="first")
-        g = glob.set_index(keys).to_xarray()
-        del glob
-        data.update({k: g[k] for k in g.data_vars})
-        if sector_mode:
-            s_cols = [c for c in wear if c in _sector_columns() and c not in _SECTOR_ONLY]
-            rows = table["sector"].notna().to_numpy()
-            sect = table.loc[rows, [*keys, "sector", *s_cols]]
-            sect["sector"] = sect["sector"].astype(int)
-            s = sect.set_index([*keys, "sector"]).to_xarray()
-            data.update({k: s[k] for k in s.data_vars})
-            del sect
-            ends = table.loc[rows, ["contact", "sector", *_SECTOR_ONLY]]
-            ends["sector"] = ends["sector"].astype(int)
-            a = ends.drop_duplicates(["contact", "sector"]).set_index(
-                ["contact", "sector"]).to_xarray()
-            data.update({k: a[k] for k in a.data_vars})
-    ds = xr.Dataset(data)
-    if "contact" in ds.dims:  # the manifest's order (the set built once: 20 000 contacts took
-        present = set(ds["contact"].values)  # 28 s when it was rebuilt for each of them)
-        ds = ds.reindex(contact=[c for c in ids if c in present])
-    info = done.set_index("contact") if len(done) else done
-    if "contact" in ds.dims:
-        order = [str(c) for c in ds["contact"].values]
-        for col in _CONTACT_COORDINATES:  # every one, given or not (docs/bundle.md)
-            values = (info.loc[order, col] if col in info.columns
-                      else pd.Series([None] * len(order), dtype=object))
-            ds = ds.assign_coords({col: ("contact", _coordinate(values, col))})
-    units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
-    # the contacts' time unit where the table says "user time unit" (instant, duration, origin,
-    # limit_instant ...): the same on the coordinate and on every time variable
-    time_unit = units[0] if len(units) == 1 else "see the time_unit coordinate"
-    for name in ds.data_vars:
-        if name in COLUMNS:
-            aster, unit, description = COLUMNS[name]
-            unit = time_unit if unit == COLUMNS["instant"][1] else unit
-            ds[name].attrs.update(units=unit, long_name=description, aster_name=aster)
-    if "instant" in ds.coords:
-        ds["instant"].attrs.update(units=time_unit, long_name=COLUMNS["instant"][2])
-    if "sector" in ds.coords:
-        ds["sector"].attrs.update(units="1", long_name=COLUMNS["sector"][2])
-    if "wall_thickness" in ds.coords:
-        ds["wall_thickness"].attrs.update(units="m", long_name="wall thickness of the tube")
-    ds.attrs.update(title="fretwear bundle: wear tables of every contact",
-                    fretwear_version=__version__,
-                    conventions="SI units (m, m³, W); instants in the time unit of the case")
-    return ds
-
-
-def _sector_columns() -> tuple[str, ...]:
-    """Columns that differ between the sectors of one instant."""
-    return tuple(c for c in COLUMNS if c not in GLOBAL_COLUMNS and (
-        c in SECTOR_COLUMNS or c.endswith("_sector")))

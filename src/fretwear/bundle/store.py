@@ -33,6 +33,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.datasets import path_stamp, require
+from fretwear.bundle.table_file import read_columns, stream_table
 from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
@@ -195,6 +196,7 @@ class OutputDirectory:
         self.written_before = self._recorded_outputs()
         #: Final files this run wrote, recorded in its run.json.
         self.written: list[str] = []
+        self._shared: dict = {}  # compact(): one object for equal metadata values
 
     def _recorded_outputs(self) -> set[str]:
         try:
@@ -247,7 +249,8 @@ class OutputDirectory:
                 continue  # not a part this code wrote whole: ignored, its contacts recomputed
             for rec in data.get("contacts", []):
                 out[rec["contact"]] = {**rec, "part": data["part"],
-                                       "rows_file": data.get("rows_file")}
+                                       "rows_file": data.get("rows_file"),
+                                       "attrs": self.compact(rec.get("attrs"))}
         return out
 
     def write_part(self, records: list[dict[str, Any]]) -> str:
@@ -270,7 +273,22 @@ class OutputDirectory:
             handle.write(text)
         for r in records:
             r["part"], r["rows_file"] = stem, rows_file
+            r["attrs"] = self.compact(r.get("attrs"))
         return stem
+
+    def compact(self, attrs: dict | None) -> dict | None:
+        """A record's table metadata as the client keeps it once in a part: every dict or list
+        but the power (each contact's own; its sector powers build the depth models) shared
+        with the equal ones of other contacts (the geometry, coefficients, sector edges of a
+        bundle's few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated)."""
+        if not isinstance(attrs, dict):
+            return attrs
+        out = {}
+        for key, value in attrs.items():
+            if key != "power" and isinstance(value, dict | list):
+                value = self._shared.setdefault((key, repr(value)), value)
+            out[key] = value
+        return out
 
     def rows(self, records: Iterable[Mapping[str, Any]]) -> dict[str, pd.DataFrame]:
         """``{contact: its rows}`` read back from the parts of the given records (a frame per
@@ -367,16 +385,35 @@ class OutputDirectory:
             if p.name.split(".")[0] not in keep:
                 p.unlink(missing_ok=True)
 
+    def table_path(self) -> Path:
+        """The final table's file, ``table.<format>``."""
+        return self.path / f"table.{self.table_format}"
+
     def write_table(self, table: pd.DataFrame) -> Path:
         """Write the bundle's table as ``table.<format>`` (atomically); the table of the other
         format that an earlier run of this directory wrote is removed: it is stale."""
-        target = self.path / f"table.{self.table_format}"
+        target = self.table_path()
         write_frame(table, target, self.table_format)
-        self.written.append(target.name)
+        self._table_written()
+        return target
+
+    def stream_table(self, records: list[Mapping[str, Any]], order: list[str],
+                     identity: pd.DataFrame) -> bool:
+        """Write ``table.parquet`` from the Parquet parts of ``records`` without holding the
+        table (:func:`fretwear.bundle.table_file.stream_table`, ``identity`` columns in
+        front, contacts in ``order``'s order); False (nothing written) for CSV parts, or
+        parts of different columns: the caller assembles the table and :meth:`write_table`."""
+        if self.table_format != "parquet" or not stream_table(
+                self.parts, self.table_path(), records, order, identity):
+            return False
+        self._table_written()
+        return True
+
+    def _table_written(self) -> None:
+        self.written.append(self.table_path().name)
         for other in TABLE_FORMATS:
             if other != self.table_format:
                 self._remove_stale(f"table.{other}")
-        return target
 
     def drop_dataset(self) -> None:
         """No dataset this run (no contact has rows): the one an earlier run of this directory
@@ -397,6 +434,25 @@ class OutputDirectory:
             with atomic_path(target) as tmp:
                 dataset.to_netcdf(tmp)
             return target
+        self._swap_zarr(lambda tmp, **options: dataset.to_zarr(tmp, mode="w", **options))
+        return self.path / "dataset.zarr"
+
+    def write_zarr_by_regions(self, contacts: pd.DataFrame) -> bool:
+        """Write ``dataset.zarr`` from the written Parquet table a group of contacts at a
+        time (:func:`fretwear.bundle.result_dataset.write_zarr_by_regions`), swapped in whole;
+        False (nothing written) where that cannot be: :meth:`write_dataset` then."""
+        from fretwear.bundle.result_dataset import write_zarr_by_regions
+
+        if not self._swap_zarr(lambda tmp, **options: write_zarr_by_regions(
+                self.table_path(), contacts, tmp, **options)):
+            return False
+        self._remove_stale("dataset.nc")
+        self.written.append("dataset.zarr")
+        return True
+
+    def _swap_zarr(self, write) -> bool:
+        """``write(tmp, **options)`` a Zarr store into a temporary directory, then swap it in
+        as ``dataset.zarr``; False (nothing swapped in) where ``write`` returns False."""
         target = self.path / "dataset.zarr"
         tmp = self.path / f".dataset.zarr.{self._run}.tmp"
         shutil.rmtree(tmp, ignore_errors=True)
@@ -404,7 +460,8 @@ class OutputDirectory:
             # Zarr format 2 (readable by every zarr version; format 3 has no string type yet)
             zarr = require("zarr")
             version2 = {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
-            dataset.to_zarr(tmp, mode="w", consolidated=True, **version2)
+            if write(tmp, consolidated=True, **version2) is False:
+                return False
             old = self.path / f".dataset.zarr.{self._run}.old"
             if target.exists():
                 os.replace(target, old)
@@ -412,7 +469,7 @@ class OutputDirectory:
             shutil.rmtree(old, ignore_errors=True)
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
-        return target
+        return True
 
 
 def _part_records(parts: Path) -> dict[str, dict[str, Any]]:
@@ -498,7 +555,12 @@ def load(path: str | os.PathLike):
         stats = json.loads((root / "run.json").read_text(encoding="utf-8"))
     except (OSError, ValueError) as exc:
         raise InputError(f"{str(root / 'run.json')!r} is not readable JSON ({exc})") from None
-    table = read_frame(tables[0])
+    # a Parquet table is read when asked for (BundleResult.table_file), its identity columns
+    # alone here: the contacts' frame (issue 28: 1.3 GB at 10^5 contacts)
+    lazy = tables[0].suffix == ".parquet"
+    from fretwear.bundle.manifest import IDENTITY
+
+    table = read_columns(tables[0], IDENTITY) if lazy else read_frame(tables[0])
     table["contact"] = table["contact"].astype(str)
 
     def optional_csv(name: str, columns: list[str]) -> pd.DataFrame:
@@ -512,5 +574,6 @@ def load(path: str | os.PathLike):
     warns = optional_csv("warnings.csv", ["contact", "category", "message"])
     contacts = _contacts_frame(table, errors, _part_records(root / "parts"))
     stats = {k: v for k, v in stats.items() if k != "outputs"} if isinstance(stats, dict) else {}
-    return BundleResult(table=table, errors=errors, warnings=warns, contacts=contacts,
-                        stats=stats, output=str(root))
+    return BundleResult(table=None if lazy else table, errors=errors, warnings=warns,
+                        contacts=contacts, stats=stats, output=str(root),
+                        table_file=str(tables[0]) if lazy else None)

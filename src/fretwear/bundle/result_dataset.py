@@ -1,0 +1,233 @@
+"""A bundle's wear tables as an xarray Dataset (``contact × instant`` × ``sector``), built whole
+from a table (:func:`build_dataset`, :attr:`fretwear.bundle.BundleResult.dataset`) or written to
+Zarr a group of contacts at a time from the written table (:func:`write_zarr_by_regions`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from fretwear._lazy import pandas as pd
+from fretwear._version import __version__
+from fretwear.bundle.datasets import require
+from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
+
+_CONTACT_VARS = ("power",)
+_SECTOR_ONLY = ("angle_start", "angle_end")
+
+
+#: Identity columns of numbers (all missing: NaN, not text).
+_NUMBER_COORDINATES = ("tube_row", "tube_column", "wall_thickness")
+#: Columns along ``contact`` made coordinates, every one whether given or not.
+_CONTACT_COORDINATES = ("tube_row", "tube_column", "support", "node", "history", "time_unit",
+                        "wall_thickness", "status")
+
+
+def _coordinate(values: pd.Series, name: str) -> np.ndarray:
+    """A column along ``contact`` -> a NetCDF/Zarr-friendly array.
+
+    Numbers as int64 where every value is given and whole (tube rows and columns; not
+    ``wall_thickness`` [m]), else float64 with NaN where missing; anything else as text, ""
+    where missing. A column without any value: NaN for ``tube_row``, ``tube_column`` and
+    ``wall_thickness``, "" for the text columns.
+    """
+    given = values.notna().to_numpy()
+    if not given.any():
+        return (np.full(len(values), np.nan) if name in _NUMBER_COORDINATES
+                else np.full(len(values), "", dtype=object))
+    numeric = pd.to_numeric(values, errors="coerce")
+    if numeric.notna().sum() == given.sum():
+        number = numeric.to_numpy(dtype=float)
+        if (name != "wall_thickness" and given.all() and np.isfinite(number).all()
+                and (number == np.round(number)).all() and (np.abs(number) < 2.0**53).all()):
+            return number.astype(np.int64)
+        return number
+    return values.fillna("").astype(str).to_numpy(dtype=object)
+
+
+def build_dataset(table: pd.DataFrame, contacts: pd.DataFrame):
+    """The bundle's wear tables as an xarray Dataset (see :attr:`BundleResult.dataset`)."""
+    xr = require("xarray")
+    done = _done(contacts)
+    ids = [c for c in done["contact"].astype(str)] if len(done) else []
+    sector_mode = "sector" in table.columns and table["sector"].notna().any()
+    ds = xr.Dataset(_variables(table, sector_mode))
+    if "contact" in ds.dims:  # the manifest's order (the set built once: 20 000 contacts took
+        present = set(ds["contact"].values)  # 28 s when it was rebuilt for each of them)
+        ds = ds.reindex(contact=[c for c in ids if c in present])
+    info = done.set_index("contact") if len(done) else done
+    if "contact" in ds.dims:
+        ds = ds.assign_coords(_contact_coordinates(info, [str(c) for c in ds["contact"].values]))
+    return _described(ds, info)
+
+
+def _done(contacts: pd.DataFrame) -> pd.DataFrame:
+    """The contacts whose rows are in the table (done, skipped or stale)."""
+    return (contacts[contacts["status"].isin(["done", "skipped", "stale"])] if len(contacts)
+            else contacts)
+
+
+def _variables(table: pd.DataFrame, sector_mode: bool) -> dict:
+    """The Dataset's variables of the table's rows: the global columns along ``(contact,
+    instant)``, in sector mode the sector columns along ``(contact, instant, sector)`` and the
+    sectors' angles along ``(contact, sector)``."""
+    wear = [c for c in table.columns if c in COLUMNS and c not in ("instant", "sector")]
+    global_cols = [c for c in wear if c not in _sector_columns()]
+    data = {}
+    if len(table):
+        # each variable group's columns taken before indexing: set_index copies every column
+        # it is given (the whole table, three times, made the peak 5x the dataset at 20 000
+        # contacts)
+        keys = ["contact", "instant"]
+        glob = table[keys + global_cols].drop_duplicates(keys, keep="first")
+        g = glob.set_index(keys).to_xarray()
+        del glob
+        data.update({k: g[k] for k in g.data_vars})
+        if sector_mode:
+            s_cols = [c for c in wear if c in _sector_columns() and c not in _SECTOR_ONLY]
+            rows = table["sector"].notna().to_numpy()
+            sect = table.loc[rows, [*keys, "sector", *s_cols]]
+            sect["sector"] = sect["sector"].astype(int)
+            s = sect.set_index([*keys, "sector"]).to_xarray()
+            data.update({k: s[k] for k in s.data_vars})
+            del sect
+            ends = table.loc[rows, ["contact", "sector", *_SECTOR_ONLY]]
+            ends["sector"] = ends["sector"].astype(int)
+            a = ends.drop_duplicates(["contact", "sector"]).set_index(
+                ["contact", "sector"]).to_xarray()
+            data.update({k: a[k] for k in a.data_vars})
+    return data
+
+
+def _contact_coordinates(info: pd.DataFrame, order: list[str]) -> dict:
+    """The coordinates along ``contact`` of the contacts ``order`` (every one of
+    :data:`_CONTACT_COORDINATES`, given or not: docs/bundle.md)."""
+    out = {}
+    for col in _CONTACT_COORDINATES:
+        values = (info.loc[order, col] if col in info.columns
+                  else pd.Series([None] * len(order), dtype=object))
+        out[col] = ("contact", _coordinate(values, col))
+    return out
+
+
+def _described(ds, info: pd.DataFrame):
+    """``ds`` with the units and meanings of its variables and coordinates in ``attrs``."""
+    units = sorted(set(info["time_unit"].astype(str))) if "time_unit" in info.columns else []
+    # the contacts' time unit where the table says "user time unit" (instant, duration, origin,
+    # limit_instant ...): the same on the coordinate and on every time variable
+    time_unit = units[0] if len(units) == 1 else "see the time_unit coordinate"
+    for name in ds.data_vars:
+        if name in COLUMNS:
+            aster, unit, description = COLUMNS[name]
+            unit = time_unit if unit == COLUMNS["instant"][1] else unit
+            ds[name].attrs.update(units=unit, long_name=description, aster_name=aster)
+    if "instant" in ds.coords:
+        ds["instant"].attrs.update(units=time_unit, long_name=COLUMNS["instant"][2])
+    if "sector" in ds.coords:
+        ds["sector"].attrs.update(units="1", long_name=COLUMNS["sector"][2])
+    if "wall_thickness" in ds.coords:
+        ds["wall_thickness"].attrs.update(units="m", long_name="wall thickness of the tube")
+    ds.attrs.update(title="fretwear bundle: wear tables of every contact",
+                    fretwear_version=__version__,
+                    conventions="SI units (m, m³, W); instants in the time unit of the case")
+    return ds
+
+
+def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
+                          **options) -> bool:
+    """Write the Dataset of the Parquet table ``path`` (:func:`build_dataset` of it and
+    ``contacts``) to the Zarr store ``target`` a group of contacts at a time (the table's row
+    groups, about :data:`fretwear.bundle.table_file.ROWS_PER_GROUP` rows each): the first group
+    makes the store, each next one is appended along ``contact`` (issue 28: the client built
+    the whole Dataset, about the table's size, beside the table). ``options`` go to
+    ``Dataset.to_zarr``.
+
+    Only where every contact has every instant (and, in sector mode, every sector at each), so
+    that each group's variables have the whole Dataset's coordinates and types; False (nothing
+    written) otherwise, or for a table without rows: the caller builds the Dataset whole."""
+    import pyarrow.parquet as pq
+
+    keys = [c for c in ("contact", "instant", "sector") if c in pq.read_schema(path).names]
+    grid = _full_grid(pq.read_table(path, columns=keys, read_dictionary=["contact"]))
+    if grid is None:
+        return False
+    present, sector_mode = grid
+    done = _done(contacts)
+    done = done.assign(contact=done["contact"].astype(str))
+    ids = [c for c in done["contact"] if c in present]
+    if len(ids) != len(present):
+        return False
+    info = done.set_index("contact")
+    coordinates = _contact_coordinates(info, ids)
+    width = np.array(ids).dtype  # the contact ids' one text type, as the whole Dataset's
+    start = 0
+    for group in _contact_groups(pq.ParquetFile(path)):
+        ds = require("xarray").Dataset(_variables(group, sector_mode))
+        order = ids[start:start + ds.sizes["contact"]]
+        ds = ds.reindex(contact=np.array(order, dtype=width))
+        ds = ds.assign_coords({name: ("contact", values[start:start + len(order)])
+                               for name, (_, values) in coordinates.items()})
+        ds = _described(ds, info)
+        if start == 0:
+            ds.to_zarr(target, mode="w", **options)
+        else:
+            ds.to_zarr(target, append_dim="contact", **options)
+        start += len(order)
+    return start == len(ids)
+
+
+def _full_grid(keys) -> tuple[set[str], bool] | None:
+    """``(the contacts, sector mode)`` of a table's ``contact``, ``instant`` (and ``sector``)
+    columns (Arrow, ``contact`` dictionary-encoded) when every contact has every instant (and
+    every sector at each, no row without one); None otherwise."""
+    if keys.num_rows == 0:
+        return None
+    contact = keys.column("contact").combine_chunks()
+    codes = contact.indices.to_numpy(zero_copy_only=False)
+    names = contact.dictionary.to_pylist()
+    instant = keys.column("instant").to_numpy()
+    if contact.null_count or not np.isfinite(instant).all():
+        return None
+    instants, at = np.unique(instant, return_inverse=True)
+    used = np.unique(codes)
+    if len({str(names[c]) for c in used}) != used.size:
+        return None
+    cells = [codes, at]
+    sizes = [used.size, instants.size]
+    sector_mode = "sector" in keys.column_names and keys.column("sector").null_count < len(codes)
+    if sector_mode:
+        sector = keys.column("sector").to_numpy(zero_copy_only=False)
+        if keys.column("sector").null_count or not np.isfinite(sector.astype(float)).all():
+            return None
+        sectors, where = np.unique(sector, return_inverse=True)
+        cells.append(where)
+        sizes.append(sectors.size)
+    flat = np.ravel_multi_index(cells, [len(names), *sizes[1:]])
+    if np.unique(flat).size != len(codes) or len(codes) != int(np.prod(sizes)):
+        return None
+    return {str(names[c]) for c in used}, bool(sector_mode)
+
+
+def _contact_groups(table_file):
+    """The table's rows by groups of whole contacts, in its order: each row group, the rows of
+    its last contact held back to the next one (a contact's rows may span two groups)."""
+    held = None
+    for i in range(table_file.num_row_groups):
+        frame = table_file.read_row_group(i).to_pandas()
+        frame["contact"] = frame["contact"].astype(str)
+        if held is not None:
+            frame = pd.concat([held, frame], ignore_index=True)
+        last = frame["contact"].iloc[-1]
+        mine = (frame["contact"] == last).to_numpy()
+        held = frame[mine].reset_index(drop=True)
+        if not mine.all():
+            yield frame[~mine].reset_index(drop=True)
+    if held is not None and len(held):
+        yield held
+
+
+def _sector_columns() -> tuple[str, ...]:
+    """Columns that differ between the sectors of one instant."""
+    return tuple(c for c in COLUMNS if c not in GLOBAL_COLUMNS and (
+        c in SECTOR_COLUMNS or c.endswith("_sector")))
