@@ -16,7 +16,8 @@ Modules:
 """
 
 from fretwear.history import DEFAULT_CHUNK_SIZE
-from fretwear.power.core import PowerAccumulator, contact_statistics, wear_power
+from fretwear.power.contact import contact_statistics
+from fretwear.power.core import PowerAccumulator, wear_power
 from fretwear.power.impacts import IMPACT_UNITS, channel_statistics, impacts
 from fretwear.power.result import PowerResult
 from fretwear.power.statistics import STATISTICS_UNITS, ContactStatistics

@@ -327,8 +327,10 @@ class WearCase:
     def _check_restart_unit(self, state: InitialState | None) -> None:
         """A restart's table counts time in the case's unit (its header's ``time_unit``)."""
         seconds = None if state is None else unit_seconds(state.time_unit)
-        if seconds is None or math.isclose(seconds, self.time_scale, rel_tol=1e-9):
-            return
+        if seconds is None or math.isclose(seconds, self.time_scale, rel_tol=1e-2) or (
+                self.time_unit is not None
+                and time_unit_name(self.time_unit) == time_unit_name(state.time_unit)):
+            return  # the same unit (a year of 365 or 365.25 days alike): only a slip is refused
         here = self.time_unit or f"{self.time_scale:g} s"
         table = f" {self.restart.source}" if self.restart.source else ""
         name = time_unit_name(state.time_unit)
