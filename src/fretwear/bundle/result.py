@@ -492,8 +492,9 @@ class _Contacts:
 
     def model(self, k: int, record: dict, geometry):
         """Contact ``k``'s :class:`~fretwear.table.DepthModel` (made once), None where its
-        law or geometry is not known (or its record cannot make one: a law not linear in time
-        with sectors)."""
+        law or geometry is not known, or its record cannot make one (a record read back from a
+        part file that lacks what the model needs; a case never gives sectors under a law not
+        linear in time, theory §3)."""
         if k in self._models:
             return self._models[k]
         model = None
