@@ -105,3 +105,16 @@ def test_renders_at_1280_px_without_broken_figures_or_overlap(result, tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     assert int.from_bytes(png[16:20], "big") == 1280     # IHDR width
     assert zlib.crc32(png[12:29]) == int.from_bytes(png[29:33], "big")  # IHDR intact
+
+
+def test_the_summary_names_the_sample_and_prints_tiny_probabilities_as_a_floor(result):
+    """A new user's trial: the summary said "Next inspection sample (1 tube(s), 90 % of the
+    risk)." without the tube (the terminal named it), and probabilities like 1.4e-229 were
+    printed as results."""
+    html = render_assessment_report(result)
+    summary = html.split('<h2 id="summary">')[1].split('<h2 id="inputs">')[0]
+    sample = result.bundle["inspection_sample"]
+    assert sample and f"of the risk): {', '.join(sample[:20])}" in summary
+    from fretwear.assessment.summary import probability_text
+
+    assert probability_text(1.4e-229) == "< 1e-06" and probability_text(0.0963) == "0.0963"

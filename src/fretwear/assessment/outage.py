@@ -40,7 +40,7 @@ from fretwear.assessment.operational import (
     longest_interval,
     plugging_list,
 )
-from fretwear.assessment.summary import coverage_line, factor_line
+from fretwear.assessment.summary import coverage_line, factor_line, probability_text
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
@@ -150,7 +150,7 @@ class Assessment:
         compare = (f"> target {b['target']:g}" if b["p_any"] > b["target"]
                    else f"(target {b['target']:g})")
         return (f"P(any tube past its limit within {b['interval']:g} {b['unit']} after the "
-                f"outage{at}) = {b['p_any']:.3g} {compare}")
+                f"outage{at}) = {probability_text(b['p_any'])} {compare}")
 
     def bad_news(self) -> list[str]:
         """The lines said first: contacts and tubes past the limit and through the wall, the

@@ -14,11 +14,26 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 
-__all__ = ["COVERAGE_SIGNIFICANCE", "FACTOR_PLAUSIBLE", "coverage_line", "factor_line",
-           "summary_counts", "tube_summary"]
+__all__ = ["COVERAGE_SIGNIFICANCE", "FACTOR_PLAUSIBLE", "PROBABILITY_FLOOR", "coverage_line",
+           "factor_line", "probability_text", "summary_counts", "tube_summary"]
 
 FACTOR_PLAUSIBLE = 10.0
 """A calibrated bundle factor beyond [1/10, 10] [-] is said with the bad news."""
+
+
+PROBABILITY_FLOOR = 1e-6
+"""Probabilities [-] below this are printed as "< 1e-6": the quadratures and the models' tails are
+not meant to resolve smaller ones (a new user read 1.4e-229 as a result)."""
+
+
+def probability_text(p: float) -> str:
+    """A probability [-] for the terminal and the report: three significant digits, or
+    ``"< 1e-6"`` below :data:`PROBABILITY_FLOOR`.
+
+    >>> [probability_text(p) for p in (0.0963, 1.28e-23, 0.0, 1.0)]
+    ['0.0963', '< 1e-06', '< 1e-06', '1']
+    """
+    return f"< {PROBABILITY_FLOOR:g}" if p < PROBABILITY_FLOOR else f"{p:.3g}"
 
 
 def factor_line(median: float, bound: float = FACTOR_PLAUSIBLE) -> str | None:

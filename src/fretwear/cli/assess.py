@@ -11,6 +11,7 @@ from rich.console import Console
 from rich.table import Table
 
 from fretwear.assessment.outage import assess
+from fretwear.assessment.summary import probability_text
 from fretwear.bundle import load
 from fretwear.cli.calibrate_field import (
     campaign_options,
@@ -105,7 +106,7 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
         console.print(result.probability_line())
     plugs = b["plugging"]
     console.print(f"plugging list ({len(plugs)} tube(s)): {', '.join(plugs) or 'none'}; "
-                  f"P(any) after plugging {b['p_any_after_plugging']:.3g}")
+                  f"P(any) after plugging {probability_text(b['p_any_after_plugging'])}")
     console.print("longest operating interval under the target: "
                   + _interval(b["longest_interval"], b) + " with the plugging list plugged; "
                   + _interval(b["longest_interval_before_plugging"], b)
@@ -132,7 +133,7 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
             table.add_column(col, justify="right" if col != "reason" else "left")
         for r in result.tubes.head(top).itertuples():
             table.add_row(r.tube, str(r.worst_contact), _pct(r.as_found_fraction),
-                          _pct(r.end_fraction_q50), f"{r.p_exceed:.3g}",
+                          _pct(r.end_fraction_q50), probability_text(r.p_exceed),
                           "yes" if r.plug else "", r.reason)
         console.print(table)
     if defaulted:

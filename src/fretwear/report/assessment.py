@@ -18,6 +18,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear._optional import require
 from fretwear._version import __version__
+from fretwear.assessment.summary import probability_text
 from fretwear.bundle.digest import limit_lines
 from fretwear.flow.bundle import instability_lines, recorded_unstable
 from fretwear.io.atomic import atomic_write
@@ -96,7 +97,7 @@ def render_assessment_report(result, *, title: str | None = None) -> str:
                + result.bad_news(), "b": b,
                "p_any": f"{b['p_any']:.3g}", "probability_line": result.probability_line(),
                "longest": f"{b['longest_interval']:.3g}",
-               "after": f"{b['p_any_after_plugging']:.3g}", "inputs": inputs,
+               "after": probability_text(b["p_any_after_plugging"]), "inputs": inputs,
                "figures": figures, "fit": result.fit,
                "plugging": _tubes_table(result.tubes, b["plugging"]),
                "sample": _tubes_table(result.tubes, b["inspection_sample"]),
