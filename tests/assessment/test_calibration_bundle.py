@@ -237,3 +237,21 @@ def test_plugged_contacts_are_listed_not_forecast_and_leave_the_bundle_risk():
     np.testing.assert_array_equal(p[2:], p_free[2:])  # same process: the same floats
     np.testing.assert_array_equal(w, w_free)
 
+
+
+def test_a_tube_row_reads_as_its_worst_contact():
+    """A new user's trial: R4C3's row named AVB1 as its worst contact (the larger probability)
+    beside AVB2's median depth (the larger depth). The row now gives the worst contact's own
+    median depth and wall fraction; worst = largest probability, then deepest median."""
+    from fretwear.assessment.summary import tube_summary
+
+    fc = pd.DataFrame({"contact": ["R4C3-AVB1", "R4C3-AVB2", "R1C1-AVB1"],
+                       "exceedance": [3e-5, 0.0, 0.0], "depth_q50": [2.0e-4, 2.45e-4, 1e-4],
+                       "wall_fraction_q50": [0.18, 0.22, 0.09],
+                       "inspected": [False, True, False], "plugged": [False, False, False]})
+    ident = pd.DataFrame({"contact": fc["contact"], "tube_row": [4, 4, 1],
+                          "tube_column": [3, 3, 1]})
+    row = tube_summary(fc, ident).iloc[0]
+    assert row["worst_contact"] == "R4C3-AVB1" and row["exceedance_max"] == 3e-5
+    assert (row["worst_depth_q50"], row["worst_wall_fraction_q50"]) == (2.0e-4, 0.18)
+    assert row["contacts"] == 2 and bool(row["inspected"])

@@ -161,9 +161,10 @@ def summary_counts(forecast: pd.DataFrame, identity=None) -> dict[str, Any]:
 
 def tube_summary(forecast: pd.DataFrame, identity=None) -> pd.DataFrame:
     """One row per tube of a :meth:`BundleCalibration.forecast`, the worst first: ``tube``,
-    ``contacts``, ``worst_contact``, ``exceedance_max`` [-] (its contacts' largest
-    probability of exceeding the limit), ``depth_q50_max`` [m], ``wall_fraction_q50_max`` [-],
-    ``inspected`` (any contact inspected), ``plugged``."""
+    ``contacts``, ``worst_contact`` (the largest probability of exceeding the limit, then the
+    deepest median), ``exceedance_max`` [-] (its probability), ``worst_depth_q50`` [m] and
+    ``worst_wall_fraction_q50`` [-] (its median depth: the worst contact's own, so that a row
+    reads as one contact), ``inspected`` (any contact inspected), ``plugged``."""
     frame = forecast.copy()
     frame["tube"] = _tubes(frame["contact"], identity)
     frame = frame.sort_values(["exceedance", "depth_q50"], ascending=False, kind="stable")
@@ -171,12 +172,12 @@ def tube_summary(forecast: pd.DataFrame, identity=None) -> pd.DataFrame:
     out = pd.DataFrame({"contacts": grouped.size(),
                         "worst_contact": grouped["contact"].first(),
                         "exceedance_max": grouped["exceedance"].max(),
-                        "depth_q50_max": grouped["depth_q50"].max(),
-                        "wall_fraction_q50_max": grouped["wall_fraction_q50"].max(),
+                        "worst_depth_q50": grouped["depth_q50"].first(),
+                        "worst_wall_fraction_q50": grouped["wall_fraction_q50"].first(),
                         "inspected": grouped["inspected"].any(),
                         "plugged": grouped["plugged"].any() if "plugged" in frame
                         else False}).reset_index()
-    return out.sort_values(["exceedance_max", "depth_q50_max"], ascending=False,
+    return out.sort_values(["exceedance_max", "worst_depth_q50"], ascending=False,
                            kind="stable", ignore_index=True)
 
 

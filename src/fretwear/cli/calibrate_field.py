@@ -21,7 +21,12 @@ from fretwear.assessment import (
     read_field_inspections,
 )
 from fretwear.assessment.calibration import CONTACT_SIGMA_LN, POWER_SIGMA_LN
-from fretwear.assessment.summary import factor_line, summary_counts, tube_summary
+from fretwear.assessment.summary import (
+    factor_line,
+    probability_text,
+    summary_counts,
+    tube_summary,
+)
 
 _TECHNIQUE = [
     click.option("--sizing-sigma-mm", type=click.FloatRange(min=0, min_open=True),
@@ -156,12 +161,13 @@ def _tubes(tubes, top: int, instant, console: Console) -> None:
         return
     table = Table(title=f"the {min(top, len(tubes))} worst of {len(tubes)} tubes at "
                         f"instant {instant:g} (depths in mm)")
-    for col in ("tube", "contacts", "worst contact", "P > limit", "median depth",
+    for col in ("tube", "contacts", "worst contact", "P > limit", "its median depth",
                 "% wall", "inspected"):
         table.add_column(col, justify="right")
     for _, r in tubes.head(top).iterrows():
         table.add_row(str(r["tube"]), str(r["contacts"]), str(r["worst_contact"]),
-                      f"{r['exceedance_max']:.3g}", f"{r['depth_q50_max'] * 1e3:.4g}",
-                      f"{r['wall_fraction_q50_max'] * 100:.0f}",
+                      probability_text(r["exceedance_max"]),
+                      f"{r['worst_depth_q50'] * 1e3:.4g}",
+                      f"{r['worst_wall_fraction_q50'] * 100:.0f}",
                       "yes" if r["inspected"] else "no")
     console.print(table)
