@@ -293,7 +293,7 @@ class WearCase:
             geometry = contact_geometry(self.contact_type, **dims)
         put("contact_type", geometry.contact_type)
         dims = geometry.dimensions()
-        if self.contact_type is not None and sector_radius is not None:
+        if sector_radius is not None:
             dims["obstacle_radius"] = sector_radius  # the sectors' (theory §3), not the type's
         put("dimensions", FrozenMap(dims))
         put("coefficients", _coefficient_map(self.coefficients, "mobile"))
@@ -438,6 +438,8 @@ class WearCase:
         SectorGeometry`)."""
         if self.contact_type is None:
             return SectorGeometry(**self.dimensions)
+        if self.sectors is None:  # the radius is kept beside a type without one for sectors only
+            return contact_geometry(self.contact_type, **self.dimensions)
         dims, _ = sector_obstacle_radius(self.contact_type, self.dimensions)
         return contact_geometry(self.contact_type, **dims)
 
