@@ -388,10 +388,8 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     samples = None
     if row.history.kind == "memory":
         samples = int(len(next(iter(row.history.arrays.values()), [])))
-    unit = wear.time_unit
     task = ContactTask(contact=row.contact, history=row.history, case=payload,
-                       read_options=options,
-                       time_unit=unit if unit else f"{wear.time_scale:g} s", key=key,
+                       read_options=options, time_unit=wear.time_label, key=key,
                        samples=samples, power=power, warnings=[list(w) for w in caught])
     if cache is not None:  # the rows sharing a case share its WearCase (wear_case's own)
         shared = cache.get(("built", signature))

@@ -65,7 +65,7 @@ def _summary(result, console) -> None:
     # a rule as wide as the terminal, or 100 columns in a file (its width is then unbounded)
     console.print(Rule(f"[bold]{title}"), width=console.width if console.is_terminal else 100)
     power = result.power
-    unit = case.time_unit or f"{case.time_scale:g} s"
+    unit = case.time_label
     console.print(f"contact [bold]{case.contact_type}[/], law [bold]{case.law}"
                   f"[/], time unit = {unit}")
     console.print(f"wear power P = [bold]{result.total_power:.6g} W[/]")
@@ -165,7 +165,7 @@ def _limit_lines(table, case) -> list[tuple[str, str | None]]:
     wall = case.wall.thickness
     if wall is None or "limit_instant" not in table.columns:
         return []
-    unit = case.time_unit or f"{case.time_scale:g} s"
+    unit = case.time_label
     fraction, limit = case.wall.limit, case.wall.limit_depth
     out = [(f"limit: {100 * fraction:g} % of the {wall * 1e3:.4g} mm wall "
             f"= {limit * 1e3:.4g} mm; the global depth reaches it at instant "

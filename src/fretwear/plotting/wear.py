@@ -24,7 +24,7 @@ def _unit(table: pd.DataFrame, case) -> str:
     without a case (a Code_Aster table) the first name of 1 s in
     :data:`fretwear.timeunits.TIME_UNITS`."""
     if case is not None:
-        return case.time_unit or f"{case.time_scale:g} s"
+        return case.time_label
     return next((name for name, s in TIME_UNITS.items() if s == 1.0), "1 s")
 
 

@@ -213,7 +213,7 @@ def render_report(analysis: Analysis, *, title: str | None = None) -> str:
     result = analysis.case
     table, case = result.table, result.wear_case  # the case the table was computed from
     attrs = table.attrs  # the computation's outputs: coefficients resolved, through-wall
-    unit = case.time_unit or f"{case.time_scale:g} s"
+    unit = case.time_label
     figures = [{"title": "Worn volumes and global depths against time",
                 "uri": figure_data_uri(plot_wear_table(table))}]
     if "sector" in table.columns and table["sector"].notna().any():

@@ -396,7 +396,7 @@ def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result, edges) -
         "sector_coefficients": None if case.sector_coefficients is None
         else [list(p) for p in case.sector_coefficients],
         "time_scale": case.time_scale,
-        "time_unit": case.time_unit or f"{case.time_scale:g} s",
+        "time_unit": case.time_label,
         "origin": case.origin, "tube_replacement": case.restart.tube_replacement,
         "wall_thickness": case.wall.thickness, "depth_limit": case.wall.limit,
         "global_depth": getattr(geometry, "reason", None),  # why the global depths are NaN

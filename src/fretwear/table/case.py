@@ -331,15 +331,14 @@ class WearCase:
                 self.time_unit is not None
                 and time_unit_name(self.time_unit) == time_unit_name(state.time_unit)):
             return  # the same unit (a year of 365 or 365.25 days alike): only a slip is refused
-        here = self.time_unit or f"{self.time_scale:g} s"
         table = f" {self.restart.source}" if self.restart.source else ""
         name = time_unit_name(state.time_unit)
         key = (f'unit = "{name}"' if name in TIME_UNITS
                else f"seconds_per_unit = {seconds:g}")
         raise InputError(
             f"the initial wear table{table} counts time in {state.time_unit!r} ({seconds:g} s, "
-            f"its header's time_unit) and this case in {here!r} ({self.time_scale:g} s): its "
-            "instants would be read in the wrong unit. Give the case the table's unit "
+            f"its header's time_unit) and this case in {self.time_label!r} ({self.time_scale:g} "
+            "s): its instants would be read in the wrong unit. Give the case the table's unit "
             f"({key} in a case file's [time], time_scale={seconds:g} in Python), or restart "
             "from a table written in the case's unit")
 
@@ -426,6 +425,17 @@ class WearCase:
         check_absolute_sizes(self.dimensions, self.wall.thickness)
 
     # ----------------------------------------------------------------------- derived values
+    @property
+    def time_label(self) -> str:
+        """The time unit as the tables and outputs name it: :attr:`time_unit`, else
+        ``"<time_scale> s"`` (read back by :func:`fretwear.timeunits.unit_seconds`).
+
+        >>> WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0], time_scale=3600.0,
+        ...     dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02}).time_label
+        '3600 s'
+        """
+        return self.time_unit or f"{self.time_scale:g} s"
+
     @property
     def wear_law(self):
         """The :class:`~fretwear.laws.WearLaw` of :attr:`law`."""
