@@ -48,15 +48,17 @@ def test_quiet_keeps_only_the_bad_news_and_the_final_line_a_skipped_run_starts_n
     # fraction against the limit)
     import pandas as pd
 
-    from fretwear.flow.bundle import unstable_tubes
+    from fretwear.flow.bundle import near_critical_tubes, unstable_tubes
 
     unstable = unstable_tubes(EXAMPLE / "manifest.csv")
+    near = near_critical_tubes(EXAMPLE / "manifest.csv")  # said after the bad news
     summary = pd.read_csv(out_dir / "summary.csv")
     past = int((summary["depth"] >= summary["limit_depth"]).sum())
     kinds = set(pd.read_csv(out_dir / "warnings.csv")["category"])  # one line a kind said
     said = {"PerforationWarning", "UnitsWarning", "ResolutionWarning"} & kinds
     bad = lines[:-1]
-    assert len(bad) == (len(unstable) > 0) + (past > 0) + len(said), lines
+    assert len(bad) == (len(unstable) > 0) + (past > 0) + len(said) + (len(near) > 0), lines
+    assert bad[-1].startswith("NEAR-CRITICAL") == (len(near) > 0), lines
     assert all(any(b.startswith(f"{kind}: ") for b in bad) for kind in said), lines
     assert bad[0].startswith(f"FLUID-ELASTICALLY UNSTABLE: {len(unstable)} tube(s)"), lines
     assert all(t in bad[0] for t in unstable["tube"])

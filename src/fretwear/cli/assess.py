@@ -19,7 +19,12 @@ from fretwear.cli.calibrate_field import (
     technique_from_options,
     technique_options,
 )
-from fretwear.flow.bundle import instability_lines, recorded_unstable
+from fretwear.flow.bundle import (
+    NEAR_CRITICAL_FILE,
+    instability_lines,
+    near_critical_lines,
+    recorded_unstable,
+)
 
 _HELP = """The outage decision of a bundle: which tubes to plug, which to inspect next, how long
 the generator may run.
@@ -86,6 +91,9 @@ def command(bundle_out, inspections, interval, target, limit, sizing_intercept_m
     unstable = recorded_unstable(bundle_out)
     if unstable is not None and len(unstable):  # said first, kept in assessment.json
         result.inputs["unstable_tubes"] = unstable.to_dict("records")
+    near = recorded_unstable(bundle_out, NEAR_CRITICAL_FILE)
+    if near is not None and len(near):  # said after the bad news, kept in assessment.json
+        result.inputs["near_critical_tubes"] = near.to_dict("records")
     result.write(output)
     if with_report:
         from fretwear.report.assessment import write_assessment_report
@@ -100,6 +108,8 @@ def _print(result, console: Console, top: int, defaulted, output, with_report) -
         console.print(line, style="bold red", markup=False, soft_wrap=True)
     for line in result.bad_news():  # not markup: a line may hold [0.1, 10]
         console.print(line, style="bold red", markup=False, soft_wrap=True)
+    for line in near_critical_lines(result.inputs.get("near_critical_tubes")):
+        console.print(line, style="yellow", markup=False, soft_wrap=True)
     if not (b["past_limit_tubes"] or b["through_wall_tubes"]):
         console.print("no tube at or past the plugging limit as measured")
     if b["p_any"] <= b["target"]:  # else said first, with the bad news

@@ -24,8 +24,16 @@ from fretwear.bundle.engine import BundleInterrupted
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
+from fretwear.cli.simulate import near_critical_option
 from fretwear.errors import InputError
-from fretwear.flow.bundle import instability_lines, record_unstable, unstable_tubes
+from fretwear.flow.bundle import (
+    NEAR_CRITICAL_FILE,
+    instability_lines,
+    near_critical_lines,
+    near_critical_tubes,
+    record_unstable,
+    unstable_tubes,
+)
 from fretwear.plotting import save_figure
 from fretwear.plotting.bundle import plot_power_distribution, plot_tube_sheet, plot_worst_depths
 from fretwear.table import DEFAULT_DEPTH_LIMIT
@@ -150,6 +158,7 @@ def _stability(row, flagged: set) -> str:
 @click.option("--top", type=click.IntRange(min=1), default=10, show_default=True,
               help="Contacts shown in the terminal summary.")
 @units_option
+@near_critical_option
 @click.option("-q", "--quiet", is_flag=True,
               help="No progress bar, no summary table, no list of errors; the final line (the "
                    "counts and where the results are) stays, and the exit status says whether "
@@ -157,7 +166,7 @@ def _stability(row, flagged: set) -> str:
 def command(manifest: Path, case_file: Path | None, scheduler: str | None, workers: int | None,
             output: Path | None, force: bool, chunk_size: int, table_format: str,
             dataset_format: str | None, limit: float | None, plot_dir: Path | None, top: int,
-            units: tuple[str, ...], quiet: bool) -> None:
+            units: tuple[str, ...], near_critical: float, quiet: bool) -> None:
     if workers is not None and scheduler is not None:
         if scheduler.lower() != "serial":
             raise click.UsageError("--workers applies to the local cluster started without "
@@ -196,6 +205,10 @@ def command(manifest: Path, case_file: Path | None, scheduler: str | None, worke
         click.echo(line)
     for line in warning_lines(result.warnings, list(summary["contact"].astype(str))):
         click.echo(line)  # shown with -q too
+    near = near_critical_tubes(manifest, near_critical)  # after the bad news
+    record_unstable(output, near, NEAR_CRITICAL_FILE)
+    for line in near_critical_lines(near):
+        click.echo(line)
     _summary(summary, console, top, limit, unstable)
     s = result.stats
     errors = result.errors

@@ -105,11 +105,18 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
              else LogNormal(prior_median, scatter=prior_scatter or 3.0))
     identity = None
     if bundle_dir is not None:
-        from fretwear.flow.bundle import instability_lines, recorded_unstable
+        from fretwear.flow.bundle import (
+            NEAR_CRITICAL_FILE,
+            instability_lines,
+            near_critical_lines,
+            recorded_unstable,
+        )
 
         predictions, identity = bundle_predictions(bundle_dir)
         for line in instability_lines(recorded_unstable(bundle_dir)):  # said first
             click.secho(line, fg="red", bold=True)
+        for line in near_critical_lines(recorded_unstable(bundle_dir, NEAR_CRITICAL_FILE)):
+            click.secho(line, fg="yellow")
         frame = calibrate_field(predictions, identity, inspections, prior, measurement_sigma,
                                 forecast, limit_mm, **field)
         if output is not None:

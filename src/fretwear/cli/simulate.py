@@ -10,8 +10,9 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from fretwear.flow.bundle import run_simulate
+from fretwear.flow.bundle import near_critical_lines, near_critical_tubes, run_simulate
 from fretwear.flow.description import read_description
+from fretwear.flow.stability import NEAR_CRITICAL
 
 #: Exit code when some tubes failed (the others are written).
 EXIT_SOME_FAILED = 1
@@ -35,16 +36,27 @@ written); 2 the run could not start (bad description or option; the message says
 """
 
 
-def _table(result, console: Console) -> None:
+#: ``--near-critical RATIO`` of ``fretwear simulate``, ``bundle`` (docs/flow.md §4).
+near_critical_option = click.option(
+    "--near-critical", "near_critical", default=NEAR_CRITICAL, show_default=True,
+    type=click.FloatRange(min=0, min_open=True), metavar="RATIO",
+    help="Design threshold on the stability ratio U_eff/U_c: a tube above it and not flagged "
+         "unstable is said NEAR-CRITICAL after the bad news (0.75: a 25 % margin on the "
+         "critical velocity; docs/flow.md §4).")
+
+
+def _table(result, console: Console, threshold: float) -> None:
     tubes = result.tubes()
     table = Table(title="tubes, fluid-elastically flagged first (stability ratio U_eff/U_c of "
                         "the most critical mode)")
     for col in ("tube", "row", "col", "stability ratio", "flagged", "max wear power [W]"):
         table.add_column(col, justify="right")
     for r in tubes.itertuples():
-        style = "bold red" if r.flagged else None
+        near = not r.flagged and r.max_stability_ratio > threshold
+        style = "bold red" if r.flagged else "yellow" if near else None
         table.add_row(r.tube, str(r.row), str(r.column), f"{r.max_stability_ratio:.3f}",
-                      "UNSTABLE" if r.flagged else "", f"{r.max_wear_power_w:.4g}", style=style)
+                      "UNSTABLE" if r.flagged else "near-critical" if near else "",
+                      f"{r.max_wear_power_w:.4g}", style=style)
     console.print(table)
 
 
@@ -57,9 +69,10 @@ def _table(result, console: Console) -> None:
 @click.option("--workers", type=click.IntRange(min=1),
               help="Worker processes of the local cluster (default: one per core).")
 @click.option("--force", is_flag=True, help="Recompute every tube, even unchanged ones.")
+@near_critical_option
 @click.option("-q", "--quiet", is_flag=True, help="No progress bar and no table.")
 def command(description: Path, output: Path, scheduler: str | None, workers: int | None,
-            force: bool, quiet: bool) -> int:
+            force: bool, near_critical: float, quiet: bool) -> int:
     if workers is not None and scheduler is not None and scheduler.lower() != "serial":
         raise click.UsageError("--workers applies to the local cluster started without "
                                "--scheduler")
@@ -79,7 +92,9 @@ def command(description: Path, output: Path, scheduler: str | None, workers: int
     if flagged:
         console.print(f"[bold red]{flagged} tube(s) fluid-elastically unstable: a mode's "
                       "stability ratio exceeds the margin (tubes.csv, stability.csv)[/]")
-    _table(result, console)
+    for line in near_critical_lines(near_critical_tubes(output / "manifest.csv", near_critical)):
+        console.print(line, style="yellow", markup=False, soft_wrap=True)
+    _table(result, console, near_critical)
     click.echo(f"done {len(result.records) - len(result.reused)}, reused {len(result.reused)}, "
                f"failed {len(result.errors)} of {len(specs)} tubes; manifest in "
                f"{output / 'manifest.csv'}")

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -27,7 +28,7 @@ from fretwear.dynamics import NodalForce, Shock, Signal, simulate
 from fretwear.errors import InputError
 from fretwear.flow.description import TubeSpec, read_description
 from fretwear.flow.spectra import make_spectrum
-from fretwear.flow.stability import stability_ratios
+from fretwear.flow.stability import NEAR_CRITICAL, near_critical, stability_ratios
 from fretwear.flow.synthesis import synthesize
 from fretwear.flow.tube import beam_tube_flow
 from fretwear.io import write_history
@@ -295,6 +296,25 @@ def run_simulate(description, output, *, scheduler=None, workers: int | None = N
 
 #: The columns of ``tubes.csv`` that :func:`simulate_bundle` writes beside its manifest.
 TUBES_COLUMNS = ("tube", "max_stability_ratio", "flagged")
+#: The columns of the flagged tubes (:func:`unstable_tubes`, ``unstable_tubes.csv``).
+UNSTABLE_COLUMNS = ("tube", "tube_row", "tube_column", "max_stability_ratio")
+
+
+def _simulated_tubes(manifest: str | Path) -> pd.DataFrame | None:
+    """The ``tubes.csv`` of a simulation beside ``manifest``: ``tube``, ``tube_row``,
+    ``tube_column``, ``max_stability_ratio`` [-], ``flagged``; None without one."""
+    path = Path(manifest).parent / "tubes.csv"
+    if not path.is_file():
+        return None
+    frame = read_text_table(path, "simulation's tube table")
+    if not set(TUBES_COLUMNS) <= set(frame.columns):
+        return None  # a tubes.csv of another origin: not the simulation's
+    return pd.DataFrame({"tube": frame["tube"].astype(str),
+                         "tube_row": [int(number(v)) for v in frame["row"]],
+                         "tube_column": [int(number(v)) for v in frame["column"]],
+                         "max_stability_ratio": [number(v) for v in
+                                                 frame["max_stability_ratio"]],
+                         "flagged": frame["flagged"].str.lower().isin(("true", "1", "yes"))})
 
 
 def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
@@ -325,18 +345,49 @@ def unstable_tubes(manifest: str | Path) -> pd.DataFrame | None:
     >>> list(tubes["tube"]), float(tubes["max_stability_ratio"].iloc[0])
     (['R4C1', 'R4C2', 'R4C3'], 1.11602)
     """
-    path = Path(manifest).parent / "tubes.csv"
-    if not path.is_file():
+    frame = _simulated_tubes(manifest)
+    if frame is None:
         return None
-    frame = read_text_table(path, "simulation's tube table")
-    if not set(TUBES_COLUMNS) <= set(frame.columns):
-        return None  # a tubes.csv of another origin: not the simulation's
-    flagged = frame["flagged"].str.lower().isin(("true", "1", "yes"))
-    out = pd.DataFrame({"tube": frame.loc[flagged, "tube"].astype(str),
-                        "tube_row": [int(number(v)) for v in frame.loc[flagged, "row"]],
-                        "tube_column": [int(number(v)) for v in frame.loc[flagged, "column"]],
-                        "max_stability_ratio": [number(v) for v in
-                                                frame.loc[flagged, "max_stability_ratio"]]})
+    return frame.loc[frame["flagged"], list(UNSTABLE_COLUMNS)].sort_values(
+        "max_stability_ratio", ascending=False, kind="stable").reset_index(drop=True)
+
+
+def near_critical_tubes(manifest: str | Path, threshold: float = NEAR_CRITICAL
+                        ) -> pd.DataFrame | None:
+    """The tubes of a simulation in the near-critical band: not flagged unstable, but with a
+    stability ratio U_eff/U_c above the design ``threshold`` (read from the ``tubes.csv`` that
+    ``fretwear simulate`` writes beside ``manifest``).
+
+    Parameters
+    ----------
+    manifest : path-like
+        The bundle's manifest (``manifest.csv`` of ``fretwear simulate``).
+    threshold : float
+        Design threshold on U_eff/U_c [-] (default
+        :data:`~fretwear.flow.stability.NEAR_CRITICAL`, 0.75: a 25 % margin on the critical
+        velocity).
+
+    Returns
+    -------
+    DataFrame or None
+        ``tube``, ``tube_row``, ``tube_column``, ``max_stability_ratio`` [-] and
+        ``threshold`` [-] of every such tube, largest ratio first (empty when none); None when
+        no simulation's ``tubes.csv`` sits beside the manifest.
+
+    Examples
+    --------
+    >>> tubes = near_critical_tubes("examples/bundle/manifest.csv")
+    >>> list(tubes["tube"]), float(tubes["max_stability_ratio"].iloc[0])
+    (['R3C1', 'R3C2', 'R3C3', 'R2C1', 'R2C2', 'R2C3'], 0.95659)
+    >>> list(near_critical_tubes("examples/bundle/manifest.csv", 0.9)["tube"])
+    ['R3C1', 'R3C2', 'R3C3']
+    """
+    frame = _simulated_tubes(manifest)
+    if frame is None:
+        return None
+    band = ~frame["flagged"] & near_critical(frame["max_stability_ratio"].to_numpy(),
+                                             threshold=threshold, margin=math.inf)
+    out = frame.loc[band, list(UNSTABLE_COLUMNS)].assign(threshold=float(threshold))
     return out.sort_values("max_stability_ratio", ascending=False,
                            kind="stable").reset_index(drop=True)
 
@@ -345,8 +396,12 @@ UNSTABLE_FILE = "unstable_tubes.csv"
 """The flagged tubes, kept in a bundle's output directory by ``fretwear bundle`` so that
 ``fretwear assess`` and ``fretwear calibrate --bundle`` say them first without the manifest."""
 
+NEAR_CRITICAL_FILE = "near_critical_tubes.csv"
+"""The near-critical tubes (:func:`near_critical_tubes`), kept beside :data:`UNSTABLE_FILE`."""
 
-def record_unstable(output: str | Path, tubes: pd.DataFrame | None) -> Path | None:
+
+def record_unstable(output: str | Path, tubes: pd.DataFrame | None,
+                    name: str = UNSTABLE_FILE) -> Path | None:
     """Keep the tubes a simulation flagged unstable in a bundle's output directory.
 
     Parameters
@@ -357,29 +412,39 @@ def record_unstable(output: str | Path, tubes: pd.DataFrame | None) -> Path | No
         :func:`unstable_tubes` of the bundle's manifest. None (no simulation beside the
         manifest) writes nothing; an empty frame writes the header only, so that a rerun on
         a manifest whose tubes are now stable replaces an earlier list.
+        :func:`near_critical_tubes` with ``name=NEAR_CRITICAL_FILE``.
+    name : str
+        The file's name in ``output``.
 
     Returns
     -------
     Path or None
-        ``OUT/unstable_tubes.csv`` (written atomically), or None.
+        ``OUT/unstable_tubes.csv`` (or ``name``; written atomically), or None.
     """
     if tubes is None:
         return None
-    path = Path(output) / UNSTABLE_FILE
+    path = Path(output) / name
     with atomic_write(path, newline="") as f:
         tubes.to_csv(f, index=False)
     return path
 
 
-def recorded_unstable(output: str | Path) -> pd.DataFrame | None:
+def recorded_unstable(output: str | Path, name: str = UNSTABLE_FILE) -> pd.DataFrame | None:
     """The flagged tubes :func:`record_unstable` kept in a bundle's output directory.
+
+    Parameters
+    ----------
+    output : path-like
+        The bundle's output directory.
+    name : str
+        :data:`UNSTABLE_FILE`, or :data:`NEAR_CRITICAL_FILE` for the near-critical tubes.
 
     Returns
     -------
     DataFrame or None
-        ``tube``, ``tube_row``, ``tube_column``, ``max_stability_ratio`` [-], largest ratio
-        first (empty when none is flagged); None where the bundle was not simulated by
-        ``fretwear simulate`` (no ``unstable_tubes.csv``).
+        ``tube``, ``tube_row``, ``tube_column``, ``max_stability_ratio`` [-] (and
+        ``threshold`` [-] for the near-critical tubes), largest ratio first (empty when none);
+        None where the bundle was not simulated by ``fretwear simulate`` (no such file).
 
     Examples
     --------
@@ -391,19 +456,22 @@ def recorded_unstable(output: str | Path) -> pd.DataFrame | None:
     >>> recorded_unstable(tempfile.mkdtemp()) is None
     True
     """
-    path = Path(output) / UNSTABLE_FILE
+    path = Path(output) / name
     if not path.is_file():
         return None
     frame = read_text_table(path, "bundle's unstable tubes")
-    need = ("tube", "tube_row", "tube_column", "max_stability_ratio")
+    need = UNSTABLE_COLUMNS + (("threshold",) if name == NEAR_CRITICAL_FILE else ())
     if not set(need) <= set(frame.columns):
-        raise InputError(f"{path}: not the unstable tubes fretwear bundle writes (columns "
+        raise InputError(f"{path}: not the tubes fretwear bundle writes (columns "
                          f"{', '.join(need)}); remove the file, or rerun fretwear bundle")
-    return pd.DataFrame({"tube": frame["tube"].astype(str),
-                         "tube_row": [int(number(v)) for v in frame["tube_row"]],
-                         "tube_column": [int(number(v)) for v in frame["tube_column"]],
-                         "max_stability_ratio": [number(v) for v in
-                                                 frame["max_stability_ratio"]]})
+    out = pd.DataFrame({"tube": frame["tube"].astype(str),
+                        "tube_row": [int(number(v)) for v in frame["tube_row"]],
+                        "tube_column": [int(number(v)) for v in frame["tube_column"]],
+                        "max_stability_ratio": [number(v) for v in
+                                                frame["max_stability_ratio"]]})
+    if "threshold" in need:
+        out["threshold"] = [number(v) for v in frame["threshold"]]
+    return out
 
 
 def instability_lines(tubes) -> list[str]:
@@ -422,3 +490,29 @@ def instability_lines(tubes) -> list[str]:
             f"(tubes.csv beside the manifest; stability ratio U_eff/U_c): {worst}{more}. "
             "Above the critical velocity the amplitude is not bounded by the turbulence "
             "simulated: these tubes' wear and forecasts below are NOT valid."]
+
+
+def near_critical_lines(tubes) -> list[str]:
+    """The line that follows the bad news of ``fretwear bundle``, ``assess``, ``calibrate
+    --bundle`` and the bundle's reports when tubes sit in the near-critical band (``tubes``:
+    of :func:`near_critical_tubes` or :func:`recorded_unstable` with
+    :data:`NEAR_CRITICAL_FILE`, or its records; None or empty: no line).
+
+    Examples
+    --------
+    >>> near_critical_lines(near_critical_tubes("examples/bundle/manifest.csv", 0.9))[0][:60]
+    'NEAR-CRITICAL (fluid-elastic): 3 tube(s) with a stability ra'
+    """
+    if tubes is None or not len(tubes):
+        return []
+    tubes = pd.DataFrame(tubes)
+    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
+                                                      tubes["max_stability_ratio"][:5],
+                                                      strict=True))
+    more = f" and {len(tubes) - 5} more" if len(tubes) > 5 else ""
+    threshold = float(tubes["threshold"].iloc[0])
+    return [f"NEAR-CRITICAL (fluid-elastic): {len(tubes)} tube(s) with a stability ratio "
+            f"U_eff/U_c above the design threshold {threshold:g} but not flagged unstable: "
+            f"{worst}{more}. Less than the design margin on the critical velocity is left "
+            "for the scatter of Connors' constant and of the damping: their forecasts hold "
+            "only at the flow simulated (threshold: --near-critical)."]

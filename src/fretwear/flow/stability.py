@@ -17,6 +17,11 @@ from fretwear.dynamics import ModalModel
 from fretwear.errors import InputError
 from fretwear.flow.tube import TubeFlow
 
+#: Default design threshold on the stability ratio U_eff/U_c [-]: a tube above it and not
+#: flagged unstable is said "near-critical" (a 25 % margin on the critical velocity, the design
+#: value quoted in practice; docs/flow.md §4 says where it comes from and how to change it).
+NEAR_CRITICAL = 0.75
+
 
 def connors_velocity(frequency, damping_ratio, diameter: float, mass_per_length,
                      density, constant: float):
@@ -61,6 +66,47 @@ def connors_velocity(frequency, damping_ratio, diameter: float, mass_per_length,
     delta = 2.0 * np.pi * np.asarray(damping_ratio, float)
     return constant * np.asarray(frequency, float) * diameter * np.sqrt(
         np.asarray(mass_per_length, float) * delta / (np.asarray(density, float) * diameter**2))
+
+
+def near_critical(ratio, *, threshold: float = NEAR_CRITICAL, margin: float = 1.0):
+    """Whether a stability ratio lies in the near-critical band (threshold, margin] [-].
+
+    Parameters
+    ----------
+    ratio : float or array_like
+        Stability ratio U_eff/U_c [-] (:func:`stability_ratios`).
+    threshold : float
+        The design threshold [-] (default :data:`NEAR_CRITICAL`, 0.75): a ratio above it has
+        less than the design margin on the critical velocity.
+    margin : float
+        The instability flag's threshold [-] (a ratio above it is flagged unstable, not
+        near-critical; 1 by default; ``math.inf`` where the flag is decided elsewhere).
+
+    Returns
+    -------
+    bool or ndarray of bool
+        ``threshold < ratio <= margin`` (NaN: False).
+
+    Notes
+    -----
+    Design practice keeps U_eff/U_c below a margin on Connors' critical velocity, for the
+    scatter of the constant K and of the damping (docs/flow.md §4); 0.75 is a 25 % margin.
+
+    Examples
+    --------
+    >>> near_critical([0.64, 0.797, 0.957, 1.116]).tolist()
+    [False, True, True, False]
+    >>> bool(near_critical(0.957, threshold=0.96))
+    False
+    """
+    for key, value in (("threshold", threshold), ("margin", margin)):
+        if not (isinstance(value, (int, float)) and value > 0
+                and (math.isfinite(value) or key == "margin")):
+            raise InputError(f"stability: the near-critical {key} must be a stability ratio "
+                             f"U_eff/U_c > 0 [-] (e.g. 0.75 for a 25 % margin), got {value!r}")
+    r = np.asarray(ratio, float)
+    with np.errstate(invalid="ignore"):
+        return (r > threshold) & (r <= margin)
 
 
 def effective_values(tube: TubeFlow, mass_per_length, reference_density: float,

@@ -20,7 +20,12 @@ from fretwear._optional import require
 from fretwear._version import __version__
 from fretwear.assessment.summary import probability_text
 from fretwear.bundle.digest import limit_lines
-from fretwear.flow.bundle import instability_lines, recorded_unstable
+from fretwear.flow.bundle import (
+    NEAR_CRITICAL_FILE,
+    instability_lines,
+    near_critical_lines,
+    recorded_unstable,
+)
 from fretwear.io.atomic import atomic_write
 from fretwear.report.html import TEMPLATES, _table_html, figure_data_uri
 
@@ -94,7 +99,8 @@ def render_assessment_report(result, *, title: str | None = None) -> str:
     inputs = [{"name": k, "value": _described(v)} for k, v in result.inputs.items()]
     context = {**_meta(), "title": title or "fretwear: outage assessment", "kind": "assessment",
                "bad_news": instability_lines(result.inputs.get("unstable_tubes"))
-               + result.bad_news(), "b": b,
+               + result.bad_news()
+               + near_critical_lines(result.inputs.get("near_critical_tubes")), "b": b,
                "p_any": f"{b['p_any']:.3g}", "probability_line": result.probability_line(),
                "longest": f"{b['longest_interval']:.3g}",
                "after": probability_text(b["p_any_after_plugging"]), "inputs": inputs,
@@ -121,8 +127,11 @@ def render_bundle_report(bundle, *, title: str | None = None) -> str:
 
     env = _env()
     summary = bundle.summary()
-    news = (instability_lines(recorded_unstable(bundle.output)) if bundle.output is not None
-            else []) + limit_lines(summary)
+    out = bundle.output
+    news = (instability_lines(recorded_unstable(out)) if out is not None else []) \
+        + limit_lines(summary) \
+        + (near_critical_lines(recorded_unstable(out, NEAR_CRITICAL_FILE)) if out is not None
+           else [])
     figures = [{"id": "map", "title": "Tube sheet: worst contact per tube at the last instant",
                 "uri": figure_data_uri(plot_tube_sheet(summary))},
                {"id": "worst", "title": "Depth against time of the deepest contacts",
