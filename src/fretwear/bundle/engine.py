@@ -31,6 +31,7 @@ from fretwear.bundle.cluster import (
 )
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.manifest import Manifest, read_manifest
+from fretwear.bundle.manifest_history import check_histories
 from fretwear.bundle.outputs import assemble, outputs_digest  # noqa: F401 - its home until now
 from fretwear.bundle.result import BundleResult, check_limit
 from fretwear.bundle.store import (
@@ -357,6 +358,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     # a base case that fails for every contact stops here, said once (the case it builds goes
     # into the cache the tasks use), before the output directory is made: a run that computes
     # nothing leaves nothing behind (an empty parts/ folder before, found by a user's trial)
+    check_histories(man, base)  # no history and no power anywhere: one error, not one a contact
     check_base_case(base, man.rows, man.source, cases)
     store = None if output is None else OutputDirectory(output, table_format=table_format)
     # every contact's latest record in the directory: the ones to skip (unless force), and
