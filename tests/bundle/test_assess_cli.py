@@ -83,3 +83,29 @@ def test_assess_and_calibrate_share_one_set_of_factor_options():
             assert re.search(re.escape(option) + r" FLOAT RANGE .*?\[default: "
                              + re.escape(default) + r";", flat), option
         assert not re.search(r"--(contact|power)-sigma\b(?!-)", flat)
+
+
+def test_assessment_json_keeps_the_technique_as_fields_with_units(bundle_out, tmp_path):
+    """assessment.json's technique: explicit fields in metres (sizing σ, a50, a90 as given on
+    the command line in mm, ×1e-3) read back into the same models (a new user's trial: a Python
+    repr before); JSON keeps a float's repr, so the coefficients come back exactly (one
+    process)."""
+    from fretwear.assessment.technique import from_record
+
+    summary = load(bundle_out).summary()
+    insp = tmp_path / "insp.csv"
+    pd.DataFrame({"contact": [summary.iloc[0]["contact"]], "instant": [5.0],
+                  "depth_mm": [0.05]}).to_csv(insp, index=False)
+    out = tmp_path / "oa"
+    assert main(["assess", str(bundle_out), str(insp), "--interval", "2", "-o", str(out),
+                 "--sizing-sigma-mm", "0.05", "--pod-a50-mm", "0.15",
+                 "--pod-a90-mm", "0.3"]) == 0
+    inputs = json.loads((out / "assessment.json").read_text(encoding="utf-8"))["inputs"]
+    sizing, pod = inputs["sizing"], inputs["pod"]
+    assert sizing["model"] == "normal" and pod["model"] == "logistic"
+    assert sizing["sigma_m"] == pytest.approx(5e-5, rel=1e-12)
+    assert sizing["intercept_m"] == 0.0 and sizing["slope"] == 1.0
+    assert pod["a50_m"] == pytest.approx(1.5e-4, rel=1e-12)
+    assert pod["a90_m"] == pytest.approx(3e-4, rel=1e-12)
+    assert from_record(sizing) == SizingModel(0.0, 1.0, 5e-5)
+    assert from_record(pod) == LogisticPOD.from_depths(1.5e-4, 3e-4)

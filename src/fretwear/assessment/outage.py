@@ -131,7 +131,8 @@ class Assessment:
             with atomic_write(root / f"{name}.csv", encoding="utf-8", newline="") as handle:
                 frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)
             written.append(root / f"{name}.csv")
-        payload = {"bundle": self.bundle, "inputs": {k: repr(v) if k in ("sizing", "pod")
+        # the technique as explicit fields with units (technique.from_record reads them back)
+        payload = {"bundle": self.bundle, "inputs": {k: v.to_record() if k in ("sizing", "pod")
                                                      else v for k, v in self.inputs.items()},
                    "factor_nodes": {"log_factor": self.nodes.log_factor.tolist(),
                                     "weights": self.nodes.weights.tolist(),

@@ -31,7 +31,7 @@ import numpy as np
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
-__all__ = ["LogSizingModel", "LogisticPOD", "SizingModel"]
+__all__ = ["LogSizingModel", "LogisticPOD", "SizingModel", "from_record"]
 
 
 def _finite(name: str, value, *, positive: bool = False) -> float:
@@ -97,6 +97,16 @@ class SizingModel:
         return (f"sizing: measured = {self.intercept * 1e3:.4g} mm + {self.slope:.4g} × true "
                 f"+ e, sizing error σ = {self.sigma * 1e3:.4g} mm")
 
+    def to_record(self) -> dict:
+        """Explicit fields with units (as ``assessment.json`` keeps them; :func:`from_record`
+        reads them back).
+
+        >>> SizingModel(intercept=5e-5, slope=1.0, sigma=1e-4).to_record()
+        {'model': 'normal', 'intercept_m': 5e-05, 'slope': 1.0, 'sigma_m': 0.0001}
+        """
+        return {"model": "normal", "intercept_m": float(self.intercept),
+                "slope": float(self.slope), "sigma_m": float(self.sigma)}
+
     def true_depth(self, measured):
         """The true depth whose expected measurement is ``measured``: (m − a)/b [m]."""
         return (np.asarray(measured, dtype=float) - self.intercept) / self.slope
@@ -152,6 +162,14 @@ class LogSizingModel:
         """
         return (f"sizing: ln(measured) = ln(true) + e, σ_ln = {self.sigma_ln:.4g} (about "
                 f"{100 * math.expm1(self.sigma_ln):.2g} % of the depth)")
+
+    def to_record(self) -> dict:
+        """Explicit fields (``sigma_ln`` [-]); :func:`from_record` reads them back.
+
+        >>> LogSizingModel(0.1).to_record()
+        {'model': 'lognormal', 'sigma_ln': 0.1}
+        """
+        return {"model": "lognormal", "sigma_ln": float(self.sigma_ln)}
 
     def true_depth(self, measured):
         """The true depth whose median measurement is ``measured`` [m]."""
@@ -227,6 +245,19 @@ class LogisticPOD:
                 f"a50 = {self.depth_at(0.5) * 1e3:.4g} mm, a90 = {self.depth_at(0.9) * 1e3:.4g}"
                 " mm (detected 50 %, 90 % of the time)")
 
+    def to_record(self) -> dict:
+        """Explicit fields with units: the depths of 50 % and 90 % detection ``a50_m``,
+        ``a90_m`` [m], and the coefficients ``beta0`` [-], ``beta1`` ([-] in ln depth, [1/m] in
+        depth) that :func:`from_record` reads back exactly.
+
+        >>> r = LogisticPOD.from_depths(a50=1.5e-4, a90=3e-4).to_record()
+        >>> r["model"], round(r["a50_m"] * 1e3, 9), round(r["a90_m"] * 1e3, 9)
+        ('logistic', 0.15, 0.3)
+        """
+        return {"model": "logistic", "log_depth": bool(self.log_depth),
+                "a50_m": self.depth_at(0.5), "a90_m": self.depth_at(0.9),
+                "beta0": float(self.beta0), "beta1": float(self.beta1)}
+
     def _x(self, depth):
         d = np.asarray(depth, dtype=float)
         if not self.log_depth:
@@ -251,3 +282,47 @@ class LogisticPOD:
         p = check_level(probability, "a detection probability")
         x = (math.log(p / (1.0 - p)) - self.beta0) / self.beta1
         return math.exp(x) if self.log_depth else x
+
+
+def from_record(record: dict):
+    """The sizing model or POD of a record of ``to_record`` (``assessment.json``'s inputs).
+
+    Parameters
+    ----------
+    record : dict
+        ``model`` ``"normal"`` (``intercept_m``, ``slope``, ``sigma_m``), ``"lognormal"``
+        (``sigma_ln``) or ``"logistic"`` (``beta0``, ``beta1``, ``log_depth``; or ``a50_m``,
+        ``a90_m`` [m] without the coefficients).
+
+    Returns
+    -------
+    SizingModel, LogSizingModel or LogisticPOD
+
+    Examples
+    --------
+    >>> pod = LogisticPOD.from_depths(a50=1.5e-4, a90=3e-4)
+    >>> from_record(pod.to_record()) == pod
+    True
+    >>> from_record({"model": "normal", "intercept_m": 0.0, "slope": 1.0, "sigma_m": 5e-5})
+    SizingModel(intercept=0.0, slope=1.0, sigma=5e-05)
+    """
+    if not isinstance(record, dict):
+        raise InputError(f"a technique record is a mapping with a 'model' key, got {record!r}")
+    model = record.get("model")
+    fields = {"normal": ("intercept_m", "slope", "sigma_m"), "lognormal": ("sigma_ln",),
+              "logistic": ("beta0", "beta1") if "beta0" in record else ("a50_m", "a90_m")}
+    if model not in fields:
+        raise InputError(f"technique record: model {model!r} is not one of "
+                         f"{sorted(fields)} (what to_record writes)")
+    missing = [k for k in fields[model] if k not in record]
+    if missing:
+        raise InputError(f"technique record ({model}): missing {missing}; give "
+                         f"{list(fields[model])}")
+    if model == "normal":
+        return SizingModel(record["intercept_m"], record["slope"], record["sigma_m"])
+    if model == "lognormal":
+        return LogSizingModel(record["sigma_ln"])
+    log_depth = bool(record.get("log_depth", True))
+    if "beta0" in record:
+        return LogisticPOD(record["beta0"], record["beta1"], log_depth=log_depth)
+    return LogisticPOD.from_depths(record["a50_m"], record["a90_m"], log_depth=log_depth)
