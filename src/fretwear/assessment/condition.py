@@ -64,6 +64,19 @@ def as_found(sized: pd.DataFrame, sizing) -> pd.DataFrame:
     return out.sort_values("true_depth", ascending=False, kind="stable").reset_index(drop=True)
 
 
+def _measured_cdf(sizing, true):
+    """P(measured <= x | each true depth) as a function of x [m], and a bracket of x holding
+    every quantile: normal sizing (a + b·d, σ) or log-normal (ln m ~ N(ln d, σ_ln²))."""
+    d = np.asarray(true, float)
+    if hasattr(sizing, "sigma_ln"):
+        s, d = sizing.sigma_ln, np.maximum(d, 1e-300)
+        return (lambda x: 1 - _phi_bar((math.log(x) - np.log(d)) / s),
+                (d.min() * math.exp(-10 * s), d.max() * math.exp(10 * s)))
+    mean = sizing.intercept + sizing.slope * d
+    return (lambda x: 1 - _phi_bar((x - mean) / sizing.sigma),
+            (mean.min() - 10 * sizing.sigma, mean.max() + 10 * sizing.sigma))
+
+
 def predicted_vs_measured(models, sized: pd.DataFrame, nodes, sizing, *,
                           level: float = 0.90, group_of=None) -> tuple[pd.DataFrame, dict]:
     """The prediction of every sized indication against its measurement.
@@ -75,7 +88,9 @@ def predicted_vs_measured(models, sized: pd.DataFrame, nodes, sizing, *,
         ``contact``, ``instant`` [time unit], ``depth`` (measured [m]).
     nodes : FactorNodes
         The calibrated growth factor.
-    sizing : SizingModel
+    sizing : SizingModel or LogSizingModel
+        The technique's sizing error (normal, or log-normal as ``fretwear calibrate``'s
+        default).
     level : float
         The central interval's probability [-].
     group_of : mapping of contact to int, optional
@@ -99,12 +114,11 @@ def predicted_vs_measured(models, sized: pd.DataFrame, nodes, sizing, *,
         g = growth[0 if group_of is None else group_of[r.contact]]
         elapsed = (float(r.instant) - m.origin) * m.time_scale
         d = np.nan_to_num(m.depth(elapsed, factor=g, warn=False), nan=m.geometry.mobile_radius)
-        mean = sizing.intercept + sizing.slope * d
+        below, span = _measured_cdf(sizing, d)
 
-        def cdf(x, q, mean=mean):
-            return float(np.dot(wg, 1 - _phi_bar((x - mean) / sizing.sigma))) - q
+        def cdf(x, q, below=below):
+            return float(np.dot(wg, below(x))) - q
 
-        span = (mean.min() - 10 * sizing.sigma, mean.max() + 10 * sizing.sigma)
         low, mid, high = (brentq(cdf, *span, args=(q,), xtol=1e-12)
                           for q in (0.5 * (1 - level), 0.5, 0.5 * (1 + level)))
         rows.append({"contact": r.contact, "instant": float(r.instant),

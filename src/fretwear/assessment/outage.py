@@ -44,7 +44,7 @@ from fretwear.assessment.summary import coverage_line, factor_line, probability_
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
-__all__ = ["Assessment", "assess"]
+__all__ = ["Assessment", "assess", "calibration_fit"]
 
 QUANTILES = (0.05, 0.5, 0.95)
 
@@ -273,6 +273,47 @@ def _factor_nodes(posterior, table, ins, sizing, pod, count, prior, groups, powe
         median, interval = cal.bundle_factor()
         fit.update(factor_median=median, factor_interval_90=interval)
     return nodes, group_of, fit
+
+
+def calibration_fit(cal: BundleCalibration, sizing, *, identity=None, level: float = 0.90,
+                    count: int = 16) -> tuple[pd.DataFrame, dict]:
+    """Predicted against measured for a bundle calibration (``fretwear calibrate --bundle``),
+    as :func:`assess` computes it: the calibrated factor's nodes, each sized indication's
+    central ``level`` interval, the share inside.
+
+    Parameters
+    ----------
+    cal : BundleCalibration
+        :func:`~fretwear.assessment.calibration.calibrate_bundle`'s result.
+    sizing : SizingModel or LogSizingModel
+        The technique's sizing error the calibration used.
+    identity : DataFrame, optional
+        ``contact`` and ``support`` of the bundle (the support types of a calibration with
+        groups).
+    level : float
+        The interval's probability [-].
+    count : int
+        Factor nodes (:func:`assess`'s ``nodes``).
+
+    Returns
+    -------
+    (DataFrame, dict)
+        :func:`~fretwear.assessment.condition.predicted_vs_measured` on the calibration's
+        sized indications (``indications``, ``coverage`` [-], ``level``, ``rms_residual``
+        [m]); :func:`~fretwear.assessment.summary.coverage_line` makes the bad news of it.
+    """
+    support = {} if identity is None or "support" not in identity else dict(
+        zip(identity["contact"], identity["support"].astype(str), strict=True))
+    table = pd.DataFrame({"contact": cal.contacts,
+                          "support": [support.get(c, "") for c in cal.contacts]})
+    nodes, group_of, _ = _factor_nodes(cal, table, None, sizing, None, count, cal.prior, None,
+                                       0.0)
+    obs = cal.observations
+    sized = obs.loc[(obs["status"] == "sized") & obs["depth"].notna(),
+                    ["contact", "instant", "depth"]]
+    return predicted_vs_measured(cal.models, sized, nodes, sizing, level=level,
+                                 group_of=None if group_of is None else dict(
+                                     zip(table["contact"], group_of, strict=True)))
 
 
 def assess(bundle: Any, inspections=None, *, interval: float, sizing, pod,

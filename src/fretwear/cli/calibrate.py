@@ -115,10 +115,9 @@ def command(inspections, case_file, bundle_dir, prior_median, prior_scatter, pri
         predictions, identity = bundle_predictions(bundle_dir)
         for line in instability_lines(recorded_unstable(bundle_dir)):  # said first
             click.secho(line, fg="red", bold=True)
-        for line in near_critical_lines(recorded_unstable(bundle_dir, NEAR_CRITICAL_FILE)):
-            click.secho(line, fg="yellow")
         frame = calibrate_field(predictions, identity, inspections, prior, measurement_sigma,
-                                forecast, limit_mm, **field)
+                                forecast, limit_mm, **field, notes=near_critical_lines(
+                                    recorded_unstable(bundle_dir, NEAR_CRITICAL_FILE)))
         if output is not None:
             with atomic_write(output, encoding="utf-8", newline="") as handle:
                 frame.to_csv(handle, index=False, float_format=FLOAT_FORMAT)

@@ -21,7 +21,9 @@ from fretwear.assessment import (
     read_field_inspections,
 )
 from fretwear.assessment.calibration import CONTACT_SIGMA_LN, POWER_SIGMA_LN
+from fretwear.assessment.outage import calibration_fit
 from fretwear.assessment.summary import (
+    coverage_line,
     factor_line,
     probability_text,
     summary_counts,
@@ -98,8 +100,9 @@ def technique_from_options(measurement_sigma, sizing_sigma_mm, sizing_intercept_
 def calibrate_field(predictions, identity, inspections, prior, measurement_sigma, forecast,
                     limit_mm, *, sizing_sigma_mm, sizing_intercept_mm, sizing_slope,
                     pod_a50_mm, pod_a90_mm, contact_sigma_ln, group_sigma_ln,
-                    power_sigma_ln, origin_date, wall_mm, top):
-    """Calibrate, print (bad news first) and return the table for the file."""
+                    power_sigma_ln, origin_date, wall_mm, top, notes=()):
+    """Calibrate, print (bad news first; ``notes``, the near-critical tubes, after it) and
+    return the table for the file."""
     tech = technique_from_options(measurement_sigma, sizing_sigma_mm, sizing_intercept_mm,
                                   sizing_slope, pod_a50_mm, pod_a90_mm)
     ins = read_field_inspections(inspections, origin_date=origin_date,
@@ -110,20 +113,30 @@ def calibrate_field(predictions, identity, inspections, prior, measurement_sigma
                            groups="support type" if group_sigma_ln > 0 else None,
                            identity=identity, power_sigma_ln=power_sigma_ln)
     console = Console()
+    _, fit = calibration_fit(cal, tech.sizing, identity=identity)  # as assess: said first
+    n = fit["indications"]
+    poor = coverage_line(round(fit["coverage"] * n), n, fit["level"]) if n else None
+    for line in (poor, factor_line(cal.bundle_factor()[0])):
+        if line:
+            _say(console, line, "bold red")
     if forecast is None:
-        _factor_lines(cal, ins, console)
+        for line in notes:
+            _say(console, line, "yellow")
+        _factor_lines(cal, ins, console, fit)
         frame = cal.factor_summary()
         return identity.merge(frame, on="contact", how="right")
     frame = cal.forecast(forecast, limit=None if limit_mm is None else limit_mm * 1e-3)
     counts = summary_counts(frame, identity)
     _bad_news(counts, frame, forecast, console)
-    _factor_lines(cal, ins, console)
+    for line in notes:
+        _say(console, line, "yellow")
+    _factor_lines(cal, ins, console, fit)
     _tubes(tube_summary(frame, identity), top, forecast, console)
     return identity.merge(frame, on="contact", how="right")
 
 
 def _say(console: Console, text: str, style: str | None = None) -> None:
-    console.print(text, markup=False, highlight=False, style=style)
+    console.print(text, markup=False, highlight=False, style=style, soft_wrap=True)
 
 
 def _bad_news(c: dict, frame, instant, console: Console) -> None:
@@ -142,11 +155,8 @@ def _bad_news(c: dict, frame, instant, console: Console) -> None:
                   f"({worst.get('wall_fraction_q50', math.nan) * 100:.0f} % of the wall)")
 
 
-def _factor_lines(cal, ins, console: Console) -> None:
-    median, (low, high) = cal.bundle_factor()
-    implausible = factor_line(median)
-    if implausible:
-        _say(console, implausible, "bold red")
+def _factor_lines(cal, ins, console: Console, fit: dict) -> None:
+    median, (low, high) = cal.bundle_factor()  # beyond [0.1, 10]: said with the bad news
     _say(console, str(ins))
     _say(console, f"bundle factor: median {median:.4g}, 90 % [{low:.4g}, {high:.4g}]; "
                   f"contact scatter sigma_ln {cal.prior.contact_sigma_ln:.3g}")
@@ -154,6 +164,10 @@ def _factor_lines(cal, ins, console: Console) -> None:
         for g in cal.groups:
             m, (lo, hi) = cal.group_factor(g)
             _say(console, f"  {g}: median {m:.4g}, 90 % [{lo:.4g}, {hi:.4g}]")
+    if fit["indications"]:
+        _say(console, f"predicted against measured: {fit['indications']} indications, "
+                      f"{fit['coverage']:.0%} inside the prediction's {fit['level']:.0%} "
+                      "interval")
 
 
 def _tubes(tubes, top: int, instant, console: Console) -> None:
