@@ -134,3 +134,68 @@ def save_figure(fig, directory: str | os.PathLike, stem: str, *, dpi: int = 120,
         if close:
             pyplot().close(fig)
     return out
+
+
+#: Legend places tried in turn by :func:`legend_clear_of` (after matplotlib's ``"best"``).
+LEGEND_PLACES = ("upper left", "lower right", "upper right", "lower left", "center left",
+                 "center right", "upper center", "lower center")
+
+
+def legend_clear_of(axis: Any, lines: Sequence[Any], **kwargs: Any) -> Any:
+    """The axis's legend, placed where it covers none of ``lines`` (the reference lines of a
+    depth figure: the limit, the wall, a target).
+
+    matplotlib's ``"best"`` weighs a horizontal line by its two end points only, so a legend
+    could sit on the wall line. Tried in turn: ``"best"``, :data:`LEGEND_PLACES`, then the
+    upper corners slid down the axes in 5 % steps; of the places inside the axes whose box
+    [px] clears every line's (padded by half its line width and 2 px), the one covering the
+    fewest data points (of the axis's other lines) is kept; else the legend goes beside the
+    axes, on the right. Call it once the axes' size and limits are final (after
+    ``tight_layout``).
+
+    Parameters
+    ----------
+    axis : matplotlib Axes
+    lines : sequence of Line2D
+        The lines to keep clear (``axhline``/``axvline``'s results).
+    **kwargs
+        Passed to ``Axes.legend`` (``fontsize``, ``ncol``).
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
+    renderer = axis.figure.canvas.get_renderer() if hasattr(
+        axis.figure.canvas, "get_renderer") else None
+    boxes = []
+    for line in lines:
+        box = line.get_window_extent(renderer)
+        pad = line.get_linewidth() * axis.figure.dpi / 72.0 / 2 + 2.0
+        boxes.append(box.padded(pad))
+    tries = [{"loc": place} for place in ("best", *LEGEND_PLACES)]
+    tries += [{"loc": f"upper {side}", "bbox_to_anchor": (x, top)}  # slid down the axes
+              for top in np.linspace(0.95, 0.1, 18) for side, x in (("left", 0.0),
+                                                                     ("right", 1.0))]
+    points = [line.get_transform().transform(line.get_xydata()) for line in axis.get_lines()
+              if all(line is not mark for mark in lines) and len(line.get_xydata())]
+    points = np.concatenate(points) if points else np.empty((0, 2))
+    frame = axis.get_window_extent(renderer).padded(1.0)
+    best, fewest = None, None
+    for place in tries:
+        legend = axis.legend(**place, **kwargs)
+        mine = legend.get_window_extent(renderer)
+        inside = frame.x0 <= mine.x0 and mine.x1 <= frame.x1 and frame.y0 <= mine.y0 \
+            and mine.y1 <= frame.y1
+        if not inside or any(mine.overlaps(b) for b in boxes):
+            continue
+        covered = int(np.count_nonzero(
+            (points[:, 0] >= mine.x0) & (points[:, 0] <= mine.x1)
+            & (points[:, 1] >= mine.y0) & (points[:, 1] <= mine.y1)))
+        if fewest is None or covered < fewest:
+            best, fewest = place, covered
+            if not covered:
+                break
+    if best is not None:
+        return axis.legend(**best, **kwargs)
+    return axis.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                       **kwargs)  # beside the axes (the savers keep it: bbox_inches="tight")

@@ -13,7 +13,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
-from fretwear.plotting._common import figure_and_axes
+from fretwear.plotting._common import figure_and_axes, legend_clear_of
 from fretwear.plotting.bundle import plot_tube_sheet
 
 __all__ = ["assessment_map", "plot_bundle_probability", "plot_fan_charts",
@@ -91,11 +91,12 @@ def plot_bundle_probability(result: Any, *, ax: Any = None):
     if "p_any_before_plugging" in curve:
         axis.plot(curve["interval"], curve["p_any_before_plugging"], color="C0", lw=1,
                   ls="--", label="before plugging")
-    axis.axhline(b["target"], color="C3", ls="--", label=f"target {b['target']:g}")
-    axis.axvline(b["interval"], color="0.4", ls=":", label=f"asked {b['interval']:g} {b['unit']}")
+    marks = [axis.axhline(b["target"], color="C3", ls="--", label=f"target {b['target']:g}"),
+             axis.axvline(b["interval"], color="0.4", ls=":",
+                          label=f"asked {b['interval']:g} {b['unit']}")]
     if 0 < b["longest_interval"] < b["horizon"]:
-        axis.axvline(b["longest_interval"], color="C2", ls="-.",
-                     label=f"longest {b['longest_interval']:.3g} {b['unit']}")
+        marks.append(axis.axvline(b["longest_interval"], color="C2", ls="-.",
+                                  label=f"longest {b['longest_interval']:.3g} {b['unit']}"))
     axis.set_yscale("log")
     low = max(float(curve["p_any"][curve["p_any"] > 0].min()) if (curve["p_any"] > 0).any()
               else 1e-6, 1e-12)  # the plugged curve lies under the other
@@ -103,7 +104,7 @@ def plot_bundle_probability(result: Any, *, ax: Any = None):
     axis.set_xlabel(f"operating interval after the outage [{b['unit']}]")
     axis.set_ylabel("probability [-]")
     axis.grid(alpha=0.3, which="both")
-    axis.legend(fontsize="small", loc="lower right")
+    legend_clear_of(axis, marks, fontsize="small")  # not on the target or the intervals
     return fig
 
 
@@ -123,20 +124,21 @@ def plot_fan_charts(result: Any, *, count: int = 4, ax: Any = None):
                                      what="plot_fan_charts")
     b = result.bundle
     grid = np.linspace(0.0, b["horizon"], 21)
+    marks = []
     for axis, row in zip(axes, tubes.itertuples(), strict=False):
         q = result.fan(row.worst_contact, grid) * 1e3
         axis.fill_between(grid, q[:, 0], q[:, 2], color="C0", alpha=0.25, label="5-95 %")
         axis.plot(grid, q[:, 1], color="C0", label="median")
         limit = result.contacts.set_index("contact").loc[row.worst_contact, "limit_depth"]
-        axis.axhline(limit * 1e3, color="C3", ls="--", label="plugging limit")
-        axis.axvline(b["interval"], color="0.4", ls=":")
+        marks.append([axis.axhline(limit * 1e3, color="C3", ls="--", label="plugging limit"),
+                      axis.axvline(b["interval"], color="0.4", ls=":")])
         axis.set_title(f"{row.tube} ({row.worst_contact}): P = {row.p_exceed:.2g}",
                        fontsize="medium")
         axis.set_xlabel(f"after the outage [{b['unit']}]")
         axis.set_ylabel("depth [mm]")
         axis.grid(alpha=0.3)
-    if len(tubes):
-        axes[0].legend(fontsize="small", loc="upper left")
     if own:
         fig.tight_layout()
+    if len(tubes):  # once the layout is final: not on the limit line
+        legend_clear_of(axes[0], marks[0], fontsize="small")
     return fig

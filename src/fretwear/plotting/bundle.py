@@ -14,7 +14,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
-from fretwear.plotting._common import figure_and_axes, matplotlib_module
+from fretwear.plotting._common import figure_and_axes, legend_clear_of, matplotlib_module
 
 
 def _summary(results: Any, limit: float | None = None) -> pd.DataFrame:
@@ -468,8 +468,8 @@ def plot_worst_depths(results: Any, *, count: int = 10, limit: float | None = No
         axis.plot(t, d, "o-", ms=3, color=f"C{i % 10}", label=label)
         if np.isfinite(getattr(row, "limit_depth", np.nan)):
             limits[float(row.limit_depth)] = f"C{i % 10}"
-    for depth, color in limits.items():
-        axis.axhline(depth * 1e3, color=color, ls=":", lw=1)
+    marks = [axis.axhline(depth * 1e3, color=color, ls=":", lw=1)
+             for depth, color in limits.items()]
     unit = (f" [{units[0]}]" if len(units) == 1
             else " [each contact's own time unit, in the legend]" if mixed else "")
     axis.set_xlabel(f"instant{unit}")
@@ -477,5 +477,5 @@ def plot_worst_depths(results: Any, *, count: int = 10, limit: float | None = No
     axis.set_title(f"the {len(summary)} deepest contacts" + (" (dotted: limit depth)"
                                                             if limits else ""))
     if len(summary):
-        axis.legend(fontsize="x-small", ncol=2)
+        legend_clear_of(axis, marks, fontsize="x-small", ncol=2)  # not on a limit line
     return fig

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fretwear.plotting._common import figure_and_axes, matplotlib_module
+from fretwear.plotting._common import figure_and_axes, legend_clear_of, matplotlib_module
 
 
 def _draw_clearance(ax, result) -> None:
@@ -58,16 +58,17 @@ def _draw_depth(ax, result) -> None:
     ax.plot(ang[order], result.depth_obstacle[order] * 1e3, color="C1", label="obstacle")
     limit = result.perforation * result.mobile.wall_thickness * 1e3
     deepest = np.nanmax(result.depth_mobile, initial=0.0) * 1e3
+    marks = []
     if result.perforated or deepest >= 0.3 * limit:
-        ax.axhline(limit, color="C3", ls=":", lw=1,
-                   label=f"perforation ({result.perforation:g} × wall)")
+        marks = [ax.axhline(limit, color="C3", ls=":", lw=1,
+                            label=f"perforation ({result.perforation:g} × wall)")]
     for e in edges:
         ax.axvline(e, color="0.85", lw=0.6, zorder=0)
     ax.set_xlim(-180, 180)
     ax.set_xticks(np.arange(-180, 181, 60))
     ax.set_xlabel("angle [deg]")
     ax.set_ylabel("obstacle-profile depth [mm]")
-    ax.legend(fontsize=8)
+    legend_clear_of(ax, marks, fontsize=8)  # not on the perforation line
 
 
 def plot_clearance(result, *, ax=None):

@@ -18,7 +18,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
-from fretwear.plotting._common import figure_and_axes, matplotlib_module
+from fretwear.plotting._common import figure_and_axes, legend_clear_of, matplotlib_module
 
 #: Percentile bands of the fan chart (lower, upper) [-], widest first.
 BANDS = ((0.05, 0.95), (0.25, 0.75))
@@ -71,18 +71,19 @@ def plot_fan_chart(result, *, bands=BANDS, limit: float | None = None, unit: str
     axis.plot(t, np.asarray(result.nominal_depth) * 1e3, "--", color="k", lw=1,
               label="nominal")
     value = result.limit if limit is None else float(limit)
+    marks = []
     if value is not None:
-        axis.axhline(value * 1e3, color="C3", ls="--", lw=1.2, label="limit")
+        marks.append(axis.axhline(value * 1e3, color="C3", ls="--", lw=1.2, label="limit"))
     wall = result.wall_thickness
     top = np.nanmax(np.where(np.isfinite(quant.to_numpy()), quant.to_numpy(), np.nan)) * 1e3
     if wall is not None and top > wall * 1e3:
-        axis.axhline(wall * 1e3, color="k", lw=1.5, label="wall")
+        marks.append(axis.axhline(wall * 1e3, color="k", lw=1.5, label="wall"))
     axis.set_ylabel(f"{getattr(result, 'depth_of', 'global')} depth of the tube [mm]")
     axis.set_xlabel(f"instant [{unit}]" if unit else "instant")
     axis.grid(alpha=0.3)
-    axis.legend(fontsize="small", loc="upper left")
     if own:
         axis.set_title(f"{result.name or 'contact'}: {result.samples} samples ({result.method})")
+    legend_clear_of(axis, marks, fontsize="small")  # not on the limit or the wall line
     return fig
 
 

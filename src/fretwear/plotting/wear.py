@@ -10,7 +10,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
-from fretwear.plotting._common import figure_and_axes
+from fretwear.plotting._common import figure_and_axes, legend_clear_of
 from fretwear.table import carried_case, from_aster_names
 from fretwear.timeunits import TIME_UNITS
 
@@ -35,9 +35,10 @@ def _title(table: pd.DataFrame, case) -> str:
     return f"{case.name or 'wear table'}: {case.contact_type or ''} {case.law}".strip()
 
 
-def _draw_history(ax, table: pd.DataFrame, quantity: str, case) -> None:
+def _draw_history(ax, table: pd.DataFrame, quantity: str, case) -> list:
     """Draw one quantity (volume or depth) of tube and obstacle against the instants; the
-    restart, the tube replacement and the wall are the table's ``case``'s (None: none)."""
+    restart, the tube replacement and the wall are the table's ``case``'s (None: none).
+    Returns the limit and wall lines drawn (for :func:`legend_clear_of`); no legend."""
     if quantity not in _QUANTITIES:
         raise InputError(f"quantity={quantity!r}: choose one of {list(_QUANTITIES)}")
     column, scale, label = _QUANTITIES[quantity]
@@ -60,16 +61,18 @@ def _draw_history(ax, table: pd.DataFrame, quantity: str, case) -> None:
         ax.annotate("restart", (float(origin), 1.0), xycoords=("data", "axes fraction"),
                     xytext=(3, -24), textcoords="offset points", fontsize="small")
     wall = None if case is None else case.wall.thickness
+    marks = []
     if quantity == "depth" and wall:
         limit = case.wall.limit_depth
-        ax.axhline(limit * scale, color="C3", ls="--", lw=1,
-                   label=f"limit {100 * limit / wall:g} % of the wall")
+        marks.append(ax.axhline(limit * scale, color="C3", ls="--", lw=1,
+                                label=f"limit {100 * limit / wall:g} % of the wall"))
         if np.nanmax(glob["depth_mobile"], initial=0.0) > wall:
-            ax.axhline(float(wall) * scale, color="k", lw=1.2, label="wall (through)")
+            marks.append(ax.axhline(float(wall) * scale, color="k", lw=1.2,
+                                    label="wall (through)"))
     ax.grid(alpha=0.3)
     ax.set_ylabel(label)
     ax.set_xlabel(f"instant [{_unit(table, case)}]")
-    ax.legend()
+    return marks
 
 
 def plot_wear_history(table: pd.DataFrame, quantity: str = "depth", *, ax=None):
@@ -104,9 +107,10 @@ def plot_wear_history(table: pd.DataFrame, quantity: str = "depth", *, ax=None):
     case = carried_case(table)
     fig, (axis,), own = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(7, 4),
                                         what="plot_wear_history")
-    _draw_history(axis, table, quantity, case)
+    marks = _draw_history(axis, table, quantity, case)
     if own:
         axis.set_title(_title(table, case))
+    legend_clear_of(axis, marks)  # not on the limit or the wall line
     return fig
 
 
@@ -147,11 +151,13 @@ def plot_wear_table(table: pd.DataFrame, *, ax=None):
                                              what="plot_wear_table")
     case = carried_case(table)
     _draw_history(ax_v, table, "volume", case)
-    _draw_history(ax_d, table, "depth", case)
+    marks = _draw_history(ax_d, table, "depth", case)
     if own:
         ax_v.set_xlabel("")
         ax_v.tick_params(labelbottom=False)
         fig.suptitle(_title(table, case))
+    ax_v.legend()
+    legend_clear_of(ax_d, marks)  # not on the limit or the wall line
     return fig
 
 
