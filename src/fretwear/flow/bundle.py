@@ -474,6 +474,14 @@ def recorded_unstable(output: str | Path, name: str = UNSTABLE_FILE) -> pd.DataF
     return out
 
 
+def _named(tubes: pd.DataFrame, count: int = 5) -> tuple[str, str]:
+    """The first ``count`` tubes with their stability ratio, and how many more."""
+    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:count],
+                                                      tubes["max_stability_ratio"][:count],
+                                                      strict=True))
+    return worst, f" and {len(tubes) - count} more" if len(tubes) > count else ""
+
+
 def instability_lines(tubes) -> list[str]:
     """The first line of ``fretwear bundle``, ``assess``, ``calibrate --bundle`` and the
     bundle's reports when ``fretwear simulate`` flagged tubes unstable (``tubes``: of
@@ -482,10 +490,7 @@ def instability_lines(tubes) -> list[str]:
     if tubes is None or not len(tubes):
         return []
     tubes = pd.DataFrame(tubes)
-    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
-                                                      tubes["max_stability_ratio"][:5],
-                                                      strict=True))
-    more = f" and {len(tubes) - 5} more" if len(tubes) > 5 else ""
+    worst, more = _named(tubes)
     return [f"FLUID-ELASTICALLY UNSTABLE: {len(tubes)} tube(s) flagged by the simulation "
             f"(tubes.csv beside the manifest; stability ratio U_eff/U_c): {worst}{more}. "
             "Above the critical velocity the amplitude is not bounded by the turbulence "
@@ -506,10 +511,7 @@ def near_critical_lines(tubes) -> list[str]:
     if tubes is None or not len(tubes):
         return []
     tubes = pd.DataFrame(tubes)
-    worst = ", ".join(f"{t} ({r:.3g})" for t, r in zip(tubes["tube"][:5],
-                                                      tubes["max_stability_ratio"][:5],
-                                                      strict=True))
-    more = f" and {len(tubes) - 5} more" if len(tubes) > 5 else ""
+    worst, more = _named(tubes)
     threshold = float(tubes["threshold"].iloc[0])
     return [f"NEAR-CRITICAL (fluid-elastic): {len(tubes)} tube(s) with a stability ratio "
             f"U_eff/U_c above the design threshold {threshold:g} but not flagged unstable: "
