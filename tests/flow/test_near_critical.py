@@ -79,7 +79,7 @@ def test_bundle_and_assess_say_the_near_critical_tubes_after_the_bad_news(tmp_pa
 
     code = main(["assess", str(out), str(EXAMPLE / "inspections.csv"), "--interval", "4",
                  "-o", str(tmp_path / "oa"), "--sizing-sigma-mm", "0.05", "--pod-a50-mm",
-                 "0.15", "--pod-a90-mm", "0.30"])
+                 "0.15", "--pod-a90-mm", "0.30", "--report"])
     text = capsys.readouterr().out.splitlines()
     assert code == 0
     at = [i for i, x in enumerate(text) if x.startswith("NEAR-CRITICAL")]
@@ -87,6 +87,9 @@ def test_bundle_and_assess_say_the_near_critical_tubes_after_the_bad_news(tmp_pa
     assert len(at) == 1 and bad and max(bad) < at[0], text
     kept = json.loads((tmp_path / "oa" / "assessment.json").read_text())["inputs"]
     assert {t["tube"] for t in kept["near_critical_tubes"]} == set(row3.index)
+    page = (tmp_path / "oa" / "report.html").read_text(encoding="utf-8")
+    assert page.index("FLUID-ELASTICALLY") < page.index("PREDICTED AGAINST") \
+        < page.index("NEAR-CRITICAL") < page.index("P(any")  # the report: the same order
 
 
 def test_a_bad_threshold_is_a_usage_error(tmp_path, capsys):
