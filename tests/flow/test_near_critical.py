@@ -96,3 +96,17 @@ def test_a_bad_threshold_is_a_usage_error(tmp_path, capsys):
     code = main(["bundle", str(EXAMPLE / "manifest.csv"), "--case", str(EXAMPLE / "bundle.toml"),
                  "--near-critical", "0", "-o", str(tmp_path)])
     assert code == 2 and "--near-critical" in capsys.readouterr().err
+
+
+def test_simulate_says_the_stability_news_even_quiet(tmp_path, capsys):
+    """fretwear simulate -q keeps the unstable count and the NEAR-CRITICAL line (before: -q
+    silenced both with the table); the tubes named are the per-mode table's."""
+    worst = _largest_ratio_per_tube()
+    assert main(["simulate", str(EXAMPLE / "bundle_geometry.toml"), "-o", str(tmp_path / "h"),
+                 "--scheduler", "serial", "-q"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    unstable = int((worst > 1.0).sum())
+    assert lines[0].startswith(f"{unstable} tube(s) fluid-elastically unstable"), lines
+    near = worst[(worst > 0.75) & (worst <= 1.0)]
+    assert lines[1].startswith(f"NEAR-CRITICAL (fluid-elastic): {len(near)} tube(s)"), lines
+    assert lines[2].startswith("done 12, reused 0, failed 0 of 12 tubes") and len(lines) == 3

@@ -70,7 +70,8 @@ def _table(result, console: Console, threshold: float) -> None:
               help="Worker processes of the local cluster (default: one per core).")
 @click.option("--force", is_flag=True, help="Recompute every tube, even unchanged ones.")
 @near_critical_option
-@click.option("-q", "--quiet", is_flag=True, help="No progress bar and no table.")
+@click.option("-q", "--quiet", is_flag=True,
+              help="No progress bar and no table (failures and stability news stay).")
 def command(description: Path, output: Path, scheduler: str | None, workers: int | None,
             force: bool, near_critical: float, quiet: bool) -> int:
     if workers is not None and scheduler is not None and scheduler.lower() != "serial":
@@ -85,15 +86,16 @@ def command(description: Path, output: Path, scheduler: str | None, workers: int
         result = run_simulate(specs, output, scheduler=scheduler, workers=workers, force=force,
                               progress=lambda tube, ok: bar.advance(task))
     flagged = result.tubes()["flagged"].sum()
+    news = Console()  # the failures and the stability news stay with -q (no table then)
     if result.errors:
-        console.print(f"[red]{len(result.errors)} tube(s) failed (in {output / 'errors.csv'}):[/]")
+        news.print(f"[red]{len(result.errors)} tube(s) failed (in {output / 'errors.csv'}):[/]")
         for tube, message in result.errors.items():
-            console.print(f"  {tube}: {message}", markup=False, highlight=False)
+            news.print(f"  {tube}: {message}", markup=False, highlight=False)
     if flagged:
-        console.print(f"[bold red]{flagged} tube(s) fluid-elastically unstable: a mode's "
-                      "stability ratio exceeds the margin (tubes.csv, stability.csv)[/]")
+        news.print(f"[bold red]{flagged} tube(s) fluid-elastically unstable: a mode's "
+                   "stability ratio exceeds the margin (tubes.csv, stability.csv)[/]")
     for line in near_critical_lines(near_critical_tubes(output / "manifest.csv", near_critical)):
-        console.print(line, style="yellow", markup=False, soft_wrap=True)
+        news.print(line, style="yellow", markup=False, soft_wrap=True)
     _table(result, console, near_critical)
     click.echo(f"done {len(result.records) - len(result.reused)}, reused {len(result.reused)}, "
                f"failed {len(result.errors)} of {len(specs)} tubes; manifest in "
