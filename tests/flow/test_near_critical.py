@@ -71,6 +71,12 @@ def test_bundle_and_assess_say_the_near_critical_tubes_after_the_bad_news(tmp_pa
     assert near[0] == len(lines) - 2  # after every bad-news line, before the final line
     assert set(recorded_unstable(out, NEAR_CRITICAL_FILE)["tube"]) == set(expected.index)
 
+    from fretwear.bundle import load
+    from fretwear.report.assessment import render_bundle_report
+
+    page = render_bundle_report(load(out))  # the bundle's report: after the bad news too
+    assert page.index("FLUID-ELASTICALLY") < page.index("NEAR-CRITICAL")
+
     assert main([*args, "--near-critical", "0.9"]) == 0  # user-set: only row 3 (0.957)
     line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("NEAR-"))
     row3 = worst[(worst > 0.9) & (worst <= 1.0)]
