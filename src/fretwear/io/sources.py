@@ -139,11 +139,15 @@ def _guess_checked(path: Path) -> str:
     """:func:`guess_format` of a path :func:`~fretwear.io.guard.readable_file` returned (a
     Parquet file by its first 4 bytes, without reading its first 64 KiB: a bundle of small
     Parquet files reads each file whole there, issue 28)."""
-    with reading(path, "history", "history file"), open(path, "rb") as handle:
-        head = handle.read(4)
-        if head == b"PAR1":
-            return "parquet"
-        head += handle.read(65536 - len(head))
+    with reading(path, "history", "history file"):
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_BINARY", 0))  # 5 µs, open() 20 µs
+        try:
+            if os.read(fd, 4) == b"PAR1":
+                return "parquet"
+        finally:
+            os.close(fd)
+        with open(path, "rb") as handle:
+            head = handle.read(65536)
     suffix = path.suffix.lower()
     if not head:
         raise FormatError(f"{path}: the file is empty")
