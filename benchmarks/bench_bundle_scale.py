@@ -143,7 +143,9 @@ def breakdown(manifest: Path, case: Path, count: int = 500) -> dict[str, float]:
     passes over its first ``count`` contacts: a pyarrow read of the four channels, the wear
     power streamed from the file (fretwear.power.wear_power, as a worker calls it), the wear
     table's columns from that power, and the worker's whole path for a group of contacts
-    (tasks.run_contacts and the pickle of its records). What bounds the run against the read."""
+    (tasks.run_contacts and the pickle of its records); then pyarrow's direct read of the six
+    channels (ParquetFile) and the worker's read with its checks (warnings captured,
+    plausibility, units against the geometry) and power. What bounds the run against the read."""
     import warnings
 
     import pyarrow.parquet as pq
@@ -151,7 +153,8 @@ def breakdown(manifest: Path, case: Path, count: int = 500) -> dict[str, float]:
     from fretwear.bundle.cases import build_task
     from fretwear.bundle.engine import _base_case
     from fretwear.bundle.manifest import read_manifest
-    from fretwear.bundle.tasks import pickled, run_contacts
+    from fretwear.bundle.tasks import captured, pickled, run_contacts
+    from fretwear.io.geometry_units import check_against_geometry
     from fretwear.power import wear_power
     from fretwear.table import wear_table_columns
 
@@ -173,6 +176,25 @@ def breakdown(manifest: Path, case: Path, count: int = 500) -> dict[str, float]:
         for t in tasks:
             wear_power(t.history.path, **wear.power_options)
 
+    def parquet_file():  # pyarrow's direct read of the six channels the case needs
+        for t in tasks:
+            handle = pq.ParquetFile(t.history.path, pre_buffer=False)
+            handle.read(columns=["time", "normal_force", "vt1", "vt2", "dy", "dz"],
+                        use_threads=False)
+            handle.close()
+
+    dims = wear.dimensions
+
+    def geometry(first):  # the worker's check of the first block's units against the tube
+        check_against_geometry(first, mobile_radius=dims.get("mobile_radius"),
+                               obstacle_radius=dims.get("obstacle_radius"))
+
+    def checked_power():  # as tasks._file_table calls it: the checks a worker runs, then power
+        for t in tasks:
+            with captured():
+                wear_power(t.history.path, **wear.power_options, name=t.contact,
+                           first_block=geometry, **t.read_options)
+
     def table():
         for p in powers:
             wear_table_columns(wear, p)
@@ -182,7 +204,9 @@ def breakdown(manifest: Path, case: Path, count: int = 500) -> dict[str, float]:
 
     out = {}
     for name, step in (("pyarrow read", read), ("wear power", power),
-                       ("wear table from the power", table), ("worker's whole path", worker)):
+                       ("wear table from the power", table), ("worker's whole path", worker),
+                       ("ParquetFile read of 6 channels", parquet_file),
+                       ("worker's read + checks + power", checked_power)):
         best = math.inf
         for _ in range(3):
             t0 = time.perf_counter()
@@ -252,9 +276,11 @@ def main(argv: list[str] | None = None) -> None:
         if args.contacts:
             steps = breakdown(manifests[args.small], case)
             ratio = steps["worker's whole path"] / steps["pyarrow read"]
+            checked = steps["worker's read + checks + power"] / steps["pyarrow read"]
             print("a contact in one process (best of 3 over 500): " + ", ".join(
                 f"{name} {1e3 * t:.3f} ms" for name, t in steps.items())
-                + f"; the worker's path is {ratio:.1f}x the read", flush=True)
+                + f"; the worker's path is {ratio:.1f}x the read (its read + checks + power "
+                f"{checked:.2f}x)", flush=True)
         costs = {}
         for n, manifest in manifests.items():
             # a fresh cluster per size: the scheduler's memory of the first size is not the

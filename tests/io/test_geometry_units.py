@@ -118,3 +118,18 @@ def test_the_bundle_terminal_says_units_warnings_one_line_with_counts(tmp_path, 
     assert "2 contacts" in lines[0] and "mm1" in lines[0] and "mm2" in lines[0]
     assert "si," not in lines[0] and "si)" not in lines[0]
     assert math.isfinite(len(out))
+
+
+def test_the_median_of_the_crossings_is_numpys():
+    """``geometry_units.median`` (a partition, used for the zero crossings of dy) equals
+    :func:`numpy.median` bit for bit (one process: the same arithmetic, the middle value or the
+    mean of the two middle ones) on odd and even sizes, ties and values of mixed magnitude."""
+    from fretwear.io.geometry_units import median
+
+    rng = np.random.default_rng(28)
+    for n in [*range(1, 40), 999, 1000, 4096]:
+        for _ in range(20):
+            a = rng.normal(size=n) * 10.0 ** rng.integers(-9, 9, size=n)
+            if n > 4:
+                a[: n // 3] = a[n // 2]  # ties across the middle
+            assert median(a) == float(np.median(a))

@@ -1,14 +1,14 @@
 """The compiled pass of the plausibility checks gives the numbers of the numpy reference.
 
 :func:`fretwear.io._compiled.statistics` (four loops over the channels, used from
-``plausibility._KERNEL_SAMPLES`` samples on when numba is installed) against the numpy
-expressions of :mod:`fretwear.io.plausibility` (the reference, used below that size and
-without numba): the largest squares, the largest force and the contact episodes' durations
-equal bit for bit (a largest force of zero may be -0.0 on one path and 0.0 on the other when
-the forces mix both zeros: no check can tell them apart); the median sampling step, which the
-compiled path computes only when at least half the steps exceed the limit, gives the same
-decision and, when computed, the same value; every message of :func:`check_plausibility` is
-the same on both paths.
+``plausibility._KERNEL_SAMPLES`` samples on when numba is installed, at any size once imported)
+against the numpy expressions of :mod:`fretwear.io.plausibility` (the reference, used below that
+size before the module is imported, and without numba): the largest squares, the largest force
+and the contact episodes' durations equal bit for bit (a largest force of zero may be -0.0 on
+one path and 0.0 on the other when the forces mix both zeros: no check can tell them apart); the
+median sampling step, which the compiled path computes only when at least half the steps exceed
+the limit, gives the same decision and, when computed, the same value; every message of
+:func:`check_plausibility` is the same on both paths.
 """
 
 from __future__ import annotations
@@ -35,10 +35,11 @@ def _both(history, monkeypatch):
     calls = []
     kernel = _compiled.statistics
     monkeypatch.setattr(_compiled, "statistics", lambda *a: calls.append(1) or kernel(*a))
+    monkeypatch.setattr(plausibility, "_KERNEL", False)
     monkeypatch.setattr(plausibility, "_KERNEL_SAMPLES", 0)
     compiled = plausibility._statistics(history)
     assert calls == [1]
-    monkeypatch.setattr(plausibility, "_KERNEL_SAMPLES", 1 << 62)
+    monkeypatch.setattr(plausibility, "_KERNEL", None)  # numpy at any size (the reference)
     reference = plausibility._statistics(history)
     assert calls == [1]
     return compiled, reference
@@ -113,8 +114,9 @@ def test_every_message_is_the_same_on_both_paths(monkeypatch, factors):
     base = _history(7, 20_000)
     history = base.replace(**{k: getattr(base, k) * f for k, f in factors.items()})
     found = []
-    for size in (0, 1 << 62):
-        monkeypatch.setattr(plausibility, "_KERNEL_SAMPLES", size)
+    for kernel in (False, None):  # compiled (imported at the first use), then numpy
+        monkeypatch.setattr(plausibility, "_KERNEL_SAMPLES", 0)
+        monkeypatch.setattr(plausibility, "_KERNEL", kernel)
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             messages = check_plausibility(history)
@@ -157,3 +159,21 @@ def test_contact_episodes_as_impact_durations_finds_them(monkeypatch, force):
     assert np.array_equal(durations, expected)
     if force[:4] == [0, 5, 5, 0]:
         assert durations.tolist() == [t[3] - t[1], t[5] - t[4], t[8] - t[7]]
+
+
+def test_a_short_history_is_compiled_once_the_module_is_imported(monkeypatch):
+    """Below ``_KERNEL_SAMPLES`` the numpy expressions run while the compiled module is not
+    imported (reading a short history alone does not import numba); once it is (a streamed
+    block's checks import it), a 1 000-sample history takes the compiled pass too (issue 28)."""
+    import sys
+
+    from fretwear.io import _compiled
+
+    monkeypatch.setattr(plausibility, "_KERNEL", False)
+    monkeypatch.delitem(sys.modules, "fretwear.io._compiled")
+    assert plausibility._kernel_for(1000) is None
+    assert plausibility._KERNEL is False  # nothing imported
+    monkeypatch.setitem(sys.modules, "fretwear.io._compiled", _compiled)
+    assert plausibility._kernel_for(1000) is _compiled
+    monkeypatch.setattr(plausibility, "_KERNEL", None)  # no numba: numpy at every size
+    assert plausibility._kernel_for(1 << 20) is None

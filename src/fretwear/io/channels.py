@@ -14,6 +14,7 @@ stick flag).
 
 from __future__ import annotations
 
+import functools
 import re
 import warnings
 from collections.abc import Callable, Iterator, Mapping, Sequence
@@ -105,6 +106,13 @@ def channel_of(column: str) -> str | None:
     >>> channel_of("INST"), channel_of("Vint11"), channel_of("DZLOC"), channel_of("NOEUD")
     ('time', 'vt1', 'dz', None)
     """
+    if isinstance(column, str):  # the names of a bundle's files repeat: parsed once each
+        return _channel_of_name(column)
+    return _ALIAS_TO_CHANNEL.get(normalise(column))
+
+
+@functools.lru_cache(maxsize=4096)
+def _channel_of_name(column: str) -> str | None:
     return _ALIAS_TO_CHANNEL.get(normalise(column))
 
 

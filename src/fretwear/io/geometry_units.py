@@ -165,7 +165,26 @@ def _orbit(history) -> float:
     """Half the largest peak-to-peak of ``dy`` and ``dz`` [m] (0 without them)."""
     if history.dy is None:
         return 0.0
-    return 0.5 * max(float(np.ptp(history.dy)), float(np.ptp(history.dz)))
+    dy, dz = history.dy, history.dz
+    return 0.5 * max(float(dy.max() - dy.min()), float(dz.max() - dz.min()))
+
+
+def median(values: np.ndarray) -> float:
+    """The median of a 1-D array of finite values, as :func:`numpy.median` gives it (the middle
+    value of a partition, or the mean of the two middle ones), without its generic machinery
+    (axes, NaN checks: a quarter of its time on the 10³ samples of a bundle's history).
+
+    Examples
+    --------
+    >>> a = np.array([3.0, 1.0, 4.0, 1.5, 9.0, 2.6])
+    >>> median(a) == float(np.median(a)), median(a[:5]) == float(np.median(a[:5]))
+    (True, True)
+    """
+    k = values.size // 2
+    if values.size % 2:
+        return float(np.partition(values, k)[k])
+    part = np.partition(values, (k - 1, k))
+    return float((part[k - 1] + part[k]) / 2.0)
 
 
 def _frequency(history) -> float:
@@ -174,7 +193,7 @@ def _frequency(history) -> float:
     duration = float(history.time[-1] - history.time[0])
     if dy is None or dy.size < 3 or not duration > 0:
         return math.nan
-    sign = np.signbit(dy - np.median(dy))
+    sign = np.signbit(dy - median(dy))
     crossings = int(np.count_nonzero(sign[1:] != sign[:-1]))
     return crossings / (2.0 * duration) if crossings else math.nan
 

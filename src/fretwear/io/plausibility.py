@@ -26,6 +26,7 @@ history 'N12': channel 'vt1': largest sliding speed ‖Vt‖ 50 m/s (read in 'SI
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 from collections.abc import Mapping
 from types import MappingProxyType
@@ -149,13 +150,15 @@ def _statistics(history: ContactHistory) -> tuple[float, float, float, float, np
     (or a value known to be at most the ``time_step`` limit, when fewer than half the steps
     exceed it: the median is then not needed) and the contact episodes' durations [s].
 
-    Compiled (:func:`fretwear.io._compiled.statistics`) on a long history when numba is
-    installed, else numpy; the same numbers either way (but for the sign of a zero force).
+    Compiled (:func:`fretwear.io._compiled.statistics`) when numba is installed and the history
+    is long or the module already imported (:func:`_kernel_for`), else numpy; the same numbers
+    either way (but for the sign of a zero force).
     """
     t, fn = history.time, history.normal_force
     limit = THRESHOLDS["time_step"].limit
-    if t.size >= _KERNEL_SAMPLES and _compiled() is not None:
-        speed2, radial2, fmax, above, durations = _compiled().statistics(
+    kernel = _kernel_for(t.size)
+    if kernel is not None:
+        speed2, radial2, fmax, above, durations = kernel.statistics(
             t, fn, history.vt1, history.vt2, history.dy, history.dz, limit)
         # the median of the m = size - 1 steps exceeds the limit only if at least m // 2 of
         # them do (sorted, the middle one, or both middle ones, would be at most the limit)
@@ -183,6 +186,21 @@ def _compiled():
 
 
 _KERNEL = False
+
+
+def _kernel_for(size: int):
+    """The compiled module for a history of ``size`` samples, or ``None`` (numpy): from
+    :data:`_KERNEL_SAMPLES` samples on when numba is installed, and at any size once the module
+    is imported (a streamed block's checks, :func:`fretwear.io.channels.fast_history`, import
+    it: numba then costs nothing more, and the numpy expressions cost a 1 000-sample block
+    about 0.15 ms, a tenth of a bundle worker's read of the file, issue 28). ``_KERNEL = None``
+    forces numpy (the tests' reference)."""
+    if size >= _KERNEL_SAMPLES or (_KERNEL is False and _COMPILED_MODULE in sys.modules):
+        return _compiled()
+    return _KERNEL or None
+
+
+_COMPILED_MODULE = "fretwear.io._compiled"
 
 
 def _name(history: ContactHistory) -> str:
