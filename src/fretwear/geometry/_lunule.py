@@ -19,12 +19,13 @@ from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the
     _SERIES_TUPLE,
     _out,
     lens_area,
-    lens_area_on_range,
+    lens_area_grid,
     lens_depth_limit,
     lens_half_chord,
     sagitta,
     segment_area,
     solve_monotone,
+    solve_on_grid,
 )
 
 __all__ = ["lunule_areas", "lunule_depths", "lunule_mobile_depth"]
@@ -269,7 +270,8 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
 
     Notes
     -----
-    Solve S(D) = A_m + A_o for D on [0, D_max] (S of :func:`lens_area`, increasing), then split
+    Solve S(D) = A_m + A_o for D on [0, D_max] (S of :func:`lens_area`, increasing; each
+    element from the two points of a grid of S around it, :func:`solve_on_grid`), then split
     D with :func:`lunule_mobile_depth` (share A_m/(A_m + A_o)). With A_o = 0, d_m = D.
 
     References
@@ -286,12 +288,11 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
     ao = np.asarray(area_obstacle, dtype=float)
     am, ao = np.broadcast_arrays(am, ao)
     total = am + ao
-    # lens_area bit for bit, and its values at 0 and D_max, kept for the radii
-    lens, at_zero, at_limit, limit = lens_area_on_range(mobile_radius, obstacle_radius)
+    # lens_area bit for bit, and its grid on [0, D_max], kept for the radii: each element
+    # starts from the grid points around its area (4-5 evaluations instead of 13 or more)
+    lens, grid = lens_area_grid(mobile_radius, obstacle_radius)
     with np.errstate(invalid="ignore", divide="ignore"):
-        depth = solve_monotone(lambda d: lens(d.ravel()).reshape(d.shape), total,
-                               np.zeros_like(total), np.full_like(total, limit),
-                               bound_values=(at_zero, at_limit))
+        depth = solve_on_grid(lambda d: lens(d.ravel()).reshape(d.shape), total, grid)
         share = np.where(total > 0.0, am / total, 1.0)
     dm = lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share)
     dm = np.asarray(dm, dtype=float)

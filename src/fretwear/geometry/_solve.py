@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 
 from fretwear._lazy import compiled_when_used
 
-__all__ = ["solve_monotone"]
+__all__ = ["MonotoneGrid", "monotone_grid", "solve_monotone", "solve_on_grid"]
 
 
 def _out(array):
@@ -257,3 +258,61 @@ def _chandrupatla_advance(index, active, x1, f1, x2, f2, x3, f3, t, xt, values, 
 
 #: (:func:`_chandrupatla_advance`,) compiled when a solve first asks, None without numba.
 _step_kernel = compiled_when_used(_chandrupatla_advance)
+
+
+class MonotoneGrid(NamedTuple):
+    """Points of a non-decreasing function on its whole bracket, for :func:`solve_on_grid`:
+    ``x`` from the lower to the upper end, ``f`` = func(x) strictly increasing (points where the
+    function's rounding does not increase are left out). Units those of the function."""
+
+    x: np.ndarray
+    f: np.ndarray
+
+
+def monotone_grid(func: Callable, upper: float, bound_values: tuple[float, float],
+                  points: int = 2048, smallest: float = 1e-10) -> MonotoneGrid:
+    """The grid of a non-decreasing ``func`` on [0, ``upper``] for :func:`solve_on_grid`:
+    0, then ``points`` depths log-spaced from ``smallest``·upper to ``upper`` (a ratio of
+    about 1.011 between neighbours), ``func`` evaluated once on all of them; ``bound_values``
+    (func(0), func(upper)) as the solver on [0, upper] would take them. Made once per set of
+    dimensions (kept by the geometry's cache), it costs one call of ``func`` on its points.
+
+    Examples
+    --------
+    >>> g = monotone_grid(lambda x: x**3, 4.0, (0.0, 64.0), points=8)
+    >>> float(g.x[0]), float(g.x[-1]), float(g.f[-1]), g.x.size
+    (0.0, 4.0, 64.0, 9)
+    """
+    x = np.concatenate([[0.0], upper * np.logspace(np.log10(smallest), 0.0, points)[:-1],
+                        [upper]])
+    with np.errstate(all="ignore"):
+        f = np.asarray(func(x), dtype=float)
+    f[0], f[-1] = bound_values
+    keep = np.isfinite(f)
+    keep[1:] &= f[1:] > np.maximum.accumulate(np.where(keep, f, -np.inf))[:-1]
+    keep[[0, -1]] = True
+    return MonotoneGrid(x[keep], f[keep])
+
+
+def solve_on_grid(func: Callable, target, grid: MonotoneGrid, rtol: float = 1e-12,
+                  atol: float = 0.0, *, compiled: bool = True):
+    """:func:`solve_monotone` of func(x) = target on the grid's whole bracket [x₀, x_last],
+    each element starting from the two neighbouring grid points around its target (found by
+    ``np.searchsorted`` on the grid's values, their values known): a bracket about 1 % wide
+    instead of the whole range, so about half the evaluations of ``func``.
+
+    The root is the one :func:`solve_monotone` finds on the whole bracket to its tolerance
+    (``rtol``, ``atol``): NaN where the target is NaN or outside [f(x₀), f(x_last)], the bracket's
+    end where the target is its value.
+
+    Examples
+    --------
+    >>> g = monotone_grid(lambda x: x**3, 4.0, (0.0, 64.0))
+    >>> x = solve_on_grid(lambda x: x**3, np.array([8.0, 27.0, 100.0, 64.0]), g)
+    >>> np.round(x, 11).tolist()
+    [2.0, 3.0, nan, 4.0]
+    """
+    target = np.asarray(target, dtype=float)
+    at = np.clip(np.searchsorted(grid.f, target, side="right"), 1, grid.f.size - 1)
+    return solve_monotone(func, target, grid.x[at - 1], grid.x[at], rtol=rtol, atol=atol,
+                          bound_values=(grid.f[at - 1], grid.f[at]), compiled=compiled)
