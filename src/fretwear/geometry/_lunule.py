@@ -204,7 +204,8 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
     Solves A_m(d_m; D) = share · S(D) for d_m in [0, D] (A_m of :func:`lunule_areas`, increasing
     in d_m: a deeper mobile share flattens the common arc, r grows from R_m to R_o) with
     :func:`solve_monotone`. The target is formed from the same function at d_m = D, so that the
-    bracket holds it exactly.
+    bracket holds it exactly. Where every share is 0 or 1, no solve: D or 0 (NaN beyond the lens
+    range, where the chord is not defined).
 
     References
     ----------
@@ -225,6 +226,9 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
     x = lens_half_chord(mobile_radius, obstacle_radius, depth)
     limit = lens_depth_limit(mobile_radius, obstacle_radius)
     x = np.where(depth <= limit * (1.0 + 1e-12), np.minimum(x, mobile_radius), np.nan)
+    if ((share >= 1.0) | (share <= 0.0)).all():  # no split: D or 0 within the lens range
+        dm = np.where(share >= 1.0, depth, 0.0)
+        return _out(np.where(np.isnan(x), np.nan, dm))
     seg_m = segment_area(mobile_radius, x)
     s_m = sagitta(mobile_radius, x)
 
