@@ -238,18 +238,21 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
         whole = mobile_area(depth)
         # f(0) is 0 up to rounding: the target is kept inside [f(0), f(D)] so that a tiny
         # share returns d_m = 0 rather than NaN.
-        target = np.clip(np.clip(share, 0.0, 1.0) * whole, mobile_area(np.zeros_like(depth)),
-                         whole)
-        # a share of 0 or 1 is answered below: the solver (element-wise) runs on the others
+        none = mobile_area(np.zeros_like(depth))
+        target = np.clip(np.clip(share, 0.0, 1.0) * whole, none, whole)
+        # a share of 0 or 1 is answered below: the solver (element-wise) runs on the others,
+        # from the bracket's values f(0) and f(D) computed here
         split = ~((share >= 1.0) | (share <= 0.0))
         if depth.ndim == 0 or split.all():
-            dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
+            dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth,
+                                bound_values=(none, whole))
         else:
             dm = np.zeros(depth.shape)
             if split.any():
                 dm[split] = solve_monotone(
                     _mobile_area(x[split], s_m[split], seg_m[split]), target[split],
-                    np.zeros(int(split.sum())), depth[split])
+                    np.zeros(int(split.sum())), depth[split],
+                    bound_values=(none[split], whole[split]))
     dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
     dm = np.where(np.isnan(whole), np.nan, dm)
     return _out(dm)
