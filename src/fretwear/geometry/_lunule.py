@@ -55,7 +55,8 @@ def _mobile_area(x, s_m, seg_m):
         return area
     ratios_of, areas_of = kernels
     shape = np.shape(x)
-    xs, sms, segs = (np.ascontiguousarray(np.broadcast_to(a, shape), dtype=float).ravel()
+    xs, sms, segs = (np.ascontiguousarray(a if np.shape(a) == shape else
+                                          np.broadcast_to(a, shape), dtype=float).ravel()
                      for a in (x, s_m, seg_m))
 
     def compiled_area(dm):

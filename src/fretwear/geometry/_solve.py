@@ -107,9 +107,7 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
             f_lo = evaluate(lo) - target
             f_hi = evaluate(hi) - target
         else:
-            f_lo, f_hi = (np.asarray(v, dtype=float) - target if np.ndim(v) == 0 else
-                          np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
-                          for v in bound_values)
+            f_lo, f_hi = (_flat(v, shape) - target for v in bound_values)
         root = np.full(target.size, np.nan)
         root = np.where(f_lo == 0.0, lo, root)
         root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)
@@ -127,6 +125,15 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
                             target[index], rtol, atol, max_iter)
     root = root.reshape(shape)
     return _out(root)
+
+
+def _flat(value, shape) -> np.ndarray:
+    """``value`` as a float array of ``shape``, flat (a scalar stays 0-d; broadcast only where
+    its shape differs: broadcast_to costs more than the rest of a small solve's step)."""
+    value = np.asarray(value, dtype=float)
+    if value.ndim == 0:
+        return value
+    return value.ravel() if value.shape == shape else np.broadcast_to(value, shape).ravel()
 
 
 def _numpy_steps(evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goal, rtol, atol,
