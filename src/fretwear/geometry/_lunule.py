@@ -297,7 +297,7 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
     am, ao = np.broadcast_arrays(am, ao)
     total = am + ao
     # lens_area bit for bit, and its grid on [0, D_max], kept for the radii: each element
-    # starts from the grid points around its area (4-5 evaluations instead of 13 or more)
+    # starts from the grid points around its area (about 5 evaluations instead of 13 to 37)
     lens, grid = lens_area_grid(mobile_radius, obstacle_radius)
     with np.errstate(invalid="ignore", divide="ignore"):
         depth = solve_on_grid(lambda d: lens(d.ravel()).reshape(d.shape), total, grid)

@@ -277,12 +277,15 @@ class MonotoneGrid(NamedTuple):
 
 
 def monotone_grid(func: Callable, upper: float, bound_values: tuple[float, float],
-                  points: int = 2048, smallest: float = 1e-10) -> MonotoneGrid:
+                  points: int = 128, smallest: float = 1e-10) -> MonotoneGrid:
     """The grid of a non-decreasing ``func`` on [0, ``upper``] for :func:`solve_on_grid`:
     0, then ``points`` depths log-spaced from ``smallest``·upper to ``upper`` (a ratio of
-    about 1.011 between neighbours), ``func`` evaluated once on all of them; ``bound_values``
+    about 1.2 between neighbours), ``func`` evaluated once on all of them; ``bound_values``
     (func(0), func(upper)) as the solver on [0, upper] would take them. Made once per set of
-    dimensions (kept by the geometry's cache), it costs one call of ``func`` on its points.
+    dimensions (kept by the geometry's cache), it costs one call of ``func`` on its points:
+    for the lens, about 0.04 ms, what one table's solve saves (5 evaluations from the grid
+    against 13 to 37 on [0, D_max]), so that contacts of dimensions all their own pay no more
+    than before.
 
     Examples
     --------
@@ -305,8 +308,8 @@ def solve_on_grid(func: Callable, target, grid: MonotoneGrid, rtol: float = 1e-1
                   atol: float = 0.0, *, compiled: bool = True):
     """:func:`solve_monotone` of func(x) = target on the grid's whole bracket [x₀, x_last],
     each element starting from the two neighbouring grid points around its target (found by
-    ``np.searchsorted`` on the grid's values, their values known): a bracket about 1 % wide
-    instead of the whole range, so about half the evaluations of ``func``.
+    ``np.searchsorted`` on the grid's values, their values known): a bracket about 20 % wide
+    instead of the whole range: about 5 evaluations of ``func`` instead of 13 to 37.
 
     The root is the one :func:`solve_monotone` finds on the whole bracket to its tolerance
     (``rtol``, ``atol``): NaN where the target is NaN or outside [f(x₀), f(x_last)], the bracket's
