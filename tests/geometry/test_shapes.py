@@ -193,6 +193,23 @@ def test_lunule_round_trip_and_limits():
     assert np.isnan(beyond[0]) and np.isnan(beyond[1])
 
 
+def test_lunule_split_of_shares_zero_and_one_alone_or_beside_a_split():
+    """Shares of 0 and 1 only (no solve: D or 0) give what they give beside a share to split
+    (the solved path), NaN beyond the lens range (1.01 D_max, NaN) included; and the whole lens
+    is the mobile's at share 1 (lunule_areas, an independent relation)."""
+    limit = float(lens_depth_limit(RM, RO))
+    depth = np.array([0.0, 1e-9, 1e-6, 0.5 * limit, limit, 1.01 * limit, np.nan, 2e-5])
+    share = np.array([1.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 0.0])
+    alone = lunule_mobile_depth(RM, RO, depth, share)
+    beside = lunule_mobile_depth(RM, RO, np.append(depth, 1e-5), np.append(share, 0.5))
+    assert np.array_equal(alone, beside[:-1], equal_nan=True)
+    assert np.isnan(alone[5:7]).all() and alone[[0, 1, 4, 7]].tolist() == [0.0] * 4
+    assert alone[[2, 3]].tolist() == depth[[2, 3]].tolist()
+    am, ao = lunule_areas(RM, RO, alone[:5], depth[:5] - alone[:5])
+    assert np.allclose(am + ao, lens_area(RM, RO, depth[:5]), rtol=1e-13, atol=0)
+    assert not am[share[:5] == 0].any() and not ao[share[:5] == 1].any()
+
+
 def test_stacked_lens_area_is_lens_area_bit_for_bit():
     """The solvers' lens area (both segments in one call) against the public lens_area."""
     from fretwear.geometry._shapes import lens_area, lens_depth_limit, stacked_lens_area

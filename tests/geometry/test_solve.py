@@ -1,5 +1,6 @@
-"""The geometry relations' solver (fretwear.geometry._solve.solve_monotone): its compiled
-steps against its numpy steps, bit for bit, and both against roots known in closed form.
+"""The geometry relations' solver (fretwear.geometry._solve.solve_monotone, and solve_on_grid
+starting each element from a grid): its compiled steps against its numpy steps, bit for bit,
+and both against roots known in closed form.
 
 Sources: x³ = y, √x = y, eˣ − 1 = y inverted by hand; the cases without a root (target outside
 [f(lower), f(upper)]: NaN), a NaN target, a function NaN beyond a point, flat steps, an
@@ -15,7 +16,7 @@ import pytest
 
 from fretwear._numba import HAVE_NUMBA
 from fretwear.geometry._shapes import lens_area
-from fretwear.geometry._solve import solve_monotone
+from fretwear.geometry._solve import monotone_grid, solve_monotone, solve_on_grid
 
 FUNCTIONS = {
     "cube": lambda x: x**3,
@@ -68,6 +69,45 @@ def test_roots_known_in_closed_form(compiled):
     out = solve_monotone(lambda x: x, np.array([2.0, np.nan, 0.0, 1.0]), 0.0, 1.0,
                          compiled=compiled)
     assert np.isnan(out[:2]).all() and out[2:].tolist() == [0.0, 1.0]
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_roots_from_the_grid_are_the_closed_form_roots(compiled):
+    """solve_on_grid (each element from the grid points around its target) against the
+    closed-form inverses x = ∛y, y², ln(1 + y), at the solver's tolerance; the bracket's ends and
+    the cases without a root as solve_monotone on the whole bracket: NaN outside [f(0), f(1)]
+    and for a NaN target, the end itself where the target is its value."""
+    y = np.concatenate([[1e-30, 1e-12, 1e-9], np.geomspace(1e-6, 0.999, 50)])
+    for func, inverse, rtol in ((lambda x: x**3, np.cbrt, 1e-12), (np.sqrt, np.square, 1e-12),
+                                (np.expm1, np.log1p, 1e-14)):
+        grid = monotone_grid(func, 1.0, (float(func(0.0)), float(func(1.0))))
+        assert grid.x.size == 129 and (np.diff(grid.f) > 0).all()
+        found = solve_on_grid(func, y, grid, rtol=rtol, compiled=compiled)
+        assert found == pytest.approx(inverse(y), rel=10 * rtol, abs=1e-300)
+        full = solve_monotone(func, y, 0.0, 1.0, rtol=rtol, compiled=compiled)
+        assert found == pytest.approx(full, rel=10 * rtol, abs=1e-300)
+    grid = monotone_grid(lambda x: x, 1.0, (0.0, 1.0))
+    out = solve_on_grid(lambda x: x, np.array([2.0, -1.0, np.nan, 0.0, 1.0]), grid,
+                        compiled=compiled)
+    assert np.isnan(out[:3]).all() and out[3:].tolist() == [0.0, 1.0]
+
+
+def test_the_grid_leaves_out_points_where_the_function_does_not_increase():
+    """A function flat at first (rounding to 0 below 1e-3, as a relation's rounding near 0 may
+    be) and constant on [0.5, 0.6]: the grid keeps 0, the increasing points and the upper end, so
+    that np.searchsorted finds a bracket whose ends hold the target; the roots are the
+    function's inverse (y, and y + 0.1 above 0.5) at the solver's tolerance, 0 and 1 at the
+    ends."""
+    def func(x):
+        return np.where(x < 1e-3, 0.0, np.where(x < 0.5, x, np.maximum(x - 0.1, 0.5)))
+
+    grid = monotone_grid(func, 1.0, (0.0, 0.9))
+    assert grid.x[0] == 0.0 and grid.x[-1] == 1.0 and grid.f[-1] == 0.9
+    assert (np.diff(grid.f) > 0).all() and np.isfinite(grid.f).all()
+    assert grid.x[1] >= 1e-3 and ((grid.x > 0.5) & (grid.x <= 0.6)).sum() <= 1
+    y = np.array([2e-3, 0.1, 0.3, 0.49, 0.55, 0.8, 0.0, 0.9])
+    assert solve_on_grid(func, y, grid) == pytest.approx(
+        [2e-3, 0.1, 0.3, 0.49, 0.65, 0.9, 0.0, 1.0], rel=1e-12)
 
 
 @pytest.mark.parametrize("compiled", [False, True])
@@ -133,8 +173,10 @@ def test_lunule_compiled_is_the_numpy_lunule_bit_for_bit(monkeypatch):
     monkeypatch.setattr(_lunule, "_kernels", lambda: None)
     monkeypatch.setattr(_shapes, "_lens_kernels", lambda: None)
     monkeypatch.setattr(_shapes, "_lens_area_on_range", _shapes._lens_area_on_range.__wrapped__)
+    monkeypatch.setattr(_shapes, "_lens_area_grid", _shapes._lens_area_grid.__wrapped__)
     assert _lunule._mobile_area(*cases[0][2:5]).__name__ == "area"
     assert _shapes.lens_area_on_range(1.0, 2.0)[0].__name__ == "area"
+    assert _shapes.lens_area_grid(1.0, 2.0)[0].__name__ == "area"
     plain = run()
     assert len(compiled) == len(plain)
     for a, b in zip(compiled, plain, strict=True):
@@ -176,6 +218,8 @@ def test_enco_compiled_is_the_numpy_enco_bit_for_bit(monkeypatch):
     rng.bit_generator.state = state
     monkeypatch.setattr(enco, "_enco_kernels", lambda: None)
     monkeypatch.setattr(enco, "_enco_volume_on_range", enco._enco_volume_on_range.__wrapped__)
+    monkeypatch.setattr(enco, "_enco_volume_grid", enco._enco_volume_grid.__wrapped__)
+    assert enco._enco_volume_grid(1.0, 2.0, 1.0, 10.0, 0.0, 1)[0].__name__ == "volume"
     plain = run()
     for a, b in zip(compiled, plain, strict=True):
         if isinstance(a, tuple):

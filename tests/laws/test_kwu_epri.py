@@ -189,6 +189,31 @@ def test_streaming_matches_whole_record():
         acc.update(h.time[:2], h.normal_force[:2], h.sliding_speed[:2])
 
 
+def test_accumulator_result_kept_only_while_counts_and_factors_are_the_same():
+    """result() keeps its last statistics (a wear table per contact asks once per table): the
+    kept one is the whole record's (kwu_epri_statistics, an independent pass); new counts or
+    other factors give new statistics; a result that warns (force above force_max) warns at
+    every call."""
+    h = designed_history()
+    acc = KwuEpriAccumulator(50.0, 0.5)
+    acc.update(h.time[:6], h.normal_force[:6], h.sliding_speed[:6])
+    first = acc.result(k=4.0)
+    assert acc.result(k=4.0) is first
+    other = acc.result(k=6.0)
+    assert other is not first and other.k == 6.0 and acc.result(k=4.0) is not other
+    acc.update(h.time[6:], h.normal_force[6:], h.sliding_speed[6:])
+    whole = kwu_epri_statistics(h, force_max=50.0, speed_max=0.5, k=4.0)
+    after = acc.result(k=4.0)
+    assert after.intensity == pytest.approx(whole.intensity, rel=1e-15)
+    np.testing.assert_allclose(after.class_time, whole.class_time, rtol=1e-15)
+    assert after.intensity != first.intensity
+    low = KwuEpriAccumulator(0.5 * float(h.normal_force.max()), 0.5)
+    low.update(h.time, h.normal_force, h.sliding_speed)
+    for _ in range(2):
+        with pytest.warns(LawWarning, match="above"):
+            low.result()
+
+
 def test_two_pass_chunks_matches_direct():
     h = designed_history()
     pieces = [{"time": h.time[i:i + 4], "normal_force": h.normal_force[i:i + 4],

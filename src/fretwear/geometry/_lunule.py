@@ -19,12 +19,13 @@ from fretwear.geometry._shapes import (  # noqa: F401 - lens_area is used by the
     _SERIES_TUPLE,
     _out,
     lens_area,
-    lens_area_on_range,
+    lens_area_grid,
     lens_depth_limit,
     lens_half_chord,
     sagitta,
     segment_area,
     solve_monotone,
+    solve_on_grid,
 )
 
 __all__ = ["lunule_areas", "lunule_depths", "lunule_mobile_depth"]
@@ -54,7 +55,8 @@ def _mobile_area(x, s_m, seg_m):
         return area
     ratios_of, areas_of = kernels
     shape = np.shape(x)
-    xs, sms, segs = (np.ascontiguousarray(np.broadcast_to(a, shape), dtype=float).ravel()
+    xs, sms, segs = (np.ascontiguousarray(a if np.shape(a) == shape else
+                                          np.broadcast_to(a, shape), dtype=float).ravel()
                      for a in (x, s_m, seg_m))
 
     def compiled_area(dm):
@@ -203,7 +205,8 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
     Solves A_m(d_m; D) = share · S(D) for d_m in [0, D] (A_m of :func:`lunule_areas`, increasing
     in d_m: a deeper mobile share flattens the common arc, r grows from R_m to R_o) with
     :func:`solve_monotone`. The target is formed from the same function at d_m = D, so that the
-    bracket holds it exactly.
+    bracket holds it exactly. Where every share is 0 or 1, no solve: D or 0 (NaN beyond the lens
+    range, where the chord is not defined).
 
     References
     ----------
@@ -224,6 +227,9 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
     x = lens_half_chord(mobile_radius, obstacle_radius, depth)
     limit = lens_depth_limit(mobile_radius, obstacle_radius)
     x = np.where(depth <= limit * (1.0 + 1e-12), np.minimum(x, mobile_radius), np.nan)
+    if ((share >= 1.0) | (share <= 0.0)).all():  # no split: D or 0 within the lens range
+        dm = np.where(share >= 1.0, depth, 0.0)
+        return _out(np.where(np.isnan(x), np.nan, dm))
     seg_m = segment_area(mobile_radius, x)
     s_m = sagitta(mobile_radius, x)
 
@@ -233,18 +239,21 @@ def lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share):
         whole = mobile_area(depth)
         # f(0) is 0 up to rounding: the target is kept inside [f(0), f(D)] so that a tiny
         # share returns d_m = 0 rather than NaN.
-        target = np.clip(np.clip(share, 0.0, 1.0) * whole, mobile_area(np.zeros_like(depth)),
-                         whole)
-        # a share of 0 or 1 is answered below: the solver (element-wise) runs on the others
+        none = mobile_area(np.zeros_like(depth))
+        target = np.clip(np.clip(share, 0.0, 1.0) * whole, none, whole)
+        # a share of 0 or 1 is answered below: the solver (element-wise) runs on the others,
+        # from the bracket's values f(0) and f(D) computed here
         split = ~((share >= 1.0) | (share <= 0.0))
         if depth.ndim == 0 or split.all():
-            dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth)
+            dm = solve_monotone(mobile_area, target, np.zeros_like(depth), depth,
+                                bound_values=(none, whole))
         else:
             dm = np.zeros(depth.shape)
             if split.any():
                 dm[split] = solve_monotone(
                     _mobile_area(x[split], s_m[split], seg_m[split]), target[split],
-                    np.zeros(int(split.sum())), depth[split])
+                    np.zeros(int(split.sum())), depth[split],
+                    bound_values=(none[split], whole[split]))
     dm = np.where(share >= 1.0, depth, np.where(share <= 0.0, 0.0, dm))
     dm = np.where(np.isnan(whole), np.nan, dm)
     return _out(dm)
@@ -269,7 +278,8 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
 
     Notes
     -----
-    Solve S(D) = A_m + A_o for D on [0, D_max] (S of :func:`lens_area`, increasing), then split
+    Solve S(D) = A_m + A_o for D on [0, D_max] (S of :func:`lens_area`, increasing; each
+    element from the two points of a grid of S around it, :func:`solve_on_grid`), then split
     D with :func:`lunule_mobile_depth` (share A_m/(A_m + A_o)). With A_o = 0, d_m = D.
 
     References
@@ -286,12 +296,11 @@ def lunule_depths(mobile_radius, obstacle_radius, area_mobile, area_obstacle):
     ao = np.asarray(area_obstacle, dtype=float)
     am, ao = np.broadcast_arrays(am, ao)
     total = am + ao
-    # lens_area bit for bit, and its values at 0 and D_max, kept for the radii
-    lens, at_zero, at_limit, limit = lens_area_on_range(mobile_radius, obstacle_radius)
+    # lens_area bit for bit, and its grid on [0, D_max], kept for the radii: each element
+    # starts from the grid points around its area (about 5 evaluations instead of 13 to 37)
+    lens, grid = lens_area_grid(mobile_radius, obstacle_radius)
     with np.errstate(invalid="ignore", divide="ignore"):
-        depth = solve_monotone(lambda d: lens(d.ravel()).reshape(d.shape), total,
-                               np.zeros_like(total), np.full_like(total, limit),
-                               bound_values=(at_zero, at_limit))
+        depth = solve_on_grid(lambda d: lens(d.ravel()).reshape(d.shape), total, grid)
         share = np.where(total > 0.0, am / total, 1.0)
     dm = lunule_mobile_depth(mobile_radius, obstacle_radius, depth, share)
     dm = np.asarray(dm, dtype=float)

@@ -26,7 +26,12 @@ from collections.abc import Callable
 import numpy as np
 
 from fretwear._lazy import compiled_when_used
-from fretwear.geometry._solve import _out, solve_monotone  # noqa: F401 - re-exported
+from fretwear.geometry._solve import (  # noqa: F401 - re-exported
+    _out,
+    monotone_grid,
+    solve_monotone,
+    solve_on_grid,
+)
 
 __all__ = [
     "frustum_volume",
@@ -311,6 +316,21 @@ def _lens_area_on_range(mobile_radius: float, obstacle_radius: float):
     with np.errstate(invalid="ignore"):
         at_zero, at_limit = area(np.array([0.0, limit]))
     return area, float(at_zero), float(at_limit), limit
+
+
+def lens_area_grid(mobile_radius: float, obstacle_radius: float):
+    """(:func:`lens_area_on_range`'s area function, its
+    :func:`~fretwear.geometry._solve.monotone_grid` on [0, D_max]) [m², m], made once per
+    pair of radii (the last 256 kept): a solver of S(D) = A starts each element from the grid
+    points around its area
+    (:func:`~fretwear.geometry._solve.solve_on_grid`)."""
+    return _lens_area_grid(float(mobile_radius), float(obstacle_radius))
+
+
+@functools.lru_cache(maxsize=256)
+def _lens_area_grid(mobile_radius: float, obstacle_radius: float):
+    area, at_zero, at_limit, limit = _lens_area_on_range(mobile_radius, obstacle_radius)
+    return area, monotone_grid(area, limit, (at_zero, at_limit))
 
 
 def lens_range(mobile_radius, obstacle_radius) -> float:

@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 
 from fretwear._lazy import compiled_when_used
 
-__all__ = ["solve_monotone"]
+__all__ = ["MonotoneGrid", "monotone_grid", "solve_monotone", "solve_on_grid"]
 
 
 def _out(array):
@@ -106,9 +107,7 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
             f_lo = evaluate(lo) - target
             f_hi = evaluate(hi) - target
         else:
-            f_lo, f_hi = (np.asarray(v, dtype=float) - target if np.ndim(v) == 0 else
-                          np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() - target
-                          for v in bound_values)
+            f_lo, f_hi = (_flat(v, shape) - target for v in bound_values)
         root = np.full(target.size, np.nan)
         root = np.where(f_lo == 0.0, lo, root)
         root = np.where((f_hi == 0.0) & np.isnan(root), hi, root)
@@ -126,6 +125,15 @@ def solve_monotone(func: Callable, target, lower, upper, rtol: float = 1e-12,
                             target[index], rtol, atol, max_iter)
     root = root.reshape(shape)
     return _out(root)
+
+
+def _flat(value, shape) -> np.ndarray:
+    """``value`` as a float array of ``shape``, flat (a scalar stays 0-d; broadcast only where
+    its shape differs: broadcast_to costs more than the rest of a small solve's step)."""
+    value = np.asarray(value, dtype=float)
+    if value.ndim == 0:
+        return value
+    return value.ravel() if value.shape == shape else np.broadcast_to(value, shape).ravel()
 
 
 def _numpy_steps(evaluate, x_eval, root, index, lo, hi, f_lo, f_hi, goal, rtol, atol,
@@ -257,3 +265,64 @@ def _chandrupatla_advance(index, active, x1, f1, x2, f2, x3, f3, t, xt, values, 
 
 #: (:func:`_chandrupatla_advance`,) compiled when a solve first asks, None without numba.
 _step_kernel = compiled_when_used(_chandrupatla_advance)
+
+
+class MonotoneGrid(NamedTuple):
+    """Points of a non-decreasing function on its whole bracket, for :func:`solve_on_grid`:
+    ``x`` from the lower to the upper end, ``f`` = func(x) strictly increasing (points where the
+    function's rounding does not increase are left out). Units those of the function."""
+
+    x: np.ndarray
+    f: np.ndarray
+
+
+def monotone_grid(func: Callable, upper: float, bound_values: tuple[float, float],
+                  points: int = 128, smallest: float = 1e-10) -> MonotoneGrid:
+    """The grid of a non-decreasing ``func`` on [0, ``upper``] for :func:`solve_on_grid`:
+    0, then ``points`` depths log-spaced from ``smallest``·upper to ``upper`` (a ratio of
+    about 1.2 between neighbours), ``func`` evaluated once on all of them; ``bound_values``
+    (func(0), func(upper)) as the solver on [0, upper] would take them. Made once per set of
+    dimensions (kept by the geometry's cache), it costs one call of ``func`` on its points:
+    for the lens, about 0.04 ms, what one table's solve saves (5 evaluations from the grid
+    against 13 to 37 on [0, D_max]), so that contacts of dimensions all their own pay no more
+    than before.
+
+    Examples
+    --------
+    >>> g = monotone_grid(lambda x: x**3, 4.0, (0.0, 64.0), points=8)
+    >>> float(g.x[0]), float(g.x[-1]), float(g.f[-1]), g.x.size
+    (0.0, 4.0, 64.0, 9)
+    """
+    x = np.concatenate([[0.0], upper * np.logspace(np.log10(smallest), 0.0, points)[:-1],
+                        [upper]])
+    with np.errstate(all="ignore"):
+        f = np.asarray(func(x), dtype=float)
+    f[0], f[-1] = bound_values
+    keep = np.isfinite(f)
+    keep[1:] &= f[1:] > np.maximum.accumulate(np.where(keep, f, -np.inf))[:-1]
+    keep[[0, -1]] = True
+    return MonotoneGrid(x[keep], f[keep])
+
+
+def solve_on_grid(func: Callable, target, grid: MonotoneGrid, rtol: float = 1e-12,
+                  atol: float = 0.0, *, compiled: bool = True):
+    """:func:`solve_monotone` of func(x) = target on the grid's whole bracket [x₀, x_last],
+    each element starting from the two neighbouring grid points around its target (found by
+    ``np.searchsorted`` on the grid's values, their values known): a bracket about 20 % wide
+    instead of the whole range: about 5 evaluations of ``func`` instead of 13 to 37.
+
+    The root is the one :func:`solve_monotone` finds on the whole bracket to its tolerance
+    (``rtol``, ``atol``): NaN where the target is NaN or outside [f(x₀), f(x_last)], the bracket's
+    end where the target is its value.
+
+    Examples
+    --------
+    >>> g = monotone_grid(lambda x: x**3, 4.0, (0.0, 64.0))
+    >>> x = solve_on_grid(lambda x: x**3, np.array([8.0, 27.0, 100.0, 64.0]), g)
+    >>> np.round(x, 11).tolist()
+    [2.0, 3.0, nan, 4.0]
+    """
+    target = np.asarray(target, dtype=float)
+    at = np.clip(np.searchsorted(grid.f, target, side="right"), 1, grid.f.size - 1)
+    return solve_monotone(func, target, grid.x[at - 1], grid.x[at], rtol=rtol, atol=atol,
+                          bound_values=(grid.f[at - 1], grid.f[at]), compiled=compiled)

@@ -37,7 +37,8 @@ from fretwear.geometry._shapes import (
     lens_area,
     lens_depth_limit,
     lens_range,
-    solve_monotone,
+    monotone_grid,
+    solve_on_grid,
     stacked_lens_area,
 )
 from fretwear.geometry.base import ContactGeometry
@@ -190,7 +191,9 @@ def enco_depth(volume, mobile_radius, obstacle_radius, width, isthmus_angle, til
     Notes
     -----
     V(D) is increasing (S' is), so the root is bracketed by [0, D_max] and found by the
-    vectorised Chandrupatla solver (:func:`~fretwear.geometry._shapes.solve_monotone`).
+    vectorised Chandrupatla solver (:func:`~fretwear.geometry._shapes.solve_monotone`), each
+    element from the two points around its volume of a grid of V on [0, D_max] made once per
+    dimensions (:func:`~fretwear.geometry._solve.solve_on_grid`).
 
     References
     ----------
@@ -206,11 +209,10 @@ def enco_depth(volume, mobile_radius, obstacle_radius, width, isthmus_angle, til
     True
     """
     v = np.asarray(volume, dtype=float)
-    func, at_zero, at_limit, limit = _enco_volume_on_range(
+    func, grid = _enco_volume_grid(
         float(mobile_radius), float(obstacle_radius), float(width), float(isthmus_angle),
         float(tilt_angle), int(edges))
-    depth = solve_monotone(func, v, np.zeros_like(v), np.full_like(v, limit), rtol=rtol,
-                           bound_values=(at_zero, at_limit))
+    depth = solve_on_grid(func, v, grid, rtol=rtol)
     depth = np.where(v == 0.0, 0.0, np.asarray(depth, dtype=float))
     return _out(depth)
 
@@ -227,6 +229,18 @@ def _enco_volume_on_range(mobile_radius: float, obstacle_radius: float, width: f
     with np.errstate(invalid="ignore"):
         at_zero, at_limit = func(np.array([0.0, limit]))
     return func, float(at_zero), float(at_limit), limit
+
+
+@functools.lru_cache(maxsize=256)
+def _enco_volume_grid(mobile_radius: float, obstacle_radius: float, width: float,
+                      isthmus_angle: float, tilt_angle: float, edges: int):
+    """(:func:`_stacked_enco_volume` of the dimensions, its
+    :func:`~fretwear.geometry._solve.monotone_grid` on [0, D_max]) [m³, m], made once per
+    dimensions (the last 256 kept): enco_depth's solver starts each element from the grid
+    points around its volume (:func:`~fretwear.geometry._solve.solve_on_grid`)."""
+    func, at_zero, at_limit, limit = _enco_volume_on_range(
+        mobile_radius, obstacle_radius, width, isthmus_angle, tilt_angle, edges)
+    return func, monotone_grid(func, limit, (at_zero, at_limit))
 
 
 def _stacked_enco_volume(mobile_radius, obstacle_radius, width, isthmus_angle, tilt_angle=0.0,

@@ -16,6 +16,7 @@ Three situations:
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import warnings
 from typing import ClassVar
@@ -28,7 +29,8 @@ from fretwear.geometry._shapes import (
     frustum_volume,
     lens_area,
     lens_depth_limit,
-    solve_monotone,
+    monotone_grid,
+    solve_on_grid,
 )
 from fretwear.geometry.base import ContactGeometry
 
@@ -75,6 +77,22 @@ def tilted_lunule_volume(depth, mobile_radius, obstacle_radius, width, tilt):
     """
     return frustum_volume(lambda d: lens_area(mobile_radius, obstacle_radius, d),
                           depth, width, tilt)
+
+
+@functools.lru_cache(maxsize=256)
+def _tilted_grid(mobile_radius: float, obstacle_radius: float, width: float, tilt: float):
+    """(:func:`tilted_lunule_volume` of the dimensions as a function of D, its
+    :func:`~fretwear.geometry._solve.monotone_grid` on [0, D_max]) [m³, m], made once per
+    dimensions (the last 256 kept): the depth solve starts each element from the grid points
+    around its volume (:func:`~fretwear.geometry._solve.solve_on_grid`)."""
+    def func(depth):
+        return np.asarray(tilted_lunule_volume(depth, mobile_radius, obstacle_radius, width,
+                                               tilt), dtype=float)
+
+    limit = float(lens_depth_limit(mobile_radius, obstacle_radius))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ends = func(np.array([0.0, limit]))
+    return func, monotone_grid(func, limit, (float(ends[0]), float(ends[1])))
 
 
 @dataclasses.dataclass(frozen=True)
@@ -172,9 +190,8 @@ class TubeAlesage(ContactGeometry):
         if theta == 0.0:
             return lunule_depths(rm, ro, volume_mobile / (2.0 * l), volume_obstacle / (2.0 * l))
         total = volume_mobile + volume_obstacle
-        limit = self.max_depth
-        depth = solve_monotone(lambda d: tilted_lunule_volume(d, rm, ro, l, theta), total / 2.0,
-                               np.zeros_like(total), np.full_like(total, limit))
+        func, grid = _tilted_grid(float(rm), float(ro), float(l), float(theta))
+        depth = solve_on_grid(func, total / 2.0, grid)
         with np.errstate(invalid="ignore", divide="ignore"):
             share = np.where(total > 0.0, volume_mobile / total, 1.0)
         dm = np.asarray(lunule_mobile_depth(rm, ro, depth, share), dtype=float)

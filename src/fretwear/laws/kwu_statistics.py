@@ -265,8 +265,21 @@ class KwuEpriAccumulator:
 
     def result(self, *, impact_factor: float = 1.0, sliding_factor: float = 1.0, k: float = 5.0,
                c: float = 10.0) -> KwuEpriStatistics:
-        """The :class:`KwuEpriStatistics` of the counts so far (factors as kwu_epri_statistics)."""
-        return _statistics(self, impact_factor, sliding_factor, k, c)
+        """The :class:`KwuEpriStatistics` of the counts so far (factors as kwu_epri_statistics).
+
+        The last result is kept while the counts and factors stay the same (its arrays are
+        read-only; a wear table per contact asks once per table), unless it warned: a warning
+        is said again at every call."""
+        key = (impact_factor, sliding_factor, k, c, self.force_max, self.speed_max,
+               self.samples, self.window_time, self.time_above_max, self.first_time,
+               self._last, self.class_time.tobytes())
+        kept = self.__dict__.get("_kept")
+        if kept is not None and kept[0] == key:
+            return kept[1]
+        out = _statistics(self, impact_factor, sliding_factor, k, c)
+        if out.contact_time > 0 and out.time_above_max == 0:  # it did not warn
+            self._kept = (key, out)
+        return out
 
 
 @dataclass(frozen=True, eq=False)

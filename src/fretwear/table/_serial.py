@@ -87,11 +87,11 @@ def jsonable(value: Any) -> Any:
 _FLOAT64 = np.dtype(np.float64)
 
 
-def _rows(rows: pd.DataFrame) -> dict[str, list]:
+def _rows(rows: pd.DataFrame, dtypes=None) -> dict[str, list]:
     """The rows' columns, dtype names and values as JSON-ready lists (NaN as None): the values
     of ``jsonable(rows[c].tolist())`` per column, in one numpy pass when every column is
-    float64 (a restart table's rows)."""
-    dtypes = list(rows.dtypes)
+    float64 (a restart table's rows). ``dtypes``: the columns' dtypes, when known."""
+    dtypes = list(rows.dtypes if dtypes is None else dtypes)
     columns = [str(c) for c in rows.columns]
     if dtypes and all(t is _FLOAT64 for t in dtypes):  # (numpy's one float64 dtype)
         values = rows.to_numpy(dtype=float).T.tolist()
@@ -111,7 +111,7 @@ def state_to_dict(state: InitialState) -> dict[str, Any]:
         "sector_volume_mobile": jsonable(state.sector_volume_mobile),
         "sector_volume_obstacle": jsonable(state.sector_volume_obstacle),
         "edges": jsonable(state.edges),
-        "rows": _rows(state.rows),
+        "rows": _rows(state.rows, state.row_dtypes),
     }
 
 

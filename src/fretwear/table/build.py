@@ -189,7 +189,7 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
     state = case.restart.table
     frame = None
     if state is not None and len(state.rows):
-        frame = _after_rows(state.rows, columns)
+        frame = _after_rows(state.rows, columns, state.row_dtypes)
     limit = None
     if case.wall.thickness is not None:
         wall, limit = _wall(case, columns if frame is None else frame, model)
@@ -362,15 +362,16 @@ class _Clock:
         return np.zeros(self.n, bool) if fresh is None else self.elapsed >= fresh
 
 
-def _after_rows(rows: pd.DataFrame, columns: dict) -> pd.DataFrame:
+def _after_rows(rows: pd.DataFrame, columns: dict, dtypes=None) -> pd.DataFrame:
     """The initial table's rows (reindexed to the run's columns, NaN where they lack one) then
     the run's: ``pd.concat([rows.reindex(columns=...), _frame(columns)], ignore_index=True)``,
     built from the float columns directly when every one is float64 (a restart of a table
-    without sectors: 0.11 -> 0.02 ms), by that concat otherwise."""
+    without sectors: 0.11 -> 0.02 ms), by that concat otherwise. ``dtypes``: the rows'
+    dtypes, when known (:attr:`InitialState.row_dtypes`)."""
     names = list(columns)
     new = [np.asarray(columns[c]) for c in names]
     if (rows.columns.is_unique and all(a.dtype == np.float64 and a.ndim == 1 for a in new)
-            and all(t == np.float64 for t in rows.dtypes)):
+            and all(t == np.float64 for t in (rows.dtypes if dtypes is None else dtypes))):
         block = rows.to_numpy()  # (taking columns one by one deep-copies the rows' attrs)
         at = {c: i for i, c in enumerate(rows.columns)}
         blank = np.full(len(rows), np.nan)
