@@ -162,8 +162,9 @@ def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
     coordinates = _contact_coordinates(info, ids)
     width = np.array(ids).dtype  # the contact ids' one text type, as the whole Dataset's
     start = 0
+    labels = np.array(ids, dtype=width)
     for group in _contact_groups(pq.ParquetFile(path)):
-        ds = _grid_dataset(group, sector_mode, np.array(ids, dtype=width)[start:], grid)
+        ds = _grid_dataset(group, sector_mode, labels[start:], grid)
         if ds is None:  # not laid out as the grid: through pandas' MultiIndex
             ds = require("xarray").Dataset(_variables(group, sector_mode))
         order = ids[start:start + ds.sizes["contact"]]
