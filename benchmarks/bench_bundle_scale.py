@@ -26,7 +26,10 @@ A whole steam generator (issue 28): ``--contacts N`` runs ``N / 10`` and ``N`` c
   run and the restart; goal under 2 GB at 10^5 contacts), and its rise over the process's
   memory before the run;
 * the cost per contact (goal at 10^5 no more than 1.1x that at 10^4) and the restart's seconds
-  (goal under 30 s at 10^5).
+  (goal under 30 s at 10^5);
+* the CPU this process (the client and the local cluster's scheduler) used during the run, per
+  contact until the last result and in seconds after it: what the client takes from the
+  workers' cores on a small machine.
 
 The machine's load average is printed before and after: on a shared machine the two sizes
 can be run at different loads.
@@ -216,6 +219,13 @@ def breakdown(manifest: Path, case: Path, count: int = 500) -> dict[str, float]:
     return out
 
 
+def _cpu_seconds() -> float:
+    """CPU seconds (user + system) this process has used: the client, the local cluster's
+    scheduler and their event loop, every thread (not the worker processes, its children)."""
+    times = os.times()
+    return times.user + times.system
+
+
 def measure(manifest: Path, case: Path, client, output: Path
             ) -> tuple[float, float, float, PeakMemory]:
     """Seconds of (the run, its part after the last result, the restart), and the client's
@@ -225,14 +235,17 @@ def measure(manifest: Path, case: Path, client, output: Path
 
     def timed(*args, **kwargs):
         marks["assemble"] = time.perf_counter()
+        marks["cpu"] = _cpu_seconds()
         return assemble(*args, **kwargs)
 
     engine_module.assemble = timed
     try:
         with PeakMemory() as memory:
+            cpu0 = _cpu_seconds()
             t0 = time.perf_counter()
             result = run_bundle(manifest, case, scheduler=client, output=output)
             end = time.perf_counter()
+            memory.cpu = (_cpu_seconds() - cpu0, marks["cpu"] - cpu0)
             if result.stats["done"] != result.stats["contacts"]:
                 raise SystemExit(f"{result.stats['failed']} contacts failed: "
                                  f"{result.errors.head()}")
@@ -302,6 +315,10 @@ def main(argv: list[str] | None = None) -> None:
                       f"({memory.start / 2**30:.2f} GB before the run; "
                       f"{(memory.peak - memory.start) / n / 1e3:.1f} kB a contact; goal under "
                       "2 GB)", flush=True)
+            cpu, to_tail = memory.cpu
+            print(f"  this process (client + scheduler) used {cpu:.2f} s of CPU during the run "
+                  f"({100 * cpu / run:.0f} % of a core; {1e3 * to_tail / n:.3f} ms a contact "
+                  f"until the last result, {cpu - to_tail:.2f} s after it)", flush=True)
             shutil.rmtree(directory / f"out{n}", ignore_errors=True)
         small, large = costs[args.small], costs[args.large]
         names = ("run", "after the last result", "restart")

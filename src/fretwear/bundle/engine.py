@@ -48,6 +48,7 @@ from fretwear.bundle.tasks import (
     run_contacts,
     time_bounds,
 )
+from fretwear.bundle.worker_parts import PartTarget, run_contacts_into, written_by_worker
 from fretwear.errors import KeywordError
 from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.workflows.case_files import load_case, validate_case
@@ -398,6 +399,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         try:
             tag = uuid.uuid4().hex[:8]
             handles = {}
+            targets = None
+            targets_of: dict[int, PartTarget] = {}  # a group's part, written by its worker
             whole = []
             for task in pending:
                 try:
@@ -424,15 +427,34 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             else:
                 groups = deal(whole, len(sizes))
                 keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
+                targets = _part_targets(store, groups, part_size)
                 mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
-                                    retries=retries)
-            for handle, group in zip(mapped, groups, strict=True):
+                                    retries=retries) if targets is None else \
+                    engine.map(run_contacts_into, list(zip(groups, targets, strict=True)),
+                               chunk_size, keys=keys, retries=retries)
+            for k, (handle, group) in enumerate(zip(mapped, groups, strict=True)):
                 handles[id(handle)] = (handle, group)
+                if targets is not None:
+                    targets_of[id(handle)] = targets[k]
             streaming = (store is not None or progress is not None
                          or len(pending) > GATHER_AT_END)
             for handle, value in engine.results([h for h, _ in handles.values()], streaming):
                 group = handles[id(handle)][1]
                 values = value if isinstance(value, list) else [value] * len(group)
+                target = targets_of.pop(id(handle), None)
+                if target is not None and any(written_by_worker(v, target) for v in values):
+                    # the rows in the worker's file: the part's records written at once
+                    part = [_kept(one if isinstance(one, dict) else _failed(task, one),
+                                  earlier.get(task.contact))
+                            for task, one in zip(group, values, strict=True)]
+                    store.record_part([r for r in part if r["status"] != "stale"],
+                                      target.stem, target.rows_file)
+                    for rec in part:
+                        records[rec["contact"]] = rec
+                        done_count += 1
+                        if progress is not None:
+                            progress(done_count, total, rec)
+                    continue
                 for task, one in zip(group, values, strict=True):
                     rec = _kept(one if isinstance(one, dict) else _failed(task, one),
                                 earlier.get(task.contact))
@@ -461,6 +483,18 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         raise _interrupted(store, records, buffer, total, previous, man,
                            {t.contact for t in pending}) from exc
+
+
+def _part_targets(store: OutputDirectory | None, groups: list[list[ContactTask]],
+                  part_size: int) -> list[PartTarget] | None:
+    """Each group's part, its rows written by its worker (:mod:`fretwear.bundle.worker_parts`),
+    where there is an output directory and a group is no larger than ``part_size``; else
+    None (the client writes the parts)."""
+    if store is None or not groups or max(len(g) for g in groups) > part_size:
+        return None
+    token = store.share_with_workers()
+    return [PartTarget(str(store.parts), store.new_stem(), store.table_format, token)
+            for _ in groups]
 
 
 def _flush(store: OutputDirectory, buffer: list[dict[str, Any]]) -> None:

@@ -152,7 +152,7 @@ def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
     grid = _full_grid(pq.read_table(path, columns=keys, read_dictionary=["contact"]))
     if grid is None:
         return False
-    present, sector_mode = grid
+    present, sector_mode = grid[:2]
     done = _done(contacts)
     done = done.assign(contact=done["contact"].astype(str))
     ids = [c for c in done["contact"] if c in present]
@@ -162,8 +162,11 @@ def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
     coordinates = _contact_coordinates(info, ids)
     width = np.array(ids).dtype  # the contact ids' one text type, as the whole Dataset's
     start = 0
+    labels = np.array(ids, dtype=width)
     for group in _contact_groups(pq.ParquetFile(path)):
-        ds = require("xarray").Dataset(_variables(group, sector_mode))
+        ds = _grid_dataset(group, sector_mode, labels[start:], grid)
+        if ds is None:  # not laid out as the grid: through pandas' MultiIndex
+            ds = require("xarray").Dataset(_variables(group, sector_mode))
         order = ids[start:start + ds.sizes["contact"]]
         ds = ds.reindex(contact=np.array(order, dtype=width))
         ds = ds.assign_coords({name: ("contact", values[start:start + len(order)])
@@ -177,10 +180,54 @@ def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
     return start == len(ids)
 
 
-def _full_grid(keys) -> tuple[set[str], bool] | None:
-    """``(the contacts, sector mode)`` of a table's ``contact``, ``instant`` (and ``sector``)
-    columns (Arrow, ``contact`` dictionary-encoded) when every contact has every instant (and
-    every sector at each, no row without one); None otherwise."""
+def _grid_dataset(group: pd.DataFrame, sector_mode: bool, ids: np.ndarray, grid):
+    """:func:`_variables` of a group of whole contacts laid out as the table writes them on a
+    full grid (``grid``, :func:`_full_grid`): the contacts ``ids[:n]`` one after the other,
+    each the instants in increasing order, each (in sector mode) the sectors in increasing
+    order. Each column is then reshaped to ``(contact, instant[, sector])`` as it is, where
+    ``set_index(...).to_xarray()`` sorted a MultiIndex and unstacked it (0.85 s of the 4 s
+    the Dataset took at 10^4 contacts). None where the group is laid out otherwise or has a
+    column that is not a numpy number: the caller goes through :func:`_variables`."""
+    _, _, instants, sectors = grid
+    wear = [c for c in group.columns if c in COLUMNS and c not in ("instant", "sector")]
+    if any(group[c].dtype.kind not in "fiub" or not isinstance(group[c].dtype, np.dtype)
+           for c in wear):
+        return None
+    per = len(instants) * (len(sectors) if sector_mode else 1)
+    n, rest = divmod(len(group), per)
+    if rest or n == 0 or n > len(ids):
+        return None
+    ids = ids[:n]
+    layout = [("contact", group["contact"].to_numpy(dtype=object), np.repeat(ids, per)),
+              ("instant", group["instant"].to_numpy(),
+               np.tile(np.repeat(instants, per // len(instants)), n))]
+    if sector_mode:
+        layout.append(("sector", group["sector"].to_numpy(),
+                       np.tile(sectors, n * len(instants))))
+    if not all(np.array_equal(got.astype(want.dtype), want) for _, got, want in layout):
+        return None
+    shape = (n, len(instants), len(sectors)) if sector_mode else (n, len(instants))
+    dims = ("contact", "instant", "sector")[:len(shape)]
+    coords = {"contact": ids, "instant": instants}
+    if sector_mode:
+        coords["sector"] = sectors.astype(int)
+    data = {}
+    for c in wear:
+        values = group[c].to_numpy().reshape(shape)
+        if c not in _sector_columns():
+            data[c] = (dims[:2], values[:, :, 0] if sector_mode else values)
+        elif sector_mode and c in _SECTOR_ONLY:
+            data[c] = (("contact", "sector"), values[:, 0, :])
+        elif sector_mode:
+            data[c] = (dims, values)
+    return require("xarray").Dataset(data, coords=coords)
+
+
+def _full_grid(keys) -> tuple[set[str], bool, np.ndarray, np.ndarray | None] | None:
+    """``(the contacts, sector mode, the instants, the sectors)`` of a table's ``contact``,
+    ``instant`` (and ``sector``) columns (Arrow, ``contact`` dictionary-encoded) when every
+    contact has every instant (and every sector at each, no row without one), the instants and
+    sectors increasing (the sectors None out of sector mode); None otherwise."""
     if keys.num_rows == 0:
         return None
     contact = keys.column("contact").combine_chunks()
@@ -206,7 +253,8 @@ def _full_grid(keys) -> tuple[set[str], bool] | None:
     flat = np.ravel_multi_index(cells, [len(names), *sizes[1:]])
     if np.unique(flat).size != len(codes) or len(codes) != int(np.prod(sizes)):
         return None
-    return {str(names[c]) for c in used}, bool(sector_mode)
+    return ({str(names[c]) for c in used}, bool(sector_mode), instants,
+            sectors if sector_mode else None)
 
 
 def _contact_groups(table_file):

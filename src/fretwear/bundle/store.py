@@ -40,6 +40,8 @@ from fretwear.io.atomic import atomic_path, atomic_write
 from fretwear.table.schema import FLOAT_FORMAT
 
 TABLE_FORMATS = ("parquet", "csv")
+#: Marker file of a run's ``parts/`` that workers check (``.shared-<token>``, worker_parts).
+MARKER = ".shared-"
 DATASET_FORMATS = ("zarr", "netcdf")
 
 
@@ -253,18 +255,37 @@ class OutputDirectory:
                                        "attrs": self.compact(rec.get("attrs"))}
         return out
 
-    def write_part(self, records: list[dict[str, Any]]) -> str:
-        """Write one part (rows, then records); returns its stem."""
+    def new_stem(self) -> str:
+        """The next part's stem (``part-<run>-<n>``: the parts of a run sort in order)."""
         stem = f"part-{self._run}-{self._seq:06d}"
         self._seq += 1
+        return stem
+
+    def share_with_workers(self) -> str:
+        """Write the marker by which a worker knows it sees this directory
+        (:mod:`fretwear.bundle.worker_parts`); returns its token."""
+        token = f"{self._run}-{os.getpid()}"
+        (self.parts / f"{MARKER}{token}").write_text(token, encoding="utf-8")
+        return token
+
+    def write_part(self, records: list[dict[str, Any]]) -> str:
+        """Write one part (rows, then records); returns its stem."""
+        stem = self.new_stem()
         kept = [r for r in records if r.get("table") is not None]
         rows_file = None
         if kept:
             rows_file = f"{stem}.{self.table_format}"
             frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
             write_frame(frame, self.parts / rows_file, self.table_format)
+        return self.record_part(records, stem, rows_file)
+
+    def record_part(self, records: list[dict[str, Any]], stem: str, rows_file: str | None
+                    ) -> str:
+        """Write the JSON of the part ``stem`` whose rows file ``rows_file`` (in ``parts/``)
+        is written: the part exists from then on; returns ``stem``."""
         meta = {"part": stem, "rows_file": rows_file,
-                "contacts": [{k: v for k, v in r.items() if k not in ("table", "state")}
+                "contacts": [{k: v for k, v in r.items()
+                              if k not in ("table", "state", "rows_file", "part")}
                              for r in records]}
         # one line, by json.dumps: its C encoder (json.dump to a file, or any indent, takes
         # the pure-Python one: 0.2 s for the records of 500 contacts)
@@ -384,6 +405,8 @@ class OutputDirectory:
         for p in self.parts.glob("part-*"):
             if p.name.split(".")[0] not in keep:
                 p.unlink(missing_ok=True)
+        for p in self.parts.glob(f"{MARKER}*"):  # the workers' markers (worker_parts)
+            p.unlink(missing_ok=True)
 
     def table_path(self) -> Path:
         """The final table's file, ``table.<format>``."""
