@@ -1,4 +1,4 @@
-"""The bundle's CSV table: :func:`fretwear.bundle.store.write_csv` against pandas' ``to_csv``
+"""The bundle's CSV table: :func:`fretwear.bundle.csv_table.write_csv` against pandas' ``to_csv``
 (``float_format=FLOAT_FORMAT``), the same bytes, in the same run (issue 28: the CSV table of
 20 000 contacts, 506 MB, took 57 s).
 
@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from fretwear.bundle.store import write_csv
+from fretwear.bundle.csv_table import write_csv
 from fretwear.table.schema import FLOAT_FORMAT
 
 WEAR = ("power", "volume_mobile", "volume_obstacle", "depth_mobile", "depth_obstacle",

@@ -138,14 +138,14 @@ def test_a_restart_from_csv_parts_keeps_a_contact_named_like_a_missing_value(tmp
 
 
 def test_the_csv_writer_writes_what_pandas_writes_byte_for_byte(tmp_path):
-    """store.write_csv (each column's distinct values formatted once, lines joined by pyarrow;
+    """csv_table.write_csv (each column's distinct values formatted once, lines joined by pyarrow;
     issue 28: the CSV table of 20 000 contacts took 57 s) writes the bytes of
     ``DataFrame.to_csv(index=False, float_format=FLOAT_FORMAT)``: floats with NaN, inf, -0.0
     and 0.0 (distinct bits, distinct texts), 0.1 + 0.2 and 1/3 (17 digits), integers, nullable
     integers with <NA>, booleans, texts with a comma, a quote, a new line, empty and missing
     ones, a column of nothing; a column pandas formats its own way (dates, floats among
     objects) leaves the whole frame to pandas, with the same bytes."""
-    from fretwear.bundle.store import write_csv
+    from fretwear.bundle.csv_table import write_csv
 
     pytest.importorskip("pyarrow")
     frame = pd.DataFrame({
