@@ -29,7 +29,11 @@ A whole steam generator (issue 28): ``--contacts N`` runs ``N / 10`` and ``N`` c
   (goal under 30 s at 10^5);
 * the CPU this process (the client and the local cluster's scheduler) used during the run, per
   contact until the last result and in seconds after it: what the client takes from the
-  workers' cores on a small machine.
+  workers' cores on a small machine;
+* the CPU the workers used (every child process of this one: the cluster's nannies and
+  workers), and the run's whole CPU (workers + this process) divided by the workers' cores:
+  the least time this design could take on the machine, a bound set by the CPU the contacts
+  cost and not by how the work is shared out, printed against the read.
 
 The machine's load average is printed before and after: on a shared machine the two sizes
 can be run at different loads.
@@ -226,6 +230,21 @@ def _cpu_seconds() -> float:
     return times.user + times.system
 
 
+def _children_cpu() -> float:
+    """CPU seconds (user + system) used so far by this process's children and their children:
+    the local cluster's nannies and workers (psutil; a process gone meanwhile counts 0)."""
+    import psutil
+
+    total = 0.0
+    for child in psutil.Process().children(recursive=True):
+        try:
+            times = child.cpu_times()
+        except psutil.Error:
+            continue
+        total += times.user + times.system
+    return total
+
+
 def measure(manifest: Path, case: Path, client, output: Path
             ) -> tuple[float, float, float, PeakMemory]:
     """Seconds of (the run, its part after the last result, the restart), and the client's
@@ -241,11 +260,12 @@ def measure(manifest: Path, case: Path, client, output: Path
     engine_module.assemble = timed
     try:
         with PeakMemory() as memory:
-            cpu0 = _cpu_seconds()
+            cpu0, workers0 = _cpu_seconds(), _children_cpu()
             t0 = time.perf_counter()
             result = run_bundle(manifest, case, scheduler=client, output=output)
             end = time.perf_counter()
             memory.cpu = (_cpu_seconds() - cpu0, marks["cpu"] - cpu0)
+            memory.workers_cpu = _children_cpu() - workers0
             if result.stats["done"] != result.stats["contacts"]:
                 raise SystemExit(f"{result.stats['failed']} contacts failed: "
                                  f"{result.errors.head()}")
@@ -319,6 +339,12 @@ def main(argv: list[str] | None = None) -> None:
             print(f"  this process (client + scheduler) used {cpu:.2f} s of CPU during the run "
                   f"({100 * cpu / run:.0f} % of a core; {1e3 * to_tail / n:.3f} ms a contact "
                   f"until the last result, {cpu - to_tail:.2f} s after it)", flush=True)
+            least = (cpu + memory.workers_cpu) / args.workers
+            print(f"  the workers used {memory.workers_cpu:.2f} s of CPU "
+                  f"({1e3 * memory.workers_cpu / n:.3f} ms a contact); all the run's CPU shared "
+                  f"perfectly over {args.workers} cores: {least:.2f} s, the least this design "
+                  "takes on this machine" + (f" = {least / floor:.2f}x the read" if floor
+                                             else ""), flush=True)
             shutil.rmtree(directory / f"out{n}", ignore_errors=True)
         small, large = costs[args.small], costs[args.large]
         names = ("run", "after the last result", "restart")
