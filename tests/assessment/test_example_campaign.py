@@ -76,14 +76,14 @@ def test_calibration_recovers_the_true_factor_within_its_interval(example):
 def test_calibration_recovers_the_factor_from_a_technique_that_sees_the_example(
         example, monkeypatch, tmp_path):
     """The shipped campaign's bobbin technique (POD a50 0.05 mm) sees none of the example's
-    scars: the bundle simulated from its flow wears 0-9 µm in 10 years (median 0.26 µm), so
+    scars: the bundle simulated from its flow wears 0-6.5 µm in 10 years (median 1.0 µm), so
     every inspected contact is NDD and the calibration returns close to its prior (the test
     above cannot tell an estimator that learns from one that does not). Here the same script
     draws a campaign from the same truth (factor 1.6, contact scatter 0.35, seed 2026) with a
     technique scaled to those depths (sizing sigma 0.1 µm, POD a50 0.3 µm, a90 0.6 µm, depths
     in 0.001 % of the wall: no field technique, a probe of the estimator): the calibration
     must learn, its 90 % interval around 1.6 and less than half the prior's width in ln f
-    (drawn from 4.0 instead, it gives 3.92 [3.17, 4.84]). Oracle: the truth drawn."""
+    (drawn from 4.0 instead, it gives 4.02 [3.39, 4.76]). Oracle: the truth drawn."""
     models, identity = example
     script = _script()
     monkeypatch.setattr(script, "SIZING_SIGMA", 0.1e-6)

@@ -10,12 +10,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
 from fretwear.cli import main
 from fretwear.errors import InputError, KeywordError
-from fretwear.flow.bundle import MANIFEST_COLUMNS, run_simulate
+from fretwear.flow.bundle import MANIFEST_COLUMNS, run_simulate, simulate_tube
 from fretwear.flow.description import read_description
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "bundle"
@@ -126,3 +127,32 @@ def test_a_failing_tube_is_isolated(tmp_path, capsys):
     errors = pd.read_csv(out / "errors.csv")
     assert list(errors["tube"]) == ["R2C1"] and "outside the tube" in errors["error"][0]
     assert set(pd.read_csv(out / "manifest.csv")["contact"]) == {"R1C1-AVB1", "R1C1-AVB2"}
+
+
+def test_a_tube_gaps_and_power_do_not_depend_on_the_bundle_size(tmp_path):
+    """R4C1 is the same tube in a 4x3 and a 4x1 bundle with the same seed: its drawn gaps
+    (per-contact streams default_rng([seed, row, column, k])) and so its simulated wear power
+    are the same. Before the fix one shared stream drew the 4x3 bundle's 24 gaps in order, and
+    R4C1's gaps were the 19th-20th draws in 4x3 but the 7th-8th in 4x1 (independent check: the
+    same stream drawn by hand). Both runs are in one process on one machine: 1e-12 relative."""
+    text = (EXAMPLE / "bundle_geometry.toml").read_text(encoding="utf-8")
+    text = text.replace("duration_s = 0.7", "duration_s = 0.2")
+    wide, narrow = tmp_path / "wide.toml", tmp_path / "narrow.toml"
+    wide.write_text(text, encoding="utf-8")
+    narrow.write_text(text.replace("columns = 3\n", "columns = 1\n"), encoding="utf-8")
+    a = {s.tube: s for s in read_description(wide)}["R4C1"]
+    b = {s.tube: s for s in read_description(narrow)}["R4C1"]
+    gaps_a = [c["gap_m"] for c in a.supports]
+    gaps_b = [c["gap_m"] for c in b.supports]
+    np.testing.assert_allclose(gaps_a, gaps_b, rtol=1e-12)
+    assert len(set(gaps_a)) == 2   # drawn, distinct
+    median, sigma = 10e-6, 0.8     # bundle_geometry.toml's lognormal gaps
+    by_hand = [median * np.exp(sigma * np.random.default_rng([2026, 4, 1, k]).standard_normal())
+               for k in (1, 2)]
+    np.testing.assert_allclose(gaps_a, by_hand, rtol=1e-12)
+    power_a = simulate_tube(a, tmp_path / "a")["wear_power_w"]
+    power_b = simulate_tube(b, tmp_path / "b")["wear_power_w"]
+    assert power_a.keys() == power_b.keys()
+    for name in power_a:
+        assert power_a[name] > 0
+        assert power_b[name] == pytest.approx(power_a[name], rel=1e-12)

@@ -314,6 +314,12 @@ def _regions(flow: dict, rows: int, lengths: list[float]) -> dict[int, list[tupl
 def read_description(path: str | Path) -> list[TubeSpec]:
     """The tubes of a bundle description (TOML), gaps drawn with its seed.
 
+    Each drawn gap [m] of the contact (row, column, support k) has its own random stream,
+    ``np.random.default_rng([seed, row, column, k])`` (rows, columns and supports counted
+    from 1, supports in file order): a tube's gaps, like its force seed
+    ``seed * 100003 + 1000 * row + column``, depend on the seed and on the tube's place only,
+    not on the bundle's size (R4C1 is the same tube in a 4x1 and a 4x3 bundle).
+
     Examples
     --------
     >>> from pathlib import Path
@@ -354,7 +360,6 @@ def read_description(path: str | Path) -> list[TubeSpec]:
     seed = top["seed"]
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise InputError(f"seed: expected an integer >= 0, got {seed!r}")
-    rng = np.random.default_rng(seed)
     specs = []
     for row in range(1, rows + 1):
         rho_ext = float(np.mean([r[3] for r in regions[row]]))
@@ -371,7 +376,8 @@ def read_description(path: str | Path) -> list[TubeSpec]:
                 contacts.append({
                     "name": str(sup["name"]), "position_m": pos,
                     "obstacle": SUPPORT_TYPES[sup["type"]], "type": sup["type"],
-                    "gap_m": _gap(sup["gap_m"], f"{where}.gap_m", rng),
+                    "gap_m": _gap(sup["gap_m"], f"{where}.gap_m",
+                                  np.random.default_rng([seed, row, col, k])),
                     **{key: _number(sup[key], f"{where}.{key}", nonnegative=True) for key in (
                         "normal_stiffness_n_m", "normal_damping_n_s_m",
                         "tangential_stiffness_n_m", "tangential_damping_n_s_m", "friction")}})
