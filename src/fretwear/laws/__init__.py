@@ -11,6 +11,7 @@
 SI units: power [W], duration [s], volume [m³], Archard coefficients [Pa⁻¹].
 """
 
+from fretwear.laws.kwu_history import kwu_epri_statistics, kwu_epri_statistics_from_chunks
 from fretwear.laws.kwu_statistics import (
     IMPACT_MASK,
     N_CLASSES,
@@ -18,8 +19,6 @@ from fretwear.laws.kwu_statistics import (
     KwuEpriAccumulator,
     KwuEpriStatistics,
     force_classes,
-    kwu_epri_statistics,
-    kwu_epri_statistics_from_chunks,
     speed_classes,
 )
 from fretwear.laws.kwu_stream import KwuEpriMaxima

@@ -11,12 +11,10 @@ from typing import Any
 import numpy as np
 
 from fretwear.errors import KeywordError, LawWarning
+from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.laws import models
-from fretwear.laws.kwu_statistics import (
-    DEFAULT_CHUNK_SIZE,
-    KwuEpriStatistics,
-    kwu_epri_statistics,
-)
+from fretwear.laws.kwu_history import kwu_epri_statistics
+from fretwear.laws.kwu_statistics import KwuEpriStatistics
 
 #: Marker of a parameter without default (the user must give it).
 REQUIRED = None
