@@ -63,6 +63,17 @@ _CSV_MISSING = ("", "#N/A", "#N/A N/A", "#NA", "-1.#IND", "-1.#QNAN", "-NaN", "-
                 "1.#QNAN", "<NA>", "N/A", "NA", "NULL", "NaN", "None", "n/a", "nan", "null")
 
 
+def write_rows(records: list[dict[str, Any]], path: Path, fmt: str) -> list[dict[str, Any]]:
+    """Write the rows of the records that carry a table (``table``, as
+    :func:`fretwear.bundle.tasks.pack` lays it out) end to end as one rows file ``path``
+    (:func:`write_frame`); returns those records (none: nothing written)."""
+    kept = [r for r in records if r.get("table") is not None]
+    if kept:
+        frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
+        write_frame(frame, path, fmt)
+    return kept
+
+
 def read_frame(path: Path) -> pd.DataFrame:
     """Read a table written by :func:`write_frame` (a CSV's ``contact`` ids as text, none of
     them missing)."""
@@ -183,13 +194,9 @@ class OutputDirectory:
     def write_part(self, records: list[dict[str, Any]]) -> str:
         """Write one part (rows, then records); returns its stem."""
         stem = self.new_stem()
-        kept = [r for r in records if r.get("table") is not None]
-        rows_file = None
-        if kept:
-            rows_file = f"{stem}.{self.table_format}"
-            frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
-            write_frame(frame, self.parts / rows_file, self.table_format)
-        return self.record_part(records, stem, rows_file)
+        rows_file = f"{stem}.{self.table_format}"
+        written = write_rows(records, self.parts / rows_file, self.table_format)
+        return self.record_part(records, stem, rows_file if written else None)
 
     def record_part(self, records: list[dict[str, Any]], stem: str, rows_file: str | None
                     ) -> str:

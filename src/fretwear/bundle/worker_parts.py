@@ -23,8 +23,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from fretwear.bundle.store import MARKER, write_frame
-from fretwear.bundle.tasks import concat_packed, run_contacts
+from fretwear.bundle.store import MARKER, write_rows
+from fretwear.bundle.tasks import run_contacts
 
 
 @dataclass(frozen=True)
@@ -54,12 +54,10 @@ class PartTarget:
         """Write the rows of ``records`` (those with a table) as the part's rows file and take
         them out of the records (``table`` None, ``rows_file`` the file's name); the records
         as they are where the directory is not seen here or no record has rows."""
-        kept = [r for r in records if isinstance(r, dict) and r.get("table") is not None]
-        if not kept or not self.shared():
+        dicts = [r for r in records if isinstance(r, dict)]
+        if not any(r.get("table") is not None for r in dicts) or not self.shared():
             return records
-        frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
-        write_frame(frame, Path(self.parts) / self.rows_file, self.table_format)
-        for r in kept:
+        for r in write_rows(dicts, Path(self.parts) / self.rows_file, self.table_format):
             r["table"] = r["state"] = None
             r["rows_file"] = self.rows_file
         return records

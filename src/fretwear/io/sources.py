@@ -135,6 +135,17 @@ def guess_format(path: str | os.PathLike) -> str:
     return _guess_checked(readable_file(path, "history file"))
 
 
+def _read_upto(fd: int, size: int, head: bytes = b"") -> bytes:
+    """``head`` followed by the file's next bytes, ``size`` in all, or fewer at its end
+    (``os.read`` may return less than asked)."""
+    while len(head) < size:
+        more = os.read(fd, size - len(head))
+        if not more:
+            break
+        head += more
+    return head
+
+
 def _guess_checked(path: Path) -> str:
     """:func:`guess_format` of a path :func:`~fretwear.io.guard.readable_file` returned (a
     Parquet file by its first 4 bytes, without reading its first 64 KiB: a bundle of small
@@ -142,12 +153,12 @@ def _guess_checked(path: Path) -> str:
     with reading(path, "history", "history file"):
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_BINARY", 0))  # 5 µs, open() 20 µs
         try:
-            if os.read(fd, 4) == b"PAR1":
+            head = _read_upto(fd, 4)
+            if head == b"PAR1":
                 return "parquet"
+            head = _read_upto(fd, 65536, head)  # the first 64 KiB of another format
         finally:
             os.close(fd)
-        with open(path, "rb") as handle:
-            head = handle.read(65536)
     suffix = path.suffix.lower()
     if not head:
         raise FormatError(f"{path}: the file is empty")
