@@ -17,12 +17,16 @@ from fretwear.errors import FretwearError, InputError
 
 
 @contextlib.contextmanager
-def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
+def atomic_path(path: str | os.PathLike, *, sweep: bool = True) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; on success it replaces ``path`` atomically.
 
     On error the temporary file is removed and ``path`` is left as it was. Parent directories
     are created. The new file gets the permissions of the one it replaces, or those of an
-    ordinary ``open()`` (0666 less the umask).
+    ordinary ``open()`` (0666 less the umask). With ``sweep`` (the default), the temporaries
+    of ``path`` that a killed run left (older than :data:`STALE_SECONDS`) are removed after
+    the write: a listing of the folder. A writer of many files of names never written twice
+    (a bundle's parts) passes False and sweeps the folder once itself
+    (:func:`remove_stale_in`): a listing per write made 2 000 writes cost 1.6 -> 3.1 ms each.
 
     Examples
     --------
@@ -50,7 +54,8 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
         os.chmod(tmp, _output_mode(target))
         yield tmp
         os.replace(tmp, target)
-        _remove_stale(target, ".tmp")
+        if sweep:
+            _remove_stale(target, ".tmp")
     except BaseException as exc:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()
@@ -78,18 +83,39 @@ STALE_SECONDS = 60.0
 def _remove_stale(target: Path, *suffixes: str) -> None:
     """Remove the temporary files/folders of ``target`` that killed runs left behind
     (``.<name>.<random><suffix>``, untouched for :data:`STALE_SECONDS`)."""
-    limit = time.time() - STALE_SECONDS
     for suffix in suffixes:
-        for leftover in target.parent.glob(f".{glob.escape(target.name)}.*{suffix}"):
-            try:
-                if leftover.lstat().st_mtime >= limit:
-                    continue
-                if leftover.is_dir() and not leftover.is_symlink():
-                    shutil.rmtree(leftover, ignore_errors=True)
-                else:
-                    leftover.unlink()
-            except OSError:
+        remove_stale_in(target.parent, f"{glob.escape(target.name)}.*{suffix}")
+
+
+def remove_stale_in(folder: str | os.PathLike, pattern: str) -> int:
+    """Remove the temporaries ``.<pattern>`` in ``folder`` (a glob pattern after the leading
+    dot, e.g. ``"part-*.tmp"``) untouched for :data:`STALE_SECONDS` [s]: what runs killed
+    while writing left. Returns how many were removed.
+
+    Examples
+    --------
+    >>> import os, tempfile, pathlib, time
+    >>> d = pathlib.Path(tempfile.mkdtemp())
+    >>> old, new = d / ".part-1.parquet.x1.tmp", d / ".part-2.parquet.x2.tmp"
+    >>> _ = old.write_text("half"), new.write_text("busy")
+    >>> os.utime(old, (time.time() - 2 * STALE_SECONDS,) * 2)
+    >>> remove_stale_in(d, "part-*.tmp"), sorted(p.name for p in d.iterdir())
+    (1, ['.part-2.parquet.x2.tmp'])
+    """
+    limit = time.time() - STALE_SECONDS
+    removed = 0
+    for leftover in Path(folder).glob(f".{pattern}"):
+        try:
+            if leftover.lstat().st_mtime >= limit:
                 continue
+            if leftover.is_dir() and not leftover.is_symlink():
+                shutil.rmtree(leftover, ignore_errors=True)
+            else:
+                leftover.unlink()
+            removed += 1
+        except OSError:
+            continue
+    return removed
 
 
 def _output_mode(target: Path) -> int:
@@ -102,9 +128,11 @@ def _output_mode(target: Path) -> int:
 
 
 @contextlib.contextmanager
-def atomic_write(path: str | os.PathLike, mode: str = "w", **open_kwargs) -> Iterator[IO]:
-    """Open a temporary file for writing; it replaces ``path`` atomically when closed cleanly."""
-    with atomic_path(path) as tmp, open(tmp, mode, **open_kwargs) as handle:
+def atomic_write(path: str | os.PathLike, mode: str = "w", *, sweep: bool = True,
+                 **open_kwargs) -> Iterator[IO]:
+    """Open a temporary file for writing; it replaces ``path`` atomically when closed cleanly
+    (``sweep``: as :func:`atomic_path`)."""
+    with atomic_path(path, sweep=sweep) as tmp, open(tmp, mode, **open_kwargs) as handle:
         yield handle
 
 
