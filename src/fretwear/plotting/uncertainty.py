@@ -212,9 +212,9 @@ def plot_calibration(result, *, ax: Any = None):
         right.plot(line, line, ":", color="0.5", lw=1, label="measured = predicted")
     right.set_xlabel("predicted depth [mm]")
     right.set_ylabel("inspected depth [mm] (±1σ)")
-    right.legend(fontsize="small")
     right.grid(alpha=0.3)
     if own:
         fig.suptitle(f"calibration on {len(obs)} inspection(s)")
         fig.tight_layout()
+    legend_clear_of(right, [], fontsize="small")  # on no inspection nor its bar
     return fig
