@@ -211,16 +211,18 @@ def _data_points(axis: Any, marks: Sequence[Any]) -> list[tuple[np.ndarray, floa
         marker = line.get_marker() not in (None, "", " ", "None", "none")
         out.append((line.get_transform().transform(line.get_xydata()),
                     line.get_markersize() * px / 2 if marker else 0.0))
+    kinds = matplotlib_module("collections")
     for artist in axis.collections:
         transform = artist.get_transform()
-        if hasattr(artist, "get_segments"):  # a LineCollection: error bars
+        if isinstance(artist, kinds.LineCollection):  # error bars
             for seg in artist.get_segments():
                 ends = transform.transform(np.asarray(seg, dtype=float))
                 if len(ends) < 2 or not np.isfinite(ends).all():
                     continue
                 steps = max(2, int(np.hypot(*(ends[-1] - ends[0])) / 2.0) + 1)
                 out.append((np.linspace(ends[0], ends[-1], steps), 1.0))
-        elif len(artist.get_offsets()):  # scatter points
+        elif isinstance(artist, kinds.PathCollection) and len(artist.get_offsets()):
+            # scatter points (a fill_between's polygons have a phantom offset at (0, 0))
             sizes = artist.get_sizes()
             out.append((artist.get_offset_transform().transform(artist.get_offsets()),
                         float(np.sqrt(sizes.max()) * px / 2) if len(sizes) else 0.0))
