@@ -114,3 +114,20 @@ def test_write_is_atomic_and_returns_the_path(analysis, tmp_path):
     assert write_report(analysis, target) == target
     assert target.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
     assert [p.name for p in target.parent.iterdir()] == ["report.html"]
+
+
+def test_sobol_table_gives_the_interval_clipped_to_0_1(analysis, html):
+    """The report's Sobol' table: each index as computed, its half-width and the interval it
+    gives cut to [0, 1] (the range of an index), recomputed here from sensitivity()."""
+    table = analysis.uncertainty.sensitivity()
+    head = "<th>variable</th><th>first</th><th>first_conf</th><th>first low</th>" \
+           "<th>first high</th><th>total</th><th>total_conf</th><th>total low</th>" \
+           "<th>total high</th>"
+    assert head in html and "clipped to [0, 1]" in html
+    for name, r in table.iterrows():
+        bounds = [min(max(v, 0.0), 1.0) for v in (r["first"] - r["first_conf"],
+                                                  r["first"] + r["first_conf"])]
+        row = re.search(rf"<td>{re.escape(str(name))}</td>((?:<td>[^<]*</td>){{8}})", html)
+        cells = [float(c) for c in re.findall(r"<td>([^<]*)</td>", row.group(1))]
+        assert cells[2:4] == pytest.approx(bounds, rel=1e-3, abs=1e-12)  # 4 digits shown
+        assert 0.0 <= min(cells[2:4] + cells[6:8]) and max(cells[2:4] + cells[6:8]) <= 1.0

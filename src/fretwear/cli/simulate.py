@@ -10,7 +10,13 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from fretwear.flow.bundle import near_critical_lines, near_critical_tubes, run_simulate
+from fretwear.flow.bundle import (
+    instability_lines,
+    near_critical_lines,
+    near_critical_tubes,
+    run_simulate,
+    unstable_tubes,
+)
 from fretwear.flow.description import read_description
 from fretwear.flow.stability import NEAR_CRITICAL
 
@@ -85,19 +91,18 @@ def command(description: Path, output: Path, scheduler: str | None, workers: int
         task = bar.add_task("tubes", total=len(specs))
         result = run_simulate(specs, output, scheduler=scheduler, workers=workers, force=force,
                               progress=lambda tube, ok: bar.advance(task))
-    flagged = result.tubes()["flagged"].sum()
     news = Console()  # the failures and the stability news stay with -q (no table then)
+    manifest = output / "manifest.csv"
+    for line in instability_lines(unstable_tubes(manifest)):  # bad news first, in the words
+        news.print(line, style="bold red", markup=False, soft_wrap=True)  # of bundle, assess
     if result.errors:
         news.print(f"[red]{len(result.errors)} tube(s) failed (in {output / 'errors.csv'}):[/]")
         for tube, message in result.errors.items():
             news.print(f"  {tube}: {message}", markup=False, highlight=False)
-    if flagged:
-        news.print(f"[bold red]{flagged} tube(s) fluid-elastically unstable: a mode's "
-                   "stability ratio exceeds the margin (tubes.csv, stability.csv)[/]")
-    for line in near_critical_lines(near_critical_tubes(output / "manifest.csv", near_critical)):
+    for line in near_critical_lines(near_critical_tubes(manifest, near_critical)):
         news.print(line, style="yellow", markup=False, soft_wrap=True)
     _table(result, console, near_critical)
     click.echo(f"done {len(result.records) - len(result.reused)}, reused {len(result.reused)}, "
                f"failed {len(result.errors)} of {len(specs)} tubes; manifest in "
-               f"{output / 'manifest.csv'}")
+               f"{manifest}")
     return EXIT_SOME_FAILED if result.errors else 0

@@ -149,9 +149,9 @@ def legend_clear_of(axis: Any, lines: Sequence[Any], **kwargs: Any) -> Any:
     could sit on the wall line. Tried in turn: ``"best"``, :data:`LEGEND_PLACES`, then the
     upper corners slid down the axes in 5 % steps; of the places inside the axes whose box
     [px] clears every line's (padded by half its line width and 2 px), the one covering the
-    fewest data points (of the axis's other lines) is kept; else the legend goes beside the
-    axes, on the right. Call it once the axes' size and limits are final (after
-    ``tight_layout``).
+    fewest data points (of the axis's other lines, markers by their size, its error bars and
+    scatter points) is kept; else the legend goes beside the axes, on the right. Call it once
+    the axes' size and limits are final (after ``tight_layout``).
 
     Parameters
     ----------
@@ -176,9 +176,7 @@ def legend_clear_of(axis: Any, lines: Sequence[Any], **kwargs: Any) -> Any:
     tries += [{"loc": f"upper {side}", "bbox_to_anchor": (x, top)}  # slid down the axes
               for top in np.linspace(0.95, 0.1, 18) for side, x in (("left", 0.0),
                                                                      ("right", 1.0))]
-    points = [line.get_transform().transform(line.get_xydata()) for line in axis.get_lines()
-              if all(line is not mark for mark in lines) and len(line.get_xydata())]
-    points = np.concatenate(points) if points else np.empty((0, 2))
+    points = _data_points(axis, lines)
     frame = axis.get_window_extent(renderer).padded(1.0)
     best, fewest = None, None
     for place in tries:
@@ -188,9 +186,9 @@ def legend_clear_of(axis: Any, lines: Sequence[Any], **kwargs: Any) -> Any:
             and mine.y1 <= frame.y1
         if not inside or any(mine.overlaps(b) for b in boxes):
             continue
-        covered = int(np.count_nonzero(
-            (points[:, 0] >= mine.x0) & (points[:, 0] <= mine.x1)
-            & (points[:, 1] >= mine.y0) & (points[:, 1] <= mine.y1)))
+        covered = sum(int(np.count_nonzero(
+            (xy[:, 0] >= mine.x0 - pad) & (xy[:, 0] <= mine.x1 + pad)
+            & (xy[:, 1] >= mine.y0 - pad) & (xy[:, 1] <= mine.y1 + pad))) for xy, pad in points)
         if fewest is None or covered < fewest:
             best, fewest = place, covered
             if not covered:
@@ -199,3 +197,33 @@ def legend_clear_of(axis: Any, lines: Sequence[Any], **kwargs: Any) -> Any:
         return axis.legend(**best, **kwargs)
     return axis.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
                        **kwargs)  # beside the axes (the savers keep it: bbox_inches="tight")
+
+
+def _data_points(axis: Any, marks: Sequence[Any]) -> list[tuple[np.ndarray, float]]:
+    """(points [px], half size [px]) of what a legend should not cover on ``axis``: the
+    vertices of its lines other than ``marks`` (a marker's half size), its error bars (points
+    along each segment, every 2 px) and its scatter points."""
+    px = axis.figure.dpi / 72.0
+    out = []
+    for line in axis.get_lines():
+        if any(line is mark for mark in marks) or not len(line.get_xydata()):
+            continue
+        marker = line.get_marker() not in (None, "", " ", "None", "none")
+        out.append((line.get_transform().transform(line.get_xydata()),
+                    line.get_markersize() * px / 2 if marker else 0.0))
+    kinds = matplotlib_module("collections")
+    for artist in axis.collections:
+        transform = artist.get_transform()
+        if isinstance(artist, kinds.LineCollection):  # error bars
+            for seg in artist.get_segments():
+                ends = transform.transform(np.asarray(seg, dtype=float))
+                if len(ends) < 2 or not np.isfinite(ends).all():
+                    continue
+                steps = max(2, int(np.hypot(*(ends[-1] - ends[0])) / 2.0) + 1)
+                out.append((np.linspace(ends[0], ends[-1], steps), 1.0))
+        elif isinstance(artist, kinds.PathCollection) and len(artist.get_offsets()):
+            # scatter points (a fill_between's polygons have a phantom offset at (0, 0))
+            sizes = artist.get_sizes()
+            out.append((artist.get_offset_transform().transform(artist.get_offsets()),
+                        float(np.sqrt(sizes.max()) * px / 2) if len(sizes) else 0.0))
+    return out

@@ -69,12 +69,14 @@ def plot_predicted_vs_measured(result: Any, *, ax: Any = None):
         f = result.fit
         axis.set_title(f"{f['indications']} indications, {f['coverage']:.0%} inside the "
                        f"{f['level']:.0%} interval")
-        axis.legend(fontsize="small", loc="upper left")
     else:
         axis.set_title("no sized indication")
     axis.set_xlabel("predicted measurement [mm]")
     axis.set_ylabel("measured depth [mm]")
     axis.set_aspect("equal", adjustable="box")
+    if len(p):
+        axis.apply_aspect()  # the box the legend is placed in
+        legend_clear_of(axis, [], fontsize="small")  # on no indication nor its bar
     return fig
 
 

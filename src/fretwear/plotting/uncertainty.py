@@ -19,6 +19,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.plotting._common import figure_and_axes, legend_clear_of, matplotlib_module
+from fretwear.uncertainty.sampling import index_intervals
 
 #: Percentile bands of the fan chart (lower, upper) [-], widest first.
 BANDS = ((0.05, 0.95), (0.25, 0.75))
@@ -118,17 +119,28 @@ def plot_sensitivity(result, *, instant: float | None = None, ax: Any = None):
     fig, (axis,), own = figure_and_axes(ax, 1, lambda f: [f.add_subplot()], figsize=(7, 4),
                                         what="plot_sensitivity")
     x = np.arange(len(table))
-    for k, (col, label) in enumerate((("first", "first order S_i"),
-                                      ("total", "total S_T,i"))):
-        err = table.get(f"{col}_conf")
-        axis.bar(x + (k - 0.5) * 0.38, table[col], width=0.38, label=label,
-                 yerr=None if err is None else np.nan_to_num(err.to_numpy(dtype=float)),
-                 capsize=3, color=f"C{k}")
+    bounds = index_intervals(table)  # the interval cut to [0, 1], the range of an index
+    clipped = bool(bounds["clipped"].any())
+    label = "95 % bootstrap interval" + (", clipped to [0, 1]" if clipped else "")
+    for k, (col, name) in enumerate((("first", "first order S_i"),
+                                     ("total", "total S_T,i"))):
+        axis.bar(x + (k - 0.5) * 0.38, table[col], width=0.38, label=name, color=f"C{k}")
+        low = bounds[f"{col}_low"].to_numpy(dtype=float)
+        high = bounds[f"{col}_high"].to_numpy(dtype=float)
+        shown = np.isfinite(low) & np.isfinite(high)
+        if shown.any():
+            axis.errorbar((x + (k - 0.5) * 0.38)[shown], (0.5 * (low + high))[shown],
+                          yerr=(0.5 * (high - low))[shown], fmt="none", ecolor="k",
+                          capsize=3, lw=1, label=label)
+            label = None  # one legend entry for both
     axis.set_xticks(x, [str(i) for i in table.index])
-    axis.set_ylim(0, max(1.05, float(np.nanmax(table[["first", "total"]].to_numpy())) + 0.05))
+    top = float(np.nanmax(table[["first", "total"]].to_numpy()))
+    axis.set_ylim(min(0.0, float(np.nanmin(table[["first", "total"]].to_numpy()))),
+                  max(1.0, top) + 0.35)  # room for the legend above the bars
+    axis.set_yticks(np.linspace(0.0, 1.0, 6))  # an index is in [0, 1]
     axis.set_ylabel("Sobol' index [-]")
     axis.grid(axis="y", alpha=0.3)
-    axis.legend(fontsize="small")
+    axis.legend(fontsize="small", loc="upper center", ncol=2)
     if own:
         axis.set_title("share of the depth's variance")
     return fig
@@ -200,9 +212,9 @@ def plot_calibration(result, *, ax: Any = None):
         right.plot(line, line, ":", color="0.5", lw=1, label="measured = predicted")
     right.set_xlabel("predicted depth [mm]")
     right.set_ylabel("inspected depth [mm] (±1σ)")
-    right.legend(fontsize="small")
     right.grid(alpha=0.3)
     if own:
         fig.suptitle(f"calibration on {len(obs)} inspection(s)")
         fig.tight_layout()
+    legend_clear_of(right, [], fontsize="small")  # on no inspection nor its bar
     return fig

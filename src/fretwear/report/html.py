@@ -26,6 +26,7 @@ from fretwear.plotting import plot_sector_wear, plot_wear_table
 from fretwear.plotting.uncertainty import plot_calibration, plot_fan_chart, plot_sensitivity
 from fretwear.report.analysis import Analysis
 from fretwear.table import COLUMNS
+from fretwear.uncertainty.sampling import index_intervals
 
 __all__ = ["render_report", "write_report"]
 
@@ -147,6 +148,16 @@ def _inputs(analysis: Analysis) -> list[dict[str, str]]:
     return rows
 
 
+def _sobol_table(indices: pd.DataFrame) -> pd.DataFrame:
+    """The Sobol' indices as computed, each beside its 95 % interval cut to [0, 1]."""
+    bounds = index_intervals(indices)
+    return pd.DataFrame({
+        "variable": indices.index, "first": indices["first"], "first_conf": indices["first_conf"],
+        "first low": bounds["first_low"], "first high": bounds["first_high"],
+        "total": indices["total"], "total_conf": indices["total_conf"],
+        "total low": bounds["total_low"], "total high": bounds["total_high"]})
+
+
 def _uncertainty(analysis: Analysis, unit: str) -> dict[str, Any] | None:
     mc = analysis.uncertainty
     if mc is None:
@@ -164,7 +175,7 @@ def _uncertainty(analysis: Analysis, unit: str) -> dict[str, Any] | None:
            "variables": [{"label": v.label, "distribution": v.describe()}
                          for v in mc.variables],
            "table": _table_html(frame),
-           "sobol": _table_html(mc.sensitivity().reset_index()),
+           "sobol": _table_html(_sobol_table(mc.sensitivity())),
            "limit": None if mc.limit is None else _num(mc.limit * 1e3),
            "fan": figure_data_uri(plot_fan_chart(mc, unit=unit)),
            "sobol_figure": figure_data_uri(plot_sensitivity(mc)),

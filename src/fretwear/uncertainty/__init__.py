@@ -25,7 +25,7 @@ from fretwear.uncertainty.calibration import (
 )
 from fretwear.uncertainty.distributions import LogNormal, lognormal_sigma
 from fretwear.uncertainty.monte_carlo import UncertaintyResult, Variable, monte_carlo
-from fretwear.uncertainty.sampling import sobol_indices, uniform_points
+from fretwear.uncertainty.sampling import index_intervals, sobol_indices, uniform_points
 
 __all__ = [
     "CalibrationResult",
@@ -37,6 +37,7 @@ __all__ = [
     "calibrate",
     "monte_carlo",
     "read_inspections",
+    "index_intervals",
     "sobol_indices",
     "uniform_points",
 ]

@@ -15,10 +15,11 @@ import numpy as np
 from scipy import stats
 from scipy.stats import norm, qmc
 
+from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError
 from fretwear.keys import check_level
 
-__all__ = ["METHODS", "sobol_indices", "uniform_points"]
+__all__ = ["METHODS", "index_intervals", "sobol_indices", "uniform_points"]
 
 #: Sampling methods of :func:`uniform_points`.
 METHODS = ("sobol", "random")
@@ -166,3 +167,53 @@ def sobol_indices(f_a, f_b, f_ab, *, resamples: int = 200, level: float = 0.95,
         first_conf = z * np.std([b[0] for b in boot], axis=0, ddof=1)
         total_conf = z * np.std([b[1] for b in boot], axis=0, ddof=1)
     return {"first": first, "total": total, "first_conf": first_conf, "total_conf": total_conf}
+
+
+def index_intervals(table: pd.DataFrame) -> pd.DataFrame:
+    """The confidence intervals of Sobol' indices, clipped to [0, 1], the range of an index.
+
+    Parameters
+    ----------
+    table : DataFrame
+        ``first``, ``total`` [-] and their half-widths ``first_conf``, ``total_conf`` [-] (the
+        table of :meth:`fretwear.uncertainty.UncertaintyResult.sensitivity`); a missing
+        half-width column counts as NaN.
+
+    Returns
+    -------
+    DataFrame
+        Same index: ``first_low``, ``first_high``, ``total_low``, ``total_high`` [-], the
+        interval S ± h cut to [0, 1] (NaN without a half-width), and ``clipped`` (a bound of
+        the row was cut).
+
+    Notes
+    -----
+    An index is a fraction of the output's variance, 0 <= S_i <= S_T,i <= 1, but its
+    estimators are ratios of sample moments (:func:`sobol_indices`) and the bootstrap
+    interval S ± z·σ is symmetric: both can leave [0, 1] by their sampling error (a lone
+    input, whose indices are exactly 1, gets 0.99 ± 0.20 with N = 256). The values outside
+    [0, 1] are impossible, so the interval is shown cut to [max(0, S − h), min(1, S + h)];
+    the estimates and half-widths themselves are left as computed (docs/uncertainty.md §3).
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"first": [0.99, 0.01], "first_conf": [0.2, 0.02],
+    ...                   "total": [1.0, 0.02], "total_conf": [0.13, 0.01]}, index=["f", "p"])
+    >>> index_intervals(t).round(2).to_dict("list")  # doctest: +NORMALIZE_WHITESPACE
+    {'first_low': [0.79, 0.0], 'first_high': [1.0, 0.03], 'total_low': [0.87, 0.01],
+     'total_high': [1.0, 0.03], 'clipped': [True, True]}
+    """
+    out = pd.DataFrame(index=table.index)
+    clipped = np.zeros(len(table), dtype=bool)
+    for col in ("first", "total"):
+        if col not in table.columns:
+            raise InputError(f"index_intervals needs the column {col!r} (Sobol' indices)")
+        value = table[col].to_numpy(dtype=float)
+        half = (table[f"{col}_conf"].to_numpy(dtype=float) if f"{col}_conf" in table.columns
+                else np.full(value.shape, np.nan))
+        low, high = value - half, value + half
+        clipped |= (low < 0) | (high > 1)
+        out[f"{col}_low"] = np.clip(low, 0.0, 1.0)
+        out[f"{col}_high"] = np.clip(high, 0.0, 1.0)
+    out["clipped"] = clipped
+    return out
