@@ -74,7 +74,7 @@ def test_calibrate_moves_the_factor_to_the_closed_form(run, capsys):
     # the interval narrowed, 3.9 times in ln f
     assert math.log(expected[2] / expected[1]) < 0.3 * math.log(prior[1] / prior[0])
     lines = text.splitlines()
-    assert lines[0].startswith("at instant 20: 2 contacts (2 tubes) at or past the limit")
+    assert lines[0].startswith("at instant 20: 2 contact(s) (2 tube(s)) at or past the limit")
     assert "8 sized, 0 NDD, 4 not inspected" in text
 
     table = pd.read_csv(run / "calibration.csv").merge(contacts, on="contact")

@@ -142,9 +142,9 @@ def _say(console: Console, text: str, style: str | None = None) -> None:
 def _bad_news(c: dict, frame, instant, console: Console) -> None:
     bad = c["contacts_past_limit"] or c["contacts_through_wall"]
     plugged = f"; {c['tubes_plugged']} plugged tubes left out" if c["tubes_plugged"] else ""
-    _say(console, f"at instant {instant:g}: {c['contacts_past_limit']} contacts "
-                  f"({c['tubes_past_limit']} tubes) at or past the limit, "
-                  f"{c['contacts_through_wall']} contacts ({c['tubes_through_wall']} tubes) "
+    _say(console, f"at instant {instant:g}: {c['contacts_past_limit']} contact(s) "
+                  f"({c['tubes_past_limit']} tube(s)) at or past the limit, "
+                  f"{c['contacts_through_wall']} contact(s) ({c['tubes_through_wall']} tube(s)) "
                   f"through the wall (median depth){plugged}", "bold red" if bad else None)
     if "worst_contact" not in c:
         return
