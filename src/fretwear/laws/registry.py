@@ -152,6 +152,26 @@ class WearLaw:
         c = self._for_volume(coefficients)
         return _warning_once(lambda: self._volume(power, duration, **c))
 
+    def quiet_volume(self, power, duration, **coefficients: Any) -> np.ndarray:
+        """:meth:`volume` without its LawWarnings (dropped: a caller whose volumes at the same
+        inputs already warned, e.g. a law's rate V(P, 1 s) beside the table's own volumes), and
+        without ``warnings.catch_warnings`` (whose swap of the process's filters costs every
+        call and is not safe between threads): the same values [m³].
+
+        Examples
+        --------
+        >>> law = WEAR_LAWS["ARCHARD"]
+        >>> bool(law.quiet_volume(0.01, 1.0, coefficient=1e-13) == law.volume(0.01, 1.0,
+        ...                                                                     coefficient=1e-13))
+        True
+        """
+        c = self._for_volume(coefficients)
+        token = models._collected.set([])
+        try:
+            return self._volume(power, duration, **c)
+        finally:
+            models._collected.reset(token)
+
     def equivalent_time(self, volume, power, **coefficients: Any) -> np.ndarray:
         """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (theory §7)."""
         c = self._for_volume(coefficients)
