@@ -558,9 +558,12 @@ class DepthModel:
             return None
         rate = kw["factor"] * self.rates[0]
         v0 = 0.0 if self.replacement is not None else self.initial_mobile
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (volume - v0) / rate
-        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        if type(rate) is float and rate > 0:  # one positive rate (the nominal inputs)
+            t = np.where(v0 >= volume, 0.0, (volume - v0) / rate)
+        else:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = (volume - v0) / rate
+            t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
         return t if self.replacement is None else self.replacement + t
 
     def _volume_of(self, target) -> np.ndarray:
