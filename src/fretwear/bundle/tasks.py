@@ -41,6 +41,13 @@ _ATTRS = ("contact_type", "dimensions", "law", "coefficients_mobile", "coefficie
 
 
 def _plain(value: Any) -> Any:
+    """``value`` JSON-ready: dicts (string keys) and lists of plain numbers and strings, a
+    number not finite None, numpy arrays and scalars as Python's, anything else its str."""
+    kind = type(value)
+    if kind is float:  # the commonest first (a record holds some fifty values)
+        return value if math.isfinite(value) else None
+    if value is None or kind is str or kind is int or kind is bool:
+        return value
     if isinstance(value, dict):
         return {str(k): _plain(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
