@@ -87,3 +87,16 @@ def test_bad_volumes_and_depths_raise_as_the_functions_do():
 def test_one_object_per_set_of_dimensions():
     assert sector_slices(R, L, ARCS, RO) is sector_slices(R, L, ARCS, RO)
     assert sector_slices(R, L, ARCS, None) is not sector_slices(R, L, ARCS, RO)
+
+
+def test_kept_volumes_are_the_callers_own_and_warnings_said_every_call():
+    """A few depths' volumes are kept per object: each call gets its own array (changing it
+    changes nothing else), equal to the function's; depths past the radius warn every call."""
+    s = SectorSlices(R, L, ARCS)
+    d = np.array([[4e-4], [1.09e-3]])
+    first = s.volume_mobile(d)
+    first[:] = -1.0
+    assert np.array_equal(s.volume_mobile(d), sector_volume_mobile(d, R, L, np.array(ARCS)))
+    for _ in range(2):
+        with pytest.warns(RangeWarning, match="exceed the mobile radius"):
+            assert np.isnan(s.volume_mobile(np.array([[2 * R]]))).all()

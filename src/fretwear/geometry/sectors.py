@@ -345,6 +345,7 @@ class SectorSlices:
         self.obstacle_radius = None if obstacle_radius is None else float(obstacle_radius)
         self._width_arc = l * arc  # l·Δθ [m·rad], as the functions make it
         self._half_width_arc = 0.5 * l * arc
+        self._volumes: dict = {}  # volume_mobile of a few depths (a table's limit and wall)
 
     @staticmethod
     def _checked(value, name: str, unit: str) -> np.ndarray:
@@ -378,13 +379,30 @@ class SectorSlices:
         """:func:`sector_volume_mobile` of the sectors' depths [m] [m³]; NaN with a
         RangeWarning beyond the mobile radius."""
         d = self._checked(depth, "depth", "m")
+        small = d.size <= _KEPT_SIZE  # kept: the same few depths for every table
+        if small:
+            key = (d.shape, d.tobytes())
+            found = self._volumes.get(key)
+            if found is not None:
+                return found.copy()
         r = self.mobile_radius
         beyond = d > r
         if np.any(beyond):
             warnings.warn(
                 f"sector volume of the mobile: {int(np.count_nonzero(beyond))} depth(s) exceed "
                 "the mobile radius R_m: volume NaN", RangeWarning, stacklevel=2)
-        return np.where(beyond, np.nan, self._half_width_arc * d * (2.0 * r - d))
+            small = False  # its warning said at every call
+        volume = np.where(beyond, np.nan, self._half_width_arc * d * (2.0 * r - d))
+        if small:
+            if len(self._volumes) >= _KEPT_SIZE:
+                self._volumes.clear()
+            self._volumes[key] = volume.copy()
+        return volume
+
+
+#: Inputs of at most this many depths, and this many of them, kept by
+#: :meth:`SectorSlices.volume_mobile`.
+_KEPT_SIZE = 8
 
 
 @functools.lru_cache(maxsize=256)

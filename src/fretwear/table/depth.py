@@ -431,9 +431,11 @@ class DepthModel:
         volume = self.slices.volume_mobile(d)
         rate = self.term_rates[0]
         v0 = np.zeros(arcs.size) if self.replacement is not None else self._term_initial()[0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (volume - v0) / rate
-        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        left = volume - v0
+        # (V(d) − V0)/r where the sector wears (r > 0), inf where it does not
+        t = np.divide(left, rate, out=np.full(np.broadcast_shapes(left.shape, rate.shape),
+                                              np.inf), where=rate > 0)
+        t = np.where(v0 >= volume, 0.0, t)
         if self.replacement is not None:
             t = self.replacement + t
         out = self.origin + t / self.time_scale
