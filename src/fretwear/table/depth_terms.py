@@ -101,7 +101,8 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     if len(powers) == 1:  # one term (a table without sectors)
         return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
     first = coefficients[0]
-    if all(c == first for c in coefficients):  # the law's coefficients in every sector
+    if all(c is not None and all(type(v) is float for v in c.values()) for c in coefficients) \
+            and all(c == first for c in coefficients):  # the law's numbers in every sector
         given = first
     else:
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
