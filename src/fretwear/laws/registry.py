@@ -156,31 +156,13 @@ class WearLaw:
         c = self._for_volume(coefficients)
         return _warning_once(lambda: self._volume(power, duration, **c))
 
-    def quiet_volume(self, power, duration, **coefficients: Any) -> np.ndarray:
-        """:meth:`volume` without its LawWarnings (dropped: a caller whose volumes at the same
-        inputs already warned, e.g. a law's rate V(P, 1 s) beside the table's own volumes), and
-        without ``warnings.catch_warnings`` (whose swap of the process's filters costs every
-        call and is not safe between threads): the same values [m³].
-
-        Examples
-        --------
-        >>> law = WEAR_LAWS["ARCHARD"]
-        >>> bool(law.quiet_volume(0.01, 1.0, coefficient=1e-13) == law.volume(0.01, 1.0,
-        ...                                                                     coefficient=1e-13))
-        True
-        """
-        c = self._for_volume(coefficients)
-        token = models._collected.set([])
-        try:
-            return self._volume(power, duration, **c)
-        finally:
-            models._collected.reset(token)
-
     def rate(self, power, **coefficients: Any) -> np.ndarray:
         """Worn volume per second [m³/s] of a law linear in time at wear power ``power`` [W]:
-        :meth:`quiet_volume` after 1 s, the same values (the law's expression at t = 1 s; its
-        checks made once on plain float coefficients > 0 and the powers, the law function's
-        own where they fail, naming the culprit).
+        :meth:`volume` after 1 s, the same values, without its LawWarnings (dropped: a caller
+        whose volumes at the same inputs already warned) and without ``warnings.catch_warnings``
+        (whose swap of the process's filters costs every call and is not safe between threads).
+        The law's expression at t = 1 s; its checks made once on plain float coefficients > 0
+        and the powers, the law function's own where they fail, naming the culprit.
 
         Examples
         --------
