@@ -118,3 +118,18 @@ def test_table_build_warnings_point_at_the_caller(name, function):
              if w.category.__name__ == category and str(w.message).startswith(start)]
     assert found, [str(w.message) for w in caught]
     assert {(w.filename, w.lineno) for w in found} == {(__file__, line)}
+
+
+@pytest.mark.parametrize("keys", [("law", "time_scale"), ("power", "case", "dimensions"),
+                                  ("limit_instant", "no_such_key", "sector_edges")])
+def test_attrs_asked_for_are_the_tables_own(keys):
+    """``attrs=keys``: the table's own values of those keys (the same repr: nested metadata,
+    NaN-safe), in the order asked, a key the table lacks left out; the columns unchanged (bit
+    for bit: one process)."""
+    case = _case(wall_thickness=1.09e-3, sectors=4, coefficients={"COEF_USURE": 1e-16})
+    source = _history()
+    full_columns, full = wear_table_columns(case, source)
+    columns, attrs = wear_table_columns(case, source, attrs=keys)
+    assert list(attrs) == [k for k in keys if k in full]
+    assert repr(attrs) == repr({k: full[k] for k in attrs})
+    assert all(np.array_equal(columns[c], full_columns[c], equal_nan=True) for c in columns)

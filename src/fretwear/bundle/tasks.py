@@ -30,7 +30,7 @@ from fretwear.io import open_source, read_history
 from fretwear.io.channels import build_history, resolve_columns, resolve_units
 from fretwear.io.geometry_units import check_against_geometry
 from fretwear.laws import get_law
-from fretwear.power import PowerAccumulator, wear_power
+from fretwear.power import PowerAccumulator, PowerResult, wear_power
 from fretwear.table import wear_table_columns
 
 _LOCK = threading.Lock()
@@ -41,6 +41,13 @@ _ATTRS = ("contact_type", "dimensions", "law", "coefficients_mobile", "coefficie
 
 
 def _plain(value: Any) -> Any:
+    """``value`` JSON-ready: dicts (string keys) and lists of plain numbers and strings, a
+    number not finite None, numpy arrays and scalars as Python's, anything else its str."""
+    kind = type(value)
+    if kind is float:  # the commonest first (a record holds some fifty values)
+        return value if math.isfinite(value) else None
+    if value is None or kind is str or kind is int or kind is bool:
+        return value
     if isinstance(value, dict):
         return {str(k): _plain(v) for k, v in value.items()}
     if isinstance(value, list | tuple):
@@ -54,11 +61,19 @@ def _plain(value: Any) -> Any:
     return value if value is None or isinstance(value, bool | int | float | str) else str(value)
 
 
+#: The power's values kept in a contact's record (its statistics dropped).
+_POWER = ("total", "blocks", "spread", "t_start", "t_end", "duration", "sectors")
+
+
 def _attrs(attrs: dict[str, Any], task: ContactTask) -> dict[str, Any]:
+    """A record's ``attrs``: the table's :data:`_ATTRS` and the power's :data:`_POWER`, JSON
+    ready (:func:`_plain`). ``attrs["power"]`` is the table's power dict, or the PowerResult
+    itself (:func:`_wear_table`: its values read without its statistics' dict, the same once
+    made plain)."""
     out = {k: _plain(attrs.get(k)) for k in _ATTRS}
     power = attrs.get("power") or {}
-    out["power"] = {k: _plain(power.get(k)) for k in ("total", "blocks", "spread", "t_start",
-                                                      "t_end", "duration", "sectors")}
+    get = power.get if isinstance(power, dict) else functools.partial(getattr, power)
+    out["power"] = {k: _plain(get(k)) for k in _POWER}
     out["time_unit"] = task.time_unit
     return out
 
@@ -207,8 +222,16 @@ def read_part(task: ContactTask, start: int, stop: int):
 # ----------------------------------------------------------------------------- computing
 def _wear_table(source, task: ContactTask, history=None):
     """(columns, attrs) of the contact's wear table (:func:`fretwear.table.wear_table_columns`:
-    the arrays the record sends, without a DataFrame in between)."""
-    return wear_table_columns(task.wear_case(), source, history=history)
+    the arrays the record sends, without a DataFrame in between), the attrs the record keeps
+    only (:func:`_attrs`): with a PowerResult ``source`` its ``power`` is the result, whose
+    values :func:`_attrs` reads (the dict of its statistics not made)."""
+    if isinstance(source, PowerResult):
+        columns, attrs = wear_table_columns(task.wear_case(), source, history=history,
+                                            attrs=_ATTRS)
+        attrs["power"] = source
+        return columns, attrs
+    return wear_table_columns(task.wear_case(), source, history=history,
+                              attrs=(*_ATTRS, "power"))
 
 
 def _power_options(task: ContactTask) -> dict[str, Any]:

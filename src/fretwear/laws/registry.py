@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -77,6 +78,9 @@ class WearLaw:
     symbols: Mapping[str, str] = field(default_factory=dict)
     _volume: Callable[..., np.ndarray] = field(default=None, repr=False)
     _equivalent_time: Callable[..., np.ndarray] = field(default=None, repr=False)
+    #: V(P, 1 s) of a law linear in time from checked inputs: the law function's own
+    #: expression at t = 1 without its checks (:meth:`rate`; None: not linear in time).
+    _rate: Callable[..., np.ndarray] | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "defaults", MappingProxyType(dict(self.defaults)))
@@ -151,6 +155,34 @@ class WearLaw:
         """
         c = self._for_volume(coefficients)
         return _warning_once(lambda: self._volume(power, duration, **c))
+
+    def rate(self, power, **coefficients: Any) -> np.ndarray:
+        """Worn volume per second [m³/s] of a law linear in time at wear power ``power`` [W]:
+        :meth:`volume` after 1 s, the same values, without its LawWarnings (dropped: a caller
+        whose volumes at the same inputs already warned) and without ``warnings.catch_warnings``
+        (whose swap of the process's filters costs every call and is not safe between threads).
+        The law's expression at t = 1 s; its checks made once on plain float coefficients > 0
+        and the powers, the law function's own where they fail, naming the culprit.
+
+        Examples
+        --------
+        >>> law = WEAR_LAWS["KWU_EPRI"]
+        >>> c = {"reference_coefficient": 1e-14, "intensity": 0.5}
+        >>> bool(law.rate(np.array([0.02, 0.03]), **c)[1] == law.volume(0.03, 1.0, **c))
+        True
+        """
+        c = self._for_volume(coefficients)
+        if self._rate is not None and all(type(v) is float and 0.0 < v < math.inf
+                                          for v in c.values()):
+            p = np.asarray(power, dtype=float)
+            if p.ndim == 0 and 0.0 <= float(p) < math.inf \
+                    or p.ndim and bool(((p >= 0.0) & (p < math.inf)).all()):
+                return self._rate(p, **c)
+        token = models._collected.set([])
+        try:
+            return self._volume(power, 1.0, **c)
+        finally:
+            models._collected.reset(token)
 
     def equivalent_time(self, volume, power, **coefficients: Any) -> np.ndarray:
         """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (theory §7)."""
@@ -250,6 +282,7 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
         needs_history=False,
         _volume=models.archard,
         _equivalent_time=_archard_time,
+        _rate=lambda power, coefficient: coefficient * power * 1.0,  # models.archard's K·P·t
     ),
     "KWU_EPRI": WearLaw(
         name="KWU_EPRI",
@@ -272,6 +305,9 @@ WEAR_LAWS: Mapping[str, WearLaw] = MappingProxyType({
         needs_history=True,
         _volume=models.kwu_epri,
         _equivalent_time=_kwu_time,
+        # models.kwu_epri's k_r·w/w_r·P·t
+        _rate=lambda power, reference_coefficient, intensity, reference_intensity:
+            reference_coefficient * intensity / reference_intensity * power * 1.0,
     ),
     "EDF_MZ": WearLaw(
         name="EDF_MZ",

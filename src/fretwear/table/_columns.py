@@ -47,30 +47,33 @@ def _sector_frame(model, head, clock, edges) -> dict:
     was_m = pm if clock.fresh is None else np.where(clock.replaced[:, None], 0.0, pm)
     total_m, total_o = vm.sum(axis=1), vo.sum(axis=1)
     dm, do = model.body_depths(total_m, total_o)
-    # instant-major order: row = i*m + j; per instant, each value repeated m times
-    per_instant = _repeated((*head.values(), total_m, total_o, dm, do), m)
-    data = dict(zip((*head, "volume_mobile", "volume_obstacle", "depth_mobile",
-                     "depth_obstacle"), per_instant, strict=True))
+    # every float column in one (columns, instants, sectors) block, filled in one pass:
+    # instant-major rows (row = i*m + j); a value per instant repeated over the sectors, a
+    # value per sector over the instants
+    block = np.empty((len(_SECTOR_FLOATS), n, m))
+    block[:8] = np.stack((*(head[c] for c in _SECTOR_FLOATS[:4]), total_m, total_o, dm,
+                          do))[:, :, None]
     edges = np.asarray(edges, dtype=float)  # the sectors' edges [deg]
-    powers = np.asarray(model.powers, dtype=float)
-    data.update({  # per sector, the sectors' values in every instant
-        "sector": _tiled(np.arange(1, m + 1), n), "angle_start": _tiled(edges[:-1], n),
-        "angle_end": _tiled(edges[1:], n), "sector_power": _tiled(powers, n),
-        "volume_mobile_sector": (vm - was_m).ravel(),
-        "volume_obstacle_sector": (vo - po).ravel(),
-        "depth_mobile_sector": sectors["depth_mobile"].ravel(),
-        "depth_obstacle_sector": np.asarray(sectors["depth_obstacle"], dtype=float).ravel(),
-        "volume_mobile_cumulated": vm.ravel(), "volume_obstacle_cumulated": vo.ravel()})
+    block[8], block[9] = edges[:-1], edges[1:]
+    block[10] = np.asarray(model.powers, dtype=float)
+    block[11] = vm - was_m
+    block[12] = vo - po
+    block[13] = sectors["depth_mobile"]
+    block[14] = sectors["depth_obstacle"]
+    block[15], block[16] = vm, vo
+    data = dict(zip(_SECTOR_FLOATS, block.reshape(len(_SECTOR_FLOATS), n * m), strict=True))
+    data["sector"] = _tiled(np.arange(1, m + 1), n)
     return {c: data[c] for c in SECTOR_COLUMNS}
 
 
-def _repeated(columns, m: int) -> np.ndarray:
-    """The rows of ``columns`` (k arrays of n values) with each value repeated ``m`` times:
-    ``np.repeat(column, m)`` of each, in one (k, n·m) array."""
-    values = np.stack([np.asarray(c) for c in columns])
-    out = np.empty((*values.shape, m), dtype=values.dtype)
-    out[...] = values[..., None]
-    return out.reshape(values.shape[0], -1)
+#: The float columns of a sector table in the order :func:`_sector_frame` fills them: the
+#: run's head (instant, duration, origin, power) and the global volumes and depths, a value per
+#: instant; the sectors' angles and powers, a value per sector; the sectors' volumes and depths.
+_SECTOR_FLOATS = ("instant", "duration", "origin", "power", "volume_mobile", "volume_obstacle",
+                  "depth_mobile", "depth_obstacle", "angle_start", "angle_end", "sector_power",
+                  "volume_mobile_sector", "volume_obstacle_sector", "depth_mobile_sector",
+                  "depth_obstacle_sector", "volume_mobile_cumulated",
+                  "volume_obstacle_cumulated")
 
 
 def _tiled(values: np.ndarray, n: int) -> np.ndarray:

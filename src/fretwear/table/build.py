@@ -115,8 +115,8 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
     return frame
 
 
-def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None = None
-                       ) -> tuple[dict[str, np.ndarray], dict]:
+def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None = None,
+                       attrs=None) -> tuple[dict[str, np.ndarray], dict]:
     """The columns and metadata of :func:`wear_table_from_case`, without the DataFrame.
 
     For a caller that only passes the table on (a bundle's worker sends each contact's table
@@ -127,6 +127,11 @@ def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None
     ----------
     case, source, history
         As :func:`wear_table_from_case`.
+    attrs : iterable of str, optional
+        The keys of the table's ``attrs`` wanted (default all): a caller that keeps a few
+        (a bundle's worker) spares the others' making, the case's description (``case``) and
+        the power's statistics (``power``) the dearest. The values of those given are the
+        table's own.
 
     Returns
     -------
@@ -135,7 +140,7 @@ def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None
         ``wear_table_from_case(case, source, history=history)[name].to_numpy()`` gives (the
         same values and dtypes; units in :data:`fretwear.table.COLUMNS`).
     attrs : dict
-        The table's ``attrs``.
+        The table's ``attrs`` (those of ``attrs`` given).
 
     Examples
     --------
@@ -145,8 +150,11 @@ def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None
     >>> columns, attrs = wear_table_columns(case, 0.01)
     >>> columns["volume_mobile"].tolist(), attrs["law"]
     ([3.6e-13, 7.2e-13], 'ARCHARD')
+    >>> wear_table_columns(case, 0.01, attrs=("law", "time_scale"))[1]
+    {'law': 'ARCHARD', 'time_scale': 3600.0}
     """
-    columns, frame, attrs = _table_parts(case, source, history)
+    columns, frame, attrs = _table_parts(case, source, history,
+                                         None if attrs is None else tuple(attrs))
     if frame is None and not _plain_numeric(columns):
         frame = _frame(columns)  # what pandas makes of other columns
     if frame is not None:
@@ -164,9 +172,10 @@ def _plain_numeric(columns: dict) -> bool:
         and len({a.shape for a in arrays}) == 1
 
 
-def _table_parts(case: WearCase, source, history: ContactHistory | None):
+def _table_parts(case: WearCase, source, history: ContactHistory | None, keys=None):
     """(columns, frame, attrs) of :func:`wear_table_from_case`: the columns, or the frame when
-    the initial table's rows come first (then columns is None), and the metadata."""
+    the initial table's rows come first (then columns is None), and the metadata (its ``keys``
+    only, when given)."""
     if not isinstance(case, WearCase):
         raise InputError(f"case must be a WearCase (WearCase.from_keywords(...)), got "
                          f"{type(case).__name__}")
@@ -197,9 +206,11 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None):
             columns.update(wall)
         else:
             frame = frame.assign(**wall)
-    attrs = _attrs(case, geometry, mobile, obstacle, sources, result, edges)
+    attrs = _attrs(case, geometry, mobile, obstacle, sources, result, edges, keys)
     if limit is not None:
         attrs.update(limit)
+    if keys is not None:
+        attrs = {k: attrs[k] for k in keys if k in attrs}
     return (columns if frame is None else None), frame, attrs
 
 
@@ -381,12 +392,14 @@ def _after_rows(rows: pd.DataFrame, columns: dict, dtypes=None) -> pd.DataFrame:
 
 
 # --------------------------------------------------------------------------- 6. metadata
-def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result, edges) -> dict:
+def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result, edges,
+           keys=None) -> dict:
     """The table's metadata: the run's description, the coefficients and their sources
-    (``edges``: the case's ``sector_edges`` [deg])."""
-    dimensions = dict(geometry.to_dict())
+    (``edges``: the case's ``sector_edges`` [deg]); ``keys`` given: the power's statistics
+    and the case's description made only when asked for."""
+    dimensions = geometry.dimensions()  # a new dict
     dimensions.pop("contact_type", None)
-    return {
+    out = {
         "title": case.name, "contact_type": case.contact_type, "dimensions": dimensions,
         "law": case.law, "coefficients_mobile": mobile, "coefficients_obstacle": obstacle,
         "coefficient_sources": sources,
@@ -401,9 +414,12 @@ def _attrs(case: WearCase, geometry, mobile, obstacle, sources, result, edges) -
         "origin": case.origin, "tube_replacement": case.restart.tube_replacement,
         "wall_thickness": case.wall.thickness, "depth_limit": case.wall.limit,
         "global_depth": getattr(geometry, "reason", None),  # why the global depths are NaN
-        "power": None if result is None else _power_dict(result),
-        "case": case.to_dict(),
     }
+    if keys is None or "power" in keys:
+        out["power"] = None if result is None else _power_dict(result)
+    if keys is None or "case" in keys:
+        out["case"] = case.to_dict()
+    return out
 
 
 def _power_dict(result) -> dict:

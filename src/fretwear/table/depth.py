@@ -33,8 +33,9 @@ from fretwear.errors import InputError, KeywordError, RangeWarning
 from fretwear.geometry.base import ContactGeometry
 from fretwear.geometry.sectors import (
     SectorGeometry,
+    SectorSlices,
     sector_depth_mobile,
-    sector_depth_obstacle,
+    sector_slices,
     sector_volume_mobile,
 )
 from fretwear.laws.registry import WearLaw
@@ -381,19 +382,28 @@ class DepthModel:
             new = t[:, 0] >= self.replacement
             vm[new] = rate_m * (t[new] - self.replacement)
         vo = v0o + rate_o * t
-        g, arcs = self.geometry, np.asarray(self.sector_arcs, dtype=float)
-        dm = np.asarray(sector_depth_mobile(vm, g.mobile_radius, g.obstacle_width, arcs))
+        slices = self.slices
+        dm = slices.depth_mobile(vm)
+        if slices.obstacle_radius is None:
+            do = np.where(vo == 0, 0.0, np.nan)
+            unradiused = (np.flatnonzero((vo > 0).any(axis=0)) + 1).tolist()
+        else:
+            do, unradiused = slices.depth_obstacle(vo), []
+        return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
+                "depth_obstacle": do, "unradiused": unradiused}
+
+    @functools.cached_property
+    def slices(self) -> SectorSlices:
+        """The sectors' depth-volume relations (theory §3) of :attr:`sector_arcs` (a sector
+        table's terms; the bore radius :attr:`sector_obstacle_radius`, else the geometry's),
+        their dimensions checked once per set of dimensions
+        (:func:`~fretwear.geometry.sectors.sector_slices`)."""
+        g = self.geometry
         r_o = self.sector_obstacle_radius
         if r_o is None:
             r_o = getattr(g, "obstacle_radius", None)
-        worn = (vo > 0).any(axis=0)
-        if r_o is None:
-            do = np.where(vo == 0, 0.0, np.nan)
-        else:
-            do = np.asarray(sector_depth_obstacle(vo, r_o, g.obstacle_width, arcs), dtype=float)
-        unradiused = (np.flatnonzero(worn) + 1).tolist() if r_o is None else []
-        return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
-                "depth_obstacle": do, "unradiused": unradiused}
+        return sector_slices(g.mobile_radius, g.obstacle_width,
+                             tuple(float(a) for a in self.sector_arcs), r_o)
 
     def _term_initial(self) -> tuple[np.ndarray, np.ndarray]:
         """Each term's (mobile, obstacle) volumes at the origin [m³]."""
@@ -418,13 +428,14 @@ class DepthModel:
         arcs = np.asarray(self.sector_arcs, dtype=float)
         target = np.asarray(depth, dtype=float)
         d = np.minimum(target, g.mobile_radius)[..., None]
-        volume = np.asarray(sector_volume_mobile(d, g.mobile_radius, g.obstacle_width, arcs),
-                            dtype=float)
+        volume = self.slices.volume_mobile(d)
         rate = self.term_rates[0]
         v0 = np.zeros(arcs.size) if self.replacement is not None else self._term_initial()[0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (volume - v0) / rate
-        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        left = volume - v0
+        # (V(d) − V0)/r where the sector wears (r > 0), inf where it does not
+        t = np.divide(left, rate, out=np.full(np.broadcast_shapes(left.shape, rate.shape),
+                                              np.inf), where=rate > 0)
+        t = np.where(v0 >= volume, 0.0, t)
         if self.replacement is not None:
             t = self.replacement + t
         out = self.origin + t / self.time_scale
@@ -549,9 +560,12 @@ class DepthModel:
             return None
         rate = kw["factor"] * self.rates[0]
         v0 = 0.0 if self.replacement is not None else self.initial_mobile
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t = (volume - v0) / rate
-        t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        if type(rate) is float and rate > 0:  # one positive rate (the nominal inputs)
+            t = np.where(v0 >= volume, 0.0, (volume - v0) / rate)
+        else:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = (volume - v0) / rate
+            t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
         return t if self.replacement is None else self.replacement + t
 
     def _volume_of(self, target) -> np.ndarray:

@@ -49,8 +49,8 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
         powers = tuple(np.asarray(result.sectors, dtype=float).tolist())
         m = len(powers)
         k_m, k_o = _case_sector_coefficients(case, m, mobile, obstacle)
-        coefs_m = tuple({key: k} for k in k_m)
-        coefs_o = (None,) * m if k_o is None else tuple({key: k} for k in k_o)
+        coefs_m = tuple({key: k} for k in k_m.tolist())  # plain floats: WearLaw.rate
+        coefs_o = (None,) * m if k_o is None else tuple({key: k} for k in k_o.tolist())
         pm = np.zeros(m) if state is None else np.asarray(state.sector_volume_mobile, float)
         po = np.zeros(m) if state is None else np.asarray(state.sector_volume_obstacle, float)
         v0_m, v0_o = float(np.sum(pm)), float(np.sum(po))

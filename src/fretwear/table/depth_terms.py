@@ -93,21 +93,25 @@ class SectorRelation:
 
 def _rates(law, powers, coefficients) -> np.ndarray:
     """Volume per second [m³/s] of each term of a law linear in time (0 where the body does
-    not wear), every term in one call of the law where their coefficients share names."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")  # the table's own volumes already warned
-        if all(c is None for c in coefficients):
-            return np.zeros(len(powers))
-        if len(powers) == 1:  # one term (a table without sectors)
-            return np.array([float(np.asarray(law.volume(powers[0], 1.0, **coefficients[0])))])
+    not wear; :meth:`~fretwear.laws.WearLaw.rate`, its warnings dropped: the table's own volumes
+    already warned), every term in one call of the law where they share their coefficients or
+    their coefficients' names."""
+    if all(c is None for c in coefficients):
+        return np.zeros(len(powers))
+    if len(powers) == 1:  # one term (a table without sectors)
+        return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
+    first = coefficients[0]
+    if all(c is not None and all(type(v) is float for v in c.values()) for c in coefficients) \
+            and all(c == first for c in coefficients):  # the law's numbers in every sector
+        given = first
+    else:
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
-        if len(names) == 1 and all(c is not None for c in coefficients):
-            given = {k: np.array([c[k] for c in coefficients]) for k in next(iter(names))}
-            return np.broadcast_to(np.asarray(law.volume(np.asarray(powers, dtype=float), 1.0,
-                                                         **given), dtype=float),
-                                   (len(powers),)).astype(float)
-        return np.array([0.0 if c is None else float(np.asarray(law.volume(p, 1.0, **c)))
-                         for p, c in zip(powers, coefficients, strict=True)])
+        if len(names) != 1 or any(c is None for c in coefficients):
+            return np.array([0.0 if c is None else float(law.rate(float(p), **c))
+                             for p, c in zip(powers, coefficients, strict=True)])
+        given = {k: np.array([c[k] for c in coefficients]) for k in next(iter(names))}
+    return np.broadcast_to(np.asarray(law.rate(np.asarray(powers, dtype=float), **given),
+                                      dtype=float), (len(powers),)).astype(float)
 
 
 def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
