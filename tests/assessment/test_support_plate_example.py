@@ -94,3 +94,16 @@ def test_the_campaign_script_writes_the_shipped_files(tmp_path):
         mine, shipped = pd.read_csv(tmp_path / name), pd.read_csv(EXAMPLE / name)
         # seeded: the same draws on any machine, to the files' rounding (4 digits)
         pd.testing.assert_frame_equal(mine, shipped, check_exact=False, rtol=1e-3)
+
+
+def test_assess_reads_the_given_powers(run, tmp_path):
+    """A bundle whose manifest gives each contact's power (``power.value_W``, no history):
+    the contact's power is the given one [W] (it was None: `assess` stopped on an internal
+    TypeError), and `fretwear assess` runs on it. Source: the manifest's own column."""
+    from fretwear.bundle import load
+
+    contacts = load(run / "plate").contacts.set_index("contact")["power"]
+    manifest = pd.read_csv(EXAMPLE / "manifest.csv").set_index("contact")["power.value_W"]
+    assert contacts.astype(float).to_dict() == manifest.astype(float).to_dict()
+    assert main(["assess", str(run / "plate"), str(EXAMPLE / "campaign.csv"), "--interval", "4",
+                 "-o", str(tmp_path / "oa")]) == 0

@@ -74,6 +74,8 @@ def _attrs(attrs: dict[str, Any], task: ContactTask) -> dict[str, Any]:
     power = attrs.get("power") or {}
     get = power.get if isinstance(power, dict) else functools.partial(getattr, power)
     out["power"] = {k: _plain(get(k)) for k in _POWER}
+    if not power and task.power is not None:  # a given power [W] (power.value_W): its total
+        out["power"]["total"] = float(task.power)
     out["time_unit"] = task.time_unit
     return out
 
