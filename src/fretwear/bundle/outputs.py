@@ -24,7 +24,7 @@ from fretwear.bundle.manifest import Manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.store import OutputDirectory, write_frame
-from fretwear.bundle.table_file import with_identity
+from fretwear.bundle.table_file import PrefixTable, with_identity
 from fretwear.bundle.tasks import concat_packed
 from fretwear.geometry.base import GLOBAL_RANGE
 from fretwear.io.atomic import atomic_write
@@ -32,12 +32,17 @@ from fretwear.io.atomic import atomic_write
 
 def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
               times: tuple[float, float], workers: int, dataset_format: str | None,
-              limit: float | None = None, built: dict[str, Any] | None = None) -> BundleResult:
+              limit: float | None = None, built: dict[str, Any] | None = None,
+              identity: pd.DataFrame | None = None, written: PrefixTable | None = None
+              ) -> BundleResult:
     """The BundleResult (and the output files) from every contact's latest record and the
-    wear cases ``built`` (contact -> WearCase) of this run."""
+    wear cases ``built`` (contact -> WearCase) of this run; ``identity``: the manifest's
+    identity columns (``contact`` as text), made here when None; ``written``: the table
+    written while the results arrived, put in place when whole (else given up)."""
     order = [r.contact for r in man.rows]
-    identity = man.identity_frame()
-    identity["contact"] = identity["contact"].astype(str)
+    if identity is None:
+        identity = man.identity_frame()
+        identity["contact"] = identity["contact"].astype(str)
     # a restart that skips every contact into a directory whose final files are those of the
     # same records (outputs_digest, recorded in run.json with the files' stamps): the files
     # are not written again, the table is read back from its file (issue 28: a restart of
@@ -46,15 +51,19 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
         identity, order, records, store.table_format, dataset_format or "default", limit)
     unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
                  and store.unchanged(digest))
-    # with Parquet parts, table.parquet is written from them by buckets (table_file.
-    # stream_table) and the result reads it on demand: the client never holds the whole table
-    # (issue 28: 1.3 GB at 10^5 contacts, then its copies); an unchanged restart reads nothing
+    # with Parquet parts, table.parquet is written from them while they arrived (table_file.
+    # PrefixTable), else by buckets (table_file.stream_table), and the result reads it on
+    # demand: the client never holds the whole table (issue 28: 1.3 GB at 10^5 contacts, then
+    # its copies); an unchanged restart reads nothing
     table = None
     streamed = unchanged and _saved_table(store, order)
     if not streamed and store is not None and not any(
             records[c].get("table") is not None for c in order):
         kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
-        streamed = bool(kept) and store.stream_table(kept, order, identity)
+        streamed = bool(kept) and (store.finish_table(written)
+                                   or store.stream_table(kept, order, identity))
+    if written is not None:
+        written.abort()  # not used: its temporary file removed (nothing once finished)
     if not streamed:
         table = _table(order, identity, records, store)
     # the case of each contact whose rows are its (done, or skipped: done before with the same

@@ -32,7 +32,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.csv_table import write_csv
 from fretwear.bundle.datasets import path_stamp, require
-from fretwear.bundle.table_file import read_columns, stream_table
+from fretwear.bundle.table_file import PrefixTable, read_columns, stream_table
 from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write
@@ -347,6 +347,22 @@ class OutputDirectory:
         parts of different columns: the caller assembles the table and :meth:`write_table`."""
         if self.table_format != "parquet" or not stream_table(
                 self.parts, self.table_path(), records, order, identity):
+            return False
+        self._table_written()
+        return True
+
+    def table_writer(self, order: list[str], identity: pd.DataFrame) -> PrefixTable | None:
+        """The ``table.parquet`` written while the results arrive
+        (:class:`fretwear.bundle.table_file.PrefixTable`; contacts in ``order``'s order,
+        ``identity`` columns in front); None for a CSV table."""
+        if self.table_format != "parquet":
+            return None
+        return PrefixTable(self.parts, self.table_path(), order, identity)
+
+    def finish_table(self, writer: PrefixTable | None) -> bool:
+        """Put in place the table ``writer`` wrote while the results arrived; False (nothing
+        written) where it could not (:meth:`PrefixTable.finish`)."""
+        if writer is None or not writer.finish():
             return False
         self._table_written()
         return True
