@@ -127,3 +127,43 @@ def test_a_run_writes_its_table_while_the_results_arrive(tmp_path, monkeypatch):
                                   pd.read_parquet(tmp_path / "b" / "table.parquet"),
                                   check_exact=True)
     assert not list((tmp_path / "a").glob(".table.parquet.*"))
+
+
+@pytest.mark.parametrize("width", [False, True], ids=["same-ids", "longest-id-failed"])
+def test_the_dataset_written_with_the_table_is_the_one_written_from_it(tmp_path, monkeypatch,
+                                                                       width):
+    """dataset.zarr appended a row group at a time while the table is written (GridZarr, row
+    groups of 7 rows: several parts a group), its coordinates and attributes added at the end,
+    is the Dataset written from the finished table (write_zarr_by_regions, the route before this
+    change, forced in a second directory): the same variables, values, coordinates and
+    attributes, compared exactly (same process). A failed contact in the middle has no row; where
+    the failed one has the longest id (the ids' text width changes), the route gives up and the
+    table's route writes it."""
+    xr = pytest.importorskip("xarray")
+    pytest.importorskip("zarr")
+    from fretwear.bundle import result_dataset
+
+    monkeypatch.setattr(table_file, "ROWS_PER_GROUP", 7)
+    manifest, case = write_bundle(tmp_path, oscillator(), 5)
+    if width:
+        frame = pd.read_csv(manifest)
+        frame.loc[2, "contact"] = "R2C1-AVB-LONGEST"
+        frame.to_csv(manifest, index=False)
+    (tmp_path / "histories" / "t2.parquet").unlink()  # failed: no rows, in the middle
+    real = result_dataset.write_zarr_by_regions
+    used = []
+    monkeypatch.setattr(result_dataset, "write_zarr_by_regions",
+                        lambda *a, **k: used.append(1) or real(*a, **k))
+    first = run_bundle(manifest, case, scheduler="serial", output=tmp_path / "a", part_size=2,
+                       dataset_format="zarr")
+    assert first.stats["failed"] == 1
+    assert used == ([1] if width else [])  # the table's route only where the width changed
+    with monkeypatch.context() as m:
+        m.setattr(result_dataset.GridZarr, "finish", lambda self, *a: self.abort() or False)
+        run_bundle(manifest, case, scheduler="serial", output=tmp_path / "b", part_size=2,
+                   dataset_format="zarr")
+    with xr.open_zarr(tmp_path / "a" / "dataset.zarr") as got, \
+            xr.open_zarr(tmp_path / "b" / "dataset.zarr") as expected:
+        xr.testing.assert_identical(got.load(), expected.load())
+        assert got.sizes["contact"] == 4
+    assert not list((tmp_path / "a").glob(".dataset.zarr*"))  # no temporary store left

@@ -386,7 +386,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     built: dict[str, Any] = {}  # contact -> its WearCase, built once here
     arrivals = Arrivals(store, records, earlier, len(man.rows), progress, part_size,
                         None if store is None else store.table_writer(
-                            [r.contact for r in man.rows], identity))
+                            [r.contact for r in man.rows], identity, dataset_format))
     try:
         _build_tasks(man, base, chunk_size, cases, (earlier, previous), records, pending, built)
         arrivals.start()

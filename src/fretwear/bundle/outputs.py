@@ -15,6 +15,7 @@ import hashlib
 import json
 import math
 import time
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from fretwear._lazy import pandas as pd
@@ -173,20 +174,20 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
             dataset_format = "netcdf" if optional("zarr") is None else "zarr"
         if result.table_file is None:  # else written from the parts already
             store.write_table(result.table)
-        write_frame(result.errors, store.path / "errors.csv", "csv")
-        write_frame(result.warnings, store.path / "warnings.csv", "csv")
-        write_frame(result.summary(limit), store.path / "summary.csv", "csv")
-        if result.table_file is not None and dataset_format == "zarr" \
-                and store.write_zarr_by_regions(result.contacts):
-            pass  # from the written table, a group of contacts at a time (issue 28)
-        elif len(result.table):
-            # built, written and dropped: not kept on the result beside its table (the client's
-            # memory at the end, issue 28); BundleResult.dataset builds it again when asked
-            dataset = build_dataset(result.table, result.contacts)
-            store.write_dataset(dataset, dataset_format)
-            del dataset
-        else:
-            store.drop_dataset()
+        # the dataset written from the table file in a thread while this one writes the CSV
+        # files and the summary: after the last result the workers' cores are free (issue 28:
+        # the client's work there was single-threaded while a core waited); in memory, the
+        # table is the result's and the Dataset is built here
+        with ThreadPoolExecutor(1) as pool:
+            dataset = pool.submit(_write_dataset, result, store, dataset_format) \
+                if result.table_file is not None else None
+            write_frame(result.errors, store.path / "errors.csv", "csv")
+            write_frame(result.warnings, store.path / "warnings.csv", "csv")
+            write_frame(result.summary(limit), store.path / "summary.csv", "csv")
+            if dataset is None:
+                _write_dataset(result, store, dataset_format)
+            else:
+                dataset.result()
         outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
     # the final files written, so that a later run in another format removes only those
     stamps = store.stamps(outputs)
@@ -195,6 +196,22 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
         json.dump({**result.stats, "limit": limit, "outputs": [*outputs, "run.json"],
                    "digest": digest, "stamps": stamps}, handle, indent=1, default=str)
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))
+
+
+def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str) -> None:
+    """``dataset.zarr`` (or ``.nc``) of the result's table, or the stale one removed where no
+    contact has rows."""
+    if result.table_file is not None and dataset_format == "zarr" \
+            and store.write_zarr_by_regions(result.contacts):
+        return  # from the written table, a group of contacts at a time (issue 28)
+    if len(result.table):
+        # built, written and dropped: not kept on the result beside its table (the client's
+        # memory at the end, issue 28); BundleResult.dataset builds it again when asked
+        dataset = build_dataset(result.table, result.contacts)
+        store.write_dataset(dataset, dataset_format)
+        del dataset
+    else:
+        store.drop_dataset()
 
 
 def outputs_digest(identity: pd.DataFrame, order: list[str], records: dict[str, dict],

@@ -257,8 +257,13 @@ class PrefixTable:
         The manifest's identity columns, ``contact`` as text.
     """
 
-    def __init__(self, parts: Path, target: Path, order: list[str], identity: pd.DataFrame):
+    def __init__(self, parts: Path, target: Path, order: list[str], identity: pd.DataFrame,
+                 dataset=None):
         self.parts, self.target, self.identity = parts, target, identity
+        #: The dataset written with it (:class:`fretwear.bundle.result_dataset.GridZarr`, or
+        #: None): given each row group's rows.
+        self.dataset = dataset
+        self.frames: list[pd.DataFrame] = []  # the rows of the next row group, for the dataset
         self.position = {str(c): i for i, c in enumerate(order)}
         self.where: list[Any] = [_UNRESOLVED] * len(order)
         self.files: dict[str, list[int]] = {}
@@ -350,6 +355,8 @@ class PrefixTable:
             self.writer = pq.ParquetWriter(self.tmp, _typed(pa, schema, types))
         self.batch.append(pa.Table.from_pandas(frame, schema=self.writer.schema,
                                                preserve_index=False))
+        if self.dataset is not None and not self.dataset.aborted:
+            self.frames.append(frame)
         if sum(t.num_rows for t in self.batch) >= ROWS_PER_GROUP:
             self._write_batch()
 
@@ -370,6 +377,9 @@ class PrefixTable:
         if self.batch:
             self.writer.write_table(pa.concat_tables(self.batch))
             self.batch = []
+        if self.frames:
+            self.dataset.add(pd.concat(self.frames, ignore_index=True))
+            self.frames = []
 
     def finish(self) -> bool:
         """Write what is left and rename the file over ``table.parquet``: True where every
@@ -392,7 +402,9 @@ class PrefixTable:
     def abort(self) -> None:
         """Give up this route: the temporary file removed, nothing kept."""
         self.aborted = True
-        self.batch = []
+        self.batch, self.frames = [], []
+        if self.dataset is not None:
+            self.dataset.abort()
         writer, self.writer = self.writer, None
         if writer is not None:
             with contextlib.suppress(Exception):
