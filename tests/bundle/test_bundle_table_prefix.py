@@ -167,3 +167,25 @@ def test_the_dataset_written_with_the_table_is_the_one_written_from_it(tmp_path,
         xr.testing.assert_identical(got.load(), expected.load())
         assert got.sizes["contact"] == 4
     assert not list((tmp_path / "a").glob(".dataset.zarr*"))  # no temporary store left
+
+
+def test_a_killed_runs_leftovers_are_removed_by_the_next_run(tmp_path):
+    """A killed run leaves its table's temporary file and its Zarr store being written; the
+    next finished run in the directory removes them (the temporary file once older than
+    fretwear.io.atomic.STALE_SECONDS: mtime 0 here, as atomic_path's leftovers) and keeps the
+    user's files."""
+    import os
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    out = tmp_path / "out"
+    out.mkdir()
+    old = out / ".table.parquet.abc123.tmp"
+    old.write_bytes(b"PAR1")
+    os.utime(old, (0, 0))
+    store = out / ".dataset.zarr.00000000000000000001.parts"
+    store.mkdir()
+    (store / ".zgroup").write_text("{}")
+    mine = out / "notes.txt"
+    mine.write_text("kept")
+    run_bundle(manifest, case, scheduler="serial", output=out)
+    assert not old.exists() and not store.exists() and mine.read_text() == "kept"

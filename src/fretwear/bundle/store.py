@@ -19,6 +19,7 @@ reported ``stale`` and its failed record is not written, so no rerun loses a res
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -36,7 +37,7 @@ from fretwear.bundle.datasets import path_stamp, require
 from fretwear.bundle.table_file import PrefixTable, read_columns, stream_table
 from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
-from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.io.atomic import STALE_SECONDS, atomic_path, atomic_write
 from fretwear.table.schema import FLOAT_FORMAT
 
 TABLE_FORMATS = ("parquet", "csv")
@@ -332,6 +333,17 @@ class OutputDirectory:
         if self.zarr_parts is not None:  # a dataset written with the table, not used
             self.zarr_parts.abort()
             self.zarr_parts = None
+        # what a killed run wrote while its results arrived (table_file.PrefixTable,
+        # result_dataset.GridZarr): another run's store, a table's temporary file left
+        # STALE_SECONDS (the age fretwear.io.atomic's own leftovers are removed at)
+        for p in self.path.glob(".dataset.zarr.*.parts*"):
+            if self._run not in p.name:
+                shutil.rmtree(p, ignore_errors=True)
+        limit = time.time() - STALE_SECONDS
+        for p in self.path.glob(f".{self.table_path().name}.*.tmp"):
+            with contextlib.suppress(OSError):
+                if p.stat().st_mtime < limit:
+                    p.unlink()
 
     def table_path(self) -> Path:
         """The final table's file, ``table.<format>``."""
