@@ -65,7 +65,7 @@ def test_cluster_rows_are_the_single_contact_tables_and_failures_are_rows(tmp_pa
 def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, address,
                                                                      monkeypatch):
     """Contacts grouped several per Dask task (engine.task_sizes, here 3 per task by asking one
-    task per worker, dealt as cards) give each contact's single-contact table bit for bit, and
+    task per worker, consecutive slices) give each contact's single-contact table bit for bit, and
     a bad contact fails alone inside its group. The groups are submitted in one graph once
     every contact's task is built (the scheduler then deals them out evenly by count)."""
     from fretwear.bundle import engine
@@ -98,8 +98,8 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
     result = run_bundle(manifest, case, scheduler=address)
     built = [("build", f"R{k // 2 + 1}C{k % 2 + 1}-AVB") for k in range(6)]
     assert submitted == [*built, ("run_contacts", [3, 3])]  # the groups in one graph
-    # dealt as cards, back and forth (engine.deal): each group samples the whole manifest
-    assert dealt == [[built[k][1] for k in (0, 3, 4)], [built[k][1] for k in (1, 2, 5)]]
+    # consecutive slices of the manifest (engine.submitted_slices; one per worker here)
+    assert dealt == [[built[k][1] for k in (0, 1, 2)], [built[k][1] for k in (3, 4, 5)]]
     # each group's records cross to the client as one pickle (tasks.pickled), not as Dask's
     # frame per array
     assert crossed == [bytes, bytes]

@@ -564,27 +564,34 @@ def test_the_runs_wall_time_includes_assembling_and_writing_the_results(tmp_path
     assert 0 < no_output.stats["seconds"] < result.stats["seconds"]
 
 
-def test_dealt_groups_share_a_cost_that_grows_along_the_manifest():
-    """engine.deal: every contact in exactly one group, in manifest order within it, the sizes
-    of task_sizes; and when the cost grows linearly along the manifest (1 to 2: a manifest
-    sorted by row, the U-bend rows impacting more), the first half of the groups (what Dask
-    gives one of two workers) holds half the work to within one contact's cost, and so does
-    every group its share, where consecutive groups hold 0.625 of the work against 0.875 (the
-    integral of 1 + x over each half of [0, 1])."""
-    from fretwear.bundle.engine import deal, task_sizes
+@pytest.mark.parametrize("n, workers", [(500, 2), (1_601, 2), (7_777, 3)])
+def test_workers_share_a_cost_that_grows_along_the_manifest(n, workers):
+    """engine.submitted_slices and engine.worker_order: every contact in exactly one group, each
+    group a consecutive slice of the manifest, the sizes of task_sizes in submission order (each
+    worker's run the same number of contacts within one); Dask gives each worker a
+    consecutive run of the submitted groups, and when the cost grows linearly along the
+    manifest (1 to 2: a manifest sorted by row, the U-bend rows impacting more) the runs' work
+    (computed here by summing the costs) is the same within 1 %, where consecutive halves hold
+    0.625 of the work against 0.875 (the integral of 1 + x over
+    each half of [0, 1]); each run is in the manifest's order, and the r-th groups of the runs
+    are neighbours in the manifest (the parts arrive about in its order)."""
+    from fretwear.bundle.engine import submitted_slices, task_sizes, worker_order
 
-    n, workers = 500, 2
     sizes = task_sizes(n, workers)
-    groups = deal(list(range(n)), len(sizes))
-    assert sorted(i for g in groups for i in g) == list(range(n))
-    assert all(g == sorted(g) for g in groups) and [len(g) for g in groups] == sizes
+    submitted = worker_order(len(sizes), workers)
+    assert sorted(submitted) == list(range(len(sizes)))
+    groups = submitted_slices(list(range(n)), sizes, submitted)
+    assert [len(g) for g in groups] == sizes
+    cut = [groups[submitted.index(k)] for k in range(len(sizes))]  # the manifest's order
+    assert [i for g in cut for i in g] == list(range(n))
     cost = 1 + np.arange(n) / (n - 1)
-    half = len(groups) // 2
-    first = sum(cost[g].sum() for g in groups[:half])
-    second = sum(cost[g].sum() for g in groups[half:])
-    assert abs(first - second) <= cost.max()  # 250 contacts each
-    shares = np.array([cost[g].sum() / len(g) for g in groups])
-    assert np.ptp(shares) * 32 <= cost.max()
+    runs = np.array(submitted).reshape(workers, -1)
+    counts = [sum(len(cut[k]) for k in run) for run in runs]
+    assert np.ptp(counts) <= 1
+    work = [sum(cost[cut[k]].sum() for k in run) for run in runs]
+    assert np.ptp(work) <= 0.01 * np.mean(work)
+    assert all((np.diff(run) > 0).all() for run in runs)
+    assert np.ptp(runs, axis=0).max() == workers - 1  # round r: the groups r*w ... r*w + w-1
     consecutive = cost[:n // 2].sum() / cost.sum()
     assert consecutive == pytest.approx(0.625 / 1.5, rel=1e-2)
 

@@ -22,6 +22,13 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
 
+from fretwear.bundle.arrivals import (  # noqa: F401 - PART_SECONDS: its home until now
+    PART_SECONDS,
+    PART_SIZE,
+    Arrivals,
+    failed,
+    kept,
+)
 from fretwear.bundle.cases import ROW_ERRORS, ContactTask, build_task, check_base_case
 from fretwear.bundle.cluster import (
     LOCAL_CLUSTER_CONFIG,  # noqa: F401 - its home until now
@@ -48,14 +55,11 @@ from fretwear.bundle.tasks import (
     run_contacts,
     time_bounds,
 )
-from fretwear.bundle.worker_parts import PartTarget, run_contacts_into, written_by_worker
+from fretwear.bundle.worker_parts import PartTarget, run_contacts_into
 from fretwear.errors import KeywordError
 from fretwear.history import DEFAULT_CHUNK_SIZE
 from fretwear.workflows.case_files import load_case, validate_case
 
-#: Contacts per part file (a part is also written every PART_SECONDS).
-PART_SIZE = 100
-PART_SECONDS = 10.0
 #: Tasks per worker when contacts are grouped (:func:`task_sizes`; measured on 500 contacts ×
 #: 1e5 samples, 2 workers: 4, 6, 8, 12, 16 per worker took 1.39, 1.40, 1.39, 1.51, 1.50 s).
 TASKS_PER_WORKER = 8
@@ -203,59 +207,68 @@ def _spread(rest: int, count: int) -> list[int]:
     return [int((g + 1) * rest // count > g * rest // count) for g in range(count)]
 
 
-def deal(items: list, count: int) -> list[list]:
-    """``items`` dealt into ``count`` groups as cards are dealt, back and forth (the ``r``-th
-    round of ``count`` items to the groups 0, 1, ... when ``r`` is even, ..., 1, 0 when odd),
-    each group in the items' order; the groups placed in the order of :func:`task_sizes` (the
-    larger ones spread).
+def slices(items: list, sizes: list[int]) -> list[list]:
+    """``items`` cut into consecutive groups of ``sizes`` items (:func:`task_sizes`).
 
-    Each group then samples the whole manifest. Dask gives each worker a consecutive run of one
-    map's tasks (the first half of the groups to one of two workers), so groups of consecutive
-    contacts would leave one worker one end of the manifest: when the cost grows along it (a
-    manifest sorted by tube row, the rows toward the U-bend impacting more), that worker gets
-    the costly end (a cost growing linearly from 1 to 2 along the manifest: 0.625 against
-    0.875 of the work). Dealt back and forth, every group holds the same share within one
-    contact (dealt one way only, the groups dealt first would hold the cheaper contacts of
-    every round).
+    >>> slices(list(range(7)), [2, 3, 2])
+    [[0, 1], [2, 3, 4], [5, 6]]
+    """
+    out, start = [], 0
+    for size in sizes:
+        out.append(items[start:start + size])
+        start += size
+    return out
+
+
+def submitted_slices(items: list, sizes: list[int], order: list[int]) -> list[list]:
+    """``items`` cut into consecutive slices, the ``k``-th in the manifest's order submitted
+    ``order.index(k)``-th: the slices in submission order, the ``j``-th holding ``sizes[j]``
+    items (:func:`task_sizes` spreads the larger ones along the submission, so that each
+    worker's run holds the same number of contacts within one).
+
+    >>> submitted_slices(list(range(7)), [2, 2, 3], [0, 2, 1])
+    [[0, 1], [5, 6], [2, 3, 4]]
+    """
+    along = [0] * len(sizes)
+    for size, k in zip(sizes, order, strict=True):
+        along[k] = size
+    cut = slices(items, along)
+    return [cut[k] for k in order]
+
+
+def worker_order(count: int, workers: int) -> list[int]:
+    """The order in which ``count`` groups, consecutive slices of the manifest (:func:`slices`),
+    are submitted to ``workers`` workers.
+
+    Dask gives each worker a consecutive run of one map's tasks in submission order (the first
+    ``count / workers`` to one worker, and so on; ``worker-saturation: inf``), each worker
+    computing its run in that order. The groups are dealt to the workers as cards are dealt,
+    back and forth (round ``r`` of ``workers`` groups to the workers 0, 1, ... when ``r`` is
+    even, ..., 1, 0 when odd), each worker's groups in the manifest's order. Every worker's
+    share then samples the whole manifest: when the cost grows along it (a manifest sorted by
+    tube row, the rows toward the U-bend impacting more), the workers' shares are the same
+    within a group's (consecutive halves gave one worker 0.625 of a cost growing linearly from
+    1 to 2 against 0.875 to the other). And the workers compute the groups about in the
+    manifest's order, each round's ``workers`` groups together: the parts arrive in the
+    manifest's order within a round, so that the table is written as they arrive
+    (:class:`fretwear.bundle.table_file.PrefixTable`). (Until issue 28 the contacts were dealt
+    one by one into the groups, each group sampling the whole manifest: balanced too, but
+    every part then held contacts from all along the manifest, and the table could only be
+    sorted out of the parts once all had arrived.)
 
     Examples
     --------
-    >>> deal(list(range(7)), 3)
-    [[1, 4], [2, 3], [0, 5, 6]]
-    >>> [len(g) for g in deal(list(range(500)), 16)] == task_sizes(500, 2)
-    True
+    >>> worker_order(8, 2)
+    [0, 3, 4, 7, 1, 2, 5, 6]
+    >>> worker_order(6, 3)
+    [0, 5, 1, 4, 2, 3]
     """
-    hands: list[list] = [[] for _ in range(count)]
-    for i, item in enumerate(items):
-        r, k = divmod(i, count)
-        hands[k if r % 2 == 0 else count - 1 - k].append(item)
-    size = len(items) // count
-    larger = iter([h for h in hands if len(h) > size])
-    smaller = iter([h for h in hands if len(h) == size])
-    return [next(larger) if extra else next(smaller)
-            for extra in _spread(len(items) % count, count)]
-
-
-def _failed(task: ContactTask, exc: BaseException) -> dict[str, Any]:
-    return {"contact": task.contact, "key": task.key, "status": "failed", "table": None,
-            "warnings": [list(w) for w in task.warnings],
-            "error": [type(exc).__name__, str(exc)], "samples": 0,
-            "seconds": 0.0, "attrs": None, "state": None}
-
-
-def _kept(rec: dict[str, Any], old: dict[str, Any] | None) -> dict[str, Any]:
-    """A contact failing this run (its history moved, unreadable, a case now invalid) whose
-    earlier run in the output directory computed it: its earlier record and rows kept, status
-    ``"stale"``, this run's error beside them. A stale record is never written to a part, so the
-    earlier good record stays the contact's latest (a later run with the input back skips it);
-    any other record is returned as it is."""
-    if rec["status"] != "failed" or not old or old.get("status") != "done" \
-            or not old.get("rows_file"):
-        return rec
-    said = [list(w) for w in old.get("warnings") or []]
-    said += [list(w) for w in rec.get("warnings") or [] if list(w) not in said]
-    return {**old, "status": "stale", "error": rec["error"], "warnings": said, "table": None,
-            "state": None}
+    w = max(1, workers)
+    hands: list[list[int]] = [[] for _ in range(w)]
+    for k in range(count):
+        r, j = divmod(k, w)
+        hands[j if r % 2 == 0 else w - 1 - j].append(k)
+    return [k for hand in hands for k in hand]
 
 
 def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = None,
@@ -363,126 +376,116 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     check_base_case(base, man.rows, man.source, cases)
     store = None if output is None else OutputDirectory(output, table_format=table_format)
     # every contact's latest record in the directory: the ones to skip (unless force), and
-    # the earlier rows a contact failing this run keeps (_kept, even with force)
+    # the earlier rows a contact failing this run keeps (kept, even with force)
     earlier = {} if store is None else store.previous()
     previous = {} if force else earlier
-
+    identity = man.identity_frame()
+    identity["contact"] = identity["contact"].astype(str)
     records: dict[str, dict[str, Any]] = {}
-    buffer: list[dict[str, Any]] = []
-    total = len(man.rows)
     pending: list[ContactTask] = []  # the rows made tasks (an interrupt counts them once done)
     built: dict[str, Any] = {}  # contact -> its WearCase, built once here
+    arrivals = Arrivals(store, records, earlier, len(man.rows), progress, part_size,
+                        None if store is None else store.table_writer(
+                            [r.contact for r in man.rows], identity, dataset_format))
     try:
-        for row in man.rows:
-            try:
-                task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
-            except ROW_ERRORS as exc:  # with the warnings its case raised before failing
-                said = [list(w) for w in getattr(exc, "case_warnings", ())]
-                records[row.contact] = _kept(_failed(
-                    ContactTask(row.contact, row.history, {}, warnings=said), exc),
-                    earlier.get(row.contact))
-                continue
-            built[row.contact] = task.wear_case()  # carried to the result (BundleResult.cases)
-            old = previous.get(row.contact)
-            if old is not None and old.get("status") == "done" and old.get("key") == task.key:
-                records[row.contact] = {**old, "status": "skipped"}
-            else:
-                pending.append(task)
-        done_count = sum(1 for r in records.values() if r["status"] == "skipped")
-        if progress is not None:
-            for r in records.values():
-                progress(0, total, r)
-        last_flush = time.perf_counter()
+        _build_tasks(man, base, chunk_size, cases, (earlier, previous), records, pending, built)
+        arrivals.start()
         before = time.perf_counter()
         engine = open_engine(scheduler, workers) if pending else SerialEngine()
         startup = time.perf_counter() - before
         try:
-            tag = uuid.uuid4().hex[:8]
-            handles = {}
-            targets = None
-            targets_of: dict[int, PartTarget] = {}  # a group's part, written by its worker
-            whole = []
-            for task in pending:
-                try:
-                    chunks = plan_chunks(task, chunk_size)
-                except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
-                    del exc
-                    chunks = None
-                if chunks is None:
-                    whole.append(task)
-                    continue
-                handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
-                handles[id(handle)] = (handle, [task])
-            # the contacts computed whole, dealt into groups (task_sizes, deal) and submitted
-            # in one map: one message to the scheduler, which deals the groups out evenly by
-            # count (submitting each worker's first group early, while the client built the
-            # others, left one worker 9 groups and the other 7)
-            sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
-                else [1] * len(whole)
-            if all(size == 1 for size in sizes):
-                groups = [[t] for t in whole]
-                mapped = engine.map(run_contact, whole, chunk_size,
-                                    keys=[f"contact-{t.contact}-{tag}" for t in whole],
-                                    retries=retries)
-            else:
-                groups = deal(whole, len(sizes))
-                keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
-                targets = _part_targets(store, groups, part_size)
-                mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
-                                    retries=retries) if targets is None else \
-                    engine.map(run_contacts_into, list(zip(groups, targets, strict=True)),
-                               chunk_size, keys=keys, retries=retries)
-            for k, (handle, group) in enumerate(zip(mapped, groups, strict=True)):
-                handles[id(handle)] = (handle, group)
-                if targets is not None:
-                    targets_of[id(handle)] = targets[k]
+            handles = _submit_all(engine, pending, store, chunk_size, split_every, retries,
+                                  part_size)
             streaming = (store is not None or progress is not None
                          or len(pending) > GATHER_AT_END)
-            for handle, value in engine.results([h for h, _ in handles.values()], streaming):
-                group = handles[id(handle)][1]
-                values = value if isinstance(value, list) else [value] * len(group)
-                target = targets_of.pop(id(handle), None)
-                if target is not None and any(written_by_worker(v, target) for v in values):
-                    # the rows in the worker's file: the part's records written at once
-                    part = [_kept(one if isinstance(one, dict) else _failed(task, one),
-                                  earlier.get(task.contact))
-                            for task, one in zip(group, values, strict=True)]
-                    store.record_part([r for r in part if r["status"] != "stale"],
-                                      target.stem, target.rows_file)
-                    for rec in part:
-                        records[rec["contact"]] = rec
-                        done_count += 1
-                        if progress is not None:
-                            progress(done_count, total, rec)
-                    continue
-                for task, one in zip(group, values, strict=True):
-                    rec = _kept(one if isinstance(one, dict) else _failed(task, one),
-                                earlier.get(task.contact))
-                    records[task.contact] = rec
-                    done_count += 1
-                    if store is not None and rec["status"] != "stale":
-                        buffer.append(rec)
-                        now = time.perf_counter()
-                        if len(buffer) >= part_size or now - last_flush >= PART_SECONDS:
-                            _flush(store, buffer)
-                            buffer, last_flush = [], now
-                    if progress is not None:
-                        progress(done_count, total, rec)
-            if store is not None:
-                # this run's last records, and the failures of the client-side checks
-                queued = {id(b) for b in buffer}
-                buffer += [r for r in records.values() if r["status"] == "failed"
-                           and "part" not in r and id(r) not in queued]
-                if buffer:
-                    _flush(store, buffer)
+            for handle, value in engine.results([h for h, _, _ in handles.values()], streaming):
+                _, group, target = handles[id(handle)]
+                arrivals.receive(group, value, target)
+            arrivals.close()
             workers_used = engine.workers
         finally:
             engine.close()
         return assemble(man, records, store, (started, startup), workers_used,
-                         dataset_format, limit, built)
+                        dataset_format, limit, built, identity, arrivals.table)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
-        raise _interrupted(store, records, buffer, total, previous, man,
+        arrivals.abort()
+        raise _interrupted(store, records, arrivals.buffer, len(man.rows), previous, man,
                            {t.contact for t in pending}) from exc
+    except BaseException:
+        arrivals.abort()
+        raise
+
+
+def _build_tasks(man: Manifest, base: dict[str, Any], chunk_size: int, cases: dict,
+                 directory: tuple[dict, dict], records: dict[str, dict[str, Any]],
+                 pending: list[ContactTask], built: dict[str, Any]) -> None:
+    """Every manifest row's task into ``pending`` and its WearCase into ``built``; into
+    ``records`` the rows whose case fails (their earlier rows kept where an earlier run
+    computed them) and those skipped (``directory``: the earlier runs' records, and those
+    to skip: none with force)."""
+    earlier, previous = directory
+    for row in man.rows:
+        try:
+            task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
+        except ROW_ERRORS as exc:  # with the warnings its case raised before failing
+            said = [list(w) for w in getattr(exc, "case_warnings", ())]
+            records[row.contact] = kept(failed(
+                ContactTask(row.contact, row.history, {}, warnings=said), exc),
+                earlier.get(row.contact))
+            continue
+        built[row.contact] = task.wear_case()  # carried to the result (BundleResult.cases)
+        old = previous.get(row.contact)
+        if old is not None and old.get("status") == "done" and old.get("key") == task.key:
+            records[row.contact] = {**old, "status": "skipped"}
+        else:
+            pending.append(task)
+
+
+def _submit_all(engine, pending: list[ContactTask], store: OutputDirectory | None,
+                chunk_size: int, split_every: int, retries: int, part_size: int
+                ) -> dict[int, tuple[Any, list[ContactTask], PartTarget | None]]:
+    """Submit every pending contact: a long one as its tree of chunk tasks (:func:`plan_chunks`),
+    the others in groups, consecutive slices of the manifest (:func:`task_sizes`,
+    :func:`slices`, submitted in :func:`worker_order`), their rows written by their workers
+    where they see the output directory. Returns ``{id(handle): (handle, its contacts, the
+    part its worker writes or None)}``."""
+    tag = uuid.uuid4().hex[:8]
+    handles: dict[int, tuple[Any, list[ContactTask], PartTarget | None]] = {}
+    whole = []
+    for task in pending:
+        try:
+            chunks = plan_chunks(task, chunk_size)
+        except Exception as exc:  # noqa: BLE001 - an unreadable file: one task reports it
+            del exc
+            chunks = None
+        if chunks is None:
+            whole.append(task)
+            continue
+        handle = _submit(engine, task, chunks, chunk_size, split_every, retries, tag)
+        handles[id(handle)] = (handle, [task], None)
+    # the contacts computed whole, in groups submitted in one map: one message to the
+    # scheduler, which deals the groups out evenly by count (submitting each worker's first
+    # group early, while the client built the others, left one worker 9 groups and the
+    # other 7)
+    sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
+        else [1] * len(whole)
+    targets = None
+    if all(size == 1 for size in sizes):
+        groups = [[t] for t in whole]
+        mapped = engine.map(run_contact, whole, chunk_size,
+                            keys=[f"contact-{t.contact}-{tag}" for t in whole], retries=retries)
+    else:
+        order = worker_order(len(sizes), engine.workers)
+        groups = submitted_slices(whole, sizes, order)
+        keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
+        targets = _part_targets(store, groups, part_size)
+        mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
+                            retries=retries) if targets is None else \
+            engine.map(run_contacts_into, list(zip(groups, targets, strict=True)),
+                       chunk_size, keys=keys, retries=retries)
+    for k, (handle, group) in enumerate(zip(mapped, groups, strict=True)):
+        handles[id(handle)] = (handle, group, None if targets is None else targets[k])
+    return handles
 
 
 def _part_targets(store: OutputDirectory | None, groups: list[list[ContactTask]],
@@ -495,15 +498,6 @@ def _part_targets(store: OutputDirectory | None, groups: list[list[ContactTask]]
     token = store.share_with_workers()
     return [PartTarget(str(store.parts), store.new_stem(), store.table_format, token)
             for _ in groups]
-
-
-def _flush(store: OutputDirectory, buffer: list[dict[str, Any]]) -> None:
-    """Write the records of ``buffer`` as a part, then drop their rows from the client: the
-    part file holds them, and the final table is assembled from the parts (issue 28: the
-    client held every contact's rows until the end, some 12 kB a contact)."""
-    store.write_part(buffer)
-    for rec in buffer:
-        rec["table"] = rec["state"] = None
 
 
 class BundleInterrupted(KeyboardInterrupt):

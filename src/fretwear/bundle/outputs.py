@@ -15,6 +15,7 @@ import hashlib
 import json
 import math
 import time
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from fretwear._lazy import pandas as pd
@@ -24,7 +25,7 @@ from fretwear.bundle.manifest import Manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.store import OutputDirectory, write_frame
-from fretwear.bundle.table_file import with_identity
+from fretwear.bundle.table_file import PrefixTable, with_identity
 from fretwear.bundle.tasks import concat_packed
 from fretwear.geometry.base import GLOBAL_RANGE
 from fretwear.io.atomic import atomic_write
@@ -32,12 +33,17 @@ from fretwear.io.atomic import atomic_write
 
 def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
               times: tuple[float, float], workers: int, dataset_format: str | None,
-              limit: float | None = None, built: dict[str, Any] | None = None) -> BundleResult:
+              limit: float | None = None, built: dict[str, Any] | None = None,
+              identity: pd.DataFrame | None = None, written: PrefixTable | None = None
+              ) -> BundleResult:
     """The BundleResult (and the output files) from every contact's latest record and the
-    wear cases ``built`` (contact -> WearCase) of this run."""
+    wear cases ``built`` (contact -> WearCase) of this run; ``identity``: the manifest's
+    identity columns (``contact`` as text), made here when None; ``written``: the table
+    written while the results arrived, put in place when whole (else given up)."""
     order = [r.contact for r in man.rows]
-    identity = man.identity_frame()
-    identity["contact"] = identity["contact"].astype(str)
+    if identity is None:
+        identity = man.identity_frame()
+        identity["contact"] = identity["contact"].astype(str)
     # a restart that skips every contact into a directory whose final files are those of the
     # same records (outputs_digest, recorded in run.json with the files' stamps): the files
     # are not written again, the table is read back from its file (issue 28: a restart of
@@ -46,15 +52,19 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
         identity, order, records, store.table_format, dataset_format or "default", limit)
     unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
                  and store.unchanged(digest))
-    # with Parquet parts, table.parquet is written from them by buckets (table_file.
-    # stream_table) and the result reads it on demand: the client never holds the whole table
-    # (issue 28: 1.3 GB at 10^5 contacts, then its copies); an unchanged restart reads nothing
+    # with Parquet parts, table.parquet is written from them while they arrived (table_file.
+    # PrefixTable), else by buckets (table_file.stream_table), and the result reads it on
+    # demand: the client never holds the whole table (issue 28: 1.3 GB at 10^5 contacts, then
+    # its copies); an unchanged restart reads nothing
     table = None
     streamed = unchanged and _saved_table(store, order)
     if not streamed and store is not None and not any(
             records[c].get("table") is not None for c in order):
         kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
-        streamed = bool(kept) and store.stream_table(kept, order, identity)
+        streamed = bool(kept) and (store.finish_table(written)
+                                   or store.stream_table(kept, order, identity))
+    if written is not None:
+        written.abort()  # not used: its temporary file removed (nothing once finished)
     if not streamed:
         table = _table(order, identity, records, store)
     # the case of each contact whose rows are its (done, or skipped: done before with the same
@@ -164,20 +174,20 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
             dataset_format = "netcdf" if optional("zarr") is None else "zarr"
         if result.table_file is None:  # else written from the parts already
             store.write_table(result.table)
-        write_frame(result.errors, store.path / "errors.csv", "csv")
-        write_frame(result.warnings, store.path / "warnings.csv", "csv")
-        write_frame(result.summary(limit), store.path / "summary.csv", "csv")
-        if result.table_file is not None and dataset_format == "zarr" \
-                and store.write_zarr_by_regions(result.contacts):
-            pass  # from the written table, a group of contacts at a time (issue 28)
-        elif len(result.table):
-            # built, written and dropped: not kept on the result beside its table (the client's
-            # memory at the end, issue 28); BundleResult.dataset builds it again when asked
-            dataset = build_dataset(result.table, result.contacts)
-            store.write_dataset(dataset, dataset_format)
-            del dataset
-        else:
-            store.drop_dataset()
+        # the dataset written from the table file in a thread while this one writes the CSV
+        # files and the summary: after the last result the workers' cores are free (issue 28:
+        # the client's work there was single-threaded while a core waited); in memory, the
+        # table is the result's and the Dataset is built here
+        with ThreadPoolExecutor(1) as pool:
+            dataset = pool.submit(_write_dataset, result, store, dataset_format) \
+                if result.table_file is not None else None
+            write_frame(result.errors, store.path / "errors.csv", "csv")
+            write_frame(result.warnings, store.path / "warnings.csv", "csv")
+            write_frame(result.summary(limit), store.path / "summary.csv", "csv")
+            if dataset is None:
+                _write_dataset(result, store, dataset_format)
+            else:
+                dataset.result()
         outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
     # the final files written, so that a later run in another format removes only those
     stamps = store.stamps(outputs)
@@ -186,6 +196,22 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
         json.dump({**result.stats, "limit": limit, "outputs": [*outputs, "run.json"],
                    "digest": digest, "stamps": stamps}, handle, indent=1, default=str)
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))
+
+
+def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str) -> None:
+    """``dataset.zarr`` (or ``.nc``) of the result's table, or the stale one removed where no
+    contact has rows."""
+    if result.table_file is not None and dataset_format == "zarr" \
+            and store.write_zarr_by_regions(result.contacts):
+        return  # from the written table, a group of contacts at a time (issue 28)
+    if len(result.table):
+        # built, written and dropped: not kept on the result beside its table (the client's
+        # memory at the end, issue 28); BundleResult.dataset builds it again when asked
+        dataset = build_dataset(result.table, result.contacts)
+        store.write_dataset(dataset, dataset_format)
+        del dataset
+    else:
+        store.drop_dataset()
 
 
 def outputs_digest(identity: pd.DataFrame, order: list[str], records: dict[str, dict],

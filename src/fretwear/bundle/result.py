@@ -241,17 +241,18 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     given = "limit_instant" in table.columns and limit_m is None
     rows = []
     per = _Contacts(table, given)
-    walls = _lookup(contacts, info, "wall_thickness", per.names)
-    owns = _lookup(contacts, info, "depth_limit", per.names)
-    replacements = _lookup(contacts, info, "tube_replacement", per.names)
-    units = _lookup(contacts, info, "time_unit", per.names)
+    where = _rows_of(contacts, per.names)
+    walls = _lookup(contacts, info, "wall_thickness", per.names, where)
+    owns = _lookup(contacts, info, "depth_limit", per.names, where)
+    replacements = _lookup(contacts, info, "tube_replacement", per.names, where)
+    units = _lookup(contacts, info, "time_unit", per.names, where)
     # each contact's record (its wear case's values): the depth model of its table
     models = ContactModels()
     geometries = [models.geometry(c, d) for c, d in zip(
-        _lookup(contacts, info, "contact_type", per.names),
-        _lookup(contacts, info, "dimensions", per.names), strict=True)]
+        _lookup(contacts, info, "contact_type", per.names, where),
+        _lookup(contacts, info, "dimensions", per.names, where), strict=True)]
     records = [dict(zip(RECORD_KEYS, values, strict=True)) for values in zip(
-        *(_lookup(contacts, info, key, per.names) for key in RECORD_KEYS), strict=True)]
+        *(_lookup(contacts, info, key, per.names, where) for key in RECORD_KEYS), strict=True)]
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
@@ -322,15 +323,26 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     return out
 
 
-def _lookup(contacts: pd.DataFrame, info: pd.DataFrame, column: str, names: list) -> list:
+def _lookup(contacts: pd.DataFrame, info: pd.DataFrame, column: str, names: list,
+            where: np.ndarray | None = None) -> list:
     """``info.at[name, column]`` for each contact name (None where the contact or the column is
-    missing)."""
+    missing); ``where``: each name's row in ``contacts`` (:func:`_rows_of`, -1: missing), found
+    once for every column (a dict of the contacts per column took 0.6 s at 10^4 contacts)."""
     if column not in info.columns:
         return [None] * len(names)
     if contacts["contact"].is_unique:
-        values = dict(zip(contacts["contact"], info[column], strict=True))
-        return [values.get(name) for name in names]
+        if where is None:
+            where = _rows_of(contacts, names)
+        values = info[column].tolist()  # the Series' own scalars, as iterating it gives them
+        return [values[i] if i >= 0 else None for i in where.tolist()]
     return [info.at[name, column] if name in info.index else None for name in names]
+
+
+def _rows_of(contacts: pd.DataFrame, names: list) -> np.ndarray | None:
+    """Each name's row in ``contacts`` (-1: not there); None where contact ids repeat."""
+    if not contacts["contact"].is_unique:
+        return None
+    return pd.Index(contacts["contact"]).get_indexer(pd.Index(names, dtype=object))
 
 
 class _Contacts:

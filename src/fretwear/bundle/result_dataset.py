@@ -4,6 +4,8 @@ Zarr a group of contacts at a time from the written table (:func:`write_zarr_by_
 
 from __future__ import annotations
 
+import os
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -279,3 +281,126 @@ def _sector_columns() -> tuple[str, ...]:
     """Columns that differ between the sectors of one instant."""
     return tuple(c for c in COLUMNS if c not in GLOBAL_COLUMNS and (
         c in SECTOR_COLUMNS or c.endswith("_sector")))
+
+
+class GridZarr:
+    """``dataset.zarr`` written while the table is (:class:`fretwear.bundle.table_file.
+    PrefixTable`): each group of whole contacts the table writes as a row group, reshaped onto
+    the grid (:func:`_grid_dataset`), appended along ``contact`` to a Zarr store in ``folder``;
+    the coordinates along ``contact`` (known once every record is in) and every array's and the
+    store's attributes added by :meth:`finish`. Its Dataset is the one
+    :func:`write_zarr_by_regions` writes of the table (test_bundle_table_prefix.py): the same
+    variables, values, coordinates and attributes.
+
+    It gives up (:meth:`abort`, its folder removed; the caller writes the dataset from the
+    table) where that one would not be written by groups or could differ: a group off the grid
+    of the first (other instants or sectors, a contact missing one, sectors with gaps), contacts
+    with rows other than those it wrote, or contact ids of another text width.
+
+    Parameters
+    ----------
+    folder : Path
+        The store being written (a temporary folder beside ``dataset.zarr``).
+    width : numpy dtype
+        The contact ids' text type (``numpy.array(ids).dtype`` of every contact that can have
+        rows).
+    options : dict
+        ``Dataset.to_zarr``'s options (the Zarr format).
+    """
+
+    def __init__(self, folder: Path, width, options: dict) -> None:
+        self.folder, self.width, self.options = folder, width, options
+        self.grid: tuple | None = None
+        self.first = None  # the Dataset of the first contact written
+        self.labels: list[str] = []
+        self.aborted = False
+
+    def add(self, frame: pd.DataFrame) -> None:
+        """Append a group of whole contacts, the table's rows in its order."""
+        if self.aborted:
+            return
+        try:
+            if self.grid is None:
+                self.grid = _frame_grid(frame)
+            ids = pd.unique(frame["contact"].to_numpy(dtype=object))
+            ds = None if self.grid is None else _grid_dataset(
+                frame, self.grid[1], np.array(ids, dtype=self.width), self.grid)
+            if ds is None or ds.sizes["contact"] != len(ids):
+                return self.abort()
+            if self.labels:
+                ds.to_zarr(self.folder, append_dim="contact", **self.options)
+            else:
+                shutil.rmtree(self.folder, ignore_errors=True)
+                ds.to_zarr(self.folder, mode="w", **self.options)
+                # its first contact: the Dataset whose attributes finish() takes (reading it
+                # back from the store through dask took 2.5 s at 10^4 contacts)
+                self.first = ds.isel(contact=[0]).copy(deep=True)
+            self.labels.extend(str(c) for c in ids)
+        except Exception:  # noqa: BLE001 - a shortcut: write_zarr_by_regions decides
+            self.abort()
+
+    def finish(self, contacts: pd.DataFrame, target: Path) -> bool:
+        """Add the coordinates of ``contacts`` (the result's) and the attributes, and move the
+        store to ``target``: True; False (nothing moved, the folder removed) where the store is
+        not the Dataset of those contacts."""
+        if self.aborted or not self.labels:
+            self.abort()
+            return False
+        try:
+            done = _done(contacts)
+            ids = [str(c) for c in done["contact"]]
+            if ids != self.labels or np.array(ids).dtype != self.width:
+                self.abort()
+                return False
+            info = done.assign(contact=ids).set_index("contact")
+            self._coordinates_and_attributes(info, ids)
+            shutil.rmtree(target, ignore_errors=True)
+            os.replace(self.folder, target)
+        finally:
+            self.abort()
+        return True
+
+    def _coordinates_and_attributes(self, info: pd.DataFrame, ids: list[str]) -> None:
+        """The coordinates along ``contact`` written whole beside the store's variables, then
+        every array's attributes and the store's those of the same Dataset's first contact
+        (with its coordinates and :func:`_described`'s attributes) written by xarray (the
+        names of its coordinates, units, meanings), the metadata consolidated again."""
+        xr = require("xarray")
+        zarr = require("zarr")
+        coordinates = _contact_coordinates(info, ids)
+        scratch = self.folder.with_name(f"{self.folder.name}.coordinates")
+        skeleton = self.folder.with_name(f"{self.folder.name}.attributes")
+        try:
+            xr.Dataset(coords={"contact": np.array(ids, dtype=self.width), **coordinates}
+                       ).to_zarr(scratch, mode="w", **self.options)
+            for name in coordinates:
+                os.replace(scratch / name, self.folder / name)
+            first = self.first.assign_coords({name: ("contact", values[:1])
+                                              for name, (_, values) in coordinates.items()})
+            _described(first, info).to_zarr(skeleton, mode="w", **self.options)
+            for attrs in [skeleton / ".zattrs", *skeleton.glob("*/.zattrs")]:
+                shutil.copyfile(attrs, self.folder / attrs.relative_to(skeleton))
+            zarr.consolidate_metadata(str(self.folder))
+        finally:
+            shutil.rmtree(scratch, ignore_errors=True)
+            shutil.rmtree(skeleton, ignore_errors=True)
+
+    def abort(self) -> None:
+        """Give up: the folder removed."""
+        self.aborted = True
+        shutil.rmtree(self.folder, ignore_errors=True)
+
+
+def _frame_grid(frame: pd.DataFrame) -> tuple | None:
+    """``(None, sector mode, the instants, the sectors)`` of a group of contacts (as
+    :func:`_full_grid` gives them for the whole table), None where an instant is not finite or
+    the sectors have gaps."""
+    instant = frame["instant"].to_numpy(dtype=float)
+    if not np.isfinite(instant).all():
+        return None
+    sector_mode = "sector" in frame.columns and bool(frame["sector"].notna().any())
+    if not sector_mode:
+        return None, False, np.unique(instant), None
+    if frame["sector"].isna().any() or frame["sector"].dtype.kind not in "iu":
+        return None
+    return None, True, np.unique(instant), np.unique(frame["sector"].to_numpy())

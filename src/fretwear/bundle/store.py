@@ -19,6 +19,7 @@ reported ``stale`` and its failed record is not written, so no rerun loses a res
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -30,12 +31,13 @@ from typing import Any
 import numpy as np
 
 from fretwear._lazy import pandas as pd
+from fretwear._optional import optional
 from fretwear.bundle.csv_table import write_csv
 from fretwear.bundle.datasets import path_stamp, require
-from fretwear.bundle.table_file import read_columns, stream_table
+from fretwear.bundle.table_file import PrefixTable, read_columns, stream_table
 from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
-from fretwear.io.atomic import atomic_path, atomic_write
+from fretwear.io.atomic import STALE_SECONDS, atomic_path, atomic_write
 from fretwear.table.schema import FLOAT_FORMAT
 
 TABLE_FORMATS = ("parquet", "csv")
@@ -122,6 +124,8 @@ class OutputDirectory:
         #: Final files this run wrote, recorded in its run.json.
         self.written: list[str] = []
         self._shared: dict = {}  # compact(): one object for equal metadata values
+        #: The dataset written with the table while the results arrived (finish_table).
+        self.zarr_parts = None
 
     def _recorded_outputs(self) -> set[str]:
         try:
@@ -326,6 +330,20 @@ class OutputDirectory:
                 p.unlink(missing_ok=True)
         for p in self.parts.glob(f"{MARKER}*"):  # the workers' markers (worker_parts)
             p.unlink(missing_ok=True)
+        if self.zarr_parts is not None:  # a dataset written with the table, not used
+            self.zarr_parts.abort()
+            self.zarr_parts = None
+        # what a killed run wrote while its results arrived (table_file.PrefixTable,
+        # result_dataset.GridZarr): another run's store, a table's temporary file left
+        # STALE_SECONDS (the age fretwear.io.atomic's own leftovers are removed at)
+        for p in self.path.glob(".dataset.zarr.*.parts*"):
+            if self._run not in p.name:
+                shutil.rmtree(p, ignore_errors=True)
+        limit = time.time() - STALE_SECONDS
+        for p in self.path.glob(f".{self.table_path().name}.*.tmp"):
+            with contextlib.suppress(OSError):
+                if p.stat().st_mtime < limit:
+                    p.unlink()
 
     def table_path(self) -> Path:
         """The final table's file, ``table.<format>``."""
@@ -349,6 +367,33 @@ class OutputDirectory:
                 self.parts, self.table_path(), records, order, identity):
             return False
         self._table_written()
+        return True
+
+    def table_writer(self, order: list[str], identity: pd.DataFrame,
+                     dataset_format: str | None = None) -> PrefixTable | None:
+        """The ``table.parquet`` written while the results arrive
+        (:class:`fretwear.bundle.table_file.PrefixTable`; contacts in ``order``'s order,
+        ``identity`` columns in front), with its ``dataset.zarr`` when the dataset is Zarr
+        (``dataset_format`` "zarr", or None with zarr installed:
+        :class:`fretwear.bundle.result_dataset.GridZarr`); None for a CSV table."""
+        if self.table_format != "parquet":
+            return None
+        dataset = None
+        if dataset_format == "zarr" or (dataset_format is None and optional("zarr")):
+            from fretwear.bundle.result_dataset import GridZarr
+
+            dataset = GridZarr(self.path / f".dataset.zarr.{self._run}.parts",
+                               np.array([str(c) for c in order]).dtype, _zarr_options())
+        return PrefixTable(self.parts, self.table_path(), order, identity, dataset)
+
+    def finish_table(self, writer: PrefixTable | None) -> bool:
+        """Put in place the table ``writer`` wrote while the results arrived (its dataset kept
+        for :meth:`write_zarr_by_regions`); False (nothing written) where it could not
+        (:meth:`PrefixTable.finish`)."""
+        if writer is None or not writer.finish():
+            return False
+        self._table_written()
+        self.zarr_parts, writer.dataset = writer.dataset, None  # the store's from now on
         return True
 
     def _table_written(self) -> None:
@@ -385,7 +430,11 @@ class OutputDirectory:
         False (nothing written) where that cannot be: :meth:`write_dataset` then."""
         from fretwear.bundle.result_dataset import write_zarr_by_regions
 
-        if not self._swap_zarr(lambda tmp, **options: write_zarr_by_regions(
+        written, self.zarr_parts = self.zarr_parts, None
+        if written is not None and self._swap_zarr(
+                lambda tmp, **options: written.finish(contacts, tmp)):
+            pass  # written with the table while the results arrived (GridZarr)
+        elif not self._swap_zarr(lambda tmp, **options: write_zarr_by_regions(
                 self.table_path(), contacts, tmp, **options)):
             return False
         self._remove_stale("dataset.nc")
@@ -399,10 +448,7 @@ class OutputDirectory:
         tmp = self.path / f".dataset.zarr.{self._run}.tmp"
         shutil.rmtree(tmp, ignore_errors=True)
         try:
-            # Zarr format 2 (readable by every zarr version; format 3 has no string type yet)
-            zarr = require("zarr")
-            version2 = {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
-            if write(tmp, consolidated=True, **version2) is False:
+            if write(tmp, **_zarr_options()) is False:
                 return False
             old = self.path / f".dataset.zarr.{self._run}.old"
             if target.exists():
@@ -412,6 +458,14 @@ class OutputDirectory:
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
         return True
+
+
+def _zarr_options() -> dict[str, Any]:
+    """``Dataset.to_zarr``'s options of ``dataset.zarr``: Zarr format 2 (readable by every zarr
+    version; format 3 has no string type yet), metadata consolidated."""
+    zarr = require("zarr")
+    version2 = {"zarr_format": 2} if int(zarr.__version__.split(".")[0]) >= 3 else {}
+    return {"consolidated": True, **version2}
 
 
 def _part_records(parts: Path) -> dict[str, dict[str, Any]]:
