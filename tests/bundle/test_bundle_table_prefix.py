@@ -187,5 +187,30 @@ def test_a_killed_runs_leftovers_are_removed_by_the_next_run(tmp_path):
     (store / ".zgroup").write_text("{}")
     mine = out / "notes.txt"
     mine.write_text("kept")
+    parts = out / "parts"
+    parts.mkdir()
+    half = parts / ".part-00000000000000000001-000001.parquet.x1y2.tmp"  # a killed write's
+    half.write_bytes(b"PAR1")
+    os.utime(half, (0, 0))
+    busy = parts / ".part-00000000000000000002-000001.json.z3w4.tmp"  # being written now
+    busy.write_text("{")
     run_bundle(manifest, case, scheduler="serial", output=out)
     assert not old.exists() and not store.exists() and mine.read_text() == "kept"
+    assert not half.exists() and busy.exists()
+
+
+def test_a_part_write_does_not_list_the_parts_folder(tmp_path, monkeypatch):
+    """A part's rows and JSON are written atomically without the sweep of the folder for a
+    killed write of the same name (fretwear.io.atomic.atomic_path(sweep=False)): a part's
+    name is never written twice, and the listing of parts/ after every write grew with the
+    parts (1.6 -> 3.1 ms a write over 2 000 parts). The run's cleanup sweeps parts/ once."""
+    import fretwear.io.atomic as atomic
+
+    swept = []
+    real = atomic._remove_stale
+    monkeypatch.setattr(atomic, "_remove_stale",
+                        lambda target, *suffixes: (swept.append(target), real(target, *suffixes)))
+    manifest, case = write_bundle(tmp_path, oscillator(), 3)
+    run_bundle(manifest, case, scheduler="serial", output=tmp_path / "out", part_size=1)
+    assert len(list((tmp_path / "out" / "parts").glob("part-*.json"))) == 3
+    assert [t for t in swept if t.parent.name == "parts"] == []

@@ -19,7 +19,7 @@ reported ``stale`` and its failed record is not written, so no rerun loses a res
 
 from __future__ import annotations
 
-import contextlib
+import glob
 import json
 import os
 import shutil
@@ -37,7 +37,7 @@ from fretwear.bundle.datasets import path_stamp, require
 from fretwear.bundle.table_file import PrefixTable, read_columns, stream_table
 from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
-from fretwear.io.atomic import STALE_SECONDS, atomic_path, atomic_write
+from fretwear.io.atomic import atomic_path, atomic_write, remove_stale_in
 from fretwear.table.schema import FLOAT_FORMAT
 
 TABLE_FORMATS = ("parquet", "csv")
@@ -46,11 +46,13 @@ MARKER = ".shared-"
 DATASET_FORMATS = ("zarr", "netcdf")
 
 
-def write_frame(frame: pd.DataFrame, path: Path, fmt: str) -> Path:
-    """Write a table atomically as Parquet or CSV (floats round-trip exactly in both)."""
+def write_frame(frame: pd.DataFrame, path: Path, fmt: str, *, sweep: bool = True) -> Path:
+    """Write a table atomically as Parquet or CSV (floats round-trip exactly in both);
+    ``sweep``: as :func:`fretwear.io.atomic.atomic_path` (False for a part, whose name is
+    never written twice: :meth:`OutputDirectory.cleanup` sweeps ``parts/`` once)."""
     if fmt == "parquet":
         require("pyarrow", purpose="writing Parquet (the csv table format does not need it)")
-    with atomic_path(path) as tmp:
+    with atomic_path(path, sweep=sweep) as tmp:
         if fmt == "parquet":
             frame.to_parquet(tmp, index=False)
         elif not write_csv(frame, tmp):
@@ -72,7 +74,7 @@ def write_rows(records: list[dict[str, Any]], path: Path, fmt: str) -> list[dict
     kept = [r for r in records if r.get("table") is not None]
     if kept:
         frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
-        write_frame(frame, path, fmt)
+        write_frame(frame, path, fmt, sweep=False)
     return kept
 
 
@@ -213,7 +215,7 @@ class OutputDirectory:
         # one line, by json.dumps: its C encoder (json.dump to a file, or any indent, takes
         # the pure-Python one: 0.2 s for the records of 500 contacts)
         text = json.dumps(meta, default=str)
-        with atomic_write(self.parts / f"{stem}.json", encoding="utf-8") as handle:
+        with atomic_write(self.parts / f"{stem}.json", encoding="utf-8", sweep=False) as handle:
             handle.write(text)
         for r in records:
             r["part"], r["rows_file"] = stem, rows_file
@@ -339,11 +341,11 @@ class OutputDirectory:
         for p in self.path.glob(".dataset.zarr.*.parts*"):
             if self._run not in p.name:
                 shutil.rmtree(p, ignore_errors=True)
-        limit = time.time() - STALE_SECONDS
-        for p in self.path.glob(f".{self.table_path().name}.*.tmp"):
-            with contextlib.suppress(OSError):
-                if p.stat().st_mtime < limit:
-                    p.unlink()
+        remove_stale_in(self.path, f"{glob.escape(self.table_path().name)}.*.tmp")
+        # a part's temporaries (its rows, its JSON: written without a sweep each, names never
+        # written twice; a listing of parts/ after every write cost 1.6 -> 3.1 ms a write
+        # over 2 000 parts)
+        remove_stale_in(self.parts, "part-*.tmp")
 
     def table_path(self) -> Path:
         """The final table's file, ``table.<format>``."""
