@@ -76,6 +76,25 @@ def test_parts_appended_as_they_arrive_give_the_bucket_routes_table(tmp_path, mo
     assert not list(tmp_path.glob(".prefix.parquet.*"))  # the temporary file renamed
 
 
+def test_an_identity_frame_in_another_order_is_matched_by_contact(tmp_path):
+    """The identity rows reach their contacts by id where the identity frame is not in the
+    manifest's order (PrefixTable finds each position's identity row once): the table equals
+    the one of the identity frame in order (the bucket route's, found by id per row)."""
+    store = OutputDirectory(tmp_path / "out")
+    parts = _parts(store, [[0, 1, 2], [3, 4], [5, 6, 7], [8, 9]], failed={6})
+    for name, identity in (("ordered", _identity()),
+                           ("reversed", _identity().iloc[::-1].reset_index(drop=True))):
+        writer = PrefixTable(store.parts, tmp_path / f"{name}.parquet", CONTACTS, identity)
+        for part in parts:
+            writer.resolve(part)
+        assert writer.finish()
+    got = pd.read_parquet(tmp_path / "reversed.parquet")
+    pd.testing.assert_frame_equal(got, pd.read_parquet(tmp_path / "ordered.parquet"),
+                                  check_exact=True)
+    assert got.groupby("contact")["tube_column"].first().to_dict() == {
+        c: k % 3 + 1 for k, c in enumerate(CONTACTS) if k != 6}
+
+
 def test_interleaved_parts_give_up_and_leave_nothing(tmp_path):
     """A part holding contacts 0 and 2 and another holding 1 (contacts dealt, not sliced):
     the route gives up, removes its temporary file, writes no table."""
