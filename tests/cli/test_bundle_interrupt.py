@@ -176,7 +176,10 @@ def test_cli_sigint_exits_130_and_the_same_command_resumes(tmp_path):
     assert match, lines[0]
     written, total = int(match[1]), int(match[2])
     assert total == 480
-    assert 100 <= written < total  # the first part and what came after it
+    # the first part and what came after it: 100 contacts (PART_SIZE), or fewer where its
+    # first contact took PART_SECONDS (a fresh clone compiles the power kernel in this
+    # process while the other tests load the cores: CI wrote a part of 1 contact)
+    assert 1 <= written < total
     assert match[3] == str(out)
     assert len(_written(out)) == written
     assert not (out / "summary.csv").exists()
