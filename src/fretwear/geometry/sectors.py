@@ -33,13 +33,46 @@ __all__ = [
 ]
 
 
-def _inputs(value, value_name, unit, radius, radius_name, width, arc_deg):
+def _checked(value, name: str, unit: str) -> np.ndarray:
+    """``value`` as a float array, each element finite and >= 0 (NaN passes) [``unit``]."""
     array = np.array(value, dtype=float)
     bad = np.isinf(array) | (array < 0.0)
     if bad.any():
         raise InputError(
-            f"{value_name} must be finite and >= 0 [{unit}]: got "
+            f"{name} must be finite and >= 0 [{unit}]: got "
             f"{float(array[tuple(np.argwhere(bad)[0])]):g}")
+    return array
+
+
+def _depth_within_sector(area, radius):
+    """The mobile's sector depth [m] of the volume per unit width and angle ``area`` [m²]
+    (:func:`_mobile_depth`); NaN with a RangeWarning (said to the caller's caller) beyond the
+    whole sector."""
+    depth, root2 = _mobile_depth(area, radius)
+    beyond = root2 < 0.0  # 2a_θ > R²
+    if beyond.any():
+        warnings.warn(
+            f"sector depth of the mobile: {int(np.count_nonzero(beyond))} volume(s) exceed the "
+            "whole sector of the mobile's section (l·Δθ·R_m²/2): depth NaN", RangeWarning,
+            stacklevel=3)
+    return depth
+
+
+def _volume_within_radius(depth, radius, half_width_arc):
+    """(the mobile's sector volume [m³] l·Δθ/2·d·(2R_m − d) of ``depth`` [m],
+    ``half_width_arc`` = l·Δθ/2 [m·rad]; whether a depth was beyond the radius: NaN there,
+    with a RangeWarning said to the caller's caller)."""
+    beyond = depth > radius
+    said = bool(np.any(beyond))
+    if said:
+        warnings.warn(
+            f"sector volume of the mobile: {int(np.count_nonzero(beyond))} depth(s) exceed the "
+            "mobile radius R_m: volume NaN", RangeWarning, stacklevel=3)
+    return np.where(beyond, np.nan, half_width_arc * depth * (2.0 * radius - depth)), said
+
+
+def _inputs(value, value_name, unit, radius, radius_name, width, arc_deg):
+    array = _checked(value, value_name, unit)
     r = np.array(radius, dtype=float)
     l = np.array(width, dtype=float)
     arc = np.array(arc_deg, dtype=float)
@@ -170,14 +203,7 @@ def sector_depth_mobile(volume, mobile_radius, width, arc_deg):
     """
     v, r, l, arc = _inputs(volume, "volume", "m³", mobile_radius, "mobile_radius", width,
                            arc_deg)
-    depth, root2 = _mobile_depth(v / (l * arc), r)
-    beyond = root2 < 0.0  # 2a_θ > R²
-    if beyond.any():
-        warnings.warn(
-            f"sector depth of the mobile: {int(np.count_nonzero(beyond))} volume(s) exceed the "
-            "whole sector of the mobile's section (l·Δθ·R_m²/2): depth NaN", RangeWarning,
-            stacklevel=2)
-    return _out(depth)
+    return _out(_depth_within_sector(v / (l * arc), r))
 
 
 def sector_depth_obstacle(volume, obstacle_radius, width, arc_deg):
@@ -258,12 +284,7 @@ def sector_volume_mobile(depth, mobile_radius, width, arc_deg):
     True
     """
     d, r, l, arc = _inputs(depth, "depth", "m", mobile_radius, "mobile_radius", width, arc_deg)
-    beyond = d > r
-    if np.any(beyond):
-        warnings.warn(
-            f"sector volume of the mobile: {int(np.count_nonzero(beyond))} depth(s) exceed the "
-            "mobile radius R_m: volume NaN", RangeWarning, stacklevel=2)
-    return _out(np.where(beyond, np.nan, 0.5 * l * arc * d * (2.0 * r - d)))
+    return _out(_volume_within_radius(d, r, 0.5 * l * arc)[0])
 
 
 def sector_volume_obstacle(depth, obstacle_radius, width, arc_deg):
@@ -347,53 +368,30 @@ class SectorSlices:
         self._half_width_arc = 0.5 * l * arc
         self._volumes: dict = {}  # volume_mobile of a few depths (a table's limit and wall)
 
-    @staticmethod
-    def _checked(value, name: str, unit: str) -> np.ndarray:
-        array = np.array(value, dtype=float)
-        bad = np.isinf(array) | (array < 0.0)
-        if bad.any():
-            raise InputError(f"{name} must be finite and >= 0 [{unit}]: got "
-                             f"{float(array[tuple(np.argwhere(bad)[0])]):g}")
-        return array
-
     def depth_mobile(self, volume) -> np.ndarray:
         """:func:`sector_depth_mobile` of the sectors' volumes [m³] (last axis: the sectors) [m];
         NaN with a RangeWarning beyond the whole sector."""
-        v = self._checked(volume, "volume", "m³")
-        depth, root2 = _mobile_depth(v / self._width_arc, self.mobile_radius)
-        beyond = root2 < 0.0
-        if beyond.any():
-            warnings.warn(
-                f"sector depth of the mobile: {int(np.count_nonzero(beyond))} volume(s) exceed "
-                "the whole sector of the mobile's section (l·Δθ·R_m²/2): depth NaN",
-                RangeWarning, stacklevel=2)
-        return depth
+        v = _checked(volume, "volume", "m³")
+        return _depth_within_sector(v / self._width_arc, self.mobile_radius)
 
     def depth_obstacle(self, volume) -> np.ndarray:
         """:func:`sector_depth_obstacle` of the sectors' volumes [m³] [m] (needs the bore
         radius)."""
-        v = self._checked(volume, "volume", "m³")
+        v = _checked(volume, "volume", "m³")
         return obstacle_depth_from_area_density(v / self._width_arc, self.obstacle_radius)
 
     def volume_mobile(self, depth) -> np.ndarray:
         """:func:`sector_volume_mobile` of the sectors' depths [m] [m³]; NaN with a
         RangeWarning beyond the mobile radius."""
-        d = self._checked(depth, "depth", "m")
+        d = _checked(depth, "depth", "m")
         small = d.size <= _KEPT_SIZE  # kept: the same few depths for every table
         if small:
             key = (d.shape, d.tobytes())
             found = self._volumes.get(key)
             if found is not None:
                 return found.copy()
-        r = self.mobile_radius
-        beyond = d > r
-        if np.any(beyond):
-            warnings.warn(
-                f"sector volume of the mobile: {int(np.count_nonzero(beyond))} depth(s) exceed "
-                "the mobile radius R_m: volume NaN", RangeWarning, stacklevel=2)
-            small = False  # its warning said at every call
-        volume = np.where(beyond, np.nan, self._half_width_arc * d * (2.0 * r - d))
-        if small:
+        volume, said = _volume_within_radius(d, self.mobile_radius, self._half_width_arc)
+        if small and not said:  # a warning is said at every call: not kept
             if len(self._volumes) >= _KEPT_SIZE:
                 self._volumes.clear()
             self._volumes[key] = volume.copy()

@@ -431,11 +431,7 @@ class DepthModel:
         volume = self.slices.volume_mobile(d)
         rate = self.term_rates[0]
         v0 = np.zeros(arcs.size) if self.replacement is not None else self._term_initial()[0]
-        left = volume - v0
-        # (V(d) − V0)/r where the sector wears (r > 0), inf where it does not
-        t = np.divide(left, rate, out=np.full(np.broadcast_shapes(left.shape, rate.shape),
-                                              np.inf), where=rate > 0)
-        t = np.where(v0 >= volume, 0.0, t)
+        t = _seconds_to(volume, v0, rate)
         if self.replacement is not None:
             t = self.replacement + t
         out = self.origin + t / self.time_scale
@@ -560,12 +556,7 @@ class DepthModel:
             return None
         rate = kw["factor"] * self.rates[0]
         v0 = 0.0 if self.replacement is not None else self.initial_mobile
-        if type(rate) is float and rate > 0:  # one positive rate (the nominal inputs)
-            t = np.where(v0 >= volume, 0.0, (volume - v0) / rate)
-        else:
-            with np.errstate(divide="ignore", invalid="ignore"):
-                t = (volume - v0) / rate
-            t = np.where(v0 >= volume, 0.0, np.where(rate > 0, t, np.inf))
+        t = _seconds_to(volume, v0, rate)
         return t if self.replacement is None else self.replacement + t
 
     def _volume_of(self, target) -> np.ndarray:
@@ -583,3 +574,19 @@ class DepthModel:
         found = time_to_depth(lambda t: self.depth(start + t, warn=False, **kw), target,
                               first_guess=self.time_scale, rtol=rtol)
         return start + np.asarray(found, dtype=float)
+
+
+def _seconds_to(volume, v0, rate) -> np.ndarray:
+    """Seconds [s] for a volume growing from ``v0`` [m³] at ``rate`` [m³/s] to reach
+    ``volume`` [m³]: (V − V0)/r, 0 where V0 already reaches it, inf where the body does not
+    wear (r not > 0), without a division by zero (the closed forms of
+    :meth:`DepthModel.time_to` and :meth:`DepthModel.sector_time_to`).
+
+    >>> _seconds_to(np.array([2.0, 2.0, 2.0]), np.array([0.0, 3.0, 0.0]), np.array([1.0, 1.0, 0.0]))
+    array([ 2.,  0., inf])
+    """
+    left = np.subtract(volume, v0)
+    rate = np.asarray(rate, dtype=float)
+    t = np.divide(left, rate, out=np.full(np.broadcast_shapes(left.shape, rate.shape), np.inf),
+                  where=rate > 0)
+    return np.where(np.greater_equal(v0, volume), 0.0, t)
