@@ -166,7 +166,7 @@ def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
     start = 0
     labels = np.array(ids, dtype=width)
     for group in _contact_groups(pq.ParquetFile(path)):
-        ds = _grid_dataset(group, sector_mode, labels[start:], grid)
+        ds = _grid_dataset(group, labels[start:], grid)
         if ds is None:  # not laid out as the grid: through pandas' MultiIndex
             ds = require("xarray").Dataset(_variables(group, sector_mode))
         order = ids[start:start + ds.sizes["contact"]]
@@ -182,7 +182,7 @@ def write_zarr_by_regions(path: Path, contacts: pd.DataFrame, target: Path,
     return start == len(ids)
 
 
-def _grid_dataset(group: pd.DataFrame, sector_mode: bool, ids: np.ndarray, grid):
+def _grid_dataset(group: pd.DataFrame, ids: np.ndarray, grid):
     """:func:`_variables` of a group of whole contacts laid out as the table writes them on a
     full grid (``grid``, :func:`_full_grid`): the contacts ``ids[:n]`` one after the other,
     each the instants in increasing order, each (in sector mode) the sectors in increasing
@@ -190,7 +190,7 @@ def _grid_dataset(group: pd.DataFrame, sector_mode: bool, ids: np.ndarray, grid)
     ``set_index(...).to_xarray()`` sorted a MultiIndex and unstacked it (0.85 s of the 4 s
     the Dataset took at 10^4 contacts). None where the group is laid out otherwise or has a
     column that is not a numpy number: the caller goes through :func:`_variables`."""
-    _, _, instants, sectors = grid
+    _, sector_mode, instants, sectors = grid
     wear = [c for c in group.columns if c in COLUMNS and c not in ("instant", "sector")]
     if any(group[c].dtype.kind not in "fiub" or not isinstance(group[c].dtype, np.dtype)
            for c in wear):
@@ -324,7 +324,7 @@ class GridZarr:
                 self.grid = _frame_grid(frame)
             ids = pd.unique(frame["contact"].to_numpy(dtype=object))
             ds = None if self.grid is None else _grid_dataset(
-                frame, self.grid[1], np.array(ids, dtype=self.width), self.grid)
+                frame, np.array(ids, dtype=self.width), self.grid)
             if ds is None or ds.sizes["contact"] != len(ids):
                 return self.abort()
             if self.labels:

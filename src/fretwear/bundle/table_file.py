@@ -295,7 +295,7 @@ class PrefixTable:
                     continue  # in the client's buffer: resolved when its part is written
                 where = None if status == "failed" else r.get("rows_file")
                 pos = self.position.get(str(r["contact"]))
-                if status not in ("done", "failed") or pos is None or where is _UNRESOLVED:
+                if status not in ("done", "failed") or pos is None:
                     return self.abort()  # an earlier run's rows (skipped, stale)
                 if self.where[pos] is not _UNRESOLVED:
                     if self.where[pos] != where:
