@@ -69,15 +69,42 @@ def _attrs(attrs: dict[str, Any], task: ContactTask) -> dict[str, Any]:
     """A record's ``attrs``: the table's :data:`_ATTRS` and the power's :data:`_POWER`, JSON
     ready (:func:`_plain`). ``attrs["power"]`` is the table's power dict, or the PowerResult
     itself (:func:`_wear_table`: its values read without its statistics' dict, the same once
-    made plain)."""
-    out = {k: _plain(attrs.get(k)) for k in _ATTRS}
+    made plain). The case's own values (:func:`_case_attrs`) made plain once per case and
+    shared by its contacts' records (the client shares them too, ``PartStore.compact``)."""
+    out = dict(_case_attrs(attrs, task.wear_case()))
+    for k in _CONTACT_ATTRS:
+        out[k] = _plain(attrs.get(k))
     power = attrs.get("power") or {}
     get = power.get if isinstance(power, dict) else functools.partial(getattr, power)
     out["power"] = {k: _plain(get(k)) for k in _POWER}
     if not power and task.power is not None:  # a given power [W] (power.value_W): its total
         out["power"]["total"] = float(task.power)
     out["time_unit"] = task.time_unit
-    return out
+    return {k: out[k] for k in (*_ATTRS, "power", "time_unit")}
+
+
+#: The table attributes that may differ between the contacts of one case: the coefficients
+#: (a KWU-EPRI intensity from each contact's history, and its source) and the sector edges (the
+#: power's, where the case has no sectors).
+_CONTACT_ATTRS = ("coefficients_mobile", "coefficients_obstacle", "coefficient_sources",
+                  "sector_edges")
+#: The plain values of the other :data:`_ATTRS` by case (:func:`_case_attrs`), at most
+#: _CASES_KEPT: ``id(case) -> (case, values)`` (the case kept: its id is not reused).
+_CASE_ATTRS: dict[int, tuple[Any, dict[str, Any]]] = {}
+_CASES_KEPT = 64
+
+
+def _case_attrs(attrs: dict[str, Any], case) -> dict[str, Any]:
+    """The plain (:func:`_plain`) values of the :data:`_ATTRS` a table of ``case`` takes from
+    the case alone (its type, dimensions, law, materials, time scale, origin, replacement, wall;
+    :func:`fretwear.table.wear_table_columns`), made from the first table of the case."""
+    found = _CASE_ATTRS.get(id(case))
+    if found is None or found[0] is not case:
+        if len(_CASE_ATTRS) >= _CASES_KEPT:
+            _CASE_ATTRS.clear()
+        found = _CASE_ATTRS[id(case)] = (case, {k: _plain(attrs.get(k)) for k in _ATTRS
+                                                if k not in _CONTACT_ATTRS})
+    return found[1]
 
 
 @contextlib.contextmanager

@@ -583,6 +583,7 @@ class WearCase:
         state.pop("_as_dict", None)
         state.pop("_dict_made", None)
         state.pop("sector_edges", None)  # made again, read-only
+        state.pop("_model_parts", None)  # its depth models' parts (table.depth_build)
         return state
 
     @classmethod

@@ -36,39 +36,82 @@ def case_model(case, power: float, result, mobile, obstacle, fresh: float | None
     sector), the bodies' coefficients ``mobile`` and ``obstacle`` (native names; None: it does
     not wear), a tube replaced ``fresh`` seconds after the origin (None: not), the case's
     ``geometry``; a restart's earlier rows and volumes at the origin from its initial state.
+
+    Everything but the power is the case's (:func:`_case_parts`: made once per case and
+    coefficients, kept on the case; a bundle's contacts of one case differ by their power).
     """
-    law, state = case.wear_law, case.restart.table
-    sectors = {}
     if case.sectors is None:
         powers = (float(power),)
-        coefs_m, coefs_o = (mobile,), (obstacle,)
-        v0_m = 0.0 if state is None else state.volume_mobile
-        v0_o = 0.0 if state is None else state.volume_obstacle
+        edges = None
     else:
-        key = law.parameters[0]
         powers = tuple(np.asarray(result.sectors, dtype=float).tolist())
-        m = len(powers)
+        edges = tuple(np.asarray(result.sector_edges, dtype=float).tolist())
+    parts = _case_parts(case, mobile, obstacle, len(powers), edges)
+    return DepthModel(law=case.wear_law, geometry=geometry, powers=powers,
+                      time_scale=case.time_scale, origin=case.origin, wall=case.wall,
+                      replacement=fresh, **parts)
+
+
+#: The most sets of coefficients whose model parts a case keeps (:func:`_case_parts`).
+_PARTS_KEPT = 16
+
+
+def _case_parts(case, mobile, obstacle, m: int, edges) -> dict[str, Any]:
+    """The keywords of the case's :class:`DepthModel` but its power (:func:`case_model`):
+    the coefficients of each term, the volumes at the origin, the sectors' arcs and earlier
+    rows. Kept on the case (an immutable :class:`WearCase`: two cases never share them) by the
+    coefficients' values, the number of terms and the sector ``edges`` [deg] (a KWU-EPRI
+    intensity from each contact's history makes other coefficients; at most
+    :data:`_PARTS_KEPT` kept). A new dict each call (the values shared: immutable)."""
+    key = (None if mobile is None else tuple(mobile.items()),
+           None if obstacle is None else tuple(obstacle.items()), m, edges)
+    kept = case.__dict__.get("_model_parts")
+    if kept is None:
+        kept = {}
+        object.__setattr__(case, "_model_parts", kept)
+    try:
+        found = kept.get(key)
+    except TypeError:  # a coefficient that is not hashable (an array): made each time
+        return _make_parts(case, mobile, obstacle, m, edges)
+    if found is None:
+        if len(kept) >= _PARTS_KEPT:
+            kept.clear()
+        found = kept[key] = _make_parts(case, mobile, obstacle, m, edges)
+    return dict(found)
+
+
+def _make_parts(case, mobile, obstacle, m: int, edges) -> dict[str, Any]:
+    """:func:`_case_parts` made (the case's values read as :func:`case_model` always did)."""
+    state = case.restart.table
+    if case.sectors is None:
+        parts = {"coefficients_mobile": (_copy(mobile),),
+                 "coefficients_obstacle": (_copy(obstacle),),
+                 "initial_mobile": 0.0 if state is None else state.volume_mobile,
+                 "initial_obstacle": 0.0 if state is None else state.volume_obstacle}
+    else:
+        key = case.wear_law.parameters[0]
         k_m, k_o = _case_sector_coefficients(case, m, mobile, obstacle)
-        coefs_m = tuple({key: k} for k in k_m.tolist())  # plain floats: WearLaw.rate
-        coefs_o = (None,) * m if k_o is None else tuple({key: k} for k in k_o.tolist())
         pm = np.zeros(m) if state is None else np.asarray(state.sector_volume_mobile, float)
         po = np.zeros(m) if state is None else np.asarray(state.sector_volume_obstacle, float)
-        v0_m, v0_o = float(np.sum(pm)), float(np.sum(po))
-        sectors = {"sector_arcs": tuple(np.diff(np.asarray(result.sector_edges, dtype=float))
-                                        .tolist()),
-                   "term_initial": (tuple(pm.tolist()), tuple(po.tolist())),
-                   # the bore radius of the sectors, also beside a type that has none (§3)
-                   "sector_obstacle_radius": case.dimensions.get("obstacle_radius")}
+        parts = {"coefficients_mobile": tuple({key: k} for k in k_m.tolist()),  # plain floats
+                 "coefficients_obstacle": (None,) * m if k_o is None
+                 else tuple({key: k} for k in k_o.tolist()),
+                 "initial_mobile": float(np.sum(pm)), "initial_obstacle": float(np.sum(po)),
+                 "sector_arcs": tuple(np.diff(np.asarray(edges, dtype=float)).tolist()),
+                 "term_initial": (tuple(pm.tolist()), tuple(po.tolist())),
+                 # the bore radius of the sectors, also beside a type that has none (§3)
+                 "sector_obstacle_radius": case.dimensions.get("obstacle_radius")}
         if state is not None and len(state.rows):  # read at their first use (a limit)
-            sectors["sector_rows"] = functools.partial(_earlier_sectors, state.rows,
-                                                       case.origin, m)
-    rows = None
+            parts["sector_rows"] = functools.partial(_earlier_sectors, state.rows,
+                                                     case.origin, m)
     if state is not None and len(state.rows):  # read at their first use (a limit)
-        rows = functools.partial(EarlierRows.from_rows, state.rows, case.origin)
-    return DepthModel(law=law, geometry=geometry, powers=powers, coefficients_mobile=coefs_m,
-                      coefficients_obstacle=coefs_o, time_scale=case.time_scale,
-                      origin=case.origin, initial_mobile=v0_m, initial_obstacle=v0_o,
-                      wall=case.wall, replacement=fresh, rows=rows, **sectors)
+        parts["rows"] = functools.partial(EarlierRows.from_rows, state.rows, case.origin)
+    return parts
+
+
+def _copy(coefficients: dict | None) -> dict | None:
+    """A copy of a body's coefficients (the caller's dict stays the caller's)."""
+    return None if coefficients is None else dict(coefficients)
 
 
 def _earlier_sectors(rows, origin: float, m: int) -> tuple:
