@@ -198,7 +198,11 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None, keys=No
     state = case.restart.table
     frame = None
     if state is not None and len(state.rows):
-        frame = _after_rows(state.rows, columns, state.row_dtypes)
+        after = _after_rows(state.rows, columns, state.row_dtypes)
+        if isinstance(after, dict):
+            columns = after  # the rows' columns then the run's: no DataFrame yet
+        else:
+            frame = after
     limit = None
     if case.wall.thickness is not None:
         wall, limit = _wall(case, columns if frame is None else frame, model)
@@ -373,12 +377,13 @@ class _Clock:
         return np.zeros(self.n, bool) if fresh is None else self.elapsed >= fresh
 
 
-def _after_rows(rows: pd.DataFrame, columns: dict, dtypes=None) -> pd.DataFrame:
+def _after_rows(rows: pd.DataFrame, columns: dict, dtypes=None) -> dict | pd.DataFrame:
     """The initial table's rows (reindexed to the run's columns, NaN where they lack one) then
-    the run's: ``pd.concat([rows.reindex(columns=...), _frame(columns)], ignore_index=True)``,
-    built from the float columns directly when every one is float64 (a restart of a table
-    without sectors: 0.11 -> 0.02 ms), by that concat otherwise. ``dtypes``: the rows'
-    dtypes, when known (:attr:`InitialState.row_dtypes`)."""
+    the run's: ``pd.concat([rows.reindex(columns=...), _frame(columns)], ignore_index=True)``;
+    as the columns of that frame (name -> float64 array: :func:`_frame` of them is it) when
+    every column is float64 (a restart of a table without sectors: 0.11 -> 0.02 ms), by that
+    concat otherwise. ``dtypes``: the rows' dtypes, when known
+    (:attr:`InitialState.row_dtypes`)."""
     names = list(columns)
     new = [np.asarray(columns[c]) for c in names]
     if (rows.columns.is_unique and all(a.dtype == np.float64 and a.ndim == 1 for a in new)
@@ -386,8 +391,8 @@ def _after_rows(rows: pd.DataFrame, columns: dict, dtypes=None) -> pd.DataFrame:
         block = rows.to_numpy()  # (taking columns one by one deep-copies the rows' attrs)
         at = {c: i for i, c in enumerate(rows.columns)}
         blank = np.full(len(rows), np.nan)
-        return _frame({c: np.concatenate([block[:, at[c]] if c in at else blank, a])
-                       for c, a in zip(names, new, strict=True)})
+        return {c: np.concatenate([block[:, at[c]] if c in at else blank, a])
+                for c, a in zip(names, new, strict=True)}
     return pd.concat([rows.reindex(columns=names), _frame(columns)], ignore_index=True)
 
 
