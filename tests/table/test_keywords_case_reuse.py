@@ -16,7 +16,7 @@ import pandas as pd
 import pytest
 
 from fretwear.errors import UnitsWarning
-from fretwear.table import WearCase, wear_table, wear_table_from_case
+from fretwear.table import WearCase, wear_table, wear_table_from_case, write_wear_table
 
 P = 0.01  # [W]
 HOUR = 3.6e3  # [s]
@@ -58,7 +58,8 @@ def test_changed_keywords_make_a_new_case():
 
 
 def test_a_rewritten_coefficient_file_is_read_again(tmp_path):
-    """A file may change between calls: the case of coefficient_files is made every call."""
+    """A file may change between calls: the case of coefficient_files is made again when the
+    file's content changes."""
     pytest.importorskip("fretwear.database")
     path = tmp_path / "mine.csv"
 
@@ -76,6 +77,30 @@ def test_a_rewritten_coefficient_file_is_read_again(tmp_path):
     second = wear_table(P, **kw)
     np.testing.assert_allclose(first["volume_mobile"], 3.1e-15 * P * HOUR, rtol=1e-15)
     np.testing.assert_allclose(second["volume_mobile"], 6.2e-15 * P * HOUR, rtol=1e-15)
+
+
+def test_a_restart_file_case_is_made_once_per_content(tmp_path):
+    """wear_table(power, initial_state=<file>) again with the same file: the table of a case
+    made afresh (bit for bit, one process); the file rewritten with other volumes: the table
+    continues the new ones (Archard, V = V0 + K·P·t, theory §7); the file removed: the error
+    of a missing file, not a remembered case."""
+    kw = keywords(instants=[1.0])
+    path = tmp_path / "first.tab"
+
+    def write(hours):  # a Code_Aster text table of hours [h] of wear at P
+        write_wear_table(wear_table(P, **keywords(instants=[hours])), path)
+
+    write(2.0)
+    restart = dict(kw, initial_state=str(path))
+    fresh = wear_table_from_case(WearCase.from_keywords(**restart), P)
+    for _ in range(3):
+        pd.testing.assert_frame_equal(wear_table(P, **restart), fresh, check_exact=True)
+    write(5.0)
+    table = wear_table(P, **restart)
+    assert table["volume_mobile"].iloc[-1] == pytest.approx(1e-14 * P * HOUR * 6.0, rel=1e-12)
+    path.unlink()
+    with pytest.raises(Exception, match="first.tab"):
+        wear_table(P, **restart)
 
 
 def test_the_validations_warnings_at_every_call():

@@ -18,6 +18,7 @@ and the tube replacement are in :mod:`fretwear.table`.
 from __future__ import annotations
 
 import numbers
+import os
 import warnings
 
 import numpy as np
@@ -29,6 +30,7 @@ from fretwear.power.result import PowerResult
 from fretwear.table.build import wear_table_from_case
 from fretwear.table.case import WearCase, law_coefficients  # noqa: F401 - re-exported
 from fretwear.table.keywords import check_keywords, keywords_doc
+from fretwear.table.restart import _memo_bytes
 from fretwear.table.schema import (  # noqa: F401 - re-exported
     COLUMNS,
     GLOBAL_COLUMNS,
@@ -150,7 +152,8 @@ def _case(case: WearCase | None, keywords: dict) -> WearCase:
 #: validates the keywords once (0.3-0.8 ms a call), as wear_table_from_case does.
 _CASES: dict = {}
 _CASES_KEPT = 32
-#: Keywords naming files that may change between calls: a case of them is made every call.
+#: Keywords naming files that may change between calls: their key is each file's content
+#: (:func:`_files_key`).
 _FILE_KEYWORDS = ("coefficient_files", "initial_state")
 
 
@@ -168,9 +171,12 @@ def _case_of_keywords(keywords: dict) -> WearCase:
             warnings.simplefilter("always")
             check_keywords(keywords, "wear_table")
             made = WearCase.from_keywords(**keywords)
-        if len(_CASES) >= _CASES_KEPT:
-            _CASES.clear()
-        found = _CASES[key] = (made, tuple(caught), {})
+        found = (made, tuple(caught), {})
+        files = any(keywords.get(name) is not None for name in _FILE_KEYWORDS)
+        if not files or _keyword_key(keywords) == key:  # a file unchanged while it was read
+            if len(_CASES) >= _CASES_KEPT:
+                _CASES.clear()
+            _CASES[key] = found
     case, caught, registry = found
     for w in caught:
         warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, registry=registry)
@@ -178,12 +184,24 @@ def _case_of_keywords(keywords: dict) -> WearCase:
 
 
 def _keyword_key(keywords: dict):
-    """A hashable key of the keywords' values (each value's type and content), None where one
-    has no content to say: a file's path (:data:`_FILE_KEYWORDS`), a DataFrame, an object."""
-    if any(keywords.get(name) is not None for name in _FILE_KEYWORDS):
-        return None
-    items = tuple((name, _value_key(value)) for name, value in keywords.items())
+    """A hashable key of the keywords' values (each value's type and content; a file's path
+    and its bytes, :func:`_files_key`), None where one has no content to say: a DataFrame, an
+    object, a file too large or not a regular file."""
+    items = tuple((name, _files_key(value) if name in _FILE_KEYWORDS and value is not None
+                   else _value_key(value)) for name, value in keywords.items())
     return None if any(k is None for _, k in items) else items
+
+
+def _files_key(value):
+    """The key of a file keyword's value (a path or a list of paths): each path as given and
+    the file's bytes (a restart table or a coefficient file of at most 256 KiB, read whole:
+    the case is made again when one changes), None for anything else."""
+    paths = [value] if isinstance(value, str | os.PathLike) else \
+        value if type(value) in (list, tuple) else None
+    if paths is None or not all(isinstance(p, str | os.PathLike) for p in paths):
+        return None
+    out = tuple((type(p), os.fspath(p), _memo_bytes(p, tables_only=False)) for p in paths)
+    return None if any(data is None for *_, data in out) else out
 
 
 def _value_key(value):

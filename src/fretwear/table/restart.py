@@ -153,15 +153,15 @@ _MEMO_LOCK = threading.Lock()
 _UNKEYED = object()
 
 
-def _memo_bytes(path) -> bytes | None:
+def _memo_bytes(path, *, tables_only: bool = True) -> bytes | None:
     """The bytes of ``path`` when its state may be kept (a regular file of at most _MEMO_BYTES
-    that :func:`read_wear_table` reads as a Code_Aster text table), else None: it is then read
-    as usual, which words any problem."""
+    that :func:`read_wear_table` reads as a Code_Aster text table; any such regular file when
+    not ``tables_only``), else None: it is then read as usual, which words any problem."""
     if not isinstance(path, str | os.PathLike):
         return None
     try:
         name = os.fsdecode(os.fspath(path))
-        if os.path.splitext(name)[1].lower() in (".csv", ".parquet", ".pq"):
+        if tables_only and os.path.splitext(name)[1].lower() in (".csv", ".parquet", ".pq"):
             return None
         # a named pipe or a device is never opened here (opening a pipe waits for a writer,
         # and closing it unread loses what the writer sent): read_wear_table reads it once
