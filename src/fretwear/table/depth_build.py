@@ -93,9 +93,9 @@ def _make_parts(case, mobile, obstacle, m: int, edges) -> dict[str, Any]:
         k_m, k_o = _case_sector_coefficients(case, m, mobile, obstacle)
         pm = np.zeros(m) if state is None else np.asarray(state.sector_volume_mobile, float)
         po = np.zeros(m) if state is None else np.asarray(state.sector_volume_obstacle, float)
-        parts = {"coefficients_mobile": tuple({key: k} for k in k_m.tolist()),  # plain floats
+        parts = {"coefficients_mobile": _sector_dicts(key, k_m),
                  "coefficients_obstacle": (None,) * m if k_o is None
-                 else tuple({key: k} for k in k_o.tolist()),
+                 else _sector_dicts(key, k_o),
                  "initial_mobile": float(np.sum(pm)), "initial_obstacle": float(np.sum(po)),
                  "sector_arcs": tuple(np.diff(np.asarray(edges, dtype=float)).tolist()),
                  "term_initial": (tuple(pm.tolist()), tuple(po.tolist())),
@@ -107,6 +107,15 @@ def _make_parts(case, mobile, obstacle, m: int, edges) -> dict[str, Any]:
     if state is not None and len(state.rows):  # read at their first use (a limit)
         parts["rows"] = functools.partial(EarlierRows.from_rows, state.rows, case.origin)
     return parts
+
+
+def _sector_dicts(key: str, values: np.ndarray) -> tuple[dict, ...]:
+    """Each sector's coefficients ``{key: value}`` (plain floats: WearLaw.rate), one dict for
+    every sector when they all have the same value (the law's rates then in one call)."""
+    values = values.tolist()
+    if all(v == values[0] for v in values):
+        return ({key: values[0]},) * len(values)
+    return tuple({key: v} for v in values)
 
 
 def _copy(coefficients: dict | None) -> dict | None:

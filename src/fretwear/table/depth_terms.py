@@ -101,7 +101,10 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     if len(powers) == 1:  # one term (a table without sectors)
         return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
     first = coefficients[0]
-    if all(c is not None and all(type(v) is float for v in c.values()) for c in coefficients) \
+    if first is not None and all(c is first for c in coefficients) \
+            and all(type(v) is float for v in first.values()):  # one dict for every sector
+        given = first
+    elif all(c is not None and all(type(v) is float for v in c.values()) for c in coefficients) \
             and all(c == first for c in coefficients):  # the law's numbers in every sector
         given = first
     else:
@@ -110,8 +113,10 @@ def _rates(law, powers, coefficients) -> np.ndarray:
             return np.array([0.0 if c is None else float(law.rate(float(p), **c))
                              for p, c in zip(powers, coefficients, strict=True)])
         given = {k: np.array([c[k] for c in coefficients]) for k in next(iter(names))}
-    return np.broadcast_to(np.asarray(law.rate(np.asarray(powers, dtype=float), **given),
-                                      dtype=float), (len(powers),)).astype(float)
+    rates = np.asarray(law.rate(np.asarray(powers, dtype=float), **given), dtype=float)
+    if rates.shape != (len(powers),):
+        rates = np.broadcast_to(rates, (len(powers),))
+    return rates.astype(float)  # a new array (the law's result is never handed out)
 
 
 def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
