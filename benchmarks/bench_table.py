@@ -30,6 +30,7 @@ Usage::
     .venv/bin/python benchmarks/bench_table.py
     .venv/bin/python benchmarks/bench_table.py --number 50 --repeat 5
     .venv/bin/python benchmarks/bench_table.py --base /tmp/base
+    .venv/bin/python benchmarks/bench_table.py --base /tmp/base --examples tube_bav grappe_alesage
 """
 
 from __future__ import annotations
@@ -165,7 +166,8 @@ def _best_of(rounds: list[dict]) -> dict:
 GOAL_MS = 0.5
 
 
-def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "wall") -> None:
+def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "wall",
+            examples=EXAMPLES) -> None:
     """Every example timed in child processes taking turns (``rounds`` times each): ``base``'s
     fretwear, this one's; the best of every timing (the least disturbed by other load). The
     last column says whether both paths are within :data:`GOAL_MS`, and where not, the sum of
@@ -182,7 +184,7 @@ def compare(base: str, number: int, repeat: int, rounds: int = 3, clock: str = "
     print(f"{'example':>14} {'rows x cols':>11} {'wear_table before':>18} {'after':>7} "
           f"{'ratio':>6} {'from_case before':>17} {'after':>7} {'ratio':>6} "
           f"{'DataFrame':>9} {'depths':>7} {'law':>6} {'case':>6}  goal {GOAL_MS} ms")
-    for name in EXAMPLES:
+    for name in examples:
         olds, news = [], []
         for _ in range(rounds):
             olds.append(_run_child(name, src, number, repeat, clock))
@@ -216,6 +218,8 @@ def main(argv=None) -> None:
     p.add_argument("--rounds", type=int, default=3, help="turns of each side with --base")
     p.add_argument("--clock", choices=sorted(_CLOCK), default="wall",
                    help="wall time, or the process's CPU time (a loaded machine)")
+    p.add_argument("--examples", nargs="+", choices=EXAMPLES, default=list(EXAMPLES),
+                   help="the examples (contact types) timed with --base, default all")
     p.add_argument("--child", help=argparse.SUPPRESS)
     args = p.parse_args(argv)
     global _clock
@@ -224,7 +228,7 @@ def main(argv=None) -> None:
         print(json.dumps(_child(args.child, args.number, args.repeat)))
         return
     if args.base:
-        compare(args.base, args.number, args.repeat, args.rounds, args.clock)
+        compare(args.base, args.number, args.repeat, args.rounds, args.clock, args.examples)
         return
     history = _history()
     print(f"per-contact wear table [ms], median of {args.repeat} x {args.number} tables "
