@@ -6,6 +6,8 @@ source, after files of other units, names and metadata were opened in between.""
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 import numpy as np
 import pytest
 
@@ -33,7 +35,7 @@ def _expected(path):
 
 
 def test_every_file_gets_its_own_names_units_and_name(tmp_path, monkeypatch):
-    monkeypatch.setattr(binary, "_SCHEMAS", {})
+    monkeypatch.setattr(binary, "_SCHEMAS", OrderedDict())
     cols = ["time", "normal_force", "vt1", "vt2", "dy", "dz"]
     files = [
         _write(tmp_path / "a.parquet", cols, ["s", "N", "m/s", "m/s", "m", "m"], "A"),
@@ -60,3 +62,13 @@ def test_a_file_without_key_value_metadata_is_read_as_before(tmp_path):
     source = open_parquet(path)
     assert (source.columns, source.units) == _expected(path)
     assert source.read([1])[0].tolist() == [1.0, 2.0]
+
+
+def test_the_oldest_schema_goes_beyond_sixteen(tmp_path, monkeypatch):
+    monkeypatch.setattr(binary, "_SCHEMAS", OrderedDict())
+    files = [_write(tmp_path / f"f{k}.parquet", ["time", f"normal_force_{k}"], ["s", "N"])
+             for k in range(20)]
+    for path in files + files[:3]:
+        source = open_parquet(path)
+        assert (source.columns, source.units) == _expected(path), path.name
+    assert len(binary._SCHEMAS) == 16

@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 import os
 import zipfile
+from collections import OrderedDict
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -105,7 +106,7 @@ def _one_chunk(column):
 #: Names, units and fretwear metadata of recent Arrow schemas, by the footer's key-value metadata
 #: (its stored ``ARROW:schema``): ``schema_arrow`` decodes it at every call (50-60 µs, a sixth
 #: of a 1 000-sample file's open and read), and the files of a bundle share it (issue 28).
-_SCHEMAS: dict[tuple, tuple] = {}
+_SCHEMAS: OrderedDict[tuple, tuple] = OrderedDict()
 
 
 def _schema_of(handle) -> tuple[list[str], dict[int, bytes], bytes]:
@@ -123,7 +124,7 @@ def _schema_of(handle) -> tuple[list[str], dict[int, bytes], bytes]:
     stored = (schema.metadata or {}).get(b"fretwear", b"")
     if key is not None:
         if len(_SCHEMAS) >= 16:
-            _SCHEMAS.pop(next(iter(_SCHEMAS)))
+            _SCHEMAS.popitem(last=False)  # the oldest (one call: safe beside other threads)
         _SCHEMAS[key] = (parquet_schema, tuple(schema.names), dict(units), stored)
     return list(schema.names), units, stored
 
