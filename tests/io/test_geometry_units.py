@@ -133,3 +133,36 @@ def test_the_median_of_the_crossings_is_numpys():
             if n > 4:
                 a[: n // 3] = a[n // 2]  # ties across the middle
             assert median(a) == float(np.median(a))
+
+
+@pytest.mark.parametrize("n", [3, 4, 5, 1000, 1001])
+def test_the_compiled_motion_pass_gives_the_numpy_numbers(n, monkeypatch):
+    """``geometry_units._motion`` through the compiled pass (``io._compiled.motion``) against
+    the numpy expressions (``_orbit``, ``_frequency``, ``_speed``: the reference, forced by
+    ``plausibility._KERNEL = None``): orbit, frequency and largest speed equal bit for bit (one
+    process: the same operations), on random and flat motions, a dy equal to its median at
+    samples (signbit of +0.0 and -0.0), speeds whose squares overflow; and the kernel ran."""
+    pytest.importorskip("numba")
+    from fretwear.io import _compiled, geometry_units, plausibility
+
+    rng = np.random.default_rng(n)
+    t = np.cumsum(rng.uniform(0.5e-3, 1.5e-3, n))
+    cases = [rng.normal(0.0, 1e-4, (4, n)), np.zeros((4, n)), rng.normal(0.0, 1e200, (4, n))]
+    ties = rng.normal(0.0, 1e-4, (4, n))
+    ties[0, ::2] = np.median(ties[0])
+    ties[0, 1] = -0.0
+    cases.append(ties)
+    calls = []
+    kernel = _compiled.motion
+    monkeypatch.setattr(_compiled, "motion", lambda *a: calls.append(1) or kernel(*a))
+    for dy, dz, v1, v2 in cases:
+        h = ContactHistory(time=t, normal_force=np.full(n, 5.0), vt1=v1, vt2=v2, dy=dy, dz=dz)
+        monkeypatch.setattr(plausibility, "_KERNEL", _compiled)
+        compiled = geometry_units._motion(h)
+        monkeypatch.setattr(plausibility, "_KERNEL", None)
+        reference = (geometry_units._orbit(h), geometry_units._frequency(h),
+                     geometry_units._speed(h))
+        assert compiled[:2] == pytest.approx(reference[:2], rel=0, abs=0, nan_ok=True)
+        if reference[0] > 0 and math.isfinite(reference[1]):  # the speed the check reads
+            assert compiled[2] == reference[2]
+    assert len(calls) == len(cases)

@@ -123,3 +123,30 @@ def flags(s):  # pragma: no cover - compiled
     for i in range(s.size):
         bad |= not ((s[i] == 0.0) | (s[i] == 1.0))
     return not bad
+
+
+# ----------------------------------------------------------------- the units against a geometry
+@njit(cache=True, nogil=True)
+def motion(dy, dz, vt1, vt2, centre):  # pragma: no cover - compiled
+    """The numbers :func:`fretwear.io.geometry_units.check_against_geometry` compares with the
+    contact's geometry, in one pass: ``dy.max() - dy.min()`` and ``dz.max() - dz.min()`` [m],
+    the sign changes of ``dy - centre`` (``numpy.signbit``, ``centre`` the median of ``dy``)
+    and the largest ``vt1² + vt2²`` [m²/s²] (``inf`` when the squares overflow, as numpy's).
+    The operations of the numpy expressions there, the same numbers (finite inputs: a
+    history's channels)."""
+    ylo = yhi = dy[0]
+    zlo = zhi = dz[0]
+    speed2 = vt1[0] * vt1[0] + vt2[0] * vt2[0]
+    sign = np.signbit(dy[0] - centre)
+    crossings = 0
+    for i in range(1, dy.size):
+        y, z = dy[i], dz[i]
+        ylo, yhi = min(ylo, y), max(yhi, y)
+        zlo, zhi = min(zlo, z), max(zhi, z)
+        s = vt1[i] * vt1[i] + vt2[i] * vt2[i]
+        if s > speed2:
+            speed2 = s
+        below = np.signbit(y - centre)
+        crossings += below != sign
+        sign = below
+    return yhi - ylo, zhi - zlo, crossings, speed2

@@ -147,6 +147,13 @@ def unit_factor(unit: str, quantity: str, *, culprit: str = "") -> float:
     >>> unit_factor("kN", "force"), unit_factor("mm/ms", "velocity"), unit_factor("MM", "length")
     (1000.0, 1.0, 0.001)
     """
+    if type(unit) is str and type(quantity) is str and type(culprit) is str:
+        return _unit_factor(unit, quantity, culprit)  # a bundle's files repeat their units
+    return _unit_factor.__wrapped__(unit, quantity, culprit)
+
+
+@functools.lru_cache(maxsize=1024)
+def _unit_factor(unit: str, quantity: str, culprit: str) -> float:
     text = str(unit).strip()
     if quantity == "velocity":
         parts = text.split("/")

@@ -26,6 +26,7 @@ import warnings
 import numpy as np
 
 from fretwear.errors import InputError, UnitsWarning
+from fretwear.io.plausibility import _kernel_for
 
 #: The orbit of a tube or rod in a bore may exceed the radial gap by the contact's penetration
 #: and the obstacle's own motion; ten gaps leave a decade of margin (a file in mm is 1000×).
@@ -198,6 +199,36 @@ def _frequency(history) -> float:
     return crossings / (2.0 * duration) if crossings else math.nan
 
 
+def _speed(history) -> float:
+    """The largest sliding speed √(vt1² + vt2²) [m/s] (``inf`` when the squares overflow)."""
+    with np.errstate(over="ignore"):
+        return float(np.sqrt((history.vt1 ** 2 + history.vt2 ** 2).max()))
+
+
+def _motion(history) -> tuple[float, float, float]:
+    """The history's orbit (:func:`_orbit`) [m], frequency (:func:`_frequency`) [Hz] and largest
+    sliding speed [m/s] (NaN where the check needs none: no orbit or no frequency).
+
+    One compiled pass (:func:`fretwear.io._compiled.motion`) when the plausibility checks run
+    compiled (:func:`fretwear.io.plausibility._kernel_for`: numba installed, and a long history
+    or the module already imported, as it is in a stream), with contiguous channels and dy; the
+    numpy expressions otherwise, the reference: the same numbers (about ten array passes of a
+    1 000-sample block of a bundle, issue 28)."""
+    dy, dz, t = history.dy, history.dz, history.time
+    kernel = _kernel_for(t.size)
+    duration = float(t[-1] - t[0])
+    if (kernel is None or dy is None or dy.size < 3
+            or not all(a.flags.c_contiguous for a in (dy, dz, history.vt1, history.vt2))):
+        orbit, frequency = _orbit(history), _frequency(history)
+        speed = _speed(history) if orbit > 0 and math.isfinite(frequency) else math.nan
+        return orbit, frequency, speed
+    y_range, z_range, crossings, speed2 = kernel.motion(dy, dz, history.vt1, history.vt2,
+                                                        median(dy))
+    orbit = 0.5 * max(float(y_range), float(z_range))
+    frequency = crossings / (2.0 * duration) if crossings and duration > 0 else math.nan
+    return orbit, frequency, math.sqrt(speed2)
+
+
 def check_against_geometry(history, *, mobile_radius: float | None = None,
                            obstacle_radius: float | None = None, name: str = "") -> list[str]:
     """Warn (:class:`UnitsWarning`) where a history's lengths or speeds do not fit its contact.
@@ -236,7 +267,7 @@ def check_against_geometry(history, *, mobile_radius: float | None = None,
     found: list[str] = []
     label = name or history.name or history.metadata.get("source", "")
     units = history.metadata.get("units") or {}
-    orbit = _orbit(history)
+    orbit, frequency, speed = _motion(history)
     limit, what = math.inf, ""
     if mobile_radius:
         limit, what = mobile_radius, f"the tube's outer radius {mobile_radius:g} m"
@@ -251,11 +282,8 @@ def check_against_geometry(history, *, mobile_radius: float | None = None,
                      f"peak-to-peak of dy, dz; read in {units.get('dy', 'SI')!r}) is larger than "
                      f"{what}: a file in 'mm' gives this: if so, give the units: "
                      f"{_fix('length', 'mm')}")
-    frequency = _frequency(history)
     if orbit > 0 and math.isfinite(frequency):
         bound = 2.0 * math.pi * frequency * orbit
-        with np.errstate(over="ignore"):
-            speed = float(np.sqrt((history.vt1 ** 2 + history.vt2 ** 2).max()))
         if math.isfinite(speed) and speed > SPEED_ORBIT_FACTOR * bound:
             found.append(
                 f"contact {label!r}: the largest sliding speed {speed:.4g} m/s (read in "

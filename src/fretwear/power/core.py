@@ -377,7 +377,7 @@ class PowerAccumulator:
             total = float(self.power.sum()) / T
             sectors = None if self.sector_edges is None else self.power.sum(axis=0) / T
         check_finite_power(total, block_powers, T, self.name)
-        mean = float(block_powers.mean())
+        mean = float(block_powers[0]) if nb == 1 else float(block_powers.mean())  # x/1 is x
         spread = 0.0 if nb == 1 or mean <= 0 else float(
             (block_powers.max() - block_powers.min()) / mean)
         if spread > stationarity_threshold:
@@ -394,7 +394,8 @@ class PowerAccumulator:
                            t_start=t_start, t_end=t_end, duration=T, spread=spread,
                            statistics=stats, name=self.name,
                            block_sectors=None if self.sector_edges is None
-                           else self.power / (T / nb), kwu=copy.deepcopy(self.kwu))
+                           else self.power / (T / nb),
+                           kwu=None if self.kwu is None else copy.deepcopy(self.kwu))
 
 
 def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float]:

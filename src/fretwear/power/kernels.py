@@ -166,11 +166,14 @@ def sector_table(edges: np.ndarray) -> SectorTable:
     >>> st.q_edges.tolist(), bool(st.safe), int(st.base[0]), int(st.base[-1])
     ([-2.0, 0.0, 2.0], True, 0, 1)
     """
-    return _cached_table(tuple(float(e) for e in np.asarray(edges, dtype=float)))
+    return _cached_table(tuple(np.asarray(edges, dtype=float).tolist()))
 
 
 def _ro(a, dtype=float) -> np.ndarray:
     """A read-only C-contiguous view (one compiled signature for every caller's arrays)."""
+    if (type(a) is np.ndarray and a.dtype == dtype and not a.flags.writeable
+            and a.flags.c_contiguous):
+        return a  # already one (a checked block's arrays, a history's channels)
     v = np.ascontiguousarray(a, dtype=dtype).view()
     v.flags.writeable = False
     return v
@@ -220,9 +223,8 @@ def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
     dfk = np.empty(cap, dtype=np.int64)
     dfw = np.empty(cap)
     out = np.empty(3)
-    power = np.zeros((nb, ns))
-    bstats = np.zeros((nb, _NSTAT))
-    groups = np.zeros(_NGROUP)
+    channels = (t, fn, vt1, vt2, yv, zv, stick, sec)
+    power = bstats = groups = None
     force_max = -np.inf
     start = 0
     while True:  # once, unless the deferral buffer fills up (then resumed where it stopped)
@@ -230,9 +232,7 @@ def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
         bs = np.zeros((nb, _NSTAT))
         g = np.zeros(_NGROUP)
         status = _compiled._fused(
-            t[start:], fn[start:], vt1[start:], vt2[start:],
-            None if yv is None else yv[start:], None if zv is None else zv[start:],
-            None if stick is None else stick[start:], None if sec is None else sec[start:],
+            *(channels if start == 0 else [None if a is None else a[start:] for a in channels]),
             float(lo), float(hi), block_edges, st.scale, st.base, st.edge, st.exact, st.q_edges,
             float(threshold), float(min_rest), p, bs, g, dfi, dfk, dfw, out)
         if status != 0 and int(out[2]) == 0:
@@ -248,10 +248,13 @@ def fused_numba(t, fn, vt1, vt2, dy, dz, stick, lo, hi, block_edges, edges,
             rows = dfi[:nd] + start
             j = reference_sector_index(np.asarray(dy)[rows], np.asarray(dz)[rows], edges)
             np.add.at(p, (dfk[:nd], j), dfw[:nd])
-        power += p
-        bstats += bs
         force_max = max(force_max, float(out[0]))
-        groups = merge_groups(groups, g, min_rest) if start else g
+        if power is None:  # the first pass's sums, summed from +0.0: 0.0 + them is them
+            power, bstats, groups = p, bs, g
+        else:
+            power += p
+            bstats += bs
+            groups = merge_groups(groups, g, min_rest)
         if status == 0:
             return ChunkSums(power, bstats, force_max, groups)
         start += int(out[2])

@@ -103,6 +103,10 @@ def check_finite_sums(sums, t, fn, vt1, vt2, name: str) -> None:
         f"{float(np.max(fn)):g} N, largest speed {float(np.max(speed)):g} m/s); {hint}")
 
 
+#: The smallest normal float64 [s] (numpy.finfo(float).tiny, 2.2e-308).
+_TINY = float(np.finfo(float).tiny)
+
+
 def check_window_length(duration: float, blocks: int, name: str) -> None:
     """Refuse a window whose blocks last less than the smallest normal float [s].
 
@@ -134,7 +138,7 @@ def check_window_length(duration: float, blocks: int, name: str) -> None:
     ...     print(str(exc)[:64])
     history 'h': the window of 1e-310 s (4 blocks of 2.5e-311 s) is
     """
-    tiny = float(np.finfo(float).tiny)
+    tiny = _TINY
     if duration / blocks >= tiny:
         return
     raise InputError(
