@@ -33,7 +33,9 @@ A whole steam generator (issue 28): ``--contacts N`` runs ``N / 10`` and ``N`` c
 * the CPU the workers used (every child process of this one: the cluster's nannies and
   workers), and the run's whole CPU (workers + this process) divided by the workers' cores:
   the least time this design could take on the machine, a bound set by the CPU the contacts
-  cost and not by how the work is shared out, printed against the read.
+  cost and not by how the work is shared out, printed against the read;
+* the workers' CPU split between their task threads (the contacts, the parts' writes, the
+  pickles) and the rest of their processes (event loops: messages, heartbeats, Dask's timers).
 
 The machine's load average is printed before and after: on a shared machine the two sizes
 can be run at different loads.
@@ -245,6 +247,18 @@ def _children_cpu() -> float:
     return total
 
 
+def _task_thread_cpu() -> float:
+    """CPU seconds (user + system) used so far by this worker's threads that run tasks (Dask's
+    ``Dask-Default-Threads``: the contacts, the part's write, the pickle); the rest of the
+    process is the event loop (messages, heartbeats, Dask's timers) (run in a worker)."""
+    import threading
+
+    import psutil
+
+    ids = {t.native_id for t in threading.enumerate() if "Dask-Default-Threads" in t.name}
+    return sum(t.user_time + t.system_time for t in psutil.Process().threads() if t.id in ids)
+
+
 def measure(manifest: Path, case: Path, client, output: Path
             ) -> tuple[float, float, float, PeakMemory]:
     """Seconds of (the run, its part after the last result, the restart), and the client's
@@ -261,11 +275,13 @@ def measure(manifest: Path, case: Path, client, output: Path
     try:
         with PeakMemory() as memory:
             cpu0, workers0 = _cpu_seconds(), _children_cpu()
+            tasks0 = sum(client.run(_task_thread_cpu).values())
             t0 = time.perf_counter()
             result = run_bundle(manifest, case, scheduler=client, output=output)
             end = time.perf_counter()
             memory.cpu = (_cpu_seconds() - cpu0, marks["cpu"] - cpu0)
             memory.workers_cpu = _children_cpu() - workers0
+            memory.task_threads = sum(client.run(_task_thread_cpu).values()) - tasks0
             if result.stats["done"] != result.stats["contacts"]:
                 raise SystemExit(f"{result.stats['failed']} contacts failed: "
                                  f"{result.errors.head()}")
@@ -345,6 +361,11 @@ def main(argv: list[str] | None = None) -> None:
                   f"perfectly over {args.workers} cores: {least:.2f} s, the least this design "
                   "takes on this machine" + (f" = {least / floor:.2f}x the read" if floor
                                              else ""), flush=True)
+            rest = memory.workers_cpu - memory.task_threads
+            print(f"  of the workers' CPU, their task threads (the contacts, the parts' writes, "
+                  f"the pickles) {1e3 * memory.task_threads / n:.3f} ms a contact, the rest "
+                  f"(event loops: messages, heartbeats, Dask's timers) {1e3 * rest / n:.3f} ms",
+                  flush=True)
             shutil.rmtree(directory / f"out{n}", ignore_errors=True)
         small, large = costs[args.small], costs[args.large]
         names = ("run", "after the last result", "restart")

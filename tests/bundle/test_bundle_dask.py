@@ -368,10 +368,12 @@ def test_cli_joins_the_scheduler_and_exits_1_when_a_contact_failed(tmp_path, add
     assert "did you mean 'tube_row'" in capsys.readouterr().err
 
 
-def _environment() -> dict:
+def _environment(dask_worker) -> dict:
     import dask
 
-    return {**os.environ, "profile": dask.config.get("distributed.worker.profile.enabled")}
+    timers = {name: pc.callback_time for name, pc in dask_worker.periodic_callbacks.items()}
+    return {**os.environ, "profile": dask.config.get("distributed.worker.profile.enabled"),
+            "timers [ms]": timers}
 
 
 def test_without_a_scheduler_a_local_cluster_is_started(tmp_path, monkeypatch):
@@ -394,5 +396,9 @@ def test_without_a_scheduler_a_local_cluster_is_started(tmp_path, monkeypatch):
     assert len(seen) == 1
     assert "MALLOC_TRIM_THRESHOLD_" not in seen[0] and seen[0]["OMP_NUM_THREADS"] == "1"
     assert seen[0]["profile"] is False  # no stack sampling of the running contacts
+    # Dask's background timers slowed (cluster.LOCAL_CLUSTER_CONFIG; Dask's defaults 20, 500
+    # and 100 ms): the worker's own periodic callbacks, as it runs them [ms]
+    timers = seen[0]["timers [ms]"]
+    assert (timers["tick"], timers["monitor"], timers["memory_monitor"]) == (1000, 5000, 500)
     assert_identical(rows_of(result, "R1C1-AVB"),
                      reference(tmp_path / "histories/t0.parquet", case))

@@ -24,10 +24,18 @@ from fretwear.errors import InputError, KeywordError
 #: malloc left to glibc's defaults (Dask sets MALLOC_TRIM_THRESHOLD_ before spawning them); no
 #: statistical profiler in the workers (it samples the running task's stack every 10 ms for the
 #: dashboard's profile page: the same contacts took 4-14 % longer in a worker with it than in a
-#: plain process, 1-4 % without it; docs/bundle.md).
+#: plain process, 1-4 % without it; docs/bundle.md); and Dask's background timers slowed (issue
+#: 28): the event-loop health check every 1 s (20 ms: it woke every worker 50 times a second), the
+#: system monitor (the dashboard's CPU/memory/disk samples) every 5 s (500 ms), the memory
+#: monitor (a worker's spill/pause, the nanny's terminate at 95 %) every 500 ms (100 ms). An idle
+#: 2-worker cluster used 56 ms of CPU a second in the client's process (scheduler, nannies,
+#: client) and 20 ms in each worker; with these 9 and 4 ms, each worker woken 4 times a second.
 LOCAL_CLUSTER_CONFIG = {"distributed.scheduler.worker-saturation": "inf",
                         "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None,
-                        "distributed.worker.profile.enabled": False}
+                        "distributed.worker.profile.enabled": False,
+                        "distributed.admin.tick.interval": "1s",
+                        "distributed.admin.system-monitor.interval": "5s",
+                        "distributed.worker.memory.monitor-interval": "500ms"}
 
 @contextlib.contextmanager
 def _sigint_ignored():
