@@ -95,6 +95,44 @@ def test_an_identity_frame_in_another_order_is_matched_by_contact(tmp_path):
         c: k % 3 + 1 for k, c in enumerate(CONTACTS) if k != 6}
 
 
+def test_parts_after_the_first_are_added_in_arrow_as_pandas_would_write_them(tmp_path,
+                                                                              monkeypatch):
+    """The parts after the first are given their identity columns in Arrow (no trip through
+    pandas: with_identity runs for the first part only), and the file is the bucket route's
+    Arrow table for Arrow table, schema and pandas metadata included; a part whose float column
+    holds a NaN (written by pyarrow, not pandas: pandas' route writes a NaN as null) goes through
+    pandas, so the NaN is null in both tables (compared in Arrow, where a NaN is not a null)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    monkeypatch.setattr(table_file, "ROWS_PER_GROUP", 7)
+    store = OutputDirectory(tmp_path / "out")
+    parts = _parts(store, [[0, 1, 2], [3, 4], [5, 6, 7], [8, 9]], failed={6})
+    with_nan = store.parts / parts[2][0]["rows_file"]
+    table = pq.read_table(with_nan)
+    depth = table.column("depth_mobile").to_numpy().copy()
+    depth[1] = np.nan
+    pq.write_table(table.set_column(table.schema.get_field_index("depth_mobile"),
+                                    "depth_mobile", pa.array(depth)), with_nan)
+    real, through_pandas = table_file.with_identity, []
+    monkeypatch.setattr(table_file, "with_identity",
+                        lambda frame, *a: through_pandas.append(frame["contact"].iloc[0])
+                        or real(frame, *a))
+    writer = PrefixTable(store.parts, tmp_path / "prefix.parquet", CONTACTS, _identity())
+    for part in parts:
+        writer.resolve(part)
+    assert writer.finish()
+    assert through_pandas == [CONTACTS[0], CONTACTS[5]]  # the first part, the NaN part
+    monkeypatch.setattr(table_file, "with_identity", real)
+    records = [r for part in parts for r in part if r["status"] == "done"]
+    assert stream_table(store.parts, tmp_path / "buckets.parquet", records, CONTACTS,
+                        _identity())
+    got = pq.read_table(tmp_path / "prefix.parquet")
+    expected = pq.read_table(tmp_path / "buckets.parquet")
+    assert got.equals(expected, check_metadata=True)
+    assert got.column("depth_mobile").null_count == 1
+
+
 def test_interleaved_parts_give_up_and_leave_nothing(tmp_path):
     """A part holding contacts 0 and 2 and another holding 1 (contacts dealt, not sliced):
     the route gives up, removes its temporary file, writes no table."""
