@@ -91,6 +91,11 @@ class SectorRelation:
         return np.asarray(v, dtype=float), 0.0
 
 
+def _plain(coefficients) -> bool:
+    """Whether a term's coefficients are given, each a plain float."""
+    return coefficients is not None and all(type(v) is float for v in coefficients.values())
+
+
 def _rates(law, powers, coefficients) -> np.ndarray:
     """Volume per second [m³/s] of each term of a law linear in time (0 where the body does
     not wear; :meth:`~fretwear.laws.WearLaw.rate`, its warnings dropped: the table's own volumes
@@ -101,12 +106,8 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     if len(powers) == 1:  # one term (a table without sectors)
         return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
     first = coefficients[0]
-    if first is not None and all(c is first for c in coefficients) \
-            and all(type(v) is float for v in first.values()):  # one dict for every sector
-        given = first
-    elif all(c is not None and all(type(v) is float for v in c.values()) for c in coefficients) \
-            and all(c == first for c in coefficients):  # the law's numbers in every sector
-        given = first
+    if _plain(first) and all(c is first or (_plain(c) and c == first) for c in coefficients):
+        given = first  # the law's numbers in every sector (one dict for all: no check each)
     else:
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
         if len(names) != 1 or any(c is None for c in coefficients):
