@@ -195,8 +195,13 @@ def _frequency(history) -> float:
     if dy is None or dy.size < 3 or not duration > 0:
         return math.nan
     sign = np.signbit(dy - median(dy))
-    crossings = int(np.count_nonzero(sign[1:] != sign[:-1]))
-    return crossings / (2.0 * duration) if crossings else math.nan
+    return _crossing_frequency(int(np.count_nonzero(sign[1:] != sign[:-1])), duration)
+
+
+def _crossing_frequency(crossings: int, duration: float) -> float:
+    """The frequency [Hz] of a motion crossing its median ``crossings`` times in ``duration``
+    [s] (two crossings a period; NaN without a crossing or a duration)."""
+    return crossings / (2.0 * duration) if crossings and duration > 0 else math.nan
 
 
 def _speed(history) -> float:
@@ -225,8 +230,7 @@ def _motion(history) -> tuple[float, float, float]:
     y_range, z_range, crossings, speed2 = kernel.motion(dy, dz, history.vt1, history.vt2,
                                                         median(dy))
     orbit = 0.5 * max(float(y_range), float(z_range))
-    frequency = crossings / (2.0 * duration) if crossings and duration > 0 else math.nan
-    return orbit, frequency, math.sqrt(speed2)
+    return orbit, _crossing_frequency(int(crossings), duration), math.sqrt(speed2)
 
 
 def check_against_geometry(history, *, mobile_radius: float | None = None,
