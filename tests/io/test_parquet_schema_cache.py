@@ -1,5 +1,5 @@
 """A Parquet file's column names, units and stored name come from its own footer, though the
-Arrow schema of the last files is remembered (``io.binary._SCHEMAS``, by the footer's
+Arrow schema of the last files is remembered (``io.parquet._SCHEMAS``, by the footer's
 key-value metadata and Parquet schema: a bundle's files share one). Each file is compared
 with pyarrow's own reading of its schema (``pyarrow.parquet.read_schema``), the independent
 source, after files of other units, names and metadata were opened in between."""
@@ -14,8 +14,8 @@ import pytest
 pa = pytest.importorskip("pyarrow")
 pq = pytest.importorskip("pyarrow.parquet")
 
-from fretwear.io import binary  # noqa: E402
-from fretwear.io.binary import open_parquet  # noqa: E402
+from fretwear.io import parquet  # noqa: E402
+from fretwear.io.parquet import open_parquet  # noqa: E402
 
 
 def _write(path, names, units, name=""):
@@ -35,7 +35,7 @@ def _expected(path):
 
 
 def test_every_file_gets_its_own_names_units_and_name(tmp_path, monkeypatch):
-    monkeypatch.setattr(binary, "_SCHEMAS", OrderedDict())
+    monkeypatch.setattr(parquet, "_SCHEMAS", OrderedDict())
     cols = ["time", "normal_force", "vt1", "vt2", "dy", "dz"]
     files = [
         _write(tmp_path / "a.parquet", cols, ["s", "N", "m/s", "m/s", "m", "m"], "A"),
@@ -50,7 +50,7 @@ def test_every_file_gets_its_own_names_units_and_name(tmp_path, monkeypatch):
         assert (source.columns, source.units) == _expected(path), path.name
         assert source.name == ("B" if path.name == "d.parquet" else "A")
         source.units[0] = "changed"  # a caller's change never reaches the next file
-    assert len(binary._SCHEMAS) == 4  # a.parquet and e.parquet share their schema
+    assert len(parquet._SCHEMAS) == 4  # a.parquet and e.parquet share their schema
 
 
 def test_a_file_without_key_value_metadata_is_read_as_before(tmp_path):
@@ -65,10 +65,10 @@ def test_a_file_without_key_value_metadata_is_read_as_before(tmp_path):
 
 
 def test_the_oldest_schema_goes_beyond_sixteen(tmp_path, monkeypatch):
-    monkeypatch.setattr(binary, "_SCHEMAS", OrderedDict())
+    monkeypatch.setattr(parquet, "_SCHEMAS", OrderedDict())
     files = [_write(tmp_path / f"f{k}.parquet", ["time", f"normal_force_{k}"], ["s", "N"])
              for k in range(20)]
     for path in files + files[:3]:
         source = open_parquet(path)
         assert (source.columns, source.units) == _expected(path), path.name
-    assert len(binary._SCHEMAS) == 16
+    assert len(parquet._SCHEMAS) == 16
