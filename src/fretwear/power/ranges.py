@@ -55,11 +55,28 @@ def out_of_range(sums) -> bool:
     """Whether the partial sums of a chunk may suffer from the float range: not finite, or a
     power below 1e-100 J while the force integral is positive (a speed whose square
     underflowed). Ordinary chunks answer False after two reductions of small arrays, so the
-    velocities are scanned (:func:`speed_scale`) only for the rare suspicious chunk."""
-    if not (np.isfinite(sums.power).all() and np.isfinite(sums.block_stats).all()):
+    velocities are scanned (:func:`speed_scale`) only for the rare suspicious chunk.
+
+    One sum of each array says whether all its values are finite (an inf or a NaN makes the
+    sum inf or NaN; 13 -> 6 µs a chunk against ``isfinite().all()`` of both, issue 28): a sum of
+    finite values that overflows (values near 1.8e308, never physical) only sends the chunk
+    down the path of a suspicious one, which gives the same sums or the same error.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as sums
+    >>> stats = np.array([[1.0, 2.0, 4.0, 2.0, 4.0, 0.5]])
+    >>> out_of_range(sums(power=np.array([[1.0, 2.0]]), block_stats=stats))
+    False
+    >>> out_of_range(sums(power=np.array([[np.inf, -np.inf]]), block_stats=stats))
+    True
+    >>> out_of_range(sums(power=np.array([[0.0, 1e-300]]), block_stats=stats))  # underflow?
+    True
+    """
+    power = float(sums.power.sum())
+    if not math.isfinite(power + float(sums.block_stats.sum())):
         return True
-    force = sums.block_stats[:, _FORCE_INTEGRAL].sum()
-    return bool(force > 0.0 and abs(sums.power.sum()) < 1e-100)
+    return bool(abs(power) < 1e-100 and sums.block_stats[:, _FORCE_INTEGRAL].sum() > 0.0)
 
 
 def check_finite_sums(sums, t, fn, vt1, vt2, name: str) -> None:

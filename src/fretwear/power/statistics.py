@@ -252,8 +252,10 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
     T = float(duration)
     nb = block_stats.shape[0]
     tb = T / nb
-    tot = block_stats.sum(axis=0)
-    ct = float(tot[0])
+    # the window's sums as Python floats: the same IEEE operations as numpy's scalars, without
+    # a numpy scalar made at every step (issue 28)
+    tot = block_stats.sum(axis=0).tolist()
+    ct = tot[0]
     explicit = _explicit(groups)
     count = int(groups[0])
     if count:
@@ -274,11 +276,11 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
             impact_duration_max=float(dmax),
             force_max=float(force_max),
             impact_peak_force_mean=float(pmean),
-            force_mean_contact=float(tot[1] / ct) if ct > 0 else 0.0,  # fstat0's convention
+            force_mean_contact=tot[1] / ct if ct > 0 else 0.0,  # fstat0's convention
             force_rms_contact=math.sqrt(tot[2] / ct) if ct > 0 else 0.0,
-            force_mean=float(tot[3] / T),
-            force_rms=math.sqrt(max(float(tot[4]), 0.0) / T),
-            sliding_distance=float(tot[5]),
+            force_mean=tot[3] / T,
+            force_rms=math.sqrt(max(tot[4], 0.0) / T),
+            sliding_distance=tot[5],
             force_threshold=float(force_threshold),
             minimum_rest_time=float(minimum_rest_time),
             block_contact_fraction=block_stats[:, 0] / tb,
