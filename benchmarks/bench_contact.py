@@ -15,12 +15,16 @@ over every contact:
   the first block);
 * the floor ``read``: ``pyarrow.parquet.ParquetFile(path).read(columns=...)`` of the columns
   the contact reads (the six channels), in the same process: no contact costs less;
+* ``read 1t``: the same read on one thread (``use_threads=False``), as the worker reads a
+  small file (pyarrow's threads cost a 1 000-sample file more than they save: the floor
+  above is about twice this one);
 
-and the ratios ``run_contacts / read`` and ``wear_power / read``.
+and the ratios ``run_contacts / read``, ``wear_power / read`` and ``wear_power / read 1t``.
 
 Before and after in one run: ``--base DIR`` runs the timings in child processes taking turns
 (``--rounds`` times each), one importing fretwear from ``DIR/src`` (a clone of the base commit),
-the other this checkout's; the best of each side is printed with the ratio after / before.
+the other this checkout's; the best of each side is printed with the ratio after / before,
+then the medians of the rounds.
 The load average is printed before and after.
 
 Usage::
@@ -34,6 +38,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -92,7 +97,9 @@ def _timings(src: str, directory: Path, repeat: int) -> dict:
     return {"module": fretwear.__file__, "contacts": len(tasks), "columns": columns,
             "run_contacts": best(lambda: [run_contacts(g) for g in groups]),
             "wear_power": best(lambda: [power(t) for t in tasks]),
-            "read": best(lambda: [pq.ParquetFile(p).read(columns=columns) for p in paths])}
+            "read": best(lambda: [pq.ParquetFile(p).read(columns=columns) for p in paths]),
+            "read1": best(lambda: [pq.ParquetFile(p).read(columns=columns, use_threads=False)
+                                   for p in paths])}
 
 
 def _child(src: str, directory: Path, repeat: int) -> dict:
@@ -103,10 +110,13 @@ def _child(src: str, directory: Path, repeat: int) -> dict:
 
 
 def _line(label: str, t: dict) -> str:
-    ms = {k: 1e3 * t[k] for k in ("run_contacts", "wear_power", "read")}
+    ms = {k: 1e3 * t[k] for k in _TIMED}
     return (f"{label:>8} {ms['run_contacts']:>13.3f} {ms['wear_power']:>11.3f} "
-            f"{ms['read']:>8.3f} {ms['run_contacts'] / ms['read']:>10.2f} "
-            f"{ms['wear_power'] / ms['read']:>10.2f}")
+            f"{ms['read']:>8.3f} {ms['read1']:>8.3f} {ms['run_contacts'] / ms['read']:>10.2f} "
+            f"{ms['wear_power'] / ms['read']:>10.2f} {ms['wear_power'] / ms['read1']:>11.2f}")
+
+
+_TIMED = ("run_contacts", "wear_power", "read", "read1")
 
 
 def _load() -> str:
@@ -137,8 +147,8 @@ def main(argv=None) -> None:
         print(f"load average {_load()}; {args.contacts} contacts x {args.samples} samples, "
               f"Parquet; ms of CPU a contact, best of {args.repeat} passes"
               + (f", best of {args.rounds} rounds taking turns" if args.base else ""))
-        print(f"{'':>8} {'run_contacts':>13} {'wear_power':>11} {'read':>8} "
-              f"{'run / read':>10} {'power/read':>10}")
+        print(f"{'':>8} {'run_contacts':>13} {'wear_power':>11} {'read':>8} {'read 1t':>8} "
+              f"{'run / read':>10} {'power/read':>10} {'power/read1':>11}")
         after = str(ROOT / "src")
         if not args.base:
             new = _child(after, directory, args.repeat)
@@ -151,13 +161,18 @@ def main(argv=None) -> None:
                 news.append(_child(after, directory, args.repeat))
             assert olds[0]["module"].startswith(before), olds[0]["module"]
             assert news[0]["module"].startswith(after), news[0]["module"]
-            old, new = ({k: min(t[k] for t in side) if k in ("run_contacts", "wear_power",
-                                                            "read") else side[0][k]
+            old, new = ({k: min(t[k] for t in side) if k in _TIMED else side[0][k]
                          for k in side[0]} for side in (olds, news))
             print(_line("before", old))
             print(_line("after", new))
             print(f"{'ratio':>8} {new['run_contacts'] / old['run_contacts']:>13.2f} "
                   f"{new['wear_power'] / old['wear_power']:>11.2f}")
+            # the rounds' medians: a shared machine moves single rounds by 10 % both ways
+            med = {k: [statistics.median(t[k] for t in side) for side in (olds, news)]
+                   for k in ("run_contacts", "wear_power")}
+            print(f"{'medians':>8} " + "; ".join(
+                f"{k} {1e3 * b:.3f} -> {1e3 * a:.3f} ms ({a / b:.2f})"
+                for k, (b, a) in med.items()))
         print(f"columns read: {new['columns']}")
         print(f"load average after {_load()}")
 
