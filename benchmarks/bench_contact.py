@@ -173,6 +173,11 @@ def main(argv=None) -> None:
             print(f"{'medians':>8} " + "; ".join(
                 f"{k} {1e3 * b:.3f} -> {1e3 * a:.3f} ms ({a / b:.2f})"
                 for k, (b, a) in med.items()))
+            # and of each child's own ratios to its one-thread read (the same machine state)
+            rel = {k: [statistics.median(t[k] / t["read1"] for t in side)
+                       for side in (olds, news)] for k in ("run_contacts", "wear_power")}
+            print(f"{'/ read1':>8} " + "; ".join(
+                f"{k} {b:.2f} -> {a:.2f} ({a / b:.2f})" for k, (b, a) in rel.items()))
         print(f"columns read: {new['columns']}")
         print(f"load average after {_load()}")
 
