@@ -88,23 +88,15 @@ def _attrs(attrs: dict[str, Any], task: ContactTask) -> dict[str, Any]:
 #: power's, where the case has no sectors).
 _CONTACT_ATTRS = ("coefficients_mobile", "coefficients_obstacle", "coefficient_sources",
                   "sector_edges")
-#: The plain values of the other :data:`_ATTRS` by case (:func:`_case_attrs`), at most
-#: _CASES_KEPT: ``id(case) -> (case, values)`` (the case kept: its id is not reused).
-_CASE_ATTRS: dict[int, tuple[Any, dict[str, Any]]] = {}
-_CASES_KEPT = 64
 
 
 def _case_attrs(attrs: dict[str, Any], case) -> dict[str, Any]:
     """The plain (:func:`_plain`) values of the :data:`_ATTRS` a table of ``case`` takes from
     the case alone (its type, dimensions, law, materials, time scale, origin, replacement, wall;
-    :func:`fretwear.table.wear_table_columns`), made from the first table of the case."""
-    found = _CASE_ATTRS.get(id(case))
-    if found is None or found[0] is not case:
-        if len(_CASE_ATTRS) >= _CASES_KEPT:
-            _CASE_ATTRS.clear()
-        found = _CASE_ATTRS[id(case)] = (case, {k: _plain(attrs.get(k)) for k in _ATTRS
-                                                if k not in _CONTACT_ATTRS})
-    return found[1]
+    :func:`fretwear.table.wear_table_columns`), made from the first table of the case and kept
+    on it (:meth:`fretwear.table.WearCase.derived`): shared by its contacts' records."""
+    return case.derived("record attrs", lambda: {k: _plain(attrs.get(k)) for k in _ATTRS
+                                                 if k not in _CONTACT_ATTRS})
 
 
 @contextlib.contextmanager

@@ -81,8 +81,21 @@ def _label(name: str) -> str:
     return f"{name} ({ASTER_KEYWORDS.get(name, name)})"
 
 
+def _plain_pair(mobile, obstacle) -> bool:
+    """Whether a pair is two float64 arrays of one shape, each finite and >= 0 (a min or max
+    NaN fails too: the general path then takes NaN through): what the general path of
+    :func:`_volumes_or_depths` would copy unchanged, checked in four reductions."""
+    return (type(mobile) is np.ndarray and type(obstacle) is np.ndarray
+            and mobile.dtype == np.float64 and obstacle.dtype == np.float64
+            and mobile.shape == obstacle.shape and mobile.size > 0
+            and bool(mobile.min() >= 0.0) and bool(obstacle.min() >= 0.0)
+            and bool(mobile.max() < np.inf) and bool(obstacle.max() < np.inf))
+
+
 def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndarray]:
     """Validated float copies of a (mobile, obstacle) pair, broadcast to one shape."""
+    if _plain_pair(mobile, obstacle):  # the usual pair (a table's own): the same copies
+        return mobile.copy(), obstacle.copy()
     unit = "m³" if kind == "volume" else "m"
     arrays = []
     for body, value in (("mobile", mobile), ("obstacle", obstacle)):

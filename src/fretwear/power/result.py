@@ -78,11 +78,25 @@ class PowerResult:
     kwu: Any = field(default=None, repr=False)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary; units: powers [W], times [s], angles [deg]."""
-        return {f.name: self.statistics.to_dict() if f.name == "statistics"
-                else [_jsonable(row) for row in self.block_sectors]
-                if f.name == "block_sectors" and self.block_sectors is not None
-                else _jsonable(getattr(self, f.name)) for f in fields(self) if f.name != "kwu"}
+        """JSON-ready dictionary; units: powers [W], times [s], angles [deg].
+
+        Made once per result (a result is read, not changed: every wear table of it writes
+        this dict in its ``attrs["power"]``), a new copy at each call (its dicts and lists
+        new: the caller's to change)."""
+        made = self.__dict__.get("_as_dict")
+        if made is None:
+            made = {f.name: self.statistics.to_dict() if f.name == "statistics"
+                    else [_jsonable(row) for row in self.block_sectors]
+                    if f.name == "block_sectors" and self.block_sectors is not None
+                    else _jsonable(getattr(self, f.name)) for f in fields(self)
+                    if f.name != "kwu"}
+            object.__setattr__(self, "_as_dict", made)
+        return _copied(made)
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)  # pickled without the dict of to_dict (made again)
+        state.pop("_as_dict", None)
+        return state
 
     def confidence_interval(self, level: float = 0.95, *, sector: int | None = None
                             ) -> PowerInterval:
@@ -152,3 +166,14 @@ class PowerResult:
             warnings.warn(f"{self.name or 'power'} sectors {', '.join(sectors)}: {rest}",
                           ConfidenceWarning, stacklevel=2)
         return out
+
+
+def _copied(value: Any) -> Any:
+    """A copy of a JSON-ready value: its dicts and lists new, the numbers, strings and None
+    shared (immutable)."""
+    if type(value) is dict:
+        return {k: _copied(v) if type(v) in _CONTAINERS else v for k, v in value.items()}
+    return [_copied(v) if type(v) in _CONTAINERS else v for v in value]
+
+
+_CONTAINERS = (dict, list)

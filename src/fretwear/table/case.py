@@ -20,9 +20,8 @@ from __future__ import annotations
 import dataclasses
 import functools
 import json
-import math
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,31 +31,32 @@ from fretwear._lazy import pandas as pd
 from fretwear.errors import InputError, KeywordError
 from fretwear.geometry import check_sector_contact, contact_geometry, sector_obstacle_radius
 from fretwear.geometry.sectors import SectorGeometry, sector_geometry
-from fretwear.io.geometry_units import check_absolute_sizes, check_wall_thickness
 from fretwear.laws import WEAR_LAWS, get_law
 from fretwear.sectors import sector_edges
 from fretwear.table._serial import FrozenMap, jsonable, state_from_dict, state_to_dict
-from fretwear.table.case_values import PowerWindow, Restart, Wall, _real
+from fretwear.table.case_rules import (
+    check_restart_unit,
+    check_wall,
+    coefficient_map,
+    history_values,
+    material_values,
+    sector_values,
+    time_values,
+)
+from fretwear.table.case_rules import instants as normalised_instants
+from fretwear.table.case_values import PowerWindow, Restart, Wall
 from fretwear.table.coefficients import (
-    USER,
     Coefficient,
     coefficient_file_paths,
     law_coefficients,
-    laws_with,
-    material_pair,
-    plain,
     resolve_coefficients,
-    sector_parameter,
 )
 from fretwear.table.keywords import KEYWORDS, check_keywords, keywords_doc
 from fretwear.table.restart import InitialState
 from fretwear.table.restart import initial_state as _read_initial_state
-from fretwear.timeunits import TIME_UNITS, time_unit_name, unit_seconds
 
 __all__ = ["Coefficient", "PowerWindow", "Restart", "Wall", "WearCase", "law_coefficients"]
 
-#: The Code_Aster names of the KWU-EPRI class ranges given as separate keywords.
-_HISTORY_KEYWORDS = {"force_max": "FNOR_MAXI", "speed_max": "VTAN_MAXI"}
 #: Format tag of :meth:`WearCase.to_dict`.
 FORMAT = "fretwear.WearCase/1"
 #: The keys of :meth:`WearCase.to_dict`, in its order: the user's flat vocabulary (the keywords
@@ -75,57 +75,6 @@ _GROUPS = {
 _GROUP_OF = {key: group for group, (_, names) in _GROUPS.items() for key in names}
 
 
-def _instants(instants, restart: bool) -> tuple[float, ...]:
-    try:
-        arr = np.atleast_1d(np.asarray(instants, dtype=float)).ravel()
-    except OverflowError:  # a 400-digit integer
-        raise InputError(f"instants must be finite numbers, got one beyond the float range "
-                         f"({str(instants)[:40]}...)") from None
-    except (TypeError, ValueError):
-        raise InputError(f"instants must be numbers (user time unit), got {instants!r}") from None
-    if arr.size == 0 or not np.isfinite(arr).all():
-        raise InputError(f"instants must be finite numbers and at least one, got {arr.tolist()}")
-    if (arr < 0).any() or (restart and (arr <= 0).any()):
-        low = "> 0 (they count from the restart origin)" if restart else ">= 0"
-        raise InputError(f"instants (INST) must be {low}, got {arr.tolist()}")
-    if (np.diff(arr) <= 0).any():
-        raise InputError(f"instants (INST) must be strictly increasing, got {arr.tolist()}")
-    return tuple(arr.tolist())
-
-
-def _coefficient_map(value, body: str) -> FrozenMap:
-    if not isinstance(value, Mapping):
-        raise InputError(f"{body} coefficients must be a mapping name -> Coefficient, got "
-                         f"{type(value).__name__}")
-    out = {}
-    for name, c in value.items():
-        if isinstance(c, Mapping):
-            c = Coefficient(plain(c.get("value")), str(c.get("source", USER)))
-        elif not isinstance(c, Coefficient):
-            c = Coefficient(plain(c), USER)
-        out[str(name)] = c
-    return FrozenMap(out)
-
-
-def _sector_pairs(pairs, n: int) -> tuple[tuple[float, float | None], ...]:
-    """(mobile, obstacle or None) Archard coefficients [1/Pa] of each of the ``n`` sectors."""
-    pairs = list(pairs)
-    if len(pairs) == 1 and n > 1:
-        pairs = pairs * n
-    if len(pairs) != n:
-        raise InputError(f"sector_coefficients has {len(pairs)} entries for {n} sectors; give "
-                         "one (mobile, obstacle) pair [1/Pa] per sector, or one for all")
-    out = []
-    for j, pair in enumerate(pairs):
-        if np.isscalar(pair):
-            pair = (pair, None)
-        if len(pair) != 2:
-            raise InputError(f"sector_coefficients[{j}] must be a (mobile, obstacle) pair "
-                             f"[1/Pa], got {pair!r}")
-        out.append((float(pair[0]), None if pair[1] is None else float(pair[1])))
-    return tuple(out)
-
-
 def _restart_state(table, initial_instant) -> tuple[InitialState | None, str | None]:
     """(the restart state, where it came from) of ``initial_state=``: read once, here."""
     if table is None:
@@ -139,9 +88,9 @@ def _restart_state(table, initial_instant) -> tuple[InitialState | None, str | N
 def _copied(value: Any) -> Any:
     """A copy of a JSON-ready value (its dicts and lists new, the numbers and strings shared)."""
     if type(value) is dict:
-        return {k: _copied(v) for k, v in value.items()}
+        return {k: _copied(v) if type(v) in (dict, list) else v for k, v in value.items()}
     if type(value) is list:
-        return [_copied(v) for v in value]
+        return [_copied(v) if type(v) in (dict, list) else v for v in value]
     return value
 
 
@@ -296,133 +245,24 @@ class WearCase:
         if sector_radius is not None:
             dims["obstacle_radius"] = sector_radius  # the sectors' (theory §3), not the type's
         put("dimensions", FrozenMap(dims))
-        put("coefficients", _coefficient_map(self.coefficients, "mobile"))
+        put("coefficients", coefficient_map(self.coefficients, "mobile"))
         if self.obstacle_coefficients is not None:
-            put("obstacle_coefficients", _coefficient_map(self.obstacle_coefficients, "obstacle"))
+            put("obstacle_coefficients",
+                coefficient_map(self.obstacle_coefficients, "obstacle"))
         for field, kind in (("window", PowerWindow), ("restart", Restart), ("wall", Wall)):
             if not isinstance(getattr(self, field), kind):
                 raise InputError(f"{field} must be a {kind.__name__}, got "
                                  f"{type(getattr(self, field)).__name__}")
         state = self.restart.table
-        put("instants", _instants(self.instants, state is not None))
-        self._check_time()
-        self._check_restart_unit(state)
-        self._check_materials()
-        self._check_history_keywords(law)
-        self._check_sectors(law, geometry, state)
-        self._check_wall()
-
-    def _check_time(self) -> None:
-        try:
-            scale = float(self.time_scale)
-        except (TypeError, ValueError):
-            scale = math.nan
-        if not math.isfinite(scale) or scale <= 0:
-            raise InputError(f"time_scale (COEF_INST) must be > 0 [s per unit], got "
-                             f"{self.time_scale!r}")
-        object.__setattr__(self, "time_scale", scale)
-        if self.time_unit is not None and not isinstance(self.time_unit, str):
-            raise InputError(f"time_unit must be the name of the unit, got {self.time_unit!r}")
-
-    def _check_restart_unit(self, state: InitialState | None) -> None:
-        """A restart's table counts time in the case's unit (its header's ``time_unit``)."""
-        seconds = None if state is None else unit_seconds(state.time_unit)
-        if seconds is None or math.isclose(seconds, self.time_scale, rel_tol=1e-2) or (
-                self.time_unit is not None
-                and time_unit_name(self.time_unit) == time_unit_name(state.time_unit)):
-            return  # the same unit (a year of 365 or 365.25 days alike): only a slip is refused
-        table = f" {self.restart.source}" if self.restart.source else ""
-        name = time_unit_name(state.time_unit)
-        key = (f'unit = "{name}"' if name in TIME_UNITS
-               else f"seconds_per_unit = {seconds:g}")
-        raise InputError(
-            f"the initial wear table{table} counts time in {state.time_unit!r} ({seconds:g} s, "
-            f"its header's time_unit) and this case in {self.time_label!r} ({self.time_scale:g} "
-            "s): its instants would be read in the wrong unit. Give the case the table's unit "
-            f"({key} in a case file's [time], time_scale={seconds:g} in Python), or restart "
-            "from a table written in the case's unit")
-
-    def _check_materials(self) -> None:
-        if self.materials is not None:
-            object.__setattr__(self, "materials", material_pair(self.materials))
-        if not isinstance(self.obstacle_wear, bool | np.bool_):
-            raise InputError(f"obstacle_wear (USURE_OBST) must be True or False, got "
-                             f"{self.obstacle_wear!r}")
-        object.__setattr__(self, "obstacle_wear", bool(self.obstacle_wear))
-        if self.obstacle_wear and self.materials is None:
-            raise KeywordError("obstacle_wear (USURE_OBST) takes the obstacle coefficient from "
-                               "the database: give materials (MATER_USURE) too")
-        if self.coefficient_files is not None:
-            files = tuple(os.fspath(f) for f in self.coefficient_files) or None
-            object.__setattr__(self, "coefficient_files", files)
-            if files and self.materials is None:
-                raise KeywordError("coefficient_files extend the coefficient database, which is "
-                                   "read for materials (MATER_USURE) only: give materials too, "
-                                   "or the coefficients directly")
-
-    def _check_history_keywords(self, law) -> None:
-        """The class ranges FNOR_MAXI/VTAN_MAXI belong to laws with history statistics."""
-        for name, keyword in _HISTORY_KEYWORDS.items():
-            value = getattr(self, name)
-            if value is None:
-                continue
-            if name not in law.accepted:
-                owners = laws_with(lambda lw, n=name: n in lw.accepted)
-                raise KeywordError(f"{keyword} belongs to LOI_USURE={owners}, not {law.name}: "
-                                   f"remove {name} ({keyword}), a class range of the history "
-                                   "statistics")
-            object.__setattr__(self, name, _real(value, f"{name} ({keyword})"))
-
-    def _check_sectors(self, law, geometry, state: InitialState | None) -> None:
-        if self.sectors is None:
-            if self.sector_coefficients is not None:
-                raise KeywordError("sector_coefficients (SECTEUR COEF_USUR_MOBILE/COEF_USUR_OBST) "
-                                   "need sectors: give sectors= (a count or edges [deg])")
-            if state is not None and state.sector_count:
-                raise InputError(f"the initial wear table has {state.sector_count} sectors and "
-                                 "this run has none; the number of sectors must match")
-            return
-        spec = self.sectors
-        if isinstance(spec, int | np.integer) and not isinstance(spec, bool):
-            spec = int(spec)
-        elif not isinstance(spec, bool):
-            try:
-                spec = tuple(float(v) for v in np.asarray(spec, dtype=float).ravel())
-            except (TypeError, ValueError):
-                pass  # sector_edges names the problem
-        edges = sector_edges(spec)
-        object.__setattr__(self, "sectors", spec)
-        if sector_parameter(law) is None:
-            raise KeywordError(
-                f"law {law.name!r} with sectors: SECTEUR belongs to LOI_USURE="
-                f"{laws_with(lambda lw: sector_parameter(lw) is not None)} (sector tables take "
-                "Archard coefficients only: V_j = k_j·P_j·t); use law='ARCHARD' or remove sectors")
-        m = edges.size - 1
-        if state is not None:
-            if state.sector_count != m:
-                raise InputError(f"the initial wear table has {state.sector_count} sectors and "
-                                 f"this run has {m}; the number of sectors must match")
-            if not np.allclose(state.edges, edges, atol=1e-6):
-                raise InputError(f"the initial wear table's sector edges {state.edges.tolist()} "
-                                 f"differ from this run's {edges.tolist()} [deg]; use the same")
-        if self.sector_coefficients is not None:
-            object.__setattr__(self, "sector_coefficients",
-                               _sector_pairs(self.sector_coefficients, m))
-        elif self.coefficients.get(sector_parameter(law)) is None or \
-                self.coefficients[sector_parameter(law)].value is None:
-            raise KeywordError("sector mode needs Archard coefficients: give "
-                               "sector_coefficients (SECTEUR COEF_USUR_MOBILE) or coefficients")
-        if getattr(geometry, "mobile_radius", None) is None or \
-                getattr(geometry, "obstacle_width", None) is None:
-            raise KeywordError("sector depths need mobile_radius (RAYON_MOBILE) and "
-                               "obstacle_width (LARGEUR_OBST); give them in the dimensions")
-
-    def _check_wall(self) -> None:
-        """The wall is checked by :class:`Wall`; here against the tube it belongs to: a wall in
-        mm typed into a metre key is thicker than the tube (issue 29)."""
-        check_wall_thickness(self.wall.thickness, self.dimensions.get("mobile_radius"),
-                             key="wall_thickness (wall_thickness_m in a case file or manifest)")
-        check_absolute_sizes(self.dimensions, self.wall.thickness)
+        put("instants", normalised_instants(self.instants, state is not None))
+        for name, value in time_values(self).items():
+            put(name, value)
+        check_restart_unit(self, state)
+        for values in (material_values(self), history_values(self, law),
+                       sector_values(self, law, geometry, state)):
+            for name, value in values.items():
+                put(name, value)
+        check_wall(self)
 
     # ----------------------------------------------------------------------- derived values
     @property
@@ -488,6 +328,29 @@ class WearCase:
         edges = sector_edges(self.sectors)
         edges.flags.writeable = False
         return edges
+
+    def derived(self, key: Any, make: Callable[[], Any]) -> Any:
+        """A value derived from this case alone, made once per case: ``make()`` at the first
+        call with ``key`` (hashable), the same object after (the case is immutable, so the
+        value never goes stale). The one place for a case's derived values, e.g. its depth
+        models' parts (:mod:`fretwear.table.depth_build`) and a bundle record's plain attrs
+        (:mod:`fretwear.bundle.tasks`); kept on the case (two cases never share them), not
+        pickled (made again in another process). The value is shared: treat it as read-only.
+
+        >>> case = WearCase.from_keywords(contact_type="TUBE_BAV", instants=[1.0],
+        ...     dimensions={"mobile_radius": 0.01, "obstacle_width": 0.02})
+        >>> case.derived("twice", lambda: [2.0]) is case.derived("twice", list)
+        True
+        """
+        memo = self.__dict__.get("_derived")
+        if memo is None:
+            memo = {}
+            object.__setattr__(self, "_derived", memo)
+        try:
+            return memo[key]
+        except KeyError:
+            value = memo[key] = make()
+            return value
 
     def coefficient_values(self, body: str = "mobile") -> dict[str, Any] | None:
         """The coefficients of ``body`` (``"mobile"`` or ``"obstacle"``) as a plain dict of
@@ -583,7 +446,7 @@ class WearCase:
         state.pop("_as_dict", None)
         state.pop("_dict_made", None)
         state.pop("sector_edges", None)  # made again, read-only
-        state.pop("_model_parts", None)  # its depth models' parts (table.depth_build)
+        state.pop("_derived", None)  # its derived values (derived): made again
         return state
 
     @classmethod

@@ -59,16 +59,13 @@ _PARTS_KEPT = 16
 def _case_parts(case, mobile, obstacle, m: int, edges) -> dict[str, Any]:
     """The keywords of the case's :class:`DepthModel` but its power (:func:`case_model`):
     the coefficients of each term, the volumes at the origin, the sectors' arcs and earlier
-    rows. Kept on the case (an immutable :class:`WearCase`: two cases never share them) by the
+    rows. Kept on the case (:meth:`WearCase.derived`: two cases never share them) by the
     coefficients' values, the number of terms and the sector ``edges`` [deg] (a KWU-EPRI
     intensity from each contact's history makes other coefficients; at most
     :data:`_PARTS_KEPT` kept). A new dict each call (the values shared: immutable)."""
     key = (None if mobile is None else tuple(mobile.items()),
            None if obstacle is None else tuple(obstacle.items()), m, edges)
-    kept = case.__dict__.get("_model_parts")
-    if kept is None:
-        kept = {}
-        object.__setattr__(case, "_model_parts", kept)
+    kept = case.derived("depth model parts", dict)
     try:
         found = kept.get(key)
     except TypeError:  # a coefficient that is not hashable (an array): made each time
