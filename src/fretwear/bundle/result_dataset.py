@@ -200,8 +200,9 @@ def _grid_dataset(group: pd.DataFrame, ids: np.ndarray, grid):
     if rest or n == 0 or n > len(ids):
         return None
     ids = ids[:n]
-    layout = [("contact", group["contact"].to_numpy(dtype=object), np.repeat(ids, per)),
-              ("instant", group["instant"].to_numpy(),
+    if not _in_blocks(group["contact"], ids, per):
+        return None
+    layout = [("instant", group["instant"].to_numpy(),
                np.tile(np.repeat(instants, per // len(instants)), n))]
     if sector_mode:
         layout.append(("sector", group["sector"].to_numpy(),
@@ -223,6 +224,18 @@ def _grid_dataset(group: pd.DataFrame, ids: np.ndarray, grid):
         elif sector_mode:
             data[c] = (dims, values)
     return require("xarray").Dataset(data, coords=coords)
+
+
+def _in_blocks(contact: pd.Series, ids: np.ndarray, per: int) -> bool:
+    """Whether ``contact`` is ``ids[0]`` ``per`` times, then ``ids[1]`` ``per`` times, and so
+    on (each compared as ``ids``' text type): by the column's codes (``pandas.factorize``),
+    not its values one by one (their conversion to Python text took 0.08 s a row group of
+    2 800 contacts)."""
+    codes, uniques = pd.factorize(contact)
+    return (len(uniques) == len(ids) and len(codes) == per * len(ids)
+            and np.array_equal(codes, np.repeat(np.arange(len(ids)), per))
+            and np.array_equal(np.asarray(uniques.to_numpy(dtype=object)).astype(ids.dtype),
+                               ids))
 
 
 def _full_grid(keys) -> tuple[set[str], bool, np.ndarray, np.ndarray | None] | None:
@@ -322,7 +335,7 @@ class GridZarr:
         try:
             if self.grid is None:
                 self.grid = _frame_grid(frame)
-            ids = pd.unique(frame["contact"].to_numpy(dtype=object))
+            ids = pd.factorize(frame["contact"])[1].to_numpy(dtype=object)
             ds = None if self.grid is None else _grid_dataset(
                 frame, np.array(ids, dtype=self.width), self.grid)
             if ds is None or ds.sizes["contact"] != len(ids):
