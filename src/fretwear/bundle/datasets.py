@@ -35,7 +35,6 @@ def require(module: str, purpose: str = "the bundle runner"):
 def path_stamp(path: str | os.PathLike) -> tuple:
     """What identifies a file's content cheaply: (size, modification time [ns]); for a
     directory (a Zarr store), the number of files, their total size and the latest time."""
-    p = Path(path)
     try:
         st = os.stat(path)
     except (OSError, ValueError):  # a NUL byte in the name: the reader names it
@@ -44,7 +43,7 @@ def path_stamp(path: str | os.PathLike) -> tuple:
         return (st.st_size, st.st_mtime_ns)
     count = size = 0
     latest = st.st_mtime_ns
-    for root, _, files in os.walk(p):
+    for root, _, files in os.walk(Path(path)):  # a Path for a store only (not per file)
         for f in files:
             s = os.stat(os.path.join(root, f))
             count, size, latest = count + 1, size + s.st_size, max(latest, s.st_mtime_ns)

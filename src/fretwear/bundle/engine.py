@@ -16,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import gc
 import os
+import stat
 import time
 import uuid
 from collections.abc import Callable, Mapping
@@ -124,9 +125,9 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
     n = None
     if ref.kind == "store":
         n = store_length(ref)
-    elif ref.kind == "file" and ref.node is None and Path(ref.path).is_file() \
+    elif ref.kind == "file" and ref.node is None \
             and task.read_options.get("format", "parquet") == "parquet" \
-            and Path(ref.path).stat().st_size > _BYTES_PER_SAMPLE * chunk_size:
+            and _file_size(ref.path) > _BYTES_PER_SAMPLE * chunk_size:
         with open(ref.path, "rb") as handle:
             if handle.read(4) != b"PAR1":
                 return None
@@ -135,6 +136,16 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
         return None
     task.samples = n
     return [(a, min(a + chunk_size, n)) for a in range(0, n - 1, chunk_size - 1)]
+
+
+def _file_size(path) -> int:
+    """The size [bytes] of the regular file ``path``, -1 for anything else (missing, a
+    directory, a name the system refuses): one ``os.stat`` a contact, no ``Path``."""
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return -1
+    return st.st_size if stat.S_ISREG(st.st_mode) else -1
 
 
 def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int,

@@ -34,7 +34,7 @@ from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.bundle.csv_table import write_csv
 from fretwear.bundle.datasets import path_stamp, require
-from fretwear.bundle.table_file import PrefixTable, read_columns, stream_table
+from fretwear.bundle.table_file import PrefixTable, read_columns, read_part_file, stream_table
 from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write, remove_stale_in
@@ -290,7 +290,7 @@ class OutputDirectory:
         position = {c: i for i, c in enumerate(order)}
         tables, positions = [], []
         for name, contacts in by_file.items():
-            table = pq.read_table(self.parts / name)
+            table = read_part_file(pq, self.parts / name)
             if tables and not table.schema.equals(tables[0].schema):
                 return None
             codes = table.column("contact").combine_chunks().dictionary_encode()

@@ -47,6 +47,14 @@ SUMMARY_COLUMNS = ("contact", "instant", "sector", "depth_mobile", "power",
                    "volume_obstacle", "sector_power")
 
 
+def read_part_file(pq, path: Path, columns: list[str] | None = None):
+    """A part's Arrow table (``columns``, or all): ``ParquetFile.read`` on the calling thread,
+    the table ``pq.read_table`` gives, at half its cost a part of 100 contacts (no dataset
+    discovery, no thread pool contending with the workers for the machine's cores)."""
+    with pq.ParquetFile(path) as handle:
+        return handle.read(columns=columns, use_threads=False)
+
+
 def _by_file(records: Iterable[Mapping[str, Any]]) -> dict[str, set[str]]:
     """``{rows file: the contacts whose latest rows it holds}``."""
     out: dict[str, set[str]] = {}
@@ -59,7 +67,7 @@ def _by_file(records: Iterable[Mapping[str, Any]]) -> dict[str, set[str]]:
 def _positions(pq, path: Path, contacts: set[str], position: dict[str, int]) -> np.ndarray:
     """Each row's manifest position in the part ``path`` (-1: a row that is not its contact's
     latest), from its ``contact`` column alone."""
-    codes = pq.read_table(path, columns=["contact"]).column("contact")
+    codes = read_part_file(pq, path, ["contact"]).column("contact")
     codes = codes.combine_chunks().dictionary_encode()
     ids = codes.dictionary.to_pylist()
     where = np.array([position.get(c, -1) if c in contacts else -1 for c in map(str, ids)]
@@ -155,7 +163,7 @@ def _sector_gaps(pq, parts: Path, files, rows) -> bool:
     for name in files:
         if "sector" not in pq.read_schema(parts / name).names:
             return False
-        sector = pq.read_table(parts / name, columns=["sector"]).column("sector")
+        sector = read_part_file(pq, parts / name, ["sector"]).column("sector")
         kept = rows[name] >= 0
         missing = ~sector.is_valid().to_numpy(zero_copy_only=False)
         if pa_float(sector.type):
@@ -174,7 +182,7 @@ def _deal(pa, pq, parts: Path, rows, bucket_of: np.ndarray, scratch: Path) -> li
             kept = np.flatnonzero(where >= 0)
             if not kept.size:
                 continue
-            table = pq.read_table(parts / name)
+            table = read_part_file(pq, parts / name)
             table = table.take(pa.array(kept)).append_column(
                 "__position", pa.array(where[kept]))
             bucket = bucket_of[where[kept]]
@@ -350,7 +358,7 @@ class PrefixTable:
         pa = require("pyarrow", purpose="writing a bundle's Parquet table")
         import pyarrow.parquet as pq
 
-        table = pq.read_table(self.parts / name)
+        table = read_part_file(pq, self.parts / name)
         if self.schema is None:
             self.schema = table.schema
         elif not table.schema.equals(self.schema, check_metadata=False):
