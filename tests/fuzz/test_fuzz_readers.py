@@ -23,7 +23,8 @@ from hypothesis import strategies as st
 from fretwear.database import read_coefficients
 from fretwear.io import iter_history_chunks, read_history, write_history
 from fretwear.io.aster import read_aster_table, write_aster_table
-from fretwear.obstacle.profiles import CircleObstacle, read_discret, write_discret
+from fretwear.obstacle.discret_file import read_discret, write_discret
+from fretwear.obstacle.profiles import CircleObstacle
 from fretwear.table.files import read_wear_table, write_wear_table
 
 _COUNTER = itertools.count()

@@ -45,7 +45,7 @@ from fretwear.dynamics.modal import ModalModel, uniform_beam_modes
 from fretwear.dynamics.shocks import Shock
 from fretwear.errors import InputError, KeywordError
 from fretwear.keys import check_keys
-from fretwear.obstacle.profiles import read_discret
+from fretwear.obstacle.discret_file import read_discret
 
 _NUM = (int, float)
 _SIGNAL_KEYS = {

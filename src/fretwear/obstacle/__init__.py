@@ -18,6 +18,7 @@ from fretwear.obstacle.clearance import clearance_figure, polar_polygon
 from fretwear.obstacle.config import OBSTACLE_KEYS, ObstacleSetup, obstacle_from_config
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, worn_depth_profiles
 from fretwear.obstacle.dilation import dilated_radius
+from fretwear.obstacle.discret_file import load_obstacle_profile, read_discret, write_discret
 from fretwear.obstacle.profiles import (
     DISCRET_NEW_GAP,
     DISCRET_POINTS,
@@ -28,9 +29,6 @@ from fretwear.obstacle.profiles import (
     Mobile,
     PlanesObstacle,
     discret_angles,
-    load_obstacle_profile,
-    read_discret,
-    write_discret,
 )
 from fretwear.obstacle.update import (
     ObstacleResult,

@@ -28,13 +28,13 @@ from fretwear.errors import KeywordError, UnusedKeywordWarning
 from fretwear.keys import check_keys, keyword_hint
 from fretwear.obstacle.clearance import RESOLUTION
 from fretwear.obstacle.depth import DEPTH_SHAPES
+from fretwear.obstacle.discret_file import read_discret
 from fretwear.obstacle.profiles import (
     DISCRET_STEP,
     OBSTACLE_MODELS,
     CircleObstacle,
     Mobile,
     PlanesObstacle,
-    read_discret,
 )
 from fretwear.obstacle.update import ObstacleResult, update_obstacle_from_table
 

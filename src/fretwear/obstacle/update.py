@@ -25,12 +25,12 @@ from fretwear.obstacle.clearance import (
     resolution_steps,
 )
 from fretwear.obstacle.depth import DEPTH_SHAPES, WornDepth, sector_of, worn_depth_profiles
+from fretwear.obstacle.discret_file import write_discret
 from fretwear.obstacle.profiles import (
     DISCRET_STEP,
     DiscreteObstacle,
     Mobile,
     discret_angles,
-    write_discret,
 )
 from fretwear.sectors import sector_edges
 from fretwear.table import carried_case, read_wear_table
