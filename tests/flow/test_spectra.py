@@ -18,13 +18,8 @@ from scipy import integrate
 
 from fretwear.errors import InputError, KeywordError
 from fretwear.flow import SPECTRA, TubeFlow, beam_tube_flow, exponential_acceptance, make_spectrum
-from fretwear.flow.spectra import (
-    GRAPPE_2_COEFFICIENTS,
-    convected_coherence,
-    grappe_2_spectra,
-    long_cor_1_coefficients,
-    long_cor_4_phi0,
-)
+from fretwear.flow.grappe2 import GRAPPE_2_COEFFICIENTS, grappe_2_spectra
+from fretwear.flow.spectra import convected_coherence, long_cor_1_coefficients, long_cor_4_phi0
 
 L, D = 1.2, 0.019
 
