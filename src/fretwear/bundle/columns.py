@@ -10,9 +10,14 @@ columns with the closest valid name (:func:`column_meanings`). Used by
 from __future__ import annotations
 
 import difflib
+import math
+from collections.abc import Mapping
 from typing import Any
 
-from fretwear.errors import KeywordError
+import numpy as np
+
+from fretwear._lazy import pandas as pd
+from fretwear.errors import InputError, KeywordError
 from fretwear.io import FORMATS
 from fretwear.io.channels import CHANNELS, QUANTITIES, unknown_units_key
 from fretwear.keys import keyword_hint
@@ -256,3 +261,86 @@ def valid_columns() -> list[str]:
             if section:
                 names.append(f"{section}.{k}")
     return list(dict.fromkeys(names))
+
+
+def empty_cell(value: Any) -> bool:
+    """Whether a manifest cell is empty: None, NaN, blank text, ``pd.NA`` or ``pd.NaT``."""
+    if value is None:
+        return True
+    if isinstance(value, float | np.floating):
+        return math.isnan(value)
+    if isinstance(value, str):
+        return value.strip() == ""
+    return value is pd.NA or value is pd.NaT
+
+
+def check_unique(ids: list[str], source: str) -> None:
+    """Contact ids are unique, and no two differ only by surrounding whitespace (``'A'`` and
+    ``'A '`` look alike in the terminal and in summary.csv); ids are never trimmed: a single
+    id with surrounding whitespace is kept as written.
+
+    Raises
+    ------
+    InputError
+        An id given twice, or two ids that differ only by surrounding whitespace (both named).
+    """
+    seen: set[str] = set()
+    for i, c in enumerate(ids):
+        if c in seen:
+            raise InputError(f"{source}: contact {c!r} appears twice (row {i + 1}); contact ids "
+                             "must be unique")
+        seen.add(c)
+    trimmed: dict[str, int] = {}
+    for i, c in enumerate(ids):
+        j = trimmed.setdefault(c.strip(), i)
+        if j != i:
+            raise InputError(f"{source}: contact ids {ids[j]!r} (row {j + 1}) and {c!r} (row "
+                             f"{i + 1}) differ only by surrounding whitespace: they look the "
+                             "same in the terminal and in summary.csv; make them distinct or "
+                             "trim them")
+
+
+def check_wall_column(columns: Mapping[str, Any], meaning: Mapping[str, Any], source: str,
+                      contacts=None, noun: str = "column") -> None:
+    """One error up front for a wall column no contact can use (instead of one per contact
+    when the bundle runs): every wall [m] given is a number not > 0, or above
+    :data:`~fretwear.io.geometry_units.WALL_BOUND` (0.1 m: a value in mm). With one good wall
+    in the column the bad rows are left to fail their own contacts.
+
+    ``columns`` maps each column (or variable) name to its values, ``meaning`` to its key
+    (:func:`column_meanings`); ``contacts`` names the rows in the message.
+
+    Examples
+    --------
+    >>> check_wall_column({"wall_thickness_m": [1.09, 1.09]},
+    ...                   {"wall_thickness_m": ("geometry", "wall_thickness_m")}, "m.csv")
+    Traceback (most recent call last):
+    ...
+    fretwear.errors.InputError: m.csv: column wall_thickness_m = 1.09 [m] on 2 of 2 rows (first:
+    row 1) is implausible for a tube's wall (above 0.1 m): a value in mm? Give metres:
+    wall_thickness_m = 0.00109 (every length of a manifest is in metres)
+    """
+    from fretwear.io.geometry_units import WALL_BOUND
+
+    for name, key in meaning.items():
+        if key != ("geometry", "wall_thickness_m"):
+            continue
+        values = np.array([float(v) if isinstance(v, int | float | np.number) and not isinstance(
+            v, bool | np.bool_) and abs(v) <= 1e308 else math.nan for v in columns[name]])
+        # NaN: a text, a list, a date, a bool: the contact's own check says what is wrong
+        given = np.isfinite(values)
+        bad = given & ((values <= 0) | (values > WALL_BOUND))
+        if not bad.any() or bad.sum() < given.sum():
+            continue  # a good wall somewhere: the bad rows fail their contacts alone
+        i = int(np.flatnonzero(bad)[0])
+        first = f"contact {contacts[i]!r}" if contacts is not None \
+            and not empty_cell(contacts[i]) else f"row {i + 1}"
+        x = float(values[i])
+        where = (f"{source}: {noun} {name} = {x:g} [m] on {int(bad.sum())} of {len(values)} "
+                 f"rows (first: {first})")
+        if x <= 0:
+            raise InputError(f"{where}: a wall is > 0 [m]; give each tube's wall in metres "
+                             "(1.09 mm is 0.00109) or leave the cell empty for the case's")
+        raise InputError(f"{where} is implausible for a tube's wall (above {WALL_BOUND:g} m): "
+                         f"a value in mm? Give metres: {name} = {x * 1e-3:g} (every length "
+                         "of a manifest is in metres)")

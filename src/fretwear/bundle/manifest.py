@@ -19,10 +19,10 @@ Unknown columns are errors naming the closest valid name, as in case files.
 
 from __future__ import annotations
 
-import math
 import os
 import stat
 import tomllib
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,8 +37,11 @@ from fretwear.bundle.columns import (  # noqa: F401 - re-exported
     WALL_COLUMN,
     WHOLE_SECTIONS,
     _case_keys,
+    check_unique,
+    check_wall_column,
     column_key,
     column_meanings,
+    empty_cell,
     identity_columns,
     valid_columns,
 )
@@ -139,16 +142,6 @@ class Manifest:
                              for r in self.rows]).reindex(columns=list(IDENTITY))
 
 
-def _missing(value: Any) -> bool:
-    if value is None:
-        return True
-    if isinstance(value, float | np.floating):
-        return math.isnan(value)
-    if isinstance(value, str):
-        return value.strip() == ""
-    return value is pd.NA or value is pd.NaT
-
-
 def _plain(value: Any) -> Any:
     """numpy / pandas scalars and arrays -> plain Python values."""
     if isinstance(value, np.generic):
@@ -169,32 +162,6 @@ def _identity_value(value: Any) -> Any:
     return value
 
 
-def _check_unique(ids: list[str], source: str) -> None:
-    """Contact ids are unique, and no two differ only by surrounding whitespace (``'A'`` and
-    ``'A '`` look alike in the terminal and in summary.csv); ids are never trimmed: a single
-    id with surrounding whitespace is kept as written.
-
-    Raises
-    ------
-    InputError
-        An id given twice, or two ids that differ only by surrounding whitespace (both named).
-    """
-    seen: set[str] = set()
-    for i, c in enumerate(ids):
-        if c in seen:
-            raise InputError(f"{source}: contact {c!r} appears twice (row {i + 1}); contact ids "
-                             "must be unique")
-        seen.add(c)
-    trimmed: dict[str, int] = {}
-    for i, c in enumerate(ids):
-        j = trimmed.setdefault(c.strip(), i)
-        if j != i:
-            raise InputError(f"{source}: contact ids {ids[j]!r} (row {j + 1}) and {c!r} (row "
-                             f"{i + 1}) differ only by surrounding whitespace: they look the "
-                             "same in the terminal and in summary.csv; make them distinct or "
-                             "trim them")
-
-
 def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
                      noun: str = "column") -> list[ContactRow]:
     columns = [str(c) for c in frame.columns]
@@ -206,74 +173,76 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
     if "contact" not in columns:
         raise KeywordError(f"{source}: the manifest needs a 'contact' column (unique id of each "
                            f"contact); columns found: {columns}")
+    if not frame.columns.is_unique:  # as DataFrame.to_dict("records") reads them: the last
+        warnings.warn("DataFrame columns are not unique, some columns will be omitted.",
+                      UserWarning, stacklevel=3)
+        frame = frame.loc[:, ~frame.columns.duplicated(keep="last")]
+    cells = [(str(col), meaning[str(col)], *_column_cells(frame[col], meaning[str(col)]))
+             for col in frame.columns
+             if meaning[str(col)] not in ("contact", "history", "node")]
+    own = {k: frame[k].tolist() if k in frame else None for k in ("contact", "history", "node")}
     rows = []
     parents: dict[str, str] = {}  # the folders of the histories, resolved once
-    for i, record in enumerate(frame.to_dict("records")):
-        cid = record.get("contact")
-        if _missing(cid):
+    for i, cid in enumerate(own["contact"]):
+        if empty_cell(cid):
             raise InputError(f"{source}: row {i + 1} has no contact id; give every row one")
         cid = str(_identity_value(cid))
-        identity, overrides, labels = _cells(
-            ((str(col), meaning[str(col)], value) for col, value in record.items()), cid,
-            source, directory, noun)
-        node = record.get("node")
-        node = None if _missing(node) else str(_identity_value(node))
-        hist = record.get("history")
-        if _missing(hist):
+        identity, overrides, labels = _row_cells(cells, i, cid, source, directory, noun)
+        node = None if own["node"] is None else own["node"][i]
+        node = None if empty_cell(node) else str(_identity_value(node))
+        hist = None if own["history"] is None else own["history"][i]
+        if empty_cell(hist):
             ref = HistoryRef("none", node=node)
         else:
             ref = HistoryRef("file", path=str(_absolute(str(hist), directory, parents)),
                              node=node)
         identity["node"] = node
         rows.append(ContactRow(cid, ref, identity, overrides, labels))
-    _check_unique([r.contact for r in rows], source)
+    check_unique([r.contact for r in rows], source)
     return rows
 
 
-def check_wall_column(columns: Mapping[str, Any], meaning: Mapping[str, Any], source: str,
-                      contacts=None, noun: str = "column") -> None:
-    """One error up front for a wall column no contact can use (instead of one per contact
-    when the bundle runs): every wall [m] given is a number not > 0, or above
-    :data:`~fretwear.io.geometry_units.WALL_BOUND` (0.1 m: a value in mm). With one good wall
-    in the column the bad rows are left to fail their own contacts.
+def _column_cells(series: pd.Series, key) -> tuple[list, list | None, list]:
+    """(values, empty, raw) of one manifest column, by column (a 10^4-row manifest spent
+    0.1 ms a row testing and converting its cells one by one): ``raw`` its cells as
+    ``DataFrame.to_dict("records")`` gives them, ``empty`` whether each is empty
+    (:func:`empty_cell`; None: none is), ``values`` the identity value of each
+    (:func:`_identity_value`) for an identity column, else ``raw``."""
+    raw = series.tolist()
+    # numpy's own dtypes only: a nullable Int64 or boolean column has kind "i"/"b" and holds NA
+    kind = series.dtype.kind if isinstance(series.dtype, np.dtype) else "O"
+    if kind in "iub":  # numbers and booleans: never empty, already plain
+        return raw, None, raw
+    empty = np.isnan(series.to_numpy()).tolist() if kind == "f" else [empty_cell(v) for v in raw]
+    if not isinstance(key, str):
+        return raw, empty, raw
+    if kind == "f":  # _identity_value of a float: an integral one becomes an int
+        return [int(v) if v.is_integer() else v for v in raw], empty, raw
+    return [None if e else _identity_value(v) for v, e in zip(raw, empty, strict=True)], \
+        empty, raw
 
-    ``columns`` maps each column (or variable) name to its values, ``meaning`` to its key
-    (:func:`column_meanings`); ``contacts`` names the rows in the message.
 
-    Examples
-    --------
-    >>> check_wall_column({"wall_thickness_m": [1.09, 1.09]},
-    ...                   {"wall_thickness_m": ("geometry", "wall_thickness_m")}, "m.csv")
-    Traceback (most recent call last):
-    ...
-    fretwear.errors.InputError: m.csv: column wall_thickness_m = 1.09 [m] on 2 of 2 rows (first:
-    row 1) is implausible for a tube's wall (above 0.1 m): a value in mm? Give metres:
-    wall_thickness_m = 0.00109 (every length of a manifest is in metres)
-    """
-    from fretwear.io.geometry_units import WALL_BOUND
-
-    for name, key in meaning.items():
-        if key != ("geometry", "wall_thickness_m"):
+def _row_cells(cells, i: int, contact: str, source: str, directory: Path, noun: str
+               ) -> tuple[dict[str, Any], dict[tuple[str, ...], Any], dict]:
+    """(identity, overrides, labels) of row ``i`` from the columns of :func:`_column_cells`:
+    :func:`_cells` of the row's cells."""
+    identity: dict[str, Any] = {}
+    overrides: dict[tuple[str, ...], Any] = {}
+    labels: dict[tuple[str, ...], str] = {}
+    for name, key, values, empty, raw in cells:
+        if empty is not None and empty[i]:
             continue
-        values = np.array([float(v) if isinstance(v, int | float | np.number) and not isinstance(
-            v, bool | np.bool_) and abs(v) <= 1e308 else math.nan for v in columns[name]])
-        # NaN: a text, a list, a date, a bool: the contact's own check says what is wrong
-        given = np.isfinite(values)
-        bad = given & ((values <= 0) | (values > WALL_BOUND))
-        if not bad.any() or bad.sum() < given.sum():
-            continue  # a good wall somewhere: the bad rows fail their contacts alone
-        i = int(np.flatnonzero(bad)[0])
-        first = f"contact {contacts[i]!r}" if contacts is not None \
-            and not _missing(contacts[i]) else f"row {i + 1}"
-        x = float(values[i])
-        where = (f"{source}: {noun} {name} = {x:g} [m] on {int(bad.sum())} of {len(values)} "
-                 f"rows (first: {first})")
-        if x <= 0:
-            raise InputError(f"{where}: a wall is > 0 [m]; give each tube's wall in metres "
-                             "(1.09 mm is 0.00109) or leave the cell empty for the case's")
-        raise InputError(f"{where} is implausible for a tube's wall (above {WALL_BOUND:g} m): "
-                         f"a value in mm? Give metres: {name} = {x * 1e-3:g} (every length "
-                         "of a manifest is in metres)")
+        if isinstance(key, str):
+            identity[key] = values[i]
+            if not isinstance(identity[key], str | int | float | bool):
+                raise InputError(f"{source}: contact {contact!r}: {noun} {name} = {raw[i]!r} is "
+                                 f"not one value (a number or a name); give one {name} per "
+                                 "contact")
+        else:
+            value = _plain(raw[i])
+            overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
+            labels[key] = f"{noun} {name}"
+    return identity, overrides, labels
 
 
 def _cells(cells, contact: str, source: str, directory: Path, noun: str = "column"
@@ -285,7 +254,7 @@ def _cells(cells, contact: str, source: str, directory: Path, noun: str = "colum
     overrides: dict[tuple[str, ...], Any] = {}
     labels: dict[tuple[str, ...], str] = {}
     for name, key, value in cells:
-        if _missing(value) or key in ("contact", "history", "node"):
+        if empty_cell(value) or key in ("contact", "history", "node"):
             continue
         if isinstance(key, str):
             identity[key] = _identity_value(value)
@@ -590,7 +559,7 @@ def rows_from_dataset(ds, path: Path | None, label: str) -> list:
             ref = HistoryRef("store", path=str(path), index=i, units=units, time_dim=tdim,
                              stamp=stamp)
         node = columns["node"][i] if "node" in columns else None
-        identity["node"] = None if _missing(node) else str(_identity_value(node))
+        identity["node"] = None if empty_cell(node) else str(_identity_value(node))
         rows.append(ContactRow(cid, ref, identity, overrides, labels))
-    _check_unique(ids, label)
+    check_unique(ids, label)
     return rows

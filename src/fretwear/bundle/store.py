@@ -217,22 +217,35 @@ class OutputDirectory:
         text = json.dumps(meta, default=str)
         with atomic_write(self.parts / f"{stem}.json", encoding="utf-8", sweep=False) as handle:
             handle.write(text)
+        seen: dict = {}
         for r in records:
             r["part"], r["rows_file"] = stem, rows_file
-            r["attrs"] = self.compact(r.get("attrs"))
+            r["attrs"] = self.compact(r.get("attrs"), seen)
         return stem
 
-    def compact(self, attrs: dict | None) -> dict | None:
+    def compact(self, attrs: dict | None, seen: dict | None = None) -> dict | None:
         """A record's table metadata as the client keeps it once in a part: every dict or list
         but the power (each contact's own; its sector powers build the depth models) shared
         with the equal ones of other contacts (the geometry, coefficients, sector edges of a
-        bundle's few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated)."""
+        bundle's few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated).
+
+        ``seen`` (one dict for the records of one part) remembers each value object already
+        shared: the records of a worker's task arrive sharing their case's objects (one pickle
+        keeps them one), so a value is compared by its text once per part, not once per
+        contact (the ``repr`` of every value was 30 us of the client's CPU a contact)."""
         if not isinstance(attrs, dict):
             return attrs
         out = {}
         for key, value in attrs.items():
             if key != "power" and isinstance(value, dict | list):
-                value = self._shared.setdefault((key, repr(value)), value)
+                known = seen.get((key, id(value))) if seen is not None else None
+                if known is not None and known[0] is value:
+                    value = known[1]
+                else:
+                    shared = self._shared.setdefault((key, repr(value)), value)
+                    if seen is not None:  # the original kept: its id stays its own
+                        seen[(key, id(value))] = (value, shared)
+                    value = shared
             out[key] = value
         return out
 
