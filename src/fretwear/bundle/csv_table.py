@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from pathlib import Path
 
 import numpy as np
@@ -91,9 +92,13 @@ def _column_text(values: pd.Series) -> tuple[np.ndarray, list[str]] | None:
     return codes, texts
 
 
+#: The characters for which the csv module quotes a field (QUOTE_MINIMAL, "," delimiter).
+_QUOTED = re.compile(r'[,"\r\n]')
+
+
 def _quoted(text: str) -> str:
     """``text`` as the csv module writes one field of a row of several (QUOTE_MINIMAL)."""
-    if not any(c in text for c in ',"\r\n'):
+    if _QUOTED.search(text) is None:
         return text
     out = io.StringIO()
     csv.writer(out, lineterminator="\n").writerow([text, ""])

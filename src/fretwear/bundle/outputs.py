@@ -71,7 +71,8 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     # inputs); a failed contact has none, a stale one the rows of an earlier case
     cases = {c: (built or {})[c] for c in order
              if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
-    info = [_contact_info(c, records[c], cases.get(c)) for c in order]
+    of_case: dict[int, tuple] = {}  # the values a case gives, made once per case object
+    info = [_contact_info(c, records[c], cases.get(c), of_case) for c in order]
     contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
     errors = []
     warns = []
@@ -122,20 +123,29 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     return result
 
 
-def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
+def _contact_info(contact: str, rec: dict[str, Any], case, of_case: dict | None = None
+                  ) -> dict[str, Any]:
     """A contact's row of ``BundleResult.contacts``: its record's status and computed values
     (power, resolved coefficients), and what its wear case says (the carried ``case``; the
-    record's metadata for a contact whose rows are an earlier run's)."""
+    record's metadata for a contact whose rows are an earlier run's). ``of_case`` keeps what
+    each case object gives, asked once per case (the contacts of a bundle share a few)."""
     attrs = rec.get("attrs") or {}
     info = {"contact": contact, "status": rec["status"], "samples": rec.get("samples", 0),
             "seconds": rec.get("seconds", 0.0),
             "power": (attrs.get("power") or {}).get("total"), "time_unit": attrs.get("time_unit")}
     carried = case is not None and bool(attrs)
     if carried:
-        info.update(origin=case.origin, tube_replacement=case.restart.tube_replacement,
-                    wall_thickness=case.wall.thickness, depth_limit=case.wall.limit,
-                    contact_type=case.contact_type, dimensions=dict(case.dimensions),
-                    law=case.law)
+        known = None if of_case is None else of_case.get(id(case))
+        if known is None or known[0] is not case:
+            known = (case, case.origin, case.restart.tube_replacement, case.wall.thickness,
+                     case.wall.limit, case.contact_type, case.dimensions, case.law,
+                     case.time_scale)
+            if of_case is not None:
+                of_case[id(case)] = known
+        _, origin, replacement, thickness, limit, contact_type, dimensions, law, scale = known
+        info.update(origin=origin, tube_replacement=replacement, wall_thickness=thickness,
+                    depth_limit=limit, contact_type=contact_type, dimensions=dict(dimensions),
+                    law=law)
     else:
         info.update({k: attrs.get(k) for k in ("origin", "tube_replacement", "wall_thickness",
                                                "depth_limit", "contact_type", "dimensions",
@@ -143,7 +153,7 @@ def _contact_info(contact: str, rec: dict[str, Any], case) -> dict[str, Any]:
     # the geometry and law: the summary's exact time to another limit
     info.update(coefficients_mobile=attrs.get("coefficients_mobile"),
                 coefficients_obstacle=attrs.get("coefficients_obstacle"),
-                time_scale=case.time_scale if carried else attrs.get("time_scale"),
+                time_scale=scale if carried else attrs.get("time_scale"),
                 sector_coefficients=attrs.get("sector_coefficients"))
     return info
 
