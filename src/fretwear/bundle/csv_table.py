@@ -5,12 +5,15 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from pathlib import Path
 
 import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.table.schema import FLOAT_FORMAT
+
+_SPECIAL = re.compile('[,"\r\n]')  # a field holding one is quoted by the csv module
 
 
 def write_csv(frame: pd.DataFrame, path: Path) -> bool:
@@ -93,8 +96,12 @@ def _column_text(values: pd.Series) -> tuple[np.ndarray, list[str]] | None:
 
 def _quoted(text: str) -> str:
     """``text`` as the csv module writes one field of a row of several (QUOTE_MINIMAL)."""
-    if not any(c in text for c in ',"\r\n'):
+    if _SPECIAL.search(text) is None:
         return text
+    if "\r" not in text:  # quoted by every Python's csv module: in quotes, quotes doubled
+        return '"' + text.replace('"', '""') + '"'
+    # a lone CR is quoted by some Python versions' csv module only: asked (the bytes checked
+    # against pandas in tests/bundle/test_bundle_files.py)
     out = io.StringIO()
     csv.writer(out, lineterminator="\n").writerow([text, ""])
     return out.getvalue()[:-2]
