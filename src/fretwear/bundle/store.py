@@ -217,22 +217,35 @@ class OutputDirectory:
         text = json.dumps(meta, default=str)
         with atomic_write(self.parts / f"{stem}.json", encoding="utf-8", sweep=False) as handle:
             handle.write(text)
+        seen: dict = {}  # the case values the worker shared between these records
         for r in records:
             r["part"], r["rows_file"] = stem, rows_file
-            r["attrs"] = self.compact(r.get("attrs"))
+            r["attrs"] = self.compact(r.get("attrs"), seen)
         return stem
 
-    def compact(self, attrs: dict | None) -> dict | None:
+    def compact(self, attrs: dict | None, seen: dict | None = None) -> dict | None:
         """A record's table metadata as the client keeps it once in a part: every dict or list
         but the power (each contact's own; its sector powers build the depth models) shared
         with the equal ones of other contacts (the geometry, coefficients, sector edges of a
-        bundle's few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated)."""
+        bundle's few cases; issue 28: 3.5 kB a contact, 350 MB at 10^5, mostly repeated).
+
+        ``seen`` (kept by the caller over the records of one part) maps an object already
+        compacted to its shared one: the records of a task share their case's values
+        (``tasks._attrs``), which arrive as one object, whose ``repr`` (0.1 ms a contact in
+        the client at 10^4) is taken once; the object is held in ``seen``, its id not reused."""
         if not isinstance(attrs, dict):
             return attrs
         out = {}
         for key, value in attrs.items():
             if key != "power" and isinstance(value, dict | list):
-                value = self._shared.setdefault((key, repr(value)), value)
+                known = seen.get((key, id(value))) if seen is not None else None
+                if known is not None:
+                    value = known[1]
+                else:
+                    shared = self._shared.setdefault((key, repr(value)), value)
+                    if seen is not None:
+                        seen[(key, id(value))] = (value, shared)
+                    value = shared
             out[key] = value
         return out
 
