@@ -172,3 +172,21 @@ def test_the_csv_writer_writes_what_pandas_writes_byte_for_byte(tmp_path):
     back = read_frame(tmp_path / "ours0.csv")
     assert np.array_equal(np.signbit(back["depth"].to_numpy()),
                           np.signbit(frame["depth"].to_numpy()))
+
+
+def test_the_csv_writer_quotes_texts_as_pandas_does(tmp_path):
+    """Texts that need quotes (a comma, a quote, CR, LF, several, quotes doubled) are written
+    by csv_table.write_csv (quoting done without the csv module since issue 28 point 2) with
+    the bytes of ``DataFrame.to_csv`` (the independent writer), in a column of one and of
+    several."""
+    from fretwear.bundle.csv_table import write_csv
+
+    pytest.importorskip("pyarrow")
+    texts = ["plain", "a,b", '"', '""', "cr\rhere", "crlf\r\n", 'x,"y"\nz', " sp ", "'q'",
+             "tab\tx", "é,ü"]
+    for k, part in enumerate((pd.DataFrame({"t": texts, "n": range(len(texts))}),
+                              pd.DataFrame({"t": texts}))):
+        ours, theirs = tmp_path / f"ours{k}.csv", tmp_path / f"theirs{k}.csv"
+        assert write_csv(part, ours)
+        part.to_csv(theirs, index=False, float_format=FLOAT_FORMAT)
+        assert ours.read_bytes() == theirs.read_bytes(), k

@@ -13,6 +13,8 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.table.schema import FLOAT_FORMAT
 
+_SPECIAL = re.compile('[,"\r\n]')  # a field holding one is quoted by the csv module
+
 
 def write_csv(frame: pd.DataFrame, path: Path) -> bool:
     """Write ``frame`` as ``frame.to_csv(path, index=False, float_format=FLOAT_FORMAT)`` does,
@@ -92,14 +94,14 @@ def _column_text(values: pd.Series) -> tuple[np.ndarray, list[str]] | None:
     return codes, texts
 
 
-#: The characters for which the csv module quotes a field (QUOTE_MINIMAL, "," delimiter).
-_QUOTED = re.compile(r'[,"\r\n]')
-
-
 def _quoted(text: str) -> str:
     """``text`` as the csv module writes one field of a row of several (QUOTE_MINIMAL)."""
-    if _QUOTED.search(text) is None:
+    if _SPECIAL.search(text) is None:
         return text
+    if "\r" not in text:  # quoted by every Python's csv module: in quotes, quotes doubled
+        return '"' + text.replace('"', '""') + '"'
+    # a lone CR is quoted by some Python versions' csv module only: asked (the bytes checked
+    # against pandas in tests/bundle/test_bundle_files.py)
     out = io.StringIO()
     csv.writer(out, lineterminator="\n").writerow([text, ""])
     return out.getvalue()[:-2]
