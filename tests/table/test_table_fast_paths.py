@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from fretwear.errors import PerforationWarning, RangeWarning
+from fretwear.errors import InputError, PerforationWarning, RangeWarning
 from fretwear.geometry import CONTACT_TYPES, contact_geometry, sector_depth_mobile
 from fretwear.history import ContactHistory
 from fretwear.laws import get_law
@@ -312,3 +312,34 @@ def test_case_dict_made_once_and_handed_out_as_copies():
     assert plain.to_dict()["law"] == "ARCHARD"
     copy = pickle.loads(pickle.dumps(case))
     assert "_as_dict" not in vars(copy) and copy == case and copy.to_dict() == again
+
+
+def test_sector_table_of_an_obstacle_that_does_not_wear_is_zero():
+    """An obstacle without coefficients and without earlier wear: its sector volumes and
+    depths exactly 0 (V_o,j = 0 + 0·t, docs/theory.md §3), the tube's Archard's
+    V_j = V0_j + K·P_j·t, V0_j given (independent computation here)."""
+    g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=20e-3)
+    rates = np.array([1e-17, 3e-17, 0.0])
+    v0 = (1e-10, 0.0, 2e-10)
+    model = DepthModel(law=get_law("ARCHARD"), geometry=g, powers=tuple((rates / K).tolist()),
+                       coefficients_mobile=({"coefficient": K},) * 3,
+                       coefficients_obstacle=(None,) * 3, sector_arcs=(120.0,) * 3,
+                       term_initial=(v0, (0.0,) * 3), time_scale=YEAR)
+    t = np.array([0.0, 0.5 * YEAR, 2.0 * YEAR])
+    out = model.sector_table(t)
+    assert out["volume_mobile"] == pytest.approx(np.array(v0) + rates * t[:, None], rel=1e-15)
+    assert np.array_equal(out["volume_obstacle"], np.zeros((3, 3)))
+    assert np.array_equal(out["depth_obstacle"], np.zeros((3, 3)))
+    assert out["unradiused"] == []
+
+
+@pytest.mark.parametrize("bad", [-1e-12, math.inf, math.nan])
+def test_sector_initial_volumes_checked_where_the_model_is_built(bad):
+    """A restart's sector volume that is negative or not finite: an InputError naming the body
+    when the model is built (not at each of its sector tables)."""
+    g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=20e-3)
+    with pytest.raises(InputError, match=r"sector volumes of the obstacle must be finite"):
+        DepthModel(law=get_law("ARCHARD"), geometry=g, powers=(1e-3, 1e-3),
+                   coefficients_mobile=({"coefficient": K},) * 2,
+                   coefficients_obstacle=(None,) * 2, sector_arcs=(180.0, 180.0),
+                   term_initial=((0.0, 0.0), (0.0, bad)))

@@ -175,8 +175,8 @@ def time_to_depth(depth_of_time: Callable[[np.ndarray], np.ndarray], target, *,
 def _past_wall(fraction) -> np.ndarray:
     """Rows whose depth is past the wall: fraction > 1, or NaN (a volume beyond the geometric
     relation's range, deeper than any depth in it)."""
-    f = np.asarray(fraction, dtype=float)
-    return np.isnan(f) | (f > 1.0)
+    # not (f <= 1): true exactly where f > 1 or f is NaN (a comparison with NaN is false)
+    return ~(np.asarray(fraction, dtype=float) <= 1.0)
 
 
 def wall_columns(depth_mobile: np.ndarray, sector: np.ndarray | None,
