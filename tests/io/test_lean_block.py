@@ -200,3 +200,28 @@ def test_long_files_options_and_other_formats_take_the_full_path(tmp_path, lean_
     _blocks(good, format="parquet")
     assert True not in lean_count
     assert _blocks(good)[0].name == "h-random" and lean_count[-1] is True
+
+
+@pytest.mark.parametrize("bad", ["force 1e4 too large", "force 1e4 too small (a file in kN)",
+                                 "speed in mm/s read as m/s"])  # read, and warn
+def test_quiet_checks_return_the_messages_they_would_warn(tmp_path, bad):
+    """``emit=False`` (the lane's checks: no change to the warning state other threads
+    share) gathers the very messages ``emit=True`` warns (the reference), and warns none."""
+    from fretwear.io.plausibility import StreamPlausibility
+
+    good = write_parquet(_history("random"), tmp_path / "good.parquet")
+    path = _rewrite(good, tmp_path / "bad.parquet", BAD[bad])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        chunk = _blocks(path, name="N12", format="parquet")[0]
+    with warnings.catch_warnings(record=True) as loud:
+        warnings.simplefilter("always")
+        stream = StreamPlausibility()
+        stream.update(chunk, check=True)
+        stream.finish()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # any warning fails
+        quiet = StreamPlausibility(emit=False)
+        quiet.update(chunk, check=True)
+        quiet.finish()
+    assert quiet.found and quiet.found == stream.found == [str(w.message) for w in loud]

@@ -8,7 +8,6 @@ Re-exported by :mod:`fretwear.io`.
 from __future__ import annotations
 
 import os
-import warnings
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import Any
@@ -66,20 +65,18 @@ def _lean_block(path: Any, chunk_size: Any, name: str | None) -> ContactHistory 
     files share one), read by one pyarrow call (:func:`fretwear.io.parquet.read_known_block`)
     and checked by the same functions as the full path (:func:`fast_history`,
     :class:`StreamPlausibility`): the same history, name and metadata. None when the file is
-    another case, or when anything would raise or warn: the full path then reads it again and
-    gives the very same errors and warnings (their text its own). Saves the full path's
+    another case, or when anything would raise or a check would warn (its messages gathered,
+    not warned): the full path then reads it again and gives the very same errors and warnings
+    (their text its own). Saves the full path's
     opening (file checks, format guess, Source, guarded generators): issue 28."""
     if not isinstance(path, (str, os.PathLike)) or isinstance(chunk_size, bool) \
             or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 2 \
             or not os.fspath(path).lower().endswith(".parquet"):
         return None
     try:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            chunk = _known_parquet(path, int(chunk_size), name)
+        return _known_parquet(path, int(chunk_size), name)
     except Exception:  # noqa: BLE001 - the full path raises it again, with its own message
         return None
-    return None if caught else chunk
 
 
 def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | None:
@@ -105,10 +102,12 @@ def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | N
                          metadata=dict(metadata, chunk=0, first_row=0), first_row=0,
                          columns=names, mapping=mapping, factors=factors, label=label,
                          name=name if name is not None else (stored.get("name") or _stem(path)))
-    plausibility = StreamPlausibility()
+    # the checks' messages gathered, not warned (no change to the process's warning state,
+    # which other threads share): a history that would warn is read by the full path
+    plausibility = StreamPlausibility(emit=False)
     plausibility.update(chunk, check=True)
     plausibility.finish()
-    return chunk
+    return None if plausibility.found else chunk
 
 
 def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
