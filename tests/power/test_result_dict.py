@@ -48,3 +48,33 @@ def test_pickle_leaves_the_dict_out_and_makes_it_again():
     back = pickle.loads(pickle.dumps(result))
     assert "_as_dict" not in vars(back)
     assert back.to_dict() == made
+
+
+_ARRAYS = ("blocks", "block_edges", "sectors", "sector_edges", "block_sectors")
+_STAT_ARRAYS = ("block_contact_fraction", "block_force_mean", "block_sliding_distance")
+
+
+def test_arrays_are_read_only_so_the_cached_dict_cannot_go_stale():
+    """Writing into a result's array raises (it would otherwise leave to_dict's cached dict
+    stale); the dict then still equals a fresh result's (independent computation above)."""
+    result = _result()
+    made = result.to_dict()
+    for name in _ARRAYS:
+        with np.testing.assert_raises(ValueError):
+            getattr(result, name)[0] = -1.0
+    for name in _STAT_ARRAYS:
+        with np.testing.assert_raises(ValueError):
+            getattr(result.statistics, name)[0] = -1.0
+    assert made == dataclasses.replace(result).to_dict()
+    back = pickle.loads(pickle.dumps(result))  # unpickled: still read-only
+    assert not back.blocks.flags.writeable and not back.statistics.block_force_mean.flags.writeable
+
+
+def test_the_callers_arrays_stay_writable():
+    """A result made from the caller's arrays freezes views of them, not the arrays."""
+    result = _result()
+    blocks = np.array(result.blocks)
+    made = dataclasses.replace(result, blocks=blocks)
+    assert blocks.flags.writeable and not made.blocks.flags.writeable
+    blocks[0] = -1.0  # the caller's own array: theirs to change
+    assert blocks[0] == -1.0

@@ -214,6 +214,49 @@ def open_parquet(path: str | os.PathLike) -> Source:
                   iter_blocks=iter_blocks, ends=ends)
 
 
+def read_known_block(path: str | os.PathLike, size: int, positions_of
+                     ) -> tuple[list[str], dict[int, str], dict, list[np.ndarray]] | None:
+    """The lean read of a Parquet file of 2 to ``size`` rows (one block): its column names,
+    ``{position: unit}``, stored fretwear metadata and the float64 columns at
+    ``positions_of(names, units)``; None when the file has another number of rows or
+    ``positions_of`` returns None (an unknown layout). The values :func:`open_parquet`'s
+    ``iter_blocks`` gives for the same file (one table read, the same conversion), without its
+    Source, generators and error guards: any failure here raises pyarrow's own exception,
+    and the caller (:func:`fretwear.io.streaming.iter_history_blocks`) then reads the file
+    through the full path, which names the culprit.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> h = ContactHistory(time=[0, 1], normal_force=[2, 3], vt1=[0, 1], vt2=[0, 0])
+    >>> p = write_parquet(h, pathlib.Path(tempfile.mkdtemp()) / "h.parquet")
+    >>> names, units, stored, arrays = read_known_block(p, 10, lambda n, u: [1])
+    >>> names[1], units[1], arrays[0].tolist()
+    ('normal_force', 'N', [2.0, 3.0])
+    >>> read_known_block(p, 1, lambda n, u: [1]) is None   # more rows than a block
+    True
+    """
+    pq = require("pyarrow.parquet", purpose="reading Parquet")
+    with require("pyarrow").OSFile(os.fspath(path)) as stream:
+        handle = pq.ParquetFile(stream, pre_buffer=False)
+        try:
+            rows = handle.metadata.num_rows
+            if not 2 <= rows <= size:
+                return None
+            names, unit_bytes, stored_bytes = _schema_of(handle)
+            units = {i: unit.decode("utf-8") for i, unit in unit_bytes.items()}
+            positions = positions_of(names, units)
+            if positions is None:
+                return None
+            threads = (rows * len(positions) >= _THREADED_VALUES
+                       and require("pyarrow").cpu_count() > 1)
+            table = handle.read(columns=[names[p] for p in positions], use_threads=threads)
+        finally:
+            handle.close()
+    arrays = [_float_array(_one_chunk(table.column(i))) for i in range(len(positions))]
+    return names, units, _loads(stored_bytes.decode("utf-8")), arrays
+
+
 #: Parquet compression of the histories fretwear writes (LZ4_RAW: read by pyarrow >= 9,
 #: DuckDB, Spark >= 3.4, polars; measured on a 1e5-sample history of 6 channels: 4.1 MB read in
 #: 1.1 ms, against 5.2 MB in 3.0 ms with pyarrow's default Snappy and dictionary pages).

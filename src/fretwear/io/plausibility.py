@@ -208,7 +208,7 @@ def _name(history: ContactHistory) -> str:
 
 
 def _warn(key: str, name: str, channel: str, value: float, unit_read: str, skip: set[str],
-          found: list[str]) -> None:
+          found: list[str], emit: bool = True) -> None:
     if key in skip:
         return
     skip.add(key)
@@ -218,11 +218,12 @@ def _warn(key: str, name: str, channel: str, value: float, unit_read: str, skip:
                f"plausibility limit {c.limit:g} {c.unit}; a file in {c.likely!r} gives "
                f"this: if so, give the units: {_fix(c.fix)}")
     found.append(message)
-    warnings.warn(message, UnitsWarning, stacklevel=4)
+    if emit:
+        warnings.warn(message, UnitsWarning, stacklevel=4)
 
 
 def _check_resolution(history: ContactHistory, name: str, mean: float, count: int,
-                      skip: set[str], found: list[str]) -> None:
+                      skip: set[str], found: list[str], emit: bool = True) -> None:
     """Warn (:class:`~fretwear.errors.ResolutionWarning`) when the impacts last fewer than
     :data:`IMPACT_SAMPLES_MIN` samples on average (the mean sampling step [s] of the history)."""
     t = history.time
@@ -238,7 +239,8 @@ def _check_resolution(history: ContactHistory, name: str, mean: float, count: in
                f"{mean / 20:.2g} s (Code_Aster: DYNA_VIBRA ARCHIVAGE=_F(PAS_ARCH=...); fretwear "
                "simulate: archive_step_s)")
     found.append(message)
-    warnings.warn(message, ResolutionWarning, stacklevel=4)
+    if emit:
+        warnings.warn(message, ResolutionWarning, stacklevel=4)
 
 
 class StreamPlausibility:
@@ -268,7 +270,9 @@ class StreamPlausibility:
     []
     """
 
-    def __init__(self) -> None:
+    def __init__(self, *, emit: bool = True) -> None:
+        self.emit = emit  # False: the messages only gathered in ``found``, nothing warned
+        self.found: list[str] = []
         self.reported: set[str] = set()
         self.force_max = -math.inf
         self._last: ContactHistory | None = None
@@ -277,7 +281,7 @@ class StreamPlausibility:
         """Take a chunk's largest force; ``check``: also run the other checks on it."""
         if check:
             skip = self.reported | {"force_min"}
-            check_plausibility(chunk, skip=skip)
+            self.found += check_plausibility(chunk, skip=skip, emit=self.emit)
             self.reported |= skip - {"force_min"}
         self.force_max = max(self.force_max, float(chunk.normal_force.max()))
         self._last = chunk
@@ -287,11 +291,13 @@ class StreamPlausibility:
         found: list[str] = []
         if self._last is not None and 0.0 < self.force_max < THRESHOLDS["force_min"].limit:
             _warn("force_min", _name(self._last), "normal_force", self.force_max,
-                  _unit(self._last, "normal_force"), self.reported, found)
+                  _unit(self._last, "normal_force"), self.reported, found, self.emit)
+        self.found += found
         return found
 
 
-def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None) -> list[str]:
+def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None,
+                       emit: bool = True) -> list[str]:
     """Warn (:class:`UnitsWarning`) for every value of ``history`` implausible in SI units.
 
     Parameters
@@ -301,6 +307,9 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
     skip : set of str, optional
         Keys of :data:`THRESHOLDS` already reported (chunked reading warns once per check);
         the keys of the checks that fail are added to it.
+    emit : bool
+        False: nothing is warned, the messages are only returned (a caller that reads the
+        file again when it would warn: :func:`fretwear.io.streaming.iter_history_blocks`).
 
     Returns
     -------
@@ -324,7 +333,7 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
     found: list[str] = []
 
     def warn(key: str, channel: str, value: float, unit_read: str) -> None:
-        _warn(key, name, channel, value, unit_read, skip, found)
+        _warn(key, name, channel, value, unit_read, skip, found, emit)
 
     speed2, radial2, fmax, step, durations = _statistics(history)
     top = _root(speed2, history.vt1, history.vt2)
@@ -345,7 +354,7 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
     if durations.size >= 3 and math.isfinite(mean := float(durations.sum()) / durations.size):
         if mean > THRESHOLDS["impact_duration"].limit:
             warn("impact_duration", "time", mean, _unit(history, "time"))
-        _check_resolution(history, name, mean, durations.size, skip, found)
+        _check_resolution(history, name, mean, durations.size, skip, found, emit)
     ratio = friction_ratio(history)
     if ratio > THRESHOLDS["friction_ratio"].limit and "friction_ratio" not in skip:
         skip.add("friction_ratio")
@@ -357,7 +366,8 @@ def check_plausibility(history: ContactHistory, *, skip: set[str] | None = None)
                    f"'mN') beside the other in 'N' gives this, and a wear power 1000 times too "
                    f"small: if so, give the units: {_fix(THRESHOLDS['friction_ratio'].fix)}")
         found.append(message)
-        warnings.warn(message, UnitsWarning, stacklevel=2)
+        if emit:
+            warnings.warn(message, UnitsWarning, stacklevel=2)
     return found
 
 

@@ -7,7 +7,9 @@ Re-exported by :mod:`fretwear.io`.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator, Mapping
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -16,8 +18,9 @@ from fretwear.errors import FormatError, KeywordError
 from fretwear.history import DEFAULT_CHUNK_SIZE, ContactHistory
 from fretwear.io.channels import build_history, check_lengths, fast_history
 from fretwear.io.guard import warn_whole_read
+from fretwear.io.parquet import read_known_block
 from fretwear.io.plausibility import StreamPlausibility
-from fretwear.io.sources import _files, _prepare
+from fretwear.io.sources import _LAYOUTS, _files, _prepare, _stem
 
 
 def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
@@ -54,6 +57,57 @@ def _reader_blocks(path, chunk_size, format, units, columns, name, options):
                       source.label)
         blocks = _slices(whole, size)
     return size, source, mapping, factors, label, metadata, blocks
+
+
+def _lean_block(path: Any, chunk_size: Any, name: str | None) -> ContactHistory | None:
+    """The lean lane of :func:`iter_history_blocks`: a Parquet file (``.parquet``) of one block
+    whose column layout was already resolved (:data:`fretwear.io.sources._LAYOUTS`: a bundle's
+    files share one), read by one pyarrow call (:func:`fretwear.io.parquet.read_known_block`)
+    and checked by the same functions as the full path (:func:`fast_history`,
+    :class:`StreamPlausibility`): the same history, name and metadata. None when the file is
+    another case, or when anything would raise or a check would warn (its messages gathered,
+    not warned): the full path then reads it again and gives the very same errors and warnings
+    (their text its own). Saves the full path's
+    opening (file checks, format guess, Source, guarded generators): issue 28."""
+    if not isinstance(path, (str, os.PathLike)) or isinstance(chunk_size, bool) \
+            or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 2 \
+            or not os.fspath(path).lower().endswith(".parquet"):
+        return None
+    try:
+        return _known_parquet(path, int(chunk_size), name)
+    except Exception:  # noqa: BLE001 - the full path raises it again, with its own message
+        return None
+
+
+def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | None:
+    layout: list[tuple] = []
+
+    def positions_of(names: list[str], units: dict[int, str]) -> list[int] | None:
+        found = _LAYOUTS.get((tuple(names), tuple(units.items())))  # sources._layout's key
+        if found is None:
+            return None
+        layout.append(found)
+        return list(found[0].values())
+
+    read = read_known_block(path, size, positions_of)
+    if read is None:
+        return None
+    names, _, stored, arrays = read
+    mapping, unit_of, factors, used = (dict(d) for d in layout[0][:4])
+    label = str(Path(path))  # open_parquet's Source label
+    metadata = dict(stored.get("metadata", {}))
+    metadata.update(source=label, format="parquet", columns=used, units=unit_of,
+                    unit_factors=factors, ignored_columns=list(layout[0][4]))
+    chunk = fast_history(dict(zip(mapping, arrays, strict=True)),
+                         metadata=dict(metadata, chunk=0, first_row=0), first_row=0,
+                         columns=names, mapping=mapping, factors=factors, label=label,
+                         name=name if name is not None else (stored.get("name") or _stem(path)))
+    # the checks' messages gathered, not warned (no change to the process's warning state,
+    # which other threads share): a history that would warn is read by the full path
+    plausibility = StreamPlausibility(emit=False)
+    plausibility.update(chunk, check=True)
+    plausibility.finish()
+    return None if plausibility.found else chunk
 
 
 def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
@@ -201,6 +255,9 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     SI (:func:`fretwear.io.plausibility.check_plausibility`) is checked on the first block: a
     wrong unit shows there; the smallest plausible largest force, on the whole file's largest
     force after the last block (:class:`fretwear.io.plausibility.StreamPlausibility`).
+    A Parquet file of one block, of a column layout already read and without options, takes a
+    lean lane (:func:`_lean_block`): one pyarrow read and the same checks, the full path
+    again for anything that raises or warns (the same history, errors and warnings).
 
     Parameters
     ----------
@@ -222,6 +279,11 @@ def iter_history_blocks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,
     >>> [(1e3 * c.time).tolist() for c in iter_history_blocks(p, chunk_size=3)]
     [[0.0, 1.0, 2.0], [3.0, 4.0, 5.0], [5.0, 6.0]]
     """
+    if format is None and units is None and columns is None and not options:
+        lean = _lean_block(path, chunk_size, name)
+        if lean is not None:  # the common case: silent, and what the full path would give
+            yield lean
+            return
     size, source, mapping, factors, label, metadata, blocks = _reader_blocks(
         path, chunk_size, format, units, columns, name, options)
     try:

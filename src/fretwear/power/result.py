@@ -16,7 +16,7 @@ import numpy as np
 
 from fretwear.errors import ConfidenceWarning, InputError
 from fretwear.power.confidence import PowerInterval, batch_means_interval
-from fretwear.power.statistics import ContactStatistics, _jsonable
+from fretwear.power.statistics import ContactStatistics, _jsonable, frozen_arrays
 
 __all__ = ["PowerResult"]
 
@@ -77,6 +77,9 @@ class PowerResult:
     block_sectors: np.ndarray | None = None
     kwu: Any = field(default=None, repr=False)
 
+    def __post_init__(self) -> None:
+        frozen_arrays(self, _ARRAYS)
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary; units: powers [W], times [s], angles [deg].
 
@@ -97,6 +100,10 @@ class PowerResult:
         state = dict(self.__dict__)  # pickled without the dict of to_dict (made again)
         state.pop("_as_dict", None)
         return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:  # unpickled: read-only again
+        self.__dict__.update(state)
+        frozen_arrays(self, _ARRAYS)
 
     def confidence_interval(self, level: float = 0.95, *, sector: int | None = None
                             ) -> PowerInterval:
@@ -177,3 +184,4 @@ def _copied(value: Any) -> Any:
 
 
 _CONTAINERS = (dict, list)
+_ARRAYS = ("blocks", "block_edges", "sectors", "sector_edges", "block_sectors")

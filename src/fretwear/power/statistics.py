@@ -127,6 +127,13 @@ class ContactStatistics:
     block_force_mean: np.ndarray
     block_sliding_distance: np.ndarray
 
+    def __post_init__(self) -> None:
+        frozen_arrays(self, _ARRAYS)
+
+    def __setstate__(self, state: dict) -> None:  # unpickled: read-only again
+        self.__dict__.update(state)
+        frozen_arrays(self, _ARRAYS)
+
     def to_dict(self) -> dict:
         """JSON-ready dictionary (arrays as lists, NaN as None).
 
@@ -140,6 +147,24 @@ class ContactStatistics:
         1.0
         """
         return {f.name: _jsonable(getattr(self, f.name)) for f in fields(self)}
+
+
+_ARRAYS = ("block_contact_fraction", "block_force_mean", "block_sliding_distance")
+
+
+def frozen_arrays(obj: object, names: tuple[str, ...]) -> None:
+    """Set each named array field of the frozen dataclass ``obj`` to a read-only view of it.
+
+    A result is read, not changed (its ``to_dict`` is cached): a read-only view makes a write
+    into it fail at once, and the array the caller gave stays writable (a view, not the
+    caller's array, is frozen). None and non-arrays are left as they are.
+    """
+    for name in names:
+        value = getattr(obj, name)
+        if isinstance(value, np.ndarray):
+            view = value.view()
+            view.flags.writeable = False
+            object.__setattr__(obj, name, view)
 
 
 def _jsonable(value):
