@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import contextlib
 import functools
-import math
 import pickle
 import threading
 import time
@@ -26,6 +25,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.cases import ContactTask
 from fretwear.bundle.datasets import frame_of, require, store_arrays
+from fretwear.bundle.plain import interned, plain
 from fretwear.io import open_source, read_history
 from fretwear.io.channels import build_history, resolve_columns, resolve_units
 from fretwear.io.geometry_units import check_against_geometry
@@ -40,43 +40,22 @@ _ATTRS = ("contact_type", "dimensions", "law", "coefficients_mobile", "coefficie
           "time_scale", "origin", "tube_replacement", "wall_thickness", "depth_limit")
 
 
-def _plain(value: Any) -> Any:
-    """``value`` JSON-ready: dicts (string keys) and lists of plain numbers and strings, a
-    number not finite None, numpy arrays and scalars as Python's, anything else its str."""
-    kind = type(value)
-    if kind is float:  # the commonest first (a record holds some fifty values)
-        return value if math.isfinite(value) else None
-    if value is None or kind is str or kind is int or kind is bool:
-        return value
-    if isinstance(value, dict):
-        return {str(k): _plain(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_plain(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return _plain(value.tolist())
-    if isinstance(value, np.generic):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value if value is None or isinstance(value, bool | int | float | str) else str(value)
-
-
 #: The power's values kept in a contact's record (its statistics dropped).
 _POWER = ("total", "blocks", "spread", "t_start", "t_end", "duration", "sectors")
 
 
 def _attrs(attrs: dict[str, Any], task: ContactTask) -> dict[str, Any]:
     """A record's ``attrs``: the table's :data:`_ATTRS` and the power's :data:`_POWER`, JSON
-    ready (:func:`_plain`). ``attrs["power"]`` is the table's power dict, or the PowerResult
+    ready (:func:`plain`). ``attrs["power"]`` is the table's power dict, or the PowerResult
     itself (:func:`_wear_table`: its values read without its statistics' dict, the same once
     made plain). The case's own values (:func:`_case_attrs`) made plain once per case and
     shared by its contacts' records (the client shares them too, ``PartStore.compact``)."""
     out = dict(_case_attrs(attrs, task.wear_case()))
     for k in _CONTACT_ATTRS:
-        out[k] = _plain(attrs.get(k))
+        out[k] = interned(k, plain(attrs.get(k)))
     power = attrs.get("power") or {}
     get = power.get if isinstance(power, dict) else functools.partial(getattr, power)
-    out["power"] = {k: _plain(get(k)) for k in _POWER}
+    out["power"] = {k: plain(get(k)) for k in _POWER}
     if not power and task.power is not None:  # a given power [W] (power.value_W): its total
         out["power"]["total"] = float(task.power)
     out["time_unit"] = task.time_unit
@@ -91,11 +70,11 @@ _CONTACT_ATTRS = ("coefficients_mobile", "coefficients_obstacle", "coefficient_s
 
 
 def _case_attrs(attrs: dict[str, Any], case) -> dict[str, Any]:
-    """The plain (:func:`_plain`) values of the :data:`_ATTRS` a table of ``case`` takes from
+    """The plain (:func:`plain`) values of the :data:`_ATTRS` a table of ``case`` takes from
     the case alone (its type, dimensions, law, materials, time scale, origin, replacement, wall;
     :func:`fretwear.table.wear_table_columns`), made from the first table of the case and kept
     on it (:meth:`fretwear.table.WearCase.derived`): shared by its contacts' records."""
-    return case.derived("record attrs", lambda: {k: _plain(attrs.get(k)) for k in _ATTRS
+    return case.derived("record attrs", lambda: {k: plain(attrs.get(k)) for k in _ATTRS
                                                  if k not in _CONTACT_ATTRS})
 
 

@@ -1,0 +1,46 @@
+"""A record's per-contact values made one object when equal (``bundle.plain.interned``): equal
+means the same JSON text (``json.dumps``, the independent reference), so a value is never
+replaced by one that the part's JSON would write differently."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from fretwear.bundle import plain as p
+
+
+@pytest.mark.parametrize("a, b", [
+    ([0.0, 90.0], [-0.0, 90.0]),
+    ([1, 2], [1.0, 2.0]),
+    ({"K": 1e-15, "source": "db"}, {"source": "db", "K": 1e-15}),
+    ({"K": 1e-15}, {"K": 1.0000000000000002e-15}),
+    ([True], [1]),
+    ([None, "x"], [None, "y"]),
+])
+def test_values_written_apart_stay_apart(a, b):
+    assert json.dumps(a) != json.dumps(b)
+    first = p.interned("k-apart", a)
+    second = p.interned("k-apart", b)
+    assert first is not second and json.dumps(second) == json.dumps(b)
+
+
+def test_equal_values_become_one_object_and_keys_are_kept_apart():
+    a = p.interned("sector_edges", [-180.0, 0.0, 180.0])
+    b = p.interned("sector_edges", [-180.0, 0.0, 180.0])
+    c = p.interned("other", [-180.0, 0.0, 180.0])
+    assert a is b and c is not a and c == a
+
+
+def test_nested_or_non_plain_values_are_returned_as_given():
+    nested = [[1.0], [2.0]]
+    assert p.interned("k-nested", nested) is nested
+    assert p.interned("k-none", None) is None
+
+
+def test_the_memo_is_bounded_and_stays_right_past_its_bound():
+    values = [[float(i)] for i in range(p.INTERNED_MAX + 10)]
+    out = [p.interned("k-bound", v) for v in values]
+    assert [json.dumps(o) for o in out] == [json.dumps(v) for v in values]
+    assert len(p._VALUES) <= p.INTERNED_MAX
