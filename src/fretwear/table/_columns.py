@@ -51,8 +51,9 @@ def _sector_frame(model, head, clock, edges) -> dict:
     # instant-major rows (row = i*m + j); a value per instant repeated over the sectors, a
     # value per sector over the instants
     block = np.empty((len(_SECTOR_FLOATS), n, m))
-    block[:8] = np.stack((*(head[c] for c in _SECTOR_FLOATS[:4]), total_m, total_o, dm,
-                          do))[:, :, None]
+    for i, values in enumerate((*(head[c] for c in _SECTOR_FLOATS[:4]), total_m, total_o, dm,
+                                do)):
+        block[i] = np.asarray(values)[:, None]
     edges = np.asarray(edges, dtype=float)  # the sectors' edges [deg]
     block[8], block[9] = edges[:-1], edges[1:]
     block[10] = np.asarray(model.powers, dtype=float)
