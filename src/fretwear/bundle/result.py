@@ -182,7 +182,8 @@ class BundleResult:
         """The table, or the columns :func:`summarize` reads from ``table_file`` when the
         table is not read (read for this call, not kept)."""
         if self._table is None and self.table_file is not None:
-            return read_columns(Path(self.table_file), SUMMARY_COLUMNS)
+            return read_columns(Path(self.table_file), SUMMARY_COLUMNS,
+                                categorical=("contact",))  # only factorised (_Contacts)
         return self.table
 
 

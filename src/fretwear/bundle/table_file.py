@@ -239,16 +239,23 @@ def _typed(pa, schema, types):
     return schema
 
 
-def read_columns(path: Path, columns: Iterable[str] | None = None) -> pd.DataFrame:
+def read_columns(path: Path, columns: Iterable[str] | None = None, *,
+                 categorical: Iterable[str] = ()) -> pd.DataFrame:
     """The given columns of a written Parquet table that it has, every column for None
-    (pandas' dtypes, as ``pandas.read_parquet`` gives them)."""
+    (pandas' dtypes, as ``pandas.read_parquet`` gives them); the ``categorical`` columns read
+    as categories (pyarrow's ``read_dictionary``: a contact's id once, not once a row: the
+    summary of 10^5 contacts reads 4.8 million rows)."""
     require("pyarrow", purpose="reading a bundle's Parquet table")
     if columns is None:
         return pd.read_parquet(path)
     import pyarrow.parquet as pq
 
     names = set(pq.read_schema(path).names)
-    return pd.read_parquet(path, columns=[c for c in columns if c in names])
+    wanted = [c for c in columns if c in names]
+    coded = [c for c in categorical if c in wanted]
+    if coded:
+        return pd.read_parquet(path, columns=wanted, read_dictionary=coded)
+    return pd.read_parquet(path, columns=wanted)
 
 
 #: A manifest position whose contact has no final record yet (:class:`PrefixTable`).
