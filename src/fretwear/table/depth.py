@@ -384,13 +384,10 @@ class DepthModel:
             vm[new] = rate_m * (t[new] - self.replacement)
         slices = self.slices
         dm = slices.depth_mobile(vm)
-        if slices.obstacle_radius is None and not (rate_o.any() or v0o.any()):
-            # the obstacle neither wears nor was worn: its volumes 0 + 0·t, depths 0 (below)
-            vo = np.zeros(vm.shape)
-            return {"volume_mobile": vm, "volume_obstacle": vo, "depth_mobile": dm,
-                    "depth_obstacle": np.zeros(vm.shape), "unradiused": []}
         vo = v0o + rate_o * t
-        if slices.obstacle_radius is None:
+        if slices.obstacle_radius is None and not (rate_o.any() or v0o.any()):
+            do, unradiused = np.zeros(vm.shape), []  # neither wears nor was worn: depths 0
+        elif slices.obstacle_radius is None:
             do = np.where(vo == 0, 0.0, np.nan)
             unradiused = (np.flatnonzero((vo > 0).any(axis=0)) + 1).tolist()
         else:
