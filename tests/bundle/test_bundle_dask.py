@@ -12,6 +12,7 @@ killed midway restarts without recomputing the contacts it had written; the CLI.
 
 from __future__ import annotations
 
+import faulthandler
 import json
 import os
 import signal
@@ -29,6 +30,21 @@ from fretwear.bundle import run_bundle
 from fretwear.io import write_history
 
 distributed = pytest.importorskip("distributed")
+
+
+#: Seconds a test of this module may run (the longest takes ~25 s on an idle 2-core machine).
+WATCHDOG = 600.0
+
+
+@pytest.fixture(autouse=True)
+def watchdog():
+    """A test of this module that hangs ends its process after :data:`WATCHDOG` seconds, every
+    thread's stack written to stderr, instead of holding CI for its whole time limit. Seen once
+    in some hundreds of runs: the client of the crashing-file test waiting, the workers idle
+    (not reproduced since; the waits on the workers below also have a time limit now)."""
+    faulthandler.dump_traceback_later(WATCHDOG, exit=True)
+    yield
+    faulthandler.cancel_dump_traceback_later()
 
 
 @pytest.fixture(scope="module")
@@ -219,7 +235,8 @@ def test_a_file_that_crashes_or_hangs_the_library_fails_its_contact_alone(tmp_pa
     (tmp_path / "histories" / "crash.h5").write_bytes(crashing.read_bytes())
     frame.to_csv(manifest, index=False)
     with distributed.Client(address) as client:
-        client.wait_for_workers(2)  # a worker killed by an earlier test is replaced by now
+        # a worker killed by an earlier test is replaced by now (an error, not a hang, if not)
+        client.wait_for_workers(2, timeout=120)
         # the limit counts the checker's start (Python, h5py) as it did the child per file's:
         # 10 s, ample on a loaded machine, for a file that loops forever
         assert len(_workers_checking(client, "crash.h5", 10.0)) == 2
