@@ -5,6 +5,7 @@ under CI). Tests that look for a phrase or a path in the printed summary must no
 a temporary path happens to wrap, so every test sees a wide terminal.
 """
 
+import faulthandler
 import os
 from pathlib import Path
 
@@ -47,9 +48,37 @@ def _hypothesis_profile() -> None:
 _hypothesis_profile()
 
 
+#: Seconds any one test may run in ``make test`` (the longest takes ~25 s on an idle 2-core
+#: machine; ``FRETWEAR_TEST_WATCHDOG`` sets another); none in a deep fuzz run.
+WATCHDOG = None if DEEP else float(os.environ.get("FRETWEAR_TEST_WATCHDOG", "600"))
+
+
+#: A copy of the standard error made when pytest is configured: the watchdog's stacks written
+#: there reach the terminal (fd 2 is pytest's capture file while a test runs, lost on exit).
+_STDERR = None
+
+
+@pytest.fixture(autouse=True)
+def watchdog():
+    """A test that hangs ends its process after :data:`WATCHDOG` seconds with every thread's
+    stack on stderr (pytest-xdist then reports that test as failed, its worker crashed) instead
+    of holding CI until its own time limit. Seen once in some hundreds of runs: the client of
+    tests/bundle/test_bundle_dask.py's crashing-file test waiting on idle workers."""
+    if WATCHDOG is None or _STDERR is None:
+        yield
+        return
+    faulthandler.dump_traceback_later(WATCHDOG, exit=True, file=_STDERR)
+    yield
+    faulthandler.cancel_dump_traceback_later()
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_configure(config):
-    """The fixed seed of make test's property tests (``--hypothesis-seed`` still wins)."""
+    """The fixed seed of make test's property tests (``--hypothesis-seed`` still wins), and the
+    watchdog's copy of the standard error."""
+    global _STDERR
+    if _STDERR is None:
+        _STDERR = os.dup(2)
     if not DEEP and getattr(config.option, "hypothesis_seed", "absent") is None:
         config.option.hypothesis_seed = 0
 

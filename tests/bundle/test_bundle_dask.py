@@ -12,7 +12,6 @@ killed midway restarts without recomputing the contacts it had written; the CLI.
 
 from __future__ import annotations
 
-import faulthandler
 import json
 import os
 import signal
@@ -30,21 +29,6 @@ from fretwear.bundle import run_bundle
 from fretwear.io import write_history
 
 distributed = pytest.importorskip("distributed")
-
-
-#: Seconds a test of this module may run (the longest takes ~25 s on an idle 2-core machine).
-WATCHDOG = 600.0
-
-
-@pytest.fixture(autouse=True)
-def watchdog():
-    """A test of this module that hangs ends its process after :data:`WATCHDOG` seconds, every
-    thread's stack written to stderr, instead of holding CI for its whole time limit. Seen once
-    in some hundreds of runs: the client of the crashing-file test waiting, the workers idle
-    (not reproduced since; the waits on the workers below also have a time limit now)."""
-    faulthandler.dump_traceback_later(WATCHDOG, exit=True)
-    yield
-    faulthandler.cancel_dump_traceback_later()
 
 
 @pytest.fixture(scope="module")
