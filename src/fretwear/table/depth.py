@@ -50,6 +50,7 @@ from fretwear.table.depth_terms import (
     _rates,
     body_volume,
     given_names,
+    initial_arrays,
 )
 from fretwear.table.limit import time_to_depth
 
@@ -405,14 +406,19 @@ class DepthModel:
         r_o = self.sector_obstacle_radius
         if r_o is None:
             r_o = getattr(g, "obstacle_radius", None)
-        return sector_slices(g.mobile_radius, g.obstacle_width,
-                             tuple(float(a) for a in self.sector_arcs), r_o)
+        arcs = self.sector_arcs  # a case model's are floats already (equal keys either way)
+        if type(arcs) is not tuple or not all(type(a) is float for a in arcs):
+            arcs = tuple(float(a) for a in arcs)
+        return sector_slices(g.mobile_radius, g.obstacle_width, arcs, r_o)
 
     def _term_initial(self) -> tuple[np.ndarray, np.ndarray]:
         """Each term's (mobile, obstacle) volumes at the origin [m³]."""
         n = len(self.powers)
         if self.term_initial is not None:
-            return tuple(np.asarray(v, dtype=float) for v in self.term_initial)
+            try:
+                return initial_arrays(self.term_initial)
+            except TypeError:  # not hashable (lists): made each time
+                return tuple(np.asarray(v, dtype=float) for v in self.term_initial)
         out = np.zeros((2, n))
         out[:, 0] = self.initial_mobile, self.initial_obstacle
         return out[0], out[1]

@@ -6,6 +6,7 @@ names of given coefficients. Split out of :mod:`fretwear.table.depth`; no behavi
 
 from __future__ import annotations
 
+import functools
 import warnings
 from collections.abc import Mapping
 from typing import Any
@@ -118,6 +119,16 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     if rates.shape != (len(powers),):
         rates = np.broadcast_to(rates, (len(powers),))
     return rates.astype(float)  # a new array (the law's result is never handed out)
+
+
+@functools.lru_cache(maxsize=64)
+def initial_arrays(term_initial: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """The terms' (mobile, obstacle) volumes at the origin [m³] of a
+    :attr:`DepthModel.term_initial` as read-only float arrays, made once per distinct value (a
+    bundle's contacts of one case share theirs)."""
+    pm, po = (np.asarray(v, dtype=float) for v in term_initial)
+    pm.flags.writeable = po.flags.writeable = False
+    return pm, po
 
 
 def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
