@@ -27,7 +27,7 @@ def _global_frame(model, head, clock) -> dict:
     return {**head, **model.table_columns(clock.elapsed)}
 
 
-def _sector_frame(model, head, clock, edges) -> dict:
+def _sector_frame(model, power: float, clock, edges) -> dict:
     """The sector table's columns: one row per instant and sector (instant-major), every
     sector at once by the case's :class:`~fretwear.table.DepthModel`
     (:meth:`~fretwear.table.DepthModel.sector_table`; the global depth from the sum of the
@@ -50,9 +50,10 @@ def _sector_frame(model, head, clock, edges) -> dict:
     # i*m + j); a value per instant repeated over the sectors, a value per sector over the
     # instants. The case's own rows (instants, durations, origin, angles) and the sector
     # numbers are a copy of the case's template (:func:`_template`); the contact's filled here
-    template, sector = _template(head, edges, n, m)
+    template, sector = _template(clock, edges, n, m)
     block = template.copy()
-    for i, values in ((3, head["power"]), (4, total_m), (5, total_o), (6, dm), (7, do)):
+    block[3] = power  # the run's power [W] in every row
+    for i, values in ((4, total_m), (5, total_o), (6, dm), (7, do)):
         block[i] = values[:, None]
     block[10] = np.asarray(model.powers, dtype=float)
     block[11] = vm - was_m
@@ -82,18 +83,19 @@ _TEMPLATES: dict = {}
 _TEMPLATES_KEPT = 64
 
 
-def _template(head: dict, edges, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+def _template(clock, edges, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
     """(the float block of :func:`_sector_frame` with the rows that are the case's alone
-    filled: instant, duration, origin [user unit], angle_start, angle_end [deg]; the sector
-    numbers 1..m per instant, int), made once per distinct values (a bundle's contacts of one
-    case share them) and kept read-only: the caller copies them."""
+    filled: instant (origin + duration), duration, origin [user unit], angle_start, angle_end
+    [deg]; the sector numbers 1..m per instant, int), made once per distinct values (a bundle's
+    contacts of one case share them) and kept read-only: the caller copies them."""
     edges = np.asarray(edges, dtype=float)  # the sectors' edges [deg]
-    key = (n, m, edges.tobytes(), *(head[c].tobytes() for c in _SECTOR_FLOATS[:3]))
+    durations, origin = clock.durations, clock.case.origin
+    key = (n, m, edges.tobytes(), durations.tobytes(), float(origin).hex())
     found = _TEMPLATES.get(key)
     if found is None:
         block = np.zeros((len(_SECTOR_FLOATS), n, m))
-        for i in range(3):
-            block[i] = np.asarray(head[_SECTOR_FLOATS[i]])[:, None]
+        for i, values in enumerate((origin + durations, durations, np.full(n, origin))):
+            block[i] = values[:, None]
         block[8], block[9] = edges[:-1], edges[1:]
         sector = _tiled(np.arange(1, m + 1), n)
         block.flags.writeable = sector.flags.writeable = False

@@ -43,6 +43,7 @@ from fretwear.table.case_values import Wall
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.depth_terms import (
     SectorRelation,
+    _check_initial,
     _dict,
     _float_of_shape,
     _geometry,
@@ -161,10 +162,7 @@ class DepthModel:
             raise InputError(f"wall must be a Wall (fretwear.table.Wall(thickness [m], limit "
                              f"[-]), or a case's WearCase.wall), got {type(self.wall).__name__}")
         if self.term_initial is not None:  # checked once, where the model is built
-            for name, v0 in zip(("mobile", "obstacle"), self.term_initial, strict=True):
-                if not all(math.isfinite(v) and v >= 0 for v in v0):
-                    raise InputError(f"the initial state's sector volumes of the {name} must "
-                                     f"be finite and >= 0 [m³], got {[float(v) for v in v0]}")
+            _check_initial(self.term_initial)
 
     @functools.cached_property
     def earlier(self) -> EarlierRows | None:

@@ -7,12 +7,14 @@ names of given coefficients. Split out of :mod:`fretwear.table.depth`; no behavi
 from __future__ import annotations
 
 import functools
+import math
 import warnings
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
+from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import sector_geometry, sector_volume_mobile
 from fretwear.laws.registry import WearLaw
@@ -129,6 +131,28 @@ def initial_arrays(term_initial: tuple) -> tuple[np.ndarray, np.ndarray]:
     pm, po = (np.asarray(v, dtype=float) for v in term_initial)
     pm.flags.writeable = po.flags.writeable = False
     return pm, po
+
+
+def _check_initial(term_initial) -> None:
+    """:attr:`DepthModel.term_initial`'s volumes finite and >= 0 [m³], else an InputError;
+    a tuple found good is remembered (the same tuples for a case's every contact)."""
+    try:
+        if term_initial in _GOOD_INITIAL:
+            return
+    except TypeError:  # not hashable (lists): checked each time
+        pass
+    for name, v0 in zip(("mobile", "obstacle"), term_initial, strict=True):
+        if not all(math.isfinite(v) and v >= 0 for v in v0):
+            raise InputError(f"the initial state's sector volumes of the {name} must "
+                             f"be finite and >= 0 [m³], got {[float(v) for v in v0]}")
+    if type(term_initial) is tuple and all(type(v) is tuple for v in term_initial):
+        if len(_GOOD_INITIAL) >= 64:
+            _GOOD_INITIAL.clear()
+        _GOOD_INITIAL.add(term_initial)
+
+
+#: :attr:`DepthModel.term_initial` values found good by :func:`_check_initial`.
+_GOOD_INITIAL: set = set()
 
 
 def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
