@@ -84,12 +84,13 @@ def _label(name: str) -> str:
 def _plain_pair(mobile, obstacle) -> bool:
     """Whether a pair is two float64 arrays of one shape, each finite and >= 0 (a min or max
     NaN fails too: the general path then takes NaN through): what the general path of
-    :func:`_volumes_or_depths` would copy unchanged, checked in four reductions."""
+    :func:`_volumes_or_depths` would copy unchanged, checked in two reductions."""
     return (type(mobile) is np.ndarray and type(obstacle) is np.ndarray
             and mobile.dtype == np.float64 and obstacle.dtype == np.float64
             and mobile.shape == obstacle.shape and mobile.size > 0
-            and bool(mobile.min() >= 0.0) and bool(obstacle.min() >= 0.0)
-            and bool(mobile.max() < np.inf) and bool(obstacle.max() < np.inf))
+            # np.minimum and np.maximum keep a NaN: min(min(m, o)) is NaN or the least of both
+            and bool(np.minimum(mobile, obstacle).min() >= 0.0)
+            and bool(np.maximum(mobile, obstacle).max() < np.inf))
 
 
 def _plain_result(values, shape: tuple) -> bool:
@@ -311,7 +312,7 @@ class ContactGeometry:
             x, y = relation(a, b)
             if _plain_result(x, a.shape) and _plain_result(y, a.shape):
                 x, y = x.copy(), y.copy()  # np.where(given, x, nan) with every input given
-                if np.isnan(x.min()) or np.isnan(y.min()):  # min propagates NaN
+                if np.isnan(np.minimum(x, y).min()):  # a NaN in either (both keep it)
                     self._say_range(kind, int(np.count_nonzero(np.isnan(x) | np.isnan(y))))
                 return x, y
         else:

@@ -207,7 +207,8 @@ class TubeBav(ContactGeometry):
     def _depth_from_volume(self, volume_mobile, volume_obstacle):
         cos_impact = math.cos(self.angle("impact_angle"))
         total = volume_mobile + volume_obstacle
-        depth = flat_trace_depth(total * cos_impact, self.mobile_radius, self.obstacle_width,
+        depth = flat_trace_depth(total if cos_impact == 1.0 else total * cos_impact,  # (V·1 = V)
+                                 self.mobile_radius, self.obstacle_width,
                                  self.angle("tilt_angle"))
         if depth.ndim and depth.size and depth.max() <= self.max_depth:  # no NaN, none beyond
             if not volume_obstacle.any():  # _unshared's values without a NaN to keep

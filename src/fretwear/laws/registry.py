@@ -177,8 +177,9 @@ class WearLaw:
         c, plain = self._rate_coefficients(coefficients)
         if plain:
             p = np.asarray(power, dtype=float)
+            # every power in [0, inf): the least >= 0 and the greatest < inf (a NaN fails both)
             if p.ndim == 0 and 0.0 <= float(p) < math.inf \
-                    or p.ndim and bool(((p >= 0.0) & (p < math.inf)).all()):
+                    or p.ndim and (not p.size or p.min() >= 0.0 and p.max() < math.inf):
                 return self._rate(p, **c)
         token = models._collected.set([])
         try:

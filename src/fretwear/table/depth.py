@@ -384,7 +384,10 @@ class DepthModel:
         slices = self.slices
         dm = slices.depth_mobile(vm)
         vo = v0o + rate_o * t
-        if slices.obstacle_radius is None and not (rate_o.any() or v0o.any()):
+        if slices.obstacle_radius is None and not (
+                # rate_o is 0 (:func:`_rates`) when no term's obstacle wears
+                (self.coefficients_obstacle.count(None) != len(self.powers) and rate_o.any())
+                or v0o.any()):
             do, unradiused = np.zeros(vm.shape), []  # neither wears nor was worn: depths 0
         elif slices.obstacle_radius is None:
             do = np.where(vo == 0, 0.0, np.nan)

@@ -104,12 +104,14 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     not wear; :meth:`~fretwear.laws.WearLaw.rate`, its warnings dropped: the table's own volumes
     already warned), every term in one call of the law where they share their coefficients or
     their coefficients' names."""
-    if all(c is None for c in coefficients):
+    if coefficients.count(None) == len(coefficients):  # (a tuple or list: is, then ==)
         return np.zeros(len(powers))
     if len(powers) == 1:  # one term (a table without sectors)
         return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
     first = coefficients[0]
-    if _plain(first) and all(c is first or (_plain(c) and c == first) for c in coefficients):
+    if _plain(first) and (len(set(map(id, coefficients))) == 1  # one dict for all
+                          or all(c is first or (_plain(c) and c == first)
+                                 for c in coefficients)):
         given = first  # the law's numbers in every sector (one dict for all: no check each)
     else:
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
