@@ -407,8 +407,8 @@ class DepthModel:
         r_o = self.sector_obstacle_radius
         if r_o is None:
             r_o = getattr(g, "obstacle_radius", None)
-        arcs = self.sector_arcs  # a case model's are floats already (equal keys either way)
-        if type(arcs) is not tuple or not all(type(a) is float for a in arcs):
+        arcs = self.sector_arcs  # a case model's tuple of floats: equal numbers, equal keys
+        if type(arcs) is not tuple:
             arcs = tuple(float(a) for a in arcs)
         return sector_slices(g.mobile_radius, g.obstacle_width, arcs, r_o)
 
