@@ -33,6 +33,7 @@ from fretwear.laws import get_law
 from fretwear.power import wear_power
 from fretwear.table import WearCase, wear_table_columns
 from fretwear.table.depth import DepthModel
+from fretwear.table.schema import SECTOR_COLUMNS
 
 R, L = 9.525e-3, 12.7e-3  # tube radius, bar width [m]
 YEAR = 3.15576e7  # [s]
@@ -142,6 +143,7 @@ def test_sector_columns_are_archard_for_cases_taken_in_turn():
         for case, power in cases:
             columns, _ = wear_table_columns(case, power)
             expected = _archard(case, power)
+            assert list(columns) == list(SECTOR_COLUMNS)  # the table's order
             for name in ("instant", "duration", "origin", "power", "sector", "angle_start",
                          "angle_end", "sector_power"):
                 assert np.array_equal(columns[name], expected[name]), name
