@@ -290,8 +290,10 @@ def _with_run_sectors(case: WearCase, result) -> tuple[WearCase, np.ndarray | No
     if run_edges is None:
         raise InputError("sectors need a contact history with dy and dz (RESU_GENE): a power "
                          "alone (PUIS_USURE) has no contact angle")
-    edges = case.sector_edges
-    if not np.array_equal(np.asarray(run_edges, dtype=float), edges):
+    edges = case.sector_edges  # finite (checked where the case was built)
+    run = np.asarray(run_edges, dtype=float)
+    if not (run.shape == edges.shape and run.tobytes() == edges.tobytes()  # the same floats
+            or np.array_equal(run, edges)):
         raise InputError(f"the PowerResult's sector edges {list(run_edges)} differ from the "
                          f"case's sectors {edges.tolist()} [deg]; compute the power "
                          "with the same sectors")
