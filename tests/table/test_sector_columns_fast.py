@@ -194,3 +194,18 @@ def test_initial_volumes_remembered_good_still_refuse_a_bad_one(bad):
         model((0.0, bad))
     with pytest.raises(InputError, match=r"sector volumes of the obstacle must be finite"):
         model([0.0, bad])  # a list: not remembered, checked
+
+
+@pytest.mark.parametrize("edges, differ", [
+    ([-180.0, -90.0, -0.0, 90.0, 180.0], False),  # -0.0 is 0.0: the same edges, other bytes
+    ([-180.0, -100.0, 0.0, 90.0, 180.0], True), (8, True)])
+def test_power_of_other_sector_edges_is_refused(edges, differ):
+    """A PowerResult's sector edges against the case's: equal numbers pass (whatever their
+    bytes), others raise an InputError naming both (np.array_equal's meaning)."""
+    power = _power(4, 30.0)  # edges -180, -90, 0, 90, 180 [deg]
+    case = _case(edges, [1, 2])
+    if differ:
+        with pytest.raises(InputError, match="sector edges .* differ from the case's sectors"):
+            wear_table_columns(case, power)
+    else:
+        assert wear_table_columns(case, power)[0]["angle_start"][2] == 0.0
