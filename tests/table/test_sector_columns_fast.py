@@ -209,3 +209,19 @@ def test_power_of_other_sector_edges_is_refused(edges, differ):
             wear_table_columns(case, power)
     else:
         assert wear_table_columns(case, power)[0]["angle_start"][2] == 0.0
+
+
+def test_initial_volumes_of_equal_tuples_keep_their_own_zeros():
+    """term_initial ((0.0,), (0.0,)) then the equal ((-0.0,), (0.0,)): each model's own
+    volumes, V = V0 + K·P·t computed here with P = -0.0 (the sign of zero kept as IEEE adds)."""
+    g = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=L)
+    t = np.array([1.0])
+    for v0 in (0.0, -0.0, 0.0):
+        model = DepthModel(law=get_law("ARCHARD"), geometry=g, powers=(-0.0,),
+                           coefficients_mobile=({"coefficient": K},),
+                           coefficients_obstacle=(None,), sector_arcs=(360.0,),
+                           term_initial=((v0,), (0.0,)))
+        vm = model.sector_table(t)["volume_mobile"]
+        expected = np.float64(v0) + K * np.float64(-0.0) * 1.0 * t[:, None]
+        assert np.signbit(vm).tolist() == np.signbit(expected).tolist()
+        assert bool(np.signbit(vm[0, 0])) == (math.copysign(1.0, v0) < 0)

@@ -416,10 +416,7 @@ class DepthModel:
         """Each term's (mobile, obstacle) volumes at the origin [m³]."""
         n = len(self.powers)
         if self.term_initial is not None:
-            try:
-                return initial_arrays(self.term_initial)
-            except TypeError:  # not hashable (lists): made each time
-                return tuple(np.asarray(v, dtype=float) for v in self.term_initial)
+            return initial_arrays(self.term_initial)
         out = np.zeros((2, n))
         out[:, 0] = self.initial_mobile, self.initial_obstacle
         return out[0], out[1]

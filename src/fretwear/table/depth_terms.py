@@ -6,7 +6,6 @@ names of given coefficients. Split out of :mod:`fretwear.table.depth`; no behavi
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
 from collections.abc import Mapping
@@ -125,14 +124,25 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     return rates.astype(float)  # a new array (the law's result is never handed out)
 
 
-@functools.lru_cache(maxsize=64)
-def initial_arrays(term_initial: tuple) -> tuple[np.ndarray, np.ndarray]:
+def initial_arrays(term_initial) -> tuple[np.ndarray, np.ndarray]:
     """The terms' (mobile, obstacle) volumes at the origin [m³] of a
-    :attr:`DepthModel.term_initial` as read-only float arrays, made once per distinct value (a
-    bundle's contacts of one case share theirs)."""
+    :attr:`DepthModel.term_initial` as float arrays; a tuple of tuples (immutable) made once,
+    kept by identity (a bundle's contacts of one case share theirs; an equal tuple may differ
+    in the sign of a zero), read-only."""
+    found = _INITIAL.get(id(term_initial))
+    if found is not None and found[0] is term_initial:
+        return found[1]
     pm, po = (np.asarray(v, dtype=float) for v in term_initial)
-    pm.flags.writeable = po.flags.writeable = False
+    if type(term_initial) is tuple and all(type(v) is tuple for v in term_initial):
+        pm.flags.writeable = po.flags.writeable = False
+        if len(_INITIAL) >= 64:
+            _INITIAL.clear()
+        _INITIAL[id(term_initial)] = (term_initial, (pm, po))  # the key's object kept alive
     return pm, po
+
+
+#: :func:`initial_arrays` by the id of their tuple (the tuple kept beside them).
+_INITIAL: dict = {}
 
 
 def _check_initial(term_initial) -> None:
