@@ -84,12 +84,19 @@ def _label(name: str) -> str:
 def _plain_pair(mobile, obstacle) -> bool:
     """Whether a pair is two float64 arrays of one shape, each finite and >= 0 (a min or max
     NaN fails too: the general path then takes NaN through): what the general path of
-    :func:`_volumes_or_depths` would copy unchanged, checked in four reductions."""
+    :func:`_volumes_or_depths` would copy unchanged, checked in two reductions."""
     return (type(mobile) is np.ndarray and type(obstacle) is np.ndarray
             and mobile.dtype == np.float64 and obstacle.dtype == np.float64
             and mobile.shape == obstacle.shape and mobile.size > 0
-            and bool(mobile.min() >= 0.0) and bool(obstacle.min() >= 0.0)
-            and bool(mobile.max() < np.inf) and bool(obstacle.max() < np.inf))
+            # np.minimum and np.maximum keep a NaN: min(min(m, o)) is NaN or the least of both
+            and bool(np.minimum(mobile, obstacle).min() >= 0.0)
+            and bool(np.maximum(mobile, obstacle).max() < np.inf))
+
+
+def _plain_result(values, shape: tuple) -> bool:
+    """Whether a relation's result is a float64 array of ``shape`` (what ``np.where`` of
+    :meth:`ContactGeometry._apply` would copy unchanged where every input is given)."""
+    return type(values) is np.ndarray and values.dtype == np.float64 and values.shape == shape
 
 
 def _volumes_or_depths(kind: str, mobile, obstacle) -> tuple[np.ndarray, np.ndarray]:
@@ -300,18 +307,31 @@ class ContactGeometry:
     def _apply(self, relation, kind: str, mobile, obstacle):
         """``relation`` on the validated pair of ``kind`` ("volume"/"depth"): NaN inputs give
         NaN, and new NaNs (beyond the range) a RangeWarning at the public method's caller."""
-        a, b = _volumes_or_depths(kind, mobile, obstacle)
-        x, y = relation(a, b)
+        if _plain_pair(mobile, obstacle) and mobile.ndim:  # no NaN given: fewer calls
+            a, b = mobile.copy(), obstacle.copy()  # as _volumes_or_depths copies them
+            x, y = relation(a, b)
+            if _plain_result(x, a.shape) and _plain_result(y, a.shape):
+                x, y = x.copy(), y.copy()  # np.where(given, x, nan) with every input given
+                if np.isnan(np.minimum(x, y).min()):  # a NaN in either (both keep it)
+                    self._say_range(kind, int(np.count_nonzero(np.isnan(x) | np.isnan(y))))
+                return x, y
+        else:
+            a, b = _volumes_or_depths(kind, mobile, obstacle)
+            x, y = relation(a, b)
         given = ~(np.isnan(a) | np.isnan(b))
         x = np.where(given, np.asarray(x, dtype=float), np.nan)
         y = np.where(given, np.asarray(y, dtype=float), np.nan)
-        count = int(np.count_nonzero(given & (np.isnan(x) | np.isnan(y))))
+        self._say_range(kind, int(np.count_nonzero(given & (np.isnan(x) | np.isnan(y)))))
+        return _out(x), _out(y)
+
+    def _say_range(self, kind: str, count: int) -> None:
+        """The RangeWarning of ``count`` new NaNs of :meth:`_apply`, at the public method's
+        caller (none for 0)."""
         if count:
             warnings.warn(
                 f"{self.contact_type}: {count} {kind}(s) {GLOBAL_RANGE} "
                 f"({self.range_limit}); the result there is NaN",
-                RangeWarning, stacklevel=3)
-        return _out(x), _out(y)
+                RangeWarning, stacklevel=4)
 
     def depth_from_volume(self, volume_mobile, volume_obstacle=0.0):
         """Worn depths of mobile and obstacle from their worn volumes.

@@ -371,6 +371,16 @@ class SectorSlices:
     def depth_mobile(self, volume) -> np.ndarray:
         """:func:`sector_depth_mobile` of the sectors' volumes [m³] (last axis: the sectors) [m];
         NaN with a RangeWarning beyond the whole sector."""
+        if type(volume) is np.ndarray and volume.dtype == np.float64 and volume.size \
+                and volume.min() >= 0.0:  # no NaN, none < 0
+            # :func:`_mobile_depth`'s operations where R² − 2a_θ >= 0 everywhere (no NaN, no
+            # inf: where and maximum leave every value as it is, and no warning is due)
+            density = volume / self._width_arc
+            twice = 2.0 * density
+            r = self.mobile_radius
+            root2 = r * r - twice
+            if root2.min() >= 0.0:
+                return twice / (r + np.sqrt(root2))
         v = _checked(volume, "volume", "m³")
         return _depth_within_sector(v / self._width_arc, self.mobile_radius)
 

@@ -207,9 +207,14 @@ class TubeBav(ContactGeometry):
     def _depth_from_volume(self, volume_mobile, volume_obstacle):
         cos_impact = math.cos(self.angle("impact_angle"))
         total = volume_mobile + volume_obstacle
-        depth = flat_trace_depth(total * cos_impact, self.mobile_radius, self.obstacle_width,
+        depth = flat_trace_depth(total if cos_impact == 1.0 else total * cos_impact,  # (V·1 = V)
+                                 self.mobile_radius, self.obstacle_width,
                                  self.angle("tilt_angle"))
-        depth = np.where(depth <= self.max_depth, depth, np.nan)
+        if depth.ndim and depth.size and depth.max() <= self.max_depth:  # no NaN, none beyond
+            if not volume_obstacle.any():  # _unshared's values without a NaN to keep
+                return np.where(total > 0.0, depth, 0.0), np.zeros(depth.shape)
+        else:
+            depth = np.where(depth <= self.max_depth, depth, np.nan)
         if not volume_obstacle.any():  # the bar does not wear: the tube's share is 1 exactly
             return _unshared(depth, total)
         with np.errstate(invalid="ignore", divide="ignore"):

@@ -19,6 +19,8 @@ from fretwear.laws.kwu_statistics import KwuEpriStatistics
 
 #: Marker of a parameter without default (the user must give it).
 REQUIRED = None
+#: The most sets of coefficients a law keeps checked for :meth:`WearLaw.rate`.
+_PLAIN_KEPT = 64
 
 
 @dataclass(frozen=True, eq=False)
@@ -91,6 +93,7 @@ class WearLaw:
         object.__setattr__(self, "_by_keyword",
                            {kw: p for p, kw in self.aster_keywords.items()})
         object.__setattr__(self, "_accepted", frozenset(self.accepted))
+        object.__setattr__(self, "_plain_rates", {})  # :meth:`_rate_coefficients`
 
     @property
     def accepted(self) -> tuple[str, ...]:
@@ -171,18 +174,39 @@ class WearLaw:
         >>> bool(law.rate(np.array([0.02, 0.03]), **c)[1] == law.volume(0.03, 1.0, **c))
         True
         """
-        c = self._for_volume(coefficients)
-        if self._rate is not None and all(type(v) is float and 0.0 < v < math.inf
-                                          for v in c.values()):
+        c, plain = self._rate_coefficients(coefficients)
+        if plain:
             p = np.asarray(power, dtype=float)
+            # every power in [0, inf): the least >= 0 and the greatest < inf (a NaN fails both)
             if p.ndim == 0 and 0.0 <= float(p) < math.inf \
-                    or p.ndim and bool(((p >= 0.0) & (p < math.inf)).all()):
+                    or p.ndim and (not p.size or p.min() >= 0.0 and p.max() < math.inf):
                 return self._rate(p, **c)
         token = models._collected.set([])
         try:
             return self._volume(power, 1.0, **c)
         finally:
             models._collected.reset(token)
+
+    def _rate_coefficients(self, coefficients: dict) -> tuple[dict[str, Any], bool]:
+        """(:meth:`_for_volume` of ``coefficients``, whether :attr:`_rate` takes them: each a
+        plain float > 0 and finite). Those :attr:`_rate` takes are kept per law by the given
+        names and values (at most :data:`_PLAIN_KEPT` sets: a bundle's contacts share theirs;
+        equal floats > 0 are the same number); the dict is then shared: read it only."""
+        key = tuple(coefficients.items())
+        if all(type(v) is float for _, v in key):  # hashable, and 1 is not 1.0 here
+            found = self._plain_rates.get(key)
+            if found is not None:
+                return found, True
+        else:
+            key = None
+        c = self._for_volume(coefficients)
+        plain = self._rate is not None and all(type(v) is float and 0.0 < v < math.inf
+                                               for v in c.values())
+        if plain and key is not None:
+            if len(self._plain_rates) >= _PLAIN_KEPT:
+                self._plain_rates.clear()
+            self._plain_rates[key] = c
+        return c, plain
 
     def equivalent_time(self, volume, power, **coefficients: Any) -> np.ndarray:
         """Duration [s] at which the law reaches ``volume`` [m³] at ``power`` [W] (theory §7)."""

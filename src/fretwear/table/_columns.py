@@ -17,7 +17,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.errors import RangeWarning
-from fretwear.table.schema import SECTOR_COLUMNS
+from fretwear.table.depth_terms import initial_arrays
 
 
 # --------------------------------------------------------------------------- 4. volumes, depths
@@ -27,7 +27,7 @@ def _global_frame(model, head, clock) -> dict:
     return {**head, **model.table_columns(clock.elapsed)}
 
 
-def _sector_frame(model, head, clock, edges) -> dict:
+def _sector_frame(model, power: float, clock, edges) -> dict:
     """The sector table's columns: one row per instant and sector (instant-major), every
     sector at once by the case's :class:`~fretwear.table.DepthModel`
     (:meth:`~fretwear.table.DepthModel.sector_table`; the global depth from the sum of the
@@ -41,30 +41,31 @@ def _sector_frame(model, head, clock, edges) -> dict:
                       stacklevel=4)
     vm, vo = sectors["volume_mobile"], sectors["volume_obstacle"]
     n, m = vm.shape
-    pm, po = model.term_initial
-    pm, po = np.asarray(pm, dtype=float), np.asarray(po, dtype=float)
+    pm, po = initial_arrays(model.term_initial)
     # a replaced tube starts from zero (without a replacement, pm in every row)
     was_m = pm if clock.fresh is None else np.where(clock.replaced[:, None], 0.0, pm)
     total_m, total_o = vm.sum(axis=1), vo.sum(axis=1)
     dm, do = model.body_depths(total_m, total_o)
-    # every float column in one (columns, instants, sectors) block, filled in one pass:
-    # instant-major rows (row = i*m + j); a value per instant repeated over the sectors, a
-    # value per sector over the instants
-    block = np.empty((len(_SECTOR_FLOATS), n, m))
-    for i, values in enumerate((*(head[c] for c in _SECTOR_FLOATS[:4]), total_m, total_o, dm,
-                                do)):
-        block[i] = np.asarray(values)[:, None]
-    edges = np.asarray(edges, dtype=float)  # the sectors' edges [deg]
-    block[8], block[9] = edges[:-1], edges[1:]
+    # every float column in one (columns, instants, sectors) block: instant-major rows (row =
+    # i*m + j); a value per instant repeated over the sectors, a value per sector over the
+    # instants. The case's own rows (instants, durations, origin, angles) and the sector
+    # numbers are a copy of the case's template (:func:`_template`); the contact's filled here
+    template, sector = _template(clock, edges, n, m)
+    block = template.copy()
+    block[3] = power  # the run's power [W] in every row
+    for i, values in ((4, total_m), (5, total_o), (6, dm), (7, do)):
+        block[i] = values[:, None]
     block[10] = np.asarray(model.powers, dtype=float)
     block[11] = vm - was_m
     block[12] = vo - po
     block[13] = sectors["depth_mobile"]
     block[14] = sectors["depth_obstacle"]
     block[15], block[16] = vm, vo
-    data = dict(zip(_SECTOR_FLOATS, block.reshape(len(_SECTOR_FLOATS), n * m), strict=True))
-    data["sector"] = _tiled(np.arange(1, m + 1), n)
-    return {c: data[c] for c in SECTOR_COLUMNS}
+    rows = list(block.reshape(len(_SECTOR_FLOATS), n * m))
+    data = dict(zip(_SECTOR_FLOATS[:8], rows[:8], strict=True))
+    data["sector"] = sector.copy()
+    data.update(zip(_SECTOR_FLOATS[8:], rows[8:], strict=True))
+    return data  # in the order of fretwear.table.schema.SECTOR_COLUMNS
 
 
 #: The float columns of a sector table in the order :func:`_sector_frame` fills them: the
@@ -75,6 +76,33 @@ _SECTOR_FLOATS = ("instant", "duration", "origin", "power", "volume_mobile", "vo
                   "volume_mobile_sector", "volume_obstacle_sector", "depth_mobile_sector",
                   "depth_obstacle_sector", "volume_mobile_cumulated",
                   "volume_obstacle_cumulated")
+
+
+#: Sector templates by their values (:func:`_template`), at most _TEMPLATES_KEPT.
+_TEMPLATES: dict = {}
+_TEMPLATES_KEPT = 64
+
+
+def _template(clock, edges, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """(the float block of :func:`_sector_frame` with the rows that are the case's alone
+    filled: instant (origin + duration), duration, origin [user unit], angle_start, angle_end
+    [deg]; the sector numbers 1..m per instant, int), made once per distinct values (a bundle's
+    contacts of one case share them) and kept read-only: the caller copies them."""
+    edges = np.asarray(edges, dtype=float)  # the sectors' edges [deg]
+    durations, origin = clock.durations, clock.case.origin
+    key = (n, m, edges.tobytes(), durations.tobytes(), float(origin).hex())
+    found = _TEMPLATES.get(key)
+    if found is None:
+        block = np.zeros((len(_SECTOR_FLOATS), n, m))
+        for i, values in enumerate((origin + durations, durations, np.full(n, origin))):
+            block[i] = values[:, None]
+        block[8], block[9] = edges[:-1], edges[1:]
+        sector = _tiled(np.arange(1, m + 1), n)
+        block.flags.writeable = sector.flags.writeable = False
+        if len(_TEMPLATES) >= _TEMPLATES_KEPT:
+            _TEMPLATES.clear()
+        found = _TEMPLATES[key] = (block, sector)
+    return found
 
 
 def _tiled(values: np.ndarray, n: int) -> np.ndarray:

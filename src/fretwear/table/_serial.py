@@ -45,6 +45,10 @@ class FrozenMap(Mapping):
     def __len__(self) -> int:
         return len(self._data)
 
+    def items(self):
+        """The items' view of the underlying dict (read-only: a view has no setter)."""
+        return self._data.items()
+
     def __hash__(self) -> int:
         return hash(tuple(self._data.items()))
 

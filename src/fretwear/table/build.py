@@ -108,7 +108,7 @@ def wear_table_from_case(case: WearCase, source, *, history: ContactHistory | No
     >>> wear_table_from_case(case, 0.01)["volume_mobile"].tolist()  # K·P·t
     [3.6e-13, 7.2e-13]
     """
-    columns, frame, attrs = _table_parts(case, source, history)
+    columns, frame, attrs, _ = _table_parts(case, source, history)
     if frame is None:
         frame = _frame(columns)
     frame.attrs = attrs
@@ -153,9 +153,9 @@ def wear_table_columns(case: WearCase, source, *, history: ContactHistory | None
     >>> wear_table_columns(case, 0.01, attrs=("law", "time_scale"))[1]
     {'law': 'ARCHARD', 'time_scale': 3600.0}
     """
-    columns, frame, attrs = _table_parts(case, source, history,
-                                         None if attrs is None else tuple(attrs))
-    if frame is None and not _plain_numeric(columns):
+    columns, frame, attrs, plain = _table_parts(case, source, history,
+                                                None if attrs is None else tuple(attrs))
+    if frame is None and not (plain or _plain_numeric(columns)):
         frame = _frame(columns)  # what pandas makes of other columns
     if frame is not None:
         frame.attrs = {}  # pandas would deep-copy attrs into every column it hands out
@@ -173,9 +173,10 @@ def _plain_numeric(columns: dict) -> bool:
 
 
 def _table_parts(case: WearCase, source, history: ContactHistory | None, keys=None):
-    """(columns, frame, attrs) of :func:`wear_table_from_case`: the columns, or the frame when
-    the initial table's rows come first (then columns is None), and the metadata (its ``keys``
-    only, when given)."""
+    """(columns, frame, attrs, plain) of :func:`wear_table_from_case`: the columns, or the
+    frame when the initial table's rows come first (then columns is None), the metadata (its
+    ``keys`` only, when given), and whether the columns are those of :func:`_sector_frame`
+    alone (1-d numeric arrays of one length: :func:`_plain_numeric` need not look)."""
     if not isinstance(case, WearCase):
         raise InputError(f"case must be a WearCase (WearCase.from_keywords(...)), got "
                          f"{type(case).__name__}")
@@ -189,14 +190,15 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None, keys=No
     geometry = _geometry(case)
     clock = _Clock(case)
     model = case_model(case, power, result, mobile, obstacle, clock.fresh, geometry)
-    head = {"instant": case.origin + clock.durations, "duration": clock.durations,
-            "origin": np.full(clock.n, case.origin), "power": np.full(clock.n, power)}
     if case.sectors is None:
+        head = {"instant": case.origin + clock.durations, "duration": clock.durations,
+                "origin": np.full(clock.n, case.origin), "power": np.full(clock.n, power)}
         columns = _global_frame(model, head, clock)
     else:
-        columns = _sector_frame(model, head, clock, edges)
+        columns = _sector_frame(model, power, clock, edges)
     state = case.restart.table
     frame = None
+    plain = case.sectors is not None and state is None and case.wall.thickness is None
     if state is not None and len(state.rows):
         after = _after_rows(state.rows, columns, state.row_dtypes)
         if isinstance(after, dict):
@@ -215,7 +217,7 @@ def _table_parts(case: WearCase, source, history: ContactHistory | None, keys=No
         attrs.update(limit)
     if keys is not None:
         attrs = {k: attrs[k] for k in keys if k in attrs}
-    return (columns if frame is None else None), frame, attrs
+    return (columns if frame is None else None), frame, attrs, plain
 
 
 #: Geometries by (contact type, dimensions), at most _GEOMETRIES_KEPT (:func:`_geometry`).
@@ -227,6 +229,11 @@ def _geometry(case: WearCase):
     """The case's geometry (:attr:`WearCase.geometry`: validated when the case was built), one
     per distinct contact type and dimensions: a geometry is immutable, its constants computed
     once for every table of the same contact (a bundle's contacts share them)."""
+    return case.derived("geometry", lambda: _shared_geometry(case))
+
+
+def _shared_geometry(case: WearCase):
+    """The geometry of :func:`_geometry`, one per distinct contact type and dimensions."""
     key = (case.contact_type, tuple(case.dimensions.items()))
     found = _GEOMETRIES.get(key)
     if found is None:
@@ -283,8 +290,10 @@ def _with_run_sectors(case: WearCase, result) -> tuple[WearCase, np.ndarray | No
     if run_edges is None:
         raise InputError("sectors need a contact history with dy and dz (RESU_GENE): a power "
                          "alone (PUIS_USURE) has no contact angle")
-    edges = case.sector_edges
-    if not np.array_equal(np.asarray(run_edges, dtype=float), edges):
+    edges = case.sector_edges  # finite (checked where the case was built)
+    run = np.asarray(run_edges, dtype=float)
+    if not (run.shape == edges.shape and run.tobytes() == edges.tobytes()  # the same floats
+            or np.array_equal(run, edges)):
         raise InputError(f"the PowerResult's sector edges {list(run_edges)} differ from the "
                          f"case's sectors {edges.tolist()} [deg]; compute the power "
                          "with the same sectors")

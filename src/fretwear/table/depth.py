@@ -43,6 +43,7 @@ from fretwear.table.case_values import Wall
 from fretwear.table.depth_rows import EarlierRows
 from fretwear.table.depth_terms import (
     SectorRelation,
+    _check_initial,
     _dict,
     _float_of_shape,
     _geometry,
@@ -50,6 +51,7 @@ from fretwear.table.depth_terms import (
     _rates,
     body_volume,
     given_names,
+    initial_arrays,
 )
 from fretwear.table.limit import time_to_depth
 
@@ -160,10 +162,7 @@ class DepthModel:
             raise InputError(f"wall must be a Wall (fretwear.table.Wall(thickness [m], limit "
                              f"[-]), or a case's WearCase.wall), got {type(self.wall).__name__}")
         if self.term_initial is not None:  # checked once, where the model is built
-            for name, v0 in zip(("mobile", "obstacle"), self.term_initial, strict=True):
-                if not all(math.isfinite(v) and v >= 0 for v in v0):
-                    raise InputError(f"the initial state's sector volumes of the {name} must "
-                                     f"be finite and >= 0 [m³], got {[float(v) for v in v0]}")
+            _check_initial(self.term_initial)
 
     @functools.cached_property
     def earlier(self) -> EarlierRows | None:
@@ -385,7 +384,10 @@ class DepthModel:
         slices = self.slices
         dm = slices.depth_mobile(vm)
         vo = v0o + rate_o * t
-        if slices.obstacle_radius is None and not (rate_o.any() or v0o.any()):
+        if slices.obstacle_radius is None and not (
+                # rate_o is 0 (:func:`_rates`) when no term's obstacle wears
+                (self.coefficients_obstacle.count(None) != len(self.powers) and rate_o.any())
+                or v0o.any()):
             do, unradiused = np.zeros(vm.shape), []  # neither wears nor was worn: depths 0
         elif slices.obstacle_radius is None:
             do = np.where(vo == 0, 0.0, np.nan)
@@ -405,14 +407,16 @@ class DepthModel:
         r_o = self.sector_obstacle_radius
         if r_o is None:
             r_o = getattr(g, "obstacle_radius", None)
-        return sector_slices(g.mobile_radius, g.obstacle_width,
-                             tuple(float(a) for a in self.sector_arcs), r_o)
+        arcs = self.sector_arcs  # a case model's tuple of floats: equal numbers, equal keys
+        if type(arcs) is not tuple:
+            arcs = tuple(float(a) for a in arcs)
+        return sector_slices(g.mobile_radius, g.obstacle_width, arcs, r_o)
 
     def _term_initial(self) -> tuple[np.ndarray, np.ndarray]:
         """Each term's (mobile, obstacle) volumes at the origin [m³]."""
         n = len(self.powers)
         if self.term_initial is not None:
-            return tuple(np.asarray(v, dtype=float) for v in self.term_initial)
+            return initial_arrays(self.term_initial)
         out = np.zeros((2, n))
         out[:, 0] = self.initial_mobile, self.initial_obstacle
         return out[0], out[1]

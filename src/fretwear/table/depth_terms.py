@@ -6,12 +6,14 @@ names of given coefficients. Split out of :mod:`fretwear.table.depth`; no behavi
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
+from fretwear.errors import InputError
 from fretwear.geometry import contact_geometry
 from fretwear.geometry.sectors import sector_geometry, sector_volume_mobile
 from fretwear.laws.registry import WearLaw
@@ -101,12 +103,14 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     not wear; :meth:`~fretwear.laws.WearLaw.rate`, its warnings dropped: the table's own volumes
     already warned), every term in one call of the law where they share their coefficients or
     their coefficients' names."""
-    if all(c is None for c in coefficients):
+    if coefficients.count(None) == len(coefficients):  # (a tuple or list: is, then ==)
         return np.zeros(len(powers))
     if len(powers) == 1:  # one term (a table without sectors)
         return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
     first = coefficients[0]
-    if _plain(first) and all(c is first or (_plain(c) and c == first) for c in coefficients):
+    if _plain(first) and (len(set(map(id, coefficients))) == 1  # one dict for all
+                          or all(c is first or (_plain(c) and c == first)
+                                 for c in coefficients)):
         given = first  # the law's numbers in every sector (one dict for all: no check each)
     else:
         names = {tuple(sorted(c)) for c in coefficients if c is not None}
@@ -118,6 +122,49 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     if rates.shape != (len(powers),):
         rates = np.broadcast_to(rates, (len(powers),))
     return rates.astype(float)  # a new array (the law's result is never handed out)
+
+
+def initial_arrays(term_initial) -> tuple[np.ndarray, np.ndarray]:
+    """The terms' (mobile, obstacle) volumes at the origin [m³] of a
+    :attr:`DepthModel.term_initial` as float arrays; a tuple of tuples (immutable) made once,
+    kept by identity (a bundle's contacts of one case share theirs; an equal tuple may differ
+    in the sign of a zero), read-only."""
+    found = _INITIAL.get(id(term_initial))
+    if found is not None and found[0] is term_initial:
+        return found[1]
+    pm, po = (np.asarray(v, dtype=float) for v in term_initial)
+    if type(term_initial) is tuple and all(type(v) is tuple for v in term_initial):
+        pm.flags.writeable = po.flags.writeable = False
+        if len(_INITIAL) >= 64:
+            _INITIAL.clear()
+        _INITIAL[id(term_initial)] = (term_initial, (pm, po))  # the key's object kept alive
+    return pm, po
+
+
+#: :func:`initial_arrays` by the id of their tuple (the tuple kept beside them).
+_INITIAL: dict = {}
+
+
+def _check_initial(term_initial) -> None:
+    """:attr:`DepthModel.term_initial`'s volumes finite and >= 0 [m³], else an InputError;
+    a tuple found good is remembered (the same tuples for a case's every contact)."""
+    try:
+        if term_initial in _GOOD_INITIAL:
+            return
+    except TypeError:  # not hashable (lists): checked each time
+        pass
+    for name, v0 in zip(("mobile", "obstacle"), term_initial, strict=True):
+        if not all(math.isfinite(v) and v >= 0 for v in v0):
+            raise InputError(f"the initial state's sector volumes of the {name} must "
+                             f"be finite and >= 0 [m³], got {[float(v) for v in v0]}")
+    if type(term_initial) is tuple and all(type(v) is tuple for v in term_initial):
+        if len(_GOOD_INITIAL) >= 64:
+            _GOOD_INITIAL.clear()
+        _GOOD_INITIAL.add(term_initial)
+
+
+#: :attr:`DepthModel.term_initial` values found good by :func:`_check_initial`.
+_GOOD_INITIAL: set = set()
 
 
 def _geometry(contact_type: str | None, dimensions: Mapping[str, float]):
