@@ -166,3 +166,22 @@ def test_the_compiled_motion_pass_gives_the_numpy_numbers(n, monkeypatch):
         if reference[0] > 0 and math.isfinite(reference[1]):  # the speed the check reads
             assert compiled[2] == reference[2]
     assert len(calls) == len(cases)
+
+
+def test_the_median_is_the_partitions_bit_for_bit():
+    """``median`` takes the middle values from numpy's sort: the reference is the partition
+    (numpy's introselect, ``_partition_median``) and :func:`numpy.median`, on arrays with
+    ties, odd and even sizes and zeros of both signs in the middle (compared with their sign:
+    the crossings of ``dy - median`` count by ``numpy.signbit``)."""
+    from fretwear.io.geometry_units import _partition_median, median
+
+    rng = np.random.default_rng(28)
+    cases = [rng.normal(size=n) for n in (3, 4, 999, 1000)]
+    cases += [rng.integers(-3, 4, size=n).astype(float) for n in (5, 6, 1001, 1000)]  # ties
+    cases += [np.array([-0.0, 0.0, 1.0, -1.0, -0.0]), np.array([1.0, -0.0, 0.0, -1.0]),
+              np.array([0.0, -0.0, -0.0, 2.0, -2.0, 0.0]), np.zeros(7), -np.zeros(8),
+              np.array([-1.0, 0.0, 3.0, -0.0])]
+    for a in cases:
+        got, want = median(a), _partition_median(a)
+        assert got == want == float(np.median(a))
+        assert math.copysign(1.0, got) == math.copysign(1.0, want), a

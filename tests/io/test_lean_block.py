@@ -225,3 +225,26 @@ def test_quiet_checks_return_the_messages_they_would_warn(tmp_path, bad):
         quiet.update(chunk, check=True)
         quiet.finish()
     assert quiet.found and quiet.found == stream.found == [str(w.message) for w in loud]
+
+
+
+def test_a_nested_column_never_shifts_the_columns_read(tmp_path):
+    """A struct column (two Parquet columns) ahead of float columns: the lean read takes
+    columns by their Parquet index, which a nested field shifts from the field's position
+    (leaf 2 is ``junk``, field 2 is ``time``). It gives the file up (None: the full path reads
+    it by name) or the very columns named; pyarrow's read by name is the reference."""
+    from fretwear.io.parquet import read_known_block
+
+    n = 50
+    extra = pa.StructArray.from_arrays([pa.array(np.full(n, 7.0)), pa.array(np.full(n, 9.0))],
+                                       ["a", "b"])
+    table = pa.table({"extra": extra, "junk": np.arange(n) + 100.0, "time": np.arange(n) * 1e-3,
+                      "normal_force": np.full(n, 5.0)})
+    path = tmp_path / "nested.parquet"
+    pq.write_table(table, path)
+    read = read_known_block(path, 1000, lambda names, units: [names.index("time"),
+                                                              names.index("normal_force")])
+    if read is not None:
+        expected = pq.read_table(path, columns=["time", "normal_force"])
+        for got, want in zip(read[3], expected.columns, strict=True):
+            np.testing.assert_array_equal(got, want.to_numpy())

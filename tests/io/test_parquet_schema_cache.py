@@ -72,3 +72,27 @@ def test_the_oldest_schema_goes_beyond_sixteen(tmp_path, monkeypatch):
         source = open_parquet(path)
         assert (source.columns, source.units) == _expected(path), path.name
     assert len(parquet._SCHEMAS) == 16
+
+
+def test_files_of_one_key_value_metadata_but_other_columns_get_their_own_names(
+        tmp_path, monkeypatch):
+    """Without a stored Arrow schema (``store_schema=False``) two files may hold the same
+    key-value metadata and other columns: the remembered schema is the one of the same
+    Parquet columns (the key holds their paths), never the other file's names."""
+    monkeypatch.setattr(parquet, "_SCHEMAS", OrderedDict())
+    meta = {"fretwear": '{"name": "A", "metadata": {}}'}
+    files = []
+    for k, names in enumerate((["time", "normal_force", "vt1", "vt2"],
+                               ["t", "fn", "v1", "v2"])):
+        table = pa.table({n: np.arange(3.0) + j for j, n in enumerate(names)})
+        path = tmp_path / f"f{k}.parquet"
+        with pq.ParquetWriter(path, table.schema, store_schema=False) as writer:
+            writer.write_table(table)
+            writer.add_key_value_metadata(meta)
+        files.append(path)
+    kv = [pq.ParquetFile(path).metadata.metadata for path in files]
+    assert kv[0] == kv[1] == {b"fretwear": meta["fretwear"].encode()}
+    for path in files + files[::-1]:
+        source = open_parquet(path)
+        assert (source.columns, source.units) == _expected(path), path.name
+    assert len(parquet._SCHEMAS) == 2

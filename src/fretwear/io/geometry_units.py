@@ -175,12 +175,30 @@ def median(values: np.ndarray) -> float:
     value of a partition, or the mean of the two middle ones), without its generic machinery
     (axes, NaN checks: a quarter of its time on the 10³ samples of a bundle's history).
 
+    The middle values are taken from numpy's sort (vectorised, without branches: 5 µs for a
+    bundle's 10³ fresh samples, against 12 µs for the partition, whose branches the processor
+    mispredicts on data it has not seen; issue 28): the same values, an order statistic being
+    one number, but for the sign of a zero (0.0 and -0.0 compare equal): a zero in the middle
+    is therefore taken from the partition, as before (:func:`_partition_median`).
+
     Examples
     --------
     >>> a = np.array([3.0, 1.0, 4.0, 1.5, 9.0, 2.6])
     >>> median(a) == float(np.median(a)), median(a[:5]) == float(np.median(a[:5]))
     (True, True)
     """
+    k = values.size // 2
+    ordered = np.sort(values)
+    if values.size % 2:
+        if ordered[k] != 0.0:
+            return float(ordered[k])
+    elif ordered[k - 1] != 0.0 and ordered[k] != 0.0:
+        return float((ordered[k - 1] + ordered[k]) / 2.0)
+    return _partition_median(values)
+
+
+def _partition_median(values: np.ndarray) -> float:
+    """:func:`median` from a partition (numpy's introselect), the reference."""
     k = values.size // 2
     if values.size % 2:
         return float(np.partition(values, k)[k])

@@ -13,8 +13,10 @@ file is read or written.
 
 from __future__ import annotations
 
+import inspect
 import json
 import os
+import sys
 from collections import OrderedDict
 from collections.abc import Iterator
 from pathlib import Path
@@ -84,30 +86,42 @@ def _one_chunk(column):
     return column.combine_chunks()
 
 
-#: Names, units and fretwear metadata of recent Arrow schemas, by the footer's key-value metadata
-#: (its stored ``ARROW:schema``): ``schema_arrow`` decodes it at every call (50-60 µs, a sixth
-#: of a 1 000-sample file's open and read), and the files of a bundle share it (issue 28).
+#: Names, units, fretwear metadata and flatness of recent Arrow schemas, by the footer's
+#: key-value metadata (its stored ``ARROW:schema``) and the Parquet schema's column paths:
+#: ``schema_arrow`` decodes it at every call (50-60 µs, a sixth of a 1 000-sample file's open
+#: and read), and the files of a bundle share it (issue 28).
 _SCHEMAS: OrderedDict[tuple, tuple] = OrderedDict()
 
 
-def _schema_of(handle) -> tuple[list[str], dict[int, bytes], bytes]:
-    """Column names, ``{position: unit}`` and ``fretwear`` metadata (bytes: decoded by the
-    caller) of an open ParquetFile's Arrow schema: a function of its Parquet schema and
-    key-value metadata (pyarrow's conversion), remembered by both (:data:`_SCHEMAS`)."""
-    kv, parquet_schema = handle.metadata.metadata, handle.metadata.schema
-    key = None if kv is None else tuple(kv.items())
+def _schema_of(reader) -> tuple[list[str], dict[int, bytes], bytes, bool]:
+    """Column names, ``{position: unit}``, ``fretwear`` metadata (bytes: decoded by the caller)
+    of an open ``pyarrow.parquet.ParquetReader``'s Arrow schema, and whether that schema is
+    flat (one Parquet column a field, in order: a field's position is its column index).
+
+    The names are the Parquet schema's (its column paths), the units and the fretwear metadata
+    come from the footer's key-value metadata (the stored Arrow schema): remembered by both
+    (:data:`_SCHEMAS`). The paths, not ``metadata.schema``: that object costs a file 8-10 µs
+    (a reference cycle with the file's metadata, freed by the garbage collector), a tenth of
+    a 1 000-sample file's read (issue 28). The column types are not remembered: the reader
+    converts each column read by its own type (:func:`_float_array`)."""
+    meta = reader.metadata
+    kv = meta.metadata
+    paths = reader.column_paths
+    key = None if kv is None else (tuple(kv.items()), tuple(map(tuple, paths)))
     cached = None if key is None else _SCHEMAS.get(key)
-    if cached is not None and cached[0].equals(parquet_schema):
-        return list(cached[1]), dict(cached[2]), cached[3]
-    schema = handle.schema_arrow
+    if cached is not None:
+        return list(cached[0]), dict(cached[1]), cached[2], cached[3]
+    schema = reader.schema_arrow
     units = {i: f.metadata[b"units"] for i, f in enumerate(schema)
              if f.metadata and b"units" in f.metadata}
     stored = (schema.metadata or {}).get(b"fretwear", b"")
+    flat = len(paths) == len(schema) and all([n] == p for n, p in zip(schema.names, paths,
+                                                                      strict=True))
     if key is not None:
         if len(_SCHEMAS) >= 16:
             _SCHEMAS.popitem(last=False)  # the oldest (one call: safe beside other threads)
-        _SCHEMAS[key] = (parquet_schema, tuple(schema.names), dict(units), stored)
-    return list(schema.names), units, stored
+        _SCHEMAS[key] = (tuple(schema.names), dict(units), stored, flat)
+    return list(schema.names), units, stored, flat
 
 
 def open_parquet(path: str | os.PathLike) -> Source:
@@ -133,7 +147,7 @@ def open_parquet(path: str | os.PathLike) -> Source:
         # (20 µs of a 1 000-sample file's 220 µs open and read, issue 28)
         stream = require("pyarrow").OSFile(str(path))
         first = pq.ParquetFile(stream, pre_buffer=False)
-        names, unit_bytes, stored_bytes = _schema_of(first)
+        names, unit_bytes, stored_bytes, _ = _schema_of(first.reader)
     except Exception as exc:  # pyarrow raises ArrowInvalid / OSError
         if stream is not None:
             stream.close()
@@ -236,25 +250,50 @@ def read_known_block(path: str | os.PathLike, size: int, positions_of
     >>> read_known_block(p, 1, lambda n, u: [1]) is None   # more rows than a block
     True
     """
-    pq = require("pyarrow.parquet", purpose="reading Parquet")
-    with require("pyarrow").OSFile(os.fspath(path)) as stream:
-        handle = pq.ParquetFile(stream, pre_buffer=False)
+    pa, pq, options = _pyarrow_modules()
+    with pa.OSFile(os.fspath(path)) as stream:
+        # pyarrow's reader itself, opened as ParquetFile(stream, pre_buffer=False) opens it,
+        # without ParquetFile's Python around it (its source resolution, a map of the nested
+        # column paths, the columns looked up by name: 5 µs of a 75 µs read, issue 28)
+        reader = pq.ParquetReader()
         try:
-            rows = handle.metadata.num_rows
+            reader.open(stream, **options)
+            rows = reader.metadata.num_rows
             if not 2 <= rows <= size:
                 return None
-            names, unit_bytes, stored_bytes = _schema_of(handle)
+            names, unit_bytes, stored_bytes, flat = _schema_of(reader)
             units = {i: unit.decode("utf-8") for i, unit in unit_bytes.items()}
             positions = positions_of(names, units)
-            if positions is None:
+            if positions is None or not flat:
                 return None
-            threads = (rows * len(positions) >= _THREADED_VALUES
-                       and require("pyarrow").cpu_count() > 1)
-            table = handle.read(columns=[names[p] for p in positions], use_threads=threads)
+            threads = (rows * len(positions) >= _THREADED_VALUES and pa.cpu_count() > 1)
+            # a flat schema's field positions are its column indices
+            table = reader.read_all(column_indices=positions, use_threads=threads)
         finally:
-            handle.close()
+            reader.close()
     arrays = [_float_array(_one_chunk(table.column(i))) for i in range(len(positions))]
     return names, units, _loads(stored_bytes.decode("utf-8")), arrays
+
+
+def _pyarrow_modules():
+    """pyarrow, pyarrow.parquet (as :func:`require` gives them, from ``sys.modules`` once
+    imported: ``require``'s ``import_module`` costs 2-3 µs a call, issue 28) and the options
+    of ``ParquetReader.open`` that ``ParquetFile(source, pre_buffer=False)`` passes (but for
+    their defaults): no pre-buffering, and ParquetFile's own default of the Arrow extension
+    types where this pyarrow has them (the reader's default differs)."""
+    global _OPEN_OPTIONS
+    pa, pq = sys.modules.get("pyarrow"), sys.modules.get("pyarrow.parquet")
+    if pa is None or pq is None:
+        pq = require("pyarrow.parquet", purpose="reading Parquet")
+        pa = require("pyarrow")
+    if _OPEN_OPTIONS is None:
+        extensions = inspect.signature(pq.ParquetFile).parameters.get("arrow_extensions_enabled")
+        _OPEN_OPTIONS = {"pre_buffer": False} | (
+            {} if extensions is None else {"arrow_extensions_enabled": extensions.default})
+    return pa, pq, _OPEN_OPTIONS
+
+
+_OPEN_OPTIONS: dict | None = None
 
 
 #: Parquet compression of the histories fretwear writes (LZ4_RAW: read by pyarrow >= 9,
