@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import math
 import warnings
+import weakref
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -421,6 +422,45 @@ def test_the_client_freezes_its_old_objects_only_while_it_runs(tmp_path, monkeyp
         assert seen[-1] == (False, 0) and not gc.isenabled()
     finally:
         gc.enable()
+
+
+def test_the_client_freezes_what_survives_a_full_collection_while_it_runs(tmp_path,
+                                                                          monkeypatch):
+    """During run_bundle, what survives a full collection (generation 2) is frozen as well
+    (the records and tasks made since the start: the next full passes skip them), the callback
+    removed and every object unfrozen at the end; a cycle made garbage before the pass is
+    collected by it, not frozen; a pass of a younger generation freezes nothing."""
+    import gc
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    seen = {}
+    real = engine_module.read_manifest
+
+    class Node:
+        pass
+
+    def spy(*args, **kwargs):
+        garbage = Node()
+        garbage.me = garbage  # a cycle, unreachable once this function returns
+        alive = [Node() for _ in range(1000)]  # made during the run, kept to its end
+        young = gc.get_freeze_count()
+        gc.collect(1)
+        seen["after a young pass"] = gc.get_freeze_count() - young
+        ref = weakref.ref(garbage)
+        del garbage
+        before = gc.get_freeze_count()
+        gc.collect()
+        seen["collected"] = ref() is None
+        seen["frozen by the full pass"] = gc.get_freeze_count() - before
+        seen["alive"] = alive
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(engine_module, "read_manifest", spy)
+    callbacks = list(gc.callbacks)
+    run_bundle(manifest, case, scheduler="serial")
+    assert seen["after a young pass"] <= 0 and seen["collected"]
+    assert seen["frozen by the full pass"] >= len(seen["alive"])
+    assert gc.get_freeze_count() == 0 and gc.callbacks == callbacks
 
 
 def test_errors_keep_the_global_depth_range_warning_rather_than_a_sectors(tmp_path):

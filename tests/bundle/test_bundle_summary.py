@@ -466,3 +466,51 @@ def test_summary_is_computed_once_per_limit_and_kept(bundles, monkeypatch):
         result.summary(True)
     with pytest.raises(KeywordError):
         result.summary(True)
+
+
+def test_summary_of_a_table_file_read_by_pieces_of_whole_contacts(bundles, tmp_path):
+    """A result whose table is a Parquet file ranks its contacts from pieces of whole contacts
+    (table_file.contact_pieces, issue 28: the client's memory) exactly as the per-contact loop
+    ranks the whole table read at once (reference_summarize, the independent computation):
+    every bundle's tables end to end under other names (pieces with and without sectors, a
+    sector column with <NA> in some pieces only), one contact a piece, a few, all; and the
+    pieces are the whole read's rows. A table whose contact's rows are not consecutive, or
+    with a row without contact, is read whole (None)."""
+    from fretwear.bundle.result import BundleResult
+    from fretwear.bundle.table_file import SUMMARY_COLUMNS, contact_pieces, read_columns
+
+    tables, infos = [], []
+    for name, (table, contacts) in bundles.items():
+        tables.append(table.assign(contact=table["contact"] + f"@{name}"))
+        infos.append(contacts.assign(contact=contacts["contact"] + f"@{name}"))
+    table, contacts = pd.concat(tables, ignore_index=True), pd.concat(infos, ignore_index=True)
+    path = tmp_path / "table.parquet"
+    table.to_parquet(path, index=False, row_group_size=100)  # groups cut through contacts
+    whole = read_columns(path, SUMMARY_COLUMNS, categorical=("contact",))
+    count, some = table["contact"].nunique(), len(table) // 4
+    for rows, expected in ((1, count), (some, None), (len(table), 1)):
+        pieces = list(contact_pieces(path, SUMMARY_COLUMNS, rows=rows))
+        assert len(pieces) == expected or (expected is None and 3 <= len(pieces) < count)
+        assert sum(p["contact"].nunique() for p in pieces) == count
+        glued = pd.concat(pieces, ignore_index=True)
+        pd.testing.assert_frame_equal(glued.astype({"contact": str}),
+                                      whole.astype({"contact": str}), check_dtype=False,
+                                      check_exact=True)
+    for kw in LIMITS:
+        args = {"limit": None, "limit_m": None, "wall_thickness": None, **kw}
+        expected = reference_summarize(whole, contacts, **args)
+        for rows in (1, some):
+            got = summarize(contact_pieces(path, SUMMARY_COLUMNS, rows=rows), contacts, **args)
+            pd.testing.assert_frame_equal(got, expected, check_exact=True)
+            assert got.attrs == expected.attrs
+    result = BundleResult(table=None, table_file=str(path), errors=pd.DataFrame(),
+                          warnings=pd.DataFrame(), contacts=contacts)
+    pd.testing.assert_frame_equal(result.summary(0.03), reference_summarize(
+        whole, contacts, limit=0.03, limit_m=None, wall_thickness=None), check_exact=True)
+    # read whole: a contact in two runs of rows, a row without contact
+    table.iloc[::-1].to_parquet(path, index=False)
+    assert contact_pieces(path, SUMMARY_COLUMNS) is not None  # reversed: still consecutive
+    table.iloc[np.r_[1:len(table), 0]].to_parquet(path, index=False)
+    assert contact_pieces(path, SUMMARY_COLUMNS) is None
+    table.assign(contact=table["contact"].where(table.index != 5)).to_parquet(path, index=False)
+    assert contact_pieces(path, SUMMARY_COLUMNS) is None

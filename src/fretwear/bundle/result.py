@@ -14,7 +14,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.manifest import IDENTITY
 from fretwear.bundle.result_dataset import build_dataset
-from fretwear.bundle.table_file import SUMMARY_COLUMNS, read_columns
+from fretwear.bundle.table_file import SUMMARY_COLUMNS, contact_pieces, read_columns
 from fretwear.errors import InputError, KeywordError
 from fretwear.table.depth_build import record_model
 from fretwear.table.depth_rows import (
@@ -178,12 +178,17 @@ class BundleResult:
         return ranking.copy()
 
 
-    def _summary_rows(self) -> pd.DataFrame:
+    def _summary_rows(self):
         """The table, or the columns :func:`summarize` reads from ``table_file`` when the
-        table is not read (read for this call, not kept)."""
+        table is not read (read for this call, not kept): a piece of whole contacts at a
+        time (:func:`~fretwear.bundle.table_file.contact_pieces`; issue 28: the whole
+        table's columns and their copies took the client's memory up by 0.7 GB at 10^5
+        contacts), else at once."""
         if self._table is None and self.table_file is not None:
-            return read_columns(Path(self.table_file), SUMMARY_COLUMNS,
-                                categorical=("contact",))  # only factorised (_Contacts)
+            path = Path(self.table_file)
+            pieces = contact_pieces(path, SUMMARY_COLUMNS)
+            return read_columns(path, SUMMARY_COLUMNS, categorical=("contact",)) \
+                if pieces is None else pieces  # contact only factorised (_Contacts)
         return self.table
 
 
@@ -223,11 +228,14 @@ def check_limit(limit) -> None:
                            f"{limit!r}")
 
 
-def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | None,
+def summarize(table, contacts: pd.DataFrame, *, limit: float | None,
               limit_m: float | None, wall_thickness: float | None) -> pd.DataFrame:
     """The ranking of :meth:`BundleResult.summary`.
 
-    The per-contact quantities are taken over the whole table at once (:class:`_Contacts`);
+    ``table`` is the table, or its rows in pieces each holding whole contacts, in the table's
+    order (an iterable of DataFrames: :func:`fretwear.bundle.table_file.contact_pieces`): a
+    contact's values depend on its own rows only, so the ranking is the whole table's.
+    The per-contact quantities are taken over a piece at once (:class:`_Contacts`);
     a contact's depth model (:meth:`_Contacts.time_to`) is inverted only for the contacts
     whose depth reaches the limit.
     """
@@ -238,6 +246,18 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     if limit_m is not None and not (0 < limit_m and math.isfinite(limit_m)):
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     info = contacts.set_index("contact") if len(contacts) else contacts
+    models = ContactModels()
+    rows: list[dict] = []
+    for piece in [table] if isinstance(table, pd.DataFrame) else table:
+        rows += _piece_rows(piece, contacts, info, models, (limit, limit_m, wall_thickness))
+    return _ranking(rows, contacts, limit, limit_m)
+
+
+def _piece_rows(table: pd.DataFrame, contacts: pd.DataFrame, info: pd.DataFrame,
+                models: ContactModels, limits: tuple) -> list[dict]:
+    """The ranking's rows (unranked) of the contacts of ``table``, in their order there;
+    ``limits``: :func:`summarize`'s ``(limit, limit_m, wall_thickness)``."""
+    limit, limit_m, wall_thickness = limits
     # the wear table's own limit instant (law and geometry inverted), for the case's limit
     given = "limit_instant" in table.columns and limit_m is None
     rows = []
@@ -248,7 +268,6 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
     replacements = _lookup(contacts, info, "tube_replacement", per.names, where)
     units = _lookup(contacts, info, "time_unit", per.names, where)
     # each contact's record (its wear case's values): the depth model of its table
-    models = ContactModels()
     geometries = [models.geometry(c, d) for c, d in zip(
         _lookup(contacts, info, "contact_type", per.names, where),
         _lookup(contacts, info, "dimensions", per.names, where), strict=True)]
@@ -300,6 +319,12 @@ def summarize(table: pd.DataFrame, contacts: pd.DataFrame, *, limit: float | Non
         row.update(time_to_limit=t_lim, limit_forecast=forecast, time_to_limit_method=method,
                    note="" if first_nan is None
                    else f"depth beyond the relation's range from instant {first_nan:g}")
+    return rows
+
+
+def _ranking(rows: list[dict], contacts: pd.DataFrame, limit: float | None,
+             limit_m: float | None) -> pd.DataFrame:
+    """:func:`summarize`'s ranking of its rows: identity columns, ranks, ``attrs``."""
     out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
                                       "depth_sector_max",
                                       "wall_thickness", "depth_fraction", "limit_depth",
