@@ -213,8 +213,10 @@ class OutputDirectory:
                               if k not in ("table", "state", "rows_file", "part")}
                              for r in records]}
         # one line, by json.dumps: its C encoder (json.dump to a file, or any indent, takes
-        # the pure-Python one: 0.2 s for the records of 500 contacts)
-        text = json.dumps(meta, default=str)
+        # the pure-Python one: 0.2 s for the records of 500 contacts); without the check of
+        # circular references (an id kept for every dict and list: 10 % of the encoding), which
+        # a record, plain data from a worker's pickle, cannot hold
+        text = json.dumps(meta, default=str, check_circular=False)
         with atomic_write(self.parts / f"{stem}.json", encoding="utf-8", sweep=False) as handle:
             handle.write(text)
         seen: dict = {}
@@ -237,7 +239,7 @@ class OutputDirectory:
             return attrs
         out = {}
         for key, value in attrs.items():
-            if key != "power" and isinstance(value, dict | list):
+            if key != "power" and isinstance(value, (dict, list)):  # a tuple: half the union's cost
                 known = seen.get((key, id(value))) if seen is not None else None
                 if known is not None and known[0] is value:
                     value = known[1]

@@ -50,8 +50,10 @@ SUMMARY_COLUMNS = ("contact", "instant", "sector", "depth_mobile", "power",
 def read_part_file(pq, path: Path, columns: list[str] | None = None):
     """A part's Arrow table (``columns``, or all): ``ParquetFile.read`` on the calling thread,
     the table ``pq.read_table`` gives, at half its cost a part of 100 contacts (no dataset
-    discovery, no thread pool contending with the workers for the machine's cores)."""
-    with pq.ParquetFile(path) as handle:
+    discovery, no thread pool contending with the workers for the machine's cores); without
+    pre-buffering (coalesced reads into a cache, for remote files: a part is a small local
+    file read whole; 3.8 us a contact instead of 4.7 on this machine)."""
+    with pq.ParquetFile(path, pre_buffer=False) as handle:
         return handle.read(columns=columns, use_threads=False)
 
 
@@ -143,7 +145,11 @@ def pa_float(kind) -> bool:
 
 
 def _any_nan(array) -> bool:
-    """Whether a floating-point Arrow column holds a NaN."""
+    """Whether a floating-point Arrow column holds a NaN (a null is not one). Without nulls,
+    by numpy on the column's buffers (0.3 us a contact of a part's 17 float columns, against
+    1.2 for pyarrow's ``is_nan`` and ``any``: two kernels a column)."""
+    if array.null_count == 0:
+        return bool(np.isnan(array.to_numpy()).any())
     import pyarrow.compute as pc
 
     return bool(pc.any(pc.is_nan(array)).as_py())
