@@ -16,7 +16,12 @@ import numpy as np
 
 from fretwear.errors import ConfidenceWarning, InputError
 from fretwear.power.confidence import PowerInterval, batch_means_interval
-from fretwear.power.statistics import ContactStatistics, _jsonable, frozen_arrays
+from fretwear.power.statistics import (
+    ContactStatistics,
+    _jsonable,
+    frozen_arrays,
+    frozen_instance,
+)
 
 __all__ = ["PowerResult"]
 
@@ -173,6 +178,12 @@ class PowerResult:
             warnings.warn(f"{self.name or 'power'} sectors {', '.join(sectors)}: {rest}",
                           ConfidenceWarning, stacklevel=2)
         return out
+
+
+def own_result(**values: Any) -> PowerResult:
+    """``PowerResult(**values)`` (every field given) for a caller that made its arrays for it:
+    they are made read-only in place (:func:`fretwear.power.statistics.frozen_instance`)."""
+    return frozen_instance(PowerResult, values, _ARRAYS)
 
 
 def _copied(value: Any) -> Any:
