@@ -48,7 +48,7 @@ from fretwear.power.ranges import (
     out_of_range,
     speed_scale,
 )
-from fretwear.power.result import PowerResult, own_result
+from fretwear.power.result import PowerResult, own_result, window_powers
 from fretwear.power.statistics import finalize_statistics, merge_groups
 from fretwear.sectors import sector_edges as _sector_edges
 
@@ -372,7 +372,8 @@ class PowerAccumulator:
         check_window_length(T, nb, self.name)
         edges = self._block_edges.copy()
         edges[0], edges[-1] = t_start, t_end
-        total, block_powers, sectors, block_sectors = self._powers(T)
+        total, block_powers, sectors, block_sectors = window_powers(
+            self.power, nb, T, self.sector_edges is not None)
         check_finite_power(total, block_powers, T, self.name)
         mean = float(block_powers[0]) if nb == 1 else float(block_powers.mean())  # x/1 is x
         spread = 0.0 if nb == 1 or mean <= 0 else float(
@@ -391,30 +392,6 @@ class PowerAccumulator:
                           t_start=t_start, t_end=t_end, duration=T, spread=spread,
                           statistics=stats, name=self.name, block_sectors=block_sectors,
                           kwu=None if self.kwu is None else copy.deepcopy(self.kwu))
-
-    def _powers(self, T: float) -> tuple[float, np.ndarray, np.ndarray | None,
-                                         np.ndarray | None]:
-        """The total power, the block powers, the sector powers and the block × sector powers
-        [W] of a window of ``T`` seconds (each a new array; None without sectors).
-
-        One block (a bundle's contact): the same numbers in fewer numpy calls. The row sum is
-        numpy's sum of the one row as the sum of all (the same pairwise sum of the same
-        contiguous values) and divided by T / 1 = T as the total; the sector powers are the
-        one row of block × sector powers: ``sum(axis=0)`` of one row is ``+0.0 + x``, which is
-        x, as the sums never hold -0.0 (they start from +0.0)."""
-        nb = self.blocks
-        with np.errstate(over="ignore"):
-            if nb == 1:
-                total = float(self.power.sum()) / T
-                block_sectors = None if self.sector_edges is None else self.power / T
-                return (total, np.array([total]),
-                        None if block_sectors is None else block_sectors[0], block_sectors)
-            block_powers = self.power.sum(axis=1) / (T / nb)
-            total = float(self.power.sum()) / T
-            if self.sector_edges is None:
-                return total, block_powers, None, None
-            return (total, block_powers, self.power.sum(axis=0) / T,
-                    self.power / (T / nb))
 
 
 def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float]:
