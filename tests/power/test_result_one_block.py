@@ -86,3 +86,28 @@ def test_the_result_is_the_dataclasses_own(blocks):
     again = pickle.loads(pickle.dumps(r))
     assert again.to_dict() == r.to_dict() and not again.block_sectors.flags.writeable
 
+
+
+@pytest.mark.parametrize("backend", ["numpy", "numba"])
+@pytest.mark.parametrize("kind", ["random", "free"])
+def test_the_first_chunk_sums_are_zeros_plus_the_kernels(backend, kind):
+    """The first chunk's sums are taken as the accumulator's (nothing to add them to): equal bit
+    for bit to the zeros they were added to before plus the kernel's sums, as
+    :mod:`fretwear.power.kernels` computes them; a second accumulator fed the same history in
+    two chunks gives the one-shot power (the reduction's associativity, theory §2)."""
+    from fretwear.power.kernels import fused
+    from fretwear.power.statistics import merge_groups
+
+    h = _history(21, 3001, kind)
+    acc = PowerAccumulator(t_start=float(h.time[0]), t_end=float(h.time[-1]), sectors=8,
+                           backend=backend).update(h)
+    s = fused(backend)(h.time, h.normal_force, h.vt1, h.vt2, h.dy, h.dz, h.stick, acc._lo,
+                       acc._hi, acc._block_edges, acc._edges, 0.0, 0.0)
+    _same(acc.power, np.zeros_like(s.power) + s.power)
+    _same(acc.block_stats, np.zeros_like(s.block_stats) + s.block_stats)
+    _same(acc.groups, merge_groups(np.zeros_like(s.groups), s.groups, 0.0))
+    assert acc.force_max == s.force_max
+    two = PowerAccumulator(t_start=float(h.time[0]), t_end=float(h.time[-1]), sectors=8,
+                           backend=backend)
+    two.update(h.window(h.time[0], h.time[1500])).update(h.window(h.time[1500], h.time[-1]))
+    assert two.result().total == pytest.approx(acc.result().total, rel=1e-12, abs=0.0)

@@ -232,6 +232,12 @@ class PowerAccumulator:
                     s.power[...] /= scale
                     s.block_stats[:, _SLIDING] /= scale
             check_finite_sums(s, t, fn, vt1, vt2, self.name)
+        if self.first is None:  # nothing folded in yet: the sums are zeros, and zeros + the
+            # chunk's (fresh arrays, summed from +0.0: never -0.0) are the chunk's own
+            self.power, self.block_stats = s.power, s.block_stats
+            self.force_max = max(self.force_max, s.force_max)
+            self.groups = s.groups  # merge_groups(zeros, g) is a copy of g
+            return
         self.power += s.power
         self.block_stats += s.block_stats
         self.force_max = max(self.force_max, s.force_max)
