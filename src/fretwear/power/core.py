@@ -48,7 +48,7 @@ from fretwear.power.ranges import (
     out_of_range,
     speed_scale,
 )
-from fretwear.power.result import PowerResult
+from fretwear.power.result import PowerResult, own_result, window_powers
 from fretwear.power.statistics import finalize_statistics, merge_groups
 from fretwear.sectors import sector_edges as _sector_edges
 
@@ -232,6 +232,12 @@ class PowerAccumulator:
                     s.power[...] /= scale
                     s.block_stats[:, _SLIDING] /= scale
             check_finite_sums(s, t, fn, vt1, vt2, self.name)
+        if self.first is None:  # nothing folded in yet: the sums are zeros, and zeros + the
+            # chunk's (fresh arrays, summed from +0.0: never -0.0) are the chunk's own
+            self.power, self.block_stats = s.power, s.block_stats
+            self.force_max = max(self.force_max, s.force_max)
+            self.groups = s.groups  # merge_groups(zeros, g) is a copy of g
+            return
         self.power += s.power
         self.block_stats += s.block_stats
         self.force_max = max(self.force_max, s.force_max)
@@ -372,10 +378,8 @@ class PowerAccumulator:
         check_window_length(T, nb, self.name)
         edges = self._block_edges.copy()
         edges[0], edges[-1] = t_start, t_end
-        with np.errstate(over="ignore"):
-            block_powers = self.power.sum(axis=1) / (T / nb)
-            total = float(self.power.sum()) / T
-            sectors = None if self.sector_edges is None else self.power.sum(axis=0) / T
+        total, block_powers, sectors, block_sectors = window_powers(
+            self.power, nb, T, self.sector_edges is not None)
         check_finite_power(total, block_powers, T, self.name)
         mean = float(block_powers[0]) if nb == 1 else float(block_powers.mean())  # x/1 is x
         spread = 0.0 if nb == 1 or mean <= 0 else float(
@@ -388,14 +392,12 @@ class PowerAccumulator:
                 "longer or later window", StationarityWarning, stacklevel=3)
         stats = finalize_statistics(self.block_stats, self.groups, self.force_max, T,
                                     self.force_threshold, self.minimum_rest_time)
-        return PowerResult(total=total, blocks=block_powers, block_edges=edges, sectors=sectors,
-                           sector_edges=None if self.sector_edges is None
-                           else self.sector_edges.copy(),
-                           t_start=t_start, t_end=t_end, duration=T, spread=spread,
-                           statistics=stats, name=self.name,
-                           block_sectors=None if self.sector_edges is None
-                           else self.power / (T / nb),
-                           kwu=None if self.kwu is None else copy.deepcopy(self.kwu))
+        return own_result(total=total, blocks=block_powers, block_edges=edges, sectors=sectors,
+                          sector_edges=None if self.sector_edges is None
+                          else self.sector_edges.copy(),
+                          t_start=t_start, t_end=t_end, duration=T, spread=spread,
+                          statistics=stats, name=self.name, block_sectors=block_sectors,
+                          kwu=None if self.kwu is None else copy.deepcopy(self.kwu))
 
 
 def _time_range(path, chunk_size: int, read_options: dict) -> tuple[float, float]:

@@ -16,7 +16,12 @@ import numpy as np
 
 from fretwear.errors import ConfidenceWarning, InputError
 from fretwear.power.confidence import PowerInterval, batch_means_interval
-from fretwear.power.statistics import ContactStatistics, _jsonable, frozen_arrays
+from fretwear.power.statistics import (
+    ContactStatistics,
+    _jsonable,
+    frozen_arrays,
+    frozen_instance,
+)
 
 __all__ = ["PowerResult"]
 
@@ -173,6 +178,45 @@ class PowerResult:
             warnings.warn(f"{self.name or 'power'} sectors {', '.join(sectors)}: {rest}",
                           ConfidenceWarning, stacklevel=2)
         return out
+
+
+def own_result(**values: Any) -> PowerResult:
+    """``PowerResult(**values)`` (every field given) for a caller that made its arrays for it:
+    they are made read-only in place (:func:`fretwear.power.statistics.frozen_instance`)."""
+    return frozen_instance(PowerResult, values, _ARRAYS)
+
+
+def window_powers(power: np.ndarray, blocks: int, duration: float, sectors: bool
+                  ) -> tuple[float, np.ndarray, np.ndarray | None, np.ndarray | None]:
+    """The total, block, sector and block × sector powers [W] of a window of ``duration`` [s]
+    from its [B, N] block × sector integrals ``power`` [J] (each a new array; None without
+    ``sectors``): ``Σ power / T``, ``power.sum(axis=1) / (T/B)``, ``power.sum(axis=0) / T``,
+    ``power / (T/B)``.
+
+    One block (a bundle's contact): the same numbers in fewer numpy calls. The one row's sum
+    is numpy's sum of all (the same pairwise sum of the same contiguous values), divided by
+    T / 1 = T as the total; the sector powers are the one row of ``power / T``, as
+    ``sum(axis=0)`` of one row is ``+0.0 + x``, which is x: the integrals never hold -0.0
+    (they are sums from +0.0).
+
+    Examples
+    --------
+    >>> total, blocks, by_sector, _ = window_powers(np.array([[1.0, 3.0]]), 1, 2.0, True)
+    >>> total, blocks.tolist(), by_sector.tolist()
+    (2.0, [2.0], [0.5, 1.5])
+    """
+    T = duration
+    with np.errstate(over="ignore"):  # an overflow is refused by check_finite_power
+        if blocks == 1:
+            total = float(power.sum()) / T
+            block_sectors = power / T if sectors else None
+            return (total, np.array([total]),
+                    None if block_sectors is None else block_sectors[0], block_sectors)
+        block_powers = power.sum(axis=1) / (T / blocks)
+        total = float(power.sum()) / T
+        if not sectors:
+            return total, block_powers, None, None
+        return total, block_powers, power.sum(axis=0) / T, power / (T / blocks)
 
 
 def _copied(value: Any) -> Any:

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 
@@ -167,6 +168,25 @@ def frozen_arrays(obj: object, names: tuple[str, ...]) -> None:
             object.__setattr__(obj, name, view)
 
 
+def frozen_instance(cls: type, values: dict[str, Any], arrays: tuple[str, ...]) -> Any:
+    """An instance of the frozen dataclass ``cls`` (no ``__slots__``) holding ``values`` (every
+    field, by name), equal to ``cls(**values)``, for a caller that made its arrays for it.
+
+    ``cls(**values)`` sets each field through ``object.__setattr__`` and then
+    :func:`frozen_arrays` makes a read-only view of each array named in ``arrays`` (the
+    caller's array stays writable); here the arrays themselves are made read-only and the
+    fields set in one dictionary update: 3.4 -> 1 µs for a
+    :class:`~fretwear.power.PowerResult`, a bundle's contact makes two such objects (issue 28).
+    """
+    for name in arrays:
+        value = values[name]
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+    obj = object.__new__(cls)
+    obj.__dict__.update(values)
+    return obj
+
+
 def _jsonable(value):
     if isinstance(value, np.ndarray):  # a list of floats, NaN as None (v != v: NaN)
         if value.ndim > 1:
@@ -292,7 +312,7 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
     else:
         dmean = dmax = pmean = 0.0  # Code_Aster's convention (statch, impact)
     with np.errstate(invalid="ignore", divide="ignore"):
-        return ContactStatistics(
+        return frozen_instance(ContactStatistics, dict(
             duration=T,
             contact_time=ct,
             contact_fraction=ct / T,
@@ -311,4 +331,4 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
             block_contact_fraction=block_stats[:, 0] / tb,
             block_force_mean=block_stats[:, 3] / tb,
             block_sliding_distance=block_stats[:, 5].copy(),
-        )
+        ), _ARRAYS)  # arrays made here: frozen in place
