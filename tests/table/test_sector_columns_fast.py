@@ -225,3 +225,42 @@ def test_initial_volumes_of_equal_tuples_keep_their_own_zeros():
         expected = np.float64(v0) + K * np.float64(-0.0) * 1.0 * t[:, None]
         assert np.signbit(vm).tolist() == np.signbit(expected).tolist()
         assert bool(np.signbit(vm[0, 0])) == (math.copysign(1.0, v0) < 0)
+
+
+def test_a_large_tables_rows_are_not_kept_after_it():
+    """The case's rows kept for the next table (table._columns' templates) are small: a table
+    of 400 instants × 36 sectors (a 2 MB block) is made right, Archard's as above, and not kept
+    (64 such cases held 664 MB for the life of the process)."""
+    from fretwear.table import _columns
+
+    case, power = _case(36, list(np.arange(1.0, 401.0))), _power(36, 30.0)
+    columns, _ = wear_table_columns(case, power)
+    expected = _archard(case, power)
+    for name in ("instant", "sector", "angle_start", "angle_end"):
+        assert np.array_equal(columns[name], expected[name]), name
+    assert columns["depth_mobile_sector"] == pytest.approx(expected["depth_mobile_sector"],
+                                                           rel=1e-13)
+    held = sum(b.nbytes + s.nbytes for b, s in _columns._TEMPLATES.values())
+    assert held <= _columns._TEMPLATES_KEPT * _columns._TEMPLATE_BYTES
+    assert all(b.shape[1:] != (400, 36) for b, _ in _columns._TEMPLATES.values())
+
+
+def test_a_depth_models_coefficients_as_any_sequence():
+    """DepthModel takes its terms' coefficients as any sequence (the dataclass checks their
+    number only): as NumPy object arrays the same depths as tuples (a tuple's ``count`` was
+    asked of them: AttributeError). Reference: the tuples' model."""
+    geometry = contact_geometry("TUBE_BAV", mobile_radius=R, obstacle_width=L)
+
+    def model(mobile, obstacle):
+        return DepthModel(law=get_law("ARCHARD"), geometry=geometry, powers=(0.01, 0.02),
+                          coefficients_mobile=mobile, coefficients_obstacle=obstacle,
+                          time_scale=YEAR, sector_arcs=(1.0, 1.0),
+                          term_initial=((0.0, 0.0), (0.0, 0.0)))
+
+    coef = {"coefficient": K}
+    tuples = model((coef, coef), (None, None)).sector_table(np.array([YEAR]))
+    arrays = model(np.array([coef, coef], dtype=object),
+                   np.array([None, None], dtype=object)).sector_table(np.array([YEAR]))
+    for name in ("depth_mobile", "depth_obstacle"):
+        assert np.array_equal(arrays[name], tuples[name]), name
+    assert tuples["depth_mobile"].all()

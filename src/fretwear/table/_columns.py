@@ -78,9 +78,12 @@ _SECTOR_FLOATS = ("instant", "duration", "origin", "power", "volume_mobile", "vo
                   "volume_obstacle_cumulated")
 
 
-#: Sector templates by their values (:func:`_template`), at most _TEMPLATES_KEPT.
+#: Sector templates by their values (:func:`_template`), at most _TEMPLATES_KEPT, each of at
+#: most _TEMPLATE_BYTES (a larger one is made for its table and not kept: 64 cases of 2 000
+#: instants and 36 sectors held 664 MB): the cache holds at most 4 MB.
 _TEMPLATES: dict = {}
 _TEMPLATES_KEPT = 64
+_TEMPLATE_BYTES = 65_536
 
 
 def _template(clock, edges, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
@@ -99,9 +102,11 @@ def _template(clock, edges, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
         block[8], block[9] = edges[:-1], edges[1:]
         sector = _tiled(np.arange(1, m + 1), n)
         block.flags.writeable = sector.flags.writeable = False
-        if len(_TEMPLATES) >= _TEMPLATES_KEPT:
-            _TEMPLATES.clear()
-        found = _TEMPLATES[key] = (block, sector)
+        found = (block, sector)
+        if block.nbytes + sector.nbytes <= _TEMPLATE_BYTES:
+            if len(_TEMPLATES) >= _TEMPLATES_KEPT:
+                _TEMPLATES.clear()
+            _TEMPLATES[key] = found
     return found
 
 

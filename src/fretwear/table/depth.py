@@ -386,7 +386,7 @@ class DepthModel:
         vo = v0o + rate_o * t
         if slices.obstacle_radius is None and not (
                 # rate_o is 0 (:func:`_rates`) when no term's obstacle wears
-                (self.coefficients_obstacle.count(None) != len(self.powers) and rate_o.any())
+                (any(c is not None for c in self.coefficients_obstacle) and rate_o.any())
                 or v0o.any()):
             do, unradiused = np.zeros(vm.shape), []  # neither wears nor was worn: depths 0
         elif slices.obstacle_radius is None:

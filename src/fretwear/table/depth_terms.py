@@ -103,7 +103,7 @@ def _rates(law, powers, coefficients) -> np.ndarray:
     not wear; :meth:`~fretwear.laws.WearLaw.rate`, its warnings dropped: the table's own volumes
     already warned), every term in one call of the law where they share their coefficients or
     their coefficients' names."""
-    if coefficients.count(None) == len(coefficients):  # (a tuple or list: is, then ==)
+    if all(c is None for c in coefficients):  # any sequence (a DepthModel's, the user's)
         return np.zeros(len(powers))
     if len(powers) == 1:  # one term (a table without sectors)
         return np.array([float(law.rate(float(powers[0]), **coefficients[0]))])
