@@ -128,10 +128,13 @@ def _mobile_depth(density: np.ndarray, radius):
     """(:func:`mobile_depth_from_area_density`, R² − 2a_θ) [m, m²]: the depth is NaN where the
     second is < 0 (exactly where 2a_θ > R²: a difference of two floats has the sign of their
     exact difference) or NaN."""
-    root2 = radius * radius - 2.0 * density
+    twice = 2.0 * density
+    root2 = radius * radius - twice
+    if type(root2) is np.ndarray and root2.size and root2.min() >= 0.0:  # no NaN, none < 0:
+        return twice / (radius + np.sqrt(root2)), root2  # where and maximum change nothing
     with np.errstate(invalid="ignore"):
-        depth = np.where(root2 >= 0.0,
-                         2.0 * density / (radius + np.sqrt(np.maximum(root2, 0.0))), np.nan)
+        depth = np.where(root2 >= 0.0, twice / (radius + np.sqrt(np.maximum(root2, 0.0))),
+                         np.nan)
     return depth, root2
 
 
@@ -371,18 +374,10 @@ class SectorSlices:
     def depth_mobile(self, volume) -> np.ndarray:
         """:func:`sector_depth_mobile` of the sectors' volumes [m³] (last axis: the sectors) [m];
         NaN with a RangeWarning beyond the whole sector."""
-        if type(volume) is np.ndarray and volume.dtype == np.float64 and volume.size \
-                and volume.min() >= 0.0:  # no NaN, none < 0
-            # :func:`_mobile_depth`'s operations where R² − 2a_θ >= 0 everywhere (no NaN, no
-            # inf: where and maximum leave every value as it is, and no warning is due)
-            density = volume / self._width_arc
-            twice = 2.0 * density
-            r = self.mobile_radius
-            root2 = r * r - twice
-            if root2.min() >= 0.0:
-                return twice / (r + np.sqrt(root2))
-        v = _checked(volume, "volume", "m³")
-        return _depth_within_sector(v / self._width_arc, self.mobile_radius)
+        if not (type(volume) is np.ndarray and volume.dtype == np.float64 and volume.size
+                and volume.min() >= 0.0 and volume.max() < np.inf):  # else the checks' copy
+            volume = _checked(volume, "volume", "m³")
+        return _depth_within_sector(volume / self._width_arc, self.mobile_radius)
 
     def depth_obstacle(self, volume) -> np.ndarray:
         """:func:`sector_depth_obstacle` of the sectors' volumes [m³] [m] (needs the bore

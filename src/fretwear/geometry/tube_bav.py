@@ -146,10 +146,12 @@ def flat_trace_depth(volume, mobile_radius, width, tilt=0.0):
     return _out(depth)
 
 
-def _unshared(depth: np.ndarray, total: np.ndarray):
+def _unshared(depth: np.ndarray, total: np.ndarray, nan_free: bool = False):
     """(d_m, d_o) [m] of :meth:`TubeBav._depth_from_volume` when V_o is 0 (or −0) everywhere:
     where V > 0, V_m/V is exactly 1 (V = V_m + 0 is V_m), so d_m = D and d_o = D − D = 0; 0
-    where V is not > 0; NaN where D is."""
+    where V is not > 0; NaN where D is (``nan_free``: D known to hold none)."""
+    if nan_free:
+        return np.where(total > 0.0, depth, 0.0), np.zeros(depth.shape)
     nan = np.isnan(depth)
     return (np.where(nan, np.nan, np.where(total > 0.0, depth, 0.0)),
             np.where(nan, np.nan, 0.0))
@@ -210,13 +212,12 @@ class TubeBav(ContactGeometry):
         depth = flat_trace_depth(total if cos_impact == 1.0 else total * cos_impact,  # (V·1 = V)
                                  self.mobile_radius, self.obstacle_width,
                                  self.angle("tilt_angle"))
-        if depth.ndim and depth.size and depth.max() <= self.max_depth:  # no NaN, none beyond
-            if not volume_obstacle.any():  # _unshared's values without a NaN to keep
-                return np.where(total > 0.0, depth, 0.0), np.zeros(depth.shape)
-        else:
+        # no NaN and none beyond the range: the mask below would change nothing
+        nan_free = bool(depth.ndim and depth.size and depth.max() <= self.max_depth)
+        if not nan_free:
             depth = np.where(depth <= self.max_depth, depth, np.nan)
         if not volume_obstacle.any():  # the bar does not wear: the tube's share is 1 exactly
-            return _unshared(depth, total)
+            return _unshared(depth, total, nan_free)
         with np.errstate(invalid="ignore", divide="ignore"):
             # the share first: exactly 1 when the bar does not wear, so d_o is exactly 0
             depth_mobile = np.where(total > 0.0, depth * (volume_mobile / total), 0.0)
