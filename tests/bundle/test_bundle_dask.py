@@ -110,6 +110,72 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
                          reference(tmp_path / f"histories/t{k}.parquet", case))
 
 
+class _FirstAssignment(distributed.diagnostics.plugin.SchedulerPlugin):
+    """The worker the scheduler first gives each task (before any work stealing moves it)."""
+
+    def __init__(self, scheduler) -> None:
+        self.scheduler, self.first = scheduler, {}
+
+    def transition(self, key, start, finish, *args, **kwargs) -> None:
+        if finish == "processing" and key not in self.first:
+            self.first[key] = self.scheduler.tasks[key].processing_on.address
+
+
+def test_a_large_bundle_is_submitted_in_waves_each_shared_evenly(tmp_path, monkeypatch):
+    """Beyond engine.FIRST_WAVE rows (here 16, the largest wave 32: 80 contacts in waves of 16,
+    32 and 32, engine.waves) the rows are built and submitted wave after wave, the workers
+    computing one while the client builds the next; each wave is its own Dask task group, so
+    the scheduler deals every wave's 8 groups to the 2 workers, 4 each (in one task group, it
+    counted the earlier waves' tasks still held and dealt a whole wave to one worker: 8 and 0;
+    where the tasks then ran is left to Dask's work stealing, not checked). Every contact
+    equals its single-contact table bit for bit, and the run writes the table the serial
+    engine writes. On a cluster set as run_bundle sets its own (cluster.LOCAL_CLUSTER_CONFIG:
+    every task sent to a worker's queue at once; with Dask's default scheduler-side queuing, as
+    this module's other cluster has, the scheduler hands the tasks out as workers free up)."""
+    import dask
+
+    from fretwear.bundle import engine
+    from fretwear.bundle.cluster import LOCAL_CLUSTER_CONFIG
+
+    monkeypatch.setattr(engine, "FIRST_WAVE", 16)
+    monkeypatch.setattr(engine, "LARGEST_WAVE", 32)
+    monkeypatch.setattr(engine, "TASKS_PER_WORKER", 4)
+    manifest, case = write_bundle(tmp_path, oscillator(), 80)
+    steps = []
+    real_map = engine.DaskEngine.map
+    monkeypatch.setattr(engine.DaskEngine, "map", lambda self, fn, items, *a, **k: steps.append(
+        ("map", [len(i[0]) for i in items])) or real_map(self, fn, items, *a, **k))
+    real_build = engine.build_task
+    monkeypatch.setattr(engine, "build_task", lambda base, row, *a, **k: steps.append(
+        ("build", row.contact)) or real_build(base, row, *a, **k))
+    with dask.config.set(LOCAL_CLUSTER_CONFIG):
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           dashboard_address=":0")
+    with cluster:
+        dealt = _FirstAssignment(cluster.scheduler)
+        cluster.scheduler.add_plugin(dealt, name="first-assignment")
+        result = run_bundle(manifest, case, scheduler=cluster.scheduler_address,
+                            output=tmp_path / "out")
+    kinds = [kind for kind, _ in steps]
+    assert kinds == ["build"] * 16 + ["map"] + ["build"] * 32 + ["map"] + ["build"] * 32 + ["map"]
+    assert [v for kind, v in steps if kind == "map"] == [[2] * 8, [4] * 8, [4] * 8]
+    shares: dict = {}  # {a wave's tag (the key's end): {worker: its groups}}
+    for key, worker in dealt.first.items():
+        shares.setdefault(key.rsplit("-", 1)[1], {}).setdefault(worker, []).append(key)
+    assert len(shares) == 3
+    for wave, workers in shares.items():
+        assert sorted(len(groups) for groups in workers.values()) == [4, 4], (wave, workers)
+    assert sorted({key.split("-", 1)[0] for key in dealt.first}) == [
+        "contacts", "contacts1", "contacts2"]
+    assert result.errors.empty and result.stats["done"] == 80
+    serial = run_bundle(manifest, case, scheduler="serial")
+    pd.testing.assert_frame_equal(result.table, serial.table)
+    for k in (0, 17, 79):
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.parquet", case))
+
+
 def test_chunked_contact_same_bits_on_the_cluster_as_in_one_process(tmp_path, address):
     h = oscillator()
     manifest, case = write_bundle(tmp_path, h, 2)

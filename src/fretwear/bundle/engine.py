@@ -14,7 +14,6 @@ written part by part as they arrive.
 from __future__ import annotations
 
 import contextlib
-import gc
 import os
 import stat
 import time
@@ -38,6 +37,7 @@ from fretwear.bundle.cluster import (
     open_engine,
 )
 from fretwear.bundle.datasets import require, store_length
+from fretwear.bundle.frozen import gc_frozen
 from fretwear.bundle.manifest import Manifest, read_manifest
 from fretwear.bundle.manifest_history import check_histories
 from fretwear.bundle.outputs import assemble, outputs_digest  # noqa: F401 - its home until now
@@ -77,43 +77,6 @@ GATHER_AT_END = 2_000
 #: Parquet files smaller than this many bytes per chunk sample are not inspected for splitting
 #: (the time column alone, float64 strictly increasing, takes about 8 bytes per sample).
 _BYTES_PER_SAMPLE = 6
-
-
-@contextlib.contextmanager
-def _gc_frozen():
-    """Run a block with the objects alive at its start frozen (:func:`gc.freeze`): the garbage
-    collector's full passes during the block go over the objects made since, not over every
-    object of the process (pandas, Dask, numba: some 150 000, a full pass 0.08 s on an idle
-    core, 0.1-0.24 s beside two busy workers, one run of 500 contacts in three). Nothing is
-    frozen when the collector is disabled or the process froze objects before the run (their
-    freeze is left as it is); unfrozen at the end, a cycle among the old objects is collected
-    then. Python unfreezes all or nothing: objects another thread of the process freezes while
-    the run goes on (or a concurrent run_bundle's) are unfrozen with them, which costs that
-    thread the speed of its freeze, never a result.
-
-    What survives a full pass during the block is frozen too (:func:`_freeze_survivors`):
-    the records and tasks the client holds grow with the contacts, and each full pass went over
-    all of them again (issue 28: 0.6 s of the client's CPU at 3x10^4 contacts)."""
-    if not gc.isenabled() or gc.get_freeze_count():
-        yield
-        return
-    gc.freeze()
-    gc.callbacks.append(_freeze_survivors)
-    try:
-        yield
-    finally:
-        with contextlib.suppress(ValueError):
-            gc.callbacks.remove(_freeze_survivors)
-        gc.unfreeze()
-
-
-def _freeze_survivors(phase: str, info: dict) -> None:
-    """A :data:`gc.callbacks` callback: at the end of a full pass (generation 2), every object
-    left is alive (the cyclic garbage was just collected): frozen, so that the next full passes
-    go over the objects made since. An object frozen then, found in a garbage cycle later, is
-    collected once the run unfreezes (its memory held until then)."""
-    if phase == "stop" and info.get("generation") == 2:
-        gc.freeze()
 
 
 def _base_case(case) -> dict[str, Any]:
@@ -382,7 +345,7 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
     if dataset_format is not None and dataset_format not in DATASET_FORMATS:
         raise KeywordError(f"dataset_format {dataset_format!r}: choose one of {DATASET_FORMATS}")
     check_limit(limit)
-    with _gc_frozen():
+    with gc_frozen():
         return _run(manifest, case, scheduler, workers, output, force, chunk_size, split_every,
                     retries, table_format, dataset_format, part_size, progress, limit)
 
@@ -414,15 +377,30 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     arrivals = Arrivals(store, records, earlier, len(man.rows), progress, part_size,
                         None if store is None else store.table_writer(
                             [r.contact for r in man.rows], identity, dataset_format))
+    engine = None
     try:
-        _build_tasks(man, base, chunk_size, cases, (earlier, previous), records, pending, built)
-        arrivals.start()
-        before = time.perf_counter()
-        engine = open_engine(scheduler, workers) if pending else SerialEngine()
-        startup = time.perf_counter() - before
         try:
-            handles = _submit_all(engine, pending, store, chunk_size, split_every, retries,
-                                  part_size)
+            # the rows built and submitted wave after wave (:func:`waves`): the workers
+            # compute the first contacts while the client builds the others (issue 28: at
+            # 10^5 contacts the tasks' build and submission, 2 s, left both workers idle)
+            handles: dict[int, tuple[Any, list[ContactTask], PartTarget | None]] = {}
+            startup = 0.0
+            for k, (start, stop) in enumerate(waves(len(man.rows))):
+                wave: list[ContactTask] = []
+                _build_tasks(man.rows[start:stop], man.source, base, chunk_size, cases,
+                             (earlier, previous), records, wave, built)
+                pending += wave
+                if not wave:
+                    continue
+                if engine is None:
+                    before = time.perf_counter()
+                    engine = open_engine(scheduler, workers)
+                    startup = time.perf_counter() - before
+                handles.update(_submit_all(engine, wave, store, chunk_size, split_every,
+                                           retries, part_size,
+                                           f"contacts{k}" if k else "contacts"))
+            arrivals.start()
+            engine = engine or SerialEngine()
             streaming = (store is not None or progress is not None
                          or len(pending) > GATHER_AT_END)
             for handle, value in engine.results([h for h, _, _ in handles.values()], streaming):
@@ -431,7 +409,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             arrivals.close()
             workers_used = engine.workers
         finally:
-            engine.close()
+            if engine is not None:
+                engine.close()
         return assemble(man, records, store, (started, startup), workers_used,
                         dataset_format, limit, built, identity, arrivals.table)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
@@ -443,17 +422,48 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
         raise
 
 
-def _build_tasks(man: Manifest, base: dict[str, Any], chunk_size: int, cases: dict,
+#: Manifest rows of the first wave (:func:`waves`), and of the largest.
+FIRST_WAVE = 1_000
+LARGEST_WAVE = 16_000
+
+
+def waves(rows: int) -> list[tuple[int, int]]:
+    """The manifest's rows ``[start, stop)`` built and submitted together, in order: all at
+    once up to :data:`FIRST_WAVE` rows; beyond, a first wave of that many and each next one
+    twice the one before, up to :data:`LARGEST_WAVE` rows. Each wave's contacts are grouped
+    and dealt to the workers as a whole bundle's are (:func:`task_sizes`,
+    :func:`worker_order`): the workers start on the first wave while the client builds the
+    next (building and submitting a row's task costs the client some 30 us: 3 s at 10^5
+    contacts before any worker started), and every wave is shared evenly between them. (A
+    task of the first waves holds fewer contacts than a whole bundle's would: 63 on 2
+    workers.)
+
+    Examples
+    --------
+    >>> waves(800)
+    [(0, 800)]
+    >>> waves(50_000)[:4], waves(50_000)[-2:]
+    ([(0, 1000), (1000, 3000), (3000, 7000), (7000, 15000)], [(31000, 47000), (47000, 50000)])
+    """
+    out, start, size = [], 0, FIRST_WAVE
+    while start < rows:
+        stop = rows if rows - start <= size else start + size
+        out.append((start, stop))
+        start, size = stop, min(2 * size, LARGEST_WAVE)
+    return out
+
+
+def _build_tasks(rows: list, source: str, base: dict[str, Any], chunk_size: int, cases: dict,
                  directory: tuple[dict, dict], records: dict[str, dict[str, Any]],
                  pending: list[ContactTask], built: dict[str, Any]) -> None:
-    """Every manifest row's task into ``pending`` and its WearCase into ``built``; into
-    ``records`` the rows whose case fails (their earlier rows kept where an earlier run
-    computed them) and those skipped (``directory``: the earlier runs' records, and those
-    to skip: none with force)."""
+    """The task of every manifest row of ``rows`` into ``pending`` and its WearCase into
+    ``built``; into ``records`` the rows whose case fails (their earlier rows kept where an
+    earlier run computed them) and those skipped (``directory``: the earlier runs' records,
+    and those to skip: none with force)."""
     earlier, previous = directory
-    for row in man.rows:
+    for row in rows:
         try:
-            task = build_task(base, row, man.source, chunk_size=chunk_size, cache=cases)
+            task = build_task(base, row, source, chunk_size=chunk_size, cache=cases)
         except ROW_ERRORS as exc:  # with the warnings its case raised before failing
             said = [list(w) for w in getattr(exc, "case_warnings", ())]
             records[row.contact] = kept(failed(
@@ -469,13 +479,17 @@ def _build_tasks(man: Manifest, base: dict[str, Any], chunk_size: int, cases: di
 
 
 def _submit_all(engine, pending: list[ContactTask], store: OutputDirectory | None,
-                chunk_size: int, split_every: int, retries: int, part_size: int
+                chunk_size: int, split_every: int, retries: int, part_size: int,
+                name: str = "contacts"
                 ) -> dict[int, tuple[Any, list[ContactTask], PartTarget | None]]:
     """Submit every pending contact: a long one as its tree of chunk tasks (:func:`plan_chunks`),
     the others in groups, consecutive slices of the manifest (:func:`task_sizes`,
     :func:`slices`, submitted in :func:`worker_order`), their rows written by their workers
     where they see the output directory. Returns ``{id(handle): (handle, its contacts, the
-    part its worker writes or None)}``."""
+    part its worker writes or None)}``. ``name`` begins the groups' keys: Dask's task group
+    (each :func:`waves`' own: the scheduler deals a group's tasks to the workers in runs of
+    its size over their number, counting the tasks of earlier waves still held in one group,
+    which gave a whole wave to one worker)."""
     tag = uuid.uuid4().hex[:8]
     handles: dict[int, tuple[Any, list[ContactTask], PartTarget | None]] = {}
     whole = []
@@ -504,7 +518,7 @@ def _submit_all(engine, pending: list[ContactTask], store: OutputDirectory | Non
     else:
         order = worker_order(len(sizes), engine.workers)
         groups = submitted_slices(whole, sizes, order)
-        keys = [f"contacts-{g[0].contact}-{len(g)}-{tag}" for g in groups]
+        keys = [f"{name}-{g[0].contact}-{len(g)}-{tag}" for g in groups]
         targets = _part_targets(store, groups, part_size)
         mapped = engine.map(run_contacts, groups, chunk_size, keys=keys,
                             retries=retries) if targets is None else \
