@@ -110,6 +110,29 @@ def test_contacts_grouped_in_tasks_keep_their_own_rows_and_failures(tmp_path, ad
                          reference(tmp_path / f"histories/t{k}.parquet", case))
 
 
+def test_groups_are_no_larger_than_a_part_so_their_workers_write_them(tmp_path, address,
+                                                                      monkeypatch):
+    """A run's ``part_size`` bounds its groups (engine.task_sizes' ``largest``): 12 contacts in
+    one task per worker would make groups of 6, more than parts of 4, whose rows the client
+    then gathered and wrote itself in parts of 4 (3 parts); bounded, 4 groups of 3, each
+    written by its worker as one part (4 parts of 3). The rows are the single-contact tables
+    either way."""
+    from fretwear.bundle import engine
+
+    monkeypatch.setattr(engine, "TASKS_PER_WORKER", 1)
+    manifest, case = write_bundle(tmp_path, oscillator(), 12)
+    result = run_bundle(manifest, case, scheduler=address, output=tmp_path / "out",
+                        part_size=4)
+    parts = [json.loads(p.read_text()) for p in sorted((tmp_path / "out" / "parts").glob(
+        "*.json"))]
+    assert sorted(len(p["contacts"]) for p in parts) == [3, 3, 3, 3]
+    assert result.stats["done"] == 12
+    for k in (0, 11):
+        contact = f"R{k // 2 + 1}C{k % 2 + 1}-AVB"
+        assert_identical(rows_of(result, contact),
+                         reference(tmp_path / f"histories/t{k}.parquet", case))
+
+
 class _FirstAssignment(distributed.diagnostics.plugin.SchedulerPlugin):
     """The worker the scheduler first gives each task (before any work stealing moves it)."""
 

@@ -20,8 +20,9 @@ from fretwear.bundle.store import OutputDirectory
 from fretwear.bundle.table_file import PrefixTable
 from fretwear.bundle.worker_parts import PartTarget, written_by_worker
 
-#: Contacts per part file written by the client (a part is also written every PART_SECONDS).
-PART_SIZE = 100
+#: Contacts per part file written by the client (a part is also written every PART_SECONDS),
+#: and the most a worker's part holds (:data:`fretwear.bundle.engine.GROUP_SIZE`).
+PART_SIZE = 250
 PART_SECONDS = 10.0
 
 

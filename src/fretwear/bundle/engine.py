@@ -67,8 +67,13 @@ TASKS_PER_WORKER = 8
 #: Largest group of contacts in one task (:func:`task_sizes`): beyond 8 groups a worker of this
 #: size, a larger bundle makes more groups, so that a task's results (progress, a part, what a
 #: dead worker's retry recomputes, a worker's memory of finished records) stay about a part
-#: (:data:`PART_SIZE`) however large the bundle (50 000 contacts on 2 workers: 3 125 a task).
-GROUP_SIZE = 100
+#: (:data:`PART_SIZE`; never more than the run's ``part_size``) however large the bundle
+#: (50 000 contacts on 2 workers: 3 125 a task without it). 250, not 100 (issue 28, 2x10^4
+#: contacts of 10^3 samples, alternated: the client's CPU 0.209-0.246 -> 0.182-0.213 ms a
+#: contact, the workers' 0.588-0.73 -> 0.55-0.69 ms: each task costs the scheduler, the client
+#: and its worker some milliseconds, its part's file and messages among them; 500 and 1 000
+#: measured as 250).
+GROUP_SIZE = 250
 #: Contacts to compute beyond which the results are fetched as each task finishes even when
 #: nobody watches (no progress, no output directory): below, one gather at the end spares the
 #: client some CPU (500 contacts: 0.18 -> 0.14 s); above, the workers would hold every finished
@@ -151,12 +156,14 @@ def _submit(engine, task: ContactTask, chunks, chunk_size: int, split_every: int
     return engine.submit(finish_contact, task, level[0], key=f"finish-{name}", retries=retries)
 
 
-def task_sizes(contacts: int, workers: int) -> list[int]:
+def task_sizes(contacts: int, workers: int, largest: int | None = None) -> list[int]:
     """How many contacts each Dask task computes, in submission order.
 
     One contact per task for a bundle of fewer than :data:`TASKS_PER_WORKER` contacts per
     worker. Otherwise ``TASKS_PER_WORKER × workers`` groups, or more (a multiple of the
-    workers) so that none holds more than :data:`GROUP_SIZE` contacts, their sizes differing by
+    workers) so that none holds more than ``largest`` contacts (default :data:`GROUP_SIZE`;
+    :func:`run_bundle` gives the smaller of it and its ``part_size``, so that a group's rows
+    make one part its worker writes), their sizes differing by
     one at most, the larger ones spread evenly along the order (:func:`_spread`): the cost of a
     task (the scheduler's and the client's CPU, shared with the workers on a small machine:
     about 4 ms a task) is spread over the group, and the scheduler, which gives each worker a
@@ -176,12 +183,16 @@ def task_sizes(contacts: int, workers: int) -> list[int]:
     (16, [31, 31, 31, 32], 250, 250)
     >>> sizes = task_sizes(50_000, 2)
     >>> len(sizes), max(sizes), sum(sizes)
+    (200, 250, 50000)
+    >>> sizes = task_sizes(50_000, 2, largest=100)
+    >>> len(sizes), max(sizes), sum(sizes)
     (500, 100, 50000)
     """
     w = max(1, workers)
     if contacts < TASKS_PER_WORKER * w:
         return [1] * contacts
-    groups = w * max(TASKS_PER_WORKER, -(-contacts // (GROUP_SIZE * w)))
+    most = max(1, GROUP_SIZE if largest is None else largest)
+    groups = w * max(TASKS_PER_WORKER, -(-contacts // (most * w)))
     size, rest = divmod(contacts, groups)
     return [size + extra for extra in _spread(rest, groups)]
 
@@ -303,7 +314,8 @@ def run_bundle(manifest, case=None, *, scheduler=None, workers: int | None = Non
     dataset_format : str, optional
         ``"zarr"`` (default when zarr is installed) or ``"netcdf"``.
     part_size : int
-        Contacts per part file (>= 1).
+        Contacts per part file (>= 1; default 250), and the most in one Dask task: a task's
+        contacts are written by its worker as one part.
     progress : callable, optional
         ``progress(done, total, record)`` after each contact (done counts skipped ones too).
     limit : float, optional
@@ -508,8 +520,8 @@ def _submit_all(engine, pending: list[ContactTask], store: OutputDirectory | Non
     # scheduler, which deals the groups out evenly by count (submitting each worker's first
     # group early, while the client built the others, left one worker 9 groups and the
     # other 7)
-    sizes = task_sizes(len(whole), engine.workers) if isinstance(engine, DaskEngine) \
-        else [1] * len(whole)
+    sizes = task_sizes(len(whole), engine.workers, min(GROUP_SIZE, part_size)) \
+        if isinstance(engine, DaskEngine) else [1] * len(whole)
     targets = None
     if all(size == 1 for size in sizes):
         groups = [[t] for t in whole]
