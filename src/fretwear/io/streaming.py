@@ -20,6 +20,7 @@ from fretwear.io.channels import build_history, check_lengths, fast_history
 from fretwear.io.guard import warn_whole_read
 from fretwear.io.parquet import read_known_block
 from fretwear.io.plausibility import StreamPlausibility
+from fretwear.io.prefetch import taken
 from fretwear.io.sources import _LAYOUTS, _files, _prepare, _stem
 
 
@@ -89,7 +90,12 @@ def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | N
         layout.append(found)
         return list(found[0].values())
 
-    read = read_known_block(path, size, positions_of)
+    ahead = taken(path, size)  # read ahead of its contact (fretwear.io.prefetch), or read now
+    if ahead is not None and positions_of(ahead[0], ahead[1]) == ahead[4]:
+        read = ahead[:4]
+    else:
+        layout.clear()
+        read = read_known_block(path, size, positions_of)
     if read is None:
         return None
     names, _, stored, arrays = read
