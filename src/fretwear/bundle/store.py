@@ -32,61 +32,20 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
-from fretwear.bundle.csv_table import write_csv
 from fretwear.bundle.datasets import path_stamp, require
+from fretwear.bundle.rows_files import (  # noqa: F401 - read_frame, write_frame: their home until now
+    read_frame,
+    write_frame,
+    write_rows,
+)
 from fretwear.bundle.table_file import PrefixTable, read_columns, read_part_file, stream_table
-from fretwear.bundle.tasks import concat_packed
 from fretwear.errors import InputError
 from fretwear.io.atomic import atomic_path, atomic_write, remove_stale_in
-from fretwear.table.schema import FLOAT_FORMAT
 
 TABLE_FORMATS = ("parquet", "csv")
 #: Marker file of a run's ``parts/`` that workers check (``.shared-<token>``, worker_parts).
 MARKER = ".shared-"
 DATASET_FORMATS = ("zarr", "netcdf")
-
-
-def write_frame(frame: pd.DataFrame, path: Path, fmt: str, *, sweep: bool = True) -> Path:
-    """Write a table atomically as Parquet or CSV (floats round-trip exactly in both);
-    ``sweep``: as :func:`fretwear.io.atomic.atomic_path` (False for a part, whose name is
-    never written twice: :meth:`OutputDirectory.cleanup` sweeps ``parts/`` once)."""
-    if fmt == "parquet":
-        require("pyarrow", purpose="writing Parquet (the csv table format does not need it)")
-    with atomic_path(path, sweep=sweep) as tmp:
-        if fmt == "parquet":
-            frame.to_parquet(tmp, index=False)
-        elif not write_csv(frame, tmp):
-            frame.to_csv(tmp, index=False, float_format=FLOAT_FORMAT)
-    return path
-
-
-#: What pandas reads as missing in a CSV by default: kept for every column but ``contact``,
-#: whose ids are text as written (a contact named ``NA`` or ``None`` read back as missing lost
-#: its rows on a restart from CSV parts).
-_CSV_MISSING = ("", "#N/A", "#N/A N/A", "#NA", "-1.#IND", "-1.#QNAN", "-NaN", "-nan", "1.#IND",
-                "1.#QNAN", "<NA>", "N/A", "NA", "NULL", "NaN", "None", "n/a", "nan", "null")
-
-
-def write_rows(records: list[dict[str, Any]], path: Path, fmt: str) -> list[dict[str, Any]]:
-    """Write the rows of the records that carry a table (``table``, as
-    :func:`fretwear.bundle.tasks.pack` lays it out) end to end as one rows file ``path``
-    (:func:`write_frame`); returns those records (none: nothing written)."""
-    kept = [r for r in records if r.get("table") is not None]
-    if kept:
-        frame = concat_packed([r["contact"] for r in kept], [r["table"] for r in kept])
-        write_frame(frame, path, fmt, sweep=False)
-    return kept
-
-
-def read_frame(path: Path) -> pd.DataFrame:
-    """Read a table written by :func:`write_frame` (a CSV's ``contact`` ids as text, none of
-    them missing)."""
-    if path.suffix == ".parquet":
-        require("pyarrow", purpose="reading a bundle's Parquet table")
-        return pd.read_parquet(path)
-    header = pd.read_csv(path, nrows=0).columns
-    return pd.read_csv(path, dtype={"contact": str}, keep_default_na=False,
-                       na_values={c: list(_CSV_MISSING) for c in header if c != "contact"})
 
 
 def _split(frame: pd.DataFrame, names: list[str], where: dict[str, Any]
