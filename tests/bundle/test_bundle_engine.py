@@ -182,6 +182,39 @@ def test_restart_skips_unchanged_contacts(tmp_path):
     assert len(names) == 1  # forced run wrote its 4 contacts in one part
 
 
+def test_a_restart_in_waves_opens_the_engine_at_the_first_wave_to_compute(tmp_path,
+                                                                           monkeypatch):
+    """In waves (engine.waves; here 4 rows, then 8, for 20 contacts: 4, 8, 8) a restart whose
+    first two waves are all done before opens its engine once, at the third, and computes only
+    that wave's contacts; a restart with nothing to compute opens none. The table is the
+    whole fresh run's."""
+    monkeypatch.setattr(engine_module, "FIRST_WAVE", 4)
+    monkeypatch.setattr(engine_module, "LARGEST_WAVE", 8)
+    assert engine_module.waves(20) == [(0, 4), (4, 12), (12, 20)]
+    manifest, case = write_bundle(tmp_path, oscillator(), 20)
+    whole = run_bundle(manifest, case, scheduler="serial")
+    frame = pd.read_csv(manifest)
+    frame.iloc[:12].to_csv(tmp_path / "first12.csv", index=False)
+    out = tmp_path / "out"
+    run_bundle(tmp_path / "first12.csv", case, scheduler="serial", output=out)
+    opened = []
+    real_open = engine_module.open_engine
+    monkeypatch.setattr(engine_module, "open_engine", lambda *a: opened.append(
+        len(built)) or real_open(*a))
+    built = []
+    real_build = engine_module.build_task
+    monkeypatch.setattr(engine_module, "build_task", lambda *a, **k: built.append(1) or
+                        real_build(*a, **k))
+    again = run_bundle(manifest, case, scheduler="serial", output=out)
+    assert opened == [20]  # once, after the third wave's rows were built
+    assert again.stats["skipped"] == 12 and again.stats["done"] == 8
+    pd.testing.assert_frame_equal(again.table, whole.table)
+    opened.clear()
+    last = run_bundle(manifest, case, scheduler="serial", output=out)
+    assert opened == [] and last.stats["skipped"] == 20
+    pd.testing.assert_frame_equal(last.table, whole.table)
+
+
 def test_csv_outputs_round_trip_exactly(tmp_path):
     manifest, case = write_bundle(tmp_path, oscillator(), 2)
     result = run_bundle(manifest, case, scheduler="serial", output=tmp_path / "o",
