@@ -79,6 +79,8 @@ def prefetch(paths: Iterable[Any], size: int) -> Iterator[int]:
     for path in paths:
         if budget <= 0:
             break
+        if os.fspath(path) in held:  # two contacts of one file: the second reads it itself
+            continue
         try:
             read = read_known_block(path, limit, layout_positions)
         except Exception:  # noqa: BLE001 - its contact's own read says what is wrong
