@@ -98,8 +98,10 @@ def test_what_is_not_read_ahead(tmp_path, monkeypatch, reads):
     with pytest.raises(type(raised.value)) as again:
         _power(broken)
     assert str(again.value) == str(raised.value)
+    reads.clear()
     with prefetch.prefetch([paths[1], paths[1]], 1_000_000) as count:  # one file, read once
         assert count == 1
+    assert reads == [("ahead", "h1.parquet")]
     monkeypatch.setattr(prefetch, "AHEAD_BYTES", 1)  # the first file passes the budget
     with prefetch.prefetch(paths, 1_000_000) as count:
         assert count == 1
