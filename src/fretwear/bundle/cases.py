@@ -421,8 +421,14 @@ class BaseCaseError(FretwearError, ValueError):
 
 def _signature(row: ContactRow) -> str:
     """What a row's wear case depends on besides the base case (rows equal here share it)."""
+    if not row.overrides:  # most rows of a bundle: the same text, not encoded again
+        return _NO_OVERRIDES[row.history.kind == "none"]
     return json.dumps([sorted((".".join(k), _jsonable(v)) for k, v in row.overrides.items()),
                        row.history.kind == "none"], default=str)
+
+
+#: :func:`_signature` of a row without overrides, with a history (False) and without (True).
+_NO_OVERRIDES = {flag: json.dumps([[], flag]) for flag in (False, True)}
 
 
 def _message(exc: Exception, source: str, contact: str) -> str:
