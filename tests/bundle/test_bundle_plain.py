@@ -5,7 +5,9 @@ replaced by one that the part's JSON would write differently."""
 from __future__ import annotations
 
 import json
+import math
 
+import numpy as np
 import pytest
 
 from fretwear.bundle import plain as p
@@ -44,3 +46,26 @@ def test_the_memo_is_bounded_and_stays_right_past_its_bound():
     out = [p.interned("k-bound", v) for v in values]
     assert [json.dumps(o) for o in out] == [json.dumps(v) for v in values]
     assert len(p._VALUES) <= p.INTERNED_MAX
+
+
+@pytest.mark.parametrize("array", [
+    np.array([0.25, -0.0, np.nan, np.inf, -np.inf, 1e308]),
+    np.array([1.5, np.nan], dtype=np.float32),
+    np.array([], dtype=float),
+    np.array([[1.0, np.nan], [np.inf, 2.0]]),  # 2-d: nested lists
+    np.array([1, 2]),  # integers: as they are
+])
+def test_arrays_are_made_plain_as_their_values_one_by_one(array):
+    # the reference: each value made plain by itself (numpy's scalars as Python's, a number
+    # not finite None), nested as tolist() nests them; compared as JSON text (signs of zeros)
+    def each(v):
+        if isinstance(v, np.ndarray):  # a row of a 2-d array
+            return [each(x) for x in v]
+        v = v.item() if isinstance(v, np.generic) else v
+        return None if isinstance(v, float) and not math.isfinite(v) else v
+
+    reference = each(array)
+    got = p.plain(array)
+    assert json.dumps(got) == json.dumps(reference)
+    if array.ndim == 1:  # Python's numbers, not numpy's
+        assert [type(v) for v in got] == [type(v) for v in reference]

@@ -22,6 +22,10 @@ def plain(value: Any) -> Any:
         return value if math.isfinite(value) else None
     if value is None or kind is str or kind is int or kind is bool:
         return value
+    if kind is np.ndarray and value.ndim == 1 and value.dtype.kind == "f":
+        # a power's blocks and sectors: the list's floats checked in place, not one call each
+        isfinite = math.isfinite
+        return [v if isfinite(v) else None for v in value.tolist()]
     if isinstance(value, dict):
         return {str(k): plain(v) for k, v in value.items()}
     if isinstance(value, list | tuple):

@@ -299,7 +299,10 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
     tb = T / nb
     # the window's sums as Python floats: the same IEEE operations as numpy's scalars, without
     # a numpy scalar made at every step (issue 28)
-    tot = block_stats.sum(axis=0).tolist()
+    if nb == 1:  # one row: numpy's sum over it is 0.0 + each value (a -0.0 made +0.0)
+        tot = [0.0 + v for v in block_stats[0].tolist()]
+    else:
+        tot = block_stats.sum(axis=0).tolist()
     ct = tot[0]
     explicit = _explicit(groups)
     count = int(groups[0])
@@ -311,24 +314,30 @@ def finalize_statistics(block_stats: np.ndarray, groups: np.ndarray, force_max: 
         pmean = (groups[12] + sum(peaks)) / count
     else:
         dmean = dmax = pmean = 0.0  # Code_Aster's convention (statch, impact)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return frozen_instance(ContactStatistics, dict(
-            duration=T,
-            contact_time=ct,
-            contact_fraction=ct / T,
-            impact_count=count,
-            impact_duration_mean=float(dmean),
-            impact_duration_max=float(dmax),
-            force_max=float(force_max),
-            impact_peak_force_mean=float(pmean),
-            force_mean_contact=tot[1] / ct if ct > 0 else 0.0,  # fstat0's convention
-            force_rms_contact=math.sqrt(tot[2] / ct) if ct > 0 else 0.0,
-            force_mean=tot[3] / T,
-            force_rms=math.sqrt(max(tot[4], 0.0) / T),
-            sliding_distance=tot[5],
-            force_threshold=float(force_threshold),
-            minimum_rest_time=float(minimum_rest_time),
-            block_contact_fraction=block_stats[:, 0] / tb,
-            block_force_mean=block_stats[:, 3] / tb,
-            block_sliding_distance=block_stats[:, 5].copy(),
-        ), _ARRAYS)  # arrays made here: frozen in place
+    if 0.0 < tb < math.inf:
+        # x / tb raises neither invalid nor divide by a finite block length > 0: the arrays
+        # without np.errstate's swap (about 1.5 µs; its overflow was never silenced)
+        blocks = (block_stats[:, 0] / tb, block_stats[:, 3] / tb)
+    else:
+        with np.errstate(invalid="ignore", divide="ignore"):
+            blocks = (block_stats[:, 0] / tb, block_stats[:, 3] / tb)
+    return frozen_instance(ContactStatistics, dict(
+        duration=T,
+        contact_time=ct,
+        contact_fraction=ct / T,
+        impact_count=count,
+        impact_duration_mean=float(dmean),
+        impact_duration_max=float(dmax),
+        force_max=float(force_max),
+        impact_peak_force_mean=float(pmean),
+        force_mean_contact=tot[1] / ct if ct > 0 else 0.0,  # fstat0's convention
+        force_rms_contact=math.sqrt(tot[2] / ct) if ct > 0 else 0.0,
+        force_mean=tot[3] / T,
+        force_rms=math.sqrt(max(tot[4], 0.0) / T),
+        sliding_distance=tot[5],
+        force_threshold=float(force_threshold),
+        minimum_rest_time=float(minimum_rest_time),
+        block_contact_fraction=blocks[0],
+        block_force_mean=blocks[1],
+        block_sliding_distance=block_stats[:, 5].copy(),
+    ), _ARRAYS)  # arrays made here: frozen in place

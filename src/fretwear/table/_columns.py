@@ -53,14 +53,16 @@ def _sector_frame(model, power: float, clock, edges) -> dict:
     template, sector = _template(clock, edges, n, m)
     block = template.copy()
     block[3] = power  # the run's power [W] in every row
-    for i, values in ((4, total_m), (5, total_o), (6, dm), (7, do)):
-        block[i] = values[:, None]
-    block[10] = np.asarray(model.powers, dtype=float)
-    block[11] = vm - was_m
-    block[12] = vo - po
+    # the four values per instant in one assignment, the differences into their rows (no
+    # temporaries): the same numbers, fewer numpy calls (about 1 µs each on 48 rows)
+    block[4:8] = np.array((total_m, total_o, dm, do), dtype=float)[:, :, None]
+    block[10] = model.powers
+    np.subtract(vm, was_m, out=block[11])
+    np.subtract(vo, po, out=block[12])
     block[13] = sectors["depth_mobile"]
     block[14] = sectors["depth_obstacle"]
-    block[15], block[16] = vm, vo
+    block[15] = vm
+    block[16] = vo
     rows = list(block.reshape(len(_SECTOR_FLOATS), n * m))
     data = dict(zip(_SECTOR_FLOATS[:8], rows[:8], strict=True))
     data["sector"] = sector.copy()
