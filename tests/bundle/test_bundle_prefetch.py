@@ -1,13 +1,16 @@
 """A worker's group of contacts reads the small Parquet files of every ``tasks.READ_AHEAD``
-contacts in a row, then computes those contacts in a row (issue 28: fretwear.io.prefetch), each
-file read once; every record equals the contact's computed alone (tasks.run_contact), bit for
-bit: the same read of the same bytes, the same computation."""
+contacts in a row, then computes those contacts' powers in a row, then their tables (issue 28:
+fretwear.io.prefetch, tasks._power_step), each file read once; every record equals the
+contact's computed alone (tasks.run_contact), bit for bit: the same read of the same bytes,
+the same computation, the same warnings in the same order (here a StationarityWarning from the
+power and a RangeWarning from the table, alone and together) and the same failures."""
 
 from __future__ import annotations
 
 from collections import OrderedDict
 
 import numpy as np
+import pandas as pd
 import pytest
 from bundle_helpers import oscillator, write_bundle
 
@@ -21,7 +24,16 @@ pytest.importorskip("pyarrow")
 
 
 def _tasks(tmp_path, count):
-    manifest, case = write_bundle(tmp_path, oscillator(), count)
+    warned = [k % 4 in (1, 2) for k in range(count)]  # the power's StationarityWarning
+    extra = {"law.obstacle.COEF_USURE": [1e-14 if k % 4 in (1, 3) else None  # the table's
+                                         for k in range(count)],
+             "power.blocks": [5 if w else None for w in warned],
+             "power.stationarity_threshold": [1e-6 if w else None for w in warned]}
+    manifest, case = write_bundle(tmp_path, oscillator(), count, extra=extra)
+    frame = pd.read_csv(manifest)
+    frame.loc[5, "history"] = "histories/missing.parquet"
+    frame.to_csv(manifest, index=False)
+    (tmp_path / "histories" / "t6.parquet").write_bytes(b"PAR1 garbage PAR1")
     man = read_manifest(manifest)
     base = load_case(case)
     base["_directory"] = str(man.directory)
@@ -30,7 +42,7 @@ def _tasks(tmp_path, count):
             for row in man.rows]
 
 
-def test_a_group_reads_its_files_ahead_in_batches_with_the_same_records(tmp_path, monkeypatch):
+def test_a_group_reads_ahead_then_computes_powers_then_tables(tmp_path, monkeypatch):
     monkeypatch.setattr(sources, "_LAYOUTS", OrderedDict())
     monkeypatch.setattr(streaming, "_LAYOUTS", sources._LAYOUTS)
     group = _tasks(tmp_path, 20)
@@ -40,15 +52,27 @@ def test_a_group_reads_its_files_ahead_in_batches_with_the_same_records(tmp_path
         real = module.read_known_block
         monkeypatch.setattr(module, "read_known_block", lambda path, *a, _r=real, _w=where: (
             events.append(_w), _r(path, *a))[1])
-    real_table = tasks.wear_table_columns
-    monkeypatch.setattr(tasks, "wear_table_columns", lambda *a, **k: (
-        events.append("table"), real_table(*a, **k))[1])
+    for name in ("wear_power", "wear_table_columns"):
+        real = getattr(tasks, name)
+        monkeypatch.setattr(tasks, name, lambda *a, _r=real, _n=name, **k: (
+            events.append(_n), _r(*a, **k))[1])
     monkeypatch.setattr(tasks, "READ_AHEAD", 8)
     batched = tasks.run_contacts(group)
-    assert events == (["ahead"] * 8 + ["table"] * 8) * 2 + ["ahead"] * 4 + ["table"] * 4
-    assert [r["status"] for r in batched] == ["done"] * 20
+    # every file tried ahead (the missing one (5) and the broken one (6) fail there, then in
+    # their contact's own read: its error, as alone), every power, then every table
+    batch = ["ahead"] * 8 + ["wear_power"] * 8 + ["wear_table_columns"] * 8
+    assert events == batch[:22] + batch + ["ahead"] * 4 + ["wear_power"] * 4 \
+        + ["wear_table_columns"] * 4
+    assert [r["status"] for r in batched] == [r["status"] for r in alone]
+    assert [r["status"] for r in batched].count("failed") == 2
+    assert {w[0] for r in batched for w in r["warnings"]} == {"StationarityWarning",
+                                                              "RangeWarning"}
     for a, b in zip(batched, alone, strict=True):
+        assert (a["warnings"], a["error"]) == (b["warnings"], b["error"])
+        if b["table"] is None:
+            assert a["table"] is None
+            continue
         assert a["table"]["columns"] == b["table"]["columns"]
         for x, y in zip(a["table"]["arrays"], b["table"]["arrays"], strict=True):
             np.testing.assert_array_equal(x, y)
-        assert (a["warnings"], a["attrs"]["power"]) == (b["warnings"], b["attrs"]["power"])
+        assert a["attrs"]["power"] == b["attrs"]["power"]
