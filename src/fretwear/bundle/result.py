@@ -13,6 +13,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.manifest import IDENTITY
+from fretwear.bundle.read_ahead import read_ahead
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.table_file import SUMMARY_COLUMNS, contact_pieces, read_columns
 from fretwear.errors import InputError, KeywordError
@@ -187,8 +188,10 @@ class BundleResult:
         if self._table is None and self.table_file is not None:
             path = Path(self.table_file)
             pieces = contact_pieces(path, SUMMARY_COLUMNS)
+            # the next piece read in a thread while this one is summed up (pyarrow reads
+            # without the GIL): 2 pieces held, not 1
             return read_columns(path, SUMMARY_COLUMNS, categorical=("contact",)) \
-                if pieces is None else pieces  # contact only factorised (_Contacts)
+                if pieces is None else read_ahead(pieces)  # contact only factorised (_Contacts)
         return self.table
 
 
@@ -380,6 +383,17 @@ class _Lookup:
         return [values[i] if i >= 0 else None for i in where.tolist()]
 
 
+def _ordered(codes: np.ndarray, instant: np.ndarray) -> bool:
+    """Whether the rows of each contact (``codes``: the contacts factorised in order of first
+    appearance) are consecutive and by instant [table unit], every instant finite."""
+    if codes.size < 2:
+        return bool(np.isfinite(instant).all())
+    step = codes[1:] - codes[:-1]
+    if not ((step >= 0).all() and np.isfinite(instant).all()):
+        return False
+    return bool((instant[1:] >= instant[:-1])[step == 0].all())
+
+
 class _Contacts:
     """Each contact's quantities for :func:`summarize`, taken over the whole table at once.
 
@@ -417,12 +431,22 @@ class _Contacts:
         instant = table["instant"].to_numpy(dtype=float)
         rows = valid.copy()
         has = np.zeros(n, dtype=bool)
+        # a bundle's table: each contact's rows together, by instant (then sector): the
+        # repeated instants are neighbours and the rows already in the order sought (the
+        # general answers took 0.3 s of the summary at 10^5 contacts, issue 28)
+        ordered = _ordered(codes, instant) and table["instant"].dtype == np.float64
         if "sector" in table.columns:
             has[codes[valid & table["sector"].notna().to_numpy()]] = True
-            repeated = pd.DataFrame({"c": codes, "t": table["instant"]}).duplicated().to_numpy()
+            if ordered:  # DataFrame.duplicated's answer (-0.0 is 0.0), from the neighbours
+                repeated = np.zeros(codes.size, dtype=bool)
+                repeated[1:] = (codes[1:] == codes[:-1]) & (instant[1:] == instant[:-1])
+            else:
+                repeated = pd.DataFrame({"c": codes, "t": table["instant"]}).duplicated() \
+                    .to_numpy()
             rows &= ~(has[codes] & repeated)
         pos = np.flatnonzero(rows)
-        pos = pos[np.lexsort((instant[pos], codes[pos]))]  # stable: NaN instants last
+        if not ordered:  # what the lexsort leaves as it is, when ordered
+            pos = pos[np.lexsort((instant[pos], codes[pos]))]  # stable: NaN instants last
         gcode, t = codes[pos], instant[pos]
         self.start = np.searchsorted(gcode, np.arange(n))
         self.end = np.searchsorted(gcode, np.arange(n), side="right")
