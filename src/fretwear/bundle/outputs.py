@@ -11,18 +11,20 @@ written as they arrived: the table is read from them in one pass
 
 from __future__ import annotations
 
+import gc
 import hashlib
 import json
 import math
 import time
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
 from fretwear.bundle.manifest import Manifest
-from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, summary_rows
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.store import OutputDirectory, write_frame
 from fretwear.bundle.table_file import PrefixTable, with_identity
@@ -47,11 +49,15 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     # a restart that skips every contact into a directory whose final files are those of the
     # same records (outputs_digest, recorded in run.json with the files' stamps): the files
     # are not written again, the table is read back from its file (issue 28: a restart of
-    # 10^5 contacts rewrote 4 final files, 88 s)
-    digest = None if store is None else outputs_digest(
-        identity, order, records, store.table_format, dataset_format or "default", limit)
-    unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
-                 and store.unchanged(digest))
+    # 10^5 contacts rewrote 4 final files, 88 s); else the digest is taken below, while the
+    # dataset is being written
+    options = (store.table_format, dataset_format or "default", limit) if store else None
+    digest = None
+    if store is not None and all(records[c]["status"] == "skipped" for c in order):
+        digest = outputs_digest(identity, order, records, *options)
+    unchanged = digest is not None and store.unchanged(digest)
+    if dataset_format is None:
+        dataset_format = "netcdf" if optional("zarr") is None else "zarr"
     # with Parquet parts, table.parquet is written from them while they arrived (table_file.
     # PrefixTable), else by buckets (table_file.stream_table), and the result reads it on
     # demand: the client never holds the whole table (issue 28: 1.3 GB at 10^5 contacts, then
@@ -67,39 +73,83 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
         written.abort()  # not used: its temporary file removed (nothing once finished)
     if not streamed:
         table = _table(order, identity, records, store)
+    table_file = store.table_path() if streamed else None
     # the case of each contact whose rows are its (done, or skipped: done before with the same
     # inputs); a failed contact has none, a stale one the rows of an earlier case
     cases = {c: (built or {})[c] for c in order
              if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
-    contacts = identity.merge(contacts_info(order, records, cases), on="contact", how="right")
-    warns, errors = _news(order, records)
-    errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
-    errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
-                                      how="left")
-    statuses = contacts["status"].value_counts()
-    computed = [records[c] for c in order if records[c]["status"] in ("done", "failed")]
-    samples = int(sum(r.get("samples", 0) for r in computed))
-    started, startup = times
-    stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
-             "failed": int(statuses.get("failed", 0)),
-             "skipped": int(statuses.get("skipped", 0)),
-             "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
-             "startup_seconds": startup, "contacts_per_s": math.nan, "samples": samples,
-             "samples_per_s": math.nan, "workers": workers, "manifest": man.source,
-             # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
-             "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
-    result = BundleResult(table=table, table_file=store.table_path() if streamed else None,
-                          errors=errors_frame,
-                          warnings=pd.DataFrame(warns, columns=["contact", "category",
-                                                                "message"]),
-                          contacts=contacts, stats=stats,
-                          output=None if store is None else str(store.path), cases=cases)
-    if store is not None:
-        _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit,
-                       digest, unchanged)
-    else:
-        _times(result.stats, started, len(computed))
+    # after the last result the workers' cores are free (issue 28: the client's work there was
+    # single-threaded while a core waited): the summary's columns read in a thread from now,
+    # the dataset written in another from its contacts on, while this one makes the rest
+    # (outputs_digest, errors, the summary and the CSV files); the collector off meanwhile (at
+    # 10^5 contacts the records, cases and frames held are millions of objects, each full
+    # collection a walk through them all, started again and again by the objects made here)
+    ahead = None if table_file is None or unchanged else summary_rows(table_file, AHEAD)
+    result = None
+    with _collector_paused(), ThreadPoolExecutor(1) as pool:
+        try:
+            contacts = identity.merge(contacts_info(order, records, cases), on="contact",
+                                      how="right")
+            regions = pool.submit(store.write_zarr_by_regions, contacts) \
+                if ahead is not None and dataset_format == "zarr" else None
+            if store is not None and digest is None:
+                digest = outputs_digest(identity, order, records, *options)
+            warns, errors = _news(order, records)
+            errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
+            errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
+                                              how="left")
+            statuses = contacts["status"].value_counts()
+            computed = [records[c] for c in order
+                        if records[c]["status"] in ("done", "failed")]
+            samples = int(sum(r.get("samples", 0) for r in computed))
+            started, startup = times
+            stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
+                     "failed": int(statuses.get("failed", 0)),
+                     "skipped": int(statuses.get("skipped", 0)),
+                     "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
+                     "startup_seconds": startup, "contacts_per_s": math.nan,
+                     "samples": samples, "samples_per_s": math.nan, "workers": workers,
+                     "manifest": man.source,
+                     # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI
+                     # and VTAN_MAXI
+                     "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
+            result = BundleResult(
+                table=table, table_file=table_file, errors=errors_frame,
+                warnings=pd.DataFrame(warns, columns=["contact", "category", "message"]),
+                contacts=contacts, stats=stats,
+                output=None if store is None else str(store.path), cases=cases,
+                _rows_ahead=ahead)
+            if store is not None:
+                _write_outputs(result, store, records, dataset_format,
+                               (started, len(computed)), limit, digest, unchanged,
+                               (pool, regions))
+            else:
+                _times(result.stats, started, len(computed))
+        finally:
+            if ahead is not None:  # read by the summary, else stopped
+                ahead.close()
+                if result is not None:
+                    result._rows_ahead = None
     return result
+
+
+#: Pieces of the table (:func:`~fretwear.bundle.table_file.contact_pieces`, some 20 MB each)
+#: the summary's reading may be ahead of it at the bundle's end: it starts before the result is
+#: whole, and reading a piece took longer than summing it up (issue 28: 19 pieces at 10^5
+#: contacts, 55 ms to read one, 35 ms to sum it up).
+AHEAD = 4
+
+
+@contextmanager
+def _collector_paused():
+    """Python's cyclic garbage collector off in the block (back on after, where it was)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 #: What a contact's wear case gives to its row of ``BundleResult.contacts`` (the record's
@@ -202,36 +252,35 @@ def _times(stats: dict[str, Any], started: float, count: int) -> None:
     stats["samples_per_s"] = stats["samples"] / busy if busy > 0 else math.nan
 
 
-def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format,
+def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format: str,
                    clock: tuple[float, int], limit: float | None, digest: str,
-                   unchanged: bool = False):
+                   unchanged: bool, started: tuple):
     """The final files; ``summary.csv`` is ``result.summary(limit)``, and ``run.json`` records
     ``limit`` (None: each contact's depth_limit), the ``digest`` of what the files hold
     (:func:`outputs_digest`) and their stamps. ``unchanged``: the files of an earlier run are
-    those of ``digest`` and still as written: only ``run.json`` is written (this run's stats)."""
+    those of ``digest`` and still as written: only ``run.json`` is written (this run's stats).
+    ``started``: the thread pool writing the dataset and the future of its Zarr store written
+    by regions (None: not started)."""
     if unchanged:
         order = ("table.parquet", "table.csv", "dataset.zarr", "dataset.nc", "errors.csv",
                  "warnings.csv", "summary.csv")
         outputs = [o for o in order if o in store.written_before]
     else:
-        if dataset_format is None:
-            dataset_format = "netcdf" if optional("zarr") is None else "zarr"
+        pool, regions = started
         if result.table_file is None:  # else written from the parts already
             store.write_table(result.table)
         # the dataset written from the table file in a thread while this one writes the CSV
-        # files and the summary: after the last result the workers' cores are free (issue 28:
-        # the client's work there was single-threaded while a core waited); in memory, the
-        # table is the result's and the Dataset is built here
-        with ThreadPoolExecutor(1) as pool:
-            dataset = pool.submit(_write_dataset, result, store, dataset_format) \
-                if result.table_file is not None else None
-            write_frame(result.errors, store.path / "errors.csv", "csv")
-            write_frame(result.warnings, store.path / "warnings.csv", "csv")
-            write_frame(result.summary(limit), store.path / "summary.csv", "csv")
-            if dataset is None:
-                _write_dataset(result, store, dataset_format)
-            else:
-                dataset.result()
+        # files and the summary; in memory, the table is the result's and the Dataset is
+        # built here
+        dataset = pool.submit(_write_dataset, result, store, dataset_format, regions) \
+            if result.table_file is not None else None
+        write_frame(result.errors, store.path / "errors.csv", "csv")
+        write_frame(result.warnings, store.path / "warnings.csv", "csv")
+        write_frame(result.summary(limit), store.path / "summary.csv", "csv")
+        if dataset is None:
+            _write_dataset(result, store, dataset_format)
+        else:
+            dataset.result()
         outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
     # the final files written, so that a later run in another format removes only those
     stamps = store.stamps(outputs)
@@ -242,10 +291,15 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))
 
 
-def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str) -> None:
+def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str,
+                   regions=None) -> None:
     """``dataset.zarr`` (or ``.nc``) of the result's table, or the stale one removed where no
-    contact has rows."""
-    if result.table_file is not None and dataset_format == "zarr" \
+    contact has rows; ``regions``: the future of ``store.write_zarr_by_regions`` started
+    already (its answer waited for), None to ask it here."""
+    if regions is not None:
+        if regions.result():
+            return
+    elif result.table_file is not None and dataset_format == "zarr" \
             and store.write_zarr_by_regions(result.contacts):
         return  # from the written table, a group of contacts at a time (issue 28)
     if len(result.table):

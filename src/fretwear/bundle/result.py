@@ -13,7 +13,7 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.manifest import IDENTITY
-from fretwear.bundle.read_ahead import read_ahead
+from fretwear.bundle.read_ahead import ReadAhead
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.table_file import SUMMARY_COLUMNS, contact_pieces, read_columns
 from fretwear.errors import InputError, KeywordError
@@ -99,6 +99,9 @@ class BundleResult:
     #: ``summary()``'s rankings, one per ``(limit, limit_m, wall_thickness)``: a result is
     #: never changed once built, so a ranking is computed once and read after (issue 28).
     _summaries: dict = field(default_factory=dict, repr=False, compare=False)
+    #: the pieces of ``table_file`` the first summary reads, already being read
+    #: (:func:`summary_rows`, started by the bundle's end before the result is whole)
+    _rows_ahead: Any = field(default=None, repr=False, compare=False)
 
     @property
     def dataset(self):
@@ -170,29 +173,47 @@ class BundleResult:
         try:
             ranking = self._summaries.get(key)
         except TypeError:  # an unhashable argument: summarize says what is wrong with it
-            return summarize(self._summary_rows(), self.contacts, limit=limit,
-                             limit_m=limit_m, wall_thickness=wall_thickness)
+            ranking, key = None, None
         if ranking is None:
-            ranking = summarize(self._summary_rows(), self.contacts, limit=limit,
-                                limit_m=limit_m, wall_thickness=wall_thickness)
+            rows = self._summary_rows()
+            try:
+                ranking = summarize(rows, self.contacts, limit=limit, limit_m=limit_m,
+                                    wall_thickness=wall_thickness)
+            finally:
+                if isinstance(rows, ReadAhead):
+                    rows.close()
+            if key is None:
+                return ranking
             self._summaries[key] = ranking
         return ranking.copy()
 
 
     def _summary_rows(self):
         """The table, or the columns :func:`summarize` reads from ``table_file`` when the
-        table is not read (read for this call, not kept): a piece of whole contacts at a
-        time (:func:`~fretwear.bundle.table_file.contact_pieces`; issue 28: the whole
-        table's columns and their copies took the client's memory up by 0.7 GB at 10^5
-        contacts), else at once."""
+        table is not read (read for this call, not kept): :func:`summary_rows`, or the ones
+        the result was made with (``_rows_ahead``, read since, used once)."""
         if self._table is None and self.table_file is not None:
-            path = Path(self.table_file)
-            pieces = contact_pieces(path, SUMMARY_COLUMNS)
-            # the next piece read in a thread while this one is summed up (pyarrow reads
-            # without the GIL): 2 pieces held, not 1
-            return read_columns(path, SUMMARY_COLUMNS, categorical=("contact",)) \
-                if pieces is None else read_ahead(pieces)  # contact only factorised (_Contacts)
+            ahead, self._rows_ahead = self._rows_ahead, None
+            return ahead if ahead is not None else summary_rows(self.table_file)
         return self.table
+
+
+def summary_rows(table_file, depth: int = 1) -> ReadAhead:
+    """The columns of a written Parquet table :func:`summarize` reads, a piece of whole
+    contacts at a time (:func:`~fretwear.bundle.table_file.contact_pieces`; issue 28: the whole
+    table's columns and their copies took the client's memory up by 0.7 GB at 10^5
+    contacts), else the whole table as one piece, read in a thread (:class:`ReadAhead`:
+    ``depth`` pieces ahead of the one summed up, pyarrow reading without the GIL); its
+    ``close()`` stops the reading."""
+    return ReadAhead(_pieces_of(Path(table_file)), depth)
+
+
+def _pieces_of(path: Path):
+    pieces = contact_pieces(path, SUMMARY_COLUMNS)
+    if pieces is None:  # contact only factorised (_Contacts)
+        yield read_columns(path, SUMMARY_COLUMNS, categorical=("contact",))
+    else:
+        yield from pieces
 
 
 def _get_table(self) -> pd.DataFrame:
@@ -270,12 +291,11 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
     owns = lookup("depth_limit", per.names, where)
     replacements = lookup("tube_replacement", per.names, where)
     units = lookup("time_unit", per.names, where)
-    # each contact's record (its wear case's values): the depth model of its table
-    geometries = [models.geometry(c, d) for c, d in zip(
-        lookup("contact_type", per.names, where), lookup("dimensions", per.names, where),
-        strict=True)]
-    records = [dict(zip(RECORD_KEYS, values, strict=True)) for values in zip(
-        *(lookup(key, per.names, where) for key in RECORD_KEYS), strict=True)]
+    # each contact's record (its wear case's values), the depth model of its table: made for
+    # the contacts whose time to the limit is sought only (a dict and a geometry looked up for
+    # each of 10^5 contacts was a fifth of the summary, issue 28)
+    known = [lookup(key, per.names, where) for key in RECORD_KEYS]
+    types, dimensions = (known[RECORD_KEYS.index(key)] for key in ("contact_type", "dimensions"))
     targets, replaced_at, own_limit = [], [], []
     for k, contact in enumerate(per.names):
         given_wall = walls[k]
@@ -311,8 +331,10 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            t_lim, method = per.time_to(k, target, replaced_at[k], bool(reached[k]),
-                                        records[k], geometries[k])
+            t_lim, method = per.time_to(
+                k, target, replaced_at[k], bool(reached[k]),
+                dict(zip(RECORD_KEYS, [values[k] for values in known], strict=True)),
+                models.geometry(types[k], dimensions[k]))
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
@@ -364,13 +386,18 @@ class _Lookup:
         self.index = pd.Index(contacts["contact"]) if contacts["contact"].is_unique else None
         self.columns: dict[str, list] = {}
 
-    def rows_of(self, names: list) -> np.ndarray | None:
-        """Each name's row in the contacts (-1: not there); None where contact ids repeat."""
+    def rows_of(self, names: list) -> np.ndarray | slice | None:
+        """Each name's row in the contacts (-1: not there), a slice where they are rows
+        that follow one another (a piece of a bundle's table: its contacts in manifest
+        order); None where contact ids repeat."""
         if self.index is None:
             return None
-        return self.index.get_indexer(pd.Index(names, dtype=object))
+        where = self.index.get_indexer(pd.Index(names, dtype=object))
+        if where.size and where[0] >= 0 and (where[1:] - where[:-1] == 1).all():
+            return slice(int(where[0]), int(where[-1]) + 1)
+        return where
 
-    def __call__(self, column: str, names: list, where: np.ndarray | None) -> list:
+    def __call__(self, column: str, names: list, where: np.ndarray | slice | None) -> list:
         """The contacts' ``column`` for ``names``, ``where`` their rows (:meth:`rows_of`)."""
         info = self.info
         if column not in info.columns:
@@ -380,6 +407,8 @@ class _Lookup:
         values = self.columns.get(column)
         if values is None:  # the Series' own scalars, as iterating it gives them
             values = self.columns[column] = info[column].tolist()
+        if isinstance(where, slice):
+            return values[where]
         return [values[i] if i >= 0 else None for i in where.tolist()]
 
 
