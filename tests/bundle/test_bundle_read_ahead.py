@@ -2,8 +2,8 @@
 items in order, made ahead in another thread, errors raised where their item is asked for,
 the source closed when stopped early; and the bundle end's column-wise shortcuts against
 the code they replaced: result_dataset._contact_coordinates (one indexer, was
-``info.loc[order, col]`` per column) and result._Contacts' neighbours test of repeated
-instants (was ``DataFrame.duplicated``)."""
+``info.loc[order, col]`` per column) and summary_quantities.ContactQuantities' neighbours
+test of repeated instants (was ``DataFrame.duplicated``)."""
 
 from __future__ import annotations
 
@@ -14,8 +14,8 @@ import pandas as pd
 import pytest
 
 from fretwear.bundle.read_ahead import ReadAhead
-from fretwear.bundle.result import _Contacts
 from fretwear.bundle.result_dataset import _CONTACT_COORDINATES, _contact_coordinates
+from fretwear.bundle.summary_quantities import ContactQuantities
 
 
 def test_items_in_order_made_in_another_thread():
@@ -96,7 +96,7 @@ def test_repeated_instants_are_those_of_duplicated(instants):
     table = pd.DataFrame({"contact": ["a"] * 4 + ["b"] * 4, "instant": instants * 2,
                           "sector": [1, 2, 1, 2] * 2, "depth_mobile": np.arange(8.0),
                           "power": 1.0})
-    per = _Contacts(table, given=False)
+    per = ContactQuantities(table, given=False)
     repeated = table[["contact", "instant"]].duplicated().to_numpy()
     kept = np.flatnonzero(~repeated)
     expected = kept[np.lexsort((table["instant"].to_numpy()[kept],
