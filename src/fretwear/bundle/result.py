@@ -374,18 +374,23 @@ class _Lookup:
     def __init__(self, contacts: pd.DataFrame) -> None:
         self.info = contacts.set_index("contact") if len(contacts) else contacts
         self.index = pd.Index(contacts["contact"]) if contacts["contact"].is_unique else None
+        self.ids = None if self.index is None else contacts["contact"].tolist()
+        self.first: dict | None = None  # id -> its row, made when first asked
         self.columns: dict[str, list] = {}
 
     def rows_of(self, names: list) -> np.ndarray | slice | None:
         """Each name's row in the contacts (-1: not there), a slice where they are rows
         that follow one another (a piece of a bundle's table: its contacts in manifest
-        order); None where contact ids repeat."""
+        order, told by one list comparison: the index's get_indexer of a piece's names took
+        20 ms a piece at 10^5 contacts, issue 28); None where contact ids repeat."""
         if self.index is None:
             return None
-        where = self.index.get_indexer(pd.Index(names, dtype=object))
-        if where.size and where[0] >= 0 and (where[1:] - where[:-1] == 1).all():
-            return slice(int(where[0]), int(where[-1]) + 1)
-        return where
+        if self.first is None:
+            self.first = {name: i for i, name in enumerate(self.ids)}
+        start = self.first.get(names[0], -1) if names else -1
+        if start >= 0 and self.ids[start:start + len(names)] == names:
+            return slice(start, start + len(names))
+        return self.index.get_indexer(pd.Index(names, dtype=object))
 
     def __call__(self, column: str, names: list, where: np.ndarray | slice | None) -> list:
         """The contacts' ``column`` for ``names``, ``where`` their rows (:meth:`rows_of`)."""
