@@ -261,20 +261,28 @@ def summarize(table, contacts: pd.DataFrame, *, limit: float | None,
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     lookup = _Lookup(contacts)
     models = ContactModels()
-    rows: list[dict] = []
+    rows: dict[str, list] = {name: [] for name in _RANKED}
     for piece in [table] if isinstance(table, pd.DataFrame) else table:
-        rows += _piece_rows(piece, lookup, models, (limit, limit_m, wall_thickness))
+        for name, values in _piece_rows(piece, lookup, models,
+                                        (limit, limit_m, wall_thickness)).items():
+            rows[name] += values
     return _ranking(rows, contacts, limit, limit_m)
 
 
+#: The ranking's columns :func:`_piece_rows` gives, in their order (before the identity's).
+_RANKED = ("contact", "instant", "time_unit", "power", "depth", "depth_sector_max",
+           "wall_thickness", "depth_fraction", "limit_depth", "time_to_limit", "limit_forecast",
+           "time_to_limit_method", "note")
+
+
 def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
-                limits: tuple) -> list[dict]:
-    """The ranking's rows (unranked) of the contacts of ``table``, in their order there;
+                limits: tuple) -> dict[str, list]:
+    """The ranking's rows (unranked) of the contacts of ``table``, in their order there, as
+    columns (:data:`_RANKED`: a dict per contact was a third of the summary, issue 28);
     ``limits``: :func:`summarize`'s ``(limit, limit_m, wall_thickness)``."""
     limit, limit_m, wall_thickness = limits
     # the wear table's own limit instant (law and geometry inverted), for the case's limit
     given = "limit_instant" in table.columns and limit_m is None
-    rows = []
     per = ContactQuantities(table, given)
     where = lookup.rows_of(per.names)
     walls = lookup("wall_thickness", per.names, where)
@@ -286,8 +294,8 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
     # each of 10^5 contacts was a fifth of the summary, issue 28)
     known = [lookup(key, per.names, where) for key in RECORD_KEYS]
     types, dimensions = (known[RECORD_KEYS.index(key)] for key in ("contact_type", "dimensions"))
-    targets, replaced_at, own_limit = [], [], []
-    for k, contact in enumerate(per.names):
+    targets, replaced_at, own_limit, wall_of, fractions = [], [], [], [], []
+    for k in range(len(per.names)):
         given_wall = walls[k]
         wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
         its_wall = math.isfinite(wall)
@@ -304,16 +312,11 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
         targets.append(target)
         replaced_at.append(replaced)
-        rows.append({"contact": contact, "instant": per.instant[k],
-                     "time_unit": None if units[k] is None or pd.isna(units[k]) else units[k],
-                     "power": per.power[k],
-                     "depth": per.depth[k], "depth_sector_max": per.sector_max[k],
-                     "wall_thickness": wall,
-                     "depth_fraction": per.depth[k] / wall if wall > 0 else math.nan,
-                     "limit_depth": target})
+        wall_of.append(wall)
+        fractions.append(per.depth[k] / wall if wall > 0 else math.nan)
     reached = per.reaches(targets, replaced_at)
-    for k, row in enumerate(rows):
-        target = targets[k]
+    times, forecasts, methods, notes = [], [], [], []
+    for k, target in enumerate(targets):
         if given and per.has_limit[k] and own_limit[k]:
             # reached by the last instant: by the table's depths, or the instant itself
             t_lim = per.limit_instant[k]
@@ -328,23 +331,25 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
-        forecast = (per.limit_instant[k] if given and per.has_limit[k] and own_limit[k]
-                    else math.nan)
+        forecasts.append(per.limit_instant[k] if given and per.has_limit[k] and own_limit[k]
+                         else math.nan)
         first_nan = per.first_nan[k]
-        row.update(time_to_limit=t_lim, limit_forecast=forecast, time_to_limit_method=method,
-                   note="" if first_nan is None
-                   else f"depth beyond the relation's range from instant {first_nan:g}")
-    return rows
+        times.append(t_lim)
+        methods.append(method)
+        notes.append("" if first_nan is None
+                     else f"depth beyond the relation's range from instant {first_nan:g}")
+    return dict(zip(_RANKED, (
+        per.names, per.instant, [None if u is None or pd.isna(u) else u for u in units],
+        per.power, per.depth, per.sector_max, wall_of, fractions, targets, times, forecasts,
+        methods, notes), strict=True))
 
 
-def _ranking(rows: list[dict], contacts: pd.DataFrame, limit: float | None,
+def _ranking(rows: dict[str, list], contacts: pd.DataFrame, limit: float | None,
              limit_m: float | None) -> pd.DataFrame:
-    """:func:`summarize`'s ranking of its rows: identity columns, ranks, ``attrs``."""
-    out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
-                                      "depth_sector_max",
-                                      "wall_thickness", "depth_fraction", "limit_depth",
-                                      "time_to_limit", "limit_forecast",
-                                      "time_to_limit_method", "note"])
+    """:func:`summarize`'s ranking of its rows (columns of :data:`_RANKED`): identity
+    columns, ranks, ``attrs``."""
+    # no row: the frame a list of no dicts makes (object columns; empty lists: float64)
+    out = pd.DataFrame(rows if rows["contact"] else [], columns=list(_RANKED))
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
     if len(out):
         out = out.merge(contacts[["contact", *ident]], on="contact", how="left")
