@@ -66,9 +66,10 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     streamed = unchanged and _saved_table(store, order)
     if not streamed and store is not None and not any(
             records[c].get("table") is not None for c in order):
-        kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
-        streamed = bool(kept) and (store.finish_table(written)
-                                   or store.stream_table(kept, order, identity))
+        kept = ("done", "skipped", "stale")  # the records with rows: listed where needed
+        streamed = any(records[c]["status"] in kept for c in order) and (
+            store.finish_table(written) or store.stream_table(
+                [records[c] for c in order if records[c]["status"] in kept], order, identity))
     if written is not None:
         written.abort()  # not used: its temporary file removed (nothing once finished)
     if not streamed:
@@ -99,20 +100,23 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
             errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
                                               how="left")
             statuses = contacts["status"].value_counts()
-            computed = [records[c] for c in order
-                        if records[c]["status"] in ("done", "failed")]
-            samples = int(sum(r.get("samples", 0) for r in computed))
+            computed, samples, two_pass = 0, 0, 0  # of the contacts computed this run
+            for c in order:
+                rec = records[c]
+                if rec["status"] in ("done", "failed"):
+                    computed += 1
+                    samples += rec.get("samples", 0)
+                    # history read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
+                    two_pass += rec.get("passes") == 2
             started, startup = times
             stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
                      "failed": int(statuses.get("failed", 0)),
                      "skipped": int(statuses.get("skipped", 0)),
                      "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
                      "startup_seconds": startup, "contacts_per_s": math.nan,
-                     "samples": samples, "samples_per_s": math.nan, "workers": workers,
-                     "manifest": man.source,
-                     # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI
-                     # and VTAN_MAXI
-                     "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
+                     "samples": int(samples), "samples_per_s": math.nan,
+                     "workers": workers, "manifest": man.source,
+                     "two_pass_contacts": int(two_pass)}
             result = BundleResult(
                 table=table, table_file=table_file, errors=errors_frame,
                 warnings=pd.DataFrame(warns, columns=["contact", "category", "message"]),
@@ -121,10 +125,10 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
                 _rows_ahead=ahead)
             if store is not None:
                 _write_outputs(result, store, records, dataset_format,
-                               (started, len(computed)), limit, digest, unchanged,
+                               (started, computed), limit, digest, unchanged,
                                (pool, regions))
             else:
-                _times(result.stats, started, len(computed))
+                _times(result.stats, started, computed)
         finally:
             if ahead is not None:  # read by the summary, else stopped
                 ahead.close()
