@@ -42,6 +42,17 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     wear cases ``built`` (contact -> WearCase) of this run; ``identity``: the manifest's
     identity columns (``contact`` as text), made here when None; ``written``: the table
     written while the results arrived, put in place when whole (else given up)."""
+    # the collector off until the end: at 10^5 contacts the records, cases and frames held
+    # are millions of objects, each full collection a walk through them all, started again
+    # and again by the objects made here (0.25-0.3 s of the end at 10^5, issue 28)
+    with _collector_paused():
+        return _assemble(man, records, store, times, workers, dataset_format, limit, built,
+                         identity, written)
+
+
+def _assemble(man, records, store, times, workers, dataset_format, limit, built, identity,
+              written) -> BundleResult:
+    """:func:`assemble`, the collector paused."""
     order = [r.contact for r in man.rows]
     if identity is None:
         identity = man.identity_frame()
@@ -82,12 +93,10 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     # after the last result the workers' cores are free (issue 28: the client's work there was
     # single-threaded while a core waited): the summary's columns read in a thread from now,
     # the dataset written in another from its contacts on, while this one makes the rest
-    # (outputs_digest, errors, the summary and the CSV files); the collector off meanwhile (at
-    # 10^5 contacts the records, cases and frames held are millions of objects, each full
-    # collection a walk through them all, started again and again by the objects made here)
+    # (outputs_digest, errors, the summary and the CSV files)
     ahead = None if table_file is None or unchanged else summary_rows(table_file, AHEAD)
     result = None
-    with _collector_paused(), ThreadPoolExecutor(1) as pool:
+    with ThreadPoolExecutor(1) as pool:
         try:
             contacts = identity.merge(contacts_info(order, records, cases), on="contact",
                                       how="right")
