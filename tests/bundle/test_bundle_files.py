@@ -190,3 +190,32 @@ def test_the_csv_writer_quotes_texts_as_pandas_does(tmp_path):
         assert write_csv(part, ours)
         part.to_csv(theirs, index=False, float_format=FLOAT_FORMAT)
         assert ours.read_bytes() == theirs.read_bytes(), k
+
+
+def test_the_csv_writer_texts_made_by_pyarrow_are_pandas_bytes(tmp_path):
+    """The texts csv_table.write_csv has pyarrow make (NumPy integers of every width and sign,
+    extremes included; text columns of pandas' ``str`` and ``string`` dtypes, pyarrow or Python
+    storage, none of whose values the csv module quotes: ids, paths, non-ASCII, empty and
+    missing ones; issue 28: the summary's 10^5 ids, paths and ranks) have the bytes of
+    ``DataFrame.to_csv`` (the independent writer); a column with one value to quote is
+    written by the loop, same bytes."""
+    from fretwear.bundle.csv_table import write_csv
+
+    pytest.importorskip("pyarrow")
+    n = 6
+    frame = pd.DataFrame({
+        "rank": np.arange(1, n + 1),
+        "i8": np.array([-128, 127, 0, -1, 5, 5], dtype=np.int8),
+        "u64": np.array([2**64 - 1, 0, 1, 7, 7, 9], dtype=np.uint64),
+        "i64": np.array([-2**63, 2**63 - 1, 0, -10, 10, 3], dtype=np.int64),
+        "contact": pd.array(["c1", "c2", None, "é日本", "", "c1"], dtype="str"),
+        "path": pd.array(["/a/b.parquet", "C:\\x y.h5", "c", None, "d", "e"],
+                         dtype="string[python]"),
+        "note": pd.array(["", "depth beyond", None, "x", "y", "x"], dtype="string"),
+        "quoted": pd.array(["a", "b,c", "d", None, "e", "a"], dtype="str"),
+    })
+    for k, part in enumerate((frame, frame.iloc[:0], frame.drop(columns="quoted"))):
+        ours, theirs = tmp_path / f"ours{k}.csv", tmp_path / f"theirs{k}.csv"
+        assert write_csv(part, ours)
+        part.to_csv(theirs, index=False, float_format=FLOAT_FORMAT)
+        assert ours.read_bytes() == theirs.read_bytes(), k

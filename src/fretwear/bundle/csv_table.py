@@ -31,14 +31,15 @@ def write_csv(frame: pd.DataFrame, path: Path) -> bool:
         return False
     arrays = []
     for name in frame.columns:
-        text = _column_text(frame[name])
+        text = _column_text(frame[name], pa if len(frame.columns) > 1 else None)
         if text is None:
             return False
         codes, uniques = text
         if len(frame.columns) == 1:  # the csv module quotes a row's only field when empty
             uniques = ['""' if t == "" else t for t in uniques]
-        arrays.append(pa.compute.take(pa.array(uniques, type=pa.large_string()),
-                                      pa.array(codes, type=pa.int64())))
+        uniques = uniques if isinstance(uniques, pa.Array) else pa.array(uniques,
+                                                                         type=pa.large_string())
+        arrays.append(pa.compute.take(uniques, pa.array(codes, type=pa.int64())))
     header = io.StringIO()
     csv.writer(header, lineterminator="\n").writerow([str(c) for c in frame.columns])
     with open(path, "wb") as handle:
@@ -66,10 +67,12 @@ def _pyarrow():
     return pa
 
 
-def _column_text(values: pd.Series) -> tuple[np.ndarray, list[str]] | None:
+def _column_text(values: pd.Series, pa=None) -> tuple[np.ndarray, list[str]] | None:
     """``(codes, texts)``: each row's text in the CSV as ``texts[codes]``, as pandas writes it
     (a float64 by :data:`FLOAT_FORMAT`, a missing value empty, a text quoted where the csv
-    module quotes it); None for a dtype not written here."""
+    module quotes it); None for a dtype not written here. With ``pa`` (pyarrow), the texts
+    of NumPy integers and of texts none of which is quoted are a pyarrow array, made without
+    a Python string per value (the summary's 10^5 contact ids, history paths and ranks)."""
     dtype = values.dtype
     if dtype == np.float64:
         bits = values.to_numpy().view(np.int64)
@@ -81,6 +84,13 @@ def _column_text(values: pd.Series) -> tuple[np.ndarray, list[str]] | None:
                      and dtype.kind in "iu"):
         return None
     codes, uniques = pd.factorize(values, sort=False, use_na_sentinel=True)
+    texts = None if pa is None else _arrow_texts(uniques, dtype, pa)
+    if texts is not None:
+        codes = np.asarray(codes, dtype=np.int64)
+        if (codes < 0).any():  # missing: written empty
+            texts = pa.concat_arrays([texts, pa.array([""], type=pa.large_string())])
+            codes = np.where(codes < 0, len(texts) - 1, codes)
+        return codes, texts
     texts = []
     for v in uniques.tolist() if hasattr(uniques, "tolist") else list(uniques):
         if isinstance(v, float | np.floating) or not isinstance(v, str | int | bool | np.integer
@@ -92,6 +102,24 @@ def _column_text(values: pd.Series) -> tuple[np.ndarray, list[str]] | None:
         texts.append("")
         codes = np.where(codes < 0, len(texts) - 1, codes)
     return codes, texts
+
+
+def _arrow_texts(uniques, dtype, pa):
+    """The texts of distinct NumPy integers (``str(int)``: pyarrow's cast writes the same
+    digits) or of distinct texts none of which the csv module quotes (as they are), as a
+    pyarrow large_string array; None otherwise (the caller's loop decides)."""
+    if isinstance(dtype, np.dtype) and dtype.kind in "iu":
+        return pa.array(np.asarray(uniques)).cast(pa.large_string())
+    if not isinstance(dtype, pd.StringDtype):
+        return None
+    texts = pa.array(uniques)  # pyarrow's own strings where pandas holds them so
+    if not pa.types.is_string(texts.type) and not pa.types.is_large_string(texts.type):
+        return None
+    texts = texts.cast(pa.large_string())
+    if texts.null_count or pa.compute.any(
+            pa.compute.match_substring_regex(texts, _SPECIAL.pattern)).as_py():
+        return None
+    return texts
 
 
 def _quoted(text: str) -> str:

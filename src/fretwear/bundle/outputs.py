@@ -11,18 +11,20 @@ written as they arrived: the table is read from them in one pass
 
 from __future__ import annotations
 
+import gc
 import hashlib
 import json
 import math
 import time
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
 from fretwear.bundle.manifest import Manifest
-from fretwear.bundle.result import ERROR_COLUMNS, BundleResult
+from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, summary_rows
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.store import OutputDirectory, write_frame
 from fretwear.bundle.table_file import PrefixTable, with_identity
@@ -40,6 +42,17 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     wear cases ``built`` (contact -> WearCase) of this run; ``identity``: the manifest's
     identity columns (``contact`` as text), made here when None; ``written``: the table
     written while the results arrived, put in place when whole (else given up)."""
+    # the collector off until the end: at 10^5 contacts the records, cases and frames held
+    # are millions of objects, each full collection a walk through them all, started again
+    # and again by the objects made here (0.25-0.3 s of the end at 10^5, issue 28)
+    with _collector_paused():
+        return _assemble(man, records, store, times, workers, dataset_format, limit, built,
+                         identity, written)
+
+
+def _assemble(man, records, store, times, workers, dataset_format, limit, built, identity,
+              written) -> BundleResult:
+    """:func:`assemble`, the collector paused."""
     order = [r.contact for r in man.rows]
     if identity is None:
         identity = man.identity_frame()
@@ -47,11 +60,15 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     # a restart that skips every contact into a directory whose final files are those of the
     # same records (outputs_digest, recorded in run.json with the files' stamps): the files
     # are not written again, the table is read back from its file (issue 28: a restart of
-    # 10^5 contacts rewrote 4 final files, 88 s)
-    digest = None if store is None else outputs_digest(
-        identity, order, records, store.table_format, dataset_format or "default", limit)
-    unchanged = (store is not None and all(records[c]["status"] == "skipped" for c in order)
-                 and store.unchanged(digest))
+    # 10^5 contacts rewrote 4 final files, 88 s); else the digest is taken below, while the
+    # dataset is being written
+    options = (store.table_format, dataset_format or "default", limit) if store else None
+    digest = None
+    if store is not None and all(records[c]["status"] == "skipped" for c in order):
+        digest = outputs_digest(identity, order, records, *options)
+    unchanged = digest is not None and store.unchanged(digest)
+    if dataset_format is None:
+        dataset_format = "netcdf" if optional("zarr") is None else "zarr"
     # with Parquet parts, table.parquet is written from them while they arrived (table_file.
     # PrefixTable), else by buckets (table_file.stream_table), and the result reads it on
     # demand: the client never holds the whole table (issue 28: 1.3 GB at 10^5 contacts, then
@@ -60,102 +77,182 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     streamed = unchanged and _saved_table(store, order)
     if not streamed and store is not None and not any(
             records[c].get("table") is not None for c in order):
-        kept = [records[c] for c in order if records[c]["status"] in ("done", "skipped", "stale")]
-        streamed = bool(kept) and (store.finish_table(written)
-                                   or store.stream_table(kept, order, identity))
+        kept = ("done", "skipped", "stale")  # the records with rows: listed where needed
+        streamed = any(records[c]["status"] in kept for c in order) and (
+            store.finish_table(written) or store.stream_table(
+                [records[c] for c in order if records[c]["status"] in kept], order, identity))
     if written is not None:
         written.abort()  # not used: its temporary file removed (nothing once finished)
     if not streamed:
         table = _table(order, identity, records, store)
+    table_file = store.table_path() if streamed else None
     # the case of each contact whose rows are its (done, or skipped: done before with the same
     # inputs); a failed contact has none, a stale one the rows of an earlier case
     cases = {c: (built or {})[c] for c in order
              if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
-    of_case: dict[int, tuple] = {}  # the values a case gives, made once per case object
-    info = [_contact_info(c, records[c], cases.get(c), of_case) for c in order]
-    contacts = identity.merge(pd.DataFrame(info), on="contact", how="right")
-    errors = []
-    warns = []
+    # after the last result the workers' cores are free (issue 28: the client's work there was
+    # single-threaded while a core waited): the summary's columns read in a thread from now,
+    # the dataset written in another from its contacts on, while this one makes the rest
+    # (outputs_digest, errors, the summary and the CSV files)
+    ahead = None if table_file is None or unchanged else summary_rows(table_file, AHEAD)
+    result = None
+    with ThreadPoolExecutor(1) as pool:
+        try:
+            contacts = identity.merge(contacts_info(order, records, cases), on="contact",
+                                      how="right")
+            regions = pool.submit(store.write_zarr_by_regions, contacts) \
+                if ahead is not None and dataset_format == "zarr" else None
+            if store is not None and digest is None:
+                digest = outputs_digest(identity, order, records, *options)
+            warns, errors = _news(order, records)
+            errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
+            errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
+                                              how="left")
+            statuses = contacts["status"].value_counts()
+            computed, samples, two_pass = 0, 0, 0  # of the contacts computed this run
+            for c in order:
+                rec = records[c]
+                if rec["status"] in ("done", "failed"):
+                    computed += 1
+                    samples += rec.get("samples", 0)
+                    # history read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
+                    two_pass += rec.get("passes") == 2
+            started, startup = times
+            stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
+                     "failed": int(statuses.get("failed", 0)),
+                     "skipped": int(statuses.get("skipped", 0)),
+                     "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
+                     "startup_seconds": startup, "contacts_per_s": math.nan,
+                     "samples": int(samples), "samples_per_s": math.nan,
+                     "workers": workers, "manifest": man.source,
+                     "two_pass_contacts": int(two_pass)}
+            result = BundleResult(
+                table=table, table_file=table_file, errors=errors_frame,
+                warnings=pd.DataFrame(warns, columns=["contact", "category", "message"]),
+                contacts=contacts, stats=stats,
+                output=None if store is None else str(store.path), cases=cases,
+                _rows_ahead=ahead)
+            if store is not None:
+                _write_outputs(result, store, records, dataset_format,
+                               (started, computed), limit, digest, unchanged,
+                               (pool, regions))
+            else:
+                _times(result.stats, started, computed)
+        finally:
+            if ahead is not None:  # read by the summary, else stopped
+                ahead.close()
+                if result is not None:
+                    result._rows_ahead = None
+    return result
+
+
+#: Pieces of the table (:func:`~fretwear.bundle.table_file.contact_pieces`, some 20 MB each)
+#: the summary's reading may be ahead of it at the bundle's end: it starts before the result is
+#: whole, and reading a piece took longer than summing it up (issue 28: 19 pieces at 10^5
+#: contacts, 55 ms to read one, 35 ms to sum it up).
+AHEAD = 4
+
+
+@contextmanager
+def _collector_paused():
+    """Python's cyclic garbage collector off in the block (back on after, where it was)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
+
+
+#: What a contact's wear case gives to its row of ``BundleResult.contacts`` (the record's
+#: ``attrs`` where it has no case): the column and the case's attribute.
+_OF_CASE = (("origin", "origin"), ("tube_replacement", "restart.tube_replacement"),
+            ("wall_thickness", "wall.thickness"), ("depth_limit", "wall.limit"),
+            ("contact_type", "contact_type"), ("dimensions", "dimensions"), ("law", "law"),
+            ("time_scale", "time_scale"))
+
+
+def contacts_info(order: list[str], records: dict[str, dict[str, Any]],
+                  cases: dict[str, Any]) -> pd.DataFrame:
+    """The rows of ``BundleResult.contacts`` but the identity, one per contact of ``order``:
+    its record's status and computed values (``samples``, ``seconds`` [s], ``power`` [W],
+    resolved coefficients), and what its wear case says (``cases[c]``, carried by the run;
+    the record's metadata for a contact whose rows are an earlier run's or that failed).
+
+    Taken a column at a time over the contacts, each case's values once per case object (the
+    contacts of a bundle share a few): a dict per contact and the frame made from them took
+    0.4 s at 10^5 contacts (issue 28); the same frame, column for column."""
+    recs = [records[c] for c in order]
+    attrs = [r.get("attrs") or {} for r in recs]
+    made: dict[int, tuple] = {}  # id(case) -> (case, its values in _OF_CASE's order)
+
+    def of(case):
+        known = made.get(id(case))
+        if known is None or known[0] is not case:
+            values = []
+            for _, path in _OF_CASE:
+                value = case
+                for name in path.split("."):
+                    value = getattr(value, name)
+                values.append(value)
+            known = made[id(case)] = (case, values)
+        return known[1]
+
+    carried = [None if (case := cases.get(c)) is None or not a else of(case)
+               for c, a in zip(order, attrs, strict=True)]
+    columns: dict[str, list] = {
+        "contact": list(order), "status": [r["status"] for r in recs],
+        "samples": [r.get("samples", 0) for r in recs],
+        "seconds": [r.get("seconds", 0.0) for r in recs],
+        "power": [(a.get("power") or {}).get("total") for a in attrs],
+        "time_unit": [a.get("time_unit") for a in attrs]}
+    for j, (name, _) in enumerate(_OF_CASE):
+        if name == "time_scale":  # after the coefficients
+            continue
+        columns[name] = [a.get(name) if v is None else v[j]
+                         for v, a in zip(carried, attrs, strict=True)]
+    # a case's dimensions copied for each of its contacts (a row's dict is its own)
+    columns["dimensions"] = [d if v is None else dict(d)
+                             for d, v in zip(columns["dimensions"], carried, strict=True)]
+    columns["coefficients_mobile"] = [a.get("coefficients_mobile") for a in attrs]
+    columns["coefficients_obstacle"] = [a.get("coefficients_obstacle") for a in attrs]
+    scale = len(_OF_CASE) - 1
+    columns["time_scale"] = [a.get("time_scale") if v is None else v[scale]
+                             for v, a in zip(carried, attrs, strict=True)]
+    columns["sector_coefficients"] = [a.get("sector_coefficients") for a in attrs]
+    return pd.DataFrame(columns)
+
+
+def _news(order: list[str], records: dict[str, dict[str, Any]]) -> tuple[list, list]:
+    """The rows of ``BundleResult.warnings`` (every warning of every contact) and
+    ``BundleResult.errors`` (a failure, a stale contact's failure, a depth beyond its
+    relation's range), contacts in ``order``; only the contacts with news looked at."""
+    warns: list[dict] = []
+    errors: list[dict] = []
     for c in order:
         rec = records[c]
-        for category, message in rec.get("warnings") or []:
+        caught = rec.get("warnings")
+        status = rec["status"]
+        if not caught and status in ("done", "skipped"):
+            continue  # most contacts: nothing to say
+        for category, message in caught or []:
             warns.append({"contact": c, "category": category, "message": message})
-        if rec["status"] == "failed":
+        if status == "failed":
             errors.append({"contact": c, "error": rec["error"][0], "message": rec["error"][1],
                            "rows_kept": False})
-        elif rec["status"] == "stale":  # failed this run, its earlier run's rows kept
+        elif status == "stale":  # failed this run, its earlier run's rows kept
             errors.append({"contact": c, "error": rec["error"][0],
                            "message": f"{rec['error'][1]} (this run could not recompute it: "
                                       f"its rows are the earlier run's, {rec['part']})",
                            "rows_kept": True})
-        elif rec["status"] in ("done", "skipped"):
-            ranged = [m for cat, m in rec.get("warnings") or [] if cat == "RangeWarning"]
+        elif status in ("done", "skipped"):
+            ranged = [m for cat, m in caught if cat == "RangeWarning"]
             if ranged:  # the global depth's warning (the summary ranks by it), else a sector's
                 message = next((m for m in ranged if GLOBAL_RANGE in m), ranged[0])
                 errors.append({"contact": c, "error": "RangeWarning", "message": message,
                                "rows_kept": True})
-    errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
-    errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
-                                      how="left")
-    statuses = contacts["status"].value_counts()
-    computed = [records[c] for c in order if records[c]["status"] in ("done", "failed")]
-    samples = int(sum(r.get("samples", 0) for r in computed))
-    started, startup = times
-    stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
-             "failed": int(statuses.get("failed", 0)),
-             "skipped": int(statuses.get("skipped", 0)),
-             "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
-             "startup_seconds": startup, "contacts_per_s": math.nan, "samples": samples,
-             "samples_per_s": math.nan, "workers": workers, "manifest": man.source,
-             # contacts whose history was read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
-             "two_pass_contacts": sum(1 for r in computed if r.get("passes") == 2)}
-    result = BundleResult(table=table, table_file=store.table_path() if streamed else None,
-                          errors=errors_frame,
-                          warnings=pd.DataFrame(warns, columns=["contact", "category",
-                                                                "message"]),
-                          contacts=contacts, stats=stats,
-                          output=None if store is None else str(store.path), cases=cases)
-    if store is not None:
-        _write_outputs(result, store, records, dataset_format, (started, len(computed)), limit,
-                       digest, unchanged)
-    else:
-        _times(result.stats, started, len(computed))
-    return result
-
-
-def _contact_info(contact: str, rec: dict[str, Any], case, of_case: dict | None = None
-                  ) -> dict[str, Any]:
-    """A contact's row of ``BundleResult.contacts``: its record's status and computed values
-    (power, resolved coefficients), and what its wear case says (the carried ``case``; the
-    record's metadata for a contact whose rows are an earlier run's). ``of_case`` keeps what
-    each case object gives, asked once per case (the contacts of a bundle share a few)."""
-    attrs = rec.get("attrs") or {}
-    info = {"contact": contact, "status": rec["status"], "samples": rec.get("samples", 0),
-            "seconds": rec.get("seconds", 0.0),
-            "power": (attrs.get("power") or {}).get("total"), "time_unit": attrs.get("time_unit")}
-    carried = case is not None and bool(attrs)
-    if carried:
-        known = None if of_case is None else of_case.get(id(case))
-        if known is None or known[0] is not case:
-            known = (case, case.origin, case.restart.tube_replacement, case.wall.thickness,
-                     case.wall.limit, case.contact_type, case.dimensions, case.law,
-                     case.time_scale)
-            if of_case is not None:
-                of_case[id(case)] = known
-        _, origin, replacement, thickness, limit, contact_type, dimensions, law, scale = known
-        info.update(origin=origin, tube_replacement=replacement, wall_thickness=thickness,
-                    depth_limit=limit, contact_type=contact_type, dimensions=dict(dimensions),
-                    law=law)
-    else:
-        info.update({k: attrs.get(k) for k in ("origin", "tube_replacement", "wall_thickness",
-                                               "depth_limit", "contact_type", "dimensions",
-                                               "law")})
-    # the geometry and law: the summary's exact time to another limit
-    info.update(coefficients_mobile=attrs.get("coefficients_mobile"),
-                coefficients_obstacle=attrs.get("coefficients_obstacle"),
-                time_scale=scale if carried else attrs.get("time_scale"),
-                sector_coefficients=attrs.get("sector_coefficients"))
-    return info
+    return warns, errors
 
 
 def _times(stats: dict[str, Any], started: float, count: int) -> None:
@@ -168,36 +265,35 @@ def _times(stats: dict[str, Any], started: float, count: int) -> None:
     stats["samples_per_s"] = stats["samples"] / busy if busy > 0 else math.nan
 
 
-def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format,
+def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format: str,
                    clock: tuple[float, int], limit: float | None, digest: str,
-                   unchanged: bool = False):
+                   unchanged: bool, started: tuple):
     """The final files; ``summary.csv`` is ``result.summary(limit)``, and ``run.json`` records
     ``limit`` (None: each contact's depth_limit), the ``digest`` of what the files hold
     (:func:`outputs_digest`) and their stamps. ``unchanged``: the files of an earlier run are
-    those of ``digest`` and still as written: only ``run.json`` is written (this run's stats)."""
+    those of ``digest`` and still as written: only ``run.json`` is written (this run's stats).
+    ``started``: the thread pool writing the dataset and the future of its Zarr store written
+    by regions (None: not started)."""
     if unchanged:
         order = ("table.parquet", "table.csv", "dataset.zarr", "dataset.nc", "errors.csv",
                  "warnings.csv", "summary.csv")
         outputs = [o for o in order if o in store.written_before]
     else:
-        if dataset_format is None:
-            dataset_format = "netcdf" if optional("zarr") is None else "zarr"
+        pool, regions = started
         if result.table_file is None:  # else written from the parts already
             store.write_table(result.table)
         # the dataset written from the table file in a thread while this one writes the CSV
-        # files and the summary: after the last result the workers' cores are free (issue 28:
-        # the client's work there was single-threaded while a core waited); in memory, the
-        # table is the result's and the Dataset is built here
-        with ThreadPoolExecutor(1) as pool:
-            dataset = pool.submit(_write_dataset, result, store, dataset_format) \
-                if result.table_file is not None else None
-            write_frame(result.errors, store.path / "errors.csv", "csv")
-            write_frame(result.warnings, store.path / "warnings.csv", "csv")
-            write_frame(result.summary(limit), store.path / "summary.csv", "csv")
-            if dataset is None:
-                _write_dataset(result, store, dataset_format)
-            else:
-                dataset.result()
+        # files and the summary; in memory, the table is the result's and the Dataset is
+        # built here
+        dataset = pool.submit(_write_dataset, result, store, dataset_format, regions) \
+            if result.table_file is not None else None
+        write_frame(result.errors, store.path / "errors.csv", "csv")
+        write_frame(result.warnings, store.path / "warnings.csv", "csv")
+        write_frame(result.summary(limit), store.path / "summary.csv", "csv")
+        if dataset is None:
+            _write_dataset(result, store, dataset_format)
+        else:
+            dataset.result()
         outputs = [*store.written, "errors.csv", "warnings.csv", "summary.csv"]
     # the final files written, so that a later run in another format removes only those
     stamps = store.stamps(outputs)
@@ -208,10 +304,15 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
     store.cleanup(r.get("part") for r in records.values() if r.get("part"))
 
 
-def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str) -> None:
+def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str,
+                   regions=None) -> None:
     """``dataset.zarr`` (or ``.nc``) of the result's table, or the stale one removed where no
-    contact has rows."""
-    if result.table_file is not None and dataset_format == "zarr" \
+    contact has rows; ``regions``: the future of ``store.write_zarr_by_regions`` started
+    already (its answer waited for), None to ask it here."""
+    if regions is not None:
+        if regions.result():
+            return
+    elif result.table_file is not None and dataset_format == "zarr" \
             and store.write_zarr_by_regions(result.contacts):
         return  # from the written table, a group of contacts at a time (issue 28)
     if len(result.table):

@@ -13,17 +13,15 @@ import numpy as np
 
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.manifest import IDENTITY
+from fretwear.bundle.read_ahead import ReadAhead
 from fretwear.bundle.result_dataset import build_dataset
+from fretwear.bundle.summary_quantities import ContactQuantities
 from fretwear.bundle.table_file import SUMMARY_COLUMNS, contact_pieces, read_columns
 from fretwear.errors import InputError, KeywordError
-from fretwear.table.depth_build import record_model
 from fretwear.table.depth_rows import (
-    FROM_MODEL,
     FROM_TABLE,
-    INTERPOLATED,
     METHODS,
     ContactModels,
-    rows_time,
 )
 from fretwear.table.limit import DEFAULT_DEPTH_LIMIT
 
@@ -98,6 +96,9 @@ class BundleResult:
     #: ``summary()``'s rankings, one per ``(limit, limit_m, wall_thickness)``: a result is
     #: never changed once built, so a ranking is computed once and read after (issue 28).
     _summaries: dict = field(default_factory=dict, repr=False, compare=False)
+    #: the pieces of ``table_file`` the first summary reads, already being read
+    #: (:func:`summary_rows`, started by the bundle's end before the result is whole)
+    _rows_ahead: Any = field(default=None, repr=False, compare=False)
 
     @property
     def dataset(self):
@@ -169,27 +170,47 @@ class BundleResult:
         try:
             ranking = self._summaries.get(key)
         except TypeError:  # an unhashable argument: summarize says what is wrong with it
-            return summarize(self._summary_rows(), self.contacts, limit=limit,
-                             limit_m=limit_m, wall_thickness=wall_thickness)
+            ranking, key = None, None
         if ranking is None:
-            ranking = summarize(self._summary_rows(), self.contacts, limit=limit,
-                                limit_m=limit_m, wall_thickness=wall_thickness)
+            rows = self._summary_rows()
+            try:
+                ranking = summarize(rows, self.contacts, limit=limit, limit_m=limit_m,
+                                    wall_thickness=wall_thickness)
+            finally:
+                if isinstance(rows, ReadAhead):
+                    rows.close()
+            if key is None:
+                return ranking
             self._summaries[key] = ranking
         return ranking.copy()
 
 
     def _summary_rows(self):
         """The table, or the columns :func:`summarize` reads from ``table_file`` when the
-        table is not read (read for this call, not kept): a piece of whole contacts at a
-        time (:func:`~fretwear.bundle.table_file.contact_pieces`; issue 28: the whole
-        table's columns and their copies took the client's memory up by 0.7 GB at 10^5
-        contacts), else at once."""
+        table is not read (read for this call, not kept): :func:`summary_rows`, or the ones
+        the result was made with (``_rows_ahead``, read since, used once)."""
         if self._table is None and self.table_file is not None:
-            path = Path(self.table_file)
-            pieces = contact_pieces(path, SUMMARY_COLUMNS)
-            return read_columns(path, SUMMARY_COLUMNS, categorical=("contact",)) \
-                if pieces is None else pieces  # contact only factorised (_Contacts)
+            ahead, self._rows_ahead = self._rows_ahead, None
+            return ahead if ahead is not None else summary_rows(self.table_file)
         return self.table
+
+
+def summary_rows(table_file, depth: int = 1) -> ReadAhead:
+    """The columns of a written Parquet table :func:`summarize` reads, a piece of whole
+    contacts at a time (:func:`~fretwear.bundle.table_file.contact_pieces`; issue 28: the whole
+    table's columns and their copies took the client's memory up by 0.7 GB at 10^5
+    contacts), else the whole table as one piece, read in a thread (:class:`ReadAhead`:
+    ``depth`` pieces ahead of the one summed up, pyarrow reading without the GIL); its
+    ``close()`` stops the reading."""
+    return ReadAhead(_pieces_of(Path(table_file)), depth)
+
+
+def _pieces_of(path: Path):
+    pieces = contact_pieces(path, SUMMARY_COLUMNS)
+    if pieces is None:  # contact only factorised (ContactQuantities)
+        yield read_columns(path, SUMMARY_COLUMNS, categorical=("contact",))
+    else:
+        yield from pieces
 
 
 def _get_table(self) -> pd.DataFrame:
@@ -207,13 +228,6 @@ def _set_table(self, table) -> None:
 # as ``_table``, read from ``table_file`` on first use
 BundleResult.table = property(_get_table, _set_table, doc=BundleResult.__doc__ and
                               "Every contact's wear table (see the class' attributes).")
-
-
-def _global_rows(rows: pd.DataFrame) -> pd.DataFrame:
-    """One row per instant (sector tables repeat the global columns on every sector row)."""
-    if "sector" in rows.columns and rows["sector"].notna().any():
-        rows = rows.drop_duplicates("instant", keep="first")
-    return rows.sort_values("instant")
 
 
 def check_limit(limit) -> None:
@@ -235,8 +249,8 @@ def summarize(table, contacts: pd.DataFrame, *, limit: float | None,
     ``table`` is the table, or its rows in pieces each holding whole contacts, in the table's
     order (an iterable of DataFrames: :func:`fretwear.bundle.table_file.contact_pieces`): a
     contact's values depend on its own rows only, so the ranking is the whole table's.
-    The per-contact quantities are taken over a piece at once (:class:`_Contacts`);
-    a contact's depth model (:meth:`_Contacts.time_to`) is inverted only for the contacts
+    The per-contact quantities are taken over a piece at once (:class:`ContactQuantities`);
+    a contact's depth model (:meth:`ContactQuantities.time_to`) is inverted only for the contacts
     whose depth reaches the limit.
     """
     if limit is not None and limit_m is not None:
@@ -247,34 +261,41 @@ def summarize(table, contacts: pd.DataFrame, *, limit: float | None,
         raise InputError(f"limit_m must be a depth > 0 [m], got {limit_m!r}")
     lookup = _Lookup(contacts)
     models = ContactModels()
-    rows: list[dict] = []
+    rows: dict[str, list] = {name: [] for name in _RANKED}
     for piece in [table] if isinstance(table, pd.DataFrame) else table:
-        rows += _piece_rows(piece, lookup, models, (limit, limit_m, wall_thickness))
+        for name, values in _piece_rows(piece, lookup, models,
+                                        (limit, limit_m, wall_thickness)).items():
+            rows[name] += values
     return _ranking(rows, contacts, limit, limit_m)
 
 
+#: The ranking's columns :func:`_piece_rows` gives, in their order (before the identity's).
+_RANKED = ("contact", "instant", "time_unit", "power", "depth", "depth_sector_max",
+           "wall_thickness", "depth_fraction", "limit_depth", "time_to_limit", "limit_forecast",
+           "time_to_limit_method", "note")
+
+
 def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
-                limits: tuple) -> list[dict]:
-    """The ranking's rows (unranked) of the contacts of ``table``, in their order there;
+                limits: tuple) -> dict[str, list]:
+    """The ranking's rows (unranked) of the contacts of ``table``, in their order there, as
+    columns (:data:`_RANKED`: a dict per contact was a third of the summary, issue 28);
     ``limits``: :func:`summarize`'s ``(limit, limit_m, wall_thickness)``."""
     limit, limit_m, wall_thickness = limits
     # the wear table's own limit instant (law and geometry inverted), for the case's limit
     given = "limit_instant" in table.columns and limit_m is None
-    rows = []
-    per = _Contacts(table, given)
+    per = ContactQuantities(table, given)
     where = lookup.rows_of(per.names)
     walls = lookup("wall_thickness", per.names, where)
     owns = lookup("depth_limit", per.names, where)
     replacements = lookup("tube_replacement", per.names, where)
     units = lookup("time_unit", per.names, where)
-    # each contact's record (its wear case's values): the depth model of its table
-    geometries = [models.geometry(c, d) for c, d in zip(
-        lookup("contact_type", per.names, where), lookup("dimensions", per.names, where),
-        strict=True)]
-    records = [dict(zip(RECORD_KEYS, values, strict=True)) for values in zip(
-        *(lookup(key, per.names, where) for key in RECORD_KEYS), strict=True)]
-    targets, replaced_at, own_limit = [], [], []
-    for k, contact in enumerate(per.names):
+    # each contact's record (its wear case's values), the depth model of its table: made for
+    # the contacts whose time to the limit is sought only (a dict and a geometry looked up for
+    # each of 10^5 contacts was a fifth of the summary, issue 28)
+    known = [lookup(key, per.names, where) for key in RECORD_KEYS]
+    types, dimensions = (known[RECORD_KEYS.index(key)] for key in ("contact_type", "dimensions"))
+    targets, replaced_at, own_limit, wall_of, fractions = [], [], [], [], []
+    for k in range(len(per.names)):
         given_wall = walls[k]
         wall = math.nan if given_wall is None or pd.isna(given_wall) else float(given_wall)
         its_wall = math.isfinite(wall)
@@ -291,16 +312,11 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
         replaced = None if replaced is None or pd.isna(replaced) else float(replaced)
         targets.append(target)
         replaced_at.append(replaced)
-        rows.append({"contact": contact, "instant": per.instant[k],
-                     "time_unit": None if units[k] is None or pd.isna(units[k]) else units[k],
-                     "power": per.power[k],
-                     "depth": per.depth[k], "depth_sector_max": per.sector_max[k],
-                     "wall_thickness": wall,
-                     "depth_fraction": per.depth[k] / wall if wall > 0 else math.nan,
-                     "limit_depth": target})
+        wall_of.append(wall)
+        fractions.append(per.depth[k] / wall if wall > 0 else math.nan)
     reached = per.reaches(targets, replaced_at)
-    for k, row in enumerate(rows):
-        target = targets[k]
+    times, forecasts, methods, notes = [], [], [], []
+    for k, target in enumerate(targets):
         if given and per.has_limit[k] and own_limit[k]:
             # reached by the last instant: by the table's depths, or the instant itself
             t_lim = per.limit_instant[k]
@@ -308,28 +324,32 @@ def _piece_rows(table: pd.DataFrame, lookup: _Lookup, models: ContactModels,
             t_lim = math.nan if math.isinf(t_lim) else t_lim
             method = FROM_TABLE
         elif math.isfinite(target):
-            t_lim, method = per.time_to(k, target, replaced_at[k], bool(reached[k]),
-                                        records[k], geometries[k])
+            t_lim, method = per.time_to(
+                k, target, replaced_at[k], bool(reached[k]),
+                dict(zip(RECORD_KEYS, [values[k] for values in known], strict=True)),
+                models.geometry(types[k], dimensions[k]))
         else:
             t_lim, method = math.nan, "no limit: give the wall thickness or limit_m"
         # the table's forecast for the contact's own limit, also beyond the last instant
-        forecast = (per.limit_instant[k] if given and per.has_limit[k] and own_limit[k]
-                    else math.nan)
+        forecasts.append(per.limit_instant[k] if given and per.has_limit[k] and own_limit[k]
+                         else math.nan)
         first_nan = per.first_nan[k]
-        row.update(time_to_limit=t_lim, limit_forecast=forecast, time_to_limit_method=method,
-                   note="" if first_nan is None
-                   else f"depth beyond the relation's range from instant {first_nan:g}")
-    return rows
+        times.append(t_lim)
+        methods.append(method)
+        notes.append("" if first_nan is None
+                     else f"depth beyond the relation's range from instant {first_nan:g}")
+    return dict(zip(_RANKED, (
+        per.names, per.instant, [None if u is None or pd.isna(u) else u for u in units],
+        per.power, per.depth, per.sector_max, wall_of, fractions, targets, times, forecasts,
+        methods, notes), strict=True))
 
 
-def _ranking(rows: list[dict], contacts: pd.DataFrame, limit: float | None,
+def _ranking(rows: dict[str, list], contacts: pd.DataFrame, limit: float | None,
              limit_m: float | None) -> pd.DataFrame:
-    """:func:`summarize`'s ranking of its rows: identity columns, ranks, ``attrs``."""
-    out = pd.DataFrame(rows, columns=["contact", "instant", "time_unit", "power", "depth",
-                                      "depth_sector_max",
-                                      "wall_thickness", "depth_fraction", "limit_depth",
-                                      "time_to_limit", "limit_forecast",
-                                      "time_to_limit_method", "note"])
+    """:func:`summarize`'s ranking of its rows (columns of :data:`_RANKED`): identity
+    columns, ranks, ``attrs``."""
+    # no row: the frame a list of no dicts makes (object columns; empty lists: float64)
+    out = pd.DataFrame(rows if rows["contact"] else [], columns=list(_RANKED))
     ident = [c for c in IDENTITY if c != "contact" and c in contacts.columns]
     if len(out):
         out = out.merge(contacts[["contact", *ident]], on="contact", how="left")
@@ -359,15 +379,25 @@ class _Lookup:
     def __init__(self, contacts: pd.DataFrame) -> None:
         self.info = contacts.set_index("contact") if len(contacts) else contacts
         self.index = pd.Index(contacts["contact"]) if contacts["contact"].is_unique else None
+        self.ids = None if self.index is None else contacts["contact"].tolist()
+        self.first: dict | None = None  # id -> its row, made when first asked
         self.columns: dict[str, list] = {}
 
-    def rows_of(self, names: list) -> np.ndarray | None:
-        """Each name's row in the contacts (-1: not there); None where contact ids repeat."""
+    def rows_of(self, names: list) -> np.ndarray | slice | None:
+        """Each name's row in the contacts (-1: not there), a slice where they are rows
+        that follow one another (a piece of a bundle's table: its contacts in manifest
+        order, told by one list comparison: the index's get_indexer of a piece's names took
+        20 ms a piece at 10^5 contacts, issue 28); None where contact ids repeat."""
         if self.index is None:
             return None
+        if self.first is None:
+            self.first = {name: i for i, name in enumerate(self.ids)}
+        start = self.first.get(names[0], -1) if names else -1
+        if start >= 0 and self.ids[start:start + len(names)] == names:
+            return slice(start, start + len(names))
         return self.index.get_indexer(pd.Index(names, dtype=object))
 
-    def __call__(self, column: str, names: list, where: np.ndarray | None) -> list:
+    def __call__(self, column: str, names: list, where: np.ndarray | slice | None) -> list:
         """The contacts' ``column`` for ``names``, ``where`` their rows (:meth:`rows_of`)."""
         info = self.info
         if column not in info.columns:
@@ -377,209 +407,6 @@ class _Lookup:
         values = self.columns.get(column)
         if values is None:  # the Series' own scalars, as iterating it gives them
             values = self.columns[column] = info[column].tolist()
+        if isinstance(where, slice):
+            return values[where]
         return [values[i] if i >= 0 else None for i in where.tolist()]
-
-
-class _Contacts:
-    """Each contact's quantities for :func:`summarize`, taken over the whole table at once.
-
-    A contact's global rows are its rows in table order, only the first row of each instant
-    when it has sectors, sorted by instant (as by :func:`_global_rows`); the arrays below are
-    in the order the contacts first appear in the table (``names``, as ``groupby(sort=False)``).
-
-    Attributes
-    ----------
-    names : list
-        The contacts.
-    instant, power, depth : list of float
-        The last global row's instant [table unit], power [W] and ``depth_mobile`` [m].
-    sector_max : list of float
-        The largest ``depth_mobile_sector`` of the rows at that instant [m] (NaN without it).
-    first_nan : list
-        The instant of the first global row whose depth is not finite (None: none is).
-    has_limit, limit_instant : list
-        Whether a global row has a ``limit_instant``, and the last one [table unit] (when
-        ``given``).
-    """
-
-    def __init__(self, table: pd.DataFrame, given: bool):
-        codes, uniques = pd.factorize(table["contact"], sort=False)  # -1: no contact, dropped
-        self.names = list(uniques)
-        n = len(self.names)
-        self.table, self.codes = table, codes
-        self.instant, self.power, self.depth, self.sector_max = [], [], [], []
-        self.first_nan, self.has_limit, self.limit_instant = [], [], []
-        self._models: dict = {}  # contact -> its DepthModel or None (:meth:`model`)
-        self._sector_rows = None  # (sector powers, first, end) of every contact's last instant
-        if n == 0:
-            return
-        valid = codes >= 0
-        instant = table["instant"].to_numpy(dtype=float)
-        rows = valid.copy()
-        has = np.zeros(n, dtype=bool)
-        if "sector" in table.columns:
-            has[codes[valid & table["sector"].notna().to_numpy()]] = True
-            repeated = pd.DataFrame({"c": codes, "t": table["instant"]}).duplicated().to_numpy()
-            rows &= ~(has[codes] & repeated)
-        pos = np.flatnonzero(rows)
-        pos = pos[np.lexsort((instant[pos], codes[pos]))]  # stable: NaN instants last
-        gcode, t = codes[pos], instant[pos]
-        self.start = np.searchsorted(gcode, np.arange(n))
-        self.end = np.searchsorted(gcode, np.arange(n), side="right")
-        tied = np.flatnonzero((gcode[1:] == gcode[:-1]) & (t[1:] == t[:-1]))
-        if tied.size:  # equal instants: their order is pandas' sort's (not a stable one)
-            for c in np.unique(gcode[tied]):
-                mine = np.sort(pos[self.start[c]:self.end[c]])
-                group = table.iloc[mine].reset_index(drop=True)
-                pos[self.start[c]:self.end[c]] = mine[_global_rows(group).index.to_numpy()]
-            t = instant[pos]
-        self.pos, self.t = pos, t
-        self.d = table["depth_mobile"].to_numpy(dtype=float)[pos]
-        last = pos[self.end - 1]
-        self.instant = instant[last].tolist()
-        self.power = table["power"].to_numpy(dtype=float)[last].tolist()
-        self.depth = self.d[self.end - 1].tolist()
-        self.sector_max = (self._sector_max(instant[last]) if "depth_mobile_sector"
-                           in table.columns else [math.nan] * n)
-        bad = np.flatnonzero(~np.isfinite(self.d))
-        first = [None] * n
-        for c, i in zip(*np.unique(gcode[bad], return_index=True), strict=True):
-            first[c] = float(t[bad[i]])
-        self.first_nan = first
-        self.has_limit = [False] * n
-        self.limit_instant = [math.nan] * n
-        if given:
-            lim = table["limit_instant"].to_numpy(dtype=float)[pos]
-            have = np.flatnonzero(~np.isnan(lim))[::-1]  # the last one of each contact first
-            for c, i in zip(*np.unique(gcode[have], return_index=True), strict=True):
-                self.has_limit[c] = True
-                self.limit_instant[c] = float(lim[have[i]])
-        self.origin = (table["origin"].to_numpy(dtype=float)[pos]
-                       if "origin" in table.columns else None)
-        self.sectored = has.tolist()  # contacts with sector rows
-
-        def column(name):
-            return table[name].to_numpy(dtype=float)[pos] if name in table.columns else None
-
-        self.vm, self.vo, self.p = (column("volume_mobile"), column("volume_obstacle"),
-                                    column("power"))
-
-    def _sector_max(self, last: np.ndarray) -> list:
-        """The largest sector depth of each contact's rows at its last instant [m]."""
-        valid = self.codes >= 0
-        codes = np.where(valid, self.codes, 0)
-        at = np.flatnonzero(valid & (self.table["instant"].to_numpy(dtype=float) == last[codes]))
-        values = self.table["depth_mobile_sector"].to_numpy(dtype=float)[at]
-        out = np.full(len(self.names), -np.inf)
-        np.maximum.at(out, codes[at], np.where(np.isnan(values), -np.inf, values))
-        counted = np.bincount(codes[at][~np.isnan(values)], minlength=len(self.names))
-        out[counted == 0] = np.nan
-        # -0.0 and 0.0 tie: the one pandas' max keeps
-        signed = np.unique(codes[at][(values == 0) & np.signbit(values)])
-        for c in signed[out[signed] == 0]:
-            out[c] = float(self.table["depth_mobile_sector"].iloc[at[codes[at] == c]].max())
-        return out.tolist()
-
-    def reaches(self, targets: list, replaced: list) -> np.ndarray:
-        """Whether a time can be found for each contact's target depth [m] (False where
-        :meth:`time_to` returns NaN: its deepest depth
-        since a replacement is below a positive target; a NaN depth of a finite volume is
-        beyond the relation's range, deeper than any target)."""
-        n = len(self.names)
-        if n == 0:
-            return np.zeros(0, dtype=bool)
-        target = np.array(targets, dtype=float)
-        since = np.array([-np.inf if r is None else r for r in replaced], dtype=float)
-        gcode = self.codes[self.pos]
-        depth = self.d
-        if self.vm is not None:
-            depth = np.where(np.isnan(depth) & np.isfinite(self.vm), np.inf, depth)
-        usable = ~np.isnan(depth) & np.isfinite(self.t) & (self.t >= since[gcode])
-        deepest = np.full(n, np.nan)
-        np.fmax.at(deepest, gcode[usable], depth[usable])
-        return np.isfinite(target) & ~((target > 0) & ~(deepest >= target))
-
-    def obstacle_wears(self, k: int) -> bool:
-        """Whether contact ``k``'s obstacle volume is not 0 at some instant."""
-        if self.vo is None:
-            return False
-        return bool(np.nan_to_num(self.vo[self.start[k]:self.end[k]]).any())
-
-    def time_to(self, k: int, target: float, replaced: float | None, reached: bool,
-                record: dict, geometry) -> tuple[float, str]:
-        """The instant [table time unit] at which contact ``k``'s tube reaches ``target`` [m]
-        (NaN where its rows do not reach it by the last instant), and the method: its depth
-        model's :meth:`~fretwear.table.DepthModel.time_to` (:data:`FROM_MODEL`), built once
-        from its ``record`` and global rows (:func:`~fretwear.table.depth_build.record_model`);
-        where the law or the geometry is not known, its rows interpolated
-        (:func:`~fretwear.table.depth_rows.rows_time`, :data:`INTERPOLATED`)."""
-        model = self.model(k, record, geometry)
-        if not reached:
-            return math.nan, INTERPOLATED if model is None else FROM_MODEL
-        if target <= 0:  # reached at once: the start of the tube in place
-            return self._start(k, replaced), INTERPOLATED if model is None else FROM_MODEL
-        if model is not None:
-            found = float(model.time_to(target))
-            if math.isfinite(found):
-                return found, FROM_MODEL
-        s = slice(self.start[k], self.end[k])
-        return rows_time(self.t[s], self.d[s], target,
-                         origins=None if self.origin is None else self.origin[s],
-                         replaced=replaced,
-                         volume_mobile=None if self.vm is None else self.vm[s]), INTERPOLATED
-
-    def _start(self, k: int, replaced: float | None) -> float:
-        """The first instant of contact ``k``'s tube in place [table time unit]: its
-        replacement, 0 for a new tube, else its first row's instant."""
-        if replaced is not None:
-            return float(replaced)
-        first = self.start[k]
-        new = self.origin is None or self.origin[first] == 0
-        return 0.0 if new else float(self.t[first])
-
-    def model(self, k: int, record: dict, geometry):
-        """Contact ``k``'s :class:`~fretwear.table.DepthModel` (made once), None where its
-        law or geometry is not known, or its record cannot make one (a record read back from a
-        part file that lacks what the model needs; a case never gives sectors under a law not
-        linear in time, theory §3)."""
-        if k in self._models:
-            return self._models[k]
-        model = None
-        plain = {key: None if isinstance(value, float) and math.isnan(value) else value
-                 for key, value in record.items()}  # a missing value: None
-        if geometry is not None and ContactModels.law(plain.get("law")) is not None \
-                and self.vm is not None:
-            s = slice(self.start[k], self.end[k])
-            sectors = self._sector_powers(k) if self.sectored[k] else None
-            try:
-                if self.sectored[k] and sectors is None:
-                    raise InputError("no sector powers")
-                model = record_model(
-                    plain, instants=self.t[s], depths=self.d[s],
-                    origins=None if self.origin is None else self.origin[s],
-                    volume_mobile=self.vm[s],
-                    volume_obstacle=None if self.vo is None else self.vo[s],
-                    power=self.power[k], geometry=geometry,
-                    sector_powers=sectors)
-            except (InputError, KeywordError, TypeError, ValueError):
-                model = None
-        self._models[k] = model
-        return model
-
-    def _sector_powers(self, k: int):
-        """Each sector's wear power [W] at contact ``k``'s last instant (``sector_power``),
-        by sector; None without them. The rows of every contact are found once."""
-        if self._sector_rows is None:
-            table, n = self.table, len(self.names)
-            valid = (self.codes >= 0) & table["sector"].notna().to_numpy()
-            codes = np.where(valid, self.codes, 0)
-            last = np.asarray(self.instant, dtype=float)[codes]
-            at = np.flatnonzero(valid & (table["instant"].to_numpy(dtype=float) == last))
-            at = at[np.lexsort((table["sector"].to_numpy(dtype=float)[at], codes[at]))]
-            powers = (table["sector_power"].to_numpy(dtype=float)[at]
-                      if "sector_power" in table.columns else np.full(at.size, np.nan))
-            self._sector_rows = (powers, np.searchsorted(codes[at], np.arange(n)),
-                                 np.searchsorted(codes[at], np.arange(n), side="right"))
-        powers, start, end = self._sector_rows
-        mine = powers[start[k]:end[k]]
-        return mine if mine.size and np.isfinite(mine).all() else None
