@@ -371,15 +371,27 @@ def run_contact(task: ContactTask, chunk_size: int = 1_000_000) -> dict[str, Any
         None), ``warnings`` (``[category, message]`` pairs), ``error`` (``[class, message]`` or
         None), ``samples``, ``seconds`` (compute time), ``attrs`` (the table's metadata).
     """
+    value, caught, seconds, failure = _guarded(task, _compute, task, chunk_size)
+    if failure is not None:
+        return failure
+    table, samples = value
+    return _record(task, status="done", table=table, caught=caught, samples=samples,
+                   seconds=seconds)
+
+
+def _guarded(task: ContactTask, fn, *args, before=(), seconds: float = 0.0):
+    """``fn(*args)`` with the process's warnings recorded: ``(value, warnings, seconds,
+    None)``, or ``(None, warnings, seconds, the contact's failed record)`` when it raises; the
+    warnings after ``before`` (a step's earlier ones), the seconds after ``seconds``."""
     start = time.perf_counter()
     with captured() as caught:
         try:
-            table, samples = _compute(task, chunk_size)
+            value = fn(*args)
         except Exception as exc:  # noqa: BLE001 - a bad contact must not stop the batch
-            return _record(task, status="failed", caught=caught, error=_error(exc),
-                           seconds=time.perf_counter() - start)
-    return _record(task, status="done", table=table, caught=caught, samples=samples,
-                   seconds=time.perf_counter() - start)
+            failure = _record(task, status="failed", caught=[*before, *caught],
+                              error=_error(exc), seconds=seconds + time.perf_counter() - start)
+            return None, failure["warnings"], failure["seconds"], failure
+    return value, [*before, *caught], seconds + time.perf_counter() - start, None
 
 
 #: Contacts whose small Parquet files a worker reads in a row before computing them
@@ -411,14 +423,8 @@ def _power_step(task: ContactTask, chunk_size: int):
     processor's caches, as for the files read ahead)."""
     if task.history.kind != "file":
         return run_contact(task, chunk_size)
-    start = time.perf_counter()
-    with captured() as caught:
-        try:
-            power, samples = _file_power(task, chunk_size)
-        except Exception as exc:  # noqa: BLE001 - a bad contact must not stop the batch
-            return _record(task, status="failed", caught=caught, error=_error(exc),
-                           seconds=time.perf_counter() - start)
-    return power, samples, list(caught), time.perf_counter() - start
+    value, caught, seconds, failure = _guarded(task, _file_power, task, chunk_size)
+    return failure if failure is not None else (*value, caught, seconds)
 
 
 def _table_step(task: ContactTask, step) -> dict[str, Any]:
@@ -427,15 +433,12 @@ def _table_step(task: ContactTask, step) -> dict[str, Any]:
     if isinstance(step, dict):
         return step
     power, samples, before, seconds = step
-    start = time.perf_counter()
-    with captured() as caught:
-        try:
-            table = _wear_table(power, task)
-        except Exception as exc:  # noqa: BLE001
-            return _record(task, status="failed", caught=[*before, *caught], error=_error(exc),
-                           seconds=seconds + time.perf_counter() - start)
-    return _record(task, status="done", table=table, caught=[*before, *caught], samples=samples,
-                   seconds=seconds + time.perf_counter() - start)
+    table, caught, seconds, failure = _guarded(task, _wear_table, power, task, before=before,
+                                               seconds=seconds)
+    if failure is not None:
+        return failure
+    return _record(task, status="done", table=table, caught=caught, samples=samples,
+                   seconds=seconds)
 
 
 def _lean_file(task: ContactTask) -> bool:
