@@ -126,3 +126,19 @@ def test_contacts_errors_and_warnings_are_the_per_contact_codes(tmp_path, monkey
     assert statuses == {"done", "failed", "skipped", "stale"}
     assert [len(r.warnings) for *_, r in seen] == [5, 5, 5]
     assert [len(r.errors) for *_, r in seen] == [3, 4, 4]
+
+
+def test_the_identity_share_of_the_digest_taken_ahead_gives_the_same_digest():
+    """outputs.identity_hash taken by the engine while the workers compute, then given to
+    outputs_digest, makes the digest it makes itself from the identity frame."""
+    from fretwear.bundle.outputs import identity_hash, outputs_digest
+
+    identity = pd.DataFrame({"contact": ["a", "b"], "tube_row": [1, 2], "support": ["AVB", None]})
+    records = {"a": {"key": "k1", "status": "done", "part": "p", "rows_file": "p.parquet"},
+               "b": {"key": "k2", "status": "skipped", "part": "q", "rows_file": "q.parquet"}}
+    options = ("parquet", "zarr", 0.4)
+    alone = outputs_digest(identity, ["a", "b"], records, *options)
+    assert outputs_digest(identity, ["a", "b"], records, *options,
+                          identity_bytes=identity_hash(identity)) == alone
+    other = identity.assign(tube_row=[1, 3])
+    assert outputs_digest(other, ["a", "b"], records, *options) != alone

@@ -40,7 +40,7 @@ from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.frozen import gc_frozen
 from fretwear.bundle.manifest import Manifest, read_manifest
 from fretwear.bundle.manifest_history import check_histories
-from fretwear.bundle.outputs import assemble, outputs_digest  # noqa: F401 - its home until now
+from fretwear.bundle.outputs import assemble, identity_hash, outputs_digest  # noqa: F401
 from fretwear.bundle.result import BundleResult, check_limit
 from fretwear.bundle.store import (
     DATASET_FORMATS,
@@ -411,6 +411,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 handles.update(_submit_all(engine, wave, store, chunk_size, split_every,
                                            retries, part_size,
                                            f"contacts{k}" if k else "contacts"))
+            # the identity's share of the outputs' digest, while the workers compute
+            hashed = None if store is None else identity_hash(identity)
             arrivals.start()
             engine = engine or SerialEngine()
             streaming = (store is not None or progress is not None
@@ -424,7 +426,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             if engine is not None:
                 engine.close()
         return assemble(man, records, store, (started, startup), workers_used,
-                        dataset_format, limit, built, identity, arrivals.table)
+                        dataset_format, limit, built, identity, arrivals.table, hashed)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         arrivals.abort()
         raise _interrupted(store, records, arrivals.buffer, len(man.rows), previous, man,
