@@ -69,3 +69,12 @@ def test_arrays_are_made_plain_as_their_values_one_by_one(array):
     assert json.dumps(got) == json.dumps(reference)
     if array.ndim == 1:  # Python's numbers, not numpy's
         assert [type(v) for v in got] == [type(v) for v in reference]
+
+
+def test_a_long_double_array_goes_the_general_way():
+    """A 1-d array of long doubles is not taken by the float array's shortcut (its tolist()
+    gives numpy long doubles, not Python floats): each value plain as on its own, text JSON
+    can write."""
+    values = np.array([1.5, np.inf], dtype=np.longdouble)
+    assert p.plain(values) == [p.plain(v) for v in values]
+    json.dumps(p.plain(values))

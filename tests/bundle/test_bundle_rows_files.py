@@ -20,6 +20,7 @@ def _packed(rows: int, sectors: bool, seed: int) -> dict:
     rng = np.random.default_rng(seed)
     columns = ["instant", "duration", "power", "depth_mobile"] + (["sector"] if sectors else [])
     arrays = [rng.random(rows) for _ in range(4)]
+    arrays[3][::5] = np.nan  # a depth without its radius: pandas writes it as null
     if sectors:
         arrays.append(np.arange(rows, dtype=np.int64) % 4 + 1)
     return {"columns": columns, "arrays": arrays}
@@ -36,6 +37,10 @@ def test_the_arrow_part_is_the_file_pandas_writes(tmp_path, sectors):
     write_frame(frame, tmp_path / "pandas.parquet", "parquet", sweep=False)
     assert (tmp_path / "arrow.parquet").read_bytes() == (tmp_path / "pandas.parquet").read_bytes()
     pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "arrow.parquet"), frame)
+    import pyarrow.parquet as pq
+
+    depth = pq.read_table(tmp_path / "arrow.parquet").column("depth_mobile")
+    assert depth.null_count == frame["depth_mobile"].isna().sum() > 0
 
 
 def test_tables_of_two_layouts_are_aligned_by_pandas(tmp_path):

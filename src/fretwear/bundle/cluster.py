@@ -136,7 +136,7 @@ class DaskEngine:
 
     def map(self, fn, items, *args, keys, retries: int = 2):
         # one graph for many contacts: one message to the scheduler, not one per contact
-        # the records come back pickled in one piece (tasks.pickled; unpickled in results)
+        # the records come back pickled in one piece (transport.pickled; unpickled in results)
         if not items:
             return []
         return self.client.map(functools.partial(pickled, fn), items,

@@ -22,7 +22,8 @@ def plain(value: Any) -> Any:
         return value if math.isfinite(value) else None
     if value is None or kind is str or kind is int or kind is bool:
         return value
-    if kind is np.ndarray and value.ndim == 1 and value.dtype.kind == "f":
+    if kind is np.ndarray and value.ndim == 1 and value.dtype.kind == "f" \
+            and value.dtype.itemsize <= 8:  # tolist() gives Python floats (not long doubles)
         # a power's blocks and sectors: the list's floats checked in place, not one call each
         isfinite = math.isfinite
         return [v if isfinite(v) else None for v in value.tolist()]

@@ -74,7 +74,9 @@ def _write_arrow(contacts: list[str], tables: list[dict[str, Any]], path: Path) 
     lengths = [len(t["arrays"][0]) if t["arrays"] else 0 for t in tables]
     ids = pa.array(contacts, type=schema.field(0).type)
     data = [ids.take(pa.array(np.repeat(np.arange(len(contacts)), lengths)))]
-    data += [pa.array(np.concatenate([t["arrays"][j] for t in tables]))
+    # from_pandas: a NaN written as null, as pandas writes it (an obstacle sector's depth
+    # without an obstacle radius is NaN)
+    data += [pa.array(np.concatenate([t["arrays"][j] for t in tables]), from_pandas=True)
              for j in range(len(columns))]
     table = pa.Table.from_arrays(data, schema=schema)
     with atomic_path(path, sweep=False) as tmp:

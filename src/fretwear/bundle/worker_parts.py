@@ -4,7 +4,7 @@ Written by the client, a part cost it some 0.16 ms a contact (the rows gathered 
 worker, unpickled, put end to end, converted and written: 16 ms a part of 100 contacts on an
 idle core), CPU taken from the workers on a small machine, beside the rows' trip through
 Dask. A worker that sees the output directory writes its group's rows as
-``parts/<stem>.<format>`` (atomically, :func:`fretwear.bundle.store.write_frame`) and sends
+``parts/<stem>.<format>`` (atomically, :func:`fretwear.bundle.rows_files.write_rows`) and sends
 back the records without their rows; the client then writes the part's JSON
 (:meth:`fretwear.bundle.store.OutputDirectory.record_part`). A part exists only once its
 JSON is written, so a worker's rows file is never half-visible: one without its JSON (the

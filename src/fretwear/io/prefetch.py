@@ -28,8 +28,9 @@ from typing import Any
 from fretwear.io import sources
 from fretwear.io.parquet import read_known_block
 
-#: Most rows of a file read ahead (a longer one is read when its contact comes), and most bytes
-#: of columns held ahead at once: 2^16 rows of 6 float64 channels are 3 MB.
+#: Most rows of a file read ahead (a longer one is read when its contact comes), and the bytes
+#: of columns held ahead past which no other file is (the one that passes them is held: at most
+#: AHEAD_BYTES + 3 MB, 2^16 rows of 6 float64 channels).
 AHEAD_ROWS = 1 << 16
 AHEAD_BYTES = 1 << 25
 
@@ -99,7 +100,7 @@ def prefetch(paths: Iterable[Any], size: int) -> Iterator[int]:
 
 
 def taken(path: Any, size: int) -> tuple | None:
-    """The read of ``path`` held ahead in this thread (:func:`read_ahead`), taken once:
+    """The read of ``path`` held ahead in this thread (:func:`prefetch`), taken once:
     ``(names, units, stored metadata, arrays, positions)`` as
     :func:`~fretwear.io.parquet.read_known_block` gives them plus the columns' positions; None
     where none is held or it has more than ``size`` rows."""
