@@ -44,7 +44,6 @@ def _tasks(tmp_path, count):
 
 def test_a_group_reads_ahead_then_computes_powers_then_tables(tmp_path, monkeypatch):
     monkeypatch.setattr(sources, "_LAYOUTS", OrderedDict())
-    monkeypatch.setattr(streaming, "_LAYOUTS", sources._LAYOUTS)
     group = _tasks(tmp_path, 20)
     alone = [tasks.run_contact(t) for t in group]  # the layout resolved by the first
     events = []

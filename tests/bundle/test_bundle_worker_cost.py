@@ -31,7 +31,6 @@ def test_each_history_file_is_opened_once(tmp_path, monkeypatch):
 
     monkeypatch.setattr(sources, "open_source", counting)
     monkeypatch.setattr(sources, "_LAYOUTS", collections.OrderedDict())  # no layout known
-    monkeypatch.setattr(streaming, "_LAYOUTS", sources._LAYOUTS)
     lean = streaming.read_known_block
 
     def counting_lean(path, *args, **kwargs):

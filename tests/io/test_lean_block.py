@@ -45,7 +45,6 @@ def _history(kind: str, n: int = 1000, seed: int = 0) -> ContactHistory:
 def lean_count(monkeypatch):
     """Fresh layout cache; counts the files the lean lane read (a history returned)."""
     monkeypatch.setattr(sources, "_LAYOUTS", OrderedDict())
-    monkeypatch.setattr(streaming, "_LAYOUTS", sources._LAYOUTS)
     taken = []
     lean = streaming._lean_block
 

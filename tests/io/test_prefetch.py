@@ -38,7 +38,6 @@ def _history(seed: int, n: int = 1000) -> ContactHistory:
 def reads(monkeypatch):
     """A fresh layout cache; the files read, where: ``("ahead", name)`` or ``("own", name)``."""
     monkeypatch.setattr(sources, "_LAYOUTS", OrderedDict())
-    monkeypatch.setattr(streaming, "_LAYOUTS", sources._LAYOUTS)
     seen = []
     for module, where in ((prefetch, "ahead"), (streaming, "own")):
         real = module.read_known_block

@@ -25,8 +25,8 @@ import threading
 from collections.abc import Iterable, Iterator
 from typing import Any
 
-from fretwear.io import sources
 from fretwear.io.parquet import read_known_block
+from fretwear.io.sources import known_layout
 
 #: Most rows of a file read ahead (a longer one is read when its contact comes), and the bytes
 #: of columns held ahead past which no other file is (the one that passes them is held: at most
@@ -41,8 +41,7 @@ def layout_positions(names: list[str], units: dict[int, str]) -> list[int] | Non
     """The positions of the channels' columns in a file of these column ``names`` and
     ``{position: unit}``, where their layout is already resolved (what the lean lane reads),
     else None."""
-    # sources._layout's key; the cache looked up where it is now (a test may give it anew)
-    found = sources._LAYOUTS.get((tuple(names), tuple(units.items())))
+    found = known_layout(names, units)
     return None if found is None else list(found[0].values())
 
 

@@ -389,6 +389,14 @@ def _layout(source: Source) -> tuple | None:
     return key
 
 
+def known_layout(names: list[str], units: dict[int, str]) -> tuple | None:
+    """The channels remembered in :data:`_LAYOUTS` for a file of these column ``names`` and
+    ``{position: unit}`` (:func:`_layout`'s key), or None: what the lean lane of
+    :func:`fretwear.io.iter_history_blocks` and its read-ahead (:mod:`fretwear.io.prefetch`)
+    read a file by."""
+    return _LAYOUTS.get((tuple(names), tuple(units.items())))
+
+
 def _remember(key: tuple, channels: tuple) -> None:
     if len(_LAYOUTS) >= 16:
         _LAYOUTS.popitem(last=False)  # the oldest (one call: safe beside other threads)

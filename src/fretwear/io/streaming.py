@@ -21,7 +21,7 @@ from fretwear.io.guard import warn_whole_read
 from fretwear.io.parquet import read_known_block
 from fretwear.io.plausibility import StreamPlausibility
 from fretwear.io.prefetch import taken
-from fretwear.io.sources import _LAYOUTS, _files, _prepare, _stem
+from fretwear.io.sources import _files, _prepare, _stem, known_layout
 
 
 def _slices(arrays: list[np.ndarray], size: int) -> Iterator[list[np.ndarray]]:
@@ -84,7 +84,7 @@ def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | N
     layout: list[tuple] = []
 
     def positions_of(names: list[str], units: dict[int, str]) -> list[int] | None:
-        found = _LAYOUTS.get((tuple(names), tuple(units.items())))  # sources._layout's key
+        found = known_layout(names, units)
         if found is None:
             return None
         layout.append(found)
