@@ -13,7 +13,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear.bundle.csv_table import write_csv
 from fretwear.bundle.datasets import require
-from fretwear.bundle.tasks import concat_packed
+from fretwear.bundle.tasks import concat_packed, packed_columns
 from fretwear.io.atomic import atomic_path
 from fretwear.table.schema import FLOAT_FORMAT
 
@@ -59,25 +59,22 @@ def _write_arrow(contacts: list[str], tables: list[dict[str, Any]], path: Path) 
     pandas metadata (:func:`_arrow_schema`), the same values, the same writer options (pandas
     writes Snappy), so the same bytes. False, nothing written, where the tables differ in
     layout or a column is not a plain 1-D number array (``concat_packed`` aligns those)."""
-    columns = tables[0]["columns"]
-    arrays = tables[0]["arrays"]
-    dtypes = tuple(a.dtype.str for a in arrays)
     if not all(isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype.kind in "fiub"
-               for a in arrays) or any(
-            t["columns"] != columns or tuple(a.dtype.str for a in t["arrays"]) != dtypes
-            for t in tables[1:]):
+               for a in tables[0]["arrays"]):
         return False
+    laid = packed_columns(tables)
+    if laid is None:
+        return False
+    lengths, columns, arrays = laid
     pa = require("pyarrow", purpose="writing Parquet (the csv table format does not need it)")
     import pyarrow.parquet as pq
 
-    schema = _arrow_schema(tuple(columns), dtypes)
-    lengths = [len(t["arrays"][0]) if t["arrays"] else 0 for t in tables]
+    schema = _arrow_schema(tuple(columns), tuple(a.dtype.str for a in arrays))
     ids = pa.array(contacts, type=schema.field(0).type)
     data = [ids.take(pa.array(np.repeat(np.arange(len(contacts)), lengths)))]
     # from_pandas: a NaN written as null, as pandas writes it (an obstacle sector's depth
     # without an obstacle radius is NaN)
-    data += [pa.array(np.concatenate([t["arrays"][j] for t in tables]), from_pandas=True)
-             for j in range(len(columns))]
+    data += [pa.array(a, from_pandas=True) for a in arrays]
     table = pa.Table.from_arrays(data, schema=schema)
     with atomic_path(path, sweep=False) as tmp:
         pq.write_table(table, tmp, compression="snappy")

@@ -153,21 +153,33 @@ def concat_packed(contacts: list[str], packed: list[dict[str, Any]]) -> pd.DataF
     """
     if not packed:
         return pd.DataFrame(columns=["contact"])
-    columns = packed[0]["columns"]
-    dtypes = [a.dtype for a in packed[0]["arrays"]]
-    if any(p["columns"] != columns or [a.dtype for a in p["arrays"]] != dtypes
-           for p in packed[1:]):
+    laid = packed_columns(packed)
+    if laid is None:
         frames = []
         for contact, table in zip(contacts, packed, strict=True):
             frame = unpack(table)
             frame.insert(0, "contact", contact)
             frames.append(frame)
         return pd.concat(frames, ignore_index=True)
-    lengths = [len(p["arrays"][0]) if p["arrays"] else 0 for p in packed]
+    lengths, columns, arrays = laid
     data = {"contact": np.repeat(np.array(contacts, dtype=object), lengths)}
-    for j, name in enumerate(columns):
-        data[name] = np.concatenate([p["arrays"][j] for p in packed])
+    data.update(zip(columns, arrays, strict=True))
     return pd.DataFrame(data)
+
+
+def packed_columns(packed: list[dict[str, Any]]
+                   ) -> tuple[list[int], list[str], list[np.ndarray]] | None:
+    """The tables of :func:`pack` (one at least) laid end to end a column at a time: (each
+    table's rows, the columns, their arrays), where they all have the same columns and dtypes;
+    None otherwise (:func:`concat_packed` aligns them by pandas)."""
+    columns = packed[0]["columns"]
+    dtypes = [a.dtype for a in packed[0]["arrays"]]
+    if any(p["columns"] != columns or [a.dtype for a in p["arrays"]] != dtypes
+           for p in packed[1:]):
+        return None
+    lengths = [len(p["arrays"][0]) if p["arrays"] else 0 for p in packed]
+    return lengths, columns, [np.concatenate([p["arrays"][j] for p in packed])
+                              for j in range(len(columns))]
 
 
 def _error(exc: BaseException) -> list[str]:
