@@ -1,5 +1,6 @@
 """The client's garbage collector during a bundle run (issue 28): the objects alive at the
-run's start frozen, and those surviving each full pass frozen too (:func:`gc_frozen`)."""
+run's start frozen, and those surviving each full pass frozen too (:func:`gc_frozen`); the
+collector off while the run's end assembles its result (:func:`collector_paused`)."""
 
 from __future__ import annotations
 
@@ -42,3 +43,15 @@ def freeze_survivors(phase: str, info: dict) -> None:
     collected once the run unfreezes (its memory held until then)."""
     if phase == "stop" and info.get("generation") == 2:
         gc.freeze()
+
+
+@contextlib.contextmanager
+def collector_paused():
+    """Python's cyclic garbage collector off in the block (back on after, where it was)."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()

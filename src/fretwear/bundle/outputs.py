@@ -11,18 +11,17 @@ written as they arrived: the table is read from them in one pass
 
 from __future__ import annotations
 
-import gc
 import hashlib
 import json
 import math
 import time
 from concurrent.futures import ThreadPoolExecutor
-from contextlib import contextmanager
 from typing import Any
 
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
+from fretwear.bundle.frozen import collector_paused
 from fretwear.bundle.manifest import Manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, summary_rows
 from fretwear.bundle.result_dataset import build_dataset
@@ -47,7 +46,7 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
     # the collector off until the end: at 10^5 contacts the records, cases and frames held
     # are millions of objects, each full collection a walk through them all, started again
     # and again by the objects made here (0.25-0.3 s of the end at 10^5, issue 28)
-    with _collector_paused():
+    with collector_paused():
         return _assemble(man, records, store, times, workers, dataset_format, limit, built,
                          identity, written, identity_bytes)
 
@@ -154,18 +153,6 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
 #: whole, and reading a piece took longer than summing it up (issue 28: 19 pieces at 10^5
 #: contacts, 55 ms to read one, 35 ms to sum it up).
 AHEAD = 4
-
-
-@contextmanager
-def _collector_paused():
-    """Python's cyclic garbage collector off in the block (back on after, where it was)."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
 
 
 #: What a contact's wear case gives to its row of ``BundleResult.contacts`` (the record's
