@@ -20,7 +20,6 @@ Unknown columns are errors naming the closest valid name, as in case files.
 from __future__ import annotations
 
 import os
-import stat
 import tomllib
 import warnings
 from collections.abc import Mapping
@@ -54,6 +53,8 @@ from fretwear.bundle.datasets import (
     time_dim,
     trim,
 )
+from fretwear.bundle.frozen import collector_paused
+from fretwear.bundle.manifest_paths import HistoryPaths, absolute
 from fretwear.errors import FormatError, InputError, KeywordError
 from fretwear.io import guess_format
 from fretwear.io.aster import read_aster_tables
@@ -182,20 +183,21 @@ def _rows_from_frame(frame: pd.DataFrame, source: str, directory: Path, *,
              if meaning[str(col)] not in ("contact", "history", "node")]
     own = {k: frame[k].tolist() if k in frame else None for k in ("contact", "history", "node")}
     rows = []
-    parents: dict[str, str] = {}  # the folders of the histories, resolved once
+    hists = [None] * len(frame) if own["history"] is None else \
+        [None if empty_cell(h) else str(h) for h in own["history"]]
+    path_of = HistoryPaths([h for h in hists if h is not None], directory)
     for i, cid in enumerate(own["contact"]):
         if empty_cell(cid):
             raise InputError(f"{source}: row {i + 1} has no contact id; give every row one")
-        cid = str(_identity_value(cid))
+        cid = cid if type(cid) is str else str(_identity_value(cid))
         identity, overrides, labels = _row_cells(cells, i, cid, source, directory, noun)
         node = None if own["node"] is None else own["node"][i]
         node = None if empty_cell(node) else str(_identity_value(node))
-        hist = None if own["history"] is None else own["history"][i]
-        if empty_cell(hist):
+        hist = hists[i]
+        if hist is None:
             ref = HistoryRef("none", node=node)
         else:
-            ref = HistoryRef("file", path=str(_absolute(str(hist), directory, parents)),
-                             node=node)
+            ref = HistoryRef("file", path=path_of(hist), node=node)
         identity["node"] = node
         rows.append(ContactRow(cid, ref, identity, overrides, labels))
     check_unique([r.contact for r in rows], source)
@@ -240,7 +242,7 @@ def _row_cells(cells, i: int, contact: str, source: str, directory: Path, noun: 
                                  "contact")
         else:
             value = _plain(raw[i])
-            overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
+            overrides[key] = absolute(value, directory) if key in PATH_KEYS else value
             labels[key] = f"{noun} {name}"
     return identity, overrides, labels
 
@@ -264,51 +266,9 @@ def _cells(cells, contact: str, source: str, directory: Path, noun: str = "colum
                                  "contact")
         else:
             value = _plain(value)
-            overrides[key] = _absolute(value, directory) if key in PATH_KEYS else value
+            overrides[key] = absolute(value, directory) if key in PATH_KEYS else value
             labels[key] = f"{noun} {name}"
     return identity, overrides, labels
-
-
-def _absolute(value: Any, directory: Path, parents: dict | None = None) -> Any:
-    """``(directory / value).resolve()`` as text (a list element by element); with
-    ``parents``, the folders already resolved for this manifest: a file in a known folder
-    costs one ``lstat`` (is it a link?) instead of one per component of its path. A name that
-    ``lstat`` cannot look at (missing, too long, no permission) is left to ``Path.resolve``,
-    which ignores those errors: that contact fails alone when its file is read."""
-    if isinstance(value, list):
-        return [_absolute(v, directory, parents) for v in value]
-    text = str(value)
-    if parents is None or os.path.isabs(text):
-        p = Path(text)
-        return str(p) if p.is_absolute() else _resolved(directory / p)
-    # the folder and the name as strings (a Path per row cost 0.1 ms of a 10^5-row manifest's
-    # client time): the folder resolved once, a name "" (a trailing slash), "." or ".." by
-    # Path.resolve as before
-    head, name = os.path.split(text)
-    if name in ("", ".", ".."):
-        return _resolved(directory / text)
-    folder = parents.get(head)
-    if folder is None:
-        try:
-            folder = parents[head] = str((directory / head).resolve())
-        except (OSError, RuntimeError, ValueError):  # a link loop, a NUL: the reader says so
-            return _resolved(directory / text)
-    target = os.path.join(folder, name)
-    try:
-        link = stat.S_ISLNK(os.lstat(target).st_mode)
-    except (OSError, ValueError):  # Path.is_symlink would raise ENAMETOOLONG, EACCES
-        return _resolved(directory / text)
-    return _resolved(Path(target)) if link else target
-
-
-def _resolved(path: Path) -> str:
-    """``path`` resolved, or as written when it cannot be (a loop of links: a RuntimeError on
-    Python < 3.13; a NUL byte: a ValueError): the contact's reader then fails with a fretwear
-    error naming it (:func:`fretwear.io.guard.readable_file`), the other contacts go on."""
-    try:
-        return str(path.resolve())
-    except (OSError, RuntimeError, ValueError):
-        return str(path)
 
 
 def _flatten(table: Mapping[str, Any], source: str, prefix: str = "") -> dict[str, Any]:
@@ -438,7 +398,11 @@ def read_manifest(source: Any) -> Manifest:
     >>> [r.contact for r in m.rows], m.rows[0].overrides
     (['a', 'b'], {('geometry', 'mobile_radius_m'): 0.0095})
     """
-    manifest = _read(source)
+    # the collector off while the rows are made: objects without cycles (a frozen dataclass,
+    # dicts and text per row), whose young-generation passes over the growing list were a
+    # sixth of a 10^5-row manifest's read (issue 28)
+    with collector_paused():
+        manifest = _read(source)
     if not manifest.rows:
         raise InputError(f"{manifest.source} has no contacts (a header only?); a manifest has "
                          "one row per contact")
