@@ -36,6 +36,7 @@ from fretwear.bundle.cluster import (
     SerialEngine,
     open_engine,
 )
+from fretwear.bundle.contacts_info import ContactRows
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.frozen import gc_frozen
 from fretwear.bundle.manifest import Manifest, read_manifest
@@ -386,6 +387,8 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     records: dict[str, dict[str, Any]] = {}
     pending: list[ContactTask] = []  # the rows made tasks (an interrupt counts them once done)
     built: dict[str, Any] = {}  # contact -> its WearCase, built once here
+    # the rows of BundleResult.contacts made as the records are final, not after the last one
+    made = ContactRows([r.contact for r in man.rows], built)
     arrivals = Arrivals(store, records, earlier, len(man.rows), progress, part_size,
                         None if store is None else store.table_writer(
                             [r.contact for r in man.rows], identity, dataset_format))
@@ -420,13 +423,16 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             for handle, value in engine.results([h for h, _, _ in handles.values()], streaming):
                 _, group, target = handles[id(handle)]
                 arrivals.receive(group, value, target)
+                # final once in a part (its attrs then shared with the others'), or at once
+                made.add(r for r in map(records.get, (t.contact for t in group))
+                         if store is None or r.get("part"))
             arrivals.close()
             workers_used = engine.workers
         finally:
             if engine is not None:
                 engine.close()
         return assemble(man, records, store, (started, startup), workers_used,
-                        dataset_format, limit, built, identity, arrivals.table, hashed)
+                        dataset_format, limit, built, identity, arrivals.table, hashed, made)
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         arrivals.abort()
         raise _interrupted(store, records, arrivals.buffer, len(man.rows), previous, man,

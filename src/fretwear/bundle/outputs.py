@@ -21,6 +21,7 @@ from typing import Any
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
+from fretwear.bundle.contacts_info import ContactRows, contacts_info
 from fretwear.bundle.frozen import collector_paused
 from fretwear.bundle.manifest import Manifest
 from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, summary_rows
@@ -36,23 +37,25 @@ def assemble(man: Manifest, records: dict[str, dict[str, Any]], store,
               times: tuple[float, float], workers: int, dataset_format: str | None,
               limit: float | None = None, built: dict[str, Any] | None = None,
               identity: pd.DataFrame | None = None, written: PrefixTable | None = None,
-              identity_bytes: bytes | None = None) -> BundleResult:
+              identity_bytes: bytes | None = None, made: ContactRows | None = None
+              ) -> BundleResult:
     """The BundleResult (and the output files) from every contact's latest record and the
     wear cases ``built`` (contact -> WearCase) of this run; ``identity``: the manifest's
     identity columns (``contact`` as text), made here when None; ``written``: the table
     written while the results arrived, put in place when whole (else given up);
     ``identity_bytes``: :func:`identity_hash` of ``identity``, taken while the workers
-    computed (made here when None)."""
+    computed (made here when None); ``made``: the contacts' rows of ``BundleResult.contacts``
+    made while the results arrived (made here when None)."""
     # the collector off until the end: at 10^5 contacts the records, cases and frames held
     # are millions of objects, each full collection a walk through them all, started again
     # and again by the objects made here (0.25-0.3 s of the end at 10^5, issue 28)
     with collector_paused():
         return _assemble(man, records, store, times, workers, dataset_format, limit, built,
-                         identity, written, identity_bytes)
+                         identity, written, identity_bytes, made)
 
 
 def _assemble(man, records, store, times, workers, dataset_format, limit, built, identity,
-              written, identity_bytes=None) -> BundleResult:
+              written, identity_bytes=None, made=None) -> BundleResult:
     """:func:`assemble`, the collector paused."""
     order = [r.contact for r in man.rows]
     if identity is None:
@@ -100,8 +103,9 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     result = None
     with ThreadPoolExecutor(1) as pool:
         try:
-            contacts = identity.merge(contacts_info(order, records, cases), on="contact",
-                                      how="right")
+            info = made.frame(records) if made is not None else \
+                contacts_info(order, records, built or {})
+            contacts = identity.merge(info, on="contact", how="right")
             regions = pool.submit(store.write_zarr_by_regions, contacts) \
                 if ahead is not None and dataset_format == "zarr" else None
             if store is not None and digest is None:
@@ -153,65 +157,6 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
 #: whole, and reading a piece took longer than summing it up (issue 28: 19 pieces at 10^5
 #: contacts, 55 ms to read one, 35 ms to sum it up).
 AHEAD = 4
-
-
-#: What a contact's wear case gives to its row of ``BundleResult.contacts`` (the record's
-#: ``attrs`` where it has no case): the column and the case's attribute.
-_OF_CASE = (("origin", "origin"), ("tube_replacement", "restart.tube_replacement"),
-            ("wall_thickness", "wall.thickness"), ("depth_limit", "wall.limit"),
-            ("contact_type", "contact_type"), ("dimensions", "dimensions"), ("law", "law"),
-            ("time_scale", "time_scale"))
-
-
-def contacts_info(order: list[str], records: dict[str, dict[str, Any]],
-                  cases: dict[str, Any]) -> pd.DataFrame:
-    """The rows of ``BundleResult.contacts`` but the identity, one per contact of ``order``:
-    its record's status and computed values (``samples``, ``seconds`` [s], ``power`` [W],
-    resolved coefficients), and what its wear case says (``cases[c]``, carried by the run;
-    the record's metadata for a contact whose rows are an earlier run's or that failed).
-
-    Taken a column at a time over the contacts, each case's values once per case object (the
-    contacts of a bundle share a few): a dict per contact and the frame made from them took
-    0.4 s at 10^5 contacts (issue 28); the same frame, column for column."""
-    recs = [records[c] for c in order]
-    attrs = [r.get("attrs") or {} for r in recs]
-    made: dict[int, tuple] = {}  # id(case) -> (case, its values in _OF_CASE's order)
-
-    def of(case):
-        known = made.get(id(case))
-        if known is None or known[0] is not case:
-            values = []
-            for _, path in _OF_CASE:
-                value = case
-                for name in path.split("."):
-                    value = getattr(value, name)
-                values.append(value)
-            known = made[id(case)] = (case, values)
-        return known[1]
-
-    carried = [None if (case := cases.get(c)) is None or not a else of(case)
-               for c, a in zip(order, attrs, strict=True)]
-    columns: dict[str, list] = {
-        "contact": list(order), "status": [r["status"] for r in recs],
-        "samples": [r.get("samples", 0) for r in recs],
-        "seconds": [r.get("seconds", 0.0) for r in recs],
-        "power": [(a.get("power") or {}).get("total") for a in attrs],
-        "time_unit": [a.get("time_unit") for a in attrs]}
-    for j, (name, _) in enumerate(_OF_CASE):
-        if name == "time_scale":  # after the coefficients
-            continue
-        columns[name] = [a.get(name) if v is None else v[j]
-                         for v, a in zip(carried, attrs, strict=True)]
-    # a case's dimensions copied for each of its contacts (a row's dict is its own)
-    columns["dimensions"] = [d if v is None else dict(d)
-                             for d, v in zip(columns["dimensions"], carried, strict=True)]
-    columns["coefficients_mobile"] = [a.get("coefficients_mobile") for a in attrs]
-    columns["coefficients_obstacle"] = [a.get("coefficients_obstacle") for a in attrs]
-    scale = len(_OF_CASE) - 1
-    columns["time_scale"] = [a.get("time_scale") if v is None else v[scale]
-                             for v, a in zip(carried, attrs, strict=True)]
-    columns["sector_coefficients"] = [a.get("sector_coefficients") for a in attrs]
-    return pd.DataFrame(columns)
 
 
 def _news(order: list[str], records: dict[str, dict[str, Any]]) -> tuple[list, list]:
