@@ -24,7 +24,13 @@ from fretwear._version import __version__
 from fretwear.bundle.contacts_info import ContactRows, contacts_info
 from fretwear.bundle.frozen import collector_paused
 from fretwear.bundle.manifest import Manifest
-from fretwear.bundle.result import ERROR_COLUMNS, BundleResult, summary_rows
+from fretwear.bundle.result import (
+    ERROR_COLUMNS,
+    BundleResult,
+    summarize_ahead,
+    summary_key,
+    summary_rows,
+)
 from fretwear.bundle.result_dataset import build_dataset
 from fretwear.bundle.store import OutputDirectory, write_frame
 from fretwear.bundle.table_file import PrefixTable, with_identity
@@ -97,17 +103,23 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
              if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
     # after the last result the workers' cores are free (issue 28: the client's work there was
     # single-threaded while a core waited): the summary's columns read in a thread from now,
-    # the dataset written in another from its contacts on, while this one makes the rest
-    # (outputs_digest, errors, the summary and the CSV files)
+    # and from the contacts on, the dataset written in a thread and the summary of the run's
+    # limit made in another, while this one makes the rest (outputs_digest, errors, the CSV
+    # files)
     ahead = None if table_file is None or unchanged else summary_rows(table_file, AHEAD)
     result = None
-    with ThreadPoolExecutor(1) as pool:
+    with ThreadPoolExecutor(2) as pool:
         try:
             info = made.frame(records) if made is not None else \
                 contacts_info(order, records, built or {})
             contacts = identity.merge(info, on="contact", how="right")
             regions = pool.submit(store.write_zarr_by_regions, contacts) \
                 if ahead is not None and dataset_format == "zarr" else None
+            summarized = None
+            if ahead is not None:  # the thread closes the rows it reads
+                summarized = (summary_key(limit),
+                              pool.submit(summarize_ahead, ahead, contacts, limit))
+                ahead = None
             if store is not None and digest is None:
                 digest = outputs_digest(identity, order, records, *options)
             warns, errors = _news(order, records)
@@ -137,7 +149,7 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
                 warnings=pd.DataFrame(warns, columns=["contact", "category", "message"]),
                 contacts=contacts, stats=stats,
                 output=None if store is None else str(store.path), cases=cases,
-                _rows_ahead=ahead)
+                _summary_ahead=summarized)
             if store is not None:
                 _write_outputs(result, store, records, dataset_format,
                                (started, computed), limit, digest, unchanged,
@@ -145,10 +157,10 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
             else:
                 _times(result.stats, started, computed)
         finally:
-            if ahead is not None:  # read by the summary, else stopped
+            if ahead is not None:  # not handed to the summary's thread: stopped
                 ahead.close()
-                if result is not None:
-                    result._rows_ahead = None
+            if result is not None:  # its ranking kept by summary(), else not kept
+                result._summary_ahead = None
     return result
 
 
