@@ -474,6 +474,26 @@ def test_task_key_is_the_hash_of_its_inputs_whether_the_case_is_shared_or_not(tm
         assert task.key == expected
     assert [t.key for t in shared] == [t.key for t in alone]
     assert len({t.key for t in shared}) == 3
+    # a node (in the reader options, made once per case and node) and a given power
+    from fretwear.bundle.manifest import ContactRow, HistoryRef
+
+    path = man.rows[1].history.path
+    for row in (ContactRow("n", HistoryRef("file", path=path, node="N12"), {}, {}),
+                ContactRow("n2", HistoryRef("file", path=path, node="N13"), {}, {}),
+                ContactRow("p", HistoryRef("none"), {}, {("power", "value_W"): 1.5})):
+        for where in (cache, None):
+            task = build_task(base, row, man.source, chunk_size=1000, cache=where)
+            power = 1.5 if row.history.kind == "none" else None
+            ident = {"case": _jsonable(task.case),
+                     "history": [row.history.kind, row.history.path, row.history.node,
+                                 row.history.index,
+                                 None if power else path_stamp(row.history.path)],
+                     "read": _jsonable(task.read_options), "chunk": 1000,
+                     "version": __version__, "power": power}
+            assert task.read_options.get("node") == row.history.node
+            assert task.key == hashlib.blake2b(
+                json.dumps(ident, sort_keys=True, default=str).encode(),
+                digest_size=16).hexdigest()
     write_history(oscillator(), man.rows[0].history.path)  # another history: another key
     again = build_task(base, man.rows[0], man.source, chunk_size=1000, cache=cache)
     assert again.key != shared[0].key

@@ -367,7 +367,7 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
             cache[signature] = cached
     case, wear, payload, ident_case, caught = cached
     given_power = "value_W" in case.get("power", {})
-    options = read_options(case, row.history)
+    options, read_text = _options(case, row.history, signature, cache)
     stamp: Any = None
     if row.history.kind == "store" and row.history.stamp:
         stamp = list(row.history.stamp)
@@ -381,10 +381,8 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
         stamp = h.hexdigest()
     power = float(case["power"]["value_W"]) if given_power else None
     key = _task_key(ident_case, signature, cache,
-                    {"history": [row.history.kind, row.history.path, row.history.node,
-                                 row.history.index, stamp],
-                     "read": _jsonable(options), "chunk": chunk_size, "version": __version__,
-                     "power": power})
+                    [row.history.kind, row.history.path, row.history.node, row.history.index,
+                     stamp], read_text, chunk_size, power)
     samples = None
     if row.history.kind == "memory":
         samples = int(len(next(iter(row.history.arrays.values()), [])))
@@ -399,18 +397,45 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     return task
 
 
-def _task_key(ident_case: Any, signature: str, cache: dict | None, rest: dict) -> str:
-    """The hash of ``json.dumps({"case": ident_case, **rest}, sort_keys=True, default=str)``
-    (``rest``'s keys sort after ``"case"``), the case's JSON encoded once for the rows that
-    share it (kept in ``cache``; encoding it again for each row was a third of the client's
-    time a contact)."""
+def _options(case: Mapping[str, Any], ref: HistoryRef, signature: str, cache: dict | None
+             ) -> tuple[dict[str, Any], str]:
+    """A row's reader options (:func:`read_options`) and their JSON in its key, made once for
+    the rows sharing a case and a node (kept in ``cache``: most rows of a bundle), the options
+    then one dict for all of them (read, never changed: the worker copies what it passes on)."""
+    shared = ("options", signature, ref.node) if cache is not None and not ref.units else None
+    known = None if shared is None else cache.get(shared)
+    if known is None:
+        options = read_options(case, ref)
+        known = (options, _encode(_jsonable(options)))
+        if shared is not None:
+            cache[shared] = known
+    return known
+
+
+def _task_key(ident_case: Any, signature: str, cache: dict | None, history: list,
+              read_text: str, chunk_size: int, power: float | None) -> str:
+    """The hash of the JSON of a row's inputs: ``json.dumps({"case": ident_case, "chunk":
+    chunk_size, "history": history, "power": power, "read": _jsonable(options), "version":
+    __version__}, sort_keys=True, default=str)``, the same text made piece by piece (a value's
+    JSON in a dict is its own JSON): the case's encoded once for the rows that share it (kept
+    in ``cache``; encoding it again for each row was a third of the client's time a contact),
+    the reader options' too (``read_text``, :func:`_options`); the key of a contact in an
+    earlier run's output directory is this one for the same inputs."""
     text = None if cache is None else cache.get(("json", signature))
     if text is None:
         text = json.dumps(ident_case, sort_keys=True, default=str)
         if cache is not None:
             cache[("json", signature)] = text
-    whole = '{"case": ' + text + ", " + json.dumps(rest, sort_keys=True, default=str)[1:]
+    whole = "".join(('{"case": ', text, ', "chunk": ', _encode(chunk_size),
+                     ', "history": ', _encode(history), ', "power": ', _encode(power),
+                     ', "read": ', read_text, ', "version": ', _VERSION, "}"))
     return hashlib.blake2b(whole.encode(), digest_size=16).hexdigest()
+
+
+#: ``json.dumps(value, sort_keys=True, default=str)`` without a new encoder made per call
+#: (json.dumps makes one whenever an option is given)
+_encode = json.JSONEncoder(sort_keys=True, default=str).encode
+_VERSION = _encode(__version__)
 
 
 class BaseCaseError(FretwearError, ValueError):
