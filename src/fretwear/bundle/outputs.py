@@ -22,6 +22,7 @@ from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
 from fretwear.bundle.contacts_info import ContactRows, contacts_info
+from fretwear.bundle.end_scan import digest_row, scan
 from fretwear.bundle.frozen import collector_paused
 from fretwear.bundle.manifest import Manifest
 from fretwear.bundle.result import (
@@ -84,10 +85,10 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     # PrefixTable), else by buckets (table_file.stream_table), and the result reads it on
     # demand: the client never holds the whole table (issue 28: 1.3 GB at 10^5 contacts, then
     # its copies); an unchanged restart reads nothing
+    seen = scan(order, records, built)
     table = None
     streamed = unchanged and _saved_table(store, order)
-    if not streamed and store is not None and not any(
-            records[c].get("table") is not None for c in order):
+    if not streamed and store is not None and not seen.tables:
         kept = ("done", "skipped", "stale")  # the records with rows: listed where needed
         streamed = any(records[c]["status"] in kept for c in order) and (
             store.finish_table(written) or store.stream_table(
@@ -97,10 +98,7 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     if not streamed:
         table = _table(order, identity, records, store)
     table_file = store.table_path() if streamed else None
-    # the case of each contact whose rows are its (done, or skipped: done before with the same
-    # inputs); a failed contact has none, a stale one the rows of an earlier case
-    cases = {c: (built or {})[c] for c in order
-             if c in (built or {}) and records[c]["status"] in ("done", "skipped")}
+    cases = seen.cases
     # after the last result the workers' cores are free (issue 28: the client's work there was
     # single-threaded while a core waited): the summary's columns read in a thread from now,
     # and from the contacts on, the dataset written in a thread and the summary of the run's
@@ -121,20 +119,14 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
                               pool.submit(summarize_ahead, ahead, contacts, limit))
                 ahead = None
             if store is not None and digest is None:
-                digest = outputs_digest(identity, order, records, *options)
-            warns, errors = _news(order, records)
+                digest = outputs_digest(identity, order, records, *options,
+                                        rows=seen.digest_rows)
+            warns, errors = _news(seen.news, records)
             errors_frame = pd.DataFrame(errors, columns=list(ERROR_COLUMNS))
             errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
                                               how="left")
             statuses = contacts["status"].value_counts()
-            computed, samples, two_pass = 0, 0, 0  # of the contacts computed this run
-            for c in order:
-                rec = records[c]
-                if rec["status"] in ("done", "failed"):
-                    computed += 1
-                    samples += rec.get("samples", 0)
-                    # history read twice: KWU-EPRI without FNOR_MAXI and VTAN_MAXI
-                    two_pass += rec.get("passes") == 2
+            computed, samples, two_pass = seen.computed, seen.samples, seen.two_pass
             started, startup = times
             stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
                      "failed": int(statuses.get("failed", 0)),
@@ -151,7 +143,7 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
                 output=None if store is None else str(store.path), cases=cases,
                 _summary_ahead=summarized)
             if store is not None:
-                _write_outputs(result, store, records, dataset_format,
+                _write_outputs(result, store, seen.parts, dataset_format,
                                (started, computed), limit, digest, unchanged,
                                (pool, regions))
             else:
@@ -174,7 +166,8 @@ AHEAD = 4
 def _news(order: list[str], records: dict[str, dict[str, Any]]) -> tuple[list, list]:
     """The rows of ``BundleResult.warnings`` (every warning of every contact) and
     ``BundleResult.errors`` (a failure, a stale contact's failure, a depth beyond its
-    relation's range), contacts in ``order``; only the contacts with news looked at."""
+    relation's range), contacts in ``order`` (those with news: :attr:`Scan.news`; any other
+    says nothing)."""
     warns: list[dict] = []
     errors: list[dict] = []
     for c in order:
@@ -212,15 +205,16 @@ def _times(stats: dict[str, Any], started: float, count: int) -> None:
     stats["samples_per_s"] = stats["samples"] / busy if busy > 0 else math.nan
 
 
-def _write_outputs(result: BundleResult, store: OutputDirectory, records, dataset_format: str,
-                   clock: tuple[float, int], limit: float | None, digest: str,
-                   unchanged: bool, started: tuple):
+def _write_outputs(result: BundleResult, store: OutputDirectory, parts: set[str],
+                   dataset_format: str, clock: tuple[float, int], limit: float | None,
+                   digest: str, unchanged: bool, started: tuple):
     """The final files; ``summary.csv`` is ``result.summary(limit)``, and ``run.json`` records
     ``limit`` (None: each contact's depth_limit), the ``digest`` of what the files hold
     (:func:`outputs_digest`) and their stamps. ``unchanged``: the files of an earlier run are
     those of ``digest`` and still as written: only ``run.json`` is written (this run's stats).
     ``started``: the thread pool writing the dataset and the future of its Zarr store written
-    by regions (None: not started)."""
+    by regions (None: not started). ``parts``: the parts the records refer to (the others
+    removed)."""
     if unchanged:
         order = ("table.parquet", "table.csv", "dataset.zarr", "dataset.nc", "errors.csv",
                  "warnings.csv", "summary.csv")
@@ -248,7 +242,7 @@ def _write_outputs(result: BundleResult, store: OutputDirectory, records, datase
     with atomic_write(store.path / "run.json", encoding="utf-8") as handle:
         json.dump({**result.stats, "limit": limit, "outputs": [*outputs, "run.json"],
                    "digest": digest, "stamps": stamps}, handle, indent=1, default=str)
-    store.cleanup(r.get("part") for r in records.values() if r.get("part"))
+    store.cleanup(parts)
 
 
 def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format: str,
@@ -274,21 +268,21 @@ def _write_dataset(result: BundleResult, store: OutputDirectory, dataset_format:
 
 def outputs_digest(identity: pd.DataFrame, order: list[str], records: dict[str, dict],
                    table_format: str, dataset_format: str, limit: float | None,
-                   identity_bytes: bytes | None = None) -> str:
+                   identity_bytes: bytes | None = None, rows: list | None = None) -> str:
     """What a bundle's final files hold, as a hash: fretwear's version, the output options,
     the manifest's identity columns, and each contact's record: its input key, status and the
     part holding its rows (a part is never rewritten: a new run writes new parts; a skipped
     contact counts as the done one it was). Two runs of the same digest write the same
-    files. ``identity_bytes``: :func:`identity_hash` of ``identity`` when already taken."""
+    files. ``identity_bytes``: :func:`identity_hash` of ``identity`` when already taken;
+    ``rows``: the records' shares (:func:`~fretwear.bundle.end_scan.digest_row`, in
+    ``order``) when already made."""
     h = hashlib.blake2b(digest_size=16)
     h.update(json.dumps([__version__, table_format, dataset_format, limit,
                          list(identity.columns)], default=str).encode())
     h.update(identity_hash(identity) if identity_bytes is None else identity_bytes)
-    skipped = {"skipped": "done"}  # a skipped contact's record is its earlier done one
-    h.update(json.dumps([[c, records[c].get("key"),
-                          skipped.get(records[c]["status"], records[c]["status"]),
-                          records[c].get("part"), records[c].get("rows_file")] for c in order],
-                        default=str).encode())
+    if rows is None:
+        rows = [digest_row(c, records[c]) for c in order]
+    h.update(json.dumps(rows, default=str).encode())
     return h.hexdigest()
 
 
