@@ -497,3 +497,29 @@ def test_task_key_is_the_hash_of_its_inputs_whether_the_case_is_shared_or_not(tm
     write_history(oscillator(), man.rows[0].history.path)  # another history: another key
     again = build_task(base, man.rows[0], man.source, chunk_size=1000, cache=cache)
     assert again.key != shared[0].key
+
+
+def test_task_carries_its_file_size_and_the_engine_splits_by_it(tmp_path):
+    """A task built from a history file carries the size its key's stat read (os.stat, the
+    independent value); a missing file none. plan_chunks decides from that size (no second
+    stat): the same file said small is computed whole, said large it is split."""
+    import dataclasses
+    import os
+
+    from bundle_helpers import oscillator, write_bundle
+
+    from fretwear.bundle.cases import build_task
+    from fretwear.bundle.engine import _base_case, plan_chunks
+    from fretwear.bundle.manifest import ContactRow, HistoryRef, read_manifest
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 2)
+    man = read_manifest(manifest)
+    base = _base_case(case)
+    base["_directory"] = str(man.directory)
+    task = build_task(base, man.rows[0], man.source, chunk_size=400)
+    assert task.file_bytes == os.stat(man.rows[0].history.path).st_size
+    missing = build_task(base, ContactRow("m", HistoryRef("file", path=str(tmp_path / "no")),
+                                          {}, {}), man.source, chunk_size=400)
+    assert missing.file_bytes is None
+    assert plan_chunks(task, 400) is not None  # the oscillator's history: > 400 samples
+    assert plan_chunks(dataclasses.replace(task, file_bytes=10), 400) is None

@@ -282,6 +282,10 @@ class ContactTask:
         ``[category, message]`` pairs of the warnings raised while the contact's case was
         built in the client (a dimension its contact type does not use, ...): its record
         starts with them, so they reach ``BundleResult.warnings`` with the contact's own.
+    file_bytes : int or None
+        The history file's size [bytes] when the task was built (the stat of its key), None
+        where the history is not a file or that stat failed: whether the engine splits it
+        into chunks is decided from it, not from a second stat.
     """
 
     contact: str
@@ -293,6 +297,7 @@ class ContactTask:
     samples: int | None = None
     power: float | None = None
     warnings: list[list[str]] = field(default_factory=list)
+    file_bytes: int | None = None
 
     def wear_case(self):
         """The :class:`fretwear.table.WearCase` (rebuilt once per process for equal cases)."""
@@ -386,9 +391,12 @@ def build_task(base: Mapping[str, Any], row: ContactRow, source: str, *,
     samples = None
     if row.history.kind == "memory":
         samples = int(len(next(iter(row.history.arrays.values()), [])))
+    # path_stamp's (size, mtime) of anything but a folder; a missing file is ("missing",)
+    size = stamp[0] if row.history.kind == "file" and len(stamp) == 2 else None
     task = ContactTask(contact=row.contact, history=row.history, case=payload,
                        read_options=options, time_unit=wear.time_label, key=key,
-                       samples=samples, power=power, warnings=[list(w) for w in caught])
+                       samples=samples, power=power, warnings=[list(w) for w in caught],
+                       file_bytes=size)
     if cache is not None:  # the rows sharing a case share its WearCase (wear_case's own)
         shared = cache.get(("built", signature))
         if shared is None:

@@ -112,7 +112,8 @@ def plan_chunks(task: ContactTask, chunk_size: int) -> list[tuple[int, int]] | N
         n = store_length(ref)
     elif ref.kind == "file" and ref.node is None \
             and task.read_options.get("format", "parquet") == "parquet" \
-            and _file_size(ref.path) > _BYTES_PER_SAMPLE * chunk_size:
+            and (_file_size(ref.path) if task.file_bytes is None else task.file_bytes) \
+            > _BYTES_PER_SAMPLE * chunk_size:
         with open(ref.path, "rb") as handle:
             if handle.read(4) != b"PAR1":
                 return None
