@@ -72,6 +72,13 @@ CASES = {
                                                  "obstacle_width": 12.7e-3},
         coefficients={"COEF_USURE": 1e-14}, obstacle_coefficients={"COEF_USURE": 4e-15},
         sectors=[-180.0, -30.0, 45.0, 180.0], instants=[0.5, 1, 2], time_scale=3.15e7),
+    "no wear (a coefficient of 0)": dict(
+        contact_type="TUBE_BAV", dimensions={"mobile_radius": 9.525e-3,
+                                             "obstacle_width": 12.7e-3},
+        coefficients={"COEF_USURE": 0.0}, sectors=8, instants=[1, 2], time_scale=3.15e7),
+    "sectors without a contact type (global depths NaN)": dict(
+        contact_type=None, dimensions={"mobile_radius": 9.525e-3, "obstacle_width": 12.7e-3},
+        coefficients={"COEF_USURE": 1e-14}, sectors=6, instants=[1, 2, 4], time_scale=3.15e7),
     "sector coefficients": dict(
         contact_type="TUBE_BAV", dimensions={"mobile_radius": 9.525e-3,
                                              "obstacle_width": 12.7e-3},
