@@ -3,8 +3,8 @@
 (fretwear.table.wear_table_columns of its PowerResult, the reference) bit for bit: every column's
 values and dtype, their order, and the attrs; for every kind of case the batch takes (one
 coefficient for all sectors, sector coefficients, an obstacle that wears with its bore radius,
-a tilted bar whose global depths are solved, powers of zero) and None for those it leaves to
-one table at a time."""
+a tilted bar whose global depths are solved, sectors without a contact type, a coefficient of
+0, powers of zero) and None for those it leaves to one table at a time."""
 
 from __future__ import annotations
 
