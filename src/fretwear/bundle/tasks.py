@@ -336,9 +336,11 @@ def _file_power(task: ContactTask, chunk_size: int):
     def progress(samples: int) -> None:
         read[0] = samples
 
+    # the statistics not made: a record keeps the power's values only (_POWER)
     power = wear_power(task.history.path, **task.wear_case().power_options,
                        chunk_size=chunk_size, progress=progress, name=task.contact,
-                       first_block=_geometry_check(task), **_file_options(task))
+                       first_block=_geometry_check(task), statistics=False,
+                       **_file_options(task))
     return power, read[0]
 
 
