@@ -55,10 +55,19 @@ def test_a_group_reads_ahead_then_computes_powers_then_tables(tmp_path, monkeypa
         real = getattr(tasks, name)
         monkeypatch.setattr(tasks, name, lambda *a, _r=real, _n=name, **k: (
             events.append(_n), _r(*a, **k))[1])
+    real_tables = tasks.sector_tables
+
+    def tables(case, results, **k):  # the tables of a case's contacts made together
+        made = real_tables(case, results, **k)
+        events.extend(["wear_table_columns"] * (0 if made is None else len(made)))
+        return made
+
+    monkeypatch.setattr(tasks, "sector_tables", tables)
     monkeypatch.setattr(tasks, "READ_AHEAD", 8)
     batched = tasks.run_contacts(group)
     # every file tried ahead (the missing one (5) and the broken one (6) fail there, then in
-    # their contact's own read: its error, as alone), every power, then every table
+    # their contact's own read: its error, as alone), every power, then every table (those of
+    # a case's contacts together, tasks._batch_tables, in another order)
     batch = ["ahead"] * 8 + ["wear_power"] * 8 + ["wear_table_columns"] * 8
     assert events == batch[:22] + batch + ["ahead"] * 4 + ["wear_power"] * 4 \
         + ["wear_table_columns"] * 4

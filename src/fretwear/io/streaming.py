@@ -100,7 +100,7 @@ def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | N
         return None
     names, _, stored, arrays = read
     mapping, unit_of, factors, used = (dict(d) for d in layout[0][:4])
-    label = str(Path(path))  # open_parquet's Source label
+    label = path_label(path)  # open_parquet's Source label
     metadata = dict(stored.get("metadata", {}))
     metadata.update(source=label, format="parquet", columns=used, units=unit_of,
                     unit_factors=factors, ignored_columns=list(layout[0][4]))
@@ -114,6 +114,24 @@ def _known_parquet(path: Any, size: int, name: str | None) -> ContactHistory | N
     plausibility.update(chunk, check=True)
     plausibility.finish()
     return None if plausibility.found else chunk
+
+
+def path_label(path: Any) -> str:
+    """``str(pathlib.Path(path))``, the label of a history file's Source, without making a
+    Path where ``path`` is a string already in the form a Path gives it (POSIX: no empty
+    component, no "." one, no trailing separator): a bundle's contact, 2 µs of its lean read
+    (issue 28). Any other path goes through ``Path``.
+
+    Examples
+    --------
+    >>> path_label("/data/c1.parquet"), path_label("./data//c1.parquet/")
+    ('/data/c1.parquet', 'data/c1.parquet')
+    """
+    if (type(path) is str and os.sep == "/" and os.altsep is None and path and path != "."
+            and "//" not in path and "/./" not in path and not path.startswith("./")
+            and not path.endswith(("/", "/."))):
+        return path
+    return str(Path(path))
 
 
 def iter_history_chunks(path: Any, chunk_size: int = DEFAULT_CHUNK_SIZE,

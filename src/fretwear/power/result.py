@@ -46,8 +46,9 @@ class PowerResult:
         Window bounds and length T [s].
     spread : float
         Relative spread of the block powers (max - min)/mean [-]; 0 for one block or no wear.
-    statistics : ContactStatistics
-        Contact statistics over the same window.
+    statistics : ContactStatistics or None
+        Contact statistics over the same window; None where not asked for
+        (``wear_power(..., statistics=False)``).
     name : str
         Name of the history.
     block_sectors : numpy.ndarray or None
@@ -77,7 +78,7 @@ class PowerResult:
     t_end: float
     duration: float
     spread: float
-    statistics: ContactStatistics
+    statistics: ContactStatistics | None
     name: str = ""
     block_sectors: np.ndarray | None = None
     kwu: Any = field(default=None, repr=False)
@@ -93,7 +94,8 @@ class PowerResult:
         new: the caller's to change)."""
         made = self.__dict__.get("_as_dict")
         if made is None:
-            made = {f.name: self.statistics.to_dict() if f.name == "statistics"
+            made = {f.name: (None if self.statistics is None else self.statistics.to_dict())
+                    if f.name == "statistics"
                     else [_jsonable(row) for row in self.block_sectors]
                     if f.name == "block_sectors" and self.block_sectors is not None
                     else _jsonable(getattr(self, f.name)) for f in fields(self)
