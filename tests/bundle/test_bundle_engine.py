@@ -459,10 +459,10 @@ def test_the_client_freezes_its_old_objects_only_while_it_runs(tmp_path, monkeyp
 
 def test_the_client_freezes_what_survives_a_full_collection_while_it_runs(tmp_path,
                                                                           monkeypatch):
-    """During run_bundle, what survives a full collection (generation 2) is frozen as well
-    (the records and tasks made since the start: the next full passes skip them), the callback
+    """During run_bundle, what survives a collection of generation 1 or 2 is frozen as well
+    (the records and tasks made since the start: the next passes skip them), the callback
     removed and every object unfrozen at the end; a cycle made garbage before the pass is
-    collected by it, not frozen; a pass of a younger generation freezes nothing."""
+    collected by it, not frozen; a pass of the youngest generation freezes nothing."""
     import gc
 
     manifest, case = write_bundle(tmp_path, oscillator(), 2)
@@ -473,26 +473,33 @@ def test_the_client_freezes_what_survives_a_full_collection_while_it_runs(tmp_pa
         pass
 
     def spy(*args, **kwargs):
+        gc.disable()  # only the passes asked for below: none promotes the cycle before them
         garbage = Node()
         garbage.me = garbage  # a cycle, unreachable once this function returns
         alive = [Node() for _ in range(1000)]  # made during the run, kept to its end
         young = gc.get_freeze_count()
-        gc.collect(1)
+        gc.collect(0)
         seen["after a young pass"] = gc.get_freeze_count() - young
         ref = weakref.ref(garbage)
         del garbage
         before = gc.get_freeze_count()
-        gc.collect()
+        gc.collect(1)
         seen["collected"] = ref() is None
+        seen["frozen by the middle pass"] = gc.get_freeze_count() - before
+        more = [Node() for _ in range(500)]
+        before = gc.get_freeze_count()
+        gc.collect()
         seen["frozen by the full pass"] = gc.get_freeze_count() - before
-        seen["alive"] = alive
+        seen["alive"] = alive + more
+        gc.enable()
         return real(*args, **kwargs)
 
     monkeypatch.setattr(engine_module, "read_manifest", spy)
     callbacks = list(gc.callbacks)
     run_bundle(manifest, case, scheduler="serial")
     assert seen["after a young pass"] <= 0 and seen["collected"]
-    assert seen["frozen by the full pass"] >= len(seen["alive"])
+    assert seen["frozen by the middle pass"] >= 1000
+    assert seen["frozen by the full pass"] >= 500
     assert gc.get_freeze_count() == 0 and gc.callbacks == callbacks
 
 
