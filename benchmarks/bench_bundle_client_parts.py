@@ -6,7 +6,7 @@ against what they replaced, in the same run, as process CPU (every thread):
    then the records compacted), for parts of 250 records as one task's pickle delivers them
    (a case's geometry, coefficients and sector edges one object, each contact its power);
 2. the dataset's row groups: ``GridZarr`` appending whole chunks itself
-   (``bundle/zarr_chunks.py``, on its own thread) against zarr's ``Array.append`` (the chunk
+   (``bundle/zarr_chunks.py``) against zarr's ``Array.append`` (the chunk
    writer turned off), for groups of about 2 750 contacts x 6 instants x 8 sectors of distinct
    random reals, their sizes not a chunk's (as a run's parts make them); the store's files
    compared byte for byte.

@@ -82,31 +82,3 @@ def test_an_array_of_another_layout_is_appended_by_zarr(tmp_path):
     assert appender(partial, tmp_path / "s" / "p") is None
     assert appender(across, tmp_path / "s" / "q") is None
     assert appender(whole, tmp_path / "s" / "w") is not None
-
-
-def test_a_chunk_write_failing_on_the_writers_thread_gives_the_store_up(tmp_path, monkeypatch):
-    """The chunks are written on a thread beside the caller's (zarr_chunks.BackgroundAppends):
-    a failed write is the route given up (GridZarr aborted, its folder removed; finish False:
-    the caller writes the dataset from the table), not a store with a chunk missing."""
-    from fretwear.bundle.zarr_chunks import ChunkAppender
-
-    if int(zarr.__version__.split(".")[0]) < 3:
-        pytest.skip("zarr 2: its own append")
-
-    def fail(self, values):
-        raise OSError("disk full")
-
-    monkeypatch.setattr(ChunkAppender, "_write", fail)
-    ids = [f"c{j:05d}" for j in range(150)]
-    for last in (True, False):  # the failure seen at finish, or at the next group
-        folder = tmp_path / f"s{last}"
-        store = GridZarr(folder, np.array(ids).dtype, {"zarr_format": 2})
-        store.add(_group(0, 50))
-        store.add(_group(50, 50))  # its whole chunk fails on the thread
-        if not last:
-            store.add(_group(100, 50))
-            assert store.aborted
-        contacts = pd.DataFrame({"contact": ids if not last else ids[:100], "status": "done"})
-        assert store.finish(contacts, tmp_path / f"t{last}.zarr") is False
-        assert not folder.exists() and not (tmp_path / f"t{last}.zarr").exists()
-        assert store.chunks.pool is None  # the thread stopped

@@ -14,7 +14,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear._version import __version__
 from fretwear.bundle.datasets import require
-from fretwear.bundle.zarr_chunks import BackgroundAppends, appender
+from fretwear.bundle.zarr_chunks import appender
 from fretwear.table import COLUMNS, GLOBAL_COLUMNS, SECTOR_COLUMNS
 
 _CONTACT_VARS = ("power",)
@@ -349,7 +349,6 @@ class GridZarr:
         self.arrays: dict | None = None  # the store's arrays along contact (_append)
         #: Each array's whole-chunk writer (zarr_chunks.appender; None: zarr's append).
         self.appenders: dict = {}
-        self.chunks: BackgroundAppends | None = None  # the thread writing them
         self.aborted = False
 
     def add(self, frame: pd.DataFrame) -> None:
@@ -384,8 +383,7 @@ class GridZarr:
         (about half of its 0.2-0.3 s a group of 2 800 contacts); :meth:`finish` consolidates
         once. An array whose layout :mod:`fretwear.bundle.zarr_chunks` knows is written by it
         a whole chunk at a time (the same files, without zarr's codec pipeline: 2.5 ms of CPU an
-        array a group), on a thread beside this one (:class:`BackgroundAppends`),
-        :meth:`finish` writing its last chunk. Raises where a variable is not
+        array a group), :meth:`finish` writing its last chunk. Raises where a variable is not
         an array of the store's type and shape beyond ``contact``: the caller gives up the
         route before anything is written."""
         along = {name: var for name, var in ds.variables.items() if "contact" in var.dims}
@@ -406,14 +404,10 @@ class GridZarr:
             values[name] = data
         if set(values) != set(self.arrays):
             raise ValueError("not the store's variables")
-        chunked = {name: data for name, data in values.items()
-                   if self.appenders.get(name) is not None}
-        if chunked:  # on the writer's thread, once it wrote the group before (else raises)
-            if self.chunks is None:
-                self.chunks = BackgroundAppends({n: self.appenders[n] for n in chunked})
-            self.chunks.add(chunked)
         for name, data in values.items():
-            if name not in chunked:
+            if self.appenders.get(name) is not None:
+                self.appenders[name].add(data)
+            else:
                 self.arrays[name].append(data, axis=0)
 
     def finish(self, contacts: pd.DataFrame, target: Path) -> bool:
@@ -429,11 +423,9 @@ class GridZarr:
             if ids != self.labels or np.array(ids).dtype != self.width:
                 self.abort()
                 return False
-            if self.chunks is not None:  # the groups written, their last chunks, lengths
-                try:
-                    self.chunks.close()
-                except Exception:  # noqa: BLE001 - not written: the caller writes the dataset
-                    return False
+            for chunks in self.appenders.values():  # their last chunks, the arrays' length
+                if chunks is not None:
+                    chunks.close()
             info = done.assign(contact=ids).set_index("contact")
             self._coordinates_and_attributes(info, ids)
             shutil.rmtree(target, ignore_errors=True)
@@ -475,8 +467,6 @@ class GridZarr:
     def abort(self) -> None:
         """Give up: the folder removed."""
         self.aborted = True
-        if self.chunks is not None:  # its thread stopped before the folder goes
-            self.chunks.stop()
         shutil.rmtree(self.folder, ignore_errors=True)
 
 

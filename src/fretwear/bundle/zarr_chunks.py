@@ -14,15 +14,13 @@ zarr stores an edge chunk), then has zarr itself resize the array (its metadata)
 The files are those zarr's ``append`` writes for the same values, byte for byte
 (test_bundle_zarr_appender.py): the same chunks of the same values, the same compressor, a
 chunk equal to the fill value everywhere not written (zarr's ``write_empty_chunks`` False,
-its default). :class:`BackgroundAppends` does it on a thread beside the caller's. Only for an
-array this module knows the layout of (:func:`appender`): format 2,
+its default). Only for an array this module knows the layout of (:func:`appender`): format 2,
 no filter, C order, chunked along the first axis alone, its length a whole number of chunks;
 None otherwise (the caller appends by zarr).
 """
 
 from __future__ import annotations
 
-from concurrent.futures import Future, ThreadPoolExecutor, wait
 from pathlib import Path
 from typing import Any
 
@@ -109,59 +107,3 @@ def _all_fill(chunk: np.ndarray, fill: Any) -> bool:
         void = f"V{chunk.dtype.itemsize}"
         return bool(np.array_equal(chunk.view(void), np.ascontiguousarray(zero).view(void)))
     return bool(np.array_equal(chunk, np.broadcast_to(other, chunk.shape), equal_nan=True))
-
-
-class BackgroundAppends:
-    """The :class:`ChunkAppender` of some arrays of a store, each group's values encoded and
-    written on one thread beside the caller's (the compression and the files' writes release
-    the GIL: 0.5 s of the client's main thread at 10^5 contacts otherwise), one group at a time:
-    :meth:`add` waits for the group before, so at most one is held beside the caller's.
-
-    Parameters
-    ----------
-    appenders : dict
-        ``{array name: its ChunkAppender}``.
-    """
-
-    def __init__(self, appenders: dict[str, ChunkAppender]) -> None:
-        self.appenders = appenders
-        self.pool: ThreadPoolExecutor | None = None
-        self.pending: Future | None = None
-
-    def add(self, values: dict[str, np.ndarray]) -> None:
-        """Append ``{array name: values}`` (arrays not changed after: the thread reads them);
-        raises the error of the group before, if its write failed."""
-        self.wait()
-        if self.pool is None:
-            self.pool = ThreadPoolExecutor(1, thread_name_prefix="fretwear-zarr-chunks")
-        self.pending = self.pool.submit(self._add, values)
-
-    def _add(self, values: dict[str, np.ndarray]) -> None:
-        for name, data in values.items():
-            self.appenders[name].add(data)
-
-    def wait(self) -> None:
-        """Wait for the group being written; raises its error."""
-        pending, self.pending = self.pending, None
-        if pending is not None:
-            pending.result()
-
-    def close(self) -> None:
-        """Wait for the last group, write every array's last chunk and set its length
-        (:meth:`ChunkAppender.close`); the thread stopped."""
-        try:
-            self.wait()
-            for chunks in self.appenders.values():
-                chunks.close()
-        finally:
-            self.stop()
-
-    def stop(self) -> None:
-        """Stop the thread once its group is written (its error dropped: the store is given
-        up)."""
-        pending, self.pending = self.pending, None
-        if pending is not None:
-            wait([pending])
-        if self.pool is not None:
-            self.pool.shutdown(wait=True)
-            self.pool = None
