@@ -5,6 +5,7 @@ Layout of ``OUT/``::
     parts/part-<run>-<n>.parquet   rows of the contacts of part n (``contact`` + wear columns)
     parts/part-<run>-<n>.json      one record per contact of that part: input key, status,
                                    warnings, error, samples, compute time, table metadata
+                                   (what contacts share written once: part_json)
     table.parquet | table.csv      every contact's wear table, identity columns in front
     dataset.zarr | dataset.nc      the same as an xarray Dataset (contact × instant × sector)
     errors.csv, warnings.csv, summary.csv, run.json
@@ -21,6 +22,7 @@ from __future__ import annotations
 
 import glob
 import json
+import math
 import os
 import shutil
 import time
@@ -33,6 +35,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.bundle.datasets import path_stamp, require
+from fretwear.bundle.part_json import BY_VALUE, OWN, part_text, records_of
 from fretwear.bundle.rows_files import (  # noqa: F401 - read_frame, write_frame: their home until now
     read_frame,
     write_frame,
@@ -137,7 +140,7 @@ class OutputDirectory:
                 data = json.loads(js.read_text(encoding="utf-8"))
             except (OSError, json.JSONDecodeError):
                 continue  # not a part this code wrote whole: ignored, its contacts recomputed
-            for rec in data.get("contacts", []):
+            for rec in records_of(data):
                 out[rec["contact"]] = {**rec, "part": data["part"],
                                        "rows_file": data.get("rows_file"),
                                        "attrs": self.compact(rec.get("attrs"))}
@@ -167,21 +170,23 @@ class OutputDirectory:
                     ) -> str:
         """Write the JSON of the part ``stem`` whose rows file ``rows_file`` (in ``parts/``)
         is written: the part exists from then on; returns ``stem``."""
-        meta = {"part": stem, "rows_file": rows_file,
-                "contacts": [{k: v for k, v in r.items()
-                              if k not in ("table", "state", "rows_file", "part")}
-                             for r in records]}
-        # one line, by json.dumps: its C encoder (json.dump to a file, or any indent, takes
-        # the pure-Python one: 0.2 s for the records of 500 contacts); without the check of
-        # circular references (an id kept for every dict and list: 10 % of the encoding), which
-        # a record, plain data from a worker's pickle, cannot hold
-        text = json.dumps(meta, default=str, check_circular=False)
+        seen: dict = {}
+        signatures: list[tuple | None] = []
+        for r in records:  # compacted first: its equal values one object, found so when written
+            attrs = r.get("attrs")
+            sig = None  # part_text's to take (a dict of another type made a dict here)
+            if type(attrs) is dict:
+                r["attrs"], sig = self._compact_signed(attrs, seen)
+            elif isinstance(attrs, dict):
+                r["attrs"] = self.compact(attrs, seen)
+            signatures.append(sig)
+        text = part_text(stem, rows_file, records, signatures)
         with atomic_write(self.parts / f"{stem}.json", encoding="utf-8", sweep=False) as handle:
             handle.write(text)
-        seen: dict = {}
         for r in records:
             r["part"], r["rows_file"] = stem, rows_file
-            r["attrs"] = self.compact(r.get("attrs"), seen)
+            if "attrs" not in r:  # every kept record has its attrs, as compact() gave them
+                r["attrs"] = None
         return stem
 
     def compact(self, attrs: dict | None, seen: dict | None = None) -> dict | None:
@@ -209,6 +214,35 @@ class OutputDirectory:
                     value = shared
             out[key] = value
         return out
+
+    def _compact_signed(self, attrs: dict, seen: dict) -> tuple[dict, tuple]:
+        """:meth:`compact` of ``attrs`` (``seen``: the part's memo) and, in the same pass, its
+        :func:`fretwear.bundle.part_json.signature` (its dicts and lists by their shared
+        objects): the same two as those functions give (test_bundle_part_json.py)."""
+        out = {}
+        sig: list[Any] = [tuple(attrs)]
+        append = sig.append
+        for key, value in attrs.items():
+            kind = type(value)
+            if kind in BY_VALUE:
+                append(kind)
+                append(value)
+                if kind is float and value == 0.0:
+                    append(math.copysign(1.0, value))
+                out[key] = value
+                continue
+            if key != "power" and isinstance(value, (dict, list)):
+                known = seen.get((key, id(value)))
+                if known is not None and known[0] is value:
+                    value = known[1]
+                else:
+                    shared = self._shared.setdefault((key, repr(value)), value)
+                    seen[(key, id(value))] = (value, shared)
+                    value = shared
+            if key not in OWN:
+                append(id(value))
+            out[key] = value
+        return out, tuple(sig)
 
     def rows(self, records: Iterable[Mapping[str, Any]]) -> dict[str, pd.DataFrame]:
         """``{contact: its rows}`` read back from the parts of the given records (a frame per
@@ -452,7 +486,7 @@ def _part_records(parts: Path) -> dict[str, dict[str, Any]]:
             data = json.loads(js.read_text(encoding="utf-8"))
         except (OSError, json.JSONDecodeError):
             continue
-        for rec in data.get("contacts", []):
+        for rec in records_of(data):
             out[str(rec["contact"])] = rec
     return out
 
