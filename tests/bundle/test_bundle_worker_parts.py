@@ -16,7 +16,7 @@ import pytest
 from bundle_helpers import oscillator, write_bundle
 
 from fretwear.bundle import engine, run_bundle
-from fretwear.bundle.store import OutputDirectory, load
+from fretwear.bundle.store import MARKER, OutputDirectory, load
 from fretwear.bundle.worker_parts import PartTarget
 
 distributed = pytest.importorskip("distributed")
@@ -91,3 +91,21 @@ def test_a_worker_that_does_not_see_the_directory_sends_its_rows_back(tmp_path):
     assert store.previous() == {}  # no JSON: not a part
     store.cleanup([])
     assert not list(store.parts.iterdir())
+
+
+def test_the_marker_is_written_once_a_run_never_rewritten(tmp_path):
+    """The engine asks for the marker at every wave while the workers read it for the groups
+    of the earlier waves: it is written once, whole (its file, inode and time, the same after
+    later asks), so that no worker reads it empty and sends its group's rows back (issue 28:
+    one group of 62 contacts now and then, written by the client after the last result)."""
+    store = OutputDirectory(tmp_path / "out")
+    token = store.share_with_workers()
+    marker = store.parts / f"{MARKER}{token}"
+    first = marker.stat()
+    for _ in range(5):
+        assert store.share_with_workers() == token
+    again = marker.stat()
+    assert (again.st_ino, again.st_mtime_ns) == (first.st_ino, first.st_mtime_ns)
+    assert marker.read_text(encoding="utf-8") == token
+    assert sorted(p.name for p in store.parts.iterdir()) == [marker.name]  # no temporary left
+    assert PartTarget(str(store.parts), store.new_stem(), "parquet", token).shared()

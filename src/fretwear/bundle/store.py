@@ -154,9 +154,17 @@ class OutputDirectory:
 
     def share_with_workers(self) -> str:
         """Write the marker by which a worker knows it sees this directory
-        (:mod:`fretwear.bundle.worker_parts`); returns its token."""
+        (:mod:`fretwear.bundle.worker_parts`); returns its token. Written once a run, whole
+        (a temporary file renamed over it): the engine asks for it at each wave while the
+        workers read it for the groups of the earlier ones, and a rewrite in place let a worker
+        read it empty now and then (that group's rows then came back to the client, which
+        wrote them after the last result, issue 28)."""
         token = f"{self._run}-{os.getpid()}"
-        (self.parts / f"{MARKER}{token}").write_text(token, encoding="utf-8")
+        marker = self.parts / f"{MARKER}{token}"
+        if not marker.is_file():
+            tmp = marker.with_name(f"{marker.name}.{os.getpid()}.tmp")
+            tmp.write_text(token, encoding="utf-8")
+            os.replace(tmp, marker)
         return token
 
     def write_part(self, records: list[dict[str, Any]]) -> str:
