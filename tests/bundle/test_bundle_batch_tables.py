@@ -69,3 +69,27 @@ def test_a_batch_that_warns_is_made_one_contact_at_a_time(tmp_path):
     _same(records, alone)
     assert np.isnan(np.asarray(records[-1]["table"]["arrays"][
         records[-1]["table"]["columns"].index("depth_mobile_sector")])).any()
+
+
+def test_a_worker_group_really_uses_the_batched_tables(tmp_path, monkeypatch):
+    """Every contact of a group of one case takes its table from its batch (_table_step's
+    ``made``), not made again alone: counting the calls of sector_tables passed with every
+    batch thrown away (review of issue 28's afternoon round)."""
+
+    manifest, case = write_bundle(tmp_path, oscillator(), 8)
+    man = read_manifest(manifest)
+    base = load_case(case)
+    base["_directory"] = str(man.directory)
+    cache: dict = {}
+    group = [build_task(base, row, man.source, chunk_size=1_000_000, cache=cache)
+             for row in man.rows]
+    used = []
+    real = tasks._table_step
+
+    def step(task, value, made=None):
+        used.append(made is not None)
+        return real(task, value, made)
+
+    monkeypatch.setattr(tasks, "_table_step", step)
+    tasks.run_contacts(group)
+    assert sum(used) == 8

@@ -457,7 +457,7 @@ def test_the_client_freezes_its_old_objects_only_while_it_runs(tmp_path, monkeyp
         gc.enable()
 
 
-def test_the_client_freezes_what_survives_a_full_collection_while_it_runs(tmp_path,
+def test_the_client_freezes_what_survives_an_older_generations_pass(tmp_path,
                                                                           monkeypatch):
     """During run_bundle, what survives a collection of generation 1 or 2 is frozen as well
     (the records and tasks made since the start: the next passes skip them), the callback
@@ -474,6 +474,13 @@ def test_the_client_freezes_what_survives_a_full_collection_while_it_runs(tmp_pa
 
     def spy(*args, **kwargs):
         gc.disable()  # only the passes asked for below: none promotes the cycle before them
+        try:
+            look(seen)
+        finally:
+            gc.enable()
+        return real(*args, **kwargs)
+
+    def look(seen):
         garbage = Node()
         garbage.me = garbage  # a cycle, unreachable once this function returns
         alive = [Node() for _ in range(1000)]  # made during the run, kept to its end
@@ -491,8 +498,6 @@ def test_the_client_freezes_what_survives_a_full_collection_while_it_runs(tmp_pa
         gc.collect()
         seen["frozen by the full pass"] = gc.get_freeze_count() - before
         seen["alive"] = alive + more
-        gc.enable()
-        return real(*args, **kwargs)
 
     monkeypatch.setattr(engine_module, "read_manifest", spy)
     callbacks = list(gc.callbacks)

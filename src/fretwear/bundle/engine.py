@@ -13,13 +13,11 @@ written part by part as they arrive.
 
 from __future__ import annotations
 
-import contextlib
 import os
 import stat
 import time
 import uuid
 from collections.abc import Callable, Mapping
-from pathlib import Path
 from typing import Any
 
 from fretwear.bundle.arrivals import (  # noqa: F401 - PART_SECONDS: its home until now
@@ -39,6 +37,7 @@ from fretwear.bundle.cluster import (
 from fretwear.bundle.contacts_info import ContactRows
 from fretwear.bundle.datasets import require, store_length
 from fretwear.bundle.frozen import gc_frozen
+from fretwear.bundle.interrupted import BundleInterrupted, interrupted  # noqa: F401 - its home until now
 from fretwear.bundle.manifest import Manifest, read_manifest
 from fretwear.bundle.manifest_history import check_histories
 from fretwear.bundle.outputs import assemble, identity_hash, outputs_digest  # noqa: F401
@@ -409,9 +408,10 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
                 handles.update(_submit_all(engine, wave, store, chunk_size, split_every,
                                            retries, part_size,
                                            f"contacts{k}" if k else "contacts"))
-            # what receives the results made once the workers compute (the identity frame
-            # and the table's writer: 0.2-0.4 s at 10^5 contacts, before the first task
-            # earlier): the identity's share of the outputs' digest too, and the rows of
+            # what receives the results made once every wave is submitted, while the workers
+            # compute (the identity frame and the table's writer: 0.2-0.4 s at 10^5 contacts,
+            # before the first task earlier): the identity's share of the outputs' digest
+            # too, and the rows of
             # BundleResult.contacts made as the records are final, not after the last one
             identity = man.identity_frame()
             identity["contact"] = identity["contact"].astype(str)
@@ -440,7 +440,7 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
     except KeyboardInterrupt as exc:  # Ctrl-C: keep what arrived, say what is written
         if arrivals is not None:
             arrivals.abort()
-        raise _interrupted(store, records, [] if arrivals is None else arrivals.buffer,
+        raise interrupted(store, records, [] if arrivals is None else arrivals.buffer,
                            len(man.rows), previous, man, {t.contact for t in pending}) from exc
     except BaseException:
         if arrivals is not None:
@@ -565,45 +565,3 @@ def _part_targets(store: OutputDirectory | None, groups: list[list[ContactTask]]
     token = store.share_with_workers()
     return [PartTarget(str(store.parts), store.new_stem(), store.table_format, token)
             for _ in groups]
-
-
-class BundleInterrupted(KeyboardInterrupt):
-    """A bundle run interrupted (Ctrl-C): the contacts whose results are in the output directory.
-
-    A :class:`KeyboardInterrupt`, so that code catching that still sees the interrupt.
-
-    Attributes
-    ----------
-    written : int
-        Contacts of the manifest done and in the output directory's parts (this run's and the
-        earlier runs' kept ones): a run with the same inputs skips them (0 without output).
-    total : int
-        Contacts of the manifest.
-    output : Path or None
-        The output directory.
-    """
-
-    def __init__(self, written: int, total: int, output: Path | None):
-        self.written, self.total, self.output = written, total, output
-        super().__init__(f"interrupted: {written} of {total} contacts written to {output}"
-                         if output is not None
-                         else f"interrupted: none of {total} contacts written (no output)")
-
-
-def _interrupted(store, records, buffer, total, previous, man, tasks) -> BundleInterrupted:
-    """The :class:`BundleInterrupted` of an interrupted run, the records received but not yet
-    written saved first as a part (a second interrupt during that write leaves it out)."""
-    if store is not None and buffer:
-        with contextlib.suppress(OSError, KeyboardInterrupt):
-            store.write_part(buffer)
-    # a record is in a part once its part's JSON is written (write_part sets "part" then); a
-    # row made a task (``tasks``) counts only once computed this run; a row not reached yet
-    # (interrupted while the tasks were built) counts by the earlier runs' parts
-    written = sum(1 for row in man.rows
-                  if (row.contact in records and records[row.contact].get("part")
-                      and records[row.contact]["status"] in ("done", "skipped"))
-                  or (row.contact not in records and row.contact not in tasks
-                      and (previous.get(row.contact) or {}).get("status") == "done"))
-    if store is None:  # nothing written: the contacts computed before the interrupt
-        written = 0
-    return BundleInterrupted(written, total, None if store is None else store.path)

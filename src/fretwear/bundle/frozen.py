@@ -1,7 +1,7 @@
 """The client's garbage collector during a bundle run (issue 28): the objects alive at the
 run's start frozen, and those surviving each pass of the older generations frozen too
-(:func:`gc_frozen`); the
-collector off while the run's end assembles its result (:func:`collector_paused`)."""
+(:func:`gc_frozen`); the collector off while the run's end assembles its result
+(:func:`collector_paused`)."""
 
 from __future__ import annotations
 
@@ -39,9 +39,10 @@ def gc_frozen():
 
 
 def freeze_survivors(phase: str, info: dict) -> None:
-    """A :data:`gc.callbacks` callback: at the end of a pass of generation 1 or 2, what is
-    left of the generations it went over is frozen, so that the next passes go over the objects
-    made since: the records, tasks and parts the client keeps till the end survive their first
+    """A :data:`gc.callbacks` callback: at the end of a pass of generation 1 or 2, every object
+    the collector tracks is frozen (:func:`gc.freeze`: those the pass kept, and any made since
+    by another thread, Dask's event loop), so that the next passes go over the objects made
+    since: the records, tasks and parts the client keeps till the end survive their first
     passes, and were walked again by every full pass (issue 28: 25 full passes, 0.7 s of the
     client's CPU at 10^5 contacts; frozen after the middle generation's passes too, no full
     pass is left and the client's peak memory was 1.26 GB against 1.32). An object frozen then

@@ -1,4 +1,5 @@
-"""Where a manifest's files are: each path cell made absolute, as ``Path.resolve`` makes it.
+"""Where a manifest's files are: each relative path cell made absolute, as ``Path.resolve``
+makes it (an absolute cell is kept as written, ``str(Path(cell))``: its links too).
 
 A manifest of 10^5 histories in one folder spent 0.8 s of the client's CPU in
 :func:`fretwear.bundle.read_manifest` before any worker started (issue 28), half of it on
@@ -45,7 +46,9 @@ def resolved(path: Path) -> str:
 
 class HistoryPaths:
     """The absolute paths of a manifest's ``history`` cells (relative to ``directory``), the
-    text :func:`absolute` gives of each.
+    text :func:`absolute` gives of each: a relative cell resolved (``Path.resolve``), an
+    absolute one as written (``str(Path(cell))``, its links kept: the task keys of earlier
+    runs are made of that text).
 
     Each folder is resolved once; a file in a resolved folder is its folder and its name,
     unless it is a link (then resolved whole). Whether it is one is read from the folder's

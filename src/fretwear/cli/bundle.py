@@ -20,7 +20,7 @@ from rich.text import Text
 
 from fretwear.bundle import run_bundle
 from fretwear.bundle.digest import limit_lines, warning_lines
-from fretwear.bundle.engine import BundleInterrupted
+from fretwear.bundle.interrupted import BundleInterrupted
 from fretwear.bundle.manifest import BUNDLE_COLUMNS, WALL_COLUMN
 from fretwear.bundle.store import DATASET_FORMATS, TABLE_FORMATS
 from fretwear.cli._units import parse_units, units_option, with_bundle_units
