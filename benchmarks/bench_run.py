@@ -155,6 +155,7 @@ def main(argv=None) -> None:
                    help="a checkout whose src/ gives the 'before' of fretwear power")
     args = p.parse_args(argv)
     n = int(args.samples)
+    args.dir.mkdir(parents=True, exist_ok=True)  # a folder given that does not exist yet
     path = args.dir / f"fretwear_bench_run_{n}.parquet"
     if not path.is_file():
         print(f"writing {path} ({n:.0e} samples) ...", flush=True)
