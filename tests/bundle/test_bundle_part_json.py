@@ -17,7 +17,7 @@ import pytest
 from bundle_helpers import oscillator, write_bundle
 
 from fretwear.bundle import load, run_bundle
-from fretwear.bundle.part_json import records_of, signature
+from fretwear.bundle.part_json import records_of
 from fretwear.bundle.store import OutputDirectory, _part_records
 
 SKIP = ("table", "state", "rows_file", "part")
@@ -101,19 +101,6 @@ def test_a_part_reads_back_as_the_standard_encoders_records(tmp_path):
     assert [math.copysign(1, r["attrs"]["origin"]) for r in got["contacts"][2:4]] == [1, -1]
     assert [type(r["attrs"]["depth_limit"]) for r in got["contacts"][:4]] == [
         int, float, bool, int]
-
-
-def test_signature_in_the_compacting_pass_is_part_jsons(tmp_path):
-    """OutputDirectory._compact_signed gives compact()'s attrs and part_json.signature of
-    them."""
-    store, alone = OutputDirectory(tmp_path / "a"), OutputDirectory(tmp_path / "b")
-    seen: dict = {}
-    for r in _records():
-        if isinstance(r.get("attrs"), dict):
-            attrs, sig = store._compact_signed(r["attrs"], seen)
-            assert attrs == alone.compact(copy.deepcopy(r["attrs"]))
-            assert list(attrs) == list(r["attrs"])
-            assert sig == signature(attrs)
 
 
 def test_a_part_written_before_reads_back_whole(tmp_path):

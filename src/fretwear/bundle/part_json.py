@@ -52,26 +52,21 @@ def signature(attrs: dict[str, Any]) -> tuple:
     return tuple(sig)
 
 
-def part_text(stem: str, rows_file: str | None, records: list[dict[str, Any]],
-              signatures: list[tuple | None] | None = None) -> str:
+def part_text(stem: str, rows_file: str | None, records: list[dict[str, Any]]) -> str:
     """The part's JSON (see the module's docstring), one line, by ``json.dumps``'s C encoder
     (json.dump to a file, or any indent, takes the pure-Python one: 0.2 s for the records of
     500 contacts); without the check of circular references (an id kept for every dict and
     list: 10 % of the encoding), which a record, plain data from a worker's pickle, cannot
     hold. Each record's ``attrs`` should be compacted (equal dicts and lists one object:
-    :meth:`fretwear.bundle.store.OutputDirectory.compact`), else each is its own entry.
-    ``signatures``: each record's :func:`signature` where the caller took it (in the same pass
-    as its compaction), None to take them here."""
+    :meth:`fretwear.bundle.store.OutputDirectory.compact`), else each is its own entry."""
     index: dict[tuple, int] = {}
     shared: list[dict[str, Any]] = []
     contacts = []
-    for i, r in enumerate(records):
+    for r in records:
         rec = {k: v for k, v in r.items() if k not in NOT_WRITTEN}
         attrs = rec.get("attrs")
         if type(attrs) is dict:
-            sig = signatures[i] if signatures is not None else None
-            if sig is None:
-                sig = signature(attrs)
+            sig = signature(attrs)
             k = index.get(sig)
             if k is None:
                 k = index[sig] = len(shared)

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import glob
 import json
-import math
 import os
 import shutil
 import time
@@ -35,7 +34,7 @@ import numpy as np
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear.bundle.datasets import path_stamp, require
-from fretwear.bundle.part_json import BY_VALUE, OWN, part_text, records_of
+from fretwear.bundle.part_json import part_text, records_of
 from fretwear.bundle.rows_files import (  # noqa: F401 - read_frame, write_frame: their home until now
     read_frame,
     write_frame,
@@ -179,16 +178,10 @@ class OutputDirectory:
         """Write the JSON of the part ``stem`` whose rows file ``rows_file`` (in ``parts/``)
         is written: the part exists from then on; returns ``stem``."""
         seen: dict = {}
-        signatures: list[tuple | None] = []
         for r in records:  # compacted first: its equal values one object, found so when written
-            attrs = r.get("attrs")
-            sig = None  # part_text's to take (a dict of another type made a dict here)
-            if type(attrs) is dict:
-                r["attrs"], sig = self._compact_signed(attrs, seen)
-            elif isinstance(attrs, dict):
-                r["attrs"] = self.compact(attrs, seen)
-            signatures.append(sig)
-        text = part_text(stem, rows_file, records, signatures)
+            if isinstance(r.get("attrs"), dict):
+                r["attrs"] = self.compact(r["attrs"], seen)
+        text = part_text(stem, rows_file, records)
         with atomic_write(self.parts / f"{stem}.json", encoding="utf-8", sweep=False) as handle:
             handle.write(text)
         for r in records:
@@ -222,35 +215,6 @@ class OutputDirectory:
                     value = shared
             out[key] = value
         return out
-
-    def _compact_signed(self, attrs: dict, seen: dict) -> tuple[dict, tuple]:
-        """:meth:`compact` of ``attrs`` (``seen``: the part's memo) and, in the same pass, its
-        :func:`fretwear.bundle.part_json.signature` (its dicts and lists by their shared
-        objects): the same two as those functions give (test_bundle_part_json.py)."""
-        out = {}
-        sig: list[Any] = [tuple(attrs)]
-        append = sig.append
-        for key, value in attrs.items():
-            kind = type(value)
-            if kind in BY_VALUE:
-                append(kind)
-                append(value)
-                if kind is float and value == 0.0:
-                    append(math.copysign(1.0, value))
-                out[key] = value
-                continue
-            if key != "power" and isinstance(value, (dict, list)):
-                known = seen.get((key, id(value)))
-                if known is not None and known[0] is value:
-                    value = known[1]
-                else:
-                    shared = self._shared.setdefault((key, repr(value)), value)
-                    seen[(key, id(value))] = (value, shared)
-                    value = shared
-            if key not in OWN:
-                append(id(value))
-            out[key] = value
-        return out, tuple(sig)
 
     def rows(self, records: Iterable[Mapping[str, Any]]) -> dict[str, pd.DataFrame]:
         """``{contact: its rows}`` read back from the parts of the given records (a frame per
