@@ -66,6 +66,20 @@ def write_bundle(directory: Path, history, count: int = 4, *, fmt: str = "parque
     return manifest, case
 
 
+def manifest_tasks(manifest: Path, case: Path, chunk_size: int = 1_000_000) -> list:
+    """The ContactTasks of a manifest's rows, built as the engine builds them (the base case
+    loaded once, the rows sharing a case sharing it)."""
+    from fretwear.bundle.cases import build_task
+    from fretwear.bundle.manifest import read_manifest
+
+    man = read_manifest(manifest)
+    base = load_case(case)
+    base["_directory"] = str(man.directory)
+    cache: dict = {}
+    return [build_task(base, row, man.source, chunk_size=chunk_size, cache=cache)
+            for row in man.rows]
+
+
 def reference(history_path, case_path, **read_options) -> pd.DataFrame:
     """The single-contact wear table: fretwear.table.wear_table on the history read with
     fretwear.io.read_history and the keywords of the case file (case-file layer)."""

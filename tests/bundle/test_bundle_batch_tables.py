@@ -8,25 +8,16 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from bundle_helpers import oscillator, write_bundle
+from bundle_helpers import manifest_tasks, oscillator, write_bundle
 
 from fretwear.bundle import tasks
-from fretwear.bundle.cases import build_task
-from fretwear.bundle.manifest import read_manifest
-from fretwear.workflows.case_files import load_case
 
 pytest.importorskip("pyarrow")
 
 
 def _tasks(tmp_path, extra):
     count = len(next(iter(extra.values())))
-    manifest, case = write_bundle(tmp_path, oscillator(), count, extra=extra)
-    man = read_manifest(manifest)
-    base = load_case(case)
-    base["_directory"] = str(man.directory)
-    cache: dict = {}
-    return [build_task(base, row, man.source, chunk_size=1_000_000, cache=cache)
-            for row in man.rows]
+    return manifest_tasks(*write_bundle(tmp_path, oscillator(), count, extra=extra))
 
 
 def _same(records, alone):
@@ -75,14 +66,7 @@ def test_a_worker_group_really_uses_the_batched_tables(tmp_path, monkeypatch):
     """Every contact of a group of one case takes its table from its batch (_table_step's
     ``made``), not made again alone: counting the calls of sector_tables passed with every
     batch thrown away (review of issue 28's afternoon round)."""
-
-    manifest, case = write_bundle(tmp_path, oscillator(), 8)
-    man = read_manifest(manifest)
-    base = load_case(case)
-    base["_directory"] = str(man.directory)
-    cache: dict = {}
-    group = [build_task(base, row, man.source, chunk_size=1_000_000, cache=cache)
-             for row in man.rows]
+    group = manifest_tasks(*write_bundle(tmp_path, oscillator(), 8))
     used = []
     real = tasks._table_step
 

@@ -12,13 +12,10 @@ from collections import OrderedDict
 import numpy as np
 import pandas as pd
 import pytest
-from bundle_helpers import oscillator, write_bundle
+from bundle_helpers import manifest_tasks, oscillator, write_bundle
 
 from fretwear.bundle import tasks
-from fretwear.bundle.cases import build_task
-from fretwear.bundle.manifest import read_manifest
 from fretwear.io import prefetch, sources, streaming
-from fretwear.workflows.case_files import load_case
 
 pytest.importorskip("pyarrow")
 
@@ -34,12 +31,7 @@ def _tasks(tmp_path, count):
     frame.loc[5, "history"] = "histories/missing.parquet"
     frame.to_csv(manifest, index=False)
     (tmp_path / "histories" / "t6.parquet").write_bytes(b"PAR1 garbage PAR1")
-    man = read_manifest(manifest)
-    base = load_case(case)
-    base["_directory"] = str(man.directory)
-    cache: dict = {}
-    return [build_task(base, row, man.source, chunk_size=1_000_000, cache=cache)
-            for row in man.rows]
+    return manifest_tasks(manifest, case)
 
 
 def test_a_group_reads_ahead_then_computes_powers_then_tables(tmp_path, monkeypatch):
