@@ -38,6 +38,13 @@ SIGNALS = ("smooth", "example", "dynamics", "noise")
 #: The six arrays every signal has (the floor sums these).
 SIX = ("time", "normal_force", "vt1", "vt2", "dy", "dz")
 _ROOT = Path(__file__).resolve().parents[1]
+#: The benchmarks' wear case (``WearCase.from_keywords`` / ``wear_table`` keywords): a 3/4"
+#: steam-generator tube against a 12.7 mm anti-vibration bar, Archard, 8 sectors, 6 instants
+#: [years].
+TUBE_BAV = dict(contact_type="TUBE_BAV", dimensions={"mobile_radius": 9.525e-3,
+                                                     "obstacle_width": 12.7e-3},
+                law="ARCHARD", coefficients={"COEF_USURE": 1e-17}, sectors=8,
+                instants=[1, 2, 5, 10, 20, 40], time_scale=3.15576e7)
 
 
 def _rng(start: int, salt: int) -> np.random.Generator:

@@ -32,16 +32,13 @@ import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _signals import smooth  # noqa: E402
+from _signals import TUBE_BAV, smooth  # noqa: E402
 
 from fretwear.history import ContactHistory  # noqa: E402
 from fretwear.io import plausibility, read_history, write_history  # noqa: E402
 from fretwear.table import wear_table  # noqa: E402
 
-KEYWORDS = dict(contact_type="TUBE_BAV", dimensions={"mobile_radius": 9.525e-3,
-                                                     "obstacle_width": 12.7e-3},
-                law="ARCHARD", coefficients={"COEF_USURE": 1e-17}, sectors=8,
-                instants=[1, 2, 5, 10, 20, 40], time_scale=3.15576e7)
+KEYWORDS = TUBE_BAV
 
 
 def _per_item(fn, items) -> float:
