@@ -106,9 +106,3 @@ class ContactRows:
             known = self._of_case[id(case)] = (case, tuple(values))
         return known[1]
 
-
-def contacts_info(order: list[str], records: dict[str, dict[str, Any]],
-                  cases: dict[str, Any]) -> pd.DataFrame:
-    """The rows of ``BundleResult.contacts`` but the identity, one per contact of ``order``
-    (:class:`ContactRows`, every row made here)."""
-    return ContactRows(order, cases).frame(records)

@@ -21,7 +21,7 @@ from typing import Any
 from fretwear._lazy import pandas as pd
 from fretwear._optional import optional
 from fretwear._version import __version__
-from fretwear.bundle.contacts_info import ContactRows, contacts_info
+from fretwear.bundle.contacts_info import ContactRows
 from fretwear.bundle.end_scan import digest_row, scan
 from fretwear.bundle.frozen import collector_paused
 from fretwear.bundle.manifest import Manifest
@@ -75,9 +75,10 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     # dataset is being written
     options = (store.table_format, dataset_format or "default", limit, identity_bytes) \
         if store else None
+    seen = scan(order, records, built)
     digest = None
     if store is not None and all(records[c]["status"] == "skipped" for c in order):
-        digest = outputs_digest(identity, order, records, *options)
+        digest = outputs_digest(identity, order, records, *options, rows=seen.digest_rows)
     unchanged = digest is not None and store.unchanged(digest)
     if dataset_format is None:
         dataset_format = "netcdf" if optional("zarr") is None else "zarr"
@@ -85,7 +86,6 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     # PrefixTable), else by buckets (table_file.stream_table), and the result reads it on
     # demand: the client never holds the whole table (issue 28: 1.3 GB at 10^5 contacts, then
     # its copies); an unchanged restart reads nothing
-    seen = scan(order, records, built)
     table = None
     streamed = unchanged and _saved_table(store, order)
     if not streamed and store is not None and not seen.tables:
@@ -98,7 +98,8 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     if not streamed:
         table = _table(order, identity, records, store)
     table_file = store.table_path() if streamed else None
-    cases = seen.cases
+    if made is None:
+        made = ContactRows(order, built or {})
     # after the last result the workers' cores are free (issue 28: the client's work there was
     # single-threaded while a core waited): the summary's columns read in a thread from now,
     # and from the contacts on, the dataset written in a thread and the summary of the run's
@@ -108,9 +109,7 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
     result = None
     with ThreadPoolExecutor(2) as pool:
         try:
-            info = made.frame(records) if made is not None else \
-                contacts_info(order, records, built or {})
-            contacts = identity.merge(info, on="contact", how="right")
+            contacts = identity.merge(made.frame(records), on="contact", how="right")
             regions = pool.submit(store.write_zarr_by_regions, contacts) \
                 if ahead is not None and dataset_format == "zarr" else None
             summarized = None
@@ -126,28 +125,27 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
             errors_frame = errors_frame.merge(identity.drop(columns=["history"]), on="contact",
                                               how="left")
             statuses = contacts["status"].value_counts()
-            computed, samples, two_pass = seen.computed, seen.samples, seen.two_pass
             started, startup = times
             stats = {"contacts": len(order), "done": int(statuses.get("done", 0)),
                      "failed": int(statuses.get("failed", 0)),
                      "skipped": int(statuses.get("skipped", 0)),
                      "stale": int(statuses.get("stale", 0)), "seconds": math.nan,
                      "startup_seconds": startup, "contacts_per_s": math.nan,
-                     "samples": int(samples), "samples_per_s": math.nan,
+                     "samples": int(seen.samples), "samples_per_s": math.nan,
                      "workers": workers, "manifest": man.source,
-                     "two_pass_contacts": int(two_pass)}
+                     "two_pass_contacts": int(seen.two_pass)}
             result = BundleResult(
                 table=table, table_file=table_file, errors=errors_frame,
                 warnings=pd.DataFrame(warns, columns=["contact", "category", "message"]),
                 contacts=contacts, stats=stats,
-                output=None if store is None else str(store.path), cases=cases,
+                output=None if store is None else str(store.path), cases=seen.cases,
                 _summary_ahead=summarized)
             if store is not None:
                 _write_outputs(result, store, seen.parts, dataset_format,
-                               (started, computed), limit, digest, unchanged,
+                               (started, seen.computed), limit, digest, unchanged,
                                (pool, regions))
             else:
-                _times(result.stats, started, computed)
+                _times(result.stats, started, seen.computed)
         finally:
             if ahead is not None:  # not handed to the summary's thread: stopped
                 ahead.close()
