@@ -411,15 +411,16 @@ def _run(manifest, case, scheduler, workers, output, force, chunk_size, split_ev
             # what receives the results made once every wave is submitted, while the workers
             # compute (the identity frame and the table's writer: 0.2-0.4 s at 10^5 contacts,
             # before the first task earlier): the identity's share of the outputs' digest
-            # too, and the rows of
-            # BundleResult.contacts made as the records are final, not after the last one
+            # too, and the rows of BundleResult.contacts made as the records are final, not
+            # after the last one
             identity = man.identity_frame()
             identity["contact"] = identity["contact"].astype(str)
             hashed = None if store is None else identity_hash(identity)
-            made = ContactRows([r.contact for r in man.rows], built)
+            order = [r.contact for r in man.rows]
+            made = ContactRows(order, built)
             arrivals = Arrivals(store, records, earlier, len(man.rows), progress, part_size,
                                 None if store is None else store.table_writer(
-                                    [r.contact for r in man.rows], identity, dataset_format))
+                                    order, identity, dataset_format))
             arrivals.start()
             engine = engine or SerialEngine()
             streaming = (store is not None or progress is not None
