@@ -431,7 +431,7 @@ def _task_key(ident_case: Any, signature: str, cache: dict | None, history: list
     earlier run's output directory is this one for the same inputs."""
     text = None if cache is None else cache.get(("json", signature))
     if text is None:
-        text = json.dumps(ident_case, sort_keys=True, default=str)
+        text = _encode(ident_case)
         if cache is not None:
             cache[("json", signature)] = text
     whole = "".join(('{"case": ', text, ', "chunk": ', _encode(chunk_size),
