@@ -112,10 +112,10 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
             contacts = identity.merge(made.frame(records), on="contact", how="right")
             regions = pool.submit(store.write_zarr_by_regions, contacts) \
                 if ahead is not None and dataset_format == "zarr" else None
-            summarized = None
+            summaries = {}
             if ahead is not None:  # the thread closes the rows it reads
-                summarized = (summary_key(limit),
-                              pool.submit(summarize_ahead, ahead, contacts, limit))
+                summaries[summary_key(limit)] = pool.submit(summarize_ahead, ahead, contacts,
+                                                            limit)
                 ahead = None
             if store is not None and digest is None:
                 digest = outputs_digest(identity, order, records, *options,
@@ -139,7 +139,7 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
                 warnings=pd.DataFrame(warns, columns=["contact", "category", "message"]),
                 contacts=contacts, stats=stats,
                 output=None if store is None else str(store.path), cases=seen.cases,
-                _summary_ahead=summarized)
+                _summaries=summaries)
             if store is not None:
                 _write_outputs(result, store, seen.parts, dataset_format,
                                (started, seen.computed), limit, digest, unchanged,
@@ -149,8 +149,6 @@ def _assemble(man, records, store, times, workers, dataset_format, limit, built,
         finally:
             if ahead is not None:  # not handed to the summary's thread: stopped
                 ahead.close()
-            if result is not None:  # its ranking kept by summary(), else not kept
-                result._summary_ahead = None
     return result
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 import numbers
+from concurrent.futures import Future
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -93,12 +94,11 @@ class BundleResult:
     cases: dict[str, Any] = field(default_factory=dict, repr=False)
     table_file: str | None = field(default=None, repr=False)
     _dataset: Any = field(default=None, repr=False)
-    #: ``summary()``'s rankings, one per ``(limit, limit_m, wall_thickness)``: a result is
-    #: never changed once built, so a ranking is computed once and read after (issue 28).
+    #: ``summary()``'s rankings, one per :func:`summary_key`: a result is never changed once
+    #: built, so a ranking is computed once and read after (issue 28); a ranking still being
+    #: made (the run's limit's, by the bundle's end beside the rest: :func:`summarize_ahead`)
+    #: is its future, waited for when first read
     _summaries: dict = field(default_factory=dict, repr=False, compare=False)
-    #: ``(summary_key(limit), future)``: the summary of the run's limit, being made by the
-    #: bundle's end beside the rest (:func:`summarize_ahead`), the ranking ``future`` gives
-    _summary_ahead: Any = field(default=None, repr=False, compare=False)
 
     @property
     def dataset(self):
@@ -170,10 +170,8 @@ class BundleResult:
             ranking = self._summaries.get(key)
         except TypeError:  # an unhashable argument: summarize says what is wrong with it
             ranking, key = None, None
-        ahead = self._summary_ahead
-        if ranking is None and ahead is not None and key is not None and ahead[0] == key:
-            self._summary_ahead = None
-            ranking = self._summaries[key] = ahead[1].result()
+        if isinstance(ranking, Future):
+            ranking = self._summaries[key] = ranking.result()
         if ranking is None:
             rows = self._summary_rows()
             try:
