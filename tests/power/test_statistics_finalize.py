@@ -1,10 +1,9 @@
-"""finalize_statistics against numpy's reductions of the same block sums (issue 28: one block,
-a bundle's contact, without numpy's sum over the blocks and without np.errstate).
+"""finalize_statistics against numpy's reductions of the same block sums, one block or
+several.
 
-The window's sums are numpy's ``block_stats.sum(axis=0)`` (one row: 0.0 + each value, so a
--0.0 comes out +0.0), the block arrays numpy's divisions by T/B; no RuntimeWarning for a NaN or
-an infinite sum (none was raised before either), the overflow of a division by a tiny block
-still warned as numpy warns it.
+The window's sums are numpy's ``block_stats.sum(axis=0)`` (one row: a -0.0 comes out +0.0),
+the block arrays numpy's divisions by T/B; no RuntimeWarning for a NaN or an infinite sum, the
+overflow of a division by a tiny block warned as numpy warns it.
 """
 
 from __future__ import annotations
